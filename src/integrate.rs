@@ -1,0 +1,194 @@
+//! Numerical methods for `y' = f(t, y)` on fixed-size states.
+//!
+//! Every method is generic over one small trait, [`Rhs`], and steps a
+//! fixed-size [`State`]: no allocation per step. Every method implements
+//! [`Stepper`], counts its work in [`Stats`], and reports a numerical failure
+//! (a non-finite state, a step-size underflow, an exhausted step budget) as an
+//! [`IntegrateError`] that carries the time `t` where it happened. A method never
+//! hands back a NaN sample.
+//!
+//! | method | order | step control | continuous extension |
+//! |---|---|---|---|
+//! | [`Rk4`] | 4 | fixed step | cubic Hermite |
+//! | [`Dopri5`] | 5(4) | PI controller | Shampine's order-4 interpolant |
+//! | [`Dop853`] | 8(5,3) | Hairer's controller | order-7 interpolant (3 extra stages) |
+//!
+//! All three step forward or backward: the direction is the sign of
+//! `t_stop − t`.
+
+use crate::math::{Real, State};
+use serde::Serialize;
+use thiserror::Error;
+
+pub mod dop853;
+pub mod dopri5;
+pub mod rk4;
+
+pub use dop853::Dop853;
+pub use dopri5::Dopri5;
+pub use rk4::Rk4;
+
+/// A right-hand side `y' = f(t, y)` on ℝᴺ.
+pub trait Rhs<const N: usize> {
+    /// Evaluate `f(t, y)`.
+    fn eval(&self, t: Real, y: &State<N>) -> State<N>;
+}
+
+impl<const N: usize, F> Rhs<N> for F
+where
+    F: Fn(Real, &State<N>) -> State<N>,
+{
+    fn eval(&self, t: Real, y: &State<N>) -> State<N> {
+        self(t, y)
+    }
+}
+
+/// The work a method has done so far.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Stats {
+    /// Evaluations of the right-hand side, including those for the initial
+    /// step-size guess and for continuous output.
+    pub rhs_evals: u64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected step attempts (always 0 for fixed-step methods).
+    pub rejected: u64,
+}
+
+impl std::ops::AddAssign for Stats {
+    fn add_assign(&mut self, other: Stats) {
+        self.rhs_evals += other.rhs_evals;
+        self.steps += other.steps;
+        self.rejected += other.rejected;
+    }
+}
+
+/// A numerical failure, always with the time at which it was detected.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum IntegrateError {
+    /// The state or the error estimate stopped being finite.
+    #[error("the solution became non-finite at t = {t}")]
+    NonFinite {
+        /// Time of the last finite state.
+        t: Real,
+    },
+    /// The adaptive step size fell below what the floating-point time axis can resolve.
+    #[error("the step size fell to {h:e} at t = {t}, below what the time axis can resolve")]
+    StepSizeUnderflow {
+        /// Time where the method gave up.
+        t: Real,
+        /// The last step size tried.
+        h: Real,
+    },
+    /// More accepted steps than the budget allows (a guard against hangs).
+    #[error("the step budget of {max_steps} steps ran out at t = {t}")]
+    TooManySteps {
+        /// Time reached when the budget ran out.
+        t: Real,
+        /// The budget.
+        max_steps: u64,
+    },
+    /// An option was rejected when the method was built.
+    #[error("invalid integrator option: {0}")]
+    InvalidOption(String),
+}
+
+/// Options of the adaptive methods, validated by [`AdaptiveOptions::new`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdaptiveOptions {
+    /// Relative tolerance, in (0, 1).
+    pub rtol: Real,
+    /// Absolute tolerance, ≥ 0 (the error of component i is scaled by
+    /// `atol + rtol·max(|y_i|, |y_new_i|)`).
+    pub atol: Real,
+    /// First step size; `None` lets the method choose (Hairer's `hinit`).
+    pub h_init: Option<Real>,
+    /// Largest step size magnitude.
+    pub h_max: Real,
+    /// Budget of accepted plus rejected steps for the life of the stepper.
+    pub max_steps: u64,
+}
+
+/// The default step budget: enough for any run the CLI offers, small enough
+/// that a hopeless run stops within seconds instead of hanging.
+pub const DEFAULT_MAX_STEPS: u64 = 10_000_000;
+
+impl AdaptiveOptions {
+    /// Tolerances with defaults for the rest; rejects non-finite or out-of-range values.
+    pub fn new(rtol: Real, atol: Real) -> Result<Self, IntegrateError> {
+        if !(rtol.is_finite() && rtol > 0.0 && rtol < 1.0) {
+            return Err(IntegrateError::InvalidOption(format!(
+                "rtol must lie in (0, 1), got {rtol}"
+            )));
+        }
+        if !(atol.is_finite() && atol >= 0.0) {
+            return Err(IntegrateError::InvalidOption(format!(
+                "atol must be finite and ≥ 0, got {atol}"
+            )));
+        }
+        Ok(Self {
+            rtol,
+            atol,
+            h_init: None,
+            h_max: Real::INFINITY,
+            max_steps: DEFAULT_MAX_STEPS,
+        })
+    }
+}
+
+/// A one-step method that owns its current time and state.
+///
+/// The driver calls [`Stepper::step`] until [`Stepper::t`] reaches its goal, and
+/// reads values between step points with [`Stepper::dense`].
+pub trait Stepper<const N: usize> {
+    /// Current time.
+    fn t(&self) -> Real;
+    /// Current state.
+    fn y(&self) -> &State<N>;
+    /// Start of the last accepted step (equal to `t()` before the first step).
+    fn t_prev(&self) -> Real;
+    /// Signed size of the last accepted step (0 before the first step).
+    fn last_step(&self) -> Real;
+    /// Work done so far.
+    fn stats(&self) -> Stats;
+    /// Take one accepted step toward `t_stop`, never past it. Rejected attempts
+    /// are retried inside and counted in [`Stats::rejected`]. Backward steps are
+    /// taken when `t_stop < t()`. Calling it with `t_stop == t()` is a no-op.
+    fn step<R: Rhs<N>>(&mut self, rhs: &R, t_stop: Real) -> Result<(), IntegrateError>;
+    /// The continuous extension of the last accepted step at `t` in
+    /// `[t_prev(), t()]` (or the current state before any step).
+    fn dense<R: Rhs<N>>(&mut self, rhs: &R, t: Real) -> State<N>;
+    /// Replace the current state (same time) after the driver changed it, for
+    /// example when a Lie-group method folds its local coordinates into the base
+    /// orientation. Cached stages (FSAL) are dropped.
+    fn reset(&mut self, y: State<N>);
+}
+
+/// Integrate from the stepper's current time through every time in `times`
+/// (all on the same side of the start, in order) and return the states there.
+///
+/// Adaptive methods step freely toward the last time and read earlier ones from
+/// their continuous extension, so output times do not shorten the steps.
+pub fn solve<const N: usize, S: Stepper<N>, R: Rhs<N>>(
+    stepper: &mut S,
+    rhs: &R,
+    times: &[Real],
+) -> Result<Vec<State<N>>, IntegrateError> {
+    let mut out = Vec::with_capacity(times.len());
+    let Some(&t_end) = times.last() else {
+        return Ok(out);
+    };
+    let forward = t_end >= stepper.t();
+    for &t in times {
+        // Step until the output time lies inside the last accepted step.
+        while if forward { stepper.t() < t } else { stepper.t() > t } {
+            stepper.step(rhs, t_end)?;
+        }
+        out.push(if t == stepper.t() {
+            *stepper.y()
+        } else {
+            stepper.dense(rhs, t)
+        });
+    }
+    Ok(out)
+}
