@@ -1,0 +1,66 @@
+//! The paper's physics, one module per concept. Pure: no I/O, no clock, no
+//! printing; the same input gives the same bits.
+//!
+//! | module | paper | what it holds |
+//! |---|---|---|
+//! | [`rigid_body`] | §3, (3.1)–(3.2) | kinematics, `Ω̇ = F(Ω)` models, observables E, L, tilt |
+//! | [`euler_angles`] | (3.5), (4.8) | z-x-z Euler angles and their rates |
+//! | [`general_top`] | (3.3) | the truncated ALE for any principal moments and dipole |
+//! | [`symmetric_top`] | §4, (4.1)–(4.18) | truncated and reduced ALE of the axially symmetric top, closed forms |
+//!
+//! Units: κ = 2/(3c³) = 1 for the general top; τ = 2d²/(3I₁c³) = 1 and I₁ = 1 for
+//! the symmetric top (so times are in units of τ and rates in units of 1/τ).
+
+use crate::math::Real;
+use thiserror::Error;
+
+pub mod euler_angles;
+pub mod general_top;
+pub mod rigid_body;
+pub mod symmetric_top;
+
+/// A physical parameter that was refused when a model was built.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ParamError {
+    /// An input that must be a finite number was not.
+    #[error("{name} must be a finite number, got {value}")]
+    NotFinite {
+        /// Which input.
+        name: &'static str,
+        /// Its value.
+        value: Real,
+    },
+    /// The symmetric top's I₃/I₁ lies outside (0, 2].
+    #[error(
+        "I3/I1 = {0} is not a rigid body: the moments must be positive and obey I3 <= I1 + I2 = 2 I1, so 0 < I3/I1 <= 2"
+    )]
+    RatioOutOfRange(Real),
+    /// A principal moment is not positive.
+    #[error("principal moment I{index} = {value} must be positive")]
+    MomentNotPositive {
+        /// 1, 2 or 3.
+        index: usize,
+        /// Its value.
+        value: Real,
+    },
+    /// The principal moments break a triangle inequality.
+    #[error(
+        "moments ({0}, {1}, {2}) are not a rigid body: each must be at most the sum of the other two"
+    )]
+    TriangleInequality(Real, Real, Real),
+    /// The dipole is zero, so there is no radiation and no model to study.
+    #[error("the dipole must be non-zero (a top without a dipole does not radiate)")]
+    ZeroDipole,
+    /// τ is negative.
+    #[error("tau must be >= 0, got {0}")]
+    NegativeTau(Real),
+}
+
+/// Refuse a non-finite input, naming it.
+pub(crate) fn finite(name: &'static str, value: Real) -> Result<Real, ParamError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(ParamError::NotFinite { name, value })
+    }
+}

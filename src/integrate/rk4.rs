@@ -9,6 +9,11 @@ pub struct Rk4<const N: usize> {
     y: State<N>,
 }
 
+impl<const N: usize> Rk4<N> {
+    /// Placeholder.
+    pub fn new(t0: Real, y0: State<N>, _h: Real) -> Result<Self, IntegrateError> { Ok(Self { t: t0, y: y0 }) }
+}
+
 impl<const N: usize> Stepper<N> for Rk4<N> {
     fn t(&self) -> Real { self.t }
     fn y(&self) -> &State<N> { &self.y }

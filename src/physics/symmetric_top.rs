@@ -1,0 +1,392 @@
+//! The axially symmetric polarized top (paper §4, Eqs. (4.1)–(4.18)).
+//!
+//! With I₂ = I₁ and the dipole along the symmetry axis (4.1), the truncated ALE
+//! (3.3) splits into (4.2)–(4.4), and the reduced ALE (the Landau–Lifshitz-type
+//! reduction of (3.4)) into (4.12)–(4.14). Both are solved here in closed form,
+//! for any Ω₁₀ (the paper sets Ω₁₀ = 0; a general start only adds a phase).
+//!
+//! Units: I₁ = 1 and time in units of τ = 2d²/(3I₁c³); the struct keeps τ as
+//! a parameter (τ = 1 in the paper's units, τ = 0 is the free Euler top).
+//!
+//! | code name | symbol | meaning | units |
+//! |---|---|---|---|
+//! | `ratio` | I₃/I₁ | moment ratio, in (0, 2] | – |
+//! | `tau` | τ | radiation time | τ |
+//! | `omega` | Ω = (Ω₁, Ω₂, Ω₃) | body angular velocity | 1/τ |
+//! | `omega_perp` | Ω⊥ | √(Ω₁² + Ω₂²) | 1/τ |
+//! | `omega3_tilde` | Ω̃₃ | (1 − I₃/I₁) Ω₃, body-frame precession rate of Ω⊥ | 1/τ |
+//! | `r` | R(t) | √(1 + 2τΩ⊥₀²t), (4.6) | – |
+//! | `vartheta` | ϑ | ∫₀ᵗ dt′/R = (R − 1)/(τΩ⊥₀²), (4.9) | τ |
+//! | `k` | (I₃/I₁)Ω₃ | the spin term of the reduced damping | 1/τ |
+//! | `sigma` | σ | I₁²/(I₃²Ω₃²τ), reduced decay time (4.16) | τ |
+//! | `phi_amp` | Φ(t) | reduced amplitude factor (4.16) | – |
+
+use super::rigid_body::{BodyDynamics, angular_momentum_body};
+use super::{ParamError, finite};
+use crate::math::{Mat3, Real, Vec3, rot_axis, rot_z};
+
+/// An axially symmetric top with its dipole on the symmetry axis (4.1), in units I₁ = 1.
+///
+/// Built only through [`SymmetricTop::new`], so 0 < I₃/I₁ ≤ 2 and τ ≥ 0 always hold.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SymmetricTop {
+    ratio: Real,
+    tau: Real,
+}
+
+impl SymmetricTop {
+    /// Validate I₃/I₁ (in (0, 2] by the triangle inequality I₃ ≤ I₁ + I₂) and τ ≥ 0.
+    pub fn new(ratio: Real, tau: Real) -> Result<Self, ParamError> {
+        finite("I3/I1", ratio)?;
+        finite("tau", tau)?;
+        if !(ratio > 0.0 && ratio <= 2.0) {
+            return Err(ParamError::RatioOutOfRange(ratio));
+        }
+        if tau < 0.0 {
+            return Err(ParamError::NegativeTau(tau));
+        }
+        Ok(Self { ratio, tau })
+    }
+
+    /// The top of the paper's figures: I₃/I₁ = 2/5, τ = 1.
+    pub fn figure() -> Self {
+        Self {
+            ratio: 0.4,
+            tau: 1.0,
+        }
+    }
+
+    /// I₃/I₁.
+    pub fn ratio(&self) -> Real {
+        self.ratio
+    }
+
+    /// τ.
+    pub fn tau(&self) -> Real {
+        self.tau
+    }
+
+    /// Principal moments (1, 1, I₃/I₁).
+    pub fn inertia(&self) -> Vec3 {
+        Vec3::new(1.0, 1.0, self.ratio)
+    }
+
+    /// Ω̃₃ = (1 − I₃/I₁) Ω₃.
+    pub fn omega3_tilde(&self, omega3: Real) -> Real {
+        (1.0 - self.ratio) * omega3
+    }
+}
+
+/// The truncated ALE of the symmetric top (no Schott term).
+///
+/// Paper: Eq. (4.2), Eq. (4.3), Eq. (4.4).
+///
+/// ```text
+/// Ω̇₁ − Ω̃₃Ω₂ = −τΩ⊥²Ω₁
+/// Ω̇₂ + Ω̃₃Ω₁ = −τΩ⊥²Ω₂
+/// Ω̇₃        = −τΩ⊥²Ω₃
+/// ```
+pub fn truncated_ale_rhs(top: &SymmetricTop, omega: &Vec3) -> Vec3 {
+    let tau = top.tau;
+    let omega3_tilde = top.omega3_tilde(omega.z);
+    let damping = tau * (omega.x * omega.x + omega.y * omega.y);
+    Vec3::new(
+        omega3_tilde * omega.y - damping * omega.x,
+        -omega3_tilde * omega.x - damping * omega.y,
+        -damping * omega.z,
+    )
+}
+
+/// The reduced ALE of the symmetric top (Schott term kept, runaways removed).
+///
+/// Paper: Eq. (4.12), Eq. (4.13), Eq. (4.14).
+///
+/// ```text
+/// Ω̇₁ − Ω̃₃Ω₂ = −τ{Ω⊥² + (I₃/I₁)²Ω₃²}Ω₁
+/// Ω̇₂ + Ω̃₃Ω₁ = −τ{Ω⊥² + (I₃/I₁)²Ω₃²}Ω₂
+/// Ω̇₃        = 0
+/// ```
+pub fn reduced_ale_rhs(top: &SymmetricTop, omega: &Vec3) -> Vec3 {
+    let tau = top.tau;
+    let omega3_tilde = top.omega3_tilde(omega.z);
+    let k = top.ratio * omega.z;
+    let damping = tau * (omega.x * omega.x + omega.y * omega.y + k * k);
+    Vec3::new(
+        omega3_tilde * omega.y - damping * omega.x,
+        -omega3_tilde * omega.x - damping * omega.y,
+        0.0,
+    )
+}
+
+/// The truncated model (4.2)–(4.4) as `Ω̇ = F(Ω)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Truncated(pub SymmetricTop);
+
+/// The reduced model (4.12)–(4.14) as `Ω̇ = F(Ω)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reduced(pub SymmetricTop);
+
+impl BodyDynamics for Truncated {
+    fn inertia(&self) -> Vec3 {
+        self.0.inertia()
+    }
+    fn omega_dot(&self, omega: &Vec3) -> Vec3 {
+        truncated_ale_rhs(&self.0, omega)
+    }
+}
+
+impl BodyDynamics for Reduced {
+    fn inertia(&self) -> Vec3 {
+        self.0.inertia()
+    }
+    fn omega_dot(&self, omega: &Vec3) -> Vec3 {
+        reduced_ale_rhs(&self.0, omega)
+    }
+}
+
+/// The slowed clock of the truncated model: R(t) and ϑ(t).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TruncatedClock {
+    /// R(t) = √(1 + 2τΩ⊥₀²t).
+    pub r: Real,
+    /// ϑ(t) = (R − 1)/(τΩ⊥₀²) = ∫₀ᵗ dt′/R(t′).
+    pub vartheta: Real,
+}
+
+/// R(t) and the new time ϑ(t) of the truncated model, for t ≥ 0.
+///
+/// Paper: Eq. (4.6), Eq. (4.9).
+///
+/// ```text
+/// R(t) = √(1 + 2τΩ⊥₀²t),   ϑ = (R − 1)/(τΩ⊥₀²) = 2t/(1 + R)
+/// ```
+///
+/// NOTE: ϑ is evaluated as 2t/(1 + R). The printed (R − 1)/(τΩ⊥₀²) subtracts
+/// two numbers that agree to every digit once τΩ⊥₀²t < 1e-16 (it returns 0,
+/// or 0/0 when τ = 0); 2t/(1 + R) has no subtraction and no division by a
+/// small number, so it is accurate to a few ulps from τΩ⊥₀²t = 0 up to
+/// overflow.
+pub fn truncated_clock(top: &SymmetricTop, omega_perp0: Real, t: Real) -> TruncatedClock {
+    let x = top.tau * omega_perp0 * omega_perp0 * t;
+    let r = (1.0 + 2.0 * x).sqrt();
+    TruncatedClock {
+        r,
+        vartheta: 2.0 * t / (1.0 + r),
+    }
+}
+
+/// Ω⊥ of the truncated model.
+///
+/// Paper: Eq. (4.5), Eq. (4.6).
+///
+/// ```text
+/// dΩ⊥/dt = −τΩ⊥³  ⇒  Ω⊥(t) = Ω⊥₀ / R(t)
+/// ```
+pub fn truncated_omega_perp(top: &SymmetricTop, omega_perp0: Real, t: Real) -> Real {
+    omega_perp0 / truncated_clock(top, omega_perp0, t).r
+}
+
+/// Rotate (Ω₁₀, Ω₂₀) by the body-frame precession angle α (clockwise, as
+/// (4.7) and (4.15) turn it) and scale by `scale`.
+fn precess(omega0: &Vec3, alpha: Real, scale: Real) -> (Real, Real) {
+    let (s, c) = alpha.sin_cos();
+    (
+        scale * (omega0.x * c + omega0.y * s),
+        scale * (omega0.y * c - omega0.x * s),
+    )
+}
+
+/// The closed-form Ω(t) of the truncated model, for any Ω₀ and t ≥ 0.
+///
+/// Paper: Eq. (4.7).
+///
+/// ```text
+/// Ω₁ = (Ω₁₀ cos α + Ω₂₀ sin α)/R,  Ω₂ = (Ω₂₀ cos α − Ω₁₀ sin α)/R,  Ω₃ = Ω₃₀/R
+/// α = Ω̃₃₀ ϑ(t)
+/// ```
+///
+/// With Ω₁₀ = 0 this is the printed (4.7).
+pub fn truncated_closed_form(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Vec3 {
+    let clock = truncated_clock(top, omega0.x.hypot(omega0.y), t);
+    let alpha = top.omega3_tilde(omega0.z) * clock.vartheta;
+    let (o1, o2) = precess(omega0, alpha, 1.0 / clock.r);
+    Vec3::new(o1, o2, omega0.z / clock.r)
+}
+
+/// σ = I₁²/(I₃²Ω₃²τ), the late-time decay time of Ω⊥ in the reduced model
+/// (infinite when Ω₃ = 0 or τ = 0).
+///
+/// Paper: Eq. (4.16).
+pub fn reduced_decay_time(top: &SymmetricTop, omega3: Real) -> Real {
+    let k = top.ratio * omega3;
+    1.0 / (k * k * top.tau)
+}
+
+/// The amplitude factor Φ(t) = Ω⊥(t)/Ω⊥₀ of the reduced model, t ≥ 0.
+///
+/// Paper: Eq. (4.16).
+///
+/// ```text
+/// Φ(t) = √((β − 1)/(β e^{2t/σ} − 1)),  β = 1 + (I₃Ω₃)²/(I₁Ω⊥₀)²,  σ = I₁²/(I₃²Ω₃²τ)
+/// ```
+///
+/// NOTE: the printed form overflows (β e^{2t/σ} = ∞ once 2t/σ > 709) and, for
+/// small t/σ, divides two differences of nearly equal numbers. With k = I₃Ω₃/I₁,
+/// s = 2t/σ = 2τk²t and g(s) = (1 − e^{−s})/s = −expm1(−s)/s, it equals
+///
+/// ```text
+/// Φ = e^{−s/2} / √(1 + 2τΩ⊥₀² t g(s))
+/// ```
+///
+/// which has no subtraction and no overflow, tends to 1/R(t) of (4.6) as
+/// Ω₃ → 0 (g → 1), and to 1 as τ → 0.
+pub fn reduced_amplitude(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
+    let u0 = omega0.x * omega0.x + omega0.y * omega0.y;
+    let k = top.ratio * omega0.z;
+    let s = 2.0 * top.tau * k * k * t;
+    let g = if s == 0.0 { 1.0 } else { -(-s).exp_m1() / s };
+    (-0.5 * s).exp() / (1.0 + 2.0 * top.tau * u0 * t * g).sqrt()
+}
+
+/// The closed-form Ω(t) of the reduced model, for any Ω₀ and t ≥ 0.
+///
+/// Paper: Eq. (4.15), Eq. (4.16).
+///
+/// ```text
+/// Ω₁ = Φ(t)(Ω₁₀ cos Ω̃₃t + Ω₂₀ sin Ω̃₃t),  Ω₂ = Φ(t)(Ω₂₀ cos Ω̃₃t − Ω₁₀ sin Ω̃₃t),  Ω₃ = Ω₃₀
+/// ```
+pub fn reduced_closed_form(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Vec3 {
+    let phi_amp = reduced_amplitude(top, omega0, t);
+    let alpha = top.omega3_tilde(omega0.z) * t;
+    let (o1, o2) = precess(omega0, alpha, phi_amp);
+    Vec3::new(o1, o2, omega0.z)
+}
+
+/// The closed-form orientation of the truncated model, for any start `o0` and Ω₀.
+///
+/// Paper: Eq. (4.9), Eq. (4.10), Eq. (4.11).
+///
+/// ```text
+/// O(t) = Rot(n_L, |L₀| ϑ / I₁) · O(0) · R_z(Ω̃₃₀ ϑ),   n_L = L_lab(0)/|L₀|
+/// ```
+///
+/// The truncated top moves exactly like the free Euler top run on the clock ϑ(t):
+/// regular precession about the fixed direction of L, at rates that fall as
+/// 1/R(t). The paper's particular solution (4.11) is the case with L along lab z.
+pub fn truncated_orientation(top: &SymmetricTop, omega0: &Vec3, o0: &Mat3, t: Real) -> Mat3 {
+    let clock = truncated_clock(top, omega0.x.hypot(omega0.y), t);
+    let l_lab0 = o0 * angular_momentum_body(&top.inertia(), omega0);
+    let precession = l_lab0.norm() * clock.vartheta; // I₁ = 1
+    let spin = top.omega3_tilde(omega0.z) * clock.vartheta;
+    rot_axis(&l_lab0, precession) * o0 * rot_z(spin)
+}
+
+/// The constant tilt θ of the truncated model's particular solution: the angle
+/// between the symmetry axis and L.
+///
+/// Paper: Eq. (4.11) (corrected, erratum 4).
+///
+/// ```text
+/// θ = arctan(I₁Ω⊥₀ / (I₃Ω₃₀))
+/// ```
+///
+/// The paper prints arctan(Ω₂₀/Ω̃₃₀), see [`printed_tilt_4_11`].
+pub fn precession_tilt(top: &SymmetricTop, omega0: &Vec3) -> Real {
+    omega0.x.hypot(omega0.y).atan2(top.ratio * omega0.z)
+}
+
+/// The tilt as printed in the paper's (4.11), arctan(Ω₂₀/Ω̃₃₀): erratum 4.
+/// Kept only to demonstrate that it is not constant along the motion.
+///
+/// Paper: Eq. (4.11) (as printed).
+pub fn printed_tilt_4_11(top: &SymmetricTop, omega0: &Vec3) -> Real {
+    (omega0.y / top.omega3_tilde(omega0.z)).atan()
+}
+
+/// The Poisson equations of the truncated model in the clock ϑ, for Ω₁₀ = 0.
+/// `angles` = (φ, θ, ψ̃) with ψ̃ = ψ − Ω̃₃₀ϑ; returns d/dϑ of each.
+///
+/// Paper: Eq. (4.10).
+///
+/// ```text
+/// dφ/dϑ = Ω₂₀ cos ψ̃ / sin θ
+/// dθ/dϑ = −Ω₂₀ sin ψ̃
+/// dψ̃/dϑ = Ω₃₀ I₃/I₁ − Ω₂₀ cos ψ̃ cot θ
+/// ```
+pub fn truncated_poisson_rhs(top: &SymmetricTop, omega20: Real, omega30: Real, angles: &Vec3) -> Vec3 {
+    let (s_th, c_th) = angles.y.sin_cos();
+    let (s_psi, c_psi) = angles.z.sin_cos();
+    Vec3::new(
+        omega20 * c_psi / s_th,
+        -omega20 * s_psi,
+        omega30 * top.ratio - omega20 * c_psi * c_th / s_th,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn validation_refuses_ratios_outside_the_triangle_inequality() {
+        assert!(SymmetricTop::new(2.0, 1.0).is_ok());
+        assert!(SymmetricTop::new(1e-9, 1.0).is_ok());
+        for bad in [0.0, -0.4, 2.000001, 3.0] {
+            assert_eq!(SymmetricTop::new(bad, 1.0), Err(ParamError::RatioOutOfRange(bad)));
+        }
+        assert!(matches!(
+            SymmetricTop::new(Real::NAN, 1.0),
+            Err(ParamError::NotFinite { .. })
+        ));
+        assert!(matches!(
+            SymmetricTop::new(0.4, Real::INFINITY),
+            Err(ParamError::NotFinite { .. })
+        ));
+        assert_eq!(SymmetricTop::new(0.4, -1.0), Err(ParamError::NegativeTau(-1.0)));
+    }
+
+    /// The closed forms satisfy their differential equations: central
+    /// differences of (4.7) and (4.15) against (4.2)–(4.4) and (4.12)–(4.14).
+    #[test]
+    fn eq_4_7_and_eq_4_15_satisfy_their_equations() {
+        let top = SymmetricTop::new(0.4, 1.0).unwrap();
+        let omega0 = Vec3::new(0.07, -0.1, 0.2);
+        for t in [0.0, 0.5, 3.0, 40.0] {
+            let h = 1e-4;
+            let t = t + 2.0 * h;
+            let d = (truncated_closed_form(&top, &omega0, t + h)
+                - truncated_closed_form(&top, &omega0, t - h))
+                / (2.0 * h);
+            let f = truncated_ale_rhs(&top, &truncated_closed_form(&top, &omega0, t));
+            assert_relative_eq!(d, f, epsilon = 1e-9);
+            let d = (reduced_closed_form(&top, &omega0, t + h)
+                - reduced_closed_form(&top, &omega0, t - h))
+                / (2.0 * h);
+            let f = reduced_ale_rhs(&top, &reduced_closed_form(&top, &omega0, t));
+            assert_relative_eq!(d, f, epsilon = 1e-9);
+        }
+        assert_eq!(truncated_closed_form(&top, &omega0, 0.0), omega0);
+        assert_eq!(reduced_closed_form(&top, &omega0, 0.0), omega0);
+    }
+
+    /// (4.16) in the paper's printed form agrees with the rewritten one where the
+    /// printed one is well conditioned; Φ → 1/R as Ω₃ → 0.
+    #[test]
+    fn eq_4_16_careful_form_equals_the_printed_form() {
+        let top = SymmetricTop::figure();
+        let omega0 = Vec3::new(0.0, 0.1, 0.2);
+        let k = top.ratio() * omega0.z;
+        let beta = 1.0 + k * k / (omega0.y * omega0.y);
+        let sigma = reduced_decay_time(&top, omega0.z);
+        for t in [0.3, 10.0, 100.0, 1000.0] {
+            let printed = ((beta - 1.0) / (beta * (2.0 * t / sigma).exp() - 1.0)).sqrt();
+            assert_relative_eq!(reduced_amplitude(&top, &omega0, t), printed, max_relative = 1e-13);
+        }
+        let no_spin = Vec3::new(0.03, 0.1, 0.0);
+        for t in [0.0, 1.0, 1e5] {
+            let r = truncated_clock(&top, no_spin.x.hypot(no_spin.y), t).r;
+            assert_relative_eq!(reduced_amplitude(&top, &no_spin, t), 1.0 / r, max_relative = 1e-15);
+        }
+    }
+}
