@@ -181,7 +181,11 @@ pub fn solve<const N: usize, S: Stepper<N>, R: Rhs<N>>(
     let forward = t_end >= stepper.t();
     for &t in times {
         // Step until the output time lies inside the last accepted step.
-        while if forward { stepper.t() < t } else { stepper.t() > t } {
+        while if forward {
+            stepper.t() < t
+        } else {
+            stepper.t() > t
+        } {
             stepper.step(rhs, t_end)?;
         }
         out.push(if t == stepper.t() {

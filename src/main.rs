@@ -1,1 +1,10 @@
-fn main() {}
+//! The `spintop` binary: everything lives in the library's [`spintop::cli`].
+
+use std::io::{self, BufWriter};
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let mut stdout = BufWriter::new(io::stdout().lock());
+    let mut stderr = io::stderr().lock();
+    spintop::cli::run(std::env::args_os(), &mut stdout, &mut stderr)
+}

@@ -124,7 +124,8 @@ mod tests {
     fn rot_axis_agrees_with_nalgebra_and_the_lab_axes() {
         let axis = Vec3::new(1.0, 2.0, -0.5);
         let r = rot_axis(&axis, 0.7);
-        let expected = nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), 0.7);
+        let expected =
+            nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), 0.7);
         assert_relative_eq!(r, *expected.matrix(), epsilon = 1e-15);
         assert_relative_eq!(rot_axis(&Vec3::z(), 0.3), rot_z(0.3), epsilon = 1e-15);
         assert_relative_eq!(rot_axis(&Vec3::x(), 0.3), rot_x(0.3), epsilon = 1e-15);
@@ -139,8 +140,12 @@ mod tests {
             let omega = Vec3::new(0.2, 0.5, -0.3);
             let sdot = dexpinv_right(&sigma, &omega);
             let eps = 1e-6;
-            let rp = exp_so3(&(sigma + eps * sdot)).to_rotation_matrix().into_inner();
-            let rm = exp_so3(&(sigma - eps * sdot)).to_rotation_matrix().into_inner();
+            let rp = exp_so3(&(sigma + eps * sdot))
+                .to_rotation_matrix()
+                .into_inner();
+            let rm = exp_so3(&(sigma - eps * sdot))
+                .to_rotation_matrix()
+                .into_inner();
             let r = exp_so3(&sigma).to_rotation_matrix().into_inner();
             let body = vee(&(r.transpose() * (rp - rm) / (2.0 * eps)));
             assert_relative_eq!(body, omega, epsilon = 1e-8);

@@ -17,9 +17,7 @@
 //! before it grows large, so O is only ever changed by multiplying rotations and
 //! stays orthonormal to rounding.
 
-use crate::integrate::{
-    AdaptiveOptions, Dop853, Dopri5, IntegrateError, Rhs, Rk4, Stats, Stepper,
-};
+use crate::integrate::{AdaptiveOptions, Dop853, Dopri5, IntegrateError, Rhs, Rk4, Stats, Stepper};
 use crate::math::{Mat3, Quat, Real, State, Vec3, all_finite, dexpinv_right, exp_so3};
 use crate::physics::ParamError;
 use crate::physics::euler_angles::{EulerAngles, euler_rates};
@@ -259,8 +257,7 @@ impl Sample {
             omega_perp: obs.omega_perp,
             l_body: obs.l_body.into(),
             tilt: obs.tilt,
-            euler_rates: euler_rates(&euler, omega)
-                .map(|r| [r.phi_dot, r.theta_dot, r.psi_dot]),
+            euler_rates: euler_rates(&euler, omega).map(|r| [r.phi_dot, r.theta_dot, r.psi_dot]),
         }
     }
 
@@ -359,8 +356,10 @@ impl Rhs<6> for FullRhs<'_> {
         let omega = y.fixed_rows::<3>(0).into_owned();
         let sigma = y.fixed_rows::<3>(3).into_owned();
         let mut out = State::<6>::zeros();
-        out.fixed_rows_mut::<3>(0).copy_from(&self.0.omega_dot(&omega));
-        out.fixed_rows_mut::<3>(3).copy_from(&dexpinv_right(&sigma, &omega));
+        out.fixed_rows_mut::<3>(0)
+            .copy_from(&self.0.omega_dot(&omega));
+        out.fixed_rows_mut::<3>(3)
+            .copy_from(&dexpinv_right(&sigma, &omega));
         out
     }
 }

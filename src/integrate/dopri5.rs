@@ -11,16 +11,38 @@ pub struct Dopri5<const N: usize> {
 
 impl<const N: usize> Dopri5<N> {
     /// Placeholder.
-    pub fn new(t0: Real, y0: State<N>, _opts: crate::integrate::AdaptiveOptions) -> Result<Self, IntegrateError> { Ok(Self { t: t0, y: y0 }) }
+    pub fn new(
+        t0: Real,
+        y0: State<N>,
+        _opts: crate::integrate::AdaptiveOptions,
+    ) -> Result<Self, IntegrateError> {
+        Ok(Self { t: t0, y: y0 })
+    }
 }
 
 impl<const N: usize> Stepper<N> for Dopri5<N> {
-    fn t(&self) -> Real { self.t }
-    fn y(&self) -> &State<N> { &self.y }
-    fn t_prev(&self) -> Real { self.t }
-    fn last_step(&self) -> Real { 0.0 }
-    fn stats(&self) -> Stats { Stats::default() }
-    fn step<R: Rhs<N>>(&mut self, _rhs: &R, _t_stop: Real) -> Result<(), IntegrateError> { todo!() }
-    fn dense<R: Rhs<N>>(&mut self, _rhs: &R, _t: Real) -> State<N> { todo!() }
-    fn reset(&mut self, y: State<N>) { self.y = y; }
+    fn t(&self) -> Real {
+        self.t
+    }
+    fn y(&self) -> &State<N> {
+        &self.y
+    }
+    fn t_prev(&self) -> Real {
+        self.t
+    }
+    fn last_step(&self) -> Real {
+        0.0
+    }
+    fn stats(&self) -> Stats {
+        Stats::default()
+    }
+    fn step<R: Rhs<N>>(&mut self, _rhs: &R, _t_stop: Real) -> Result<(), IntegrateError> {
+        todo!()
+    }
+    fn dense<R: Rhs<N>>(&mut self, _rhs: &R, _t: Real) -> State<N> {
+        todo!()
+    }
+    fn reset(&mut self, y: State<N>) {
+        self.y = y;
+    }
 }

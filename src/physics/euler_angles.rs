@@ -161,7 +161,11 @@ mod tests {
         let o = angles(t).to_rotation();
         let d = (angles(t + h).to_rotation() - angles(t - h).to_rotation()) / (2.0 * h);
         let body = vee(&(o.transpose() * d));
-        assert_relative_eq!(body_rate_from_euler(&angles(t), &rates), body, epsilon = 1e-9);
+        assert_relative_eq!(
+            body_rate_from_euler(&angles(t), &rates),
+            body,
+            epsilon = 1e-9
+        );
         // The lab-frame rate (dO/dt Oᵀ) is a different vector: (3.5) would fail for it.
         let lab = vee(&(d * o.transpose()));
         assert!((body_rate_from_euler(&angles(t), &rates) - lab).norm() > 1e-2);
@@ -172,12 +176,21 @@ mod tests {
         let angles = EulerAngles::new(-2.0, 0.9, 2.5);
         let omega = Vec3::new(0.31, -0.12, 0.77);
         let rates = euler_rates(&angles, &omega).expect("away from the pole");
-        assert_relative_eq!(body_rate_from_euler(&angles, &rates), omega, epsilon = 1e-15);
+        assert_relative_eq!(
+            body_rate_from_euler(&angles, &rates),
+            omega,
+            epsilon = 1e-15
+        );
     }
 
     #[test]
     fn pole_is_handled_without_nan() {
-        for theta in [0.0, 1e-14, std::f64::consts::PI, std::f64::consts::PI - 1e-15] {
+        for theta in [
+            0.0,
+            1e-14,
+            std::f64::consts::PI,
+            std::f64::consts::PI - 1e-15,
+        ] {
             let o = EulerAngles::new(0.8, theta, -0.3).to_rotation();
             let e = EulerAngles::from_rotation(&o);
             assert!(e.phi.is_finite() && e.theta.is_finite() && e.psi.is_finite());

@@ -106,39 +106,38 @@ impl BodyDynamics for GeneralTop {
     }
 }
 
-/// The general top as `Ω̇ = F(Ω)`, written in the form of the balance law (2.1)
-/// rather than (3.3): an independent route to the same equation, used by tests.
-///
-/// From (3.1) the dipole `𝔡 = O d` moves with `Oᵀ𝔡̇ = Ω × d` and
-/// `Oᵀ𝔡̈ = Ω̇ × d + Ω × (Ω × d)`, and (2.1) with κ = 1 reads
-/// `IΩ̇ + Ω × IΩ = −(Ω × d) × (Ω̇ × d + Ω × (Ω × d))`. This is linear in Ω̇, so
-/// its 3×3 matrix is assembled column by column and solved by LU.
-#[doc(hidden)]
-pub fn truncated_ale_rhs_from_balance_law(top: &GeneralTop, omega: &Vec3) -> Option<Vec3> {
-    let i = top.inertia();
-    let d = top.dipole();
-    let wd = omega.cross(&d);
-    // residual(Ω̇) = IΩ̇ + Ω × IΩ + (Ω × d) × (Ω̇ × d + Ω × (Ω × d)), affine in Ω̇.
-    let residual = |od: &Vec3| {
-        i.component_mul(od)
-            + omega.cross(&i.component_mul(omega))
-            + wd.cross(&(od.cross(&d) + omega.cross(&wd)))
-    };
-    let r0 = residual(&Vec3::zeros());
-    let m = nalgebra::Matrix3::from_columns(&[
-        residual(&Vec3::x()) - r0,
-        residual(&Vec3::y()) - r0,
-        residual(&Vec3::z()) - r0,
-    ]);
-    m.lu().solve(&(-r0))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::physics::symmetric_top::{SymmetricTop, truncated_ale_rhs};
     use approx::assert_relative_eq;
     use proptest::prelude::*;
+
+    /// The general top as `Ω̇ = F(Ω)`, written in the form of the balance law (2.1)
+    /// rather than (3.3): an independent route to the same equation, used by tests.
+    ///
+    /// From (3.1) the dipole `𝔡 = O d` moves with `Oᵀ𝔡̇ = Ω × d` and
+    /// `Oᵀ𝔡̈ = Ω̇ × d + Ω × (Ω × d)`, and (2.1) with κ = 1 reads
+    /// `IΩ̇ + Ω × IΩ = −(Ω × d) × (Ω̇ × d + Ω × (Ω × d))`. This is linear in Ω̇, so
+    /// its 3×3 matrix is assembled column by column and solved by LU.
+    fn truncated_ale_rhs_from_balance_law(top: &GeneralTop, omega: &Vec3) -> Option<Vec3> {
+        let i = top.inertia();
+        let d = top.dipole();
+        let wd = omega.cross(&d);
+        // residual(Ω̇) = IΩ̇ + Ω × IΩ + (Ω × d) × (Ω̇ × d + Ω × (Ω × d)), affine in Ω̇.
+        let residual = |od: &Vec3| {
+            i.component_mul(od)
+                + omega.cross(&i.component_mul(omega))
+                + wd.cross(&(od.cross(&d) + omega.cross(&wd)))
+        };
+        let r0 = residual(&Vec3::zeros());
+        let m = nalgebra::Matrix3::from_columns(&[
+            residual(&Vec3::x()) - r0,
+            residual(&Vec3::y()) - r0,
+            residual(&Vec3::z()) - r0,
+        ]);
+        m.lu().solve(&(-r0))
+    }
 
     #[test]
     fn validation_refuses_unphysical_tops() {
@@ -212,6 +211,10 @@ mod tests {
         let od = top.truncated_ale_rhs(&omega);
         let de = omega.dot(&top.inertia().component_mul(&od));
         let e = 0.5 * omega.dot(&top.inertia().component_mul(&omega));
-        assert_relative_eq!(de, -2.0 * omega.x.hypot(omega.y).powi(2) * e, epsilon = 1e-15);
+        assert_relative_eq!(
+            de,
+            -2.0 * omega.x.hypot(omega.y).powi(2) * e,
+            epsilon = 1e-15
+        );
     }
 }

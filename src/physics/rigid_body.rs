@@ -179,7 +179,11 @@ mod tests {
         let inertia = Vec3::new(1.0, 1.0, 0.4);
         let omega = Vec3::new(0.0, 0.1, 0.2);
         // Erratum (4.11): tan θ = I₁Ω₂₀/(I₃Ω₃₀) = 0.1/0.08.
-        assert_relative_eq!(tilt(&inertia, &omega), (0.1f64 / 0.08).atan(), epsilon = 1e-15);
+        assert_relative_eq!(
+            tilt(&inertia, &omega),
+            (0.1f64 / 0.08).atan(),
+            epsilon = 1e-15
+        );
         assert_relative_eq!(tilt(&inertia, &omega), 0.8960553845713439, epsilon = 1e-15);
         assert_eq!(tilt(&inertia, &Vec3::zeros()), 0.0);
     }

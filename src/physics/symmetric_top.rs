@@ -313,7 +313,12 @@ pub fn printed_tilt_4_11(top: &SymmetricTop, omega0: &Vec3) -> Real {
 /// dθ/dϑ = −Ω₂₀ sin ψ̃
 /// dψ̃/dϑ = Ω₃₀ I₃/I₁ − Ω₂₀ cos ψ̃ cot θ
 /// ```
-pub fn truncated_poisson_rhs(top: &SymmetricTop, omega20: Real, omega30: Real, angles: &Vec3) -> Vec3 {
+pub fn truncated_poisson_rhs(
+    top: &SymmetricTop,
+    omega20: Real,
+    omega30: Real,
+    angles: &Vec3,
+) -> Vec3 {
     let (s_th, c_th) = angles.y.sin_cos();
     let (s_psi, c_psi) = angles.z.sin_cos();
     Vec3::new(
@@ -333,7 +338,10 @@ mod tests {
         assert!(SymmetricTop::new(2.0, 1.0).is_ok());
         assert!(SymmetricTop::new(1e-9, 1.0).is_ok());
         for bad in [0.0, -0.4, 2.000001, 3.0] {
-            assert_eq!(SymmetricTop::new(bad, 1.0), Err(ParamError::RatioOutOfRange(bad)));
+            assert_eq!(
+                SymmetricTop::new(bad, 1.0),
+                Err(ParamError::RatioOutOfRange(bad))
+            );
         }
         assert!(matches!(
             SymmetricTop::new(Real::NAN, 1.0),
@@ -343,7 +351,10 @@ mod tests {
             SymmetricTop::new(0.4, Real::INFINITY),
             Err(ParamError::NotFinite { .. })
         ));
-        assert_eq!(SymmetricTop::new(0.4, -1.0), Err(ParamError::NegativeTau(-1.0)));
+        assert_eq!(
+            SymmetricTop::new(0.4, -1.0),
+            Err(ParamError::NegativeTau(-1.0))
+        );
     }
 
     /// The closed forms satisfy their differential equations: central
@@ -381,12 +392,20 @@ mod tests {
         let sigma = reduced_decay_time(&top, omega0.z);
         for t in [0.3, 10.0, 100.0, 1000.0] {
             let printed = ((beta - 1.0) / (beta * (2.0 * t / sigma).exp() - 1.0)).sqrt();
-            assert_relative_eq!(reduced_amplitude(&top, &omega0, t), printed, max_relative = 1e-13);
+            assert_relative_eq!(
+                reduced_amplitude(&top, &omega0, t),
+                printed,
+                max_relative = 1e-13
+            );
         }
         let no_spin = Vec3::new(0.03, 0.1, 0.0);
         for t in [0.0, 1.0, 1e5] {
             let r = truncated_clock(&top, no_spin.x.hypot(no_spin.y), t).r;
-            assert_relative_eq!(reduced_amplitude(&top, &no_spin, t), 1.0 / r, max_relative = 1e-15);
+            assert_relative_eq!(
+                reduced_amplitude(&top, &no_spin, t),
+                1.0 / r,
+                max_relative = 1e-15
+            );
         }
     }
 }

@@ -1,0 +1,300 @@
+//! `spintop simulate` as a user meets it: the JSON contract, the choice of
+//! method, and bad input refused with one line and exit code 2 (never a panic,
+//! exit code 101), numerical failures with exit code 3 and the time.
+
+use serde_json::Value;
+use std::process::{Command, Output};
+
+fn spintop(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_spintop"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn json(args: &[&str]) -> Value {
+    let mut all = vec!["simulate"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["--format", "json"]);
+    let out = spintop(&all);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+fn vec_of(v: &Value, n: usize) -> Vec<f64> {
+    let a = v.as_array().expect("an array");
+    assert_eq!(a.len(), n);
+    a.iter().map(|x| x.as_f64().expect("a number")).collect()
+}
+
+#[test]
+fn simulate_json_follows_the_contract_for_every_model() {
+    let cases: [(&[&str], &str, &str); 5] = [
+        (&["--model", "truncated"], "truncated", "exact"),
+        (&["--model", "reduced"], "reduced", "exact+dop853"),
+        (
+            &[
+                "--model",
+                "general",
+                "--inertia",
+                "1,1.5,0.8",
+                "--dipole",
+                "0.2,0,1",
+            ],
+            "general",
+            "dop853",
+        ),
+        (
+            &["--model", "truncated", "--method", "rk4", "--step", "0.05"],
+            "truncated",
+            "rk4",
+        ),
+        (
+            &["--model", "reduced", "--method", "dopri5", "--rtol", "1e-8"],
+            "reduced",
+            "dopri5",
+        ),
+    ];
+    for (args, model, method) in cases {
+        let mut a = args.to_vec();
+        a.extend_from_slice(&["--times", "0,0.5,10,250"]);
+        let v = json(&a);
+        assert_eq!(v["model"], model);
+        assert_eq!(v["method"], method, "{args:?}");
+        for key in ["rhs_evals", "steps", "rejected"] {
+            assert!(v["stats"][key].is_u64(), "stats.{key}");
+        }
+        let samples = v["samples"].as_array().unwrap();
+        assert_eq!(samples.len(), 4);
+        for (s, t) in samples.iter().zip([0.0, 0.5, 10.0, 250.0]) {
+            assert_eq!(s["t"].as_f64(), Some(t));
+            let omega = vec_of(&s["omega"], 3);
+            let rows = s["rotation"].as_array().unwrap();
+            assert_eq!(rows.len(), 3);
+            let o: Vec<Vec<f64>> = rows.iter().map(|r| vec_of(r, 3)).collect();
+            let euler = vec_of(&s["euler"], 3);
+            let l_lab = vec_of(&s["l_lab"], 3);
+            let energy = s["energy"].as_f64().unwrap();
+            let omega_perp = s["omega_perp"].as_f64().unwrap();
+            // The fields agree with one another: Ω⊥ from Ω, and O IΩ = L_lab.
+            assert!((omega_perp - omega[0].hypot(omega[1])).abs() < 1e-15);
+            let inertia = vec_of(&v["parameters"]["inertia"], 3);
+            let l_body: Vec<f64> = (0..3).map(|i| inertia[i] * omega[i]).collect();
+            for i in 0..3 {
+                let l = (0..3).map(|j| o[i][j] * l_body[j]).sum::<f64>();
+                assert!((l - l_lab[i]).abs() < 1e-14, "row {i}");
+            }
+            let e: f64 = 0.5
+                * (0..3)
+                    .map(|i| inertia[i] * omega[i] * omega[i])
+                    .sum::<f64>();
+            assert!((e - energy).abs() < 1e-15);
+            assert!(euler.iter().all(|x| x.is_finite()));
+        }
+        if method == "exact" {
+            assert_eq!(v["stats"]["rhs_evals"], 0);
+        } else {
+            assert!(v["stats"]["rhs_evals"].as_u64().unwrap() > 0);
+        }
+    }
+}
+
+/// Two independent paths through the binary agree: RK4 with a small step
+/// against the closed form.
+#[test]
+fn simulate_rk4_agrees_with_the_closed_form_through_the_cli() {
+    let exact = json(&["--model", "truncated", "--times", "50,100"]);
+    let rk4 = json(&[
+        "--model",
+        "truncated",
+        "--method",
+        "rk4",
+        "--step",
+        "0.01",
+        "--times",
+        "50,100",
+    ]);
+    for k in 0..2 {
+        let a = vec_of(&exact["samples"][k]["omega"], 3);
+        let b = vec_of(&rk4["samples"][k]["omega"], 3);
+        for i in 0..3 {
+            assert!((a[i] - b[i]).abs() < 1e-9, "{a:?} vs {b:?}");
+        }
+    }
+}
+
+#[test]
+fn simulate_default_times_and_table_and_csv() {
+    let out = spintop(&["simulate", "--model", "reduced"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("method: exact+dop853"));
+    let rows = text.lines().filter(|l| !l.starts_with('#')).count();
+    assert_eq!(rows, 1 + 11, "a header and 11 samples from 0 to 100");
+
+    let out = spintop(&[
+        "simulate",
+        "--model",
+        "truncated",
+        "--t-end",
+        "10",
+        "--samples",
+        "3",
+        "--format",
+        "csv",
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 4);
+    assert!(lines[0].starts_with("t,omega1,omega2,omega3"));
+    assert_eq!(lines[2].split(',').next(), Some("5"));
+    assert_eq!(lines[0].split(',').count(), lines[3].split(',').count());
+}
+
+#[test]
+fn simulate_refuses_bad_input_with_one_line_and_exit_code_2() {
+    let cases: &[&[&str]] = &[
+        &["--model", "truncated", "--ratio", "3"],
+        &["--model", "reduced", "--ratio", "0"],
+        &["--model", "truncated", "--ratio", "-0.5"],
+        &["--model", "truncated", "--ratio", "nan"],
+        &["--model", "truncated", "--omega", "nan,0,0"],
+        &["--model", "truncated", "--omega", "inf,0,0"],
+        &["--model", "truncated", "--omega", "1,2"],
+        &["--model", "truncated", "--omega", "a,b,c"],
+        &["--model", "truncated", "--euler", "0,1e999,0"],
+        &["--model", "spinning"],
+        &["--ratio", "0.4"],
+        &["--model", "general"],
+        &[
+            "--model",
+            "general",
+            "--inertia",
+            "1,1,3",
+            "--dipole",
+            "0,0,1",
+        ],
+        &[
+            "--model",
+            "general",
+            "--inertia",
+            "1,-1,1",
+            "--dipole",
+            "0,0,1",
+        ],
+        &[
+            "--model",
+            "general",
+            "--inertia",
+            "1,1,1",
+            "--dipole",
+            "0,0,0",
+        ],
+        &[
+            "--model",
+            "general",
+            "--inertia",
+            "1,1,1",
+            "--dipole",
+            "0,0,1",
+            "--method",
+            "exact",
+        ],
+        &[
+            "--model",
+            "general",
+            "--inertia",
+            "1,1,1",
+            "--dipole",
+            "0,0,1",
+            "--ratio",
+            "0.4",
+        ],
+        &["--model", "truncated", "--inertia", "1,1,1"],
+        &["--model", "truncated", "--times", "3,1"],
+        &["--model", "truncated", "--times", "-1,2"],
+        &["--model", "truncated", "--times", ""],
+        &["--model", "truncated", "--t-end", "-5"],
+        &["--model", "truncated", "--samples", "0"],
+        &["--model", "truncated", "--method", "dop853", "--rtol", "0"],
+        &["--model", "truncated", "--method", "dop853", "--rtol", "2"],
+        &[
+            "--model",
+            "truncated",
+            "--method",
+            "dop853",
+            "--rtol",
+            "1e-20",
+        ],
+        &["--model", "truncated", "--method", "rk4", "--step", "0"],
+        &["--model", "truncated", "--method", "rk4", "--step", "-1"],
+        &[
+            "--model",
+            "truncated",
+            "--method",
+            "dop853",
+            "--step",
+            "0.1",
+        ],
+        &["--model", "truncated", "--method", "rk4", "--rtol", "1e-6"],
+        &["--model", "truncated", "--format", "xml"],
+        &["--model", "truncated", "--bogus"],
+    ];
+    for args in cases {
+        let mut all = vec!["simulate"];
+        all.extend_from_slice(args);
+        let out = spintop(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert_eq!(
+            stderr.lines().count(),
+            1,
+            "{args:?}: one line, got:\n{stderr}"
+        );
+        assert!(stderr.starts_with("spintop: error: "), "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+        assert!(out.stdout.is_empty(), "{args:?}: nothing on stdout");
+    }
+}
+
+#[test]
+fn simulate_ratio_3_says_why() {
+    let out = spintop(&["simulate", "--model", "truncated", "--ratio", "3"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("I3 <= I1 + I2"), "{stderr}");
+}
+
+/// A step far beyond RK4's stability limit (τΩ²h ≫ 1) blows up: reported with
+/// the time and what to try, exit code 3, and no NaN table.
+#[test]
+fn simulate_reports_a_numerical_failure_with_its_time() {
+    let out = spintop(&[
+        "simulate",
+        "--model",
+        "truncated",
+        "--method",
+        "rk4",
+        "--step",
+        "5",
+        "--omega",
+        "0,3,3",
+        "--t-end",
+        "100",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{stderr}");
+    assert!(stderr.contains("non-finite at t = "), "{stderr}");
+    assert!(stderr.contains("try"), "{stderr}");
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("NaN"));
+}
+
+#[test]
+fn no_arguments_prints_help() {
+    let out = spintop(&[]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("simulate"));
+}
