@@ -184,6 +184,9 @@ pub(crate) fn error_scale<const N: usize>(
 /// Hairer's starting step size (`hinit` in DOPRI5/DOP853; HNW I, Sec. II.4): a
 /// step magnitude from one explicit Euler step and a second-derivative estimate.
 /// Costs exactly one evaluation of `rhs`, which the caller counts.
+// NOTE: the norms are RMS norms (as in SciPy's `select_initial_step`) rather than
+// Hairer's plain sums, so that the guess is consistent with the RMS error norm;
+// the two differ only by √N in the second-derivative estimate.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn hinit<const N: usize, R: Rhs<N>>(
     rhs: &R,

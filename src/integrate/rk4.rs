@@ -14,7 +14,9 @@
 //! end of a step is cached and reused as the next step's first stage, so a run of
 //! `n` steps costs `4n` evaluations, and calling [`Stepper::dense`] inside a step
 //! costs nothing extra (it evaluates the end slope once, which the next step then
-//! reuses). [`Stats::rejected`] is always 0.
+//! reuses), except inside the very last step: `4n + 1`. [`Stepper::reset`] drops
+//! the cached slope. [`Stats::rejected`] is always 0. The step budget
+//! (`with_max_steps`) counts accepted steps.
 //!
 //! Failure: a non-finite stage or state ends the step with
 //! [`IntegrateError::NonFinite`] at the time of the last finite state, which is
