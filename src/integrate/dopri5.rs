@@ -1,22 +1,289 @@
-//! PLACEHOLDER: being written (see src/integrate.rs for the contract).
-use crate::integrate::{IntegrateError, Rhs, Stats, Stepper};
-use crate::math::{Real, State};
+//! The Dormand–Prince 5(4) pair with PI step-size control and dense output.
+//!
+//! Method: the 7-stage explicit pair of Dormand & Prince (1980), "first same as
+//! last" (FSAL: the last stage `f(t + h, y_new)` is the first stage of the next
+//! step, so an attempt costs 6 evaluations). The step is advanced with the
+//! order-5 solution (local extrapolation); the order-4 embedded solution only
+//! measures the error. Global order 5.
+//! Reference: E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential
+//! Equations I: Nonstiff Problems*, 2nd ed., Springer 1993, Sec. II.5 (Table 5.2),
+//! II.4 (step-size control, starting step size), II.6 (dense output), and
+//! Hairer's Fortran code `DOPRI5`.
+//!
+//! Continuous extension: Shampine's order-4 interpolant (Hairer's `d1…d7`,
+//! SciPy's `RK45.P`), free of extra evaluations.
+//!
+//! Counting ([`Stats`]): `rhs_evals = 6·(steps + rejected) + 1 + g`, where the 1
+//! is `f(t0, y0)` before the first step (again after every [`Stepper::reset`],
+//! which drops the FSAL stage) and `g = 1` if the initial step size is guessed
+//! (Hairer's `hinit`, `AdaptiveOptions::h_init == None`), else 0. The step budget
+//! `max_steps` counts accepted plus rejected attempts.
 
-/// Placeholder.
+use crate::integrate::{AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper};
+use crate::math::{Real, State, all_finite};
+
+// Butcher tableau of Dormand–Prince 5(4) (Hairer, Nørsett & Wanner, Table II.5.2).
+const C2: Real = 1.0 / 5.0;
+const C3: Real = 3.0 / 10.0;
+const C4: Real = 4.0 / 5.0;
+const C5: Real = 8.0 / 9.0;
+const A21: Real = 1.0 / 5.0;
+const A31: Real = 3.0 / 40.0;
+const A32: Real = 9.0 / 40.0;
+const A41: Real = 44.0 / 45.0;
+const A42: Real = -56.0 / 15.0;
+const A43: Real = 32.0 / 9.0;
+const A51: Real = 19372.0 / 6561.0;
+const A52: Real = -25360.0 / 2187.0;
+const A53: Real = 64448.0 / 6561.0;
+const A54: Real = -212.0 / 729.0;
+const A61: Real = 9017.0 / 3168.0;
+const A62: Real = -355.0 / 33.0;
+const A63: Real = 46732.0 / 5247.0;
+const A64: Real = 49.0 / 176.0;
+const A65: Real = -5103.0 / 18656.0;
+// The order-5 weights (= the last row of A, hence FSAL).
+const B1: Real = 35.0 / 384.0;
+const B3: Real = 500.0 / 1113.0;
+const B4: Real = 125.0 / 192.0;
+const B5: Real = -2187.0 / 6784.0;
+const B6: Real = 11.0 / 84.0;
+// E = b(order 5) − b̂(order 4): the error estimate is y5 − y4 = h Σ Eᵢ kᵢ.
+const E1: Real = 71.0 / 57600.0;
+const E3: Real = -71.0 / 16695.0;
+const E4: Real = 71.0 / 1920.0;
+const E5: Real = -17253.0 / 339200.0;
+const E6: Real = 22.0 / 525.0;
+const E7: Real = -1.0 / 40.0;
+// Shampine's dense output (Hairer's DOPRI5 `d1…d7`).
+const D1: Real = -12715105075.0 / 11282082432.0;
+const D3: Real = 87487479700.0 / 32700410799.0;
+const D4: Real = -10690763975.0 / 1880347072.0;
+const D5: Real = 701980252875.0 / 199316789632.0;
+const D6: Real = -1453857185.0 / 822651844.0;
+const D7: Real = 69997945.0 / 29380423.0;
+
+// Step-size control of Hairer's DOPRI5.
+const SAFETY: Real = 0.9;
+/// Smallest step ratio h_new/h.
+const FAC_MIN: Real = 0.2;
+/// Largest step ratio h_new/h.
+const FAC_MAX: Real = 10.0;
+const BETA: Real = 0.04;
+const EXPO1: Real = 0.2 - 0.75 * BETA;
+/// Step ratio after an attempt whose error estimate was not finite.
+pub(crate) const NONFINITE_CUT: Real = 0.2;
+
+/// Dormand–Prince 5(4) with PI step-size control and order-4 dense output.
 #[derive(Clone, Debug)]
 pub struct Dopri5<const N: usize> {
     t: Real,
     y: State<N>,
+    t_prev: Real,
+    y_prev: State<N>,
+    /// Signed size of the last accepted step (0 before the first step / after reset).
+    h_last: Real,
+    /// Stages k1…k7 of the last accepted step (k7 = f(t, y)).
+    k: [State<N>; 7],
+    /// `f(t, y)` when known (FSAL).
+    f: Option<State<N>>,
+    /// Magnitude of the next step to try (None: guess it with `hinit`).
+    h_next: Option<Real>,
+    /// Error norm of the previous accepted step (the "I" memory of the PI controller).
+    facold: Real,
+    opts: AdaptiveOptions,
+    stats: Stats,
+}
+
+/// The stages of one attempt.
+struct Attempt<const N: usize> {
+    k: [State<N>; 7],
+    y_new: State<N>,
+    err: State<N>,
+}
+
+fn attempt<const N: usize, R: Rhs<N>>(
+    rhs: &R,
+    t: Real,
+    y: &State<N>,
+    k1: &State<N>,
+    h: Real,
+    t_new: Real,
+) -> Attempt<N> {
+    let k1 = *k1;
+    let k2 = rhs.eval(t + C2 * h, &(y + k1 * (A21 * h)));
+    let k3 = rhs.eval(t + C3 * h, &(y + (k1 * A31 + k2 * A32) * h));
+    let k4 = rhs.eval(t + C4 * h, &(y + (k1 * A41 + k2 * A42 + k3 * A43) * h));
+    let k5 = rhs.eval(
+        t + C5 * h,
+        &(y + (k1 * A51 + k2 * A52 + k3 * A53 + k4 * A54) * h),
+    );
+    let k6 = rhs.eval(
+        t + h,
+        &(y + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64 + k5 * A65) * h),
+    );
+    let y_new = y + (k1 * B1 + k3 * B3 + k4 * B4 + k5 * B5 + k6 * B6) * h;
+    let k7 = rhs.eval(t_new, &y_new);
+    let err = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
+    Attempt {
+        k: [k1, k2, k3, k4, k5, k6, k7],
+        y_new,
+        err,
+    }
+}
+
+/// Check options the caller may have built by hand.
+pub(crate) fn validate_options(opts: &AdaptiveOptions) -> Result<(), IntegrateError> {
+    let bad = |msg: String| Err(IntegrateError::InvalidOption(msg));
+    if !(opts.rtol.is_finite() && opts.rtol > 0.0 && opts.rtol < 1.0) {
+        return bad(format!("rtol must lie in (0, 1), got {}", opts.rtol));
+    }
+    if !(opts.atol.is_finite() && opts.atol >= 0.0) {
+        return bad(format!("atol must be finite and ≥ 0, got {}", opts.atol));
+    }
+    if let Some(h) = opts.h_init
+        && !(h.is_finite() && h > 0.0)
+    {
+        return bad(format!("h_init must be finite and > 0, got {h}"));
+    }
+    if opts.h_max.is_nan() || opts.h_max <= 0.0 {
+        return bad(format!("h_max must be > 0, got {}", opts.h_max));
+    }
+    Ok(())
+}
+
+/// `x / s` that reads 0/0 as 0 (a component that is exactly zero with `atol = 0`
+/// has zero error, not NaN error).
+#[inline]
+fn ratio(x: Real, s: Real) -> Real {
+    if x == 0.0 { 0.0 } else { x / s }
+}
+
+/// Root mean square of `v_i / scale_i`.
+pub(crate) fn rms_scaled<const N: usize>(v: &State<N>, scale: &State<N>) -> Real {
+    if N == 0 {
+        return 0.0;
+    }
+    let sum: Real = v
+        .iter()
+        .zip(scale.iter())
+        .map(|(&x, &s)| ratio(x, s).powi(2))
+        .sum();
+    (sum / N as Real).sqrt()
+}
+
+/// The error scale `atol + rtol·max(|y_i|, |y_new_i|)`.
+pub(crate) fn error_scale<const N: usize>(
+    opts: &AdaptiveOptions,
+    y: &State<N>,
+    y_new: &State<N>,
+) -> State<N> {
+    y.zip_map(y_new, |a, b| opts.atol + opts.rtol * a.abs().max(b.abs()))
+}
+
+/// Hairer's starting step size (`hinit` in DOPRI5/DOP853; HNW I, Sec. II.4): a
+/// step magnitude from one explicit Euler step and a second-derivative estimate.
+/// Costs exactly one evaluation of `rhs`, which the caller counts.
+// NOTE: the norms are RMS norms (as in SciPy's `select_initial_step`) rather than
+// Hairer's plain sums, so that the guess is consistent with the RMS error norm;
+// the two differ only by √N in the second-derivative estimate.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn hinit<const N: usize, R: Rhs<N>>(
+    rhs: &R,
+    t: Real,
+    y: &State<N>,
+    f0: &State<N>,
+    direction: Real,
+    order: i32,
+    opts: &AdaptiveOptions,
+) -> Real {
+    let scale = y.map(|v| opts.atol + opts.rtol * v.abs());
+    let d0 = rms_scaled(y, &scale);
+    let d1 = rms_scaled(f0, &scale);
+    let h0 = if d0 < 1e-5 || d1 < 1e-5 || !d0.is_finite() || !d1.is_finite() {
+        1e-6
+    } else {
+        0.01 * d0 / d1
+    };
+    let h0 = h0.min(opts.h_max);
+    let y1 = y + f0 * (direction * h0);
+    let f1 = rhs.eval(t + direction * h0, &y1);
+    let d2 = rms_scaled(&(f1 - f0), &scale) / h0;
+    let h1 = if !d2.is_finite() {
+        h0 * 1e-3
+    } else if d1 <= 1e-15 && d2 <= 1e-15 {
+        (h0 * 1e-3).max(1e-6)
+    } else {
+        (0.01 / d1.max(d2)).powf(1.0 / order as Real)
+    };
+    let h = (100.0 * h0).min(h1).min(opts.h_max);
+    if h > 0.0 && h.is_finite() { h } else { h0 }
+}
+
+/// The step size (magnitude) below which the time axis cannot resolve a step.
+pub(crate) fn underflow_limit(t: Real) -> Real {
+    16.0 * Real::EPSILON * t.abs().max(Real::MIN_POSITIVE)
+}
+
+/// The signed step to attempt from `t` toward `t_stop` with magnitude `h`, and
+/// the time it ends at; clipped (or stretched by at most 1 %) to land exactly on
+/// `t_stop`. The bool says whether it was clipped.
+pub(crate) fn clip_step(t: Real, t_stop: Real, h: Real) -> (Real, Real, bool) {
+    let dir = (t_stop - t).signum();
+    // NOTE: Hairer's 1.01: a step that would leave less than 1 % of itself before
+    // t_stop is stretched to t_stop instead of leaving a sliver step behind.
+    if dir * (t + dir * 1.01 * h - t_stop) >= 0.0 {
+        (t_stop - t, t_stop, true)
+    } else {
+        (dir * h, t + dir * h, false)
+    }
 }
 
 impl<const N: usize> Dopri5<N> {
-    /// Placeholder.
-    pub fn new(
-        t0: Real,
-        y0: State<N>,
-        _opts: crate::integrate::AdaptiveOptions,
-    ) -> Result<Self, IntegrateError> {
-        Ok(Self { t: t0, y: y0 })
+    /// A stepper at `(t0, y0)` with the given tolerances and options.
+    ///
+    /// Returns [`IntegrateError::InvalidOption`] for a non-finite `t0`/`y0` or an
+    /// invalid option (options are re-checked here because the struct's fields
+    /// are public).
+    pub fn new(t0: Real, y0: State<N>, opts: AdaptiveOptions) -> Result<Self, IntegrateError> {
+        validate_options(&opts)?;
+        if !t0.is_finite() || !all_finite(&y0) {
+            return Err(IntegrateError::InvalidOption(
+                "the initial time and state must be finite".into(),
+            ));
+        }
+        Ok(Self {
+            t: t0,
+            y: y0,
+            t_prev: t0,
+            y_prev: y0,
+            h_last: 0.0,
+            k: [State::zeros(); 7],
+            f: None,
+            h_next: opts.h_init,
+            facold: 1e-4,
+            opts,
+            stats: Stats::default(),
+        })
+    }
+
+    /// The options the stepper runs with.
+    pub fn options(&self) -> &AdaptiveOptions {
+        &self.opts
+    }
+
+    /// Magnitude of the next step to try (`None` until it has been chosen).
+    pub fn next_step_size(&self) -> Option<Real> {
+        self.h_next
+    }
+
+    /// One raw Dormand–Prince step of signed size `h` from `(t, y)`: returns the
+    /// order-5 solution and the error-estimate vector `y5 − y4`. Seven
+    /// evaluations, no checks, no counting.
+    pub fn step_once<R: Rhs<N>>(rhs: &R, t: Real, y: &State<N>, h: Real) -> (State<N>, State<N>) {
+        let k1 = rhs.eval(t, y);
+        let a = attempt(rhs, t, y, &k1, h, t + h);
+        (a.y_new, a.err)
     }
 }
 
@@ -24,25 +291,137 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
     fn t(&self) -> Real {
         self.t
     }
+
     fn y(&self) -> &State<N> {
         &self.y
     }
+
     fn t_prev(&self) -> Real {
-        self.t
+        self.t_prev
     }
+
     fn last_step(&self) -> Real {
-        0.0
+        self.h_last
     }
+
     fn stats(&self) -> Stats {
-        Stats::default()
+        self.stats
     }
-    fn step<R: Rhs<N>>(&mut self, _rhs: &R, _t_stop: Real) -> Result<(), IntegrateError> {
-        todo!()
+
+    fn step<R: Rhs<N>>(&mut self, rhs: &R, t_stop: Real) -> Result<(), IntegrateError> {
+        if !t_stop.is_finite() {
+            return Err(IntegrateError::InvalidOption(format!(
+                "t_stop must be finite, got {t_stop}"
+            )));
+        }
+        if t_stop == self.t {
+            return Ok(());
+        }
+        let dir = (t_stop - self.t).signum();
+        let f0 = match self.f {
+            Some(f) => f,
+            None => {
+                let f = rhs.eval(self.t, &self.y);
+                self.stats.rhs_evals += 1;
+                if !all_finite(&f) {
+                    return Err(IntegrateError::NonFinite { t: self.t });
+                }
+                self.f = Some(f);
+                f
+            }
+        };
+        let mut h = match self.h_next {
+            Some(h) => h,
+            None => {
+                self.stats.rhs_evals += 1;
+                hinit(rhs, self.t, &self.y, &f0, dir, 5, &self.opts)
+            }
+        }
+        .min(self.opts.h_max);
+        let mut rejected_here = false;
+        loop {
+            if self.stats.steps + self.stats.rejected >= self.opts.max_steps {
+                self.h_next = Some(h);
+                return Err(IntegrateError::TooManySteps {
+                    t: self.t,
+                    max_steps: self.opts.max_steps,
+                });
+            }
+            if h.is_nan() || h < underflow_limit(self.t) {
+                self.h_next = Some(h);
+                return Err(IntegrateError::StepSizeUnderflow {
+                    t: self.t,
+                    h: dir * h,
+                });
+            }
+            let (hs, t_new, clipped) = clip_step(self.t, t_stop, h);
+            let a = attempt(rhs, self.t, &self.y, &f0, hs, t_new);
+            self.stats.rhs_evals += 6;
+            let scale = error_scale(&self.opts, &self.y, &a.y_new);
+            let err = rms_scaled(&a.err, &scale);
+            let finite = err.is_finite() && all_finite(&a.y_new) && all_finite(&a.k[6]);
+            if !finite {
+                // NOTE: an overflowing attempt says nothing about the error's
+                // size, only that the step was far too long: cut hard and retry.
+                self.stats.rejected += 1;
+                rejected_here = true;
+                h = hs.abs() * NONFINITE_CUT;
+                continue;
+            }
+            let fac11 = err.powf(EXPO1);
+            if err <= 1.0 {
+                // NOTE: PI control (Gustafsson; HNW I, Sec. IV.2 and DOPRI5):
+                // dividing by facold^β damps the oscillation of the step size that
+                // the plain I controller shows near the stability boundary.
+                let fac = fac11 / self.facold.powf(BETA);
+                let fac = (fac / SAFETY).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
+                let mut h_new = hs.abs() / fac;
+                if rejected_here {
+                    h_new = h_new.min(hs.abs());
+                }
+                if clipped && !rejected_here {
+                    // NOTE: a step shortened only to land on t_stop says nothing
+                    // against the step the controller proposed before it.
+                    h_new = h_new.max(h);
+                }
+                self.facold = err.max(1e-4);
+                self.h_next = Some(h_new.min(self.opts.h_max));
+                self.t_prev = self.t;
+                self.y_prev = self.y;
+                self.h_last = hs;
+                self.t = t_new;
+                self.y = a.y_new;
+                self.k = a.k;
+                self.f = Some(a.k[6]);
+                self.stats.steps += 1;
+                return Ok(());
+            }
+            self.stats.rejected += 1;
+            rejected_here = true;
+            h = hs.abs() / (1.0 / FAC_MIN).min(fac11 / SAFETY);
+        }
     }
-    fn dense<R: Rhs<N>>(&mut self, _rhs: &R, _t: Real) -> State<N> {
-        todo!()
+
+    fn dense<R: Rhs<N>>(&mut self, _rhs: &R, t: Real) -> State<N> {
+        if self.h_last == 0.0 || t == self.t {
+            return self.y;
+        }
+        let h = self.h_last;
+        let k = &self.k;
+        let theta = (t - self.t_prev) / h;
+        let theta1 = 1.0 - theta;
+        let ydiff = self.y - self.y_prev;
+        let bspl = k[0] * h - ydiff;
+        let r4 = ydiff - k[6] * h - bspl;
+        let r5 = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
+        self.y_prev + (ydiff + (bspl + (r4 + r5 * theta1) * theta) * theta1) * theta
     }
+
     fn reset(&mut self, y: State<N>) {
         self.y = y;
+        self.f = None;
+        self.t_prev = self.t;
+        self.y_prev = y;
+        self.h_last = 0.0;
     }
 }
