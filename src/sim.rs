@@ -427,9 +427,9 @@ enum Engine {
     /// Truncated model: everything in closed form.
     ClosedForm(SymmetricTop),
     /// Reduced model: Ω closed form, σ integrated.
-    ReducedOrientation(SymmetricTop, OnGroup<3>),
+    ReducedOrientation(SymmetricTop, Box<OnGroup<3>>),
     /// Ω and σ integrated together.
-    Full(Integrator, OnGroup<6>),
+    Full(Integrator, Box<OnGroup<6>>),
 }
 
 /// A top, a method and the current time.
@@ -465,10 +465,10 @@ impl Simulation {
             y0.fixed_rows_mut::<3>(0).copy_from(&initial.omega);
             Ok(Engine::Full(
                 which,
-                OnGroup {
+                Box::new(OnGroup {
                     stepper: AnyStepper::new(which, y0, &options, scale)?,
                     base,
-                },
+                }),
             ))
         };
         let engine = match (choice, model) {
@@ -479,10 +479,10 @@ impl Simulation {
                 let zero = State::<3>::zeros();
                 Engine::ReducedOrientation(
                     top,
-                    OnGroup {
+                    Box::new(OnGroup {
                         stepper: AnyStepper::new(Integrator::Dop853, zero, &options, scale)?,
                         base,
-                    },
+                    }),
                 )
             }
             (MethodChoice::Exact, Model::General(_)) => {

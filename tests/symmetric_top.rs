@@ -10,7 +10,7 @@
 //! along L (but not along lab z, erratum (4.18)).
 
 use proptest::prelude::*;
-use spintop::integrate::{AdaptiveOptions, Dop853, Rhs, solve};
+use spintop::integrate::{AdaptiveOptions, Dop853, solve};
 use spintop::math::{State, Vec3, orthonormality_error};
 use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::rigid_body::{angular_momentum_body, energy};
@@ -38,14 +38,11 @@ fn times(t_end: f64, n: usize) -> Vec<f64> {
 }
 
 fn dop853_omega<F: Fn(&Vec3) -> Vec3>(f: F, omega0: Vec3, times: &[f64], rtol: f64) -> Vec<Vec3> {
-    let rhs = |_t: f64, y: &State<3>| -> State<3> { f(&Vec3::from(*y)) };
+    // State<3> and Vec3 are the same type.
+    let rhs = |_t: f64, y: &State<3>| -> State<3> { f(y) };
     let opts = AdaptiveOptions::new(rtol, 1e-20).unwrap();
     let mut stepper = Dop853::new(0.0, State::<3>::from(omega0), opts).unwrap();
-    solve(&mut stepper, &rhs, times)
-        .unwrap()
-        .into_iter()
-        .map(Vec3::from)
-        .collect()
+    solve(&mut stepper, &rhs, times).unwrap()
 }
 
 fn max_rel_error(got: &[Vec3], want: impl Fn(usize) -> Vec3) -> f64 {
@@ -329,9 +326,8 @@ fn eq_4_11_erratum_corrected_tilt_is_constant_and_printed_is_not() {
     assert!(hi - lo > 0.3, "printed: θ only moved within [{lo}, {hi}]");
 
     // 2. By integrating the Poisson equations (4.10) in ϑ, independently of the closed form.
-    let rhs = |_v: f64, y: &State<3>| -> State<3> {
-        truncated_poisson_rhs(&top, omega0.y, omega0.z, &Vec3::from(*y)).into()
-    };
+    let rhs =
+        |_v: f64, y: &State<3>| -> State<3> { truncated_poisson_rhs(&top, omega0.y, omega0.z, y) };
     let theta_spread = |theta0: f64| {
         let opts = AdaptiveOptions::new(1e-12, 1e-14).unwrap();
         let mut stepper = Dop853::new(0.0, State::<3>::new(0.0, theta0, 0.0), opts).unwrap();
