@@ -282,6 +282,14 @@ impl Sample {
 /// right-hand-side evaluation (the FSAL stage is lost) every 0.5/|Ω| time units.
 const FOLD_ANGLE: Real = 0.5;
 
+/// Cap each step so that the body turns by at most this angle in it.
+///
+/// NOTE: J_r⁻¹(σ) is singular at |σ| = 2π. Once Ω settles (the reduced top
+/// ends spinning steadily) σ grows linearly, the error estimate sees nothing,
+/// and unchecked steps would carry σ through the singularity. With the fold at
+/// 0.5 rad and at most 1 rad per step, |σ| stays below 1.5 rad.
+const MAX_TURN_PER_STEP: Real = 1.0;
+
 /// One of the integrators, chosen at run time.
 #[derive(Clone, Debug)]
 enum AnyStepper<const N: usize> {
@@ -308,6 +316,17 @@ impl<const N: usize> AnyStepper<N> {
             Integrator::Dopri5 => AnyStepper::Dopri5(Dopri5::new(0.0, y0, adaptive()?)?),
             Integrator::Dop853 => AnyStepper::Dop853(Dop853::new(0.0, y0, adaptive()?)?),
         })
+    }
+}
+
+impl<const N: usize> AnyStepper<N> {
+    /// Cap the adaptive step (a fixed RK4 step is the user's choice and is kept).
+    fn set_h_max(&mut self, h_max: Real) {
+        match self {
+            AnyStepper::Rk4(_) => {}
+            AnyStepper::Dopri5(s) => s.set_h_max(h_max),
+            AnyStepper::Dop853(s) => s.set_h_max(h_max),
+        }
     }
 }
 
@@ -390,8 +409,18 @@ impl<const N: usize> OnGroup<N> {
 
     /// Step once; σ is folded into the base first if it has grown, so that the
     /// base is always the one the last step's continuous output refers to.
-    fn step<R: Rhs<N>>(&mut self, rhs: &R, t_stop: Real) -> Result<(), IntegrateError> {
+    /// `omega` gives the body rate at a time and state, to cap the step.
+    fn step<R: Rhs<N>>(
+        &mut self,
+        rhs: &R,
+        omega: &impl Fn(Real, &State<N>) -> Vec3,
+        t_stop: Real,
+    ) -> Result<(), IntegrateError> {
         let y = *self.stepper.y();
+        let rate = omega(self.stepper.t(), &y).norm();
+        if rate > 0.0 {
+            self.stepper.set_h_max(MAX_TURN_PER_STEP / rate);
+        }
         let sigma = Self::sigma(&y);
         if sigma.norm() > FOLD_ANGLE {
             self.base = Quat::new_normalize((self.base * exp_so3(&sigma)).into_inner());
@@ -406,11 +435,12 @@ impl<const N: usize> OnGroup<N> {
     fn advance<R: Rhs<N>>(
         &mut self,
         rhs: &R,
+        omega: &impl Fn(Real, &State<N>) -> Vec3,
         t: Real,
         horizon: Real,
     ) -> Result<(State<N>, Mat3), IntegrateError> {
         while self.stepper.t() < t {
-            self.step(rhs, horizon)?;
+            self.step(rhs, omega, horizon)?;
         }
         let y = if t == self.stepper.t() {
             *self.stepper.y()
@@ -454,7 +484,9 @@ impl Simulation {
         initial: InitialState,
         horizon: Option<Real>,
     ) -> Result<Self, SimError> {
-        let horizon = horizon.unwrap_or(Real::INFINITY);
+        // NOTE: the steppers take a finite t_stop; the largest double stands for
+        // "open-ended" (the TUI), and no run gets anywhere near it.
+        let horizon = horizon.unwrap_or(Real::MAX);
         if horizon.is_nan() || horizon < 0.0 {
             return Err(SimError::BadTime(horizon, 0.0));
         }
@@ -561,11 +593,14 @@ impl Simulation {
                     top,
                     omega0: self.initial.omega,
                 };
-                let (_, rotation) = g.advance(&rhs, t, self.horizon)?;
+                let omega =
+                    |t: Real, _: &State<3>| reduced_closed_form(top, &self.initial.omega, t);
+                let (_, rotation) = g.advance(&rhs, &omega, t, self.horizon)?;
                 (reduced_closed_form(top, &self.initial.omega, t), rotation)
             }
             Engine::Full(_, g) => {
-                let (y, rotation) = g.advance(&FullRhs(&self.model), t, self.horizon)?;
+                let omega = |_: Real, y: &State<6>| y.fixed_rows::<3>(0).into_owned();
+                let (y, rotation) = g.advance(&FullRhs(&self.model), &omega, t, self.horizon)?;
                 (y.fixed_rows::<3>(0).into_owned(), rotation)
             }
         };

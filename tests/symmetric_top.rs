@@ -424,3 +424,82 @@ fn eq_4_18_erratum_theta_tends_to_the_angle_of_l_infinity_not_zero() {
     assert!(rates[0].abs() < 1e-6, "φ̇ = {}", rates[0]);
     assert!((rates[2] - omega0.z).abs() < 1e-6, "ψ̇ = {}", rates[2]);
 }
+
+/// The reduced orientation (4.17) has no closed form. Two routes must agree:
+/// Ω from (4.15)–(4.16) driving σ alone (what `auto` does), and Ω and σ
+/// integrated together by DOP853, and by RK4 at a small step.
+#[test]
+fn eq_4_17_reduced_orientation_agrees_between_independent_routes() {
+    let top = SymmetricTop::figure();
+    let omega0 = Vec3::new(0.03, 0.1, 0.2);
+    let euler = EulerAngles::new(0.4, 0.8, -1.0);
+    let ts = times(600.0, 30);
+    let mut auto = simulation(
+        Model::Reduced(top),
+        MethodChoice::Auto,
+        omega0,
+        euler,
+        600.0,
+    );
+    let mut full = simulation(
+        Model::Reduced(top),
+        MethodChoice::Dop853,
+        omega0,
+        euler,
+        600.0,
+    );
+    let a = auto.run(&ts).unwrap();
+    let b = full.run(&ts).unwrap();
+    for (x, y) in a.iter().zip(&b) {
+        let err = (x.rotation_matrix() - y.rotation_matrix()).amax();
+        assert!(err < 1e-8, "DOP853 routes differ by {err:e} at t = {}", x.t);
+    }
+    let options = MethodOptions {
+        rtol: 1e-12,
+        step: 0.01,
+    };
+    let initial = InitialState::new(omega0, euler).unwrap();
+    let mut rk4 = Simulation::new(
+        Model::Reduced(top),
+        MethodChoice::Rk4,
+        options,
+        initial,
+        Some(600.0),
+    )
+    .unwrap();
+    for (x, y) in a.iter().zip(&rk4.run(&ts).unwrap()) {
+        let err = (x.rotation_matrix() - y.rotation_matrix()).amax();
+        assert!(err < 1e-7, "RK4 differs by {err:e} at t = {}", x.t);
+    }
+}
+
+/// An open-ended run (no horizon, as the TUI drives it) gives the same
+/// numbers as a run told its last time in advance, to the tolerance.
+#[test]
+fn sim_open_ended_run_matches_a_run_with_a_horizon() {
+    let top = SymmetricTop::figure();
+    let omega0 = Vec3::new(0.0, 0.1, 0.2);
+    let initial = InitialState::new(omega0, EulerAngles::new(0.0, 0.3, 0.0)).unwrap();
+    let options = MethodOptions {
+        rtol: 1e-12,
+        step: 0.01,
+    };
+    for method in [MethodChoice::Auto, MethodChoice::Dopri5, MethodChoice::Rk4] {
+        let mut open =
+            Simulation::new(Model::Reduced(top), method, options, initial, None).unwrap();
+        let mut closed =
+            Simulation::new(Model::Reduced(top), method, options, initial, Some(100.0)).unwrap();
+        for t in [1.0, 10.0, 55.5, 100.0] {
+            let a = *open.advance_to(t).unwrap();
+            let b = *closed.advance_to(t).unwrap();
+            assert!(
+                (a.rotation_matrix() - b.rotation_matrix()).amax() < 1e-8,
+                "{method:?} at t = {t}"
+            );
+            assert!(
+                (a.omega_vec() - b.omega_vec()).norm() < 1e-9,
+                "{method:?} at t = {t}"
+            );
+        }
+    }
+}

@@ -383,6 +383,16 @@ impl<const N: usize> Dop853<N> {
         self.h_next
     }
 
+    /// Change the largest step magnitude from the next step on, for a driver
+    /// that knows how a scale of its problem changes along the solution (the
+    /// SO(3) driver caps the rotation per step this way). A NaN or non-positive
+    /// value is ignored.
+    pub fn set_h_max(&mut self, h_max: Real) {
+        if h_max > 0.0 {
+            self.opts.h_max = h_max;
+        }
+    }
+
     /// One raw DOP853 step of signed size `h` from `(t, y)`: returns the order-8
     /// solution and the per-component error estimate the controller uses,
     /// `h·e5·|e5| / sqrt(e5² + 0.01·e3²)` (SciPy's `DOP853._estimate_error`; for

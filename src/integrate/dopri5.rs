@@ -277,6 +277,16 @@ impl<const N: usize> Dopri5<N> {
         self.h_next
     }
 
+    /// Change the largest step magnitude from the next step on, for a driver
+    /// that knows how a scale of its problem changes along the solution (the
+    /// SO(3) driver caps the rotation per step this way). A NaN or non-positive
+    /// value is ignored.
+    pub fn set_h_max(&mut self, h_max: Real) {
+        if h_max > 0.0 {
+            self.opts.h_max = h_max;
+        }
+    }
+
     /// One raw Dormand–Prince step of signed size `h` from `(t, y)`: returns the
     /// order-5 solution and the error-estimate vector `y5 − y4`. Seven
     /// evaluations, no checks, no counting.
