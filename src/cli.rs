@@ -209,6 +209,7 @@ impl From<SimError> for CliError {
         match e {
             SimError::Integrate(IntegrateError::InvalidOption(msg)) => CliError::BadInput(msg),
             SimError::Integrate(e) => CliError::Numerical(e),
+            SimError::NonFiniteSample(t) => CliError::Numerical(IntegrateError::NonFinite { t }),
             SimError::NoClosedForm(model) => CliError::BadInput(format!(
                 "the {model} model has no closed form; use --method auto or dop853"
             )),

@@ -132,6 +132,13 @@ impl InitialState {
         if !all_finite(&omega) {
             return Err(SimError::NotFinite("the initial angular velocity"));
         }
+        // NOTE: in units of 1/τ a real top has |Ω| far below 1 (τΩ ~ 1e-20 for a
+        // nanoparticle); above 1e100 the products τΩ²t overflow a double.
+        if omega.amax() > MAX_RATE {
+            return Err(SimError::OutOfRange(
+                "each component of the initial angular velocity must be at most 1e100 in units of 1/tau",
+            ));
+        }
         if !(euler.phi.is_finite() && euler.theta.is_finite() && euler.psi.is_finite()) {
             return Err(SimError::NotFinite("the initial Euler angles"));
         }
@@ -154,6 +161,13 @@ pub enum SimError {
     /// `Exact` was asked for a model with no closed form.
     #[error("the {0} model has no closed form")]
     NoClosedForm(&'static str),
+    /// An input lies beyond what the model can represent.
+    #[error("{0}")]
+    OutOfRange(&'static str),
+    /// A sample came out non-finite although the method reported no failure
+    /// (a last guard: spintop never prints a NaN table).
+    #[error("the state became non-finite at t = {0}")]
+    NonFiniteSample(Real),
     /// A requested time was negative, non-finite or earlier than the last one.
     #[error("output times must be finite, >= 0 and non-decreasing (got {0} after {1})")]
     BadTime(Real, Real),
@@ -274,6 +288,9 @@ impl Sample {
         )
     }
 }
+
+/// The largest |Ω| component accepted, in units of 1/τ.
+pub const MAX_RATE: Real = 1e100;
 
 /// Fold σ into the base orientation once |σ| exceeds this.
 ///
@@ -604,6 +621,9 @@ impl Simulation {
                 (y.fixed_rows::<3>(0).into_owned(), rotation)
             }
         };
+        if !(all_finite(&omega) && all_finite(&rotation)) {
+            return Err(SimError::NonFiniteSample(t));
+        }
         self.current = Sample::new(t, &inertia, &rotation, &omega);
         Ok(&self.current)
     }

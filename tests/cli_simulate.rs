@@ -165,6 +165,7 @@ fn simulate_refuses_bad_input_with_one_line_and_exit_code_2() {
         &["--model", "truncated", "--omega", "nan,0,0"],
         &["--model", "truncated", "--omega", "inf,0,0"],
         &["--model", "truncated", "--omega", "1,2"],
+        &["--model", "truncated", "--omega", "1e200,0,0"],
         &["--model", "truncated", "--omega", "a,b,c"],
         &["--model", "truncated", "--euler", "0,1e999,0"],
         &["--model", "spinning"],

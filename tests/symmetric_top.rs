@@ -298,7 +298,7 @@ fn eq_3_3_general_model_with_symmetric_inputs_follows_the_truncated_closed_form(
 /// between the axis and L, arctan(I₁Ω₂₀/(I₃Ω₃₀)) = 0.8961 rad for the figure
 /// parameters; the printed arctan(Ω₂₀/Ω̃₃₀) = 0.6947 rad is not constant.
 #[test]
-fn eq_4_11_erratum_corrected_tilt_is_constant_and_printed_is_not() {
+fn eq_4_10_eq_4_11_erratum_corrected_tilt_is_constant_and_printed_is_not() {
     let top = SymmetricTop::figure();
     let omega0 = Vec3::new(0.0, 0.1, 0.2);
     let corrected = precession_tilt(&top, &omega0);

@@ -357,28 +357,58 @@ mod tests {
         );
     }
 
-    /// The closed forms satisfy their differential equations: central
-    /// differences of (4.7) and (4.15) against (4.2)–(4.4) and (4.12)–(4.14).
-    #[test]
-    fn eq_4_7_and_eq_4_15_satisfy_their_equations() {
+    /// Central differences of a closed form against its right-hand side.
+    fn check_solves(
+        closed: fn(&SymmetricTop, &Vec3, Real) -> Vec3,
+        rhs: fn(&SymmetricTop, &Vec3) -> Vec3,
+    ) {
         let top = SymmetricTop::new(0.4, 1.0).unwrap();
         let omega0 = Vec3::new(0.07, -0.1, 0.2);
+        assert_eq!(closed(&top, &omega0, 0.0), omega0);
         for t in [0.0, 0.5, 3.0, 40.0] {
             let h = 1e-4;
             let t = t + 2.0 * h;
-            let d = (truncated_closed_form(&top, &omega0, t + h)
-                - truncated_closed_form(&top, &omega0, t - h))
-                / (2.0 * h);
-            let f = truncated_ale_rhs(&top, &truncated_closed_form(&top, &omega0, t));
-            assert_relative_eq!(d, f, epsilon = 1e-9);
-            let d = (reduced_closed_form(&top, &omega0, t + h)
-                - reduced_closed_form(&top, &omega0, t - h))
-                / (2.0 * h);
-            let f = reduced_ale_rhs(&top, &reduced_closed_form(&top, &omega0, t));
-            assert_relative_eq!(d, f, epsilon = 1e-9);
+            let d = (closed(&top, &omega0, t + h) - closed(&top, &omega0, t - h)) / (2.0 * h);
+            assert_relative_eq!(d, rhs(&top, &closed(&top, &omega0, t)), epsilon = 1e-9);
         }
-        assert_eq!(truncated_closed_form(&top, &omega0, 0.0), omega0);
-        assert_eq!(reduced_closed_form(&top, &omega0, 0.0), omega0);
+    }
+
+    #[test]
+    fn eq_4_2_eq_4_3_eq_4_4_are_solved_by_the_closed_form_eq_4_7() {
+        check_solves(truncated_closed_form, truncated_ale_rhs);
+    }
+
+    #[test]
+    fn eq_4_12_eq_4_13_eq_4_14_are_solved_by_the_closed_form_eq_4_15() {
+        check_solves(reduced_closed_form, reduced_ale_rhs);
+    }
+
+    /// Ω⊥ obeys its own equation dΩ⊥/dt = −τΩ⊥³ (multiply (4.2) by Ω₁ and
+    /// (4.3) by Ω₂ and add; the paper's recipe swaps them, erratum 3).
+    #[test]
+    fn eq_4_5_omega_perp_obeys_d_omega_perp_dt_equals_minus_tau_omega_perp_cubed() {
+        let top = SymmetricTop::new(1.3, 0.7).unwrap();
+        let omega0 = Vec3::new(0.2, -0.3, 0.5);
+        let w0 = omega0.x.hypot(omega0.y);
+        for t in [0.01, 1.0, 25.0] {
+            let h = 1e-5;
+            let d = (truncated_omega_perp(&top, w0, t + h) - truncated_omega_perp(&top, w0, t - h))
+                / (2.0 * h);
+            let w = truncated_omega_perp(&top, w0, t);
+            assert_relative_eq!(d, -top.tau() * w.powi(3), max_relative = 1e-8);
+            assert_relative_eq!(
+                w,
+                truncated_closed_form(&top, &omega0, t).xy().norm(),
+                max_relative = 1e-15
+            );
+        }
+        // The printed recipe, Ω₂·(4.2) + Ω₁·(4.3), is not d(Ω⊥²/2)/dt.
+        let w = omega0;
+        let f = truncated_ale_rhs(&top, &w);
+        let printed = w.y * f.x + w.x * f.y;
+        let right = w.x * f.x + w.y * f.y;
+        assert_relative_eq!(right, -top.tau() * w0.powi(4), max_relative = 1e-14);
+        assert!((printed - right).abs() > 1e-3);
     }
 
     /// (4.16) in the paper's printed form agrees with the rewritten one where the
