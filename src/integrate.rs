@@ -164,6 +164,39 @@ pub trait Stepper<const N: usize> {
     fn reset(&mut self, y: State<N>);
 }
 
+/// Refuse a non-finite `t_stop` (shared by the steppers).
+pub(crate) fn check_t_stop(t_stop: Real) -> Result<(), IntegrateError> {
+    if t_stop.is_finite() {
+        Ok(())
+    } else {
+        Err(IntegrateError::InvalidOption(format!(
+            "t_stop must be finite, got {t_stop}"
+        )))
+    }
+}
+
+/// The first stage `f(t, y)`: the cached one (FSAL, or the end slope of the
+/// last step) when there is one, else evaluated, counted and cached. A
+/// non-finite slope is reported at `t`.
+pub(crate) fn first_stage<const N: usize, R: Rhs<N>>(
+    rhs: &R,
+    t: Real,
+    y: &State<N>,
+    cache: &mut Option<State<N>>,
+    stats: &mut Stats,
+) -> Result<State<N>, IntegrateError> {
+    if let Some(f) = *cache {
+        return Ok(f);
+    }
+    let f = rhs.eval(t, y);
+    stats.rhs_evals += 1;
+    if !crate::math::all_finite(&f) {
+        return Err(IntegrateError::NonFinite { t });
+    }
+    *cache = Some(f);
+    Ok(f)
+}
+
 /// Integrate from the stepper's current time through every time in `times`
 /// (all on the same side of the start, in order) and return the states there.
 ///

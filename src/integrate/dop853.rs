@@ -25,7 +25,9 @@
 use crate::integrate::dopri5::{
     NONFINITE_CUT, clip_step, error_scale, hinit, underflow_limit, validate_options,
 };
-use crate::integrate::{AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper};
+use crate::integrate::{
+    AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper, check_t_stop, first_stage,
+};
 use crate::math::{Real, State, all_finite};
 
 /// Stages of one step.
@@ -455,27 +457,12 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
     }
 
     fn step<R: Rhs<N>>(&mut self, rhs: &R, t_stop: Real) -> Result<(), IntegrateError> {
-        if !t_stop.is_finite() {
-            return Err(IntegrateError::InvalidOption(format!(
-                "t_stop must be finite, got {t_stop}"
-            )));
-        }
+        check_t_stop(t_stop)?;
         if t_stop == self.t {
             return Ok(());
         }
         let dir = (t_stop - self.t).signum();
-        let f0 = match self.f {
-            Some(f) => f,
-            None => {
-                let f = rhs.eval(self.t, &self.y);
-                self.stats.rhs_evals += 1;
-                if !all_finite(&f) {
-                    return Err(IntegrateError::NonFinite { t: self.t });
-                }
-                self.f = Some(f);
-                f
-            }
-        };
+        let f0 = first_stage(rhs, self.t, &self.y, &mut self.f, &mut self.stats)?;
         let mut h = match self.h_next {
             Some(h) => h,
             None => {

@@ -22,7 +22,7 @@
 //! [`IntegrateError::NonFinite`] at the time of the last finite state, which is
 //! kept; the stepper never holds a non-finite state.
 
-use crate::integrate::{DEFAULT_MAX_STEPS, IntegrateError, Rhs, Stats, Stepper};
+use crate::integrate::{DEFAULT_MAX_STEPS, IntegrateError, Rhs, Stats, Stepper, check_t_stop};
 use crate::math::{Real, State, all_finite};
 
 /// Classical RK4 with a fixed step size, stepping forward or backward.
@@ -147,11 +147,7 @@ impl<const N: usize> Stepper<N> for Rk4<N> {
     }
 
     fn step<R: Rhs<N>>(&mut self, rhs: &R, t_stop: Real) -> Result<(), IntegrateError> {
-        if t_stop.is_nan() || t_stop.is_infinite() {
-            return Err(IntegrateError::InvalidOption(format!(
-                "t_stop must be finite, got {t_stop}"
-            )));
-        }
+        check_t_stop(t_stop)?;
         if t_stop == self.t {
             return Ok(());
         }
