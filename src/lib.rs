@@ -9,6 +9,7 @@
 //! - [`physics`]: the paper, one module per concept (pure: no I/O, no clock).
 //! - [`integrate`]: RK4, Dormand–Prince 5(4) and DOP853 over one small trait.
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
+//! - [`plot`]: ASCII charts for the lessons, the book and the command line.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -17,4 +18,20 @@ pub mod cli;
 pub mod integrate;
 pub mod math;
 pub mod physics;
+pub mod plot;
 pub mod sim;
+
+/// The book's chapters (`book/src`). `cargo test` compiles and runs every Rust
+/// block in them as a doctest; `tests/book.rs` checks that every chapter in
+/// `SUMMARY.md` is listed here.
+#[cfg(doctest)]
+pub mod book {
+    #[doc = include_str!("../book/src/preface.md")]
+    pub struct Preface;
+    #[doc = include_str!("../book/src/section-3.md")]
+    pub struct Section3;
+    #[doc = include_str!("../book/src/section-4.md")]
+    pub struct Section4;
+    #[doc = include_str!("../book/src/errata.md")]
+    pub struct Errata;
+}

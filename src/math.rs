@@ -70,6 +70,7 @@ pub fn exp_so3(sigma: &Vec3) -> Quat {
     Quat::from_scaled_axis(*sigma)
 }
 
+// ANCHOR: dexpinv_right
 /// The inverse right Jacobian of SO(3): if `O(t) = O₀ exp(σ̂(t))` and
 /// `Oᵀ dO/dt = Ω̂` (body rate), then `dσ/dt = J_r⁻¹(σ) Ω`.
 ///
@@ -96,6 +97,7 @@ pub fn dexpinv_right(sigma: &Vec3, omega: &Vec3) -> Vec3 {
     let s_cross_w = sigma.cross(omega);
     omega + 0.5 * s_cross_w + coeff * sigma.cross(&s_cross_w)
 }
+// ANCHOR_END: dexpinv_right
 
 /// The largest entry of `|MᵀM − I|`: how far `m` is from being orthogonal.
 pub fn orthonormality_error(m: &Mat3) -> Real {

@@ -89,6 +89,7 @@ impl EulerAngles {
     }
 }
 
+// ANCHOR: poisson_3_5
 /// The body-frame angular velocity from Euler angles and their rates.
 ///
 /// Paper: Eq. (3.5).
@@ -113,7 +114,9 @@ pub fn body_rate_from_euler(angles: &EulerAngles, rates: &EulerRates) -> Vec3 {
         phi_dot * c_th + psi_dot,
     )
 }
+// ANCHOR_END: poisson_3_5
 
+// ANCHOR: poisson_4_8
 /// The Euler-angle rates from the body rate: (3.5) solved for φ̇, θ̇, ψ̇.
 ///
 /// Paper: Eq. (4.8).
@@ -139,6 +142,7 @@ pub fn euler_rates(angles: &EulerAngles, omega: &Vec3) -> Option<EulerRates> {
         psi_dot: omega.z - a * c_th / s_th,
     })
 }
+// ANCHOR_END: poisson_4_8
 
 #[cfg(test)]
 mod tests {

@@ -67,6 +67,7 @@ impl GeneralTop {
         self.dipole
     }
 
+    // ANCHOR: general_truncated_ale
     /// The right-hand side of the truncated ALE for any top.
     ///
     /// Paper: Eq. (3.3).
@@ -94,6 +95,7 @@ impl GeneralTop {
         let denom = 1.0 + w.dot(&i_inv_d);
         i_inv_b - i_inv_d * (w.dot(&i_inv_b) / denom)
     }
+    // ANCHOR_END: general_truncated_ale
 }
 
 impl BodyDynamics for GeneralTop {

@@ -77,6 +77,7 @@ impl SymmetricTop {
     }
 }
 
+// ANCHOR: truncated_rhs
 /// The truncated ALE of the symmetric top (no Schott term).
 ///
 /// Paper: Eq. (4.2), Eq. (4.3), Eq. (4.4).
@@ -96,7 +97,9 @@ pub fn truncated_ale_rhs(top: &SymmetricTop, omega: &Vec3) -> Vec3 {
         -damping * omega.z,
     )
 }
+// ANCHOR_END: truncated_rhs
 
+// ANCHOR: reduced_rhs
 /// The reduced ALE of the symmetric top (Schott term kept, runaways removed).
 ///
 /// Paper: Eq. (4.12), Eq. (4.13), Eq. (4.14).
@@ -117,6 +120,7 @@ pub fn reduced_ale_rhs(top: &SymmetricTop, omega: &Vec3) -> Vec3 {
         0.0,
     )
 }
+// ANCHOR_END: reduced_rhs
 
 /// The truncated model (4.2)–(4.4) as `Ω̇ = F(Ω)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -153,6 +157,7 @@ pub struct TruncatedClock {
     pub vartheta: Real,
 }
 
+// ANCHOR: truncated_clock
 /// R(t) and the new time ϑ(t) of the truncated model, for t ≥ 0.
 ///
 /// Paper: Eq. (4.6), Eq. (4.9).
@@ -174,6 +179,7 @@ pub fn truncated_clock(top: &SymmetricTop, omega_perp0: Real, t: Real) -> Trunca
         vartheta: 2.0 * t / (1.0 + r),
     }
 }
+// ANCHOR_END: truncated_clock
 
 /// Ω⊥ of the truncated model.
 ///
@@ -222,6 +228,7 @@ pub fn reduced_decay_time(top: &SymmetricTop, omega3: Real) -> Real {
     1.0 / (k * k * top.tau)
 }
 
+// ANCHOR: reduced_amplitude
 /// The amplitude factor Φ(t) = Ω⊥(t)/Ω⊥₀ of the reduced model, t ≥ 0.
 ///
 /// Paper: Eq. (4.16).
@@ -247,6 +254,7 @@ pub fn reduced_amplitude(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
     let g = if s == 0.0 { 1.0 } else { -(-s).exp_m1() / s };
     (-0.5 * s).exp() / (1.0 + 2.0 * top.tau * u0 * t * g).sqrt()
 }
+// ANCHOR_END: reduced_amplitude
 
 /// The closed-form Ω(t) of the reduced model, for any Ω₀ and t ≥ 0.
 ///
@@ -262,6 +270,7 @@ pub fn reduced_closed_form(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Vec3 {
     Vec3::new(o1, o2, omega0.z)
 }
 
+// ANCHOR: truncated_orientation
 /// The closed-form orientation of the truncated model, for any start `o0` and Ω₀.
 ///
 /// Paper: Eq. (4.9), Eq. (4.10), Eq. (4.11).
@@ -280,6 +289,7 @@ pub fn truncated_orientation(top: &SymmetricTop, omega0: &Vec3, o0: &Mat3, t: Re
     let spin = top.omega3_tilde(omega0.z) * clock.vartheta;
     rot_axis(&l_lab0, precession) * o0 * rot_z(spin)
 }
+// ANCHOR_END: truncated_orientation
 
 /// The constant tilt θ of the truncated model's particular solution: the angle
 /// between the symmetry axis and L.

@@ -1,0 +1,218 @@
+//! The book stays true to the code.
+//!
+//! mdBook renders a missing `{{#include file:anchor}}` as an empty block with no
+//! error, so these tests are the only guard: every chapter in SUMMARY.md exists
+//! and is compiled as a doctest, every included file and anchor exists, and the
+//! program output shown in each chapter is what the lesson program prints now.
+//!
+//! After a deliberate change to a lesson, refresh the book's copies with
+//! `UPDATE_BOOK=1 cargo test --test book`, and review the diff.
+
+use std::collections::BTreeSet;
+use std::fs;
+use std::io;
+use std::path::{Path, PathBuf};
+
+#[path = "../lessons/ch3_equations_of_motion.rs"]
+mod ch3;
+#[path = "../lessons/ch4_symmetric_top.rs"]
+mod ch4;
+
+type Lesson = fn(&mut dyn io::Write) -> io::Result<()>;
+
+/// Every lesson program whose output a chapter shows, by example name.
+const LESSONS: &[(&str, Lesson)] = &[
+    ("ch3_equations_of_motion", ch3::run),
+    ("ch4_symmetric_top", ch4::run),
+];
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn book_src() -> PathBuf {
+    root().join("book/src")
+}
+
+/// Chapter files linked from SUMMARY.md (drafts, `[Title]()`, have no file).
+fn summary_chapters() -> Vec<String> {
+    let summary = fs::read_to_string(book_src().join("SUMMARY.md")).expect("SUMMARY.md");
+    summary
+        .split("](")
+        .skip(1)
+        .filter_map(|rest| rest.split(')').next())
+        .filter(|link| !link.is_empty())
+        .map(str::to_string)
+        .collect()
+}
+
+/// Problems with the `{{#include …}}` / `{{#rustdoc_include …}}` directives of
+/// one chapter: missing files, or anchors without both markers.
+fn include_problems(chapter: &Path) -> Vec<String> {
+    let text = fs::read_to_string(chapter).unwrap_or_default();
+    let dir = chapter.parent().expect("a chapter lives in a folder");
+    let mut problems = Vec::new();
+    for directive in ["{{#include ", "{{#rustdoc_include "] {
+        for piece in text.split(directive).skip(1) {
+            let Some(arg) = piece.split("}}").next() else {
+                continue;
+            };
+            let arg = arg.trim();
+            let (file, anchor) = match arg.split_once(':') {
+                Some((f, a)) => (f, Some(a)),
+                None => (arg, None),
+            };
+            let path = dir.join(file);
+            let Ok(source) = fs::read_to_string(&path) else {
+                problems.push(format!("{}: missing file {file}", chapter.display()));
+                continue;
+            };
+            // Line-number ranges (`:10:20`, `:10:`) are plain numbers; names are anchors.
+            if let Some(anchor) =
+                anchor.filter(|a| !a.chars().next().is_some_and(|c| c.is_ascii_digit()))
+            {
+                let start = format!("ANCHOR: {anchor}");
+                let end = format!("ANCHOR_END: {anchor}");
+                let has = |marker: &str| {
+                    source
+                        .lines()
+                        .any(|l| l.trim_start().trim_start_matches("//").trim() == marker)
+                };
+                if !has(&start) || !has(&end) {
+                    problems.push(format!(
+                        "{}: anchor '{anchor}' missing in {file}",
+                        chapter.display()
+                    ));
+                }
+            }
+        }
+    }
+    problems
+}
+
+fn lesson_output(run: Lesson) -> String {
+    let mut buf = Vec::new();
+    run(&mut buf).expect("a lesson writes to memory without failing");
+    String::from_utf8(buf).expect("lessons print UTF-8")
+}
+
+/// Compare a lesson's output with the copy the book shows; `None` when fresh.
+fn stale(name: &str, output: &str, shown: &Path) -> Option<String> {
+    let shown_text = fs::read_to_string(shown).unwrap_or_default();
+    if shown_text == output {
+        return None;
+    }
+    let line = shown_text
+        .lines()
+        .zip(output.lines())
+        .position(|(a, b)| a != b)
+        .map_or_else(|| "its length".to_string(), |i| format!("line {}", i + 1));
+    Some(format!(
+        "the book's copy of `{name}` output ({}) is stale at {line}; run UPDATE_BOOK=1 cargo test --test book",
+        shown.display()
+    ))
+}
+
+#[test]
+fn book_every_summary_chapter_exists_and_is_compiled_as_a_doctest() {
+    let lib = fs::read_to_string(root().join("src/lib.rs")).unwrap();
+    let chapters = summary_chapters();
+    assert!(chapters.len() >= 4, "{chapters:?}");
+    for chapter in &chapters {
+        assert!(
+            book_src().join(chapter).is_file(),
+            "SUMMARY.md lists {chapter}, which is missing"
+        );
+        let include = format!("include_str!(\"../book/src/{chapter}\")");
+        assert!(
+            lib.contains(&include),
+            "src/lib.rs does not doctest {chapter}: add {include}"
+        );
+    }
+    // And no chapter file sits outside SUMMARY.md, unseen.
+    let listed: BTreeSet<&str> = chapters.iter().map(String::as_str).collect();
+    for entry in fs::read_dir(book_src()).unwrap() {
+        let name = entry.unwrap().file_name().into_string().unwrap();
+        if name.ends_with(".md") && name != "SUMMARY.md" {
+            assert!(
+                listed.contains(name.as_str()),
+                "{name} is not in SUMMARY.md"
+            );
+        }
+    }
+}
+
+#[test]
+fn book_every_include_and_anchor_exists() {
+    let problems: Vec<String> = summary_chapters()
+        .iter()
+        .flat_map(|c| include_problems(&book_src().join(c)))
+        .collect();
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// The guard itself can fail: a chapter that includes an anchor which has been
+/// removed from its source file is reported.
+#[test]
+fn book_anchor_check_reports_a_removed_anchor() {
+    let dir = std::env::temp_dir().join(format!("spintop-book-anchor-{}", std::process::id()));
+    fs::create_dir_all(&dir).unwrap();
+    let chapter = dir.join("chapter.md");
+    fs::write(
+        &chapter,
+        "```rust,ignore\n{{#include code.rs:kept}}\n{{#include code.rs:removed}}\n{{#include gone.rs}}\n```\n",
+    )
+    .unwrap();
+    fs::write(
+        dir.join("code.rs"),
+        "// ANCHOR: kept\nfn f() {}\n// ANCHOR_END: kept\n",
+    )
+    .unwrap();
+    let problems = include_problems(&chapter);
+    fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(problems.len(), 2, "{problems:?}");
+    assert!(
+        problems[0].contains("missing file gone.rs")
+            || problems[1].contains("missing file gone.rs")
+    );
+    assert!(problems.iter().any(|p| p.contains("anchor 'removed'")));
+    assert!(!problems.iter().any(|p| p.contains("'kept'")));
+}
+
+#[test]
+fn book_shows_the_current_output_of_every_lesson() {
+    let update = std::env::var_os("UPDATE_BOOK").is_some();
+    let mut problems = Vec::new();
+    for (name, run) in LESSONS {
+        let output = lesson_output(*run);
+        let shown = book_src().join("generated").join(format!("{name}.txt"));
+        if update {
+            fs::write(&shown, &output).unwrap();
+        } else if let Some(problem) = stale(name, &output, &shown) {
+            problems.push(problem);
+        }
+        // The chapter that shows the output also says how to produce it.
+        let chapters = summary_chapters();
+        let shows = chapters.iter().any(|c| {
+            let text = fs::read_to_string(book_src().join(c)).unwrap_or_default();
+            text.contains(&format!("generated/{name}.txt"))
+                && text.contains(&format!("cargo run --release --example {name}"))
+        });
+        assert!(
+            shows,
+            "no chapter shows {name}'s output with its Run it command"
+        );
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// The staleness check can fail: a changed line is caught and located.
+#[test]
+fn book_stale_check_reports_changed_output() {
+    let path = std::env::temp_dir().join(format!("spintop-book-stale-{}.txt", std::process::id()));
+    fs::write(&path, "line one\nline two\n").unwrap();
+    assert!(stale("x", "line one\nline two\n", &path).is_none());
+    let report = stale("x", "line one\nline 2\n", &path).expect("stale");
+    fs::remove_file(&path).unwrap();
+    assert!(report.contains("line 2"), "{report}");
+}
