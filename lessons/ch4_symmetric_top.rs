@@ -43,6 +43,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
             reduced_closed_form,
         ),
     ];
+    let mut sampled = Vec::new();
     for (name, rhs, closed) in models {
         let f = |_t: f64, y: &State<3>| rhs(&top, y);
         let opts = AdaptiveOptions::new(1e-12, 1e-20).expect("valid tolerances");
@@ -59,8 +60,29 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
             worst.log10().ceil(),
             dop853.stats().rhs_evals
         )?;
+        sampled.push(numeric);
     }
     // ANCHOR_END: closed_form_vs_integration
+    writeln!(
+        out,
+        "\nOmega_perp: closed form against DOP853 (the dots in the chart below sit on the lines)"
+    )?;
+    writeln!(
+        out,
+        "{:>6} {:>18} {:>18} {:>18} {:>18}",
+        "t", "truncated (4.6)", "DOP853", "reduced (4.16)", "DOP853"
+    )?;
+    for i in [19, 59, 99, 139, 199] {
+        let t = times[i];
+        writeln!(
+            out,
+            "{t:>6} {:>18.10e} {:>18.10e} {:>18.10e} {:>18.10e}",
+            truncated_closed_form(&top, &omega0, t).xy().norm(),
+            sampled[0][i].xy().norm(),
+            reduced_closed_form(&top, &omega0, t).xy().norm(),
+            sampled[1][i].xy().norm(),
+        )?;
+    }
 
     let grid: Vec<f64> = (0..=400).map(|i| 2.5 * i as f64).collect();
     let curve = |f: &dyn Fn(f64) -> f64| grid.iter().map(|&t| (t, f(t))).collect::<Vec<_>>();
@@ -69,7 +91,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         out,
         "{}",
         chart(
-            "Omega_perp(t), 0 <= t <= 1000",
+            "Omega_perp(t), 0 <= t <= 1000: closed forms (4.6) and (4.16) against DOP853",
             &[
                 Series::line(
                     "truncated, ~ 1/sqrt(t)",
@@ -79,6 +101,16 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
                     "reduced, ~ exp(-t/sigma)",
                     curve(&|t| reduced_closed_form(&top, &omega0, t).xy().norm())
                 ),
+                Series::dots("DOP853, both models", {
+                    let every = |ys: &Vec<Vec3>| {
+                        ys.iter()
+                            .zip(&times)
+                            .step_by(8)
+                            .map(|(y, &t)| (t, y.xy().norm()))
+                            .collect::<Vec<_>>()
+                    };
+                    [every(&sampled[0]), every(&sampled[1])].concat()
+                }),
             ],
             (0.0, 1000.0),
             120,
