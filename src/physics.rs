@@ -7,6 +7,7 @@
 //! | [`euler_angles`] | (3.5), (4.8) | z-x-z Euler angles and their rates |
 //! | [`general_top`] | (3.3) | the truncated ALE for any principal moments and dipole |
 //! | [`symmetric_top`] | §4, (4.1)–(4.18) | truncated and reduced ALE of the axially symmetric top, closed forms |
+//! | [`full_ale`] | (3.4) | the full ALE with its Schott term, as first-order systems |
 //!
 //! Units: κ = 2/(3c³) = 1 for the general top; τ = 2d²/(3I₁c³) = 1 and I₁ = 1 for
 //! the symmetric top (so times are in units of τ and rates in units of 1/τ).
@@ -15,6 +16,7 @@ use crate::math::Real;
 use thiserror::Error;
 
 pub mod euler_angles;
+pub mod full_ale;
 pub mod general_top;
 pub mod rigid_body;
 pub mod symmetric_top;
