@@ -239,7 +239,10 @@ mod runaway_tests {
         // the frequency differs from their 0.154 by 0.002 (their freezing point may
         // differ slightly, e.g. a later time on the reduced solution).
         for l in runaway {
-            assert!((l.re - 1.025).abs() < 5e-4 && (l.im.abs() - 0.154).abs() < 3e-3, "{l}");
+            assert!(
+                (l.re - 1.025).abs() < 5e-4 && (l.im.abs() - 0.154).abs() < 3e-3,
+                "{l}"
+            );
         }
     }
 }

@@ -1,0 +1,338 @@
+//! The physical (non-runaway) solution of the full ALE (3.4) for the symmetric
+//! top, and what happens when (3.4) is integrated forward.
+//!
+//! With z = Ω₁ + iΩ₂, (3.4) reads τz̈ = ż + iΩ̃₃z + τ(|z|² + Ω₃²)z − 2iτΩ₃ż (see
+//! [`crate::physics::full_ale`]). Its solutions form a 4-dimensional family, but
+//! only a 2-dimensional "slow manifold" ż = f(|z|²) z is physical; every other
+//! solution leaves it at a rate of about 1/τ (the runaway).
+//!
+//! - **Forward integration** from any start off the manifold runs away; a
+//!   monitor watches the distance from the manifold and stops the run with the
+//!   time and the measured growth rate.
+//! - **Backward integration** turns the runaway into decay (deviations shrink as
+//!   e^{−(T−t)/τ}), so integrating back from final data near the manifold lands
+//!   on the physical solution. Matching a given Ω(0) then needs a shoot on one
+//!   number, the final amplitude |z(T)|; the phase follows from the symmetry
+//!   z → e^{iα}z of the equation.
+//!
+//! | code name | symbol | meaning | units |
+//! |---|---|---|---|
+//! | `u` | \|z\|² = Ω⊥² | squared perpendicular rate | 1/τ² |
+//! | `k` | (I₃/I₁)Ω₃ | spin term | 1/τ |
+//! | `f` | f(u) | ż/z on the slow manifold (complex) | 1/τ |
+//! | `sigma_phys` | σ_phys | exact late-time decay time of \|z\| | τ |
+
+use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Stats, Stepper};
+use crate::math::{Real, State};
+use crate::physics::full_ale::symmetric_full_ale_rhs;
+use crate::physics::symmetric_top::SymmetricTop;
+use nalgebra::Complex;
+use thiserror::Error;
+
+/// ż/z on the slow manifold of (3.4), as a series in τ (the physics notes).
+///
+/// Paper: Eq. (3.4) (its physical solution; the series is not in the paper).
+///
+/// ```text
+/// Re f = −τ(u + k²) + τ³(u + k²)(3u + 5k²) + O(τ⁵)
+/// Im f = −Ω̃₃ − 2τ²k(u + k²) + O(τ⁴)
+/// ```
+///
+/// The first terms are the reduced model (4.12)–(4.13): it is right through
+/// O(τ); its precession rate is off at O(τ²) and its decay rate at O(τ³).
+pub fn slow_manifold_rate(top: &SymmetricTop, omega3: Real, u: Real) -> Complex<Real> {
+    let tau = top.tau();
+    let k = top.ratio() * omega3;
+    let s = u + k * k;
+    Complex::new(
+        -tau * s + tau.powi(3) * s * (3.0 * u + 5.0 * k * k),
+        -top.omega3_tilde(omega3) - 2.0 * tau * tau * k * s,
+    )
+}
+
+/// The exact late-time decay time of |z| on the slow manifold, where u → 0.
+///
+/// Paper: Eq. (3.4) (compare σ of (4.16), which it exceeds by about 5τ).
+///
+/// ```text
+/// σ_phys = 2τ / (√((1 + √(1 + 16τ²k²))/2) − 1)
+/// ```
+///
+/// As u → 0, f tends to the slow root of τf² − (1 − 2iτΩ₃)f − (iΩ̃₃ + τΩ₃²) = 0,
+/// f = (1 − 2iτΩ₃ − √(1 − 4iτk))/(2τ), whose real part is −1/σ_phys.
+pub fn late_time_decay_time(top: &SymmetricTop, omega3: Real) -> Real {
+    let tau = top.tau();
+    let k = top.ratio() * omega3;
+    let a = ((1.0 + (1.0 + 16.0 * tau * tau * k * k).sqrt()) / 2.0).sqrt();
+    2.0 * tau / (a - 1.0)
+}
+
+/// Why the physical solution could not be found.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum PhysicalError {
+    /// The backward integration failed.
+    #[error(transparent)]
+    Integrate(#[from] IntegrateError),
+    /// The shoot on the final amplitude did not bracket or converge.
+    #[error("the shoot on the final amplitude did not converge ({0})")]
+    NoConvergence(&'static str),
+    /// Bad request.
+    #[error("{0}")]
+    BadInput(&'static str),
+}
+
+/// The physical solution of (3.4) sampled at the requested times.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhysicalSolution {
+    /// The times.
+    pub times: Vec<Real>,
+    /// z = Ω₁ + iΩ₂ at each time.
+    pub z: Vec<Complex<Real>>,
+    /// ż at each time.
+    pub z_dot: Vec<Complex<Real>>,
+    /// Work of the final backward integration plus all shots.
+    pub stats: Stats,
+    /// Number of backward integrations (shots).
+    pub shots: u32,
+}
+
+fn to_state(z: Complex<Real>, v: Complex<Real>) -> State<4> {
+    State::<4>::new(z.re, z.im, v.re, v.im)
+}
+
+/// Integrate (3.4) backward from z(T) = a (real), ż(T) = f(a²)a, to the times
+/// (descending from T), returning (z, ż) there and the work done.
+fn backward(
+    top: &SymmetricTop,
+    omega3: Real,
+    t_final: Real,
+    a: Real,
+    times_desc: &[Real],
+    rtol: Real,
+) -> Result<(Vec<State<4>>, Stats), IntegrateError> {
+    let z = Complex::new(a, 0.0);
+    let v = slow_manifold_rate(top, omega3, a * a) * z;
+    let rhs = |_t: Real, y: &State<4>| symmetric_full_ale_rhs(top, omega3, y);
+    let opts = AdaptiveOptions::new(rtol, rtol * 1e-6 * a.max(1e-300))?;
+    let mut stepper = Dop853::new(t_final, to_state(z, v), opts)?;
+    let out = crate::integrate::solve(&mut stepper, &rhs, times_desc)?;
+    Ok((out, stepper.stats()))
+}
+
+/// The physical solution of (3.4) through Ω₀ (symmetric top), at `times`
+/// (finite, ≥ 0, ascending).
+///
+/// The final time T lies `margin` = 40τ beyond the last requested time, so the
+/// error of the approximate final data has decayed by e^{−40} before any
+/// sample. The final amplitude is found by bisection on ln a (|z(0)| grows
+/// monotonically with a); the result is then rotated so that z(0) = Ω₁₀ + iΩ₂₀.
+pub fn physical_solution(
+    top: &SymmetricTop,
+    omega0: &crate::math::Vec3,
+    times: &[Real],
+    rtol: Real,
+) -> Result<PhysicalSolution, PhysicalError> {
+    let tau = top.tau();
+    if tau <= 0.0 {
+        return Err(PhysicalError::BadInput("the full ALE needs tau > 0"));
+    }
+    if times.iter().any(|t| !t.is_finite() || *t < 0.0) || times.windows(2).any(|w| w[1] < w[0]) {
+        return Err(PhysicalError::BadInput(
+            "times must be finite, >= 0 and ascending",
+        ));
+    }
+    let z0 = Complex::new(omega0.x, omega0.y);
+    let target = z0.norm();
+    let omega3 = omega0.z;
+    let t_last = times.last().copied().unwrap_or(0.0);
+    let t_final = t_last + 40.0 * tau;
+    let mut stats = Stats::default();
+    let mut shots = 0;
+    if target == 0.0 {
+        // z ≡ 0 is the physical solution: the top spins steadily about its axis.
+        return Ok(PhysicalSolution {
+            times: times.to_vec(),
+            z: vec![Complex::new(0.0, 0.0); times.len()],
+            z_dot: vec![Complex::new(0.0, 0.0); times.len()],
+            stats,
+            shots,
+        });
+    }
+    // NOTE: backward in time the slow amplitude grows, and too large a final
+    // amplitude blows up before t = 0 (backward, du/dt ≈ 2τu², a finite-time
+    // blow-up). Such a shot overshoots the target by definition, so it counts as
+    // +∞, not as an error.
+    let mut amplitude_at_zero = |a: Real| -> Result<Real, PhysicalError> {
+        shots += 1;
+        match backward(top, omega3, t_final, a, &[0.0], rtol) {
+            Ok((out, s)) => {
+                stats += s;
+                Ok(out[0][0].hypot(out[0][1]))
+            }
+            Err(IntegrateError::NonFinite { .. } | IntegrateError::StepSizeUnderflow { .. }) => {
+                Ok(Real::INFINITY)
+            }
+            Err(e) => Err(e.into()),
+        }
+    };
+    // NOTE: bracket ln a. The reduced model's decay over [0, T] is a good first
+    // guess; widen until the amplitude at t = 0 straddles the target.
+    let guess =
+        target * crate::physics::symmetric_top::reduced_amplitude(top, omega0, t_final).max(1e-280);
+    let (mut lo, mut hi) = (guess.ln() - 1.0, guess.ln() + 1.0);
+    let mut widen = 0;
+    while amplitude_at_zero(lo.exp())? > target {
+        lo -= 2.0;
+        widen += 1;
+        if widen > 60 {
+            return Err(PhysicalError::NoConvergence("no lower bracket"));
+        }
+    }
+    while amplitude_at_zero(hi.exp())? < target {
+        hi += 2.0;
+        widen += 1;
+        if widen > 60 {
+            return Err(PhysicalError::NoConvergence("no upper bracket"));
+        }
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if amplitude_at_zero(mid.exp())? < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo < 1e-15 * (1.0 + mid.abs()) {
+            break;
+        }
+    }
+    let a = (0.5 * (lo + hi)).exp();
+    let mut desc: Vec<Real> = times.iter().rev().copied().collect();
+    if desc.last() != Some(&0.0) {
+        desc.push(0.0);
+    }
+    let (out, s) = backward(top, omega3, t_final, a, &desc, rtol)?;
+    stats += s;
+    shots += 1;
+    let at_zero = out.last().expect("t = 0 was requested");
+    let rotation = z0 / Complex::new(at_zero[0], at_zero[1]);
+    let rotation = rotation / rotation.norm();
+    let mut z = Vec::with_capacity(times.len());
+    let mut z_dot = Vec::with_capacity(times.len());
+    for y in out.iter().take(times.len()).rev() {
+        z.push(rotation * Complex::new(y[0], y[1]));
+        z_dot.push(rotation * Complex::new(y[2], y[3]));
+    }
+    Ok(PhysicalSolution {
+        times: times.to_vec(),
+        z,
+        z_dot,
+        stats,
+        shots,
+    })
+}
+
+/// A runaway detected by [`integrate_forward`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Runaway {
+    /// When the monitor stopped the run.
+    pub t: Real,
+    /// The measured growth rate of the distance from the slow manifold.
+    pub growth_rate: Real,
+}
+
+impl std::fmt::Display for Runaway {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "runaway detected at t = {:.3}: the state leaves the physical solution at rate {:.4} (about 1/tau); integrate backward or use the reduced model",
+            self.t, self.growth_rate
+        )
+    }
+}
+
+/// What a forward integration of (3.4) produced before it stopped.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ForwardRun {
+    /// Times and (z, ż) reached, one entry per monitoring interval.
+    pub trace: Vec<(Real, State<4>)>,
+    /// The runaway, if the monitor stopped the run.
+    pub runaway: Option<Runaway>,
+    /// Work done.
+    pub stats: Stats,
+}
+
+/// Integrate (3.4) forward from (z, ż) = `y0` with DOP853, sampling every τ/4,
+/// and stop when the state has visibly left the slow manifold, |ż − f(|z|²)z|
+/// above 5% of |z|·(1/τ), while that distance grows faster than 1/(2τ).
+///
+/// The growth rate is the least-squares slope of ln|ż − f z| over the last 2τ.
+/// NOTE: the threshold is relative and absolute on purpose. A start off the
+/// manifold (say the reduced model's slope) crosses it within a few τ; a start
+/// on the physical solution carries only rounding-size deviations, and those
+/// need about ln(1e10) ≈ 23 τ of e^{t/τ} growth to get there.
+pub fn integrate_forward(
+    top: &SymmetricTop,
+    omega3: Real,
+    y0: State<4>,
+    t_end: Real,
+    rtol: Real,
+) -> Result<ForwardRun, PhysicalError> {
+    let tau = top.tau();
+    if tau <= 0.0 {
+        return Err(PhysicalError::BadInput("the full ALE needs tau > 0"));
+    }
+    let rhs = |_t: Real, y: &State<4>| symmetric_full_ale_rhs(top, omega3, y);
+    let opts = AdaptiveOptions::new(rtol, 1e-300)?;
+    let mut stepper = Dop853::new(0.0, y0, opts)?;
+    let distance = |y: &State<4>| {
+        let z = Complex::new(y[0], y[1]);
+        let v = Complex::new(y[2], y[3]);
+        (v - slow_manifold_rate(top, omega3, z.norm_sqr()) * z).norm()
+    };
+    let dt = 0.25 * tau;
+    let window = 8; // 2τ
+    let mut trace = vec![(0.0, y0)];
+    let mut log_dist = vec![distance(&y0).max(1e-300).ln()];
+    let mut t = 0.0;
+    while t < t_end {
+        t = (t + dt).min(t_end);
+        let y = crate::integrate::solve(&mut stepper, &rhs, &[t])?[0];
+        trace.push((t, y));
+        let d = distance(&y).max(1e-300);
+        log_dist.push(d.ln());
+        let n = log_dist.len();
+        if n > window && d > 0.05 * y[0].hypot(y[1]) / tau {
+            let rate = least_squares_slope(&log_dist[n - 1 - window..], dt);
+            if rate > 0.5 / tau {
+                return Ok(ForwardRun {
+                    trace,
+                    runaway: Some(Runaway {
+                        t,
+                        growth_rate: rate,
+                    }),
+                    stats: stepper.stats(),
+                });
+            }
+        }
+    }
+    Ok(ForwardRun {
+        trace,
+        runaway: None,
+        stats: stepper.stats(),
+    })
+}
+
+/// Slope of equally spaced samples `ys` (spacing `dt`) by least squares.
+fn least_squares_slope(ys: &[Real], dt: Real) -> Real {
+    let n = ys.len() as Real;
+    let mean_x = 0.5 * (n - 1.0);
+    let mean_y = ys.iter().sum::<Real>() / n;
+    let (mut num, mut den) = (0.0, 0.0);
+    for (i, y) in ys.iter().enumerate() {
+        let dx = i as Real - mean_x;
+        num += dx * (y - mean_y);
+        den += dx * dx;
+    }
+    num / den / dt
+}
