@@ -30,6 +30,8 @@ use crate::physics::symmetric_top::{
 use serde::Serialize;
 use thiserror::Error;
 
+pub mod orbit;
+
 /// Which equation of motion the top follows.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Model {
