@@ -2,7 +2,7 @@
 //! trajectory, sampled at given times and averaged over a period.
 
 use super::{CliError, Format, TimeList, bad, num, parse_list, parse_number, parse_times};
-use crate::math::Real;
+use crate::math::{Real, Vec3};
 use crate::physics::balance::{
     Balance, DipoleTrajectory, Dumbbell, PlanarLoop, PrecessingDipole, balance_at, period_average,
 };
@@ -227,17 +227,22 @@ pub struct BalanceAverage {
     pub schott_rate_axial: Real,
 }
 
+/// A vector for output, with −0 printed as 0 (x + 0.0 turns −0.0 into +0.0).
+fn out3(v: Vec3) -> [Real; 3] {
+    (v + Vec3::zeros()).into()
+}
+
 fn sample(b: &Balance) -> BalanceSample {
     BalanceSample {
         t: b.t,
-        dipole: b.dipole.into(),
-        larmor: b.larmor.into(),
-        torque: b.torque.into(),
-        schott: b.schott.into(),
-        schott_rate: b.schott_rate.into(),
-        larmor_axial: b.larmor_axial,
-        torque_axial: b.torque_axial,
-        schott_rate_axial: b.schott_rate_axial,
+        dipole: out3(b.dipole),
+        larmor: out3(b.larmor),
+        torque: out3(b.torque),
+        schott: out3(b.schott),
+        schott_rate: out3(b.schott_rate),
+        larmor_axial: b.larmor_axial + 0.0,
+        torque_axial: b.torque_axial + 0.0,
+        schott_rate_axial: b.schott_rate_axial + 0.0,
     }
 }
 

@@ -357,11 +357,13 @@ pub fn write_output(out: &mut impl Write, output: &OrbitOutput, format: Format) 
             }
             if let Some(crossings) = &output.first_crossing {
                 for c in crossings {
-                    let measured = c.t.map_or("not reached".to_string(), num);
+                    let measured = c.t.map_or("not reached within the run".to_string(), |t| {
+                        format!("first reached at t = {}", num(t))
+                    });
                     let averaged = c
                         .averaged
                         .map_or(String::new(), |a| format!(", averaged closed form {}", num(a)));
-                    writeln!(out, "# r = {}: first reached at t = {measured}{averaged}", c.r)?;
+                    writeln!(out, "# r = {}: {measured}{averaged}", c.r)?;
                 }
             }
             if let Some(r) = &output.runaway {
