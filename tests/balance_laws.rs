@@ -20,7 +20,13 @@ use std::f64::consts::{PI, TAU};
 /// with its exact derivatives.
 fn trig_dipole(coeffs: Vec<f64>) -> impl DipoleTrajectory {
     assert_eq!(coeffs.len(), 24);
-    let c = move |k: usize, j: usize| Vec3::new(coeffs[k * 6 + j * 3], coeffs[k * 6 + j * 3 + 1], coeffs[k * 6 + j * 3 + 2]);
+    let c = move |k: usize, j: usize| {
+        Vec3::new(
+            coeffs[k * 6 + j * 3],
+            coeffs[k * 6 + j * 3 + 1],
+            coeffs[k * 6 + j * 3 + 2],
+        )
+    };
     ClosureDipole::new(
         move |t: f64| {
             let mut jet: Jet = [Vec3::zeros(); 4];
@@ -204,13 +210,26 @@ fn period_average_is_exact_below_the_node_count_and_aliases_at_it() {
         ClosureDipole::new(
             move |t: f64| {
                 let c = (k * t).cos();
-                [Vec3::new(1.0 + c, 1.0, 0.0), Vec3::zeros(), Vec3::zeros(), Vec3::zeros()]
+                [
+                    Vec3::new(1.0 + c, 1.0, 0.0),
+                    Vec3::zeros(),
+                    Vec3::zeros(),
+                    Vec3::zeros(),
+                ]
             },
             Some(TAU),
         )
     };
-    assert_relative_eq!(period_average(&harmonic(255.0)).unwrap().dipole.x, 1.0, epsilon = 1e-13);
-    assert_relative_eq!(period_average(&harmonic(256.0)).unwrap().dipole.x, 2.0, epsilon = 1e-13);
+    assert_relative_eq!(
+        period_average(&harmonic(255.0)).unwrap().dipole.x,
+        1.0,
+        epsilon = 1e-13
+    );
+    assert_relative_eq!(
+        period_average(&harmonic(256.0)).unwrap().dipole.x,
+        2.0,
+        epsilon = 1e-13
+    );
 }
 
 /// The dumbbell, a planar rigid rotor: L_S ≡ 0 and both laws give −d₀²ω³ ẑ;
@@ -224,7 +243,11 @@ fn sec2_rigid_dumbbell_has_no_schott_term() {
     for t in [0.0, 0.3, 5.0] {
         let b = balance_at(&db, t);
         assert!(b.schott.norm() < 1e-15 && b.schott_rate.norm() < 1e-14);
-        assert_relative_eq!(b.larmor, Vec3::new(0.0, 0.0, -d0 * d0 * w.powi(3)), epsilon = 1e-14);
+        assert_relative_eq!(
+            b.larmor,
+            Vec3::new(0.0, 0.0, -d0 * d0 * w.powi(3)),
+            epsilon = 1e-14
+        );
         assert_relative_eq!(b.torque, b.larmor, epsilon = 1e-14);
     }
     let same_ratio = Dumbbell::new([1.0, 2.0], [1.0, 2.0], 1.0, 1.0).unwrap();

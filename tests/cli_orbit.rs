@@ -17,7 +17,11 @@ fn json(args: &[&str]) -> Value {
     all.extend_from_slice(args);
     all.extend_from_slice(&["--format", "json"]);
     let out = spintop(&all);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).expect("one JSON object")
 }
 
@@ -35,7 +39,14 @@ fn check_samples(v: &Value, n: usize) {
 
 #[test]
 fn cli_orbit_coulomb_collapse_contract() {
-    let v = json(&["--potential", "coulomb", "--tau0", "1e-3", "--times", "0,100,166.6"]);
+    let v = json(&[
+        "--potential",
+        "coulomb",
+        "--tau0",
+        "1e-3",
+        "--times",
+        "0,100,166.6",
+    ]);
     check_samples(&v, 3);
     assert_eq!(v["force"], "ll");
     let s0 = &v["samples"][0];
@@ -54,7 +65,18 @@ fn cli_orbit_coulomb_collapse_contract() {
 
 #[test]
 fn cli_orbit_eccentric_start_is_the_pericentre() {
-    let v = json(&["--potential", "coulomb", "--tau0", "1e-4", "--r0", "0.5", "--eccentricity", "0.6", "--times", "0"]);
+    let v = json(&[
+        "--potential",
+        "coulomb",
+        "--tau0",
+        "1e-4",
+        "--r0",
+        "0.5",
+        "--eccentricity",
+        "0.6",
+        "--times",
+        "0",
+    ]);
     // v_p = sqrt((1 + e)/r0) and E = −1/(2a) with a = r0/(1 − e).
     let s = &v["samples"][0];
     assert!((s["velocity"][1].as_f64().unwrap() - (1.6_f64 / 0.5).sqrt()).abs() < 1e-14);
@@ -66,18 +88,36 @@ fn cli_orbit_eccentric_start_is_the_pericentre() {
 
 #[test]
 fn cli_orbit_harmonic_al_is_exact_and_reports_the_roots() {
-    let v = json(&["--potential", "harmonic", "--tau0", "0.1", "--force", "al", "--times", "0,1,2"]);
+    let v = json(&[
+        "--potential",
+        "harmonic",
+        "--tau0",
+        "0.1",
+        "--force",
+        "al",
+        "--times",
+        "0,1,2",
+    ]);
     check_samples(&v, 3);
     assert_eq!(v["method"], "exact");
     assert!(v.get("collapse_time").is_none() && v.get("first_crossing").is_none());
     let roots = &v["roots"];
-    assert!((roots["runaway"].as_f64().unwrap() - 10.09806713608741849).abs() < 1e-13);
+    assert!((roots["runaway"].as_f64().unwrap() - 10.098067136087418).abs() < 1e-13);
     assert!((roots["abraham_lorentz"][1].as_f64().unwrap() - 0.9939236556494045).abs() < 1e-15);
 }
 
 #[test]
 fn cli_orbit_forward_abraham_lorentz_reports_the_runaway() {
-    let v = json(&["--potential", "harmonic", "--tau0", "0.01", "--force", "al-forward", "--times", "0,0.05,1,2"]);
+    let v = json(&[
+        "--potential",
+        "harmonic",
+        "--tau0",
+        "0.01",
+        "--force",
+        "al-forward",
+        "--times",
+        "0,0.05,1,2",
+    ]);
     let r = &v["runaway"];
     let t = r["t"].as_f64().unwrap();
     assert!(t > 0.05 && t < 0.2, "{t}");
@@ -85,24 +125,136 @@ fn cli_orbit_forward_abraham_lorentz_reports_the_runaway() {
     assert!((rate / r["predicted_rate"].as_f64().unwrap() - 1.0).abs() < 5e-3);
     check_samples(&v, 2);
     assert_eq!(v["samples_omitted"].as_u64(), Some(2));
-    let out = spintop(&["orbit", "--potential", "harmonic", "--tau0", "0.01", "--force", "al-forward", "--times", "0,1"]);
-    assert!(String::from_utf8(out.stdout).unwrap().contains("RUNAWAY at t = "));
+    let out = spintop(&[
+        "orbit",
+        "--potential",
+        "harmonic",
+        "--tau0",
+        "0.01",
+        "--force",
+        "al-forward",
+        "--times",
+        "0,1",
+    ]);
+    assert!(
+        String::from_utf8(out.stdout)
+            .unwrap()
+            .contains("RUNAWAY at t = ")
+    );
 }
 
 #[test]
 fn cli_orbit_bad_input_exits_2_with_one_line() {
     for args in [
-        &["orbit", "--potential", "coulomb", "--tau0", "0", "--times", "0"][..],
-        &["orbit", "--potential", "coulomb", "--tau0", "-1e-3", "--times", "0"],
-        &["orbit", "--potential", "coulomb", "--tau0", "nan", "--times", "0"],
-        &["orbit", "--potential", "coulomb", "--tau0", "1e-3", "--r0", "0", "--times", "0"],
-        &["orbit", "--potential", "coulomb", "--tau0", "1e-3", "--r0", "-2", "--times", "0"],
-        &["orbit", "--potential", "coulomb", "--tau0", "1e-3", "--eccentricity", "1", "--times", "0"],
-        &["orbit", "--potential", "harmonic", "--tau0", "1e-3", "--eccentricity", "-0.1", "--times", "0"],
-        &["orbit", "--potential", "yukawa", "--tau0", "1e-3", "--times", "0"],
-        &["orbit", "--potential", "coulomb", "--tau0", "1e-3", "--times", "2,1"],
-        &["orbit", "--potential", "coulomb", "--tau0", "1e-3", "--times", "-1"],
-        &["orbit", "--potential", "coulomb", "--tau0", "1e-9", "--force", "al", "--times", "0,100"],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "0",
+            "--times",
+            "0",
+        ][..],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "-1e-3",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "nan",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-3",
+            "--r0",
+            "0",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-3",
+            "--r0",
+            "-2",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-3",
+            "--eccentricity",
+            "1",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "harmonic",
+            "--tau0",
+            "1e-3",
+            "--eccentricity",
+            "-0.1",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "yukawa",
+            "--tau0",
+            "1e-3",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-3",
+            "--times",
+            "2,1",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-3",
+            "--times",
+            "-1",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-9",
+            "--force",
+            "al",
+            "--times",
+            "0,100",
+        ],
     ] {
         let out = spintop(args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
@@ -114,10 +266,21 @@ fn cli_orbit_bad_input_exits_2_with_one_line() {
 
 #[test]
 fn cli_orbit_past_the_collapse_exits_3_with_the_time() {
-    let out = spintop(&["orbit", "--potential", "coulomb", "--tau0", "1e-3", "--times", "0,200"]);
+    let out = spintop(&[
+        "orbit",
+        "--potential",
+        "coulomb",
+        "--tau0",
+        "1e-3",
+        "--times",
+        "0,200",
+    ]);
     assert_eq!(out.status.code(), Some(3));
     let err = String::from_utf8(out.stderr).unwrap();
     assert_eq!(err.lines().count(), 1);
-    assert!(err.contains("at t = 166.") && err.contains("t_c = 166.6666667"), "{err}");
+    assert!(
+        err.contains("at t = 166.") && err.contains("t_c = 166.6666667"),
+        "{err}"
+    );
     assert!(!err.contains("NaN"));
 }

@@ -265,7 +265,10 @@ pub struct BalanceOutput {
 }
 
 fn evaluate<T: DipoleTrajectory>(traj: &T, times: &[Real]) -> (Vec<BalanceSample>, Balance) {
-    let samples = times.iter().map(|&t| sample(&balance_at(traj, t))).collect();
+    let samples = times
+        .iter()
+        .map(|&t| sample(&balance_at(traj, t)))
+        .collect();
     let avg = period_average(traj).expect("every built-in trajectory is periodic");
     (samples, avg)
 }
@@ -299,7 +302,11 @@ pub fn balance(config: &BalanceConfig) -> BalanceOutput {
 const VECTORS: [&str; 5] = ["dipole", "larmor", "torque", "schott", "schott_rate"];
 
 /// Write the output in the requested format.
-pub fn write_output(out: &mut impl Write, output: &BalanceOutput, format: Format) -> io::Result<()> {
+pub fn write_output(
+    out: &mut impl Write,
+    output: &BalanceOutput,
+    format: Format,
+) -> io::Result<()> {
     match format {
         Format::Json => {
             serde_json::to_writer(&mut *out, output)?;

@@ -252,7 +252,9 @@ pub fn orbit(request: &OrbitRequest) -> Result<OrbitOutput, CliError> {
         potential: potential.name(),
         force: config.force.name(),
         equations: match config.force {
-            Force::LandauLifshitz => "Eq. (2.5) reduced (Landau-Lifshitz); L obeys the corrected (2.9) at every instant",
+            Force::LandauLifshitz => {
+                "Eq. (2.5) reduced (Landau-Lifshitz); L obeys the corrected (2.9) at every instant"
+            }
             Force::AbrahamLorentz => "Eq. (2.5), physical solution; L obeys (2.6)",
             Force::AbrahamLorentzForward => "Eq. (2.5) forward from the Newtonian acceleration",
         },
@@ -353,16 +355,20 @@ pub fn write_output(out: &mut impl Write, output: &OrbitOutput, format: Format) 
                 writeln!(out, "{}", line.join(""))?;
             }
             if let Some(tc) = output.collapse_time {
-                writeln!(out, "# collapse time (orbit-averaged closed form): {}", num(tc))?;
+                writeln!(
+                    out,
+                    "# collapse time (orbit-averaged closed form): {}",
+                    num(tc)
+                )?;
             }
             if let Some(crossings) = &output.first_crossing {
                 for c in crossings {
                     let measured = c.t.map_or("not reached within the run".to_string(), |t| {
                         format!("first reached at t = {}", num(t))
                     });
-                    let averaged = c
-                        .averaged
-                        .map_or(String::new(), |a| format!(", averaged closed form {}", num(a)));
+                    let averaged = c.averaged.map_or(String::new(), |a| {
+                        format!(", averaged closed form {}", num(a))
+                    });
                     writeln!(out, "# r = {}: {measured}{averaged}", c.r)?;
                 }
             }

@@ -262,11 +262,7 @@ pub fn run_orbit(config: &OrbitConfig, times: &[Real]) -> Result<OrbitRun, Orbit
     }
 }
 
-fn exact_oscillator(
-    config: &OrbitConfig,
-    times: &[Real],
-    s: nalgebra::Complex<Real>,
-) -> OrbitRun {
+fn exact_oscillator(config: &OrbitConfig, times: &[Real], s: nalgebra::Complex<Real>) -> OrbitRun {
     let (x0, v0) = config.initial();
     let potential = config.charge.potential();
     let samples = times
@@ -305,7 +301,8 @@ impl Tracker {
             .map(|&r| Crossing {
                 r,
                 t: (config.r0 <= r).then_some(0.0),
-                averaged: circular.then(|| ((config.r0.powi(3) - r.powi(3)) / (6.0 * tau0)).max(0.0)),
+                averaged: circular
+                    .then(|| ((config.r0.powi(3) - r.powi(3)) / (6.0 * tau0)).max(0.0)),
             })
             .collect();
         Self {
@@ -364,7 +361,8 @@ impl Tracker {
     }
 
     fn push(&mut self, t: Real, pos: &Vec2, vel: &Vec2) {
-        self.samples.push(OrbitSample::new(self.potential, t, pos, vel));
+        self.samples
+            .push(OrbitSample::new(self.potential, t, pos, vel));
     }
 }
 
