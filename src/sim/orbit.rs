@@ -67,7 +67,8 @@ pub struct OrbitConfig {
 }
 
 impl OrbitConfig {
-    /// Validate r₀ > 0 and e ∈ [0, 1).
+    /// Validate r₀ > 0 (and, for Coulomb, above [`OrbitConfig::floor_radius`])
+    /// and e ∈ [0, 1).
     pub fn new(
         charge: ChargeInField,
         r0: Real,
@@ -90,13 +91,22 @@ impl OrbitConfig {
                 range: "in [0, 1) (a bound orbit)",
             });
         }
-        Ok(Self {
+        let config = Self {
             charge,
             r0,
             eccentricity,
             force,
             rtol: 1e-11,
-        })
+        };
+        if r0 <= config.floor_radius() {
+            return Err(ParamError::OutOfRange {
+                name: "r0",
+                value: r0,
+                range: "above (10 tau0)^(2/3) for coulomb, where the orbital time r0^(3/2) is still \
+                        longer than 10 tau0 (else no orbit exists to decay)",
+            });
+        }
+        Ok(config)
     }
 
     /// The starting position and velocity.
