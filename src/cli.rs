@@ -18,6 +18,8 @@ use std::ffi::OsString;
 use std::io::{self, Write};
 use std::process::ExitCode;
 
+pub mod balance;
+pub mod orbit;
 pub mod simulate;
 
 /// Exit code for bad input.
@@ -44,6 +46,10 @@ pub struct Cli {
 enum Command {
     /// Integrate or evaluate one model and print samples (table, CSV or JSON).
     Simulate(simulate::SimulateArgs),
+    /// Section 2: the two balance laws (2.1), (2.2) and the Schott term (2.4) for a dipole trajectory.
+    Balance(balance::BalanceArgs),
+    /// Section 2: a charge in a Coulomb or oscillator field under radiation reaction (2.5)-(2.9).
+    Orbit(orbit::OrbitArgs),
 }
 
 /// Output format.
@@ -94,6 +100,9 @@ pub enum CliError {
     BadInput(String),
     /// The integrator stopped.
     Numerical(IntegrateError),
+    /// A run stopped for a numerical or modelling reason; the message carries
+    /// the time and what to try.
+    Stopped(String),
     /// Writing the output failed.
     Io(io::Error),
 }
@@ -103,7 +112,7 @@ impl CliError {
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::BadInput(_) => EXIT_BAD_INPUT,
-            CliError::Numerical(_) => EXIT_NUMERICAL,
+            CliError::Numerical(_) | CliError::Stopped(_) => EXIT_NUMERICAL,
             CliError::Io(_) => 1,
         }
     }
@@ -111,7 +120,7 @@ impl CliError {
     /// The one-line message.
     pub fn message(&self) -> String {
         match self {
-            CliError::BadInput(msg) => msg.clone(),
+            CliError::BadInput(msg) | CliError::Stopped(msg) => msg.clone(),
             CliError::Numerical(e) => format!("{e}; {}", advice(e)),
             CliError::Io(e) => format!("cannot write output: {e}"),
         }
@@ -205,6 +214,8 @@ where
             return ExitCode::SUCCESS;
         }
         Some(Command::Simulate(args)) => simulate::execute(args, stdout),
+        Some(Command::Balance(args)) => balance::execute(args, stdout),
+        Some(Command::Orbit(args)) => orbit::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,

@@ -28,6 +28,8 @@ pub mod sim;
 pub mod book {
     #[doc = include_str!("../book/src/preface.md")]
     pub struct Preface;
+    #[doc = include_str!("../book/src/section-2.md")]
+    pub struct Section2;
     #[doc = include_str!("../book/src/section-3.md")]
     pub struct Section3;
     #[doc = include_str!("../book/src/section-4.md")]

@@ -3,6 +3,8 @@
 //!
 //! | module | paper | what it holds |
 //! |---|---|---|
+//! | [`balance`] | §2, (2.1)–(2.4) | the Larmor-like law, the torque law and the Schott angular momentum of any dipole trajectory |
+//! | [`central`] | §2, (2.5)–(2.9) | a charge in a Coulomb or oscillator potential: Abraham–Lorentz, Landau–Lifshitz, collapse, runaways |
 //! | [`rigid_body`] | §3, (3.1)–(3.2) | kinematics, `Ω̇ = F(Ω)` models, observables E, L, tilt |
 //! | [`euler_angles`] | (3.5), (4.8) | z-x-z Euler angles and their rates |
 //! | [`general_top`] | (3.3) | the truncated ALE for any principal moments and dipole |
@@ -15,6 +17,8 @@
 use crate::math::Real;
 use thiserror::Error;
 
+pub mod balance;
+pub mod central;
 pub mod euler_angles;
 pub mod full_ale;
 pub mod general_top;
@@ -56,6 +60,16 @@ pub enum ParamError {
     /// τ is negative.
     #[error("tau must be >= 0, got {0}")]
     NegativeTau(Real),
+    /// A parameter lies outside its allowed range (Section 2's models).
+    #[error("{name} = {value} is out of range: it must be {range}")]
+    OutOfRange {
+        /// Which input.
+        name: &'static str,
+        /// Its value.
+        value: Real,
+        /// The allowed range, in words.
+        range: &'static str,
+    },
 }
 
 /// Refuse a non-finite input, naming it.

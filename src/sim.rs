@@ -30,6 +30,7 @@ use crate::physics::symmetric_top::{
 use serde::Serialize;
 use thiserror::Error;
 
+pub mod orbit;
 pub mod physical;
 
 /// Which equation of motion the top follows.

@@ -13,6 +13,8 @@ use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
 
+#[path = "../lessons/ch2_balance_laws.rs"]
+mod ch2;
 #[path = "../lessons/ch3_equations_of_motion.rs"]
 mod ch3;
 #[path = "../lessons/ch4_symmetric_top.rs"]
@@ -22,6 +24,7 @@ type Lesson = fn(&mut dyn io::Write) -> io::Result<()>;
 
 /// Every lesson program whose output a chapter shows, by example name.
 const LESSONS: &[(&str, Lesson)] = &[
+    ("ch2_balance_laws", ch2::run),
     ("ch3_equations_of_motion", ch3::run),
     ("ch4_symmetric_top", ch4::run),
 ];

@@ -1,0 +1,286 @@
+//! `spintop orbit` as a user meets it: the JSON contract, the collapse and
+//! crossing times, the runaway report, bad input refused with exit code 2 and
+//! one line, and a run past the collapse stopped with exit code 3 and the time.
+
+use serde_json::Value;
+use std::process::{Command, Output};
+
+fn spintop(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_spintop"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn json(args: &[&str]) -> Value {
+    let mut all = vec!["orbit"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["--format", "json"]);
+    let out = spintop(&all);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+fn check_samples(v: &Value, n: usize) {
+    let samples = v["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), n);
+    for s in samples {
+        assert_eq!(s["position"].as_array().unwrap().len(), 2);
+        assert_eq!(s["velocity"].as_array().unwrap().len(), 2);
+        for key in ["t", "r", "l", "energy"] {
+            assert!(s[key].is_f64(), "{key}");
+        }
+    }
+}
+
+#[test]
+fn cli_orbit_coulomb_collapse_contract() {
+    let v = json(&[
+        "--potential",
+        "coulomb",
+        "--tau0",
+        "1e-3",
+        "--times",
+        "0,100,166.6",
+    ]);
+    check_samples(&v, 3);
+    assert_eq!(v["force"], "ll");
+    let s0 = &v["samples"][0];
+    assert_eq!(s0["r"].as_f64(), Some(1.0));
+    assert_eq!(s0["l"].as_f64(), Some(1.0));
+    assert_eq!(s0["energy"].as_f64(), Some(-0.5));
+    assert!((v["collapse_time"].as_f64().unwrap() - 1000.0 / 6.0).abs() < 1e-12);
+    let crossings = v["first_crossing"].as_array().unwrap();
+    let levels: Vec<f64> = crossings.iter().map(|c| c["r"].as_f64().unwrap()).collect();
+    assert_eq!(levels, [0.5, 0.2, 0.1]);
+    for c in crossings {
+        let (t, avg) = (c["t"].as_f64().unwrap(), c["averaged"].as_f64().unwrap());
+        assert!((t / avg - 1.0).abs() < 2e-3);
+    }
+}
+
+#[test]
+fn cli_orbit_eccentric_start_is_the_pericentre() {
+    let v = json(&[
+        "--potential",
+        "coulomb",
+        "--tau0",
+        "1e-4",
+        "--r0",
+        "0.5",
+        "--eccentricity",
+        "0.6",
+        "--times",
+        "0",
+    ]);
+    // v_p = sqrt((1 + e)/r0) and E = −1/(2a) with a = r0/(1 − e).
+    let s = &v["samples"][0];
+    assert!((s["velocity"][1].as_f64().unwrap() - (1.6_f64 / 0.5).sqrt()).abs() < 1e-14);
+    assert!((s["energy"].as_f64().unwrap() + 0.4 / 1.0).abs() < 1e-14);
+    // Elliptic: no circular closed form for the crossings, but the averaged t_c.
+    assert!(v["first_crossing"][0]["averaged"].is_null());
+    assert!(v["collapse_time"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn cli_orbit_harmonic_al_is_exact_and_reports_the_roots() {
+    let v = json(&[
+        "--potential",
+        "harmonic",
+        "--tau0",
+        "0.1",
+        "--force",
+        "al",
+        "--times",
+        "0,1,2",
+    ]);
+    check_samples(&v, 3);
+    assert_eq!(v["method"], "exact");
+    assert!(v.get("collapse_time").is_none() && v.get("first_crossing").is_none());
+    let roots = &v["roots"];
+    assert!((roots["runaway"].as_f64().unwrap() - 10.098067136087418).abs() < 1e-13);
+    assert!((roots["abraham_lorentz"][1].as_f64().unwrap() - 0.9939236556494045).abs() < 1e-15);
+}
+
+#[test]
+fn cli_orbit_forward_abraham_lorentz_reports_the_runaway() {
+    let v = json(&[
+        "--potential",
+        "harmonic",
+        "--tau0",
+        "0.01",
+        "--force",
+        "al-forward",
+        "--times",
+        "0,0.05,1,2",
+    ]);
+    let r = &v["runaway"];
+    let t = r["t"].as_f64().unwrap();
+    assert!(t > 0.05 && t < 0.2, "{t}");
+    let rate = r["growth_rate"].as_f64().unwrap();
+    assert!((rate / r["predicted_rate"].as_f64().unwrap() - 1.0).abs() < 5e-3);
+    check_samples(&v, 2);
+    assert_eq!(v["samples_omitted"].as_u64(), Some(2));
+    let out = spintop(&[
+        "orbit",
+        "--potential",
+        "harmonic",
+        "--tau0",
+        "0.01",
+        "--force",
+        "al-forward",
+        "--times",
+        "0,1",
+    ]);
+    assert!(
+        String::from_utf8(out.stdout)
+            .unwrap()
+            .contains("RUNAWAY at t = ")
+    );
+}
+
+#[test]
+fn cli_orbit_bad_input_exits_2_with_one_line() {
+    for args in [
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "0",
+            "--times",
+            "0",
+        ][..],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "-1e-3",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "nan",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-3",
+            "--r0",
+            "0",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-3",
+            "--r0",
+            "-2",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-3",
+            "--eccentricity",
+            "1",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "harmonic",
+            "--tau0",
+            "1e-3",
+            "--eccentricity",
+            "-0.1",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "yukawa",
+            "--tau0",
+            "1e-3",
+            "--times",
+            "0",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-3",
+            "--times",
+            "2,1",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-3",
+            "--times",
+            "-1",
+        ],
+        &[
+            "orbit",
+            "--potential",
+            "coulomb",
+            "--tau0",
+            "1e-9",
+            "--force",
+            "al",
+            "--times",
+            "0,100",
+        ],
+    ] {
+        let out = spintop(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.starts_with("spintop: error: "), "{err}");
+    }
+}
+
+#[test]
+fn cli_orbit_past_the_collapse_exits_3_with_the_time() {
+    let out = spintop(&[
+        "orbit",
+        "--potential",
+        "coulomb",
+        "--tau0",
+        "1e-3",
+        "--times",
+        "0,200",
+    ]);
+    assert_eq!(out.status.code(), Some(3));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.lines().count(), 1);
+    assert!(
+        err.contains("at t = 166.") && err.contains("t_c = 166.6666667"),
+        "{err}"
+    );
+    assert!(!err.contains("NaN"));
+}
