@@ -133,6 +133,15 @@ impl From<SimError> for CliError {
             SimError::Integrate(IntegrateError::InvalidOption(msg)) => CliError::BadInput(msg),
             SimError::Integrate(e) => CliError::Numerical(e),
             SimError::NonFiniteSample(t) => CliError::Numerical(IntegrateError::NonFinite { t }),
+            SimError::Physical(crate::sim::physical::PhysicalError::Integrate(e)) => {
+                CliError::Numerical(e)
+            }
+            SimError::Physical(e @ crate::sim::physical::PhysicalError::NoConvergence(_)) => {
+                CliError::Stopped(format!("{e}; try a looser --rtol or a shorter --t-end"))
+            }
+            SimError::MethodNotForModel(model) => CliError::BadInput(format!(
+                "this method does not apply to the {model} model: --method forward is for --model full, which takes auto or forward"
+            )),
             SimError::NoClosedForm(model) => CliError::BadInput(format!(
                 "the {model} model has no closed form; use --method auto or dop853"
             )),
@@ -213,7 +222,7 @@ where
             );
             return ExitCode::SUCCESS;
         }
-        Some(Command::Simulate(args)) => simulate::execute(args, stdout),
+        Some(Command::Simulate(args)) => simulate::execute(args, stdout, stderr),
         Some(Command::Balance(args)) => balance::execute(args, stdout),
         Some(Command::Orbit(args)) => orbit::execute(args, stdout),
     };

@@ -42,6 +42,9 @@ pub enum Model {
     Reduced(SymmetricTop),
     /// Any top under the truncated ALE (3.3), κ = 1 units.
     General(GeneralTop),
+    /// The symmetric top under the full ALE (3.4), Schott term and Ω̈ kept: its
+    /// physical (non-runaway) solution, or a forward run that shows the runaway.
+    Full(SymmetricTop),
 }
 
 impl Model {
@@ -51,6 +54,7 @@ impl Model {
             Model::Truncated(_) => "truncated",
             Model::Reduced(_) => "reduced",
             Model::General(_) => "general",
+            Model::Full(_) => "full",
         }
     }
 
@@ -60,28 +64,56 @@ impl Model {
             Model::Truncated(_) => "Eqs. (4.2)-(4.4)",
             Model::Reduced(_) => "Eqs. (4.12)-(4.14)",
             Model::General(_) => "Eq. (3.3)",
+            Model::Full(_) => "Eq. (3.4)",
         }
     }
 
     /// True when Ω(t) has a closed form.
     pub fn has_closed_form(&self) -> bool {
-        !matches!(self, Model::General(_))
+        matches!(self, Model::Truncated(_) | Model::Reduced(_))
+    }
+
+    /// The principal moments.
+    pub fn inertia(&self) -> Vec3 {
+        match self {
+            Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => top.inertia(),
+            Model::General(top) => top.inertia(),
+        }
+    }
+
+    /// The model as Ω̇ = F(Ω), for the models that have that form (not the full
+    /// ALE, whose state also holds Ω̇).
+    fn first_order(&self) -> Option<FirstOrder> {
+        match *self {
+            Model::Truncated(top) => Some(FirstOrder::Truncated(top)),
+            Model::Reduced(top) => Some(FirstOrder::Reduced(top)),
+            Model::General(top) => Some(FirstOrder::General(top)),
+            Model::Full(_) => None,
+        }
     }
 }
 
-impl BodyDynamics for Model {
+/// The models of the form Ω̇ = F(Ω).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum FirstOrder {
+    Truncated(SymmetricTop),
+    Reduced(SymmetricTop),
+    General(GeneralTop),
+}
+
+impl BodyDynamics for FirstOrder {
     fn inertia(&self) -> Vec3 {
         match self {
-            Model::Truncated(top) | Model::Reduced(top) => top.inertia(),
-            Model::General(top) => top.inertia(),
+            FirstOrder::Truncated(top) | FirstOrder::Reduced(top) => top.inertia(),
+            FirstOrder::General(top) => top.inertia(),
         }
     }
 
     fn omega_dot(&self, omega: &Vec3) -> Vec3 {
         match self {
-            Model::Truncated(top) => truncated_ale_rhs(top, omega),
-            Model::Reduced(top) => reduced_ale_rhs(top, omega),
-            Model::General(top) => top.truncated_ale_rhs(omega),
+            FirstOrder::Truncated(top) => truncated_ale_rhs(top, omega),
+            FirstOrder::Reduced(top) => reduced_ale_rhs(top, omega),
+            FirstOrder::General(top) => top.truncated_ale_rhs(omega),
         }
     }
 }
@@ -100,6 +132,8 @@ pub enum MethodChoice {
     Dopri5,
     /// DOP853 on Ω and the orientation together.
     Dop853,
+    /// Full ALE only: integrate (3.4) forward, which runs away.
+    Forward,
 }
 
 /// Tolerance and step of the numerical methods.
@@ -177,6 +211,18 @@ pub enum SimError {
     /// The integrator failed; the error carries the time.
     #[error(transparent)]
     Integrate(#[from] IntegrateError),
+    /// The method does not apply to the model.
+    #[error("this method does not apply to the {0} model")]
+    MethodNotForModel(&'static str),
+    /// The model needs to know its last time in advance.
+    #[error("the {0} model needs the last output time in advance")]
+    NeedsHorizon(&'static str),
+    /// The physical solution of the full ALE could not be found.
+    #[error(transparent)]
+    Physical(#[from] physical::PhysicalError),
+    /// A forward run of the full ALE ran away before the requested time.
+    #[error("{0}")]
+    Runaway(physical::Runaway),
 }
 
 /// The method actually used, as reported in outputs.
@@ -188,6 +234,10 @@ pub enum MethodUsed {
     ExactOmegaDop853Orientation,
     /// Ω and O integrated together by this method.
     Integrated(Integrator),
+    /// Full ALE: the physical solution by backward shooting, O driven by it.
+    Physical,
+    /// Full ALE integrated forward (it runs away), O driven by it.
+    Forward,
 }
 
 /// A numerical integrator.
@@ -210,6 +260,8 @@ impl MethodUsed {
             MethodUsed::Integrated(Integrator::Rk4) => "rk4",
             MethodUsed::Integrated(Integrator::Dopri5) => "dopri5",
             MethodUsed::Integrated(Integrator::Dop853) => "dop853",
+            MethodUsed::Physical => "physical",
+            MethodUsed::Forward => "forward",
         }
     }
 
@@ -228,6 +280,12 @@ impl MethodUsed {
             }
             MethodUsed::Integrated(Integrator::Dop853) => {
                 "omega and orientation integrated together by DOP853 (orientation on SO(3))"
+            }
+            MethodUsed::Physical => {
+                "the physical solution of (3.4): DOP853 backward from final data on the slow manifold, shooting on the final amplitude; orientation by DOP853 on SO(3)"
+            }
+            MethodUsed::Forward => {
+                "(3.4) integrated forward by DOP853 from the reduced model's slope, with a runaway monitor; orientation by DOP853 on SO(3)"
             }
         }
     }
@@ -388,9 +446,9 @@ impl<const N: usize> Stepper<N> for AnyStepper<N> {
 }
 
 /// Ω and σ together: `d(Ω, σ)/dt = (F(Ω), J_r⁻¹(σ) Ω)`.
-struct FullRhs<'a>(&'a Model);
+struct CoupledRhs(FirstOrder);
 
-impl Rhs<6> for FullRhs<'_> {
+impl Rhs<6> for CoupledRhs {
     fn eval(&self, _t: Real, y: &State<6>) -> State<6> {
         let omega = y.fixed_rows::<3>(0).into_owned();
         let sigma = y.fixed_rows::<3>(3).into_owned();
@@ -404,14 +462,11 @@ impl Rhs<6> for FullRhs<'_> {
 }
 
 /// σ alone, driven by a known Ω(t): `dσ/dt = J_r⁻¹(σ) Ω(t)`.
-struct OrientationRhs<'a> {
-    top: &'a SymmetricTop,
-    omega0: Vec3,
-}
+struct OrientationRhs<F: Fn(Real) -> Vec3>(F);
 
-impl Rhs<3> for OrientationRhs<'_> {
+impl<F: Fn(Real) -> Vec3> Rhs<3> for OrientationRhs<F> {
     fn eval(&self, t: Real, sigma: &State<3>) -> State<3> {
-        dexpinv_right(sigma, &reduced_closed_form(self.top, &self.omega0, t))
+        dexpinv_right(sigma, &(self.0)(t))
     }
 }
 
@@ -479,7 +534,19 @@ enum Engine {
     /// Reduced model: Ω closed form, σ integrated.
     ReducedOrientation(SymmetricTop, Box<OnGroup<3>>),
     /// Ω and σ integrated together.
-    Full(Integrator, Box<OnGroup<6>>),
+    Coupled(Integrator, FirstOrder, Box<OnGroup<6>>),
+    /// Full ALE: Ω from a table (the physical solution, or a forward run up to
+    /// its runaway), σ integrated along it.
+    Table(Box<physical::OmegaTable>, TableKind, Stats, Box<OnGroup<3>>),
+}
+
+/// Where a full-ALE table came from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum TableKind {
+    /// The physical solution (backward shooting).
+    Physical,
+    /// A forward run, with the runaway that stopped it, if any.
+    Forward(Option<physical::Runaway>),
 }
 
 /// A top, a method and the current time.
@@ -512,37 +579,76 @@ impl Simulation {
         }
         let base = Quat::from_matrix(&initial.rotation);
         let scale = initial.omega.norm();
-        let on_group = |which: Integrator| -> Result<Engine, SimError> {
+        let on_group = |which: Integrator, dynamics: FirstOrder| -> Result<Engine, SimError> {
             let mut y0 = State::<6>::zeros();
             y0.fixed_rows_mut::<3>(0).copy_from(&initial.omega);
-            Ok(Engine::Full(
+            Ok(Engine::Coupled(
                 which,
+                dynamics,
                 Box::new(OnGroup {
                     stepper: AnyStepper::new(which, y0, &options, scale)?,
                     base,
                 }),
             ))
         };
-        let engine = match (choice, model) {
-            (MethodChoice::Auto | MethodChoice::Exact, Model::Truncated(top)) => {
+        let orientation_only = || -> Result<Box<OnGroup<3>>, SimError> {
+            let zero = State::<3>::zeros();
+            Ok(Box::new(OnGroup {
+                stepper: AnyStepper::new(Integrator::Dop853, zero, &options, scale)?,
+                base,
+            }))
+        };
+        let engine = match (choice, model.first_order()) {
+            (_, None) => {
+                let Model::Full(top) = model else {
+                    return Err(SimError::NoClosedForm(model.name()));
+                };
+                if horizon == Real::MAX {
+                    return Err(SimError::NeedsHorizon(model.name()));
+                }
+                match choice {
+                    MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Dop853 => {
+                        let (table, sol) =
+                            physical::physical_table(&top, &initial.omega, horizon, options.rtol)?;
+                        Engine::Table(
+                            Box::new(table),
+                            TableKind::Physical,
+                            sol.stats,
+                            orientation_only()?,
+                        )
+                    }
+                    MethodChoice::Forward => {
+                        let (table, run) =
+                            physical::forward_table(&top, &initial.omega, horizon, options.rtol)?;
+                        Engine::Table(
+                            Box::new(table),
+                            TableKind::Forward(run.runaway),
+                            run.stats,
+                            orientation_only()?,
+                        )
+                    }
+                    MethodChoice::Rk4 | MethodChoice::Dopri5 => {
+                        return Err(SimError::MethodNotForModel(model.name()));
+                    }
+                }
+            }
+            (MethodChoice::Forward, Some(_)) => {
+                return Err(SimError::MethodNotForModel(model.name()));
+            }
+            (MethodChoice::Auto | MethodChoice::Exact, Some(FirstOrder::Truncated(top))) => {
                 Engine::ClosedForm(top)
             }
-            (MethodChoice::Auto | MethodChoice::Exact, Model::Reduced(top)) => {
-                let zero = State::<3>::zeros();
-                Engine::ReducedOrientation(
-                    top,
-                    Box::new(OnGroup {
-                        stepper: AnyStepper::new(Integrator::Dop853, zero, &options, scale)?,
-                        base,
-                    }),
-                )
+            (MethodChoice::Auto | MethodChoice::Exact, Some(FirstOrder::Reduced(top))) => {
+                Engine::ReducedOrientation(top, orientation_only()?)
             }
-            (MethodChoice::Exact, Model::General(_)) => {
+            (MethodChoice::Exact, Some(FirstOrder::General(_))) => {
                 return Err(SimError::NoClosedForm(model.name()));
             }
-            (MethodChoice::Auto | MethodChoice::Dop853, _) => on_group(Integrator::Dop853)?,
-            (MethodChoice::Rk4, _) => on_group(Integrator::Rk4)?,
-            (MethodChoice::Dopri5, _) => on_group(Integrator::Dopri5)?,
+            (MethodChoice::Auto | MethodChoice::Dop853, Some(d)) => {
+                on_group(Integrator::Dop853, d)?
+            }
+            (MethodChoice::Rk4, Some(d)) => on_group(Integrator::Rk4, d)?,
+            (MethodChoice::Dopri5, Some(d)) => on_group(Integrator::Dopri5, d)?,
         };
         let current = Sample::new(0.0, &model.inertia(), &initial.rotation, &initial.omega);
         Ok(Self {
@@ -569,7 +675,9 @@ impl Simulation {
         match &self.engine {
             Engine::ClosedForm(_) => MethodUsed::Exact,
             Engine::ReducedOrientation(..) => MethodUsed::ExactOmegaDop853Orientation,
-            Engine::Full(which, _) => MethodUsed::Integrated(*which),
+            Engine::Coupled(which, ..) => MethodUsed::Integrated(*which),
+            Engine::Table(_, TableKind::Physical, ..) => MethodUsed::Physical,
+            Engine::Table(_, TableKind::Forward(_), ..) => MethodUsed::Forward,
         }
     }
 
@@ -583,7 +691,12 @@ impl Simulation {
         match &self.engine {
             Engine::ClosedForm(_) => Stats::default(),
             Engine::ReducedOrientation(_, g) => g.stepper.stats(),
-            Engine::Full(_, g) => g.stepper.stats(),
+            Engine::Table(_, _, built, g) => {
+                let mut total = *built;
+                total += g.stepper.stats();
+                total
+            }
+            Engine::Coupled(_, _, g) => g.stepper.stats(),
         }
     }
 
@@ -591,8 +704,8 @@ impl Simulation {
     pub fn last_step(&self) -> Real {
         match &self.engine {
             Engine::ClosedForm(_) => 0.0,
-            Engine::ReducedOrientation(_, g) => g.stepper.last_step(),
-            Engine::Full(_, g) => g.stepper.last_step(),
+            Engine::ReducedOrientation(_, g) | Engine::Table(_, _, _, g) => g.stepper.last_step(),
+            Engine::Coupled(_, _, g) => g.stepper.last_step(),
         }
     }
 
@@ -609,19 +722,27 @@ impl Simulation {
                 truncated_orientation(top, &self.initial.omega, &self.initial.rotation, t),
             ),
             Engine::ReducedOrientation(top, g) => {
-                let rhs = OrientationRhs {
-                    top,
-                    omega0: self.initial.omega,
-                };
-                let omega =
-                    |t: Real, _: &State<3>| reduced_closed_form(top, &self.initial.omega, t);
+                let omega0 = self.initial.omega;
+                let rhs = OrientationRhs(|t| reduced_closed_form(top, &omega0, t));
+                let omega = |t: Real, _: &State<3>| reduced_closed_form(top, &omega0, t);
                 let (_, rotation) = g.advance(&rhs, &omega, t, self.horizon)?;
-                (reduced_closed_form(top, &self.initial.omega, t), rotation)
+                (reduced_closed_form(top, &omega0, t), rotation)
             }
-            Engine::Full(_, g) => {
+            Engine::Coupled(_, dynamics, g) => {
                 let omega = |_: Real, y: &State<6>| y.fixed_rows::<3>(0).into_owned();
-                let (y, rotation) = g.advance(&FullRhs(&self.model), &omega, t, self.horizon)?;
+                let (y, rotation) = g.advance(&CoupledRhs(*dynamics), &omega, t, self.horizon)?;
                 (y.fixed_rows::<3>(0).into_owned(), rotation)
+            }
+            Engine::Table(table, kind, _, g) => {
+                if let TableKind::Forward(Some(runaway)) = kind {
+                    if t > runaway.t {
+                        return Err(SimError::Runaway(*runaway));
+                    }
+                }
+                let rhs = OrientationRhs(|t| table.omega_at(t));
+                let omega = |t: Real, _: &State<3>| table.omega_at(t);
+                let (_, rotation) = g.advance(&rhs, &omega, t, self.horizon)?;
+                (table.omega_at(t), rotation)
             }
         };
         if !(all_finite(&omega) && all_finite(&rotation)) {

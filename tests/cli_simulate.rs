@@ -33,7 +33,7 @@ fn vec_of(v: &Value, n: usize) -> Vec<f64> {
 
 #[test]
 fn simulate_json_follows_the_contract_for_every_model() {
-    let cases: [(&[&str], &str, &str); 5] = [
+    let cases: [(&[&str], &str, &str); 6] = [
         (&["--model", "truncated"], "truncated", "exact"),
         (&["--model", "reduced"], "reduced", "exact+dop853"),
         (
@@ -58,6 +58,7 @@ fn simulate_json_follows_the_contract_for_every_model() {
             "reduced",
             "dopri5",
         ),
+        (&["--model", "full"], "full", "physical"),
     ];
     for (args, model, method) in cases {
         let mut a = args.to_vec();
@@ -243,6 +244,8 @@ fn simulate_refuses_bad_input_with_one_line_and_exit_code_2() {
         ],
         &["--model", "truncated", "--method", "rk4", "--rtol", "1e-6"],
         &["--model", "truncated", "--format", "xml"],
+        &["--model", "truncated", "--method", "forward"],
+        &["--model", "full", "--method", "rk4"],
         &["--model", "truncated", "--bogus"],
     ];
     for args in cases {
@@ -291,6 +294,32 @@ fn simulate_reports_a_numerical_failure_with_its_time() {
     assert!(stderr.contains("non-finite at t = "), "{stderr}");
     assert!(stderr.contains("try"), "{stderr}");
     assert!(!String::from_utf8_lossy(&out.stdout).contains("NaN"));
+}
+
+/// `--model full --method forward` integrates (3.4) forward: it runs away, and
+/// the output says when, how fast, and what to do instead.
+#[test]
+fn simulate_full_forward_reports_the_runaway() {
+    let out = spintop(&[
+        "simulate", "--model", "full", "--method", "forward", "--times", "0,1,2,50", "--format",
+        "json",
+    ]);
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("runaway at t = "), "{stderr}");
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["method"], "forward");
+    let rate = v["runaway"]["growth_rate"].as_f64().unwrap();
+    assert!((rate - 1.025).abs() < 0.05, "{rate}");
+    assert!(v["runaway"]["t"].as_f64().unwrap() < 50.0);
+    assert_eq!(v["samples"].as_array().unwrap().len(), 3);
+    assert_eq!(v["samples_omitted"], 1);
+    assert!(
+        v["runaway"]["advice"]
+            .as_str()
+            .unwrap()
+            .contains("integrate backward or use the reduced model")
+    );
 }
 
 #[test]

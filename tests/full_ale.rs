@@ -203,3 +203,57 @@ fn eq_3_4_forward_integration_runs_away_at_the_frozen_rate() {
         runaway.t
     );
 }
+
+/// `Model::Full` in a simulation follows the physical solution: at grid times
+/// and, through the table's Hermite interpolation, between them.
+#[test]
+fn eq_3_4_full_model_simulation_follows_the_physical_solution() {
+    use spintop::physics::euler_angles::EulerAngles;
+    use spintop::sim::{InitialState, MethodChoice, MethodOptions, MethodUsed, Model, Simulation};
+    let (top, omega0) = figure();
+    let times = [0.0, 3.3, 47.123, 250.0, 499.9];
+    let direct = physical_solution(&top, &omega0, &times, 1e-12).unwrap();
+    let initial = InitialState::new(omega0, EulerAngles::new(0.1, 0.5, 0.0)).unwrap();
+    let options = MethodOptions {
+        rtol: 1e-12,
+        step: 0.01,
+    };
+    let mut sim = Simulation::new(
+        Model::Full(top),
+        MethodChoice::Auto,
+        options,
+        initial,
+        Some(500.0),
+    )
+    .unwrap();
+    assert_eq!(sim.method(), MethodUsed::Physical);
+    for (i, s) in sim.run(&times).unwrap().iter().enumerate() {
+        let z = direct.z[i];
+        let err = ((s.omega[0] - z.re).powi(2) + (s.omega[1] - z.im).powi(2)).sqrt();
+        assert!(err < 1e-9 * omega0.norm(), "t = {}: {err:e}", s.t);
+        assert_eq!(s.omega[2], omega0.z, "(3.4) keeps Omega_3 for this top");
+        assert!(spintop::math::orthonormality_error(&s.rotation_matrix()) < 1e-12);
+    }
+    // Open-ended runs and the wrong methods are refused.
+    assert!(Simulation::new(Model::Full(top), MethodChoice::Auto, options, initial, None).is_err());
+    assert!(
+        Simulation::new(
+            Model::Full(top),
+            MethodChoice::Rk4,
+            options,
+            initial,
+            Some(10.0)
+        )
+        .is_err()
+    );
+    assert!(
+        Simulation::new(
+            Model::Reduced(top),
+            MethodChoice::Forward,
+            options,
+            initial,
+            Some(10.0)
+        )
+        .is_err()
+    );
+}

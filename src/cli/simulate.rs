@@ -5,7 +5,6 @@ use super::{CliError, Format, TimeList, bad, num, parse_number, parse_times, par
 use crate::math::{Real, Vec3};
 use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
-use crate::physics::rigid_body::BodyDynamics;
 use crate::physics::symmetric_top::SymmetricTop;
 use crate::sim::{
     InitialState, MethodChoice, MethodOptions, MethodUsed, Model, Sample, SimError, Simulation,
@@ -22,6 +21,8 @@ enum ModelArg {
     Reduced,
     /// Eq. (3.3): any top, given --inertia and --dipole.
     General,
+    /// Eq. (3.4): the symmetric top under the full ALE, Schott term kept (its physical solution).
+    Full,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -36,6 +37,8 @@ enum MethodArg {
     Dopri5,
     /// DOP853, adaptive (--rtol).
     Dop853,
+    /// Full model only: integrate (3.4) forward and watch it run away.
+    Forward,
 }
 
 /// The raw arguments of `simulate`, before validation.
@@ -117,6 +120,7 @@ impl SimulateArgs {
         let model = match self.model {
             ModelArg::Truncated => Model::Truncated(symmetric(self.ratio)?),
             ModelArg::Reduced => Model::Reduced(symmetric(self.ratio)?),
+            ModelArg::Full => Model::Full(symmetric(self.ratio)?),
             ModelArg::General => {
                 if self.ratio.is_some() {
                     return Err(bad(
@@ -140,6 +144,7 @@ impl SimulateArgs {
             MethodArg::Rk4 => MethodChoice::Rk4,
             MethodArg::Dopri5 => MethodChoice::Dopri5,
             MethodArg::Dop853 => MethodChoice::Dop853,
+            MethodArg::Forward => MethodChoice::Forward,
         };
         if self.step.is_some() && method != MethodChoice::Rk4 {
             return Err(bad("--step sets the fixed step of --method rk4 only"));
@@ -216,9 +221,10 @@ impl SimulateArgs {
 /// The JSON output of `simulate` (the contract).
 #[derive(Debug, Serialize)]
 pub struct SimulateOutput {
-    /// `truncated`, `reduced` or `general`.
+    /// `truncated`, `reduced`, `general` or `full`.
     pub model: &'static str,
-    /// The method used: `exact`, `exact+dop853`, `rk4`, `dopri5` or `dop853`.
+    /// The method used: `exact`, `exact+dop853`, `rk4`, `dopri5`, `dop853`,
+    /// `physical` or `forward`.
     pub method: &'static str,
     /// One sentence on what was computed how.
     pub method_detail: &'static str,
@@ -228,6 +234,23 @@ pub struct SimulateOutput {
     pub stats: crate::integrate::Stats,
     /// One entry per output time.
     pub samples: Vec<Sample>,
+    /// Full model, forward method: the runaway that stopped the run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub runaway: Option<RunawayReport>,
+    /// Output times after the runaway, not computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub samples_omitted: Option<usize>,
+}
+
+/// A runaway of (3.4) integrated forward.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct RunawayReport {
+    /// When the monitor stopped the run.
+    pub t: Real,
+    /// The measured growth rate (about 1/τ).
+    pub growth_rate: Real,
+    /// What to do instead.
+    pub advice: &'static str,
 }
 
 /// The inputs, echoed in the JSON output.
@@ -266,10 +289,30 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, CliError> {
         config.initial,
         Some(horizon),
     )?;
-    let samples = sim.run(&config.times)?;
+    // A forward run of the full ALE stops at its runaway: the samples before it
+    // are the answer, the runaway is reported beside them.
+    let mut samples = Vec::with_capacity(config.times.len());
+    let mut runaway = None;
+    for &t in &config.times {
+        match sim.advance_to(t) {
+            Ok(sample) => samples.push(*sample),
+            Err(SimError::Runaway(r)) => {
+                runaway = Some(RunawayReport {
+                    t: r.t,
+                    growth_rate: r.growth_rate,
+                    advice: "integrate backward or use the reduced model (--model full --method auto gives the physical solution)",
+                });
+                break;
+            }
+            Err(e) => return Err(e.into()),
+        }
+    }
+    let samples_omitted = runaway.map(|_| config.times.len() - samples.len());
     let method = sim.method();
     let (ratio, tau, dipole) = match &config.model {
-        Model::Truncated(top) | Model::Reduced(top) => (Some(top.ratio()), Some(top.tau()), None),
+        Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
+            (Some(top.ratio()), Some(top.tau()), None)
+        }
         Model::General(top) => (None, None, Some(top.dipole().into())),
     };
     let integrated = !matches!(method, MethodUsed::Exact);
@@ -290,6 +333,8 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, CliError> {
         },
         stats: sim.stats(),
         samples,
+        runaway,
+        samples_omitted,
     })
 }
 
@@ -353,6 +398,16 @@ pub fn write_output(
                 "# work: {} rhs evaluations, {} steps, {} rejected",
                 output.stats.rhs_evals, output.stats.steps, output.stats.rejected
             )?;
+            if let Some(r) = &output.runaway {
+                writeln!(
+                    out,
+                    "# runaway at t = {:.3}, growth rate {:.4}: {} later sample(s) omitted; {}",
+                    r.t,
+                    r.growth_rate,
+                    output.samples_omitted.unwrap_or(0),
+                    r.advice
+                )?;
+            }
             let head = [
                 "t",
                 "omega1",
@@ -392,9 +447,20 @@ pub fn write_output(
 }
 
 /// Validate, run and print `simulate`.
-pub(crate) fn execute(args: SimulateArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(
+    args: SimulateArgs,
+    out: &mut impl Write,
+    err: &mut impl Write,
+) -> Result<(), CliError> {
     let config = args.validate()?;
     let output = simulate(&config)?;
+    if let Some(r) = &output.runaway {
+        writeln!(
+            err,
+            "spintop: runaway at t = {:.3}, growing at rate {:.4} (about 1/tau); {}",
+            r.t, r.growth_rate, r.advice
+        )?;
+    }
     write_output(out, &output, config.format)?;
     Ok(())
 }
