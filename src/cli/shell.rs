@@ -6,9 +6,7 @@ use super::{CliError, Format, TimeList, bad, num, parse_number, parse_times};
 use crate::math::Real;
 use crate::physics::central::abraham_lorentz_oscillator_roots;
 use crate::physics::shell::ShellModel;
-use crate::sim::shell::{
-    History, ShellError, ShellSample, default_steps_per_delay, run_shell,
-};
+use crate::sim::shell::{History, ShellError, ShellSample, default_steps_per_delay, run_shell};
 use clap::Args;
 use serde::Serialize;
 use std::io::{self, Write};
