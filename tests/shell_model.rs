@@ -344,3 +344,15 @@ fn appendix_chain_search_finds_the_largest_root() {
         assert_eq!(max_wide, max_narrow, "tau0 {tau0}, delta {delta}");
     }
 }
+
+/// The chapter's electron number: stability needs δ = r₀/c > 2τ₀, i.e. a shell
+/// larger than 2cτ₀ = (4/3) r_e ≈ 3.76e-15 m, since τ₀ = (2/3) r_e/c.
+#[test]
+fn appendix_electron_shell_must_exceed_four_thirds_classical_radius() {
+    use spintop::physics::central::{
+        CLASSICAL_ELECTRON_RADIUS_M, SPEED_OF_LIGHT_M_S, electron_tau0_seconds,
+    };
+    let r_min = 2.0 * SPEED_OF_LIGHT_M_S * electron_tau0_seconds();
+    assert!((r_min / CLASSICAL_ELECTRON_RADIUS_M - 4.0 / 3.0).abs() < 1e-12);
+    assert!((r_min - 3.757e-15).abs() < 1e-18, "{r_min:e}");
+}
