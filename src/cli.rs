@@ -20,6 +20,7 @@ use std::process::ExitCode;
 
 pub mod balance;
 pub mod orbit;
+pub mod shell;
 pub mod simulate;
 
 /// Exit code for bad input.
@@ -50,6 +51,8 @@ enum Command {
     Balance(balance::BalanceArgs),
     /// Section 2: a charge in a Coulomb or oscillator field under radiation reaction (2.5)-(2.9).
     Orbit(orbit::OrbitArgs),
+    /// Appendix: the charge as a small shell, a delay equation (A.1)-(A.3), and where it breaks.
+    Shell(shell::ShellArgs),
 }
 
 /// Output format.
@@ -225,6 +228,7 @@ where
         Some(Command::Simulate(args)) => simulate::execute(args, stdout, stderr),
         Some(Command::Balance(args)) => balance::execute(args, stdout),
         Some(Command::Orbit(args)) => orbit::execute(args, stdout),
+        Some(Command::Shell(args)) => shell::execute(args, stdout, stderr),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,

@@ -34,6 +34,8 @@ pub mod book {
     pub struct Section3;
     #[doc = include_str!("../book/src/section-4.md")]
     pub struct Section4;
+    #[doc = include_str!("../book/src/appendix.md")]
+    pub struct Appendix;
     #[doc = include_str!("../book/src/errata.md")]
     pub struct Errata;
 }

@@ -10,6 +10,7 @@
 //! | [`general_top`] | (3.3) | the truncated ALE for any principal moments and dipole |
 //! | [`symmetric_top`] | §4, (4.1)–(4.18) | truncated and reduced ALE of the axially symmetric top, closed forms |
 //! | [`full_ale`] | (3.4) | the full ALE with its Schott term, as first-order systems |
+//! | [`shell`] | Appendix, (A.1)–(A.3) | the charge as a small shell: a neutral delay equation, its roots and balance |
 //!
 //! Units: κ = 2/(3c³) = 1 for the general top; τ = 2d²/(3I₁c³) = 1 and I₁ = 1 for
 //! the symmetric top (so times are in units of τ and rates in units of 1/τ).
@@ -23,6 +24,7 @@ pub mod euler_angles;
 pub mod full_ale;
 pub mod general_top;
 pub mod rigid_body;
+pub mod shell;
 pub mod symmetric_top;
 
 /// A physical parameter that was refused when a model was built.

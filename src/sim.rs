@@ -32,6 +32,7 @@ use thiserror::Error;
 
 pub mod orbit;
 pub mod physical;
+pub mod shell;
 
 /// Which equation of motion the top follows.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -13,6 +13,8 @@ use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
 
+#[path = "../lessons/appendix_shell.rs"]
+mod appendix;
 #[path = "../lessons/ch2_balance_laws.rs"]
 mod ch2;
 #[path = "../lessons/ch3_equations_of_motion.rs"]
@@ -27,6 +29,7 @@ const LESSONS: &[(&str, Lesson)] = &[
     ("ch2_balance_laws", ch2::run),
     ("ch3_equations_of_motion", ch3::run),
     ("ch4_symmetric_top", ch4::run),
+    ("appendix_shell", appendix::run),
 ];
 
 fn root() -> PathBuf {
