@@ -13,12 +13,14 @@
 use crate::integrate::IntegrateError;
 use crate::math::Real;
 use crate::sim::SimError;
-use clap::{CommandFactory, Parser, Subcommand, ValueEnum};
+use clap::{Parser, Subcommand, ValueEnum};
 use std::ffi::OsString;
 use std::io::{self, Write};
 use std::process::ExitCode;
 
+pub mod plot;
 pub mod simulate;
+pub mod tui;
 
 /// Exit code for bad input.
 pub const EXIT_BAD_INPUT: u8 = 2;
@@ -44,6 +46,10 @@ pub struct Cli {
 enum Command {
     /// Integrate or evaluate one model and print samples (table, CSV or JSON).
     Simulate(simulate::SimulateArgs),
+    /// The live view: truncated and reduced models side by side (also `spintop` alone).
+    Tui(tui::TuiArgs),
+    /// Print the curves of the live view as text charts (for pipes and the book).
+    Plot(plot::PlotArgs),
 }
 
 /// Output format.
@@ -192,19 +198,11 @@ where
         }
     };
     let result = match cli.command {
-        None => {
-            let _ = writeln!(
-                stdout,
-                "{}",
-                Cli::command().render_help().to_string().trim_end()
-            );
-            let _ = writeln!(
-                stdout,
-                "\nTry: spintop simulate --model truncated --t-end 1000 --samples 11"
-            );
-            return ExitCode::SUCCESS;
-        }
+        // No subcommand opens the live view, the program's main job.
+        None => tui::execute(tui::TuiArgs::default(), stdout),
         Some(Command::Simulate(args)) => simulate::execute(args, stdout),
+        Some(Command::Tui(args)) => tui::execute(args, stdout),
+        Some(Command::Plot(args)) => plot::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,
@@ -220,6 +218,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+    use clap::CommandFactory;
 
     #[test]
     fn clap_definition_is_consistent() {

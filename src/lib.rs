@@ -10,6 +10,7 @@
 //! - [`integrate`]: RK4, Dormand–Prince 5(4) and DOP853 over one small trait.
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
+//! - [`tui`]: the live terminal view, another thin shell over [`sim`].
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
@@ -18,3 +19,4 @@ pub mod integrate;
 pub mod math;
 pub mod physics;
 pub mod sim;
+pub mod tui;
