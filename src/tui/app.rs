@@ -29,6 +29,10 @@ use super::event::Command;
 /// model time, and what `.` or → advances while paused.
 pub const TICK: Real = 0.1;
 
+/// [`TICK`] in thousandths of τ, for the exact integer accounting of the
+/// wall clock (see [`App::advance_wall`]).
+const TICK_MILLI_TAU: u128 = 100;
+
 /// The time warps offered by `+` and `-`, in τ per wall-clock second.
 pub const WARPS: [Real; 11] = [
     0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0,
@@ -215,6 +219,9 @@ pub enum Mode {
         component: usize,
         /// The text typed so far.
         buffer: String,
+        /// The buffer still holds the old value: the first character typed
+        /// replaces it (arrows and Backspace edit it instead).
+        pristine: bool,
     },
     /// Quit was asked for; the loop ends.
     Quitting,
@@ -426,7 +433,8 @@ pub struct App {
     mode: Mode,
     paused: bool,
     ticks: u64,
-    backlog: Real,
+    /// Model time owed, in thousandths of τ times nanoseconds of wall time.
+    backlog: u128,
     message: Option<Message>,
 }
 
@@ -443,7 +451,7 @@ impl App {
             mode: Mode::Normal,
             paused: false,
             ticks: 0,
-            backlog: 0.0,
+            backlog: 0,
             message: None,
         })
     }
@@ -512,17 +520,24 @@ impl App {
     /// accumulated (times the warp) into a backlog, and every whole [`TICK`]
     /// of it is stepped. Returns the number of steps taken. Nothing happens
     /// while paused.
+    ///
+    /// NOTE: the backlog is kept in integers (nanoseconds × thousandths of
+    /// τ per second), so the number of steps after a total wall time W is
+    /// exactly ⌊W·warp/Δt⌋ however W was cut into frames: the models do not
+    /// depend on the frame rate, not even by one step of rounding.
     pub fn advance_wall(&mut self, elapsed: Duration) -> u64 {
         if self.paused {
-            self.backlog = 0.0;
+            self.backlog = 0;
             return 0;
         }
-        let ticks_per_second = self.settings.warp() / TICK;
-        self.backlog += elapsed.as_secs_f64() * ticks_per_second;
-        self.backlog = self.backlog.min(MAX_LAG.as_secs_f64() * ticks_per_second);
-        let n = self.backlog.floor();
-        self.backlog -= n;
-        let n = n as u64;
+        let warp = (self.settings.warp() * 1000.0).round() as u128;
+        let per_tick = TICK_MILLI_TAU * 1_000_000_000;
+        // What is left over is always less than one tick, so a frame shorter
+        // than MAX_LAG is never cut, at any warp.
+        let cap = MAX_LAG.as_nanos() * warp + per_tick;
+        self.backlog = (self.backlog + elapsed.as_nanos() * warp).min(cap);
+        let n = (self.backlog / per_tick) as u64;
+        self.backlog %= per_tick;
         self.advance_ticks(n);
         n
     }
@@ -546,7 +561,7 @@ impl App {
             Ok(columns) => {
                 self.columns = columns;
                 self.ticks = 0;
-                self.backlog = 0.0;
+                self.backlog = 0;
             }
             Err(e) => self.refuse(e),
         }
@@ -574,7 +589,7 @@ impl App {
                 self.settings = settings;
                 self.columns = columns;
                 self.ticks = 0;
-                self.backlog = 0.0;
+                self.backlog = 0;
                 self.inform(format!("{what}: both models restarted"));
                 true
             }
@@ -598,7 +613,7 @@ impl App {
             }
             Command::TogglePause => {
                 self.paused = !self.paused;
-                self.backlog = 0.0;
+                self.backlog = 0;
                 if self.paused {
                     self.inform(format!("paused: . or → steps Δt = {TICK}τ, space resumes"));
                 }
@@ -623,7 +638,7 @@ impl App {
                 match next {
                     Some(i) => {
                         self.settings.warp = i;
-                        self.backlog = 0.0;
+                        self.backlog = 0;
                         self.inform(format!("warp {} τ/s", WARPS[i]));
                     }
                     None => self.refuse(format!(
@@ -671,12 +686,22 @@ impl App {
                 let component = self.view.selected;
                 self.mode = Mode::Edit {
                     component,
-                    buffer: self.settings.omega0[component].to_string(),
+                    buffer: fmt_exact(self.settings.omega0[component]),
+                    pristine: true,
                 };
                 self.inform(edit_hint(component));
             }
             Command::Input(c) => {
-                if let Mode::Edit { buffer, component } = &mut self.mode {
+                if let Mode::Edit {
+                    buffer,
+                    component,
+                    pristine,
+                } = &mut self.mode
+                {
+                    if *pristine {
+                        buffer.clear();
+                        *pristine = false;
+                    }
                     if buffer.len() < 32 {
                         buffer.push(c);
                     }
@@ -685,14 +710,25 @@ impl App {
                 }
             }
             Command::Backspace => {
-                if let Mode::Edit { buffer, component } = &mut self.mode {
+                if let Mode::Edit {
+                    buffer,
+                    component,
+                    pristine,
+                } = &mut self.mode
+                {
+                    *pristine = false;
                     buffer.pop();
                     let hint = edit_hint(*component);
                     self.inform(hint);
                 }
             }
             Command::NudgeUp | Command::NudgeDown => {
-                if let Mode::Edit { buffer, component } = &mut self.mode {
+                if let Mode::Edit {
+                    buffer,
+                    component,
+                    pristine,
+                } = &mut self.mode
+                {
                     let component = *component;
                     match parse_number(buffer) {
                         Ok(x) => {
@@ -701,8 +737,15 @@ impl App {
                             } else {
                                 -NUDGE
                             };
-                            let x = ((x + d) / NUDGE).round() * NUDGE;
-                            *buffer = format!("{}", (x * 1e12).round() / 1e12);
+                            let mut y = x + d;
+                            // NOTE: snap to the grid of NUDGE (0.1 + 0.01 would
+                            // print as 0.11000000000000001), where the grid is
+                            // finer than a double's spacing.
+                            if y.abs() < 1e6 {
+                                y = ((y / NUDGE).round() * NUDGE * 1e6).round() / 1e6;
+                            }
+                            *buffer = fmt_exact(y);
+                            *pristine = false;
                             self.inform(edit_hint(component));
                         }
                         Err(e) => self.refuse(format!("refused: {e}")),
@@ -710,7 +753,10 @@ impl App {
                 }
             }
             Command::Commit => {
-                if let Mode::Edit { component, buffer } = &self.mode {
+                if let Mode::Edit {
+                    component, buffer, ..
+                } = &self.mode
+                {
                     let component = *component;
                     let value = parse_number(buffer).map_err(|e| {
                         if buffer.trim().is_empty() {
@@ -740,6 +786,17 @@ impl App {
                 }
             }
         }
+    }
+}
+
+/// A parameter as the user would type it: the shortest text that parses
+/// back to the same double (`0.1`, `1e-200`, never 200 zeros).
+pub fn fmt_exact(x: Real) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 12 {
+        plain
+    } else {
+        format!("{x:e}")
     }
 }
 
@@ -773,27 +830,57 @@ mod tests {
     }
 
     #[test]
+    fn tick_constants_agree() {
+        assert_eq!(TICK_MILLI_TAU as Real / 1000.0, TICK);
+        for w in WARPS {
+            assert_eq!(
+                (w * 1000.0).round() / 1000.0,
+                w,
+                "warps are whole thousandths"
+            );
+        }
+    }
+
+    #[test]
     fn wall_clock_becomes_whole_ticks_at_any_frame_rate() {
-        // One wall second at 10 τ/s is 100 ticks, in one frame or in 30
-        // (the last bit of backlog may be one tick short of rounding).
+        // 0.2 s at 10 τ/s is 20 ticks, in one frame or in six uneven ones.
         let mut one = App::new(Settings::default()).unwrap();
         let mut many = one.clone();
         one.advance_wall(Duration::from_millis(200));
-        for _ in 0..6 {
-            many.advance_wall(Duration::from_nanos(33_333_333));
+        for ms in [33, 34, 33, 50, 17, 33] {
+            many.advance_wall(Duration::from_millis(ms));
         }
         assert_eq!(one.ticks(), 20);
-        assert!(many.ticks() == 19 || many.ticks() == 20);
+        assert_eq!(many.ticks(), 20);
         // The models only ever see t = k·Δt, so equal tick counts give equal bits.
-        many.advance_ticks(one.ticks() - many.ticks());
         assert_eq!(one.columns()[1].current(), many.columns()[1].current());
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn any_cut_of_the_wall_clock_gives_the_same_ticks(
+            frames in proptest::collection::vec(0u64..200_000_000, 1..40),
+            warp in 0..WARPS.len(),
+        ) {
+            let settings = Settings { warp, ..Settings::default() };
+            let mut app = App::new(settings).unwrap();
+            // Frames shorter than MAX_LAG: the cap never drops anything.
+            let total: u64 = frames.iter().sum();
+            for ns in &frames {
+                app.advance_wall(Duration::from_nanos(*ns));
+            }
+            let expected = u128::from(total) * (WARPS[warp] * 1000.0).round() as u128
+                / (TICK_MILLI_TAU * 1_000_000_000);
+            proptest::prop_assert_eq!(u128::from(app.ticks()), expected);
+        }
     }
 
     #[test]
     fn backlog_is_capped() {
         let mut app = App::new(Settings::default()).unwrap();
         app.advance_wall(Duration::from_secs(100));
-        // At most MAX_LAG of wall time is stepped: 0.25 s · 10 τ/s = 2.5τ.
-        assert_eq!(app.ticks(), 25);
+        // At most MAX_LAG of wall time (0.25 s · 10 τ/s = 2.5τ) plus one
+        // tick is stepped.
+        assert_eq!(app.ticks(), 26);
     }
 }

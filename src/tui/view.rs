@@ -9,7 +9,7 @@
 //! └ footer: the keys ──────────────┴─────────────────────────────────┘
 //! ```
 
-use super::app::{App, Mode, SUBSCRIPTS, TICK};
+use super::app::{App, Mode, SUBSCRIPTS, TICK, fmt_exact};
 use super::theme;
 use super::widgets::{OmegaSeries, hodograph, numbers, top_in_space};
 use ratatui::Frame;
@@ -103,7 +103,7 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
     ]);
     let mut second = vec![
         Span::styled(" I₃/I₁ = ", theme::label()),
-        Span::styled(format!("{}", settings.ratio()), theme::value()),
+        Span::styled(fmt_exact(settings.ratio()), theme::value()),
         sep(),
         Span::styled("Ω₀ = (", theme::label()),
     ];
@@ -113,8 +113,10 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
             second.push(Span::styled(", ", theme::label()));
         }
         let text = match app.mode() {
-            Mode::Edit { component, buffer } if *component == i => format!("{buffer}▏"),
-            _ => format!("{w}"),
+            Mode::Edit {
+                component, buffer, ..
+            } if *component == i => format!("{buffer}▏"),
+            _ => fmt_exact(*w),
         };
         let style = if i == app.view().selected {
             theme::selected()
@@ -178,10 +180,13 @@ fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
         .title(Line::from(title));
     let inner = block.inner(area);
     frame.render_widget(block, area);
+    // NOTE: on a short terminal the last line of numbers (Ω itself, shown in
+    // the chart anyway) gives its row to the pictures; a failure still shows.
+    let roomy = inner.height >= 24 || column.failure().is_some();
     let [chart_area, pictures, numbers_area] = Layout::vertical([
         Constraint::Fill(1),
         Constraint::Fill(1),
-        Constraint::Length(6),
+        Constraint::Length(if roomy { 6 } else { 5 }),
     ])
     .areas(inner);
     let series = OmegaSeries::new(column, app.view().log_time);
@@ -192,7 +197,7 @@ fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
     frame.render_widget(hodograph(column, hodo_area), hodo_area);
     frame.render_widget(top_in_space(column, space_area), space_area);
     let [rows, last] =
-        Layout::vertical([Constraint::Length(5), Constraint::Length(1)]).areas(numbers_area);
+        Layout::vertical([Constraint::Length(5), Constraint::Fill(1)]).areas(numbers_area);
     let [left, right] =
         Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).areas(rows);
     let (l, r, bottom) = numbers(app, column, area.width >= WIDE / 2);

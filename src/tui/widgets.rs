@@ -254,8 +254,13 @@ pub fn hodograph(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut Co
     let now = scaled(&column.current().omega);
     let inner = panel("").inner(area);
     let z = if down { -1.0 } else { 1.0 };
+    let title = if area.width >= 30 {
+        "hodograph of Ω (body frame)"
+    } else {
+        "hodograph of Ω"
+    };
     Canvas::default()
-        .block(panel("hodograph of Ω (body frame)"))
+        .block(panel(title))
         .marker(Marker::Braille)
         .x_bounds(x_bounds_for(inner, y))
         .y_bounds(y)
@@ -298,8 +303,13 @@ pub fn top_in_space(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut
         .map(|p| cam.project(p))
         .collect();
     let inner = panel("").inner(area);
+    let title = if area.width >= 30 {
+        "the top in space (lab z ∥ L₀)"
+    } else {
+        "top in space"
+    };
     Canvas::default()
-        .block(panel("the top in space (lab z ∥ L₀)"))
+        .block(panel(title))
         .marker(Marker::Braille)
         .x_bounds(x_bounds_for(inner, y))
         .y_bounds(y)
@@ -411,7 +421,7 @@ pub fn numbers(
     // NOTE: |Ω − Ω_closed form| at the same t, from the core's (4.7) and
     // (4.15)–(4.16); zero by construction when Ω is the closed form.
     let error = if app.settings().method() == Method::ClosedForm {
-        "0 (closed form)".to_string()
+        if wide { "0 (closed form)" } else { "0 (exact)" }.to_string()
     } else if wide {
         format!("|ΔΩ| = {}/τ", fmt_num(column.closed_form_error()))
     } else {
