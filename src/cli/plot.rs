@@ -14,7 +14,7 @@ use crate::tui::app::{Method, paper_frame};
 use crate::tui::widgets::{fmt_axis, nice_ceiling};
 use clap::{Args, ValueEnum};
 use std::io::Write;
-use textplots::{Chart, LabelBuilder, LabelFormat, Plot, Shape};
+use textplots::{AxisBuilder, Chart, LabelBuilder, LabelFormat, LineStyle, Plot, Shape};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum PlotModel {
@@ -197,7 +197,15 @@ fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError
                 y,
             );
             let log_time = config.log_time;
+            // NOTE: textplots marks x = 0 with a dotted line; on a log₁₀ t
+            // axis that is t = 1, which means nothing here.
+            let y_axis = if log_time {
+                LineStyle::None
+            } else {
+                LineStyle::Dotted
+            };
             let chart = chart
+                .y_axis_style(y_axis)
                 .x_label_format(LabelFormat::Custom(Box::new(move |x| {
                     let x = Real::from(x);
                     fmt_axis(if log_time { (10.0 as Real).powf(x) } else { x })
