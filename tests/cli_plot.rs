@@ -113,8 +113,7 @@ fn eq_4_7_plot_of_omega3_ends_at_the_closed_form() {
         .iter()
         .position(|line| {
             line.chars()
-                .filter(|c| ('\u{2800}'..='\u{28FF}').contains(c))
-                .next_back()
+                .rfind(|c| ('\u{2800}'..='\u{28FF}').contains(c))
                 .is_some_and(|c| c != '\u{2800}')
         })
         .expect("the curve reaches the right edge");
