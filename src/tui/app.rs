@@ -68,8 +68,8 @@ pub const LOG_POINTS_PER_DECADE: Real = 400.0;
 /// The longest trail kept for the hodograph and the top in space, in points.
 pub const TRAIL_POINTS: usize = 3000;
 
-/// A trail point is added once the curve has moved this far (relative to |Ω₀|
-/// for the hodograph, in radians for the axis).
+/// A trail point is added once the curve has moved this far (relative to
+/// [`Column::scale`] for the hodograph, in radians for the axis).
 pub const TRAIL_SPACING: Real = 0.01;
 
 /// How much wall-clock lag is kept as a backlog; anything older is dropped.
