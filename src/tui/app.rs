@@ -323,7 +323,11 @@ impl Column {
                 let sample = *sample;
                 self.record(k, &sample);
             }
-            Err(e) => self.failure = Some(e.to_string()),
+            Err(e) => {
+                self.failure = Some(format!(
+                    "{e}; m switches the method, r restarts, a smaller Ω₀ helps"
+                ))
+            }
         }
     }
 

@@ -59,7 +59,8 @@ fn too_small(frame: &mut Frame, area: Rect) {
         )),
         Line::from("q quits."),
     ]);
-    let height = 3.min(area.height);
+    // Three lines, or about eight once a narrow screen wraps them.
+    let height = if area.width >= 60 { 3 } else { 8 }.min(area.height);
     let [_, middle, _] = Layout::vertical([
         Constraint::Fill(1),
         Constraint::Length(height),
