@@ -4,7 +4,7 @@
 //! a message, never a panic), and a change restarts both models from the same
 //! state.
 
-use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use spintop::math::Vec3;
 use spintop::physics::symmetric_top::{SymmetricTop, precession_tilt};
 use spintop::tui::app::{App, Method, Mode, Settings, TICK, WARPS};

@@ -1,10 +1,13 @@
 //! Keys become [`Command`]s; the terminal loop paces frames and feeds the
 //! wall clock to [`App::advance_wall`].
+//!
+//! Keys come from `crossterm`, the same version ratatui's backend is built
+//! on (one copy in the dependency tree), so its events and ratatui's agree.
 
 use super::app::{App, Mode};
 use super::view;
 use crate::math::Real;
-use ratatui::crossterm::event::{self, Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use crossterm::event::{self, Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use ratatui::{Terminal, backend::Backend};
 use std::io;
 use std::time::{Duration, Instant};
