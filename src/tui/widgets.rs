@@ -219,6 +219,15 @@ fn x_bounds_for(area: Rect, y: [f64; 2]) -> [f64; 2] {
     [-half, half]
 }
 
+/// The long title when it fits in `area`'s width, else the short one.
+fn fitting<'a>(area: Rect, long: &'a str, short: &'a str) -> &'a str {
+    if usize::from(area.width) >= Span::raw(long).width() {
+        long
+    } else {
+        short
+    }
+}
+
 fn panel(title: &str) -> Block<'_> {
     Block::new()
         .borders(Borders::TOP)
@@ -254,11 +263,7 @@ pub fn hodograph(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut Co
     let now = scaled(&column.current().omega);
     let inner = panel("").inner(area);
     let z = if down { -1.0 } else { 1.0 };
-    let title = if area.width >= 30 {
-        "hodograph of Ω (body frame)"
-    } else {
-        "hodograph of Ω"
-    };
+    let title = fitting(area, "hodograph of Ω (body frame)", "hodograph of Ω");
     Canvas::default()
         .block(panel(title))
         .marker(Marker::Braille)
@@ -303,11 +308,7 @@ pub fn top_in_space(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut
         .map(|p| cam.project(p))
         .collect();
     let inner = panel("").inner(area);
-    let title = if area.width >= 30 {
-        "the top in space (lab z ∥ L₀)"
-    } else {
-        "top in space"
-    };
+    let title = fitting(area, "the top in space (lab z ∥ L₀)", "top in space");
     Canvas::default()
         .block(panel(title))
         .marker(Marker::Braille)
