@@ -13,15 +13,17 @@
 use crate::integrate::IntegrateError;
 use crate::math::Real;
 use crate::sim::SimError;
-use clap::{CommandFactory, Parser, Subcommand, ValueEnum};
+use clap::{Parser, Subcommand, ValueEnum};
 use std::ffi::OsString;
 use std::io::{self, Write};
 use std::process::ExitCode;
 
 pub mod balance;
 pub mod orbit;
+pub mod plot;
 pub mod shell;
 pub mod simulate;
+pub mod tui;
 
 /// Exit code for bad input.
 pub const EXIT_BAD_INPUT: u8 = 2;
@@ -53,6 +55,10 @@ enum Command {
     Orbit(orbit::OrbitArgs),
     /// Appendix: the charge as a small shell, a delay equation (A.1)-(A.3), and where it breaks.
     Shell(shell::ShellArgs),
+    /// The live view: truncated and reduced models side by side (also `spintop` alone).
+    Tui(tui::TuiArgs),
+    /// Print the curves of the live view as text charts (for pipes and the book).
+    Plot(plot::PlotArgs),
 }
 
 /// Output format.
@@ -213,22 +219,14 @@ where
         }
     };
     let result = match cli.command {
-        None => {
-            let _ = writeln!(
-                stdout,
-                "{}",
-                Cli::command().render_help().to_string().trim_end()
-            );
-            let _ = writeln!(
-                stdout,
-                "\nTry: spintop simulate --model truncated --t-end 1000 --samples 11"
-            );
-            return ExitCode::SUCCESS;
-        }
+        // No subcommand opens the live view, the program's main job.
+        None => tui::execute(tui::TuiArgs::default(), stdout),
         Some(Command::Simulate(args)) => simulate::execute(args, stdout, stderr),
         Some(Command::Balance(args)) => balance::execute(args, stdout),
         Some(Command::Orbit(args)) => orbit::execute(args, stdout),
         Some(Command::Shell(args)) => shell::execute(args, stdout, stderr),
+        Some(Command::Tui(args)) => tui::execute(args, stdout),
+        Some(Command::Plot(args)) => plot::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,
@@ -244,6 +242,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+    use clap::CommandFactory;
 
     #[test]
     fn clap_definition_is_consistent() {

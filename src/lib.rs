@@ -11,6 +11,7 @@
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
+//! - [`tui`]: the live terminal view, another thin shell over [`sim`].
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
@@ -20,6 +21,7 @@ pub mod math;
 pub mod physics;
 pub mod plot;
 pub mod sim;
+pub mod tui;
 
 /// The book's chapters (`book/src`). `cargo test` compiles and runs every Rust
 /// block in them as a doctest; `tests/book.rs` checks that every chapter in

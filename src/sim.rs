@@ -735,10 +735,10 @@ impl Simulation {
                 (y.fixed_rows::<3>(0).into_owned(), rotation)
             }
             Engine::Table(table, kind, _, g) => {
-                if let TableKind::Forward(Some(runaway)) = kind {
-                    if t > runaway.t {
-                        return Err(SimError::Runaway(*runaway));
-                    }
+                if let TableKind::Forward(Some(runaway)) = kind
+                    && t > runaway.t
+                {
+                    return Err(SimError::Runaway(*runaway));
                 }
                 let rhs = OrientationRhs(|t| table.omega_at(t));
                 let omega = |t: Real, _: &State<3>| table.omega_at(t);

@@ -323,8 +323,11 @@ fn simulate_full_forward_reports_the_runaway() {
 }
 
 #[test]
-fn no_arguments_prints_help() {
-    let out = spintop(&[]);
+fn help_lists_the_commands() {
+    let out = spintop(&["--help"]);
     assert!(out.status.success());
-    assert!(String::from_utf8_lossy(&out.stdout).contains("simulate"));
+    let help = String::from_utf8_lossy(&out.stdout);
+    for command in ["simulate", "tui", "plot"] {
+        assert!(help.contains(command), "{command}: {help}");
+    }
 }

@@ -1,0 +1,228 @@
+//! `spintop plot`: the curves of the live view as text charts on stdout, for
+//! pipes and for the book.
+//!
+//! One chart per quantity (Ω₁, Ω₂, Ω₃, Ω⊥) and per model, drawn by textplots
+//! in Braille dots, with the same parameters, initial orientation (lab z along
+//! L₀) and y ranges as the live view.
+
+use super::tui::ViewMethod;
+use super::{CliError, bad, parse_number, parse_vec3};
+use crate::math::{Real, Vec3};
+use crate::physics::symmetric_top::SymmetricTop;
+use crate::sim::{InitialState, MethodOptions, Model, Sample, SimError, Simulation};
+use crate::tui::app::{Method, paper_frame};
+use crate::tui::widgets::{fmt_axis, nice_ceiling};
+use clap::{Args, ValueEnum};
+use std::io::Write;
+use textplots::{AxisBuilder, Chart, LabelBuilder, LabelFormat, LineStyle, Plot, Shape};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum PlotModel {
+    /// Eqs. (4.2)-(4.4): no Schott term.
+    Truncated,
+    /// Eqs. (4.12)-(4.14): Schott term kept, reduced.
+    Reduced,
+    /// Both, truncated first.
+    Both,
+}
+
+/// The raw arguments of `plot`, before validation.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    /// Which model(s) to plot.
+    #[arg(long, value_enum, default_value = "both")]
+    model: PlotModel,
+    /// I3/I1, in (0, 2].
+    #[arg(long, value_parser = parse_number, default_value = "0.4")]
+    ratio: Real,
+    /// Initial body angular velocity, in 1/tau.
+    #[arg(long, value_name = "W1,W2,W3", value_parser = parse_vec3, allow_hyphen_values = true,
+          default_value = "0,0.1,0.2")]
+    omega: [Real; 3],
+    /// Last time of the plot, in tau.
+    #[arg(long, value_parser = parse_number, default_value = "500")]
+    t_end: Real,
+    /// Plot against log10 t over the four decades that end at --t-end.
+    #[arg(long)]
+    log_time: bool,
+    /// Numerical method.
+    #[arg(long, value_enum, default_value = "exact")]
+    method: ViewMethod,
+    /// Width of each chart, in characters (16 to 500).
+    #[arg(long, default_value_t = 60)]
+    width: u32,
+    /// Height of each chart, in lines (2 to 200).
+    #[arg(long, default_value_t = 10)]
+    height: u32,
+}
+
+/// A validated `plot` request.
+struct PlotConfig {
+    models: Vec<Model>,
+    omega0: [Real; 3],
+    method: Method,
+    times: Vec<Real>,
+    log_time: bool,
+    width: u32,
+    height: u32,
+    t_end: Real,
+}
+
+/// The decades a log-time plot spans.
+const LOG_DECADES: Real = 4.0;
+
+impl PlotArgs {
+    fn validate(self) -> Result<PlotConfig, CliError> {
+        let top = SymmetricTop::new(self.ratio, 1.0).map_err(SimError::from)?;
+        InitialState::new(Vec3::from(self.omega), paper_frame(&top, self.omega))?;
+        // parse_number has already refused NaN and infinities.
+        if self.t_end <= 0.0 {
+            return Err(bad(format!("--t-end must be > 0, got {}", self.t_end)));
+        }
+        if !(16..=500).contains(&self.width) {
+            return Err(bad(format!(
+                "--width must be 16 to 500 characters, got {}",
+                self.width
+            )));
+        }
+        if !(2..=200).contains(&self.height) {
+            return Err(bad(format!(
+                "--height must be 2 to 200 lines, got {}",
+                self.height
+            )));
+        }
+        let models = match self.model {
+            PlotModel::Truncated => vec![Model::Truncated(top)],
+            PlotModel::Reduced => vec![Model::Reduced(top)],
+            PlotModel::Both => vec![Model::Truncated(top), Model::Reduced(top)],
+        };
+        // NOTE: two samples per Braille dot column, so lines join smoothly.
+        let n = 4 * self.width as usize;
+        let times = (0..=n)
+            .map(|i| {
+                let f = i as Real / n as Real;
+                if self.log_time {
+                    self.t_end * (10.0 as Real).powf(LOG_DECADES * (f - 1.0))
+                } else {
+                    self.t_end * f
+                }
+            })
+            .collect();
+        Ok(PlotConfig {
+            models,
+            omega0: self.omega,
+            method: self.method.into(),
+            times,
+            log_time: self.log_time,
+            width: self.width,
+            height: self.height,
+            t_end: self.t_end,
+        })
+    }
+}
+
+/// A curve's name and how to read it from a sample.
+type Quantity = (&'static str, fn(&Sample) -> Real);
+
+/// Run one model at the plot's times.
+fn samples(
+    config: &PlotConfig,
+    model: Model,
+    top: &SymmetricTop,
+) -> Result<(Vec<Sample>, &'static str), CliError> {
+    let mut initial =
+        InitialState::new(Vec3::from(config.omega0), paper_frame(top, config.omega0))?;
+    initial.rotation = paper_frame(top, config.omega0).to_rotation();
+    let horizon = config.times.last().copied();
+    let mut sim = Simulation::new(
+        model,
+        config.method.choice(),
+        MethodOptions::default(),
+        initial,
+        horizon,
+    )?;
+    let samples = sim.run(&config.times)?;
+    Ok((samples, sim.method().label()))
+}
+
+fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError> {
+    let [w1, w2, w3] = config.omega0;
+    let reach = w1.hypot(w2).max(w3.abs());
+    let y = nice_ceiling(reach * 1.05) as f32;
+    for model in &config.models {
+        let (Model::Truncated(top) | Model::Reduced(top)) = model else {
+            unreachable!("plot builds symmetric models only");
+        };
+        let (samples, method) = samples(config, *model, top)?;
+        writeln!(
+            out,
+            "# spintop plot: {} model, {}; I3/I1 = {}, tau = 1; omega0 = ({w1}, {w2}, {w3}) 1/tau; \
+             method {method}; lab z along L0",
+            model.name(),
+            model.equations(),
+            top.ratio(),
+        )?;
+        let quantities: [Quantity; 4] = [
+            ("Ω₁", |s| s.omega[0]),
+            ("Ω₂", |s| s.omega[1]),
+            ("Ω₃", |s| s.omega[2]),
+            ("Ω⊥", |s| s.omega_perp),
+        ];
+        for (name, value) in quantities {
+            let points: Vec<(f32, f32)> = samples
+                .iter()
+                .map(|s| {
+                    let x = if config.log_time { s.t.log10() } else { s.t };
+                    (x as f32, value(s) as f32)
+                })
+                .collect();
+            let (x_axis, x0, x1) = if config.log_time {
+                let hi = config.t_end.log10();
+                ("log t", hi - LOG_DECADES, hi)
+            } else {
+                ("t", 0.0, config.t_end)
+            };
+            writeln!(
+                out,
+                "\n{name}(t) of the {} model, in 1/tau, against {x_axis} (t in tau)",
+                model.name()
+            )?;
+            let shape = Shape::Lines(&points);
+            let mut chart = Chart::new_with_y_range(
+                2 * config.width,
+                4 * config.height,
+                x0 as f32,
+                x1 as f32,
+                -y,
+                y,
+            );
+            let log_time = config.log_time;
+            // NOTE: textplots marks x = 0 with a dotted line; on a log₁₀ t
+            // axis that is t = 1, which means nothing here.
+            let y_axis = if log_time {
+                LineStyle::None
+            } else {
+                LineStyle::Dotted
+            };
+            let chart = chart
+                .y_axis_style(y_axis)
+                .x_label_format(LabelFormat::Custom(Box::new(move |x| {
+                    let x = Real::from(x);
+                    fmt_axis(if log_time { (10.0 as Real).powf(x) } else { x })
+                })))
+                .y_label_format(LabelFormat::Custom(Box::new(|v| fmt_axis(Real::from(v)))))
+                .lineplot(&shape);
+            chart.axis();
+            chart.figures();
+            write!(out, "{chart}")?;
+        }
+        writeln!(out)?;
+    }
+    Ok(())
+}
+
+/// Validate, run and print `plot`.
+pub(crate) fn execute(args: PlotArgs, out: &mut impl Write) -> Result<(), CliError> {
+    let config = args.validate()?;
+    write_plots(&config, out)
+}

@@ -1,0 +1,123 @@
+//! `spintop tui` (and `spintop` with no arguments): the live view.
+//!
+//! Validates the starting parameters, refuses to start when stdout is not a
+//! terminal (pointing at the text commands instead), and always restores the
+//! terminal: on quit, on error, and on panic (`ratatui::init` installs a hook).
+
+use super::{CliError, bad, parse_number, parse_vec3};
+use crate::math::Real;
+use crate::tui::app::{App, Method, Settings, WARPS};
+use crate::tui::event;
+use clap::{Args, ValueEnum};
+use std::io::{self, IsTerminal, Write};
+use std::time::Duration;
+
+/// A method of the live view and of `plot`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum ViewMethod {
+    /// Closed forms (the reduced model's orientation by DOP853).
+    Exact,
+    /// Fixed-step classical RK4, step 0.01 tau.
+    Rk4,
+    /// Dormand-Prince 5(4), adaptive.
+    Dopri5,
+    /// DOP853, adaptive.
+    Dop853,
+}
+
+impl From<ViewMethod> for Method {
+    fn from(m: ViewMethod) -> Self {
+        match m {
+            ViewMethod::Exact => Method::ClosedForm,
+            ViewMethod::Rk4 => Method::Rk4,
+            ViewMethod::Dopri5 => Method::Dopri5,
+            ViewMethod::Dop853 => Method::Dop853,
+        }
+    }
+}
+
+/// The raw arguments of `tui`, before validation.
+#[derive(Debug, Default, Args)]
+pub struct TuiArgs {
+    /// I3/I1 of both models, in (0, 2] [default: 0.4]
+    #[arg(long, value_parser = parse_number)]
+    ratio: Option<Real>,
+    /// Initial body angular velocity, in 1/tau [default: 0,0.1,0.2]
+    #[arg(long, value_name = "W1,W2,W3", value_parser = parse_vec3, allow_hyphen_values = true)]
+    omega: Option<[Real; 3]>,
+    /// Numerical method of both models [default: exact]
+    #[arg(long, value_enum)]
+    method: Option<ViewMethod>,
+    /// Model time per wall-clock second, in tau: 0.5, 1, 2, 5, 10, 20, 50, 100,
+    /// 200, 500 or 1000 [default: 10]
+    #[arg(long, value_parser = parse_number)]
+    warp: Option<Real>,
+    /// Benchmark: run for SECONDS, then print frames per second and CPU use.
+    #[arg(long, value_name = "SECONDS", value_parser = parse_number)]
+    bench: Option<Real>,
+}
+
+impl TuiArgs {
+    fn settings(&self) -> Result<Settings, CliError> {
+        Settings::new(
+            self.ratio.unwrap_or(0.4),
+            self.omega.unwrap_or([0.0, 0.1, 0.2]),
+            self.method.map_or(Method::ClosedForm, Method::from),
+            self.warp.unwrap_or(WARPS[crate::tui::app::DEFAULT_WARP]),
+        )
+        .map_err(bad)
+    }
+}
+
+/// Restores the terminal when dropped, so that every way out of the loop
+/// (quit, an I/O error, an early return) leaves the shell usable.
+struct Restore;
+
+impl Drop for Restore {
+    fn drop(&mut self) {
+        ratatui::restore();
+    }
+}
+
+/// Validate, check for a terminal, run the live view, restore the terminal.
+pub(crate) fn execute(args: TuiArgs, out: &mut impl Write) -> Result<(), CliError> {
+    let settings = args.settings()?;
+    let limit = match args.bench {
+        Some(s) if !(s > 0.0 && s <= 3600.0) => {
+            return Err(bad(format!("--bench takes 0 < SECONDS <= 3600, got {s}")));
+        }
+        s => s.map(Duration::from_secs_f64),
+    };
+    if !io::stdout().is_terminal() {
+        return Err(bad(
+            "the live view needs a terminal, but stdout is not one; for text output use \
+             `spintop simulate` (numbers) or `spintop plot` (ASCII charts)",
+        ));
+    }
+    let mut app = App::new(settings).map_err(bad)?;
+    let report = {
+        let _restore = Restore;
+        let mut terminal = ratatui::try_init()?;
+        event::run(&mut terminal, &mut app, limit)?
+    };
+    if limit.is_some() {
+        let cpu = match (report.cpu, report.cpu_share()) {
+            (Some(cpu), Some(share)) => format!(
+                "CPU {:.2} s = {:.1}% of one core",
+                cpu.as_secs_f64(),
+                100.0 * share
+            ),
+            _ => "CPU time not available on this platform".into(),
+        };
+        writeln!(
+            out,
+            "spintop tui --bench: {} frames in {:.2} s = {:.1} fps; {cpu}; t = {:.1}τ at {} τ/s",
+            report.frames,
+            report.wall.as_secs_f64(),
+            report.fps(),
+            app.time(),
+            app.settings().warp(),
+        )?;
+    }
+    Ok(())
+}

@@ -1,0 +1,892 @@
+//! The state of the live view and the one function that changes it.
+//!
+//! [`App`] owns two [`Simulation`]s started from the same parameters (the
+//! truncated model on the left, the reduced one on the right), what the view
+//! shows, and the mode. Keys become [`Command`]s; [`App::apply`] is the only
+//! place a command changes anything. Wall-clock time enters through
+//! [`App::advance_wall`], which turns it into a whole number of fixed model
+//! steps of [`TICK`] (never one model step per frame), so the models do not
+//! depend on the frame rate.
+//!
+//! | code name | symbol | meaning | units |
+//! |---|---|---|---|
+//! | `ratio` | I₃/I₁ | moment ratio of the symmetric top | – |
+//! | `omega0` | Ω₀ | initial body angular velocity | 1/τ |
+//! | [`TICK`] | Δt | one model step of the view | τ |
+//! | `warp` | – | model time per wall-clock second | τ/s |
+
+use crate::cli::parse_number;
+use crate::math::{Mat3, Real, Vec3};
+use crate::physics::euler_angles::EulerAngles;
+use crate::physics::symmetric_top::{SymmetricTop, reduced_closed_form, truncated_closed_form};
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, Simulation};
+use std::collections::VecDeque;
+use std::time::Duration;
+
+use super::event::Command;
+
+/// One model step of the view, in units of τ: the size of every increment of
+/// model time, and what `.` or → advances while paused.
+pub const TICK: Real = 0.1;
+
+/// [`TICK`] in thousandths of τ, for the exact integer accounting of the
+/// wall clock (see [`App::advance_wall`]).
+const TICK_MILLI_TAU: u128 = 100;
+
+/// The time warps offered by `+` and `-`, in τ per wall-clock second.
+pub const WARPS: [Real; 11] = [
+    0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0,
+];
+
+/// Index into [`WARPS`] of the default, 10 τ/s: a precession period of the
+/// figure parameters (about 50τ) takes five seconds.
+pub const DEFAULT_WARP: usize = 4;
+
+/// The width of the scrolling time window of the linear charts, in τ.
+pub const WINDOW: Real = 200.0;
+
+/// The step of `[` and `]` on I₃/I₁.
+pub const RATIO_STEP: Real = 0.1;
+
+/// The step of ↑ and ↓ on an Ω₀ component while it is edited, in 1/τ.
+pub const NUDGE: Real = 0.01;
+
+/// Keep one point in this many ticks for the scrolling charts.
+///
+/// NOTE: 200τ at Δt = 0.1τ is 2000 ticks; one in five leaves 400 points per
+/// curve, more than twice the Braille resolution of a wide chart, and keeps
+/// the drawing cost per frame small.
+pub const RECENT_STRIDE: u64 = 5;
+
+/// Points per decade kept for the log-time view.
+///
+/// NOTE: at t = 1000τ this spacing is 5.8τ, still about nine points per
+/// precession period of the figure parameters, so late oscillations do not
+/// alias into slow false waves.
+pub const LOG_POINTS_PER_DECADE: Real = 400.0;
+
+/// The longest trail kept for the hodograph and the top in space, in points.
+pub const TRAIL_POINTS: usize = 3000;
+
+/// A trail point is added once the curve has moved this far (relative to
+/// [`Column::scale`] for the hodograph, in radians for the axis).
+pub const TRAIL_SPACING: Real = 0.01;
+
+/// How much wall-clock lag is kept as a backlog; anything older is dropped.
+///
+/// NOTE: when the machine cannot keep up (a very high warp with RK4), an
+/// unbounded backlog would make every frame slower than the last. Dropping it
+/// changes only how model time maps to wall time: each model step is still
+/// exactly [`TICK`].
+pub const MAX_LAG: Duration = Duration::from_millis(250);
+
+/// The numerical method the view runs both models with, cycled by `m`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// The closed forms (for the reduced model Ω only; its orientation is
+    /// integrated by DOP853).
+    ClosedForm,
+    /// Fixed-step classical RK4 (step 0.01τ).
+    Rk4,
+    /// Dormand–Prince 5(4), adaptive.
+    Dopri5,
+    /// DOP853, adaptive.
+    Dop853,
+}
+
+impl Method {
+    /// The next method of the cycle: closed form, RK4, DP5, DOP853.
+    pub fn next(self) -> Self {
+        match self {
+            Method::ClosedForm => Method::Rk4,
+            Method::Rk4 => Method::Dopri5,
+            Method::Dopri5 => Method::Dop853,
+            Method::Dop853 => Method::ClosedForm,
+        }
+    }
+
+    /// The name shown in the header.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::ClosedForm => "closed form",
+            Method::Rk4 => "RK4",
+            Method::Dopri5 => "DP5",
+            Method::Dop853 => "DOP853",
+        }
+    }
+
+    /// The simulation's method choice.
+    pub fn choice(self) -> MethodChoice {
+        match self {
+            Method::ClosedForm => MethodChoice::Exact,
+            Method::Rk4 => MethodChoice::Rk4,
+            Method::Dopri5 => MethodChoice::Dopri5,
+            Method::Dop853 => MethodChoice::Dop853,
+        }
+    }
+}
+
+/// The parameters both models start from, validated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    top: SymmetricTop,
+    omega0: [Real; 3],
+    method: Method,
+    warp: usize,
+}
+
+impl Default for Settings {
+    /// The parameters of the paper's Figures 1 and 2: I₃/I₁ = 2/5,
+    /// Ω₀ = (0, 0.1, 0.2)/τ, closed forms, 10 τ/s.
+    fn default() -> Self {
+        Self {
+            top: SymmetricTop::figure(),
+            omega0: [0.0, 0.1, 0.2],
+            method: Method::ClosedForm,
+            warp: DEFAULT_WARP,
+        }
+    }
+}
+
+impl Settings {
+    /// Validate I₃/I₁, Ω₀ and the warp (one of [`WARPS`], in τ/s); the error
+    /// is one line for the user.
+    pub fn new(ratio: Real, omega0: [Real; 3], method: Method, warp: Real) -> Result<Self, String> {
+        let top = SymmetricTop::new(ratio, 1.0).map_err(|e| e.to_string())?;
+        check_omega0(omega0)?;
+        let warp = WARPS.iter().position(|w| *w == warp).ok_or_else(|| {
+            let list: Vec<String> = WARPS.iter().map(|w| w.to_string()).collect();
+            format!("--warp must be one of {} (tau per second)", list.join(", "))
+        })?;
+        Ok(Self {
+            top,
+            omega0,
+            method,
+            warp,
+        })
+    }
+
+    /// I₃/I₁.
+    pub fn ratio(&self) -> Real {
+        self.top.ratio()
+    }
+
+    /// Ω₀, body frame, in 1/τ.
+    pub fn omega0(&self) -> [Real; 3] {
+        self.omega0
+    }
+
+    /// The method.
+    pub fn method(&self) -> Method {
+        self.method
+    }
+
+    /// The time warp, in τ per wall-clock second.
+    pub fn warp(&self) -> Real {
+        WARPS[self.warp]
+    }
+}
+
+/// Refuse an Ω₀ the simulation would refuse, with the simulation's reason.
+fn check_omega0(omega0: [Real; 3]) -> Result<InitialState, String> {
+    InitialState::new(Vec3::from(omega0), EulerAngles::new(0.0, 0.0, 0.0))
+        .map_err(|e| e.to_string())
+}
+
+/// The initial orientation that puts the lab z axis along L₀, as in the
+/// paper's particular solution (4.11) and its figures: then θ is the tilt
+/// between the axis and L, and φ̇ and ψ̇ are the precession and spin rates.
+///
+/// The third row of O = R_z(φ)R_x(θ)R_z(ψ) is (sin θ sin ψ, sin θ cos ψ,
+/// cos θ) = Oᵀẑ, the lab z axis seen from the body; setting it to L₀/|L₀|
+/// gives θ = the tilt and ψ = atan2(L₁, L₂) (φ = 0). L₀ = 0 keeps O = 1.
+pub fn paper_frame(top: &SymmetricTop, omega0: [Real; 3]) -> EulerAngles {
+    let at_rest = Sample::new(0.0, &top.inertia(), &Mat3::identity(), &Vec3::from(omega0));
+    let [l1, l2, _] = at_rest.l_body;
+    EulerAngles::new(0.0, at_rest.tilt, l1.atan2(l2))
+}
+
+/// What `?` shows and what an Ω₀ edit holds.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Mode {
+    /// The main screen.
+    Normal,
+    /// The help overlay.
+    Help,
+    /// Typing a new value for one component of Ω₀.
+    Edit {
+        /// 0, 1 or 2 for Ω₁₀, Ω₂₀, Ω₃₀.
+        component: usize,
+        /// The text typed so far.
+        buffer: String,
+        /// The buffer still holds the old value: the first character typed
+        /// replaces it (arrows and Backspace edit it instead).
+        pristine: bool,
+    },
+    /// Quit was asked for; the loop ends.
+    Quitting,
+}
+
+/// What the view shows (and nothing about the models).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct View {
+    /// The charts use log₁₀ t on the x axis (whole run) instead of a scrolling
+    /// linear window.
+    pub log_time: bool,
+    /// The Ω₀ component that ↑/↓ selected and Enter edits (0, 1, 2).
+    pub selected: usize,
+}
+
+/// A one-line message under the header.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Message {
+    /// The text.
+    pub text: String,
+    /// A refusal (drawn as an error) rather than a confirmation.
+    pub is_error: bool,
+}
+
+/// One point of a curve: t, Ω and Ω⊥, copied from a [`Sample`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point {
+    /// t, in τ.
+    pub t: Real,
+    /// Body-frame Ω, in 1/τ.
+    pub omega: [Real; 3],
+    /// Ω⊥, in 1/τ.
+    pub omega_perp: Real,
+}
+
+impl From<&Sample> for Point {
+    fn from(s: &Sample) -> Self {
+        Self {
+            t: s.t,
+            omega: s.omega,
+            omega_perp: s.omega_perp,
+        }
+    }
+}
+
+/// One model with its history: one column of the screen.
+#[derive(Clone, Debug)]
+pub struct Column {
+    sim: Simulation,
+    omega0: Vec3,
+    recent: VecDeque<Point>,
+    log: Vec<Point>,
+    next_log_t: Real,
+    omega_trail: VecDeque<[Real; 3]>,
+    axis_trail: VecDeque<[Real; 3]>,
+    failure: Option<String>,
+}
+
+impl Column {
+    fn new(model: Model, method: Method, omega0: [Real; 3]) -> Result<Self, String> {
+        let top = match model {
+            Model::Truncated(top) | Model::Reduced(top) => top,
+            // The view compares the two symmetric models of Section 4 only.
+            _ => return Err("the live view shows the truncated and reduced models".into()),
+        };
+        let initial = InitialState::new(Vec3::from(omega0), paper_frame(&top, omega0))
+            .map_err(|e| e.to_string())?;
+        let sim = Simulation::new(
+            model,
+            method.choice(),
+            MethodOptions::default(),
+            initial,
+            None,
+        )
+        .map_err(|e| e.to_string())?;
+        let start = *sim.current();
+        let mut column = Self {
+            sim,
+            omega0: Vec3::from(omega0),
+            recent: VecDeque::with_capacity((WINDOW / TICK) as usize / RECENT_STRIDE as usize + 2),
+            log: Vec::new(),
+            next_log_t: TICK,
+            omega_trail: VecDeque::with_capacity(TRAIL_POINTS),
+            axis_trail: VecDeque::with_capacity(TRAIL_POINTS),
+            failure: None,
+        };
+        column.recent.push_back(Point::from(&start));
+        column.omega_trail.push_back(start.omega);
+        column.axis_trail.push_back(axis_of(&start));
+        Ok(column)
+    }
+
+    /// Advance to tick `k` (t = k·Δt); a failure stops this column only.
+    fn advance(&mut self, k: u64, t: Real) {
+        if self.failure.is_some() {
+            return;
+        }
+        match self.sim.advance_to(t) {
+            Ok(sample) => {
+                let sample = *sample;
+                self.record(k, &sample);
+            }
+            Err(e) => {
+                self.failure = Some(format!(
+                    "{e}; m switches the method, r restarts, a smaller Ω₀ helps"
+                ))
+            }
+        }
+    }
+
+    fn record(&mut self, k: u64, s: &Sample) {
+        let point = Point::from(s);
+        if k.is_multiple_of(RECENT_STRIDE) {
+            self.recent.push_back(point);
+        }
+        while self.recent.front().is_some_and(|p| p.t < s.t - WINDOW) {
+            self.recent.pop_front();
+        }
+        if s.t >= self.next_log_t {
+            self.log.push(point);
+            self.next_log_t = s.t * (10.0 as Real).powf(1.0 / LOG_POINTS_PER_DECADE);
+        }
+        let scale = self.scale();
+        push_trail(&mut self.omega_trail, s.omega, TRAIL_SPACING * scale);
+        push_trail(&mut self.axis_trail, axis_of(s), TRAIL_SPACING);
+    }
+
+    /// The simulation.
+    pub fn sim(&self) -> &Simulation {
+        &self.sim
+    }
+
+    /// The latest sample.
+    pub fn current(&self) -> &Sample {
+        self.sim.current()
+    }
+
+    /// `truncated` or `reduced`.
+    pub fn name(&self) -> &'static str {
+        self.sim.model().name()
+    }
+
+    /// Points of the last [`WINDOW`] (one in [`RECENT_STRIDE`] ticks), oldest first.
+    pub fn recent(&self) -> &VecDeque<Point> {
+        &self.recent
+    }
+
+    /// Points spaced evenly in log t ([`LOG_POINTS_PER_DECADE`]), t > 0, oldest first.
+    pub fn log_points(&self) -> &[Point] {
+        &self.log
+    }
+
+    /// The trail of Ω in the body frame, oldest first.
+    pub fn omega_trail(&self) -> &VecDeque<[Real; 3]> {
+        &self.omega_trail
+    }
+
+    /// The trail of the symmetry axis O·e₃ in the lab frame, oldest first.
+    pub fn axis_trail(&self) -> &VecDeque<[Real; 3]> {
+        &self.axis_trail
+    }
+
+    /// Why this model stopped, if it did.
+    pub fn failure(&self) -> Option<&str> {
+        self.failure.as_deref()
+    }
+
+    /// The larger of Ω⊥₀ and |Ω₃₀| (1 for a top at rest): the scale of the
+    /// plots. Neither model ever makes Ω⊥ or |Ω₃| grow, so it bounds every
+    /// component of Ω at all times.
+    pub fn scale(&self) -> Real {
+        let s = self.omega0.x.hypot(self.omega0.y).max(self.omega0.z.abs());
+        if s > 0.0 { s } else { 1.0 }
+    }
+
+    /// |Ω − Ω_closed form| at the current time, in 1/τ, from the core's closed
+    /// forms (4.7) and (4.15)–(4.16).
+    pub fn closed_form_error(&self) -> Real {
+        let s = self.sim.current();
+        let exact = match self.sim.model() {
+            Model::Truncated(top) => truncated_closed_form(top, &self.omega0, s.t),
+            Model::Reduced(top) => reduced_closed_form(top, &self.omega0, s.t),
+            // Only these two models are ever built by the view.
+            _ => return Real::NAN,
+        };
+        (s.omega_vec() - exact).norm()
+    }
+}
+
+/// The symmetry axis O·e₃ in the lab frame: the third column of O.
+fn axis_of(s: &Sample) -> [Real; 3] {
+    let r = &s.rotation;
+    [r[0][2], r[1][2], r[2][2]]
+}
+
+fn push_trail(trail: &mut VecDeque<[Real; 3]>, p: [Real; 3], spacing: Real) {
+    let far = trail.back().is_none_or(|q| {
+        let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() > spacing
+    });
+    if far {
+        if trail.len() == TRAIL_POINTS {
+            trail.pop_front();
+        }
+        trail.push_back(p);
+    }
+}
+
+/// The whole state of the live view.
+#[derive(Clone, Debug)]
+pub struct App {
+    settings: Settings,
+    columns: [Column; 2],
+    view: View,
+    mode: Mode,
+    paused: bool,
+    ticks: u64,
+    /// Model time owed, in thousandths of τ times nanoseconds of wall time.
+    backlog: u128,
+    message: Option<Message>,
+}
+
+impl App {
+    /// Start both models from `settings` at t = 0, running.
+    pub fn new(settings: Settings) -> Result<Self, String> {
+        Ok(Self {
+            columns: Self::columns_for(&settings)?,
+            settings,
+            view: View {
+                log_time: false,
+                selected: 0,
+            },
+            mode: Mode::Normal,
+            paused: false,
+            ticks: 0,
+            backlog: 0,
+            message: None,
+        })
+    }
+
+    fn columns_for(settings: &Settings) -> Result<[Column; 2], String> {
+        Ok([
+            Column::new(
+                Model::Truncated(settings.top),
+                settings.method,
+                settings.omega0,
+            )?,
+            Column::new(
+                Model::Reduced(settings.top),
+                settings.method,
+                settings.omega0,
+            )?,
+        ])
+    }
+
+    /// The parameters.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// The truncated (0) and reduced (1) columns.
+    pub fn columns(&self) -> &[Column; 2] {
+        &self.columns
+    }
+
+    /// What the view shows.
+    pub fn view(&self) -> &View {
+        &self.view
+    }
+
+    /// The mode.
+    pub fn mode(&self) -> &Mode {
+        &self.mode
+    }
+
+    /// True while paused.
+    pub fn paused(&self) -> bool {
+        self.paused
+    }
+
+    /// True once quit was asked for.
+    pub fn should_quit(&self) -> bool {
+        self.mode == Mode::Quitting
+    }
+
+    /// The message under the header, if any.
+    pub fn message(&self) -> Option<&Message> {
+        self.message.as_ref()
+    }
+
+    /// Model steps taken since the last (re)start.
+    pub fn ticks(&self) -> u64 {
+        self.ticks
+    }
+
+    /// Model time, ticks·Δt, in τ.
+    pub fn time(&self) -> Real {
+        self.ticks as Real * TICK
+    }
+
+    /// Turn elapsed wall-clock time into whole model steps: the time is
+    /// accumulated (times the warp) into a backlog, and every whole [`TICK`]
+    /// of it is stepped. Returns the number of steps taken. Nothing happens
+    /// while paused.
+    ///
+    /// NOTE: the backlog is kept in integers (nanoseconds × thousandths of
+    /// τ per second), so the number of steps after a total wall time W is
+    /// exactly ⌊W·warp/Δt⌋ however W was cut into frames: the models do not
+    /// depend on the frame rate, not even by one step of rounding.
+    pub fn advance_wall(&mut self, elapsed: Duration) -> u64 {
+        if self.paused {
+            self.backlog = 0;
+            return 0;
+        }
+        let warp = (self.settings.warp() * 1000.0).round() as u128;
+        let per_tick = TICK_MILLI_TAU * 1_000_000_000;
+        // What is left over is always less than one tick, so a frame shorter
+        // than MAX_LAG is never cut, at any warp.
+        let cap = MAX_LAG.as_nanos() * warp + per_tick;
+        self.backlog = (self.backlog + elapsed.as_nanos() * warp).min(cap);
+        let n = (self.backlog / per_tick) as u64;
+        self.backlog %= per_tick;
+        self.advance_ticks(n);
+        n
+    }
+
+    /// Advance both models by `n` model steps of [`TICK`].
+    pub fn advance_ticks(&mut self, n: u64) {
+        for _ in 0..n {
+            self.ticks += 1;
+            let t = self.time();
+            for column in &mut self.columns {
+                column.advance(self.ticks, t);
+            }
+        }
+    }
+
+    /// Restart both models from the settings, keeping the view and the pause.
+    fn restart(&mut self) {
+        // Settings are validated before they are stored, so this cannot fail;
+        // if it ever did, the old models keep running and the reason is shown.
+        match Self::columns_for(&self.settings) {
+            Ok(columns) => {
+                self.columns = columns;
+                self.ticks = 0;
+                self.backlog = 0;
+            }
+            Err(e) => self.refuse(e),
+        }
+    }
+
+    fn inform(&mut self, text: impl Into<String>) {
+        self.message = Some(Message {
+            text: text.into(),
+            is_error: false,
+        });
+    }
+
+    fn refuse(&mut self, text: impl Into<String>) {
+        self.message = Some(Message {
+            text: text.into(),
+            is_error: true,
+        });
+    }
+
+    /// Try new settings: on success restart both models, else keep the old
+    /// ones and say why.
+    fn change(&mut self, candidate: Result<Settings, String>, what: String) -> bool {
+        match candidate.and_then(|s| Self::columns_for(&s).map(|c| (s, c))) {
+            Ok((settings, columns)) => {
+                self.settings = settings;
+                self.columns = columns;
+                self.ticks = 0;
+                self.backlog = 0;
+                self.inform(format!("{what}: both models restarted"));
+                true
+            }
+            Err(e) => {
+                self.refuse(format!("refused: {e}"));
+                false
+            }
+        }
+    }
+
+    /// Apply one command: the only place the state changes (besides the clock).
+    pub fn apply(&mut self, command: Command) {
+        self.message = None;
+        match command {
+            Command::Quit => self.mode = Mode::Quitting,
+            Command::ToggleHelp => {
+                self.mode = match self.mode {
+                    Mode::Help => Mode::Normal,
+                    _ => Mode::Help,
+                }
+            }
+            Command::TogglePause => {
+                self.paused = !self.paused;
+                self.backlog = 0;
+                if self.paused {
+                    self.inform(format!("paused: . or → steps Δt = {TICK}τ, space resumes"));
+                }
+            }
+            Command::Step => {
+                if self.paused {
+                    self.advance_ticks(1);
+                } else {
+                    self.refuse("stepping works while paused: press space first");
+                }
+            }
+            Command::Faster | Command::Slower => {
+                let faster = command == Command::Faster;
+                let next = if faster {
+                    self.settings
+                        .warp
+                        .checked_add(1)
+                        .filter(|i| *i < WARPS.len())
+                } else {
+                    self.settings.warp.checked_sub(1)
+                };
+                match next {
+                    Some(i) => {
+                        self.settings.warp = i;
+                        self.backlog = 0;
+                        self.inform(format!("warp {} τ/s", WARPS[i]));
+                    }
+                    None => self.refuse(format!(
+                        "the warp is already at its {} ({} τ/s)",
+                        if faster { "fastest" } else { "slowest" },
+                        self.settings.warp()
+                    )),
+                }
+            }
+            Command::Reset => {
+                self.restart();
+                self.inform("both models restarted at t = 0");
+            }
+            Command::RatioDown | Command::RatioUp => {
+                let sign = if command == Command::RatioUp {
+                    1.0
+                } else {
+                    -1.0
+                };
+                // NOTE: stay on the grid of RATIO_STEP so that repeated presses
+                // land on 0.4 and 0.5, not on 0.49999999999999994.
+                let grid = (self.settings.ratio() / RATIO_STEP).round() + sign;
+                let ratio = grid * RATIO_STEP;
+                let ratio = (ratio * 1e12).round() / 1e12;
+                let candidate = SymmetricTop::new(ratio, 1.0)
+                    .map(|top| Settings {
+                        top,
+                        ..self.settings
+                    })
+                    .map_err(|e| e.to_string());
+                self.change(candidate, format!("I₃/I₁ = {ratio}"));
+            }
+            Command::CycleMethod => {
+                let method = self.settings.method.next();
+                let candidate = Ok(Settings {
+                    method,
+                    ..self.settings
+                });
+                self.change(candidate, format!("method {}", method.name()));
+            }
+            Command::ToggleLogTime => self.view.log_time = !self.view.log_time,
+            Command::SelectPrevious => self.view.selected = (self.view.selected + 2) % 3,
+            Command::SelectNext => self.view.selected = (self.view.selected + 1) % 3,
+            Command::StartEdit => {
+                let component = self.view.selected;
+                self.mode = Mode::Edit {
+                    component,
+                    buffer: fmt_exact(self.settings.omega0[component]),
+                    pristine: true,
+                };
+                self.inform(edit_hint(component));
+            }
+            Command::Input(c) => {
+                if let Mode::Edit {
+                    buffer,
+                    component,
+                    pristine,
+                } = &mut self.mode
+                {
+                    if *pristine {
+                        buffer.clear();
+                        *pristine = false;
+                    }
+                    if buffer.len() < 32 {
+                        buffer.push(c);
+                    }
+                    let hint = edit_hint(*component);
+                    self.inform(hint);
+                }
+            }
+            Command::Backspace => {
+                if let Mode::Edit {
+                    buffer,
+                    component,
+                    pristine,
+                } = &mut self.mode
+                {
+                    *pristine = false;
+                    buffer.pop();
+                    let hint = edit_hint(*component);
+                    self.inform(hint);
+                }
+            }
+            Command::NudgeUp | Command::NudgeDown => {
+                if let Mode::Edit {
+                    buffer,
+                    component,
+                    pristine,
+                } = &mut self.mode
+                {
+                    let component = *component;
+                    match parse_number(buffer) {
+                        Ok(x) => {
+                            let d = if command == Command::NudgeUp {
+                                NUDGE
+                            } else {
+                                -NUDGE
+                            };
+                            let mut y = x + d;
+                            // NOTE: snap to the grid of NUDGE (0.1 + 0.01 would
+                            // print as 0.11000000000000001), where the grid is
+                            // finer than a double's spacing.
+                            if y.abs() < 1e6 {
+                                y = ((y / NUDGE).round() * NUDGE * 1e6).round() / 1e6;
+                            }
+                            *buffer = fmt_exact(y);
+                            *pristine = false;
+                            self.inform(edit_hint(component));
+                        }
+                        Err(e) => self.refuse(format!("refused: {e}")),
+                    }
+                }
+            }
+            Command::Commit => {
+                if let Mode::Edit {
+                    component, buffer, ..
+                } = &self.mode
+                {
+                    let component = *component;
+                    let value = parse_number(buffer).map_err(|e| {
+                        if buffer.trim().is_empty() {
+                            "type a number first".to_string()
+                        } else {
+                            e
+                        }
+                    });
+                    let candidate = value.and_then(|x| {
+                        let mut omega0 = self.settings.omega0;
+                        omega0[component] = x;
+                        check_omega0(omega0).map(|_| Settings {
+                            omega0,
+                            ..self.settings
+                        })
+                    });
+                    let what = format!("Ω{}₀ = {}", SUBSCRIPTS[component], buffer.trim());
+                    if self.change(candidate, what) {
+                        self.mode = Mode::Normal;
+                    }
+                }
+            }
+            Command::Cancel => {
+                if matches!(self.mode, Mode::Edit { .. }) {
+                    self.mode = Mode::Normal;
+                    self.inform("edit cancelled");
+                }
+            }
+        }
+    }
+}
+
+/// A parameter as the user would type it: the shortest text that parses
+/// back to the same double (`0.1`, `1e-200`, never 200 zeros).
+pub fn fmt_exact(x: Real) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 12 {
+        plain
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// Subscript digits for Ω₁, Ω₂, Ω₃.
+pub const SUBSCRIPTS: [char; 3] = ['₁', '₂', '₃'];
+
+fn edit_hint(component: usize) -> String {
+    format!(
+        "editing Ω{}₀: type a number, ↑/↓ ±{NUDGE}, Enter applies, Esc cancels",
+        SUBSCRIPTS[component]
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn paper_frame_puts_lab_z_along_l0() {
+        for omega0 in [[0.0, 0.1, 0.2], [0.3, -0.2, 0.05], [0.1, 0.0, -0.4]] {
+            for ratio in [0.4, 1.3, 2.0] {
+                let top = SymmetricTop::new(ratio, 1.0).unwrap();
+                let o = paper_frame(&top, omega0).to_rotation();
+                let l_lab = o * top.inertia().component_mul(&Vec3::from(omega0));
+                assert_relative_eq!(l_lab.x, 0.0, epsilon = 1e-15);
+                assert_relative_eq!(l_lab.y, 0.0, epsilon = 1e-15);
+                assert!(l_lab.z > 0.0);
+            }
+        }
+    }
+
+    #[test]
+    fn tick_constants_agree() {
+        assert_eq!(TICK_MILLI_TAU as Real / 1000.0, TICK);
+        for w in WARPS {
+            assert_eq!(
+                (w * 1000.0).round() / 1000.0,
+                w,
+                "warps are whole thousandths"
+            );
+        }
+    }
+
+    #[test]
+    fn wall_clock_becomes_whole_ticks_at_any_frame_rate() {
+        // 0.2 s at 10 τ/s is 20 ticks, in one frame or in six uneven ones.
+        let mut one = App::new(Settings::default()).unwrap();
+        let mut many = one.clone();
+        one.advance_wall(Duration::from_millis(200));
+        for ms in [33, 34, 33, 50, 17, 33] {
+            many.advance_wall(Duration::from_millis(ms));
+        }
+        assert_eq!(one.ticks(), 20);
+        assert_eq!(many.ticks(), 20);
+        // The models only ever see t = k·Δt, so equal tick counts give equal bits.
+        assert_eq!(one.columns()[1].current(), many.columns()[1].current());
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn any_cut_of_the_wall_clock_gives_the_same_ticks(
+            frames in proptest::collection::vec(0u64..200_000_000, 1..40),
+            warp in 0..WARPS.len(),
+        ) {
+            let settings = Settings { warp, ..Settings::default() };
+            let mut app = App::new(settings).unwrap();
+            // Frames shorter than MAX_LAG: the cap never drops anything.
+            let total: u64 = frames.iter().sum();
+            for ns in &frames {
+                app.advance_wall(Duration::from_nanos(*ns));
+            }
+            let expected = u128::from(total) * (WARPS[warp] * 1000.0).round() as u128
+                / (TICK_MILLI_TAU * 1_000_000_000);
+            proptest::prop_assert_eq!(u128::from(app.ticks()), expected);
+        }
+    }
+
+    #[test]
+    fn backlog_is_capped() {
+        let mut app = App::new(Settings::default()).unwrap();
+        app.advance_wall(Duration::from_secs(100));
+        // At most MAX_LAG of wall time (0.25 s · 10 τ/s = 2.5τ) plus one
+        // tick is stepped.
+        assert_eq!(app.ticks(), 26);
+    }
+}

@@ -1,0 +1,301 @@
+//! The layout of the screen. Drawing only reads the [`App`].
+//!
+//! ```text
+//! ┌ header: t, running/paused, warp, Δt; I₃/I₁, Ω₀, method; message ┐
+//! ├ truncated (4.2)–(4.4) ─────────┬ reduced (4.12)–(4.14) ──────────┤
+//! │ Ω₁ Ω₂ Ω₃ Ω⊥ against t          │ Ω₁ Ω₂ Ω₃ Ω⊥ against t           │
+//! │ hodograph │ top in space       │ hodograph │ top in space        │
+//! │ live numbers                   │ live numbers                    │
+//! └ footer: the keys ──────────────┴─────────────────────────────────┘
+//! ```
+
+use super::app::{App, Mode, SUBSCRIPTS, TICK, fmt_exact};
+use super::theme;
+use super::widgets::{OmegaSeries, hodograph, numbers, top_in_space};
+use ratatui::Frame;
+use ratatui::layout::{Alignment, Constraint, Layout, Rect};
+use ratatui::text::{Line, Span, Text};
+use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Wrap};
+
+/// The smallest terminal the layout fits, in columns.
+pub const MIN_WIDTH: u16 = 80;
+/// The smallest terminal the layout fits, in rows.
+pub const MIN_HEIGHT: u16 = 24;
+
+/// Above this width the numbers get their long labels.
+const WIDE: u16 = 110;
+
+/// Draw the whole screen for the current state.
+pub fn draw(frame: &mut Frame, app: &App) {
+    let area = frame.area();
+    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+        too_small(frame, area);
+        return;
+    }
+    let [header, body, footer] = Layout::vertical([
+        Constraint::Length(3),
+        Constraint::Fill(1),
+        Constraint::Length(1),
+    ])
+    .areas(area);
+    draw_header(frame, header, app);
+    let halves: [Rect; 2] =
+        Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).areas(body);
+    for (i, half) in halves.into_iter().enumerate() {
+        draw_column(frame, half, app, i);
+    }
+    draw_footer(frame, footer);
+    if *app.mode() == Mode::Help {
+        draw_help(frame, area);
+    }
+}
+
+fn too_small(frame: &mut Frame, area: Rect) {
+    let text = Text::from(vec![
+        Line::from(Span::styled("Please enlarge the terminal", theme::error())),
+        Line::from(format!(
+            "spintop needs at least {MIN_WIDTH}×{MIN_HEIGHT}; this one is {}×{}.",
+            area.width, area.height
+        )),
+        Line::from("q quits."),
+    ]);
+    // Three lines, or about eight once a narrow screen wraps them.
+    let height = if area.width >= 60 { 3 } else { 8 }.min(area.height);
+    let [_, middle, _] = Layout::vertical([
+        Constraint::Fill(1),
+        Constraint::Length(height),
+        Constraint::Fill(1),
+    ])
+    .areas(area);
+    frame.render_widget(
+        Paragraph::new(text)
+            .alignment(Alignment::Center)
+            .wrap(Wrap { trim: true }),
+        middle,
+    );
+}
+
+fn sep() -> Span<'static> {
+    Span::styled("  │  ", theme::frame())
+}
+
+fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
+    let settings = app.settings();
+    let status = if app.paused() {
+        " paused "
+    } else {
+        " running "
+    };
+    let first = Line::from(vec![
+        Span::styled(" spintop ", theme::title()),
+        sep(),
+        Span::styled("t = ", theme::label()),
+        Span::styled(format!("{:.2}τ", app.time()), theme::value()),
+        Span::raw("  "),
+        Span::styled(status, theme::status(app.paused())),
+        sep(),
+        Span::styled("warp ", theme::label()),
+        Span::styled(format!("{} τ/s", settings.warp()), theme::value()),
+        sep(),
+        Span::styled("step Δt ", theme::label()),
+        Span::styled(format!("{TICK}τ"), theme::value()),
+        sep(),
+        Span::styled("units: τ, 1/τ, I₁ = 1", theme::label()),
+    ]);
+    let mut second = vec![
+        Span::styled(" I₃/I₁ = ", theme::label()),
+        Span::styled(fmt_exact(settings.ratio()), theme::value()),
+        sep(),
+        Span::styled("Ω₀ = (", theme::label()),
+    ];
+    let omega0 = settings.omega0();
+    for (i, w) in omega0.iter().enumerate() {
+        if i > 0 {
+            second.push(Span::styled(", ", theme::label()));
+        }
+        let text = match app.mode() {
+            Mode::Edit {
+                component, buffer, ..
+            } if *component == i => format!("{buffer}▏"),
+            _ => fmt_exact(*w),
+        };
+        let style = if i == app.view().selected {
+            theme::selected()
+        } else {
+            theme::value()
+        };
+        second.push(Span::styled(text, style));
+    }
+    second.extend([
+        Span::styled(")/τ", theme::label()),
+        sep(),
+        Span::styled("method ", theme::label()),
+        Span::styled(settings.method().name(), theme::value()),
+        sep(),
+        Span::styled(
+            if app.view().log_time {
+                "log-time view"
+            } else {
+                "last 200τ"
+            },
+            theme::label(),
+        ),
+    ]);
+    let third = match app.message() {
+        Some(m) => Line::from(Span::styled(
+            format!(" {}", m.text),
+            if m.is_error {
+                theme::error()
+            } else {
+                theme::info()
+            },
+        )),
+        None => Line::from(Span::styled(
+            format!(
+                " Left: no Schott term, loss law (2.1). Right: Schott term kept, torque (2.2). \
+                 Ω{}₀ selected (↑/↓, Enter edits). ? help",
+                SUBSCRIPTS[app.view().selected]
+            ),
+            theme::label(),
+        )),
+    };
+    frame.render_widget(Paragraph::new(vec![first, Line::from(second), third]), area);
+}
+
+fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
+    let column = &app.columns()[i];
+    let (name, equations, gist) = match i {
+        0 => ("truncated", "(4.2)–(4.4)", "no Schott term"),
+        _ => ("reduced", "(4.12)–(4.14)", "Schott term kept"),
+    };
+    let mut title = vec![
+        Span::styled(format!(" {name} "), theme::title()),
+        Span::styled(format!("{equations}: {gist} "), theme::label()),
+    ];
+    if column.failure().is_some() {
+        title.push(Span::styled("stopped ", theme::error()));
+    }
+    let block = Block::bordered()
+        .border_type(BorderType::Rounded)
+        .border_style(theme::frame())
+        .title(Line::from(title));
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    // NOTE: on a short terminal the last line of numbers (Ω itself, shown in
+    // the chart anyway) gives its row to the pictures; a failure still shows.
+    let roomy = inner.height >= 24 || column.failure().is_some();
+    let [chart_area, pictures, numbers_area] = Layout::vertical([
+        Constraint::Fill(1),
+        Constraint::Fill(1),
+        Constraint::Length(if roomy { 6 } else { 5 }),
+    ])
+    .areas(inner);
+    let series = OmegaSeries::new(column, app.view().log_time);
+    frame.render_widget(series.chart(), chart_area);
+    let [hodo_area, space_area] =
+        Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)])
+            .areas(pictures);
+    frame.render_widget(hodograph(column, hodo_area), hodo_area);
+    frame.render_widget(top_in_space(column, space_area), space_area);
+    let [rows, last] =
+        Layout::vertical([Constraint::Length(5), Constraint::Fill(1)]).areas(numbers_area);
+    let [left, right] =
+        Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).areas(rows);
+    let (l, r, bottom) = numbers(app, column, area.width >= WIDE / 2);
+    frame.render_widget(l, left);
+    frame.render_widget(r, right);
+    frame.render_widget(bottom, last);
+}
+
+/// The keys of the footer, in order.
+const KEYS: [(&str, &str); 10] = [
+    ("?", "help"),
+    ("q", "quit"),
+    ("space", "pause"),
+    (".", "step"),
+    ("+/-", "warp"),
+    ("r", "reset"),
+    ("[ ]", "I₃/I₁"),
+    ("↑↓ Enter", "edit Ω₀"),
+    ("m", "method"),
+    ("l", "log t"),
+];
+
+fn draw_footer(frame: &mut Frame, area: Rect) {
+    let mut spans = vec![Span::raw(" ")];
+    for (key, what) in KEYS {
+        spans.push(Span::styled(key, theme::key()));
+        spans.push(Span::styled(format!(" {what}  "), theme::label()));
+    }
+    frame.render_widget(Paragraph::new(Line::from(spans)), area);
+}
+
+/// The help overlay's keys and explanations.
+const HELP_KEYS: [(&str, &str); 11] = [
+    ("space", "pause / resume"),
+    (". or →", "one step of Δt while paused"),
+    ("+ / -", "time warp (τ per wall-clock second)"),
+    ("r", "restart both models at t = 0"),
+    (
+        "[ / ]",
+        "I₃/I₁ down / up by 0.1 (a rigid body has 0 < I₃/I₁ ≤ 2)",
+    ),
+    ("↑ / ↓", "select a component of Ω₀"),
+    (
+        "Enter",
+        "edit it: type, ↑/↓ ±0.01, Enter applies, Esc cancels",
+    ),
+    ("m", "method: closed form, RK4, DP5, DOP853"),
+    ("l", "log-time charts (the whole run) or the last 200τ"),
+    ("?", "this help; any key closes it"),
+    ("q Esc ^C", "quit"),
+];
+
+fn draw_help(frame: &mut Frame, area: Rect) {
+    let mut lines = vec![
+        Line::from(Span::styled(
+            "Duviryak's polarized spinning top, two ways",
+            theme::title(),
+        )),
+        Line::from("Left: truncated (4.2)–(4.4), loss law (2.1) without the Schott term."),
+        Line::from("Right: reduced (4.12)–(4.14), Abraham–Lorentz torque (2.2) with it."),
+        Line::from("Both start from the same I₃/I₁ and Ω₀; the lab z axis is along L₀."),
+        Line::from(""),
+    ];
+    for (key, what) in HELP_KEYS {
+        lines.push(Line::from(vec![
+            Span::styled(format!("{key:<10}"), theme::key()),
+            Span::raw(what),
+        ]));
+    }
+    lines.extend([
+        Line::from(""),
+        Line::from("Panels: Ω(t) in the body frame; the hodograph of Ω (body frame, with"),
+        Line::from("its shadow on the Ω₁Ω₂ plane); the top in space: axis e₃, L, and the"),
+        Line::from("trail of the axis tip, which traces the precession cone. error is"),
+        Line::from("|Ω − Ω_closed form| at the same t, from (4.7) and (4.15)–(4.16)."),
+    ]);
+    let width = 76.min(area.width);
+    let height = (lines.len() as u16 + 2).min(area.height);
+    let [_, h, _] = Layout::horizontal([
+        Constraint::Fill(1),
+        Constraint::Length(width),
+        Constraint::Fill(1),
+    ])
+    .areas(area);
+    let [_, popup, _] = Layout::vertical([
+        Constraint::Fill(1),
+        Constraint::Length(height),
+        Constraint::Fill(1),
+    ])
+    .areas(h);
+    frame.render_widget(Clear, popup);
+    frame.render_widget(
+        Paragraph::new(lines).block(
+            Block::bordered()
+                .border_type(BorderType::Rounded)
+                .title(Span::styled(" help ", theme::title())),
+        ),
+        popup,
+    );
+}

@@ -1,0 +1,512 @@
+//! The panels of one column: the Ω(t) chart, the hodograph, the top in space
+//! and the live numbers. Each is built from the state and only reads it.
+//!
+//! The two 3-D panels use a fixed oblique camera: a vector p is drawn at
+//! (r·p, u·p), with r and u the camera's right and up directions. This is
+//! drawing, not physics: the vectors themselves (Ω, O·e₃, L) come from the
+//! [`crate::sim::Sample`]s.
+
+use super::app::{App, Column, Method, Point, TICK, WINDOW};
+use super::theme;
+use crate::math::Real;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Style};
+use ratatui::symbols::Marker;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::canvas::{Canvas, Context, Line as CanvasLine, Points};
+use ratatui::widgets::{Axis, Block, Borders, Chart, Dataset, GraphType, Paragraph};
+
+/// A number for the screen: four significant digits, an exponent outside
+/// [1e-3, 1e5), "—" when undefined.
+pub fn fmt_num(x: Real) -> String {
+    if !x.is_finite() {
+        return "—".into();
+    }
+    let a = x.abs();
+    if a == 0.0 {
+        "0".into()
+    } else if (1e-3..1e5).contains(&a) {
+        let digits = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
+        format!("{x:.digits$}")
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+/// The smallest of 1, 2, 2.5, 5 times a power of ten that is at least `x`
+/// (1 for zero or non-finite `x`): a round axis bound.
+pub fn nice_ceiling(x: Real) -> Real {
+    if !(x.is_finite() && x > 0.0) {
+        return 1.0;
+    }
+    let p = (10.0 as Real).powf(x.log10().floor());
+    [1.0, 2.0, 2.5, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|b| *b >= x * (1.0 - 1e-12))
+        .unwrap_or(10.0 * p)
+}
+
+/// The four curves of one Ω(t) chart and their axes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OmegaSeries {
+    /// Ω₁, Ω₂, Ω₃, Ω⊥ against t (or log₁₀ t).
+    pub curves: [Vec<(f64, f64)>; 4],
+    /// The x range.
+    pub x_bounds: [f64; 2],
+    /// The y range, symmetric about zero.
+    pub y_bounds: [f64; 2],
+    /// The x axis is log₁₀ t.
+    pub log_time: bool,
+}
+
+impl OmegaSeries {
+    /// The curves of `column`: the last [`WINDOW`] (scrolling) or the whole run
+    /// on a log₁₀ t axis.
+    pub fn new(column: &Column, log_time: bool) -> Self {
+        let now = Point::from(column.current());
+        let (points, x_bounds): (Vec<Point>, [f64; 2]) = if log_time {
+            let lo = TICK.log10();
+            let hi = now.t.max(TICK).log10().max(lo + 2.0);
+            let mut points: Vec<Point> = column.log_points().to_vec();
+            if now.t > 0.0 && points.last().is_none_or(|p| p.t < now.t) {
+                points.push(now);
+            }
+            (points, [lo, hi])
+        } else {
+            let hi = now.t.max(WINDOW);
+            let lo = hi - WINDOW;
+            let mut points: Vec<Point> = column
+                .recent()
+                .iter()
+                .filter(|p| p.t >= lo)
+                .copied()
+                .collect();
+            if points.last().is_none_or(|p| p.t < now.t) {
+                points.push(now);
+            }
+            (points, [lo, hi])
+        };
+        let x = |p: &Point| if log_time { p.t.log10() } else { p.t };
+        let curve = |f: &dyn Fn(&Point) -> f64| points.iter().map(|p| (x(p), f(p))).collect();
+        let y = nice_ceiling(column.scale() * 1.05);
+        Self {
+            curves: [
+                curve(&|p| p.omega[0]),
+                curve(&|p| p.omega[1]),
+                curve(&|p| p.omega[2]),
+                curve(&|p| p.omega_perp),
+            ],
+            x_bounds,
+            y_bounds: [-y, y],
+            log_time,
+        }
+    }
+
+    /// The chart: Braille lines, labelled axes, the curve names in the title.
+    pub fn chart(&self) -> Chart<'_> {
+        let names = ["Ω₁", "Ω₂", "Ω₃", "Ω⊥"];
+        let datasets = self
+            .curves
+            .iter()
+            .zip(names)
+            .zip(theme::OMEGA)
+            .map(|((data, name), color)| {
+                Dataset::default()
+                    .name(name)
+                    .marker(Marker::Braille)
+                    .graph_type(GraphType::Line)
+                    .style(Style::new().fg(color))
+                    .data(data)
+            })
+            .collect();
+        let mut title = vec![Span::styled("Ω(t) [1/τ]: ", theme::title())];
+        for (name, color) in names.iter().zip(theme::OMEGA) {
+            title.push(Span::styled(format!("━{name} "), Style::new().fg(color)));
+        }
+        let [lo, hi] = self.x_bounds;
+        let (x_title, x_labels) = if self.log_time {
+            let mid = 0.5 * (lo + hi);
+            (
+                "log t",
+                vec![
+                    fmt_axis((10.0 as Real).powf(lo)),
+                    fmt_axis((10.0 as Real).powf(mid)),
+                    fmt_axis((10.0 as Real).powf(hi)),
+                ],
+            )
+        } else {
+            (
+                "t/τ",
+                vec![
+                    format!("{lo:.0}"),
+                    format!("{:.0}", 0.5 * (lo + hi)),
+                    format!("{hi:.0}"),
+                ],
+            )
+        };
+        let [ylo, yhi] = self.y_bounds;
+        Chart::new(datasets)
+            .block(Block::new().title(Line::from(title)))
+            .legend_position(None)
+            .x_axis(
+                Axis::default()
+                    .title(Span::styled(x_title, theme::label()))
+                    .style(theme::frame())
+                    .bounds(self.x_bounds)
+                    .labels(
+                        x_labels
+                            .into_iter()
+                            .map(|l| Span::styled(l, theme::label())),
+                    ),
+            )
+            .y_axis(
+                Axis::default()
+                    .style(theme::frame())
+                    .bounds(self.y_bounds)
+                    .labels(
+                        [fmt_axis(ylo), "0".into(), fmt_axis(yhi)]
+                            .into_iter()
+                            .map(|l| Span::styled(l, theme::label())),
+                    ),
+            )
+    }
+}
+
+/// A fixed oblique camera: azimuth and elevation of the viewer, in radians.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    right: [f64; 3],
+    up: [f64; 3],
+}
+
+impl Camera {
+    /// Look at the origin from azimuth `az` (from +x toward +y) and elevation
+    /// `el` above the xy plane; z points up on the screen.
+    pub fn new(az: f64, el: f64) -> Self {
+        let (sa, ca) = az.sin_cos();
+        let (se, ce) = el.sin_cos();
+        Self {
+            right: [-sa, ca, 0.0],
+            up: [-se * ca, -se * sa, ce],
+        }
+    }
+
+    /// The screen position of `p`.
+    pub fn project(&self, p: [f64; 3]) -> (f64, f64) {
+        let dot = |a: [f64; 3]| a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
+        (dot(self.right), dot(self.up))
+    }
+}
+
+/// The camera of the hodograph (body frame: Ω₃ up).
+pub fn body_camera() -> Camera {
+    Camera::new(35f64.to_radians(), 30f64.to_radians())
+}
+
+/// The camera of the top in space (lab frame: z, the direction of L₀, up).
+pub fn lab_camera() -> Camera {
+    Camera::new(-60f64.to_radians(), 15f64.to_radians())
+}
+
+/// x bounds for a y range, so that the picture keeps its proportions in a
+/// canvas of `area` (a Braille dot is about as wide as it is tall; a cell is
+/// 2 dots wide and 4 tall, and about twice as tall as wide).
+fn x_bounds_for(area: Rect, y: [f64; 2]) -> [f64; 2] {
+    let cells_w = f64::from(area.width.max(1));
+    let cells_h = f64::from(area.height.max(1));
+    let half = 0.5 * (y[1] - y[0]) * cells_w / (2.0 * cells_h);
+    [-half, half]
+}
+
+/// The long title when it fits in `area`'s width, else the short one.
+fn fitting<'a>(area: Rect, long: &'a str, short: &'a str) -> &'a str {
+    if usize::from(area.width) >= Span::raw(long).width() {
+        long
+    } else {
+        short
+    }
+}
+
+fn panel(title: &str) -> Block<'_> {
+    Block::new()
+        .borders(Borders::TOP)
+        .border_style(theme::frame())
+        .title(Span::styled(title, theme::title()))
+}
+
+fn segment(ctx: &mut Context, cam: &Camera, a: [f64; 3], b: [f64; 3], color: Color) {
+    let (x1, y1) = cam.project(a);
+    let (x2, y2) = cam.project(b);
+    ctx.draw(&CanvasLine::new(x1, y1, x2, y2, color));
+}
+
+/// The hodograph of Ω in the body frame (a projection of the left panels of
+/// the paper's Figures 1 and 2), with its shadow on the Ω₁Ω₂ plane. Ω is
+/// drawn in units of |Ω₀|.
+pub fn hodograph(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut Context<'_>)> {
+    let cam = body_camera();
+    let scale = column.scale();
+    let down = column.sim().initial().omega.z < 0.0;
+    let y = if down { [-1.25, 0.6] } else { [-0.6, 1.25] };
+    let scaled = |p: &[f64; 3]| [p[0] / scale, p[1] / scale, p[2] / scale];
+    let trail: Vec<(f64, f64)> = column
+        .omega_trail()
+        .iter()
+        .map(|p| cam.project(scaled(p)))
+        .collect();
+    let shadow: Vec<(f64, f64)> = column
+        .omega_trail()
+        .iter()
+        .map(|p| cam.project([p[0] / scale, p[1] / scale, 0.0]))
+        .collect();
+    let now = scaled(&column.current().omega);
+    let inner = panel("").inner(area);
+    let z = if down { -1.0 } else { 1.0 };
+    let title = fitting(area, "hodograph of Ω (body frame)", "hodograph of Ω");
+    Canvas::default()
+        .block(panel(title))
+        .marker(Marker::Braille)
+        .x_bounds(x_bounds_for(inner, y))
+        .y_bounds(y)
+        .paint(move |ctx| {
+            let o = [0.0; 3];
+            for (axis, name) in [
+                ([1.0, 0.0, 0.0], "Ω₁"),
+                ([0.0, 1.0, 0.0], "Ω₂"),
+                ([0.0, 0.0, z], "Ω₃"),
+            ] {
+                segment(ctx, &cam, o, axis, theme::GUIDE);
+                let (x, y) = cam.project([axis[0] * 1.1, axis[1] * 1.1, axis[2] * 1.1]);
+                ctx.print(x, y, Span::styled(name, theme::label()));
+            }
+            ctx.draw(&Points::new(&shadow, theme::GUIDE));
+            ctx.draw(&Points::new(&trail, theme::TRAIL));
+            segment(ctx, &cam, o, now, Color::White);
+        })
+}
+
+/// The top in space (the right panels of the paper's figures): the symmetry
+/// axis O·e₃, the direction of L, and the trail of the axis tip, which traces
+/// the precession cone. The lab z axis is the direction of L₀.
+pub fn top_in_space(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut Context<'_>)> {
+    let cam = lab_camera();
+    let y = [-1.15, 1.35];
+    let s = column.current();
+    let r = &s.rotation;
+    let axis = [r[0][2], r[1][2], r[2][2]];
+    let l = s.l_lab;
+    let l_norm = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
+    let l_dir = (l_norm > 0.0).then(|| [l[0] / l_norm, l[1] / l_norm, l[2] / l_norm]);
+    let trail: Vec<(f64, f64)> = column
+        .axis_trail()
+        .iter()
+        .map(|p| cam.project(*p))
+        .collect();
+    let disc: Vec<(f64, f64)> = disc_around(axis, 0.7, 0.3)
+        .into_iter()
+        .map(|p| cam.project(p))
+        .collect();
+    let inner = panel("").inner(area);
+    let title = fitting(area, "the top in space (lab z ∥ L₀)", "top in space");
+    Canvas::default()
+        .block(panel(title))
+        .marker(Marker::Braille)
+        .x_bounds(x_bounds_for(inner, y))
+        .y_bounds(y)
+        .paint(move |ctx| {
+            let o = [0.0; 3];
+            segment(ctx, &cam, [0.0, 0.0, -0.3], [0.0, 0.0, 1.25], theme::GUIDE);
+            segment(ctx, &cam, [-0.4, 0.0, 0.0], [0.4, 0.0, 0.0], theme::GUIDE);
+            segment(ctx, &cam, [0.0, -0.4, 0.0], [0.0, 0.4, 0.0], theme::GUIDE);
+            // The label sits left of the z axis, so L drawn along it stays visible.
+            let (x, y) = cam.project([0.0, 0.0, 1.25]);
+            ctx.print(x - 0.2, y, Span::styled("z", theme::label()));
+            ctx.draw(&Points::new(&trail, theme::TRAIL));
+            if let Some(d) = l_dir {
+                let tip = [1.2 * d[0], 1.2 * d[1], 1.2 * d[2]];
+                segment(ctx, &cam, o, tip, theme::MOMENTUM);
+                let (x, y) = cam.project([1.3 * d[0], 1.3 * d[1], 1.3 * d[2]]);
+                ctx.print(x, y, Span::styled("L", Style::new().fg(theme::MOMENTUM)));
+            }
+            segment(ctx, &cam, o, axis, theme::AXIS);
+            ctx.draw(&Points::new(&disc, theme::AXIS));
+            let (x, y) = cam.project(axis);
+            ctx.print(x, y, Span::styled("e₃", Style::new().fg(theme::AXIS)));
+        })
+}
+
+/// Points on the circle of radius `radius` about the unit vector `axis`, at
+/// `along` on it: the body of the top, seen as a disc perpendicular to its axis.
+fn disc_around(axis: [f64; 3], along: f64, radius: f64) -> Vec<[f64; 3]> {
+    let [a0, a1, a2] = axis;
+    // Any vector not parallel to the axis gives a basis (u, v) of the disc.
+    let h = if a2.abs() < 0.9 {
+        [0.0, 0.0, 1.0]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    let cross = |p: [f64; 3], q: [f64; 3]| {
+        [
+            p[1] * q[2] - p[2] * q[1],
+            p[2] * q[0] - p[0] * q[2],
+            p[0] * q[1] - p[1] * q[0],
+        ]
+    };
+    let u = cross(axis, h);
+    let n = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+    let u = [u[0] / n, u[1] / n, u[2] / n];
+    let v = cross(axis, u);
+    (0..64)
+        .map(|i| {
+            let (s, c) = (f64::from(i) * std::f64::consts::TAU / 64.0).sin_cos();
+            [
+                along * a0 + radius * (c * u[0] + s * v[0]),
+                along * a1 + radius * (c * u[1] + s * v[1]),
+                along * a2 + radius * (c * u[2] + s * v[2]),
+            ]
+        })
+        .collect()
+}
+
+/// `label` padded with spaces to `width` terminal columns (φ̇ and ψ̇ carry a
+/// combining dot that takes no column of its own).
+fn padded(label: &str, width: usize) -> String {
+    let used = Span::raw(label).width();
+    format!("{label}{}", " ".repeat(width.saturating_sub(used)))
+}
+
+/// The live numbers of a column, as two side-by-side blocks of five lines and
+/// a last full-width line (Ω now, or why the model stopped). `wide` selects
+/// the long labels.
+pub fn numbers(
+    app: &App,
+    column: &Column,
+    wide: bool,
+) -> (Paragraph<'static>, Paragraph<'static>, Paragraph<'static>) {
+    let s = column.current();
+    let sim = column.sim();
+    // Labels on the left are short, on the right long ("RHS evals").
+    let (left_width, width) = if wide { (6, 10) } else { (6, 7) };
+    let pair_in = |label: &str, value: String, width: usize| {
+        Line::from(vec![
+            Span::styled(padded(label, width), theme::label()),
+            Span::styled(value, theme::value()),
+        ])
+    };
+    let pair = |label: &str, value: String| pair_in(label, value, width);
+    let left_pair = |label: &str, value: String| pair_in(label, value, left_width);
+    let l = s.l_lab;
+    let l_abs = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
+    let (phi_dot, psi_dot) = match s.euler_rates {
+        Some([phi_dot, _, psi_dot]) => (
+            format!("{}/τ", fmt_num(phi_dot)),
+            format!("{}/τ", fmt_num(psi_dot)),
+        ),
+        // (4.8) divides by sin θ: on the pole only φ̇ + ψ̇ is defined.
+        None => ("— (pole)".into(), "— (pole)".into()),
+    };
+    let tilt = if wide {
+        format!("{} rad ({:.2}°)", fmt_num(s.tilt), s.tilt.to_degrees())
+    } else {
+        format!("{} rad", fmt_num(s.tilt))
+    };
+    let left = vec![
+        left_pair("t", format!("{:.2} τ", s.t)),
+        left_pair("E", fmt_num(s.energy)),
+        left_pair("|L|", fmt_num(l_abs)),
+        left_pair("tilt", tilt),
+        left_pair("φ̇", phi_dot),
+    ];
+    let step = sim.last_step();
+    // NOTE: |Ω − Ω_closed form| at the same t, from the core's (4.7) and
+    // (4.15)–(4.16); zero by construction when Ω is the closed form.
+    let error = if app.settings().method() == Method::ClosedForm {
+        if wide { "0 (closed form)" } else { "0 (exact)" }.to_string()
+    } else if wide {
+        format!("|ΔΩ| = {}/τ", fmt_num(column.closed_form_error()))
+    } else {
+        format!("{}/τ", fmt_num(column.closed_form_error()))
+    };
+    let right = vec![
+        pair("ψ̇", psi_dot),
+        pair("method", sim.method().label().to_string()),
+        pair(
+            "step",
+            if step > 0.0 {
+                format!("{} τ", fmt_num(step))
+            } else {
+                "none".into()
+            },
+        ),
+        pair(
+            if wide { "RHS evals" } else { "evals" },
+            sim.stats().rhs_evals.to_string(),
+        ),
+        pair("error", error),
+    ];
+    let last = match column.failure() {
+        Some(why) => Line::from(Span::styled(format!("stopped: {why}"), theme::error())),
+        None => {
+            let [o1, o2, o3] = s.omega;
+            Line::from(vec![
+                Span::styled(padded("Ω", left_width), theme::label()),
+                Span::styled(
+                    format!(
+                        "({}, {}, {})/τ   Ω⊥ {}/τ",
+                        fmt_num(o1),
+                        fmt_num(o2),
+                        fmt_num(o3),
+                        fmt_num(s.omega_perp)
+                    ),
+                    theme::value(),
+                ),
+            ])
+        }
+    };
+    (
+        Paragraph::new(left),
+        Paragraph::new(right),
+        Paragraph::new(last),
+    )
+}
+
+/// An axis label: the shortest exact form when it is short, else [`fmt_num`].
+pub fn fmt_axis(x: Real) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 6 { plain } else { fmt_num(x) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_formatted_for_reading() {
+        assert_eq!(fmt_num(0.0), "0");
+        assert_eq!(fmt_num(0.128062), "0.1281");
+        assert_eq!(fmt_num(-12.3456), "-12.35");
+        assert_eq!(fmt_num(1234.5), "1234");
+        assert_eq!(fmt_num(3.2e-14), "3.200e-14");
+        assert_eq!(fmt_num(Real::NAN), "—");
+    }
+
+    #[test]
+    fn nice_ceiling_rounds_up_to_a_round_bound() {
+        assert_eq!(nice_ceiling(0.2236 * 1.05), 0.25);
+        assert_eq!(nice_ceiling(0.2), 0.2);
+        assert_eq!(nice_ceiling(3.0), 5.0);
+        assert_eq!(nice_ceiling(0.0), 1.0);
+        assert!((nice_ceiling(7e-30) - 1e-29).abs() < 1e-40);
+    }
+
+    #[test]
+    fn camera_keeps_z_up_and_lengths_in_the_screen_plane() {
+        let cam = Camera::new(0.7, 0.0);
+        let (x, y) = cam.project([0.0, 0.0, 1.0]);
+        assert!((x - 0.0).abs() < 1e-15 && (y - 1.0).abs() < 1e-15);
+        // The viewing direction itself projects to the centre.
+        let (x, y) = cam.project([0.7f64.cos(), 0.7f64.sin(), 0.0]);
+        assert!(x.abs() < 1e-15 && y.abs() < 1e-15);
+    }
+}

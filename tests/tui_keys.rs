@@ -1,0 +1,361 @@
+//! The live view's controls, without a terminal: every key of the issue's
+//! table maps to one `Command` value, and `App::apply` does what the help
+//! says: steps are whole ticks of Δt, parameters are validated (refused with
+//! a message, never a panic), and a change restarts both models from the same
+//! state.
+
+use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use spintop::math::Vec3;
+use spintop::physics::symmetric_top::{SymmetricTop, precession_tilt};
+use spintop::tui::app::{App, Method, Mode, Settings, TICK, WARPS};
+use spintop::tui::{Command, command_for};
+use std::time::Duration;
+
+fn key(code: KeyCode) -> KeyEvent {
+    KeyEvent::new(code, KeyModifiers::NONE)
+}
+
+fn normal(code: KeyCode) -> Option<Command> {
+    command_for(key(code), &Mode::Normal)
+}
+
+fn edit_mode() -> Mode {
+    Mode::Edit {
+        component: 1,
+        buffer: "0.1".into(),
+        pristine: false,
+    }
+}
+
+/// Feed the wall clock as the terminal loop does, in frames of 1/8 s (exact
+/// in binary, so the tick counts below are exact).
+fn run_for(app: &mut App, frames: u32) -> u64 {
+    (0..frames)
+        .map(|_| app.advance_wall(Duration::from_millis(125)))
+        .sum()
+}
+
+fn app() -> App {
+    App::new(Settings::default()).expect("the default settings are valid")
+}
+
+#[test]
+fn every_key_of_the_table_maps_to_its_command() {
+    use Command::*;
+    use KeyCode::*;
+    let table = [
+        (Char(' '), TogglePause),
+        (Char('.'), Step),
+        (Right, Step),
+        (Char('+'), Faster),
+        (Char('='), Faster),
+        (Char('-'), Slower),
+        (Char('r'), Reset),
+        (Char('['), RatioDown),
+        (Char(']'), RatioUp),
+        (Up, SelectPrevious),
+        (Down, SelectNext),
+        (Enter, StartEdit),
+        (Char('m'), CycleMethod),
+        (Char('l'), ToggleLogTime),
+        (Char('?'), ToggleHelp),
+        (Char('q'), Quit),
+        (Esc, Quit),
+    ];
+    for (code, command) in table {
+        assert_eq!(normal(code), Some(command), "{code:?}");
+    }
+    assert_eq!(normal(Char('x')), None);
+    assert_eq!(normal(Left), None);
+}
+
+#[test]
+fn ctrl_c_quits_in_every_mode_and_key_releases_are_ignored() {
+    let ctrl_c = KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL);
+    for mode in [Mode::Normal, Mode::Help, edit_mode()] {
+        assert_eq!(command_for(ctrl_c, &mode), Some(Command::Quit), "{mode:?}");
+    }
+    let mut release = key(KeyCode::Char('q'));
+    release.kind = KeyEventKind::Release;
+    assert_eq!(command_for(release, &Mode::Normal), None);
+    // Other Ctrl chords do nothing (Ctrl-R is not `r`).
+    let ctrl_r = KeyEvent::new(KeyCode::Char('r'), KeyModifiers::CONTROL);
+    assert_eq!(command_for(ctrl_r, &Mode::Normal), None);
+}
+
+#[test]
+fn edit_mode_takes_numbers_arrows_enter_and_esc() {
+    use Command::*;
+    let mode = edit_mode();
+    let cases = [
+        (KeyCode::Char('7'), Some(Input('7'))),
+        (KeyCode::Char('-'), Some(Input('-'))),
+        (KeyCode::Char('e'), Some(Input('e'))),
+        (KeyCode::Char('.'), Some(Input('.'))),
+        (KeyCode::Char('q'), None),
+        (KeyCode::Char(' '), None),
+        (KeyCode::Backspace, Some(Backspace)),
+        (KeyCode::Up, Some(NudgeUp)),
+        (KeyCode::Down, Some(NudgeDown)),
+        (KeyCode::Enter, Some(Commit)),
+        (KeyCode::Esc, Some(Cancel)),
+    ];
+    for (code, command) in cases {
+        assert_eq!(command_for(key(code), &mode), command, "{code:?}");
+    }
+}
+
+#[test]
+fn help_closes_on_any_key_but_q_quits() {
+    assert_eq!(
+        command_for(key(KeyCode::Char('?')), &Mode::Help),
+        Some(Command::ToggleHelp)
+    );
+    assert_eq!(
+        command_for(key(KeyCode::Esc), &Mode::Help),
+        Some(Command::ToggleHelp)
+    );
+    assert_eq!(
+        command_for(key(KeyCode::Char(' ')), &Mode::Help),
+        Some(Command::ToggleHelp)
+    );
+    assert_eq!(
+        command_for(key(KeyCode::Char('q')), &Mode::Help),
+        Some(Command::Quit)
+    );
+}
+
+#[test]
+fn pause_stops_the_clock_and_step_advances_exactly_one_tick() {
+    let mut app = app();
+    run_for(&mut app, 4);
+    assert_eq!(app.ticks(), 50, "0.5 s at 10 τ/s is 5τ = 50 ticks");
+    app.apply(Command::TogglePause);
+    assert!(app.paused());
+    let before = *app.columns()[1].current();
+    assert_eq!(run_for(&mut app, 24), 0);
+    assert_eq!(app.columns()[1].current(), &before);
+    app.apply(Command::Step);
+    assert_eq!(app.ticks(), 51);
+    for column in app.columns() {
+        assert_eq!(column.current().t, 51.0 * TICK);
+    }
+    app.apply(Command::TogglePause);
+    app.apply(Command::Step);
+    assert_eq!(app.ticks(), 51, "no step while running");
+    assert!(app.message().is_some_and(|m| m.is_error));
+}
+
+#[test]
+fn warp_moves_through_the_levels_and_stops_at_the_ends() {
+    let mut app = app();
+    assert_eq!(app.settings().warp(), 10.0);
+    for _ in 0..20 {
+        app.apply(Command::Faster);
+    }
+    assert_eq!(app.settings().warp(), WARPS[WARPS.len() - 1]);
+    assert!(app.message().is_some_and(|m| m.is_error));
+    for _ in 0..20 {
+        app.apply(Command::Slower);
+    }
+    assert_eq!(app.settings().warp(), WARPS[0]);
+    // 2 s at the slowest warp (0.5 τ/s) is 1τ = 10 ticks.
+    run_for(&mut app, 16);
+    assert_eq!(app.ticks(), 10);
+}
+
+#[test]
+fn ratio_keys_stay_on_the_grid_and_refuse_non_rigid_bodies() {
+    let mut app = app();
+    app.advance_ticks(30);
+    app.apply(Command::RatioUp);
+    assert_eq!(app.settings().ratio(), 0.5);
+    assert_eq!(app.ticks(), 0, "a parameter change restarts both models");
+    for _ in 0..3 {
+        app.apply(Command::RatioDown);
+    }
+    assert_eq!(app.settings().ratio(), 0.2);
+    app.apply(Command::RatioDown);
+    app.advance_ticks(5);
+    app.apply(Command::RatioDown);
+    assert_eq!(app.settings().ratio(), 0.1);
+    assert_eq!(app.ticks(), 5, "a refused value leaves the models running");
+    let message = app.message().expect("a refusal is explained");
+    assert!(
+        message.is_error && message.text.contains("0 < I3/I1 <= 2"),
+        "{message:?}"
+    );
+    for _ in 0..30 {
+        app.apply(Command::RatioUp);
+    }
+    assert_eq!(app.settings().ratio(), 2.0);
+    assert!(app.message().is_some_and(|m| m.is_error));
+}
+
+#[test]
+fn an_omega0_edit_is_applied_refused_or_cancelled() {
+    let mut app = app();
+    app.apply(Command::SelectNext);
+    app.apply(Command::SelectNext);
+    assert_eq!(app.view().selected, 2);
+    app.apply(Command::SelectNext);
+    assert_eq!(app.view().selected, 0, "the selection wraps");
+    app.apply(Command::SelectPrevious);
+    assert_eq!(app.view().selected, 2);
+    app.apply(Command::StartEdit);
+    assert_eq!(
+        app.mode(),
+        &Mode::Edit {
+            component: 2,
+            buffer: "0.2".into(),
+            pristine: true,
+        }
+    );
+    app.apply(Command::NudgeUp);
+    app.apply(Command::NudgeUp);
+    app.apply(Command::NudgeDown);
+    assert_eq!(
+        app.mode(),
+        &Mode::Edit {
+            component: 2,
+            buffer: "0.21".into(),
+            pristine: false,
+        }
+    );
+    app.apply(Command::Commit);
+    assert_eq!(app.mode(), &Mode::Normal);
+    assert_eq!(app.settings().omega0(), [0.0, 0.1, 0.21]);
+    for column in app.columns() {
+        assert_eq!(column.sim().initial().omega, Vec3::new(0.0, 0.1, 0.21));
+    }
+
+    // Garbage, an empty field and an out-of-range value are refused in place.
+    app.advance_ticks(7);
+    app.apply(Command::StartEdit);
+    for _ in 0..4 {
+        app.apply(Command::Backspace);
+    }
+    assert!(matches!(app.mode(), Mode::Edit { buffer, .. } if buffer.is_empty()));
+    app.apply(Command::Commit);
+    assert!(matches!(app.mode(), Mode::Edit { .. }));
+    for c in "1e-".chars() {
+        app.apply(Command::Input(c));
+    }
+    app.apply(Command::Commit);
+    assert!(
+        app.message()
+            .is_some_and(|m| m.is_error && m.text.contains("not a number"))
+    );
+    app.apply(Command::Input('2'));
+    app.apply(Command::Input('0'));
+    app.apply(Command::Input('0'));
+    app.apply(Command::Commit); // 1e-200: fine, a very slow top
+    assert_eq!(app.settings().omega0()[2], 1e-200);
+    app.apply(Command::StartEdit);
+    assert!(matches!(app.mode(), Mode::Edit { buffer, .. } if buffer == "1e-200"));
+    // The first character typed replaces the old value.
+    for c in "9e999".chars() {
+        app.apply(Command::Input(c));
+    }
+    app.apply(Command::Commit);
+    assert!(
+        app.message()
+            .is_some_and(|m| m.is_error && m.text.contains("not a finite"))
+    );
+    app.apply(Command::Cancel);
+    assert_eq!(app.mode(), &Mode::Normal);
+    assert_eq!(app.settings().omega0()[2], 1e-200);
+    // An edit does not stop the clock.
+    app.advance_ticks(3);
+    assert_eq!(app.ticks(), 3);
+}
+
+#[test]
+fn method_cycles_closed_form_rk4_dp5_dop853() {
+    let mut app = app();
+    let labels = |app: &App| {
+        [
+            app.columns()[0].sim().method().label(),
+            app.columns()[1].sim().method().label(),
+        ]
+    };
+    assert_eq!(app.settings().method(), Method::ClosedForm);
+    assert_eq!(labels(&app), ["exact", "exact+dop853"]);
+    let expected = [
+        (Method::Rk4, ["rk4", "rk4"]),
+        (Method::Dopri5, ["dopri5", "dopri5"]),
+        (Method::Dop853, ["dop853", "dop853"]),
+        (Method::ClosedForm, ["exact", "exact+dop853"]),
+    ];
+    for (method, label) in expected {
+        app.advance_ticks(3);
+        app.apply(Command::CycleMethod);
+        assert_eq!(app.settings().method(), method);
+        assert_eq!(labels(&app), label);
+        assert_eq!(app.ticks(), 0);
+    }
+}
+
+#[test]
+fn reset_log_help_and_quit() {
+    let mut app = app();
+    app.advance_ticks(12);
+    app.apply(Command::Reset);
+    assert_eq!(app.ticks(), 0);
+    assert_eq!(app.columns()[0].current().t, 0.0);
+    app.apply(Command::ToggleLogTime);
+    assert!(app.view().log_time);
+    app.apply(Command::ToggleHelp);
+    assert_eq!(app.mode(), &Mode::Help);
+    app.apply(Command::ToggleHelp);
+    assert_eq!(app.mode(), &Mode::Normal);
+    assert!(!app.should_quit());
+    app.apply(Command::Quit);
+    assert!(app.should_quit());
+}
+
+/// The view's numbers come from the core: the truncated tilt stays at the
+/// corrected (4.11) value, the reduced tilt collapses, and the "error against
+/// the closed form" of an integrator is small but not zero.
+#[test]
+fn sec4_the_columns_show_the_two_behaviours_of_the_paper() {
+    let mut app = app();
+    app.advance_ticks(10_000); // t = 1000τ
+    let top = SymmetricTop::figure();
+    let tilt0 = precession_tilt(&top, &Vec3::new(0.0, 0.1, 0.2));
+    let [truncated, reduced] = app.columns();
+    assert!((truncated.current().tilt - tilt0).abs() < 1e-12);
+    assert!(reduced.current().tilt < 0.01 * tilt0);
+    // The axis trail of the truncated top stays on its cone about L (= lab z).
+    for p in truncated.axis_trail() {
+        assert!((p[2].acos() - tilt0).abs() < 1e-9, "{p:?}");
+    }
+    for column in app.columns() {
+        assert_eq!(column.closed_form_error(), 0.0, "{}", column.name());
+    }
+
+    let mut app =
+        App::new(Settings::new(0.4, [0.0, 0.1, 0.2], Method::Rk4, 10.0).expect("valid settings"))
+            .unwrap();
+    app.advance_ticks(1000);
+    for column in app.columns() {
+        let error = column.closed_form_error();
+        assert!(error > 0.0 && error < 1e-9, "{}: {error}", column.name());
+    }
+}
+
+#[test]
+fn a_failing_integrator_stops_its_column_with_a_message_not_a_panic() {
+    // RK4 at its fixed step 0.01τ is unstable once τΩ⊥²·0.01 is far above 2.8.
+    let settings = Settings::new(0.4, [0.0, 60.0, 0.2], Method::Rk4, 10.0).unwrap();
+    let mut app = App::new(settings).unwrap();
+    app.advance_ticks(50);
+    assert!(
+        app.columns().iter().any(|c| c.failure().is_some()),
+        "RK4 should have failed"
+    );
+    for column in app.columns() {
+        let s = column.current();
+        assert!(s.omega.iter().all(|w| w.is_finite()));
+    }
+}

@@ -1,0 +1,202 @@
+//! End to end: the real `spintop` binary in a real terminal, driven through
+//! tmux at 120×40. It must name both models and draw Braille plots; after a
+//! pause the time must stand still; one step must advance it by exactly one
+//! Δt; `q` must end it with exit status 0 and leave the alternate screen.
+//!
+//! In CI (`CI=true`) tmux is required and its absence fails the test; on a
+//! machine without tmux the test says so and passes.
+
+use spintop::tui::app::TICK;
+use std::process::{Command, Output};
+use std::thread::sleep;
+use std::time::{Duration, Instant};
+
+/// A private tmux server (its own socket), killed when dropped.
+struct Tmux {
+    socket: String,
+    /// The socket file, removed when dropped (tmux leaves it behind).
+    socket_path: Option<String>,
+    /// Where the pane's shell writes the binary's exit status.
+    status_file: std::path::PathBuf,
+}
+
+impl Tmux {
+    fn run(&self, args: &[&str]) -> Output {
+        Command::new("tmux")
+            .arg("-L")
+            .arg(&self.socket)
+            .args(args)
+            .output()
+            .expect("tmux runs")
+    }
+
+    fn ok(&self, args: &[&str]) {
+        let out = self.run(args);
+        assert!(
+            out.status.success(),
+            "tmux {args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+
+    fn capture(&self) -> String {
+        String::from_utf8_lossy(&self.run(&["capture-pane", "-p", "-t", "spintop"]).stdout)
+            .into_owned()
+    }
+
+    fn format(&self, format: &str) -> String {
+        let out = self.run(&["display-message", "-p", "-t", "spintop", format]);
+        String::from_utf8_lossy(&out.stdout).trim().to_owned()
+    }
+
+    fn keys(&self, keys: &str) {
+        self.ok(&["send-keys", "-t", "spintop", keys]);
+    }
+
+    /// Poll the screen until `ready` holds, or fail after `limit`.
+    fn wait_for(&self, what: &str, limit: Duration, ready: impl Fn(&str) -> bool) -> String {
+        let start = Instant::now();
+        loop {
+            let screen = self.capture();
+            if ready(&screen) {
+                return screen;
+            }
+            assert!(
+                start.elapsed() < limit,
+                "timed out waiting for {what}; the screen:\n{screen}"
+            );
+            sleep(Duration::from_millis(50));
+        }
+    }
+}
+
+impl Drop for Tmux {
+    fn drop(&mut self) {
+        let _ = self.run(&["kill-server"]);
+        if let Some(path) = &self.socket_path {
+            let _ = std::fs::remove_file(path);
+        }
+        let _ = std::fs::remove_file(&self.status_file);
+    }
+}
+
+fn tmux_available() -> bool {
+    Command::new("tmux")
+        .arg("-V")
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+/// The model time in the header, `t = 12.30τ`.
+fn header_time(screen: &str) -> Option<f64> {
+    let rest = &screen[screen.find("t = ")? + 4..];
+    rest[..rest.find('τ')?].trim().parse().ok()
+}
+
+fn braille(screen: &str) -> usize {
+    screen
+        .chars()
+        .filter(|c| ('\u{2801}'..='\u{28FF}').contains(c))
+        .count()
+}
+
+#[test]
+fn the_live_view_runs_pauses_steps_and_quits_in_a_real_terminal() {
+    if !tmux_available() {
+        if std::env::var("CI").is_ok_and(|v| !matches!(v.as_str(), "" | "0" | "false")) {
+            panic!("CI is set but tmux is missing: .ci/run installs it with apt-get");
+        }
+        // Written to the stderr handle itself, which the test harness does not
+        // capture, so the skip shows in a plain `cargo test`.
+        use std::io::Write;
+        let _ = writeln!(
+            std::io::stderr(),
+            "tui_tmux: SKIPPED, tmux is not installed (CI installs it; apt-get install tmux)"
+        );
+        return;
+    }
+    let id = std::process::id();
+    let mut tmux = Tmux {
+        socket: format!("spintop-test-{id}"),
+        socket_path: None,
+        status_file: std::env::temp_dir().join(format!("spintop-tmux-{id}.status")),
+    };
+    // Start a placeholder, keep the pane after its process exits (to read the
+    // exit status), then run the real binary in it.
+    tmux.ok(&[
+        "-f",
+        "/dev/null",
+        "new-session",
+        "-d",
+        "-s",
+        "spintop",
+        "-x",
+        "120",
+        "-y",
+        "40",
+        "sleep 600",
+    ]);
+    tmux.socket_path = Some(tmux.format("#{socket_path}"));
+    tmux.ok(&["set-option", "-t", "spintop", "remain-on-exit", "on"]);
+    // NOTE: tmux's #{pane_dead_status} is not always filled in (it depends on
+    // the order in which tmux sees the terminal close and reaps the child), so
+    // the pane's shell records the exit status in a file instead.
+    let binary = env!("CARGO_BIN_EXE_spintop");
+    let status = tmux.status_file.display().to_string();
+    let _ = std::fs::remove_file(&status);
+    tmux.ok(&[
+        "respawn-pane",
+        "-k",
+        "-t",
+        "spintop",
+        &format!("'{binary}'; echo $? > '{status}'"),
+    ]);
+    assert_eq!(tmux.format("#{pane_width}x#{pane_height}"), "120x40");
+
+    let long = Duration::from_secs(20);
+    let screen = tmux.wait_for("both models and a moving clock", long, |s| {
+        s.contains("truncated") && s.contains("reduced") && header_time(s).is_some_and(|t| t > 0.0)
+    });
+    assert_eq!(
+        tmux.format("#{alternate_on}"),
+        "1",
+        "the view uses the alternate screen"
+    );
+    assert!(braille(&screen) > 100, "Braille plots:\n{screen}");
+
+    tmux.keys("Space");
+    tmux.wait_for("the pause", long, |s| s.contains("paused"));
+    sleep(Duration::from_millis(200));
+    let t1 = header_time(&tmux.capture()).expect("t on the screen");
+    sleep(Duration::from_secs(1));
+    let screen = tmux.capture();
+    let t2 = header_time(&screen).expect("t on the screen");
+    assert_eq!(t1, t2, "t must not change while paused:\n{screen}");
+
+    tmux.keys(".");
+    let screen = tmux.wait_for("one step", long, |s| header_time(s) != Some(t2));
+    let t3 = header_time(&screen).expect("t on the screen");
+    assert!(
+        (t3 - t2 - TICK).abs() < 1e-6,
+        "one step is Δt = {TICK}: {t2} -> {t3}"
+    );
+
+    tmux.keys("q");
+    let start = Instant::now();
+    let code = loop {
+        match std::fs::read_to_string(&status) {
+            Ok(code) if code.ends_with('\n') => break code,
+            _ => {
+                assert!(start.elapsed() < long, "q did not end the program");
+                sleep(Duration::from_millis(50));
+            }
+        }
+    };
+    assert_eq!(code.trim(), "0", "exit status");
+    assert_eq!(
+        tmux.format("#{alternate_on}"),
+        "0",
+        "the terminal must be restored (alternate screen left)"
+    );
+    assert!(!tmux.capture().contains("truncated (4.2)"));
+}
