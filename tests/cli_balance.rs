@@ -1,27 +1,13 @@
 //! `spintop balance` as a user meets it: the JSON contract, values that match
 //! the closed forms of §2, and bad input refused with one line and exit code 2.
 
-use serde_json::Value;
-use std::process::{Command, Output};
+mod support;
+use support::spintop;
 
-fn spintop(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_spintop"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use serde_json::Value;
 
 fn json(args: &[&str]) -> Value {
-    let mut all = vec!["balance"];
-    all.extend_from_slice(args);
-    all.extend_from_slice(&["--format", "json"]);
-    let out = spintop(&all);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("one JSON object")
+    support::json("balance", args)
 }
 
 fn vec3(v: &Value) -> [f64; 3] {

@@ -2,27 +2,13 @@
 //! crossing times, the runaway report, bad input refused with exit code 2 and
 //! one line, and a run past the collapse stopped with exit code 3 and the time.
 
-use serde_json::Value;
-use std::process::{Command, Output};
+mod support;
+use support::spintop;
 
-fn spintop(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_spintop"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use serde_json::Value;
 
 fn json(args: &[&str]) -> Value {
-    let mut all = vec!["orbit"];
-    all.extend_from_slice(args);
-    all.extend_from_slice(&["--format", "json"]);
-    let out = spintop(&all);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("one JSON object")
+    support::json("orbit", args)
 }
 
 fn check_samples(v: &Value, n: usize) {

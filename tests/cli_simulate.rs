@@ -2,27 +2,13 @@
 //! method, and bad input refused with one line and exit code 2 (never a panic,
 //! exit code 101), numerical failures with exit code 3 and the time.
 
-use serde_json::Value;
-use std::process::{Command, Output};
+mod support;
+use support::spintop;
 
-fn spintop(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_spintop"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use serde_json::Value;
 
 fn json(args: &[&str]) -> Value {
-    let mut all = vec!["simulate"];
-    all.extend_from_slice(args);
-    all.extend_from_slice(&["--format", "json"]);
-    let out = spintop(&all);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("one JSON object")
+    support::json("simulate", args)
 }
 
 fn vec_of(v: &Value, n: usize) -> Vec<f64> {

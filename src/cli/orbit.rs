@@ -1,7 +1,7 @@
 //! `spintop orbit`: one charge in a Coulomb or oscillator field under
 //! radiation reaction (§2, (2.5)–(2.9)), sampled at given times.
 
-use super::{CliError, Format, TimeList, bad, num, parse_number, parse_times};
+use super::{CliError, Format, TimeList, bad, check_output_times, num, parse_number, parse_times};
 use crate::integrate::Stats;
 use crate::math::Real;
 use crate::physics::central::{
@@ -108,20 +108,7 @@ impl OrbitArgs {
             config.rtol = rtol;
         }
         let times = self.times.0;
-        if times.is_empty() {
-            return Err(bad("--times needs at least one time"));
-        }
-        if let Some(&t) = times.iter().find(|t| **t < 0.0) {
-            return Err(bad(format!("--times must be >= 0, got {t}")));
-        }
-        for pair in times.windows(2) {
-            if pair[1] < pair[0] {
-                return Err(bad(format!(
-                    "--times must be non-decreasing ({} comes after {})",
-                    pair[1], pair[0]
-                )));
-            }
-        }
+        check_output_times(&times)?;
         let t_last = *times.last().expect("non-empty");
         if force == Force::AbrahamLorentz
             && potential == Potential::Coulomb

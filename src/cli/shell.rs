@@ -2,7 +2,7 @@
 //! neutral delay equation solved by the method of steps and sampled at given
 //! times.
 
-use super::{CliError, Format, TimeList, bad, num, parse_number, parse_times};
+use super::{CliError, Format, TimeList, bad, check_output_times, num, parse_number, parse_times};
 use crate::math::Real;
 use crate::physics::central::abraham_lorentz_oscillator_roots;
 use crate::physics::shell::ShellModel;
@@ -55,20 +55,7 @@ impl ShellArgs {
     fn validate(self) -> Result<ShellRequest, CliError> {
         let model = ShellModel::new(self.tau0, self.delay).map_err(|e| bad(e.to_string()))?;
         let times = self.times.0;
-        if times.is_empty() {
-            return Err(bad("--times needs at least one time"));
-        }
-        if let Some(&t) = times.iter().find(|t| **t < 0.0) {
-            return Err(bad(format!("--times must be >= 0, got {t}")));
-        }
-        for pair in times.windows(2) {
-            if pair[1] < pair[0] {
-                return Err(bad(format!(
-                    "--times must be non-decreasing ({} comes after {})",
-                    pair[1], pair[0]
-                )));
-            }
-        }
+        check_output_times(&times)?;
         let steps = default_steps_per_delay(self.delay);
         let t_last = *times.last().expect("non-empty");
         let work = (t_last / self.delay).ceil().max(1.0) * steps as Real;

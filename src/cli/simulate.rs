@@ -1,7 +1,9 @@
 //! `spintop simulate`: one model of the top, sampled at given times, as a
 //! table, CSV or the JSON contract.
 
-use super::{CliError, Format, TimeList, bad, num, parse_number, parse_times, parse_vec3};
+use super::{
+    CliError, Format, TimeList, bad, check_output_times, num, parse_number, parse_times, parse_vec3,
+};
 use crate::math::{Real, Vec3};
 use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
@@ -195,17 +197,7 @@ impl SimulateArgs {
                 }
             }
         };
-        for pair in times.windows(2) {
-            if pair[1] < pair[0] {
-                return Err(bad(format!(
-                    "--times must be non-decreasing ({} comes after {})",
-                    pair[1], pair[0]
-                )));
-            }
-        }
-        if let Some(&t) = times.iter().find(|t| **t < 0.0) {
-            return Err(bad(format!("--times must be >= 0, got {t}")));
-        }
+        check_output_times(&times)?;
         Ok(SimulateConfig {
             model,
             method,
