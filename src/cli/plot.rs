@@ -58,6 +58,8 @@ pub struct PlotArgs {
 
 /// A validated `plot` request.
 struct PlotConfig {
+    /// The symmetric top every plotted model shares.
+    top: SymmetricTop,
     models: Vec<Model>,
     omega0: [Real; 3],
     method: Method,
@@ -109,6 +111,7 @@ impl PlotArgs {
             })
             .collect();
         Ok(PlotConfig {
+            top,
             models,
             omega0: self.omega,
             method: self.method.into(),
@@ -150,9 +153,7 @@ fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError
     let reach = w1.hypot(w2).max(w3.abs());
     let y = nice_ceiling(reach * 1.05) as f32;
     for model in &config.models {
-        let (Model::Truncated(top) | Model::Reduced(top)) = model else {
-            unreachable!("plot builds symmetric models only");
-        };
+        let top = &config.top;
         let (samples, method) = samples(config, *model, top)?;
         writeln!(
             out,
