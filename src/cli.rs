@@ -23,6 +23,7 @@ pub mod orbit;
 pub mod plot;
 pub mod shell;
 pub mod simulate;
+pub mod stability;
 pub mod tui;
 
 /// Exit code for bad input.
@@ -59,6 +60,8 @@ enum Command {
     Tui(tui::TuiArgs),
     /// Print the curves of the live view as text charts (for pipes and the book).
     Plot(plot::PlotArgs),
+    /// Where natural methods fail, beside what spintop does instead: six measured rows.
+    Stability(stability::StabilityArgs),
 }
 
 /// Output format.
@@ -247,6 +250,7 @@ where
         Some(Command::Shell(args)) => shell::execute(args, stdout, stderr),
         Some(Command::Tui(args)) => tui::execute(args, stdout),
         Some(Command::Plot(args)) => plot::execute(args, stdout),
+        Some(Command::Stability(args)) => stability::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,

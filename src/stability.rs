@@ -82,14 +82,20 @@ impl RowError {
     }
 }
 
+/// Row `n` (1–6), measured.
+pub fn row(n: u8) -> Result<Row, RowError> {
+    match n {
+        1 => runaway::measure().map(|m| m.row()),
+        2 => pole::measure().map(|m| m.row()),
+        3 => stiffness::measure().map(|m| m.row()),
+        4 => long_run::measure().map(|m| m.row()),
+        5 => closed_forms::measure().map(|m| m.row()),
+        6 => delay::measure().map(|m| m.row()),
+        _ => Err(RowError::new(n, "there are six rows, 1 to 6")),
+    }
+}
+
 /// Every row, in order.
 pub fn all_rows() -> Vec<Result<Row, RowError>> {
-    vec![
-        runaway::measure().map(|m| m.row()),
-        pole::measure().map(|m| m.row()),
-        stiffness::measure().map(|m| m.row()),
-        long_run::measure().map(|m| m.row()),
-        closed_forms::measure().map(|m| m.row()),
-        delay::measure().map(|m| m.row()),
-    ]
+    (1..=6).map(row).collect()
 }

@@ -1,0 +1,88 @@
+//! `spintop stability`: the six rows of the stability suite, each the naive
+//! method that fails beside the method spintop uses, with measured numbers.
+
+use super::{CliError, bad};
+use crate::stability::{Row, RowError, all_rows};
+use clap::{Args, ValueEnum};
+use serde::Serialize;
+use std::io::Write;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum StabilityFormat {
+    /// One block per row, for reading.
+    Table,
+    /// One JSON object: {"rows": [...]}.
+    Json,
+}
+
+/// The raw arguments of `stability`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Rows: 1 full ALE (3.4) runaway, 2 Euler angles at the pole, \
+                        3 stiffness, 4 long runs without radiation, 5 closed forms at \
+                        realistic tau, 6 the appendix delay equation.\n\
+                        Example: spintop stability --row 5"
+)]
+pub struct StabilityArgs {
+    /// Run only this row (1-6); all rows by default.
+    #[arg(long)]
+    row: Option<u8>,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "table")]
+    format: StabilityFormat,
+}
+
+#[derive(Serialize)]
+struct Report<'a> {
+    rows: &'a [Row],
+}
+
+/// Write one row as a text block.
+pub fn write_row(out: &mut dyn Write, row: &Row) -> std::io::Result<()> {
+    let verdict = if row.holds() {
+        "holds"
+    } else {
+        "DOES NOT HOLD"
+    };
+    writeln!(out, "Row {}: {}  [{verdict}]", row.number, row.problem)?;
+    for (label, outcomes) in [("naive", &row.naive), ("spintop", &row.fix)] {
+        for o in outcomes.iter() {
+            let mark = if o.ok { "ok  " } else { "FAIL" };
+            writeln!(out, "  {label:<7} {mark} {}", o.method)?;
+            writeln!(out, "               {}", o.result)?;
+        }
+    }
+    for note in &row.notes {
+        writeln!(out, "  note: {note}")?;
+    }
+    Ok(())
+}
+
+/// Run and print `stability`.
+pub(crate) fn execute(args: StabilityArgs, out: &mut impl Write) -> Result<(), CliError> {
+    let rows: Vec<Result<Row, RowError>> = match args.row {
+        None => all_rows(),
+        Some(n @ 1..=6) => vec![crate::stability::row(n)],
+        Some(n) => return Err(bad(format!("--row must be 1 to 6, got {n}"))),
+    };
+    let mut done = Vec::with_capacity(rows.len());
+    for row in rows {
+        done.push(row.map_err(|e| CliError::Stopped(e.to_string()))?);
+    }
+    match args.format {
+        StabilityFormat::Table => {
+            for (i, row) in done.iter().enumerate() {
+                if i > 0 {
+                    writeln!(out)?;
+                }
+                write_row(out, row)?;
+            }
+        }
+        StabilityFormat::Json => {
+            serde_json::to_writer_pretty(&mut *out, &Report { rows: &done })
+                .map_err(|e| CliError::Io(e.into()))?;
+            writeln!(out)?;
+        }
+    }
+    Ok(())
+}
