@@ -110,7 +110,6 @@ fn eq_4_8_row_2_euler_angles_fail_at_the_pole_so3_does_not() {
 /// script and the values are in tests/closed_forms.rs: REFS[7] and REFS[6]),
 /// and against the series ϑ = t(1 − x/2 + …) at x = 1e-20.
 #[test]
-#[allow(clippy::excessive_precision)] // the mpmath digits, as printed by the script
 fn eq_4_9_eq_4_16_row_5_printed_closed_forms_fail_careful_forms_do_not() {
     let m = closed_forms::measure().unwrap();
     let [vartheta, overflow, slow] = m.cases.as_slice() else {
