@@ -40,6 +40,8 @@ pub mod book {
     pub struct Section4;
     #[doc = include_str!("../book/src/appendix.md")]
     pub struct Appendix;
+    #[doc = include_str!("../book/src/where-methods-fail.md")]
+    pub struct WhereMethodsFail;
     #[doc = include_str!("../book/src/errata.md")]
     pub struct Errata;
 }

@@ -62,6 +62,29 @@ impl Row {
     }
 }
 
+impl std::fmt::Display for Row {
+    /// One block: the problem and verdict, each method with its result, the notes.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let verdict = if self.holds() {
+            "holds"
+        } else {
+            "DOES NOT HOLD"
+        };
+        writeln!(f, "Row {}: {}  [{verdict}]", self.number, self.problem)?;
+        for (label, outcomes) in [("naive", &self.naive), ("spintop", &self.fix)] {
+            for o in outcomes {
+                let mark = if o.ok { "ok  " } else { "FAIL" };
+                writeln!(f, "  {label:<7} {mark} {}", o.method)?;
+                writeln!(f, "               {}", o.result)?;
+            }
+        }
+        for note in &self.notes {
+            writeln!(f, "  note: {note}")?;
+        }
+        Ok(())
+    }
+}
+
 /// A failure of a row's experiment itself (not of the method it shows failing).
 #[derive(Clone, Debug, thiserror::Error, PartialEq)]
 #[error("stability row {row}: {message}")]

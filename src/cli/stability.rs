@@ -37,27 +37,6 @@ struct Report<'a> {
     rows: &'a [Row],
 }
 
-/// Write one row as a text block.
-pub fn write_row(out: &mut dyn Write, row: &Row) -> std::io::Result<()> {
-    let verdict = if row.holds() {
-        "holds"
-    } else {
-        "DOES NOT HOLD"
-    };
-    writeln!(out, "Row {}: {}  [{verdict}]", row.number, row.problem)?;
-    for (label, outcomes) in [("naive", &row.naive), ("spintop", &row.fix)] {
-        for o in outcomes.iter() {
-            let mark = if o.ok { "ok  " } else { "FAIL" };
-            writeln!(out, "  {label:<7} {mark} {}", o.method)?;
-            writeln!(out, "               {}", o.result)?;
-        }
-    }
-    for note in &row.notes {
-        writeln!(out, "  note: {note}")?;
-    }
-    Ok(())
-}
-
 /// Run and print `stability`.
 pub(crate) fn execute(args: StabilityArgs, out: &mut impl Write) -> Result<(), CliError> {
     let rows: Vec<Result<Row, RowError>> = match args.row {
@@ -75,7 +54,7 @@ pub(crate) fn execute(args: StabilityArgs, out: &mut impl Write) -> Result<(), C
                 if i > 0 {
                     writeln!(out)?;
                 }
-                write_row(out, row)?;
+                write!(out, "{row}")?;
             }
         }
         StabilityFormat::Json => {

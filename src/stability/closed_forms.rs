@@ -14,6 +14,7 @@ use super::{Outcome, Row, RowError};
 use crate::math::{Real, Vec3};
 use crate::physics::symmetric_top::{SymmetricTop, reduced_amplitude, truncated_clock};
 
+// ANCHOR: printed
 /// ϑ as the paper prints it.
 ///
 /// Paper: Eq. (4.9) (as printed).
@@ -40,6 +41,7 @@ pub fn printed_amplitude(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
     let sigma = 1.0 / (k * k * top.tau());
     ((beta - 1.0) / (beta * (2.0 * t / sigma).exp() - 1.0)).sqrt()
 }
+// ANCHOR_END: printed
 
 /// One closed-form case: the printed value, the careful one, and the
 /// independent reference.

@@ -68,6 +68,7 @@ fn euler_run(
     t_end: Real,
     fixed_step: Option<Real>,
 ) -> EulerRun {
+    // ANCHOR: euler_rhs
     let rhs = |t: Real, y: &State<3>| {
         let omega = truncated_closed_form(top, omega0, t);
         match euler_rates(&EulerAngles::new(y[0], y[1], y[2]), &omega) {
@@ -76,6 +77,7 @@ fn euler_run(
             None => State::<3>::repeat(Real::NAN),
         }
     };
+    // ANCHOR_END: euler_rhs
     let start = EulerAngles::new(0.0, theta0, 0.0);
     let reference = truncated_orientation(top, omega0, &start.to_rotation(), t_end);
     let y0 = State::<3>::new(0.0, theta0, 0.0);

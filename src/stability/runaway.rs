@@ -146,6 +146,7 @@ fn strong_spin(rtol: Real) -> Result<StrongSpin, RowError> {
     })
 }
 
+// ANCHOR: slow_root
 /// f(0) = (1 − 2iτΩ₃ − √(1 − 4iτk))/(2τ): ż/z on the slow manifold as u → 0.
 pub fn slow_root(top: &SymmetricTop, omega3: Real) -> Complex<Real> {
     let tau = top.tau();
@@ -154,6 +155,7 @@ pub fn slow_root(top: &SymmetricTop, omega3: Real) -> Complex<Real> {
     let i = Complex::new(0.0, 1.0);
     (one - i * (2.0 * tau * omega3) - (one - i * (4.0 * tau * k)).sqrt()) / (2.0 * tau)
 }
+// ANCHOR_END: slow_root
 
 /// Run the experiment of row 1.
 pub fn measure() -> Result<Measurement, RowError> {
