@@ -17,6 +17,8 @@
 #![warn(missing_docs)]
 
 pub mod cli;
+#[doc(hidden)]
+pub mod grading;
 pub mod integrate;
 pub mod math;
 pub mod physics;

@@ -134,6 +134,21 @@ fn attempt<const N: usize, R: Rhs<N>>(
     }
 }
 
+/// One Dormand–Prince 5(4) step of size `h` from `(t, y)`: the fifth-order
+/// solution and the difference to the embedded fourth-order one (the local
+/// error estimate), without step control. Costs 7 evaluations (6 without
+/// FSAL reuse, plus `f` at the new point for the estimate).
+pub fn dopri5_step<const N: usize, R: Rhs<N>>(
+    rhs: &R,
+    t: Real,
+    y: &State<N>,
+    h: Real,
+) -> (State<N>, State<N>) {
+    let k1 = rhs.eval(t, y);
+    let a = attempt(rhs, t, y, &k1, h, t + h);
+    (a.y_new, a.err)
+}
+
 /// Check options the caller may have built by hand.
 pub(crate) fn validate_options(opts: &AdaptiveOptions) -> Result<(), IntegrateError> {
     let bad = |msg: String| Err(IntegrateError::InvalidOption(msg));

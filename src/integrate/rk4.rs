@@ -61,6 +61,12 @@ fn rk4_with_k1<const N: usize, R: Rhs<N>>(
     y + (k1 + (k2 + k3) * 2.0 + k4) * (h / 6.0)
 }
 
+/// One classical RK4 step of size `h` from `(t, y)` (4 evaluations).
+pub fn rk4_step<const N: usize, R: Rhs<N>>(rhs: &R, t: Real, y: &State<N>, h: Real) -> State<N> {
+    let k1 = rhs.eval(t, y);
+    rk4_with_k1(rhs, t, y, &k1, h)
+}
+
 impl<const N: usize> Rk4<N> {
     /// A stepper at `(t0, y0)` with step size `h` (finite and > 0; the direction
     /// of each step comes from its `t_stop`).

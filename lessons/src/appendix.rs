@@ -1,0 +1,16 @@
+//! Appendix: the charge as a small shell. Units: m = m₀ + m_em = 1, k = 1.
+
+#[cfg(not(feature = "solutions"))]
+use spintop::physics::shell::C;
+
+/// The method-of-steps update of (A.1): Z''(t) from Z(t) and the retarded
+/// Z''(t − δ), for radiation time `tau0` and delay `delta`.
+/// Paper: Eq. (A.1). Book: Appendix.
+#[cfg(not(feature = "solutions"))]
+#[allow(unused_variables)]
+pub fn shell_acceleration(tau0: f64, delta: f64, z: C, z_ddot_ret: C) -> C {
+    todo!("Eq. (A.1): see the book, chapter 'Appendix', the delay equation")
+}
+
+#[cfg(feature = "solutions")]
+pub use crate::solutions::appendix::*;

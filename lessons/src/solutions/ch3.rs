@@ -1,0 +1,9 @@
+use spintop::math::{Mat3, Vec3};
+
+/// Eq. (3.3): (I + d (d × Ω)ᵀ) Ω̇ = −Ω × IΩ − |d × Ω|² Ω, solved by LU.
+pub fn truncated_ale_rhs(inertia: Vec3, dipole: Vec3, omega: Vec3) -> Vec3 {
+    let w = dipole.cross(&omega);
+    let a = Mat3::from_diagonal(&inertia) + dipole * w.transpose();
+    let b = -omega.cross(&inertia.component_mul(&omega)) - w.norm_squared() * omega;
+    a.lu().solve(&b).unwrap_or_else(|| Vec3::repeat(f64::NAN))
+}
