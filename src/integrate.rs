@@ -1,8 +1,9 @@
 //! Numerical methods for `y' = f(t, y)` on fixed-size states.
 //!
-//! Every method is generic over one small trait, [`Rhs`], and steps a
-//! fixed-size [`State`]: no allocation per step. Every method implements
-//! [`Stepper`], counts its work in [`Stats`], and reports a numerical failure
+//! Every Runge–Kutta method is generic over one small trait, [`Rhs`], steps a
+//! fixed-size [`State`] (no allocation per step) and implements [`Stepper`]; the
+//! splitting methods compose exact sub-flows instead (see below). Every method
+//! counts its work in [`Stats`], and reports a numerical failure
 //! (a non-finite state, a step-size underflow, an exhausted step budget) as an
 //! [`IntegrateError`] that carries the time `t` where it happened. A method never
 //! hands back a NaN sample.
@@ -39,8 +40,8 @@ pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use rk4::Rk4;
 pub use splitting::{
-    Composition, FreeRigidBody, ReducedFlow, ReducedSplitting, RigidBodySplitting,
-    RigidBodyState, SplitFlow, Splitting, reduced_split_solve,
+    Composition, FreeRigidBody, ReducedFlow, ReducedSplitting, RigidBodySplitting, RigidBodyState,
+    SplitFlow, Splitting, reduced_split_solve,
 };
 
 /// A right-hand side `y' = f(t, y)` on ℝᴺ.

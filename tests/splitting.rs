@@ -20,14 +20,11 @@
 
 use proptest::prelude::*;
 use spintop::integrate::splitting::{
-    Composition, FreeRigidBody, ReducedFlow, ReducedSplitting, RigidBodySplitting,
-    RigidBodyState, reduced_damping_flow, reduced_rotation_flow, reduced_split_solve,
-    yoshida_weights,
+    Composition, FreeRigidBody, ReducedFlow, ReducedSplitting, RigidBodySplitting, RigidBodyState,
+    reduced_damping_flow, reduced_rotation_flow, reduced_split_solve, yoshida_weights,
 };
 use spintop::integrate::{AdaptiveOptions, Dop853, IntegrateError, Rhs, Stepper};
-use spintop::math::{
-    Mat3, Real, State, Vec3, exp_so3, hat, orthonormality_error, rot_x, rot_z,
-};
+use spintop::math::{Mat3, Real, State, Vec3, exp_so3, hat, orthonormality_error, rot_x, rot_z};
 use spintop::physics::ParamError;
 use spintop::physics::symmetric_top::{
     SymmetricTop, reduced_amplitude, reduced_closed_form, truncated_closed_form,
@@ -131,8 +128,14 @@ fn eq_3_1_eq_3_2_each_axis_flow_solves_its_part() {
         let omega = Vec3::ith(axis, start.l_body[axis] / body.inertia()[axis]);
         let l_dot = (p.l_body - m.l_body) / (2.0 * d);
         let o_dot = (p.rotation - m.rotation) / (2.0 * d);
-        assert!((l_dot - start.l_body.cross(&omega)).amax() < 1e-9, "axis {axis}");
-        assert!((o_dot - start.rotation * hat(&omega)).amax() < 1e-9, "axis {axis}");
+        assert!(
+            (l_dot - start.l_body.cross(&omega)).amax() < 1e-9,
+            "axis {axis}"
+        );
+        assert!(
+            (o_dot - start.rotation * hat(&omega)).amax() < 1e-9,
+            "axis {axis}"
+        );
     }
     // The three parts add up to the whole: the sum of their vector fields is the
     // Euler equation L̇ = L × I⁻¹L.
@@ -219,7 +222,10 @@ fn eq_3_2_strang_and_yoshida_orders_on_the_asymmetric_top_against_dop853() {
     let reference = dop853_reference(inertia, &start, t_end);
     // Forward and backward (the backward reference starts from the same state).
     let reference_back = dop853_reference(inertia, &start, -t_end);
-    for (c, h, p) in [(Composition::Strang, 0.1, 2.0), (Composition::Yoshida4, 0.2, 4.0)] {
+    for (c, h, p) in [
+        (Composition::Strang, 0.1, 2.0),
+        (Composition::Yoshida4, 0.2, 4.0),
+    ] {
         let got = orders(
             |h| state_distance(run(body, c, start, h, t_end).state(), &reference),
             h,
