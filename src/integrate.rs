@@ -1,8 +1,9 @@
 //! Numerical methods for `y' = f(t, y)` on fixed-size states.
 //!
-//! Every method is generic over one small trait, [`Rhs`], and steps a
-//! fixed-size [`State`]: no allocation per step. Every method implements
-//! [`Stepper`], counts its work in [`Stats`], and reports a numerical failure
+//! Every Runge–Kutta method is generic over one small trait, [`Rhs`], steps a
+//! fixed-size [`State`] (no allocation per step) and implements [`Stepper`]; the
+//! splitting methods compose exact sub-flows instead (see below). Every method
+//! counts its work in [`Stats`], and reports a numerical failure
 //! (a non-finite state, a step-size underflow, an exhausted step budget) as an
 //! [`IntegrateError`] that carries the time `t` where it happened. A method never
 //! hands back a NaN sample.
@@ -12,9 +13,19 @@
 //! | [`Rk4`] | 4 | fixed step | cubic Hermite |
 //! | [`Dopri5`] | 5(4) | PI controller | Shampine's order-4 interpolant |
 //! | [`Dop853`] | 8(5,3) | Hairer's controller | order-7 interpolant (3 extra stages) |
+//! | [`Splitting`] ([`Composition::LieTrotter`]) | 1 (exact for commuting parts) | fixed step | none |
+//! | [`Splitting`] ([`Composition::Strang`]) | 2, symmetric | fixed step | none |
+//! | [`Splitting`] ([`Composition::Yoshida4`]) | 4, symmetric | fixed step | none |
 //!
-//! All three step forward or backward: the direction is the sign of
+//! All of them step forward or backward: the direction is the sign of
 //! `t_stop − t`.
+//!
+//! The splittings do not take a right-hand side: they compose the exact flows
+//! of the parts of a [`SplitFlow`] (the free rigid body cut into three axis
+//! rotations, [`FreeRigidBody`]; the reduced model (4.12)–(4.14) cut into a
+//! rotation and a damping, [`ReducedFlow`]), on a state that may hold an
+//! orientation, so they have their own small API instead of [`Stepper`]. They
+//! count sub-flow evaluations in [`Stats::rhs_evals`].
 
 use crate::math::{Real, State};
 use serde::Serialize;
@@ -23,10 +34,15 @@ use thiserror::Error;
 pub mod dop853;
 pub mod dopri5;
 pub mod rk4;
+pub mod splitting;
 
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use rk4::Rk4;
+pub use splitting::{
+    Composition, FreeRigidBody, ReducedFlow, ReducedSplitting, RigidBodySplitting, RigidBodyState,
+    SplitFlow, Splitting, reduced_split_solve,
+};
 
 /// A right-hand side `y' = f(t, y)` on ℝᴺ.
 pub trait Rhs<const N: usize> {
