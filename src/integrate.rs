@@ -134,7 +134,9 @@ pub enum IntegrateError {
     },
     /// The implicit method's Newton iteration did not converge and the step
     /// could not be shortened (the fixed-step mode of [`Radau5`]).
-    #[error("the Newton iteration of the implicit method did not converge at t = {t} with step {h:e}")]
+    #[error(
+        "the Newton iteration of the implicit method did not converge at t = {t} with step {h:e}"
+    )]
     NoConvergence {
         /// Time of the step's start (the state there is kept).
         t: Real,

@@ -131,7 +131,10 @@ fn radau5_fixed_step_global_order_is_5() {
     let s = slopes(&errs);
     eprintln!("nonaut errors {errs:?} slopes {s:?}");
     let last = s[s.len() - 1];
-    assert!((4.7..=5.3).contains(&last), "observed order {last:.3} ({errs:?})");
+    assert!(
+        (4.7..=5.3).contains(&last),
+        "observed order {last:.3} ({errs:?})"
+    );
 }
 
 /// One fixed step from the exact state; the largest error of the collocation
@@ -203,7 +206,10 @@ fn radau5_meets_its_tolerance_against_the_reduced_closed_form_eq_4_15() {
             err <= 20.0 * rtol * scale,
             "rtol {rtol:e}: error {err:e} is more than 20× the tolerance"
         );
-        assert!(s.stats().steps > last_steps, "tighter tolerance, more steps");
+        assert!(
+            s.stats().steps > last_steps,
+            "tighter tolerance, more steps"
+        );
         last_steps = s.stats().steps;
         errs.push(err);
     }
@@ -237,7 +243,10 @@ fn default_jacobian_is_forward_differences_close_to_the_analytic_one() {
         let direct = forward_difference_jacobian(&rhs, 0.0, &omega);
         assert_eq!(by_default, direct);
         let tol = 1e-6 * analytic.amax();
-        assert!((by_default - analytic).amax() <= tol, "{by_default} vs {analytic}");
+        assert!(
+            (by_default - analytic).amax() <= tol,
+            "{by_default} vs {analytic}"
+        );
     }
 }
 
@@ -267,7 +276,11 @@ fn radau5_solves_a_stiff_linear_problem_in_few_steps_where_dopri5_needs_lambda_t
         r.lu_decompositions()
     );
     assert!(err <= 10.0 * rtol, "error {err:e}");
-    assert!(r.stats().steps <= 60, "Radau5 took {} steps", r.stats().steps);
+    assert!(
+        r.stats().steps <= 60,
+        "Radau5 took {} steps",
+        r.stats().steps
+    );
 
     let mut d = Dopri5::new(0.0, S1::new(y0), opts(rtol, rtol)).unwrap();
     let yd = solve(&mut d, &rhs, &[t1]).unwrap();
@@ -383,7 +396,12 @@ fn radau5_reports_a_blow_up_at_a_finite_time_with_a_finite_state() {
         }
         // y = 1/(1 − t) > 0 before the pole: a step onto the other branch
         // (y < 0 beyond it) would be a silent wrong answer.
-        assert!(s.y()[0].is_finite() && s.y()[0] > 0.0, "y = {} at t = {}", s.y()[0], s.t());
+        assert!(
+            s.y()[0].is_finite() && s.y()[0] > 0.0,
+            "y = {} at t = {}",
+            s.y()[0],
+            s.t()
+        );
     }
     let e = failure.expect("the pole at t = 1 must stop the run");
     eprintln!("blow-up: {e}");
@@ -425,7 +443,10 @@ fn radau5_step_budget_ends_in_too_many_steps() {
     assert!(matches!(e, IntegrateError::TooManySteps { max_steps: 5, t } if t > 0.0 && t < 1000.0));
     let mut f = Radau5::fixed(0.0, omega0, 0.1).unwrap().with_max_steps(3);
     let e = solve(&mut f, &ReducedAle(top), &[1.0]).unwrap_err();
-    assert!(matches!(e, IntegrateError::TooManySteps { max_steps: 3, .. }));
+    assert!(matches!(
+        e,
+        IntegrateError::TooManySteps { max_steps: 3, .. }
+    ));
     assert_eq!(f.stats().steps, 3);
 }
 

@@ -334,12 +334,7 @@ fn newton_scale<const N: usize>(atol: Real, rtol: Real, y: &State<N>) -> State<N
 }
 
 /// The error scale `atol + rtol·max(|yᵢ|, |y_newᵢ|)`, with the same floor.
-fn error_scale<const N: usize>(
-    atol: Real,
-    rtol: Real,
-    y: &State<N>,
-    y_new: &State<N>,
-) -> State<N> {
+fn error_scale<const N: usize>(atol: Real, rtol: Real, y: &State<N>, y_new: &State<N>) -> State<N> {
     let big = y.zip_map(y_new, |a, b| a.abs().max(b.abs()));
     newton_scale(atol, rtol, &big)
 }
@@ -560,7 +555,11 @@ impl<const N: usize> Radau5<N> {
             let at_rounding = dyno <= 4.0 * Real::EPSILON;
             if newt > 1 && newt < settings.nit && !at_rounding {
                 let thq = dyno / dynold;
-                theta = if newt == 2 { thq } else { (thq * thq_old).sqrt() };
+                theta = if newt == 2 {
+                    thq
+                } else {
+                    (thq * thq_old).sqrt()
+                };
                 thq_old = thq;
                 if theta < 0.99 {
                     faccon = theta / (1.0 - theta);
@@ -725,6 +724,11 @@ impl<const N: usize> Radau5<N> {
             };
             let y_new = self.y + z[2];
             let Some(lus) = &self.lus else {
+                // Unreachable (the Newton iteration needs the decompositions),
+                // but never a loop that does not shorten the step.
+                self.stats.rejected += 1;
+                rejected_here = true;
+                h = 0.5 * hs.abs();
                 continue;
             };
             // Hairer's filtered error estimate (HW II, (8.19)–(8.20)).
@@ -732,7 +736,7 @@ impl<const N: usize> Radau5<N> {
             let scale = error_scale(atol, rtol, &self.y, &y_new);
             let err_vec = lus.real.solve(&(f0 + v));
             let mut err = rms_scaled(&err_vec, &scale);
-            if !(err < 1.0) && (self.h_acc == 0.0 || rejected_here) {
+            if (err >= 1.0 || err.is_nan()) && (self.h_acc == 0.0 || rejected_here) {
                 // NOTE: (8.20'): on a stiff problem the first estimate can be
                 // far too pessimistic after a rejection or at the start; one
                 // more evaluation at y + err sharpens it.
