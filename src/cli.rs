@@ -194,6 +194,9 @@ fn advice(e: &IntegrateError) -> &'static str {
         IntegrateError::TooManySteps { .. } => {
             "the run needs too many steps: shorten --t-end, loosen --rtol, enlarge --step, or use --method exact"
         }
+        IntegrateError::NoConvergence { .. } => {
+            "the implicit method's Newton iteration failed: try a smaller --step or an adaptive method"
+        }
         IntegrateError::InvalidOption(_) => "check the method options",
     }
 }

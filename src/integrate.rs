@@ -13,12 +13,15 @@
 //! | [`Rk4`] | 4 | fixed step | cubic Hermite |
 //! | [`Dopri5`] | 5(4) | PI controller | Shampine's order-4 interpolant |
 //! | [`Dop853`] | 8(5,3) | Hairer's controller | order-7 interpolant (3 extra stages) |
+//! | [`Radau5`] | 5 (implicit, L-stable) | Hairer's RADAU5 (predictive), or fixed step | the collocation polynomial (order 3) |
 //! | [`Splitting`] ([`Composition::LieTrotter`]) | 1 (exact for commuting parts) | fixed step | none |
 //! | [`Splitting`] ([`Composition::Strang`]) | 2, symmetric | fixed step | none |
 //! | [`Splitting`] ([`Composition::Yoshida4`]) | 4, symmetric | fixed step | none |
 //!
 //! All of them step forward or backward: the direction is the sign of
-//! `t_stop − t`.
+//! `t_stop − t`. The explicit methods use only [`Rhs::eval`]; [`Radau5`] also
+//! calls [`Rhs::jacobian`] (analytic when the right-hand side provides it, else
+//! forward differences).
 //!
 //! The splittings do not take a right-hand side: they compose the exact flows
 //! of the parts of a [`SplitFlow`] (the free rigid body cut into three axis
@@ -28,16 +31,19 @@
 //! count sub-flow evaluations in [`Stats::rhs_evals`].
 
 use crate::math::{Real, State};
+use nalgebra::SMatrix;
 use serde::Serialize;
 use thiserror::Error;
 
 pub mod dop853;
 pub mod dopri5;
+pub mod radau5;
 pub mod rk4;
 pub mod splitting;
 
 pub use dop853::Dop853;
 pub use dopri5::Dopri5;
+pub use radau5::Radau5;
 pub use rk4::Rk4;
 pub use splitting::{
     Composition, FreeRigidBody, ReducedFlow, ReducedSplitting, RigidBodySplitting, RigidBodyState,
@@ -48,6 +54,44 @@ pub use splitting::{
 pub trait Rhs<const N: usize> {
     /// Evaluate `f(t, y)`.
     fn eval(&self, t: Real, y: &State<N>) -> State<N>;
+
+    /// The Jacobian `∂f/∂y` at `(t, y)`: entry `(i, j)` is `∂f_i/∂y_j`.
+    ///
+    /// Only the implicit method ([`Radau5`]) calls it. The default is
+    /// [`forward_difference_jacobian`], which costs `N + 1` evaluations of
+    /// [`Rhs::eval`] and has an error of about √ε relative to the entries; a
+    /// right-hand side that knows its derivative should override it (an
+    /// analytic Jacobian is exact, cheaper, and keeps the simplified Newton
+    /// iteration converging on very stiff problems).
+    fn jacobian(&self, t: Real, y: &State<N>) -> SMatrix<Real, N, N> {
+        forward_difference_jacobian(self, t, y)
+    }
+}
+
+/// The Jacobian `∂f/∂y` of `rhs` at `(t, y)` by forward differences, one
+/// column per component: `(f(t, y + δⱼeⱼ) − f(t, y)) / δⱼ`.
+///
+/// The increment is Hairer's `δⱼ = √(ε · max(10⁻⁵, |yⱼ|))` (RADAU5's
+/// numerical Jacobian; E. Hairer, G. Wanner, *Solving Ordinary Differential
+/// Equations II*, 2nd ed., Springer 1996, Sec. IV.8), rounded so that
+/// `yⱼ + δⱼ` is exactly representable. Costs `N + 1` evaluations.
+pub fn forward_difference_jacobian<const N: usize, R: Rhs<N> + ?Sized>(
+    rhs: &R,
+    t: Real,
+    y: &State<N>,
+) -> SMatrix<Real, N, N> {
+    let f0 = rhs.eval(t, y);
+    let mut jac = SMatrix::<Real, N, N>::zeros();
+    for j in 0..N {
+        let mut yj = *y;
+        let delta = (Real::EPSILON * y[j].abs().max(1e-5)).sqrt();
+        yj[j] += delta;
+        // NOTE: divide by the increment actually applied, not the one asked for.
+        let delta = yj[j] - y[j];
+        let column = (rhs.eval(t, &yj) - f0) / delta;
+        jac.set_column(j, &column);
+    }
+    jac
 }
 
 impl<const N: usize, F> Rhs<N> for F
@@ -103,6 +147,17 @@ pub enum IntegrateError {
         t: Real,
         /// The budget.
         max_steps: u64,
+    },
+    /// The implicit method's Newton iteration did not converge and the step
+    /// could not be shortened (the fixed-step mode of [`Radau5`]).
+    #[error(
+        "the Newton iteration of the implicit method did not converge at t = {t} with step {h:e}"
+    )]
+    NoConvergence {
+        /// Time of the step's start (the state there is kept).
+        t: Real,
+        /// The signed step size tried.
+        h: Real,
     },
     /// An option was rejected when the method was built.
     #[error("invalid integrator option: {0}")]

@@ -7,7 +7,7 @@
 //!
 //! - [`math`]: scalar, vector and rotation types; SO(3) helpers.
 //! - [`physics`]: the paper, one module per concept (pure: no I/O, no clock).
-//! - [`integrate`]: RK4, Dormand–Prince 5(4) and DOP853 over one small trait.
+//! - [`integrate`]: RK4, Dormand–Prince 5(4), DOP853 and Radau IIA 5 over one small trait; Strang and Yoshida-4 splittings.
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
 //! - [`stability`]: where natural methods fail, beside what spintop does instead (pure).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line.
