@@ -9,6 +9,7 @@
 //! - [`physics`]: the paper, one module per concept (pure: no I/O, no clock).
 //! - [`integrate`]: RK4, Dormand–Prince 5(4) and DOP853 over one small trait.
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
+//! - [`scene`]: one question in a TOML file, and the lightest model that answers it (pure).
 //! - [`stability`]: where natural methods fail, beside what spintop does instead (pure).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
@@ -21,6 +22,7 @@ pub mod integrate;
 pub mod math;
 pub mod physics;
 pub mod plot;
+pub mod scene;
 pub mod sim;
 pub mod stability;
 pub mod tui;

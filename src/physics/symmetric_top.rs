@@ -270,6 +270,57 @@ pub fn reduced_closed_form(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Vec3 {
     Vec3::new(o1, o2, omega0.z)
 }
 
+// ANCHOR: time_to_factor
+/// How long the truncated model takes to slow every rate by the factor `p`.
+///
+/// Paper: Eq. (4.6) (inverted).
+///
+/// ```text
+/// Ω(t) = Ω₀/R(t),  R = 1/p  ⇒  t = (1/p² − 1) / (2τΩ⊥₀²)
+/// ```
+///
+/// Infinite when τΩ⊥₀² = 0 (nothing radiates), zero for p ≥ 1; `p` in (0, 1].
+pub fn truncated_time_to_factor(top: &SymmetricTop, omega_perp0: Real, p: Real) -> Real {
+    if p >= 1.0 {
+        return 0.0;
+    }
+    let rate = 2.0 * top.tau * omega_perp0 * omega_perp0;
+    if rate == 0.0 {
+        return Real::INFINITY;
+    }
+    (1.0 / (p * p) - 1.0) / rate
+}
+
+/// How long the reduced model takes to bring Ω⊥ down to `p` Ω⊥₀.
+///
+/// Paper: Eq. (4.16) (inverted).
+///
+/// ```text
+/// Φ(t) = p  ⇒  t = (σ/2) ln(1 + (β − 1)(1/p² − 1)/β)
+/// ```
+///
+/// NOTE: with u₀ = Ω⊥₀², k = I₃Ω₃/I₁ and x = k²(1/p² − 1)/(u₀ + k²) this is
+/// t = (1/p² − 1)/(2τ(u₀ + k²)) · ln(1 + x)/x, which needs neither σ (infinite
+/// when Ω₃ = 0) nor β (infinite when Ω⊥₀ = 0), and tends to the truncated
+/// model's time as Ω₃ → 0, where ln(1 + x)/x → 1.
+pub fn reduced_time_to_factor(top: &SymmetricTop, omega0: &Vec3, p: Real) -> Real {
+    if p >= 1.0 {
+        return 0.0;
+    }
+    let u0 = omega0.x * omega0.x + omega0.y * omega0.y;
+    let k = top.ratio * omega0.z;
+    let s = u0 + k * k;
+    let rate = 2.0 * top.tau * s;
+    if rate == 0.0 {
+        return Real::INFINITY;
+    }
+    let q = 1.0 / (p * p) - 1.0;
+    let x = k * k * q / s;
+    let log_factor = if x == 0.0 { 1.0 } else { x.ln_1p() / x };
+    q / rate * log_factor
+}
+// ANCHOR_END: time_to_factor
+
 // ANCHOR: truncated_orientation
 /// The closed-form orientation of the truncated model, for any start `o0` and Ω₀.
 ///
@@ -419,6 +470,31 @@ mod tests {
         let right = w.x * f.x + w.y * f.y;
         assert_relative_eq!(right, -top.tau() * w0.powi(4), max_relative = 1e-14);
         assert!((printed - right).abs() > 1e-3);
+    }
+
+    /// The inverted closed forms give back the factor they were asked for.
+    #[test]
+    fn eq_4_6_and_eq_4_16_inverted_return_the_requested_factor() {
+        let top = SymmetricTop::new(0.7, 1.0).unwrap();
+        for omega0 in [
+            Vec3::new(0.03, 0.1, 0.2),
+            Vec3::new(0.0, 0.1, 0.0),
+            Vec3::new(0.0, 2e-26, 3e-26),
+        ] {
+            for p in [0.999, 0.5, 1e-3] {
+                let t = reduced_time_to_factor(&top, &omega0, p);
+                assert_relative_eq!(reduced_amplitude(&top, &omega0, t), p, max_relative = 1e-9);
+                let w0 = omega0.x.hypot(omega0.y);
+                let t = truncated_time_to_factor(&top, w0, p);
+                assert_relative_eq!(1.0 / truncated_clock(&top, w0, t).r, p, max_relative = 1e-9);
+            }
+        }
+        assert_eq!(
+            reduced_time_to_factor(&top, &Vec3::zeros(), 0.5),
+            Real::INFINITY
+        );
+        assert_eq!(truncated_time_to_factor(&top, 0.0, 0.5), Real::INFINITY);
+        assert_eq!(truncated_time_to_factor(&top, 0.1, 1.0), 0.0);
     }
 
     /// (4.16) in the paper's printed form agrees with the rewritten one where the
