@@ -321,6 +321,25 @@ pub fn reduced_time_to_factor(top: &SymmetricTop, omega0: &Vec3, p: Real) -> Rea
 }
 // ANCHOR_END: time_to_factor
 
+/// The reduced model's body rate seen from axes that turn with Ω⊥ in the body.
+///
+/// Paper: Eq. (4.15), Eq. (4.16).
+///
+/// ```text
+/// Ω(t) = R_z(−Ω̃₃t) (ΦΩ₁₀, ΦΩ₂₀, Ω₃)   ⇒   with O = Q·R_z(Ω̃₃t):  Q′ = Q ŵ,
+/// w(t) = R_z(Ω̃₃t)Ω(t) − Ω̃₃ẑ = (Φ(t)Ω₁₀, Φ(t)Ω₂₀, (I₃/I₁)Ω₃)
+/// ```
+///
+/// The fast precession R_z(Ω̃₃t) is exact; w only changes on the slow scales
+/// of Φ(t) and tends to the constant (0, 0, I₃Ω₃/I₁), about which Q turns as
+/// the free top's axis does. So an integrator for Q has nothing fast to follow
+/// (the reduced orientation has no closed form: w turns, so its values at
+/// different times do not commute).
+pub fn reduced_corotating_rate(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Vec3 {
+    let phi_amp = reduced_amplitude(top, omega0, t);
+    Vec3::new(phi_amp * omega0.x, phi_amp * omega0.y, top.ratio * omega0.z)
+}
+
 // ANCHOR: truncated_orientation
 /// The closed-form orientation of the truncated model, for any start `o0` and Ω₀.
 ///
@@ -495,6 +514,24 @@ mod tests {
         );
         assert_eq!(truncated_time_to_factor(&top, 0.0, 0.5), Real::INFINITY);
         assert_eq!(truncated_time_to_factor(&top, 0.1, 1.0), 0.0);
+    }
+
+    /// Seen from axes turned by R_z(Ω̃₃t), the reduced body rate minus the
+    /// frame's own Ω̃₃ẑ is (ΦΩ₁₀, ΦΩ₂₀, (I₃/I₁)Ω₃).
+    #[test]
+    fn eq_4_15_corotating_rate_removes_the_body_frame_precession() {
+        let top = SymmetricTop::new(0.4, 1.0).unwrap();
+        let omega0 = Vec3::new(0.03, 0.1, 0.2);
+        for t in [0.0, 3.0, 70.0, 900.0] {
+            let turned = crate::math::rot_z(top.omega3_tilde(omega0.z) * t)
+                * reduced_closed_form(&top, &omega0, t)
+                - top.omega3_tilde(omega0.z) * Vec3::z();
+            assert_relative_eq!(
+                turned,
+                reduced_corotating_rate(&top, &omega0, t),
+                epsilon = 1e-15
+            );
+        }
     }
 
     /// (4.16) in the paper's printed form agrees with the rewritten one where the
