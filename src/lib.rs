@@ -44,6 +44,10 @@ pub mod book {
     pub struct Appendix;
     #[doc = include_str!("../book/src/where-methods-fail.md")]
     pub struct WhereMethodsFail;
+    #[doc = include_str!("../book/src/real-particles.md")]
+    pub struct RealParticles;
     #[doc = include_str!("../book/src/errata.md")]
     pub struct Errata;
+    #[doc = include_str!("../book/src/scene-reference.md")]
+    pub struct SceneReference;
 }

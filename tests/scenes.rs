@@ -694,3 +694,50 @@ fn nanoparticle_is_answered_without_a_step_and_integrators_are_refused() {
         }
     }
 }
+
+/// The book's reference page names every catalogue scene and every key the
+/// parser accepts; the keys are read from the parser's own refusal of an
+/// unknown key in each section, so a new key without documentation fails here.
+#[test]
+fn scene_reference_page_lists_every_key_and_every_scene() {
+    let page = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/book/src/scene-reference.md"
+    ))
+    .unwrap();
+    let keys_of = |text: &str| -> Vec<String> {
+        let e = parse(text, "probe.toml").unwrap_err();
+        let list = e
+            .message
+            .split("expected")
+            .nth(1)
+            .unwrap_or_else(|| panic!("{e}"));
+        list.split('`')
+            .skip(1)
+            .step_by(2)
+            .map(str::to_string)
+            .collect()
+    };
+    let sections = keys_of("[zzz]\n");
+    assert!(sections.len() >= 8, "{sections:?}");
+    for section in &sections {
+        assert!(
+            page.contains(&format!("`[{section}]`")),
+            "section [{section}] is not documented"
+        );
+        for key in keys_of(&format!("[{section}]\nzzz = 1\n")) {
+            assert!(
+                page.contains(&format!("`{key}`")),
+                "[{section}] {key} is not documented"
+            );
+        }
+    }
+    for entry in CATALOGUE {
+        let short = entry.name.trim_start_matches("stability-row-");
+        assert!(
+            page.contains(&format!("`{}`", entry.name)) || page.contains(&format!("`-{short}`")),
+            "{} is not in the catalogue table",
+            entry.name
+        );
+    }
+}
