@@ -347,6 +347,9 @@ pub const METHODS: [&str; 6] = ["auto", "exact", "rk4", "dopri5", "dop853", "for
 /// The shapes of `[units] shape`.
 pub const SHAPES: [&str; 2] = ["sphere", "cylinder"];
 
+/// A value that was given, with the byte range it came from.
+type At<T> = Option<(T, Range<usize>)>;
+
 /// The file name and text, to turn byte offsets into lines.
 struct Ctx<'a> {
     file: &'a str,
@@ -378,7 +381,7 @@ fn num(
     key: &str,
     v: &Key<Real>,
     expected: &str,
-) -> Result<Option<(Real, Range<usize>)>, SceneError> {
+) -> Result<At<Real>, SceneError> {
     let Some(v) = v else { return Ok(None) };
     let x = *v.get_ref();
     if !x.is_finite() {
@@ -398,7 +401,7 @@ fn num_in(
     v: &Key<Real>,
     ok: impl Fn(Real) -> bool,
     expected: &str,
-) -> Result<Option<(Real, Range<usize>)>, SceneError> {
+) -> Result<At<Real>, SceneError> {
     let got = num(ctx, section, key, v, expected)?;
     if let Some((x, span)) = &got
         && !ok(*x)
@@ -418,7 +421,7 @@ fn finite_array<const N: usize>(
     key: &str,
     v: &Key<[Real; N]>,
     expected: &str,
-) -> Result<Option<([Real; N], Range<usize>)>, SceneError> {
+) -> Result<At<[Real; N]>, SceneError> {
     let Some(v) = v else { return Ok(None) };
     let a = *v.get_ref();
     if let Some(x) = a.iter().find(|x| !x.is_finite()) {
@@ -437,7 +440,7 @@ fn choice(
     key: &str,
     v: &Key<String>,
     options: &[&str],
-) -> Result<Option<(usize, Range<usize>)>, SceneError> {
+) -> Result<At<usize>, SceneError> {
     let Some(v) = v else { return Ok(None) };
     let s = v.get_ref();
     match options.iter().position(|o| o == s) {
@@ -751,14 +754,14 @@ fn solve_times(
         Some((s, span)) => (*s, span.clone()),
         None => (&none, section.clone()),
     };
-    if let (Some(times), Some(other)) = (
-        &s.times,
-        s.t_end
-            .as_ref()
-            .map(Spanned::span)
-            .or(s.samples.as_ref().map(Spanned::span)),
-    ) {
-        let _ = times;
+    let t_end_or_samples = s
+        .t_end
+        .as_ref()
+        .map(Spanned::span)
+        .or(s.samples.as_ref().map(Spanned::span));
+    if s.times.is_some()
+        && let Some(other) = t_end_or_samples
+    {
         return Err(ctx.at(
             &other,
             "[solve] gives both times and t_end/samples; expected either times = [...] or t_end (with samples)",
@@ -1248,18 +1251,8 @@ fn balance_scene(
     let charges = finite_array(ctx, s, "charges", &raw.charges, "two charges")?;
     let masses = finite_array(ctx, s, "masses", &raw.masses, "two positive masses")?;
     let length = num(ctx, s, "length", &raw.length, "a positive length")?;
-    let only = |v: bool,
-                key: &str,
-                owner: &str,
-                span: Option<&Range<usize>>|
-     -> Result<(), SceneError> {
-        match (v, span) {
-            (true, Some(span)) => Err(ctx.at(span, format!("[balance] {key} belongs to dipole = \"{owner}\"; expected only the keys of dipole = \"{}\"", kinds[which]))),
-            _ => Ok(()),
-        }
-    };
-    let sp = |x: &Option<(Real, Range<usize>)>| x.as_ref().map(|(_, s)| s.clone());
-    let spa = |x: &Option<([Real; 2], Range<usize>)>| x.as_ref().map(|(_, s)| s.clone());
+    let sp = |x: &At<Real>| x.as_ref().map(|(_, s)| s.clone());
+    let spa = |x: &At<[Real; 2]>| x.as_ref().map(|(_, s)| s.clone());
     let (cs, rs, bs, es, qs, ms, ls) = (
         sp(&cone),
         sp(&rate),
@@ -1269,6 +1262,31 @@ fn balance_scene(
         spa(&masses),
         sp(&length),
     );
+    // Keys of another trajectory are refused, not ignored: each key, where it
+    // was given, which trajectories (by index) take it, and their names.
+    type Owner<'a> = (&'a str, &'a Option<Range<usize>>, &'a [usize], &'a str);
+    let owners: [Owner; 7] = [
+        ("cone", &cs, &[0], "precessing"),
+        ("rate", &rs, &[0, 2], "precessing or dumbbell"),
+        ("b", &bs, &[1], "loop"),
+        ("eps", &es, &[1], "loop"),
+        ("charges", &qs, &[2], "dumbbell"),
+        ("masses", &ms, &[2], "dumbbell"),
+        ("length", &ls, &[2], "dumbbell"),
+    ];
+    for (key, span, belongs, owner) in owners {
+        if let Some(span) = span
+            && !belongs.contains(&which)
+        {
+            return Err(ctx.at(
+                span,
+                format!(
+                    "[balance] {key} belongs to dipole = \"{owner}\"; expected only the keys of dipole = \"{}\"",
+                    kinds[which]
+                ),
+            ));
+        }
+    }
     let spans = [
         ("cone", cs.as_ref()),
         ("rate", rs.as_ref()),
@@ -1280,15 +1298,6 @@ fn balance_scene(
     ];
     let dipole = match which {
         0 => {
-            for (key, span, owner) in [
-                ("b", &bs, "loop"),
-                ("eps", &es, "loop"),
-                ("charges", &qs, "dumbbell"),
-                ("masses", &ms, "dumbbell"),
-                ("length", &ls, "dumbbell"),
-            ] {
-                only(true, key, owner, span.as_ref())?;
-            }
             let (c, r) = (cone.map_or(0.5, |x| x.0), rate.map_or(1.0, |x| x.0));
             BalanceDipole::Precessing {
                 cone: c,
@@ -1297,15 +1306,6 @@ fn balance_scene(
             }
         }
         1 => {
-            for (key, span, owner) in [
-                ("cone", &cs, "precessing"),
-                ("rate", &rs, "precessing or dumbbell"),
-                ("charges", &qs, "dumbbell"),
-                ("masses", &ms, "dumbbell"),
-                ("length", &ls, "dumbbell"),
-            ] {
-                only(true, key, owner, span.as_ref())?;
-            }
             let (bb, ee) = (b.map_or(0.5, |x| x.0), eps.map_or(0.2, |x| x.0));
             BalanceDipole::Loop {
                 b: bb,
@@ -1314,13 +1314,6 @@ fn balance_scene(
             }
         }
         _ => {
-            for (key, span, owner) in [
-                ("cone", &cs, "precessing"),
-                ("b", &bs, "loop"),
-                ("eps", &es, "loop"),
-            ] {
-                only(true, key, owner, span.as_ref())?;
-            }
             let q = charges.map_or([1.0, -1.0], |x| x.0);
             let m = masses.map_or([1.0, 1.0], |x| x.0);
             let l = length.map_or(1.0, |x| x.0);

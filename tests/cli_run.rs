@@ -63,6 +63,7 @@ fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
         ("foreign-section.toml", "[scene]\nname = \"x\"\nkind = \"orbit\"\ndescription = \"d\"\n\n[orbit]\npotential = \"coulomb\"\ntau0 = 1e-3\n\n[solve]\ntimes = [0.0, 1.0]\n\n[top]\nmodel = \"reduced\"\n".into(), 13, "[top] does not belong"),
         ("orbit-method.toml", "[scene]\nname = \"x\"\nkind = \"orbit\"\ndescription = \"d\"\n\n[orbit]\npotential = \"harmonic\"\ntau0 = 1e-3\n\n[solve]\nmethod = \"rk4\"\ntimes = [0.0, 1.0]\n".into(), 11, "its method follows from force"),
         ("stability-row.toml", "[scene]\nname = \"x\"\nkind = \"stability\"\ndescription = \"d\"\n\n[stability]\nrow = 9\n".into(), 7, "expected a row number, 1 to 6"),
+        ("foreign-balance-key.toml", "[scene]\nname = \"x\"\nkind = \"balance\"\ndescription = \"d\"\n\n[balance]\ndipole = \"loop\"\ncone = 0.5\n\n[solve]\ntimes = [0.0]\n".into(), 8, "cone belongs to dipole = \"precessing\""),
         ("eccentricity.toml", "[scene]\nname = \"x\"\nkind = \"orbit\"\ndescription = \"d\"\n\n[orbit]\npotential = \"coulomb\"\ntau0 = 1e-3\neccentricity = 1.5\n\n[solve]\ntimes = [0.0, 1.0]\n".into(), 9, "eccentricity = 1.5 is out of range"),
         ("forced-integrator.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n{SPHERE}time_unit = \"yr\"\n\n[solve]\nmethod = \"dop853\"\nt_end = 10.0\n"), 18, "more than the 1e7 allowed; method = \"auto\" answers from the closed forms"),
     ]

@@ -355,7 +355,8 @@ pub fn omega_samples(
     times: &[Real],
     tau_per_unit: Option<Real>,
 ) -> Option<Vec<OmegaSample>> {
-    let (top, closed): (SymmetricTop, fn(&SymmetricTop, &Vec3, Real) -> Vec3) = match model {
+    type ClosedForm = fn(&SymmetricTop, &Vec3, Real) -> Vec3;
+    let (top, closed): (SymmetricTop, ClosedForm) = match model {
         Model::Truncated(top) => (*top, truncated_closed_form),
         Model::Reduced(top) => (*top, reduced_closed_form),
         _ => return None,
