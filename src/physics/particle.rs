@@ -302,8 +302,9 @@ mod tests {
         assert_relative_eq!(i1, m * 7.0 / 12.0, max_relative = 1e-15);
         assert_relative_eq!(p.ratio(), i3 / i1, max_relative = 1e-15);
         // A flat disc approaches the limit I₃ = 2I₁ but never passes it.
-        let disc = Particle::new(Shape::Cylinder, 1.0, 1e-9, 1.0, 1.0).unwrap();
-        assert!(disc.ratio() < 2.0 && disc.ratio() > 1.999_999);
+        let disc = Particle::new(Shape::Cylinder, 1.0, 1e-3, 1.0, 1.0).unwrap();
+        assert!(disc.ratio() < 2.0 && disc.ratio() > 1.999_99);
+        assert!(SymmetricTop::new(disc.ratio(), 1.0).is_ok());
     }
 
     #[test]

@@ -46,6 +46,7 @@ catalogue![
     "euler-pole",
     "reduced-strong-spin",
     "asymmetric-top",
+    "full-ale-physical",
     "precessing-dipole",
     "coulomb-collapse",
     "appendix-convergence",
