@@ -2,6 +2,8 @@
 //! tmux at 120×40. It must name both models and draw Braille plots; after a
 //! pause the time must stand still; one step must advance it by exactly one
 //! Δt; `q` must end it with exit status 0 and leave the alternate screen.
+//! Opened on a catalogue scene (`spintop tui NAME`), it must start from the
+//! scene's I₃/I₁ and Ω₀ and name the scene.
 //!
 //! In CI (`CI=true`) tmux is required and its absence fails the test; on a
 //! machine without tmux the test says so and passes.
