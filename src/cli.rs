@@ -21,6 +21,8 @@ use std::process::ExitCode;
 pub mod balance;
 pub mod orbit;
 pub mod plot;
+pub mod run;
+pub mod scenes;
 pub mod shell;
 pub mod simulate;
 pub mod stability;
@@ -62,6 +64,10 @@ enum Command {
     Plot(plot::PlotArgs),
     /// Where natural methods fail, beside what spintop does instead: six measured rows.
     Stability(stability::StabilityArgs),
+    /// Answer one scene file (or catalogue scene) with the lightest model that is right.
+    Run(run::RunArgs),
+    /// List the catalogue of scenes, one line each.
+    Scenes(scenes::ScenesArgs),
 }
 
 /// Output format.
@@ -254,6 +260,8 @@ where
         Some(Command::Tui(args)) => tui::execute(args, stdout),
         Some(Command::Plot(args)) => plot::execute(args, stdout),
         Some(Command::Stability(args)) => stability::execute(args, stdout),
+        Some(Command::Run(args)) => run::execute(args, stdout, stderr),
+        Some(Command::Scenes(args)) => scenes::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,

@@ -9,6 +9,7 @@
 //! - [`physics`]: the paper, one module per concept (pure: no I/O, no clock).
 //! - [`integrate`]: RK4, Dormand–Prince 5(4), DOP853 and Radau IIA 5 over one small trait; Strang and Yoshida-4 splittings.
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
+//! - [`scene`]: one question in a TOML file, and the lightest model that answers it (pure).
 //! - [`stability`]: where natural methods fail, beside what spintop does instead (pure).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
@@ -23,6 +24,7 @@ pub mod integrate;
 pub mod math;
 pub mod physics;
 pub mod plot;
+pub mod scene;
 pub mod sim;
 pub mod stability;
 pub mod tui;
@@ -44,6 +46,10 @@ pub mod book {
     pub struct Appendix;
     #[doc = include_str!("../book/src/where-methods-fail.md")]
     pub struct WhereMethodsFail;
+    #[doc = include_str!("../book/src/real-particles.md")]
+    pub struct RealParticles;
     #[doc = include_str!("../book/src/errata.md")]
     pub struct Errata;
+    #[doc = include_str!("../book/src/scene-reference.md")]
+    pub struct SceneReference;
 }

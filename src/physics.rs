@@ -11,6 +11,7 @@
 //! | [`symmetric_top`] | §4, (4.1)–(4.18) | truncated and reduced ALE of the axially symmetric top, closed forms |
 //! | [`full_ale`] | (3.4) | the full ALE with its Schott term, as first-order systems |
 //! | [`shell`] | Appendix, (A.1)–(A.3) | the charge as a small shell: a neutral delay equation, its roots and balance |
+//! | [`particle`] | §1, (4.4), (4.6), (4.16) | a real sphere or cylinder in Gaussian units: τ in seconds, spin-down and upright times |
 //!
 //! Units: κ = 2/(3c³) = 1 for the general top; τ = 2d²/(3I₁c³) = 1 and I₁ = 1 for
 //! the symmetric top (so times are in units of τ and rates in units of 1/τ).
@@ -23,6 +24,7 @@ pub mod central;
 pub mod euler_angles;
 pub mod full_ale;
 pub mod general_top;
+pub mod particle;
 pub mod rigid_body;
 pub mod shell;
 pub mod symmetric_top;

@@ -23,6 +23,8 @@ mod ch3;
 mod ch4;
 #[path = "../lessons/where_methods_fail.rs"]
 mod fail;
+#[path = "../lessons/real_particles.rs"]
+mod particles;
 
 type Lesson = fn(&mut dyn io::Write) -> io::Result<()>;
 
@@ -33,6 +35,7 @@ const LESSONS: &[(&str, Lesson)] = &[
     ("ch4_symmetric_top", ch4::run),
     ("appendix_shell", appendix::run),
     ("where_methods_fail", fail::run),
+    ("real_particles", particles::run),
 ];
 
 fn root() -> PathBuf {

@@ -2,6 +2,8 @@
 //! tmux at 120×40. It must name both models and draw Braille plots; after a
 //! pause the time must stand still; one step must advance it by exactly one
 //! Δt; `q` must end it with exit status 0 and leave the alternate screen.
+//! Opened on a catalogue scene (`spintop tui NAME`), it must start from the
+//! scene's I₃/I₁ and Ω₀ and name the scene.
 //!
 //! In CI (`CI=true`) tmux is required and its absence fails the test; on a
 //! machine without tmux the test says so and passes.
@@ -100,8 +102,9 @@ fn braille(screen: &str) -> usize {
         .count()
 }
 
-#[test]
-fn the_live_view_runs_pauses_steps_and_quits_in_a_real_terminal() {
+/// Start `spintop ARGS` in a private tmux server at 120×40; `None` (after
+/// saying so) when tmux is missing outside CI.
+fn launch(tag: &str, args: &str) -> Option<Tmux> {
     if !tmux_available() {
         if std::env::var("CI").is_ok_and(|v| !matches!(v.as_str(), "" | "0" | "false")) {
             panic!("CI is set but tmux is missing: .ci/run installs it with apt-get");
@@ -113,13 +116,13 @@ fn the_live_view_runs_pauses_steps_and_quits_in_a_real_terminal() {
             std::io::stderr(),
             "tui_tmux: SKIPPED, tmux is not installed (CI installs it; apt-get install tmux)"
         );
-        return;
+        return None;
     }
     let id = std::process::id();
     let mut tmux = Tmux {
-        socket: format!("spintop-test-{id}"),
+        socket: format!("spintop-test-{tag}-{id}"),
         socket_path: None,
-        status_file: std::env::temp_dir().join(format!("spintop-tmux-{id}.status")),
+        status_file: std::env::temp_dir().join(format!("spintop-tmux-{tag}-{id}.status")),
     };
     // Start a placeholder, keep the pane after its process exits (to read the
     // exit status), then run the real binary in it.
@@ -149,8 +152,17 @@ fn the_live_view_runs_pauses_steps_and_quits_in_a_real_terminal() {
         "-k",
         "-t",
         "spintop",
-        &format!("'{binary}'; echo $? > '{status}'"),
+        &format!("'{binary}' {args}; echo $? > '{status}'"),
     ]);
+    Some(tmux)
+}
+
+#[test]
+fn the_live_view_runs_pauses_steps_and_quits_in_a_real_terminal() {
+    let Some(tmux) = launch("plain", "") else {
+        return;
+    };
+    let status = tmux.status_file.display().to_string();
     assert_eq!(tmux.format("#{pane_width}x#{pane_height}"), "120x40");
 
     let long = Duration::from_secs(20);
@@ -199,4 +211,36 @@ fn the_live_view_runs_pauses_steps_and_quits_in_a_real_terminal() {
         "the terminal must be restored (alternate screen left)"
     );
     assert!(!tmux.capture().contains("truncated (4.2)"));
+}
+
+/// `spintop tui SCENE` opens the live view on a top scene of the catalogue: its
+/// I₃/I₁ and Ω₀ in the header, its name in the message line; `q` ends it with
+/// exit status 0.
+#[test]
+fn the_live_view_opens_a_top_scene() {
+    let Some(tmux) = launch("scene", "tui reduced-strong-spin") else {
+        return;
+    };
+    let long = Duration::from_secs(20);
+    let screen = tmux.wait_for("the scene's parameters", long, |s| {
+        s.contains("scene reduced-strong-spin") && s.contains("truncated") && s.contains("reduced")
+    });
+    assert!(screen.contains("I₃/I₁ = 1"), "{screen}");
+    assert!(
+        screen.contains("0.05") && screen.contains("0.5"),
+        "{screen}"
+    );
+    tmux.keys("q");
+    let status = tmux.status_file.clone();
+    let start = Instant::now();
+    let code = loop {
+        match std::fs::read_to_string(&status) {
+            Ok(code) if code.ends_with('\n') => break code,
+            _ => {
+                assert!(start.elapsed() < long, "q did not end the program");
+                sleep(Duration::from_millis(50));
+            }
+        }
+    };
+    assert_eq!(code.trim(), "0", "exit status");
 }

@@ -228,20 +228,10 @@ pub fn write_output(out: &mut impl Write, output: &ShellOutput, format: Format) 
     }
 }
 
-/// Validate, warn when unstable, run and print `shell`.
-pub(crate) fn execute(
-    args: ShellArgs,
-    out: &mut impl Write,
-    err: &mut impl Write,
-) -> Result<(), CliError> {
-    let request = args.validate()?;
+/// Run a validated `shell` request (the instability warning is the caller's).
+pub fn shell(request: &ShellRequest) -> Result<ShellOutput, CliError> {
     let model = request.model;
     let growth_rate = model.growth_rate();
-    // The warning comes before any output, so a reader piping stdout still sees it first.
-    if let Some(rate) = growth_rate {
-        writeln!(err, "{}", instability_warning(&model, rate))?;
-        err.flush()?;
-    }
     let near = model.root_near_al().ok_or_else(|| {
         CliError::Stopped(
             "Newton's method found no characteristic root near the Abraham-Lorentz one; try a smaller --delay"
@@ -262,7 +252,7 @@ pub(crate) fn execute(
         )),
         other => bad(other.to_string()),
     })?;
-    let output = ShellOutput {
+    Ok(ShellOutput {
         tau0: model.tau0(),
         delay: model.delta(),
         m0: model.m0(),
@@ -275,7 +265,23 @@ pub(crate) fn execute(
         root_al: [s_al.re, s_al.im],
         steps_per_delay: request.steps,
         samples,
-    };
+    })
+}
+
+/// Validate, warn when unstable, run and print `shell`.
+pub(crate) fn execute(
+    args: ShellArgs,
+    out: &mut impl Write,
+    err: &mut impl Write,
+) -> Result<(), CliError> {
+    let request = args.validate()?;
+    let model = request.model;
+    // The warning comes before any output, so a reader piping stdout still sees it first.
+    if let Some(rate) = model.growth_rate() {
+        writeln!(err, "{}", instability_warning(&model, rate))?;
+        err.flush()?;
+    }
+    let output = shell(&request)?;
     write_output(out, &output, request.format)?;
     Ok(())
 }

@@ -6,6 +6,8 @@
 
 use super::{CliError, bad, parse_number, parse_vec3};
 use crate::math::Real;
+use crate::scene::{Body, Scene};
+use crate::sim::{MethodChoice, Model};
 use crate::tui::app::{App, Method, Settings, WARPS};
 use crate::tui::event;
 use clap::{Args, ValueEnum};
@@ -39,6 +41,9 @@ impl From<ViewMethod> for Method {
 /// The raw arguments of `tui`, before validation.
 #[derive(Debug, Default, Args)]
 pub struct TuiArgs {
+    /// A top scene to open: a scene file, or a catalogue name (`spintop scenes`).
+    #[arg(value_name = "SCENE", conflicts_with_all = ["ratio", "omega", "method"])]
+    scene: Option<String>,
     /// I3/I1 of both models, in (0, 2] [default: 0.4]
     #[arg(long, value_parser = parse_number)]
     ratio: Option<Real>,
@@ -58,15 +63,73 @@ pub struct TuiArgs {
 }
 
 impl TuiArgs {
-    fn settings(&self) -> Result<Settings, CliError> {
+    fn settings(&self) -> Result<(Settings, Option<String>), CliError> {
+        if let Some(arg) = &self.scene {
+            let scene = super::run::load(arg)?;
+            let (settings, note) = scene_settings(&scene, self.warp)?;
+            return Ok((settings, Some(note)));
+        }
         Settings::new(
             self.ratio.unwrap_or(0.4),
             self.omega.unwrap_or([0.0, 0.1, 0.2]),
             self.method.map_or(Method::ClosedForm, Method::from),
             self.warp.unwrap_or(WARPS[crate::tui::app::DEFAULT_WARP]),
         )
+        .map(|s| (s, None))
         .map_err(bad)
     }
+}
+
+/// The live view's settings for a top scene, and the line it opens with.
+///
+/// The view shows the two symmetric models side by side in τ units, in the
+/// paper's frame: a truncated, reduced or full scene opens with its I₃/I₁,
+/// Ω₀ and method; an asymmetric (general) top has no place in it and is
+/// refused, as are scenes of other kinds.
+pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, String), CliError> {
+    let Body::Top(top) = &scene.body else {
+        return Err(bad(format!(
+            "{}: the live view opens top scenes, and this one is kind = \"{}\"; use `spintop run {}`",
+            scene.file,
+            scene.kind().name(),
+            scene.file
+        )));
+    };
+    let symmetric = match top.model {
+        Model::Truncated(t) | Model::Reduced(t) | Model::Full(t) => t,
+        Model::General(_) => {
+            return Err(bad(format!(
+                "{}: the live view compares the truncated and reduced symmetric tops, and this scene is an asymmetric (general) top; use `spintop run {}`",
+                scene.file, scene.file
+            )));
+        }
+    };
+    let method = match top.method {
+        MethodChoice::Rk4 => Method::Rk4,
+        MethodChoice::Dopri5 => Method::Dopri5,
+        MethodChoice::Dop853 => Method::Dop853,
+        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => Method::ClosedForm,
+    };
+    let settings = Settings::new(
+        symmetric.ratio(),
+        top.initial.omega.into(),
+        method,
+        warp.unwrap_or(WARPS[crate::tui::app::DEFAULT_WARP]),
+    )
+    .map_err(bad)?;
+    let mut note = format!("scene {}", scene.name);
+    if let Some(u) = &top.units {
+        note.push_str(&format!(
+            ": a real particle, τ = {:.2e} s, far too slow to watch in τ units; `spintop run {}` gives its times",
+            u.tau_seconds(),
+            scene.name
+        ));
+    } else if matches!(top.model, Model::Full(_)) {
+        note.push_str(": the full ALE (3.4) is not in this view; both symmetric models run with its I₃/I₁ and Ω₀");
+    } else {
+        note.push_str(&format!(": {}", scene.summary()));
+    }
+    Ok((settings, note))
 }
 
 /// Restores the terminal when dropped, so that every way out of the loop
@@ -81,7 +144,7 @@ impl Drop for Restore {
 
 /// Validate, check for a terminal, run the live view, restore the terminal.
 pub(crate) fn execute(args: TuiArgs, out: &mut impl Write) -> Result<(), CliError> {
-    let settings = args.settings()?;
+    let (settings, note) = args.settings()?;
     let limit = match args.bench {
         Some(s) if !(s > 0.0 && s <= 3600.0) => {
             return Err(bad(format!("--bench takes 0 < SECONDS <= 3600, got {s}")));
@@ -95,6 +158,9 @@ pub(crate) fn execute(args: TuiArgs, out: &mut impl Write) -> Result<(), CliErro
         ));
     }
     let mut app = App::new(settings).map_err(bad)?;
+    if let Some(note) = note {
+        app = app.with_message(note);
+    }
     let report = {
         let _restore = Restore;
         let mut terminal = ratatui::try_init()?;

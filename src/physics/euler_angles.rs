@@ -89,6 +89,20 @@ impl EulerAngles {
     }
 }
 
+/// The orientation that puts the lab z axis along the body-frame vector `v`,
+/// with φ = 0. With v = L₀ this is the paper's frame of (4.11) and its
+/// figures: θ is then the tilt between the symmetry axis and L.
+///
+/// ```text
+/// third row of R_z(φ)R_x(θ)R_z(ψ) = (sin θ sin ψ, sin θ cos ψ, cos θ) = v/|v|
+/// ⇒ θ = atan2(√(v₁² + v₂²), v₃),  ψ = atan2(v₁, v₂)
+/// ```
+///
+/// A zero vector gives the identity.
+pub fn frame_with_z_along(v: &Vec3) -> EulerAngles {
+    EulerAngles::new(0.0, v.x.hypot(v.y).atan2(v.z), v.x.atan2(v.y))
+}
+
 // ANCHOR: poisson_3_5
 /// The body-frame angular velocity from Euler angles and their rates.
 ///

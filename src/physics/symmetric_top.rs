@@ -270,6 +270,76 @@ pub fn reduced_closed_form(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Vec3 {
     Vec3::new(o1, o2, omega0.z)
 }
 
+// ANCHOR: time_to_factor
+/// How long the truncated model takes to slow every rate by the factor `p`.
+///
+/// Paper: Eq. (4.6) (inverted).
+///
+/// ```text
+/// Ω(t) = Ω₀/R(t),  R = 1/p  ⇒  t = (1/p² − 1) / (2τΩ⊥₀²)
+/// ```
+///
+/// Infinite when τΩ⊥₀² = 0 (nothing radiates), zero for p ≥ 1; `p` in (0, 1].
+pub fn truncated_time_to_factor(top: &SymmetricTop, omega_perp0: Real, p: Real) -> Real {
+    if p >= 1.0 {
+        return 0.0;
+    }
+    let rate = 2.0 * top.tau * omega_perp0 * omega_perp0;
+    if rate == 0.0 {
+        return Real::INFINITY;
+    }
+    (1.0 / (p * p) - 1.0) / rate
+}
+
+/// How long the reduced model takes to bring Ω⊥ down to `p` Ω⊥₀.
+///
+/// Paper: Eq. (4.16) (inverted).
+///
+/// ```text
+/// Φ(t) = p  ⇒  t = (σ/2) ln(1 + (β − 1)(1/p² − 1)/β)
+/// ```
+///
+/// NOTE: with u₀ = Ω⊥₀², k = I₃Ω₃/I₁ and x = k²(1/p² − 1)/(u₀ + k²) this is
+/// t = (1/p² − 1)/(2τ(u₀ + k²)) · ln(1 + x)/x, which needs neither σ (infinite
+/// when Ω₃ = 0) nor β (infinite when Ω⊥₀ = 0), and tends to the truncated
+/// model's time as Ω₃ → 0, where ln(1 + x)/x → 1.
+pub fn reduced_time_to_factor(top: &SymmetricTop, omega0: &Vec3, p: Real) -> Real {
+    if p >= 1.0 {
+        return 0.0;
+    }
+    let u0 = omega0.x * omega0.x + omega0.y * omega0.y;
+    let k = top.ratio * omega0.z;
+    let s = u0 + k * k;
+    let rate = 2.0 * top.tau * s;
+    if rate == 0.0 {
+        return Real::INFINITY;
+    }
+    let q = 1.0 / (p * p) - 1.0;
+    let x = k * k * q / s;
+    let log_factor = if x == 0.0 { 1.0 } else { x.ln_1p() / x };
+    q / rate * log_factor
+}
+// ANCHOR_END: time_to_factor
+
+/// The reduced model's body rate seen from axes that turn with Ω⊥ in the body.
+///
+/// Paper: Eq. (4.15), Eq. (4.16).
+///
+/// ```text
+/// Ω(t) = R_z(−Ω̃₃t) (ΦΩ₁₀, ΦΩ₂₀, Ω₃)   ⇒   with O = Q·R_z(Ω̃₃t):  Q′ = Q ŵ,
+/// w(t) = R_z(Ω̃₃t)Ω(t) − Ω̃₃ẑ = (Φ(t)Ω₁₀, Φ(t)Ω₂₀, (I₃/I₁)Ω₃)
+/// ```
+///
+/// The fast precession R_z(Ω̃₃t) is exact; w only changes on the slow scales
+/// of Φ(t) and tends to the constant (0, 0, I₃Ω₃/I₁), about which Q turns as
+/// the free top's axis does. So an integrator for Q has nothing fast to follow
+/// (the reduced orientation has no closed form: w turns, so its values at
+/// different times do not commute).
+pub fn reduced_corotating_rate(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Vec3 {
+    let phi_amp = reduced_amplitude(top, omega0, t);
+    Vec3::new(phi_amp * omega0.x, phi_amp * omega0.y, top.ratio * omega0.z)
+}
+
 // ANCHOR: truncated_orientation
 /// The closed-form orientation of the truncated model, for any start `o0` and Ω₀.
 ///
@@ -458,6 +528,49 @@ mod tests {
         let right = w.x * f.x + w.y * f.y;
         assert_relative_eq!(right, -top.tau() * w0.powi(4), max_relative = 1e-14);
         assert!((printed - right).abs() > 1e-3);
+    }
+
+    /// The inverted closed forms give back the factor they were asked for.
+    #[test]
+    fn eq_4_6_and_eq_4_16_inverted_return_the_requested_factor() {
+        let top = SymmetricTop::new(0.7, 1.0).unwrap();
+        for omega0 in [
+            Vec3::new(0.03, 0.1, 0.2),
+            Vec3::new(0.0, 0.1, 0.0),
+            Vec3::new(0.0, 2e-26, 3e-26),
+        ] {
+            for p in [0.999, 0.5, 1e-3] {
+                let t = reduced_time_to_factor(&top, &omega0, p);
+                assert_relative_eq!(reduced_amplitude(&top, &omega0, t), p, max_relative = 1e-9);
+                let w0 = omega0.x.hypot(omega0.y);
+                let t = truncated_time_to_factor(&top, w0, p);
+                assert_relative_eq!(1.0 / truncated_clock(&top, w0, t).r, p, max_relative = 1e-9);
+            }
+        }
+        assert_eq!(
+            reduced_time_to_factor(&top, &Vec3::zeros(), 0.5),
+            Real::INFINITY
+        );
+        assert_eq!(truncated_time_to_factor(&top, 0.0, 0.5), Real::INFINITY);
+        assert_eq!(truncated_time_to_factor(&top, 0.1, 1.0), 0.0);
+    }
+
+    /// Seen from axes turned by R_z(Ω̃₃t), the reduced body rate minus the
+    /// frame's own Ω̃₃ẑ is (ΦΩ₁₀, ΦΩ₂₀, (I₃/I₁)Ω₃).
+    #[test]
+    fn eq_4_15_corotating_rate_removes_the_body_frame_precession() {
+        let top = SymmetricTop::new(0.4, 1.0).unwrap();
+        let omega0 = Vec3::new(0.03, 0.1, 0.2);
+        for t in [0.0, 3.0, 70.0, 900.0] {
+            let turned = crate::math::rot_z(top.omega3_tilde(omega0.z) * t)
+                * reduced_closed_form(&top, &omega0, t)
+                - top.omega3_tilde(omega0.z) * Vec3::z();
+            assert_relative_eq!(
+                turned,
+                reduced_corotating_rate(&top, &omega0, t),
+                epsilon = 1e-15
+            );
+        }
     }
 
     /// (4.16) in the paper's printed form agrees with the rewritten one where the

@@ -16,8 +16,9 @@
 //! | `warp` | – | model time per wall-clock second | τ/s |
 
 use crate::cli::parse_number;
-use crate::math::{Mat3, Real, Vec3};
-use crate::physics::euler_angles::EulerAngles;
+use crate::math::{Real, Vec3};
+use crate::physics::euler_angles::{EulerAngles, frame_with_z_along};
+use crate::physics::rigid_body::angular_momentum_body;
 use crate::physics::symmetric_top::{SymmetricTop, reduced_closed_form, truncated_closed_form};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, Simulation};
 use std::collections::VecDeque;
@@ -201,9 +202,7 @@ fn check_omega0(omega0: [Real; 3]) -> Result<InitialState, String> {
 /// cos θ) = Oᵀẑ, the lab z axis seen from the body; setting it to L₀/|L₀|
 /// gives θ = the tilt and ψ = atan2(L₁, L₂) (φ = 0). L₀ = 0 keeps O = 1.
 pub fn paper_frame(top: &SymmetricTop, omega0: [Real; 3]) -> EulerAngles {
-    let at_rest = Sample::new(0.0, &top.inertia(), &Mat3::identity(), &Vec3::from(omega0));
-    let [l1, l2, _] = at_rest.l_body;
-    EulerAngles::new(0.0, at_rest.tilt, l1.atan2(l2))
+    frame_with_z_along(&angular_momentum_body(&top.inertia(), &Vec3::from(omega0)))
 }
 
 /// What `?` shows and what an Ω₀ edit holds.
@@ -475,6 +474,12 @@ impl App {
                 settings.omega0,
             )?,
         ])
+    }
+
+    /// Show `text` under the header until the first key (how a scene opens).
+    pub fn with_message(mut self, text: impl Into<String>) -> Self {
+        self.inform(text);
+        self
     }
 
     /// The parameters.

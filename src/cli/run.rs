@@ -1,0 +1,746 @@
+//! `spintop run SCENE`: one scene file, answered by the lightest model that is
+//! right, printed under the matching command's JSON contract plus `scene`,
+//! `chosen` and `warnings` (and, for a real particle, `units`).
+//!
+//! SCENE is a path, or the name of a catalogue scene (`spintop scenes` lists
+//! them; they are compiled into the binary, so the names work from any
+//! directory). A file on disk wins over a catalogue name.
+
+use super::balance::{BalanceConfig, BalanceOutput, BalanceParameters, DipoleChoice};
+use super::orbit::{MAX_BACKWARD_SPAN, OrbitOutput, OrbitRequest};
+use super::shell::{MAX_STEPS as SHELL_MAX_STEPS, ShellOutput, ShellRequest};
+use super::simulate::{Parameters, SimulateConfig, SimulateOutput, simulate};
+use super::{CliError, Format, bad, num};
+use crate::integrate::Stats;
+use crate::math::{Real, Vec3};
+use crate::physics::particle::{DEBYE_ESU_CM, Milestones, SPEED_OF_LIGHT_CM_S};
+use crate::scene::{
+    BalanceDipole, Body, Chosen, Kind, OmegaSample, Orientation, RealUnits, Scene, TopScene,
+    catalogue, omega_samples, pole_warning,
+};
+use crate::sim::Model;
+use crate::sim::orbit::Force;
+use crate::sim::shell::default_steps_per_delay;
+use crate::stability::Row;
+use clap::Args;
+use serde::Serialize;
+use std::io::{self, Write};
+use std::path::Path;
+
+/// The raw arguments of `run`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "SCENE is a scene file (TOML) or the name of a catalogue scene; `spintop scenes` lists \
+                  the catalogue. The output is that of the matching command (simulate, balance, orbit, \
+                  shell, stability) plus `chosen`: the method used and why.\n\
+                  Example: spintop run figure-2 --format json"
+)]
+pub struct RunArgs {
+    /// A scene file, or the name of a catalogue scene.
+    #[arg(value_name = "SCENE")]
+    scene: String,
+    /// Output format (stability scenes print table or json).
+    #[arg(long, value_enum, default_value = "table")]
+    format: Format,
+}
+
+/// Read and validate a scene: the file `arg`, or the catalogue scene of that name.
+pub fn load(arg: &str) -> Result<Scene, CliError> {
+    let path = Path::new(arg);
+    if path.is_file() {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| bad(format!("{arg}: cannot read the scene file: {e}")))?;
+        return crate::scene::parse(&text, arg).map_err(|e| bad(e.to_string()));
+    }
+    if let Some(entry) = catalogue::find(arg) {
+        return entry.scene().map_err(|e| bad(e.to_string()));
+    }
+    Err(bad(format!(
+        "{arg}: no such scene file, and no catalogue scene of that name; expected a path to a .toml file or one of the names `spintop scenes` lists"
+    )))
+}
+
+/// Which scene was run.
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneInfo {
+    /// Its name.
+    pub name: String,
+    /// Its kind.
+    pub kind: &'static str,
+    /// The file it came from.
+    pub file: String,
+    /// What it asks.
+    pub description: String,
+}
+
+/// A real particle's inputs, the conversion to τ units, and its milestones.
+#[derive(Clone, Debug, Serialize)]
+pub struct PhysicalReport {
+    /// `sphere` or `cylinder`.
+    pub shape: &'static str,
+    /// Radius, nm.
+    pub radius_nm: Real,
+    /// Cylinder length, nm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length_nm: Option<Real>,
+    /// Density, kg/m³.
+    pub density_kg_m3: Real,
+    /// Mass, kg.
+    pub mass_kg: Real,
+    /// I₁, kg·m².
+    pub i1_kg_m2: Real,
+    /// I₃, kg·m².
+    pub i3_kg_m2: Real,
+    /// I₃/I₁.
+    pub ratio: Real,
+    /// Dipole, debye.
+    pub dipole_debye: Real,
+    /// Dipole, statC·cm.
+    pub dipole_esu_cm: Real,
+    /// Spin rate, Hz.
+    pub spin_hz: Real,
+    /// Angle between Ω₀ and the symmetry axis, degrees.
+    pub spin_tilt_deg: Real,
+    /// τ = 2d²/(3I₁c³), in seconds.
+    pub tau_s: Real,
+    /// The conversion, written out with the numbers.
+    pub conversion: String,
+    /// τ|Ω₀|, the size of the radiation effect per radian.
+    pub tau_omega: Real,
+    /// The output time unit.
+    pub time_unit: &'static str,
+    /// Seconds per output time unit.
+    pub seconds_per_unit: Real,
+    /// τ per output time unit.
+    pub tau_per_unit: Real,
+    /// The milestones, from the closed forms of both models.
+    pub milestones: MilestoneTimes,
+}
+
+/// A time in three units.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Span {
+    /// In units of τ.
+    pub tau: Real,
+    /// In seconds.
+    pub seconds: Real,
+    /// In the scene's time unit.
+    pub unit: Real,
+}
+
+/// [`Milestones`] in seconds and in the scene's unit; `null` means never.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct MilestoneTimes {
+    /// Truncated model: |Ω| halves.
+    pub truncated_half_spin: Option<Span>,
+    /// Truncated model: the constant tilt between axis and L, degrees.
+    pub truncated_tilt_deg: Real,
+    /// Reduced model: |Ω| halves.
+    pub reduced_half_spin: Option<Span>,
+    /// Reduced model: the final spin rate |Ω₃|/2π, Hz.
+    pub reduced_final_spin_hz: Real,
+    /// Reduced model: σ, the late e-folding time of Ω⊥ and of the tilt.
+    pub reduced_tilt_decay: Option<Span>,
+    /// Reduced model: the tilt falls below `upright_deg`.
+    pub reduced_upright: Option<Span>,
+    /// The tilt counted as upright, degrees.
+    pub upright_deg: Real,
+}
+
+/// The physical report of a `[units]` scene.
+pub fn physical_report(units: &RealUnits) -> PhysicalReport {
+    let p = &units.particle;
+    let tau_s = units.tau_seconds();
+    let (i1, i3) = p.moments_g_cm2();
+    let omega0 = p.omega0_per_tau(units.spin_hz, units.spin_tilt_deg.to_radians());
+    let m = Milestones::new(&p.top(), &omega0, units.upright_deg.to_radians());
+    let per_unit = units.time_unit.seconds();
+    let span = |t: Option<Real>| {
+        t.map(|tau| Span {
+            tau,
+            seconds: tau * tau_s,
+            unit: tau * tau_s / per_unit,
+        })
+    };
+    let d = p.dipole_esu_cm();
+    PhysicalReport {
+        shape: p.shape().name(),
+        radius_nm: p.radius_cm() * 1e7,
+        length_nm: (p.length_cm() > 0.0).then(|| p.length_cm() * 1e7),
+        density_kg_m3: p.density_g_cm3() * 1e3,
+        mass_kg: p.mass_g() * 1e-3,
+        i1_kg_m2: i1 * 1e-7,
+        i3_kg_m2: i3 * 1e-7,
+        ratio: p.ratio(),
+        dipole_debye: d / DEBYE_ESU_CM,
+        dipole_esu_cm: d,
+        spin_hz: units.spin_hz,
+        spin_tilt_deg: units.spin_tilt_deg,
+        tau_s,
+        conversion: format!(
+            "tau = 2 d^2/(3 I1 c^3) = 2 ({d:.4e} statC cm)^2 / (3 x {i1:.4e} g cm^2 x ({SPEED_OF_LIGHT_CM_S:.6e} cm/s)^3) = {tau_s:.4e} s (Gaussian units)"
+        ),
+        tau_omega: omega0.norm(),
+        time_unit: units.time_unit.name(),
+        seconds_per_unit: per_unit,
+        tau_per_unit: units.tau_per_unit(),
+        milestones: MilestoneTimes {
+            truncated_half_spin: span(m.truncated_half_spin),
+            truncated_tilt_deg: m.truncated_tilt.to_degrees(),
+            reduced_half_spin: span(m.reduced_half_spin),
+            reduced_final_spin_hz: m.reduced_final_spin / tau_s / (2.0 * std::f64::consts::PI),
+            reduced_tilt_decay: span(m.reduced_tilt_decay),
+            reduced_upright: span(m.reduced_upright),
+            upright_deg: units.upright_deg,
+        },
+    }
+}
+
+/// A top scene whose orientation was skipped: the `simulate` contract with
+/// body-frame samples only.
+#[derive(Debug, Serialize)]
+pub struct OmegaOnlyOutput {
+    /// `truncated` or `reduced`.
+    pub model: &'static str,
+    /// `exact`.
+    pub method: &'static str,
+    /// One sentence on what was computed how.
+    pub method_detail: &'static str,
+    /// The inputs.
+    pub parameters: Parameters,
+    /// Work done (none).
+    pub stats: Stats,
+    /// One entry per output time, body-frame quantities only.
+    pub samples: Vec<OmegaSample>,
+    /// Why the orientation is not given.
+    pub orientation_skipped: String,
+}
+
+/// What a top scene produced.
+#[derive(Debug, Serialize)]
+#[serde(untagged)]
+pub enum TopRun {
+    /// Ω and the orientation: the `simulate` contract.
+    Full(SimulateOutput),
+    /// Ω only.
+    OmegaOnly(OmegaOnlyOutput),
+}
+
+/// A top scene's answer.
+#[derive(Debug, Serialize)]
+pub struct TopAnswer {
+    /// The samples.
+    #[serde(flatten)]
+    pub run: TopRun,
+    /// The real particle, when the scene has `[units]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub units: Option<PhysicalReport>,
+}
+
+/// A stability scene's answer, the `stability --format json` contract.
+#[derive(Debug, Serialize)]
+pub struct StabilityAnswer {
+    /// The one row.
+    pub rows: Vec<Row>,
+}
+
+/// The answer of any scene, serialised as the matching command's output.
+#[derive(Debug, Serialize)]
+#[serde(untagged)]
+pub enum Answer {
+    /// `simulate`.
+    Top(Box<TopAnswer>),
+    /// `balance`.
+    Balance(BalanceOutput),
+    /// `orbit`.
+    Orbit(OrbitOutput),
+    /// `shell`.
+    Shell(ShellOutput),
+    /// `stability`.
+    Stability(StabilityAnswer),
+}
+
+/// Everything `spintop run` prints.
+#[derive(Debug, Serialize)]
+pub struct Report {
+    /// Which scene.
+    pub scene: SceneInfo,
+    /// The method and why.
+    pub chosen: Chosen,
+    /// Where the question asks more than the model gives.
+    pub warnings: Vec<String>,
+    /// The answer, under the matching command's contract.
+    #[serde(flatten)]
+    pub answer: Answer,
+}
+
+fn run_top(
+    scene: &Scene,
+    top: &TopScene,
+    warnings: &mut Vec<String>,
+) -> Result<TopAnswer, CliError> {
+    let units = top.units.as_ref().map(physical_report);
+    let run = match &top.orientation {
+        Orientation::Computed => {
+            let config = SimulateConfig {
+                model: top.model,
+                method: top.method,
+                options: top.options,
+                initial: top.initial,
+                euler0: top.euler0,
+                times: top.times.clone(),
+                format: Format::Json,
+            };
+            let output = simulate(&config)?;
+            if let Some(w) = pole_warning(&output.samples) {
+                warnings.push(w);
+            }
+            if let Some(r) = &output.runaway {
+                warnings.push(format!(
+                    "runaway at t = {:.3}, growing at rate {:.4} (about 1/tau); {}",
+                    r.t, r.growth_rate, r.advice
+                ));
+            }
+            TopRun::Full(output)
+        }
+        Orientation::Skipped(why) => {
+            let tau_per_unit = top.units.as_ref().map(RealUnits::tau_per_unit);
+            let samples = omega_samples(&top.model, &top.initial.omega, &top.times, tau_per_unit)
+                .ok_or_else(|| {
+                bad(format!(
+                    "{}: only the symmetric models can skip the orientation",
+                    scene.file
+                ))
+            })?;
+            let (Model::Truncated(t) | Model::Reduced(t)) = top.model else {
+                unreachable!("omega_samples answered for a symmetric model");
+            };
+            TopRun::OmegaOnly(OmegaOnlyOutput {
+                model: top.model.name(),
+                method: "exact",
+                method_detail: if matches!(top.model, Model::Truncated(_)) {
+                    "omega from the closed form (4.7); the orientation is not computed (see orientation_skipped)"
+                } else {
+                    "omega from the closed form (4.15)-(4.16); the orientation is not computed (see orientation_skipped)"
+                },
+                parameters: Parameters {
+                    ratio: Some(t.ratio()),
+                    tau: Some(t.tau()),
+                    inertia: t.inertia().into(),
+                    dipole: None,
+                    omega0: top.initial.omega.into(),
+                    euler0: top.euler0,
+                    rtol: None,
+                    step: None,
+                },
+                stats: Stats::default(),
+                samples,
+                orientation_skipped: why.clone(),
+            })
+        }
+    };
+    Ok(TopAnswer { run, units })
+}
+
+/// Run a validated scene.
+pub fn answer(scene: &Scene) -> Result<Report, CliError> {
+    let mut warnings = scene.warnings.clone();
+    let answer = match &scene.body {
+        Body::Top(top) => Answer::Top(Box::new(run_top(scene, top, &mut warnings)?)),
+        Body::Balance(b) => {
+            let mut p = BalanceParameters::default();
+            let dipole = match b.dipole {
+                BalanceDipole::Precessing { cone, rate, dipole } => {
+                    p.cone = Some(cone);
+                    p.rate = Some(rate);
+                    DipoleChoice::Precessing(dipole)
+                }
+                BalanceDipole::Loop { b, eps, dipole } => {
+                    p.b = Some(b);
+                    p.eps = Some(eps);
+                    DipoleChoice::Loop(dipole)
+                }
+                BalanceDipole::Dumbbell {
+                    charges,
+                    masses,
+                    length,
+                    rate,
+                    dipole,
+                } => {
+                    p.charges = Some(charges);
+                    p.masses = Some(masses);
+                    p.length = Some(length);
+                    p.rate = Some(rate);
+                    p.dipole_amplitude = Some(dipole.amplitude());
+                    DipoleChoice::Dumbbell(dipole)
+                }
+            };
+            let config = BalanceConfig {
+                dipole,
+                parameters: p,
+                times: b.times.clone(),
+                format: Format::Json,
+            };
+            Answer::Balance(super::balance::balance(&config))
+        }
+        Body::Orbit(o) => {
+            let t_last = o.times.last().copied().unwrap_or(0.0);
+            let tau0 = o.config.charge.tau0();
+            if o.config.force == Force::AbrahamLorentz
+                && o.config.charge.potential() == crate::physics::central::Potential::Coulomb
+                && t_last / tau0 > MAX_BACKWARD_SPAN
+            {
+                return Err(bad(scene.error_at(
+                    scene.lines.times,
+                    format!(
+                        "[solve] force = \"al\" for coulomb integrates (2.5) backward in steps of a few tau0, and t_last/tau0 = {:.1e} exceeds {MAX_BACKWARD_SPAN:.0e}; expected shorter times, or force = \"ll\"",
+                        t_last / tau0
+                    ),
+                ).to_string()));
+            }
+            let request = OrbitRequest {
+                config: o.config,
+                times: o.times.clone(),
+                format: Format::Json,
+            };
+            Answer::Orbit(super::orbit::orbit(&request)?)
+        }
+        Body::Shell(s) => {
+            let steps = default_steps_per_delay(s.model.delta());
+            let t_last = s.times.last().copied().unwrap_or(0.0);
+            let work = (t_last / s.model.delta()).ceil().max(1.0) * steps as Real;
+            if work > SHELL_MAX_STEPS {
+                return Err(bad(scene.error_at(
+                    scene.lines.times,
+                    format!(
+                        "[solve] the run needs {work:.1e} RK4 steps ({steps} per delay up to t = {t_last}), more than {SHELL_MAX_STEPS:.0e}; expected shorter times or a longer delay"
+                    ),
+                ).to_string()));
+            }
+            let request = ShellRequest {
+                model: s.model,
+                steps,
+                times: s.times.clone(),
+                format: Format::Json,
+            };
+            Answer::Shell(super::shell::shell(&request)?)
+        }
+        Body::Stability(s) => {
+            let row = crate::stability::row(s.row).map_err(|e| CliError::Stopped(e.to_string()))?;
+            Answer::Stability(StabilityAnswer { rows: vec![row] })
+        }
+    };
+    Ok(Report {
+        scene: SceneInfo {
+            name: scene.name.clone(),
+            kind: scene.kind().name(),
+            file: scene.file.clone(),
+            description: scene.description.clone(),
+        },
+        chosen: scene.chosen.clone(),
+        warnings,
+        answer,
+    })
+}
+
+/// A number with four significant digits, in whichever notation reads better.
+fn sig(x: Real) -> String {
+    let a = x.abs();
+    if x == 0.0 || (1e-3..1e5).contains(&a) {
+        format!("{x:.4}")
+    } else {
+        format!("{x:.4e}")
+    }
+}
+
+/// A CSV cell, lossless: plain digits for ordinary sizes, exponent notation
+/// for the tiny rates and huge times of real particles (both round-trip).
+fn csv_cell(x: Real) -> String {
+    let a = x.abs();
+    if x == 0.0 || (1e-4..1e15).contains(&a) {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A table cell with six significant digits, never wider than 14 characters.
+fn cell(x: Real) -> String {
+    let a = x.abs();
+    if x == 0.0 || (1e-3..1e5).contains(&a) {
+        format!("{x:.6}")
+    } else {
+        format!("{x:.6e}")
+    }
+}
+
+/// A number as given: up to six significant digits, trailing zeros dropped.
+fn short(x: Real) -> String {
+    let a = x.abs();
+    if x == 0.0 || (1e-3..1e6).contains(&a) {
+        let s = format!(
+            "{:.*}",
+            (5 - a.log10().floor().max(-3.0) as i32).max(0) as usize,
+            x
+        );
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        let s = format!("{x:.5e}");
+        let (m, e) = s.split_once('e').expect("exponent notation");
+        let m = if m.contains('.') {
+            m.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            m
+        };
+        format!("{m}e{e}")
+    }
+}
+
+/// "after T unit (T s, T tau)", or "never".
+fn when(what: &str, span: &Option<Span>, unit: &str) -> String {
+    match span {
+        Some(s) => format!(
+            "{what} after {} {unit} ({} s, {} tau)",
+            sig(s.unit),
+            sig(s.seconds),
+            sig(s.tau)
+        ),
+        None => format!("never {what}"),
+    }
+}
+
+fn write_physical(out: &mut impl Write, p: &PhysicalReport) -> io::Result<()> {
+    let size = match p.length_nm {
+        Some(l) => format!("radius {} nm, length {} nm", short(p.radius_nm), short(l)),
+        None => format!("radius {} nm", short(p.radius_nm)),
+    };
+    writeln!(
+        out,
+        "# particle: {} of {size}, density {} kg/m^3: mass {} kg, I1 = {} kg m^2, I3/I1 = {}",
+        p.shape,
+        short(p.density_kg_m3),
+        sig(p.mass_kg),
+        sig(p.i1_kg_m2),
+        sig(p.ratio)
+    )?;
+    writeln!(
+        out,
+        "# dipole {} D along the axis; {}",
+        short(p.dipole_debye),
+        p.conversion
+    )?;
+    writeln!(
+        out,
+        "# spin {} Hz at {} deg from the axis: tau |Omega0| = {}; 1 {} = {} s = {} tau",
+        short(p.spin_hz),
+        short(p.spin_tilt_deg),
+        sig(p.tau_omega),
+        p.time_unit,
+        short(p.seconds_per_unit),
+        sig(p.tau_per_unit)
+    )?;
+    let m = &p.milestones;
+    let u = p.time_unit;
+    writeln!(
+        out,
+        "# truncated model: |Omega| {}; the tilt stays {} deg, so it never stands upright",
+        when("halves", &m.truncated_half_spin, u),
+        sig(m.truncated_tilt_deg)
+    )?;
+    writeln!(
+        out,
+        "# reduced model: |Omega| {}; the spin about the axis stays {} Hz",
+        when("halves", &m.reduced_half_spin, u),
+        sig(m.reduced_final_spin_hz)
+    )?;
+    let decay = match &m.reduced_tilt_decay {
+        Some(s) => format!("e-folds in {} {u}", sig(s.unit)),
+        None => "never decays".to_string(),
+    };
+    writeln!(
+        out,
+        "# reduced model: the tilt {decay}, and {}",
+        when(
+            &format!("falls below {} deg", short(m.upright_deg)),
+            &m.reduced_upright,
+            u
+        )
+    )
+}
+
+fn write_omega_only(
+    out: &mut impl Write,
+    o: &OmegaOnlyOutput,
+    units: Option<&PhysicalReport>,
+    format: Format,
+) -> io::Result<()> {
+    match format {
+        Format::Json => unreachable!("JSON is written whole"),
+        Format::Csv => {
+            let unit_col = units.map_or(String::new(), |u| format!("t_{},", u.time_unit));
+            writeln!(
+                out,
+                "t,{unit_col}omega1,omega2,omega3,omega_perp,energy,l1,l2,l3,tilt"
+            )?;
+            for s in &o.samples {
+                let mut row = vec![s.t];
+                row.extend(s.t_unit);
+                row.extend(s.omega);
+                row.extend([s.omega_perp, s.energy]);
+                row.extend(s.l_body);
+                row.push(s.tilt);
+                let cells: Vec<String> = row.iter().map(|x| csv_cell(*x)).collect();
+                writeln!(out, "{}", cells.join(","))?;
+            }
+            Ok(())
+        }
+        Format::Table => {
+            writeln!(
+                out,
+                "# {} model; method: {} ({})",
+                o.model, o.method, o.method_detail
+            )?;
+            writeln!(
+                out,
+                "# work: {} rhs evaluations, {} steps",
+                o.stats.rhs_evals, o.stats.steps
+            )?;
+            writeln!(out, "# orientation skipped: {}", o.orientation_skipped)?;
+            match units {
+                Some(u) => {
+                    let hz = |w: Real| w / u.tau_s / (2.0 * std::f64::consts::PI);
+                    let e0 = o.samples.first().map_or(1.0, |s| s.energy);
+                    let head = [
+                        format!("t [{}]", u.time_unit),
+                        "f [Hz]".into(),
+                        "f_perp [Hz]".into(),
+                        "f3 [Hz]".into(),
+                        "tilt [deg]".into(),
+                        "E/E0".into(),
+                    ];
+                    let line: Vec<String> = head.iter().map(|h| format!("{h:>15}")).collect();
+                    writeln!(out, "{}", line.join(""))?;
+                    for s in &o.samples {
+                        let w = Vec3::from(s.omega);
+                        let row = [
+                            s.t_unit.unwrap_or(s.t),
+                            hz(w.norm()),
+                            hz(s.omega_perp),
+                            hz(w.z),
+                            s.tilt.to_degrees(),
+                            if e0 > 0.0 { s.energy / e0 } else { 0.0 },
+                        ];
+                        let line: Vec<String> =
+                            row.iter().map(|x| format!("{:>15}", cell(*x))).collect();
+                        writeln!(out, "{}", line.join(""))?;
+                    }
+                }
+                None => {
+                    let head = [
+                        "t",
+                        "omega1",
+                        "omega2",
+                        "omega3",
+                        "omega_perp",
+                        "energy",
+                        "|L|",
+                        "tilt",
+                    ];
+                    let line: Vec<String> = head.iter().map(|h| format!("{h:>14}")).collect();
+                    writeln!(out, "{}", line.join(""))?;
+                    for s in &o.samples {
+                        let l = Vec3::from(s.l_body).norm();
+                        let row = [
+                            s.t,
+                            s.omega[0],
+                            s.omega[1],
+                            s.omega[2],
+                            s.omega_perp,
+                            s.energy,
+                            l,
+                            s.tilt,
+                        ];
+                        let line: Vec<String> =
+                            row.iter().map(|x| format!("{:>14}", num(*x))).collect();
+                        writeln!(out, "{}", line.join(""))?;
+                    }
+                }
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Write a report in the requested format.
+pub fn write_report(out: &mut impl Write, report: &Report, format: Format) -> io::Result<()> {
+    if format == Format::Json {
+        serde_json::to_writer(&mut *out, report)?;
+        return writeln!(out);
+    }
+    if format == Format::Table {
+        let s = &report.scene;
+        writeln!(
+            out,
+            "# scene {} ({}, kind {}): {}",
+            s.name, s.file, s.kind, s.description
+        )?;
+        writeln!(
+            out,
+            "# chosen: {}: {}",
+            report.chosen.method, report.chosen.reason
+        )?;
+        for w in &report.warnings {
+            writeln!(out, "# warning: {w}")?;
+        }
+    }
+    match &report.answer {
+        Answer::Top(top) => {
+            if format == Format::Table
+                && let Some(u) = &top.units
+            {
+                write_physical(out, u)?;
+            }
+            match &top.run {
+                TopRun::Full(o) => super::simulate::write_output(out, o, format),
+                TopRun::OmegaOnly(o) => write_omega_only(out, o, top.units.as_ref(), format),
+            }
+        }
+        Answer::Balance(o) => super::balance::write_output(out, o, format),
+        Answer::Orbit(o) => super::orbit::write_output(out, o, format),
+        Answer::Shell(o) => super::shell::write_output(out, o, format),
+        Answer::Stability(a) => {
+            for row in &a.rows {
+                write!(out, "{row}")?;
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Load, run and print a scene.
+pub(crate) fn execute(
+    args: RunArgs,
+    out: &mut impl Write,
+    err: &mut impl Write,
+) -> Result<(), CliError> {
+    let scene = load(&args.scene)?;
+    if args.format == Format::Csv && scene.kind() == Kind::Stability {
+        return Err(bad(format!(
+            "{}: a stability scene prints --format table or json, not csv",
+            scene.file
+        )));
+    }
+    let report = answer(&scene)?;
+    // CSV has no room for comments: the warnings go to stderr.
+    if args.format == Format::Csv {
+        for w in &report.warnings {
+            writeln!(err, "spintop: warning: {w}")?;
+        }
+    }
+    write_report(out, &report, args.format)?;
+    Ok(())
+}

@@ -1,0 +1,35 @@
+//! `spintop scenes`: the catalogue of `lessons/scenes/`, one line per scene.
+//!
+//! The files are compiled into the binary (see [`crate::scene::catalogue`]),
+//! so the list and `spintop run NAME` work from any directory.
+
+use super::CliError;
+use crate::scene::catalogue::CATALOGUE;
+use clap::Args;
+use std::io::Write;
+
+/// The raw arguments of `scenes` (none).
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Run one with `spintop run NAME`, or open a top scene live with `spintop tui NAME`."
+)]
+pub struct ScenesArgs {}
+
+/// Print the catalogue: name, kind, the first sentence of the description.
+pub(crate) fn execute(_args: ScenesArgs, out: &mut impl Write) -> Result<(), CliError> {
+    for entry in CATALOGUE {
+        // NOTE: the catalogue is tested to parse; a failure here is a build
+        // from an edited tree, reported rather than skipped.
+        let scene = entry
+            .scene()
+            .map_err(|e| CliError::BadInput(e.to_string()))?;
+        writeln!(
+            out,
+            "{:<24} {:<10} {}",
+            scene.name,
+            scene.kind().name(),
+            scene.summary()
+        )?;
+    }
+    Ok(())
+}

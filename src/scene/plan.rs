@@ -1,0 +1,454 @@
+//! Choosing the lightest model that answers a scene, before anything runs.
+//!
+//! `auto` takes a closed form wherever one exists and integrates only what
+//! has none:
+//!
+//! | model | Ω(t) | orientation O(t) |
+//! |---|---|---|
+//! | truncated | closed form (4.7) | closed form (4.9), or skipped when its phase outgrows a double |
+//! | reduced | closed form (4.15)–(4.16) | Q′ = QΩ̂(t) alone on SO(3), or skipped when that would take too many steps |
+//! | general | DOP853 | DOP853 with Ω |
+//! | full | physical solution of (3.4), backward shooting | driven by it |
+//!
+//! A span that would need more steps than [`MAX_STEPS`] is refused for the
+//! integrators before they start; with a closed form at hand it is answered
+//! from the closed form instead, however long it is.
+
+use crate::math::{Real, Vec3};
+use crate::physics::central::Potential;
+use crate::physics::rigid_body::{angular_momentum_body, energy, omega_perp, tilt};
+use crate::physics::shell::ShellModel;
+use crate::physics::symmetric_top::{
+    SymmetricTop, reduced_closed_form, truncated_clock, truncated_closed_form,
+};
+use crate::sim::orbit::{Force, OrbitConfig};
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample};
+use serde::Serialize;
+
+/// The most steps any integration of a scene may take (the integrators' own cap).
+pub const MAX_STEPS: Real = crate::integrate::DEFAULT_MAX_STEPS as Real;
+
+/// Above this many steps, `auto` skips the reduced model's orientation
+/// rather than integrate it.
+///
+/// NOTE: the orientation integrator turns the body by at most 1 rad per step;
+/// 10⁶ steps (about 1.2 × 10⁷ evaluations of a 3-vector right-hand side) is a
+/// fraction of a second. Beyond that, and long before the 10²⁶ steps of a
+/// nanoparticle, the question is about Ω, the tilt and the times, which the
+/// closed forms answer exactly.
+pub const ORIENTATION_STEP_LIMIT: Real = 1e6;
+
+/// Above this phase, in radians, an angle is not resolved by a double
+/// (its last digit is worth 10⁻⁷ rad), so orientations are not reported.
+pub const MAX_PHASE: Real = 1e9;
+
+/// τk at and above which the reduced model is doubtful (physics notes: its
+/// errors are O(τ²) in the precession and O(τ³) in the decay rate, and at
+/// τk ~ 1 it is qualitatively wrong).
+pub const STRONG_SPIN: Real = 0.3;
+
+/// Euler angles within this sin θ of a pole get a warning.
+pub const POLE_SIN: Real = 1e-2;
+
+/// The full model's physical solution is tabulated with hΩ ≤ 0.05.
+const FULL_TURN_PER_STEP: Real = 0.05;
+
+/// The method used, as outputs label it, and why.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Chosen {
+    /// The label of the method (`exact`, `exact+dop853`, `dop853`, …), the
+    /// same as the output's `method` where the output has one.
+    pub method: String,
+    /// Why, in one sentence.
+    pub reason: String,
+}
+
+impl Chosen {
+    fn new(method: &str, reason: impl Into<String>) -> Self {
+        Self {
+            method: method.to_string(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// Whether a top scene's orientation is computed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Orientation {
+    /// O(t) is computed with Ω(t).
+    Computed,
+    /// Only the body-frame quantities are given; the string says why.
+    Skipped(String),
+}
+
+/// Which key a refusal points at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Blame {
+    /// `[solve] method`.
+    Method,
+    /// `[solve] times` / `t_end`.
+    Times,
+}
+
+/// A top scene that asks for more work than any method may do.
+pub(super) struct Refusal {
+    pub at: Blame,
+    pub message: String,
+}
+
+/// What `plan_top` decided.
+pub(super) struct TopPlan {
+    pub chosen: Chosen,
+    pub orientation: Orientation,
+    pub warnings: Vec<String>,
+}
+
+/// How far the body turns by `t`, in radians: exactly |Ω₀|ϑ(t) for the
+/// truncated model (every rate falls as 1/R), at most |Ω₀|t for the reduced
+/// and full ones (neither speeds up), and about √(2E₀/I_min) t for the general
+/// top (a bound on |Ω| while the energy does not grow).
+pub fn turning_angle(model: &Model, omega0: &Vec3, t: Real) -> Real {
+    match model {
+        Model::Truncated(top) => {
+            omega0.norm() * truncated_clock(top, omega_perp(omega0), t).vartheta
+        }
+        Model::Reduced(_) | Model::Full(_) => omega0.norm() * t,
+        Model::General(top) => {
+            let inertia = top.inertia();
+            (2.0 * energy(&inertia, omega0) / inertia.min()).sqrt() * t
+        }
+    }
+}
+
+/// The label the simulation will report for a method on a model.
+fn label(model: &Model, method: MethodChoice) -> &'static str {
+    match (model, method) {
+        (Model::Full(_), MethodChoice::Forward) => "forward",
+        (Model::Full(_), _) => "physical",
+        (_, MethodChoice::Rk4) => "rk4",
+        (_, MethodChoice::Dopri5) => "dopri5",
+        (_, MethodChoice::Dop853) => "dop853",
+        (Model::Truncated(_), _) => "exact",
+        (Model::Reduced(_), _) => "exact+dop853",
+        (Model::General(_), _) => "dop853",
+    }
+}
+
+fn reduced_tau_k(top: &SymmetricTop, omega0: &Vec3) -> Real {
+    top.tau() * (top.ratio() * omega0.z).abs()
+}
+
+/// Choose how to answer a top scene, refuse what no method can do, and warn
+/// where the model is asked for more than it gives.
+pub(super) fn plan_top(
+    model: &Model,
+    method: MethodChoice,
+    options: &MethodOptions,
+    initial: &InitialState,
+    t_last: Real,
+) -> Result<TopPlan, Refusal> {
+    let omega0 = initial.omega;
+    let angle = turning_angle(model, &omega0, t_last);
+    let mut warnings = Vec::new();
+    if let Model::Reduced(top) = model {
+        let tk = reduced_tau_k(top, &omega0);
+        if tk >= STRONG_SPIN {
+            warnings.push(format!(
+                "tau k = {tk:.3} >= {STRONG_SPIN}: the reduced model (4.12)-(4.14) is right only through first order in tau k, and its decay rate is off at third order; compare model = \"full\", the physical solution of (3.4)"
+            ));
+        }
+    }
+    let auto = label(model, MethodChoice::Auto);
+    let closed = model.has_closed_form();
+    let too_many = |steps: Real, what: &str| -> String {
+        let hint = if closed {
+            "; method = \"auto\" answers from the closed forms instead"
+        } else {
+            "; ask for shorter times"
+        };
+        format!(
+            "{what} would take about {steps:.1e} steps to reach t = {t_last:.3e} tau, more than the {MAX_STEPS:.0e} allowed{hint}"
+        )
+    };
+    let asked =
+        |name: &str| format!("method = \"{name}\" was asked for in [solve]; auto would use {auto}");
+    let mut symmetric_path = |exact: bool| -> TopPlan {
+        let (Model::Truncated(top) | Model::Reduced(top)) = model else {
+            unreachable!("only the symmetric models have closed forms");
+        };
+        let truncated = matches!(model, Model::Truncated(_));
+        let steps = angle; // at most 1 rad per orientation step
+        let skip = if truncated {
+            (angle > MAX_PHASE).then(|| {
+                format!(
+                    "the orientation's phase reaches about {angle:.1e} rad, which a double cannot resolve (its closed form (4.9) would return noise)"
+                )
+            })
+        } else {
+            (steps > ORIENTATION_STEP_LIMIT).then(|| {
+                format!(
+                    "the orientation has no closed form, and Q' = Q Omega^(t) would take about {steps:.1e} steps (the body turns {angle:.1e} rad, at most 1 rad per step)"
+                )
+            })
+        };
+        let orientation = match skip {
+            Some(why) => {
+                let phase = top.omega3_tilde(omega0.z).abs()
+                    * if truncated {
+                        truncated_clock(top, omega_perp(&omega0), t_last).vartheta
+                    } else {
+                        t_last
+                    };
+                if phase > MAX_PHASE {
+                    warnings.push(format!(
+                        "the body-frame precession phase of (omega1, omega2) reaches {phase:.1e} rad: their phase is not resolved by a double, while omega_perp, omega3, the tilt and the energy are exact"
+                    ));
+                }
+                Orientation::Skipped(why)
+            }
+            None => Orientation::Computed,
+        };
+        let (method_label, how) = match (&orientation, truncated) {
+            (Orientation::Skipped(why), true) => (
+                "exact",
+                format!("omega(t) from the closed form (4.7), the times from (4.6) and (4.16); {why}, so it is skipped"),
+            ),
+            (Orientation::Skipped(why), false) => (
+                "exact",
+                format!("omega(t) from the closed form (4.15)-(4.16), the times from (4.6) and (4.16); {why}, so it is skipped"),
+            ),
+            (Orientation::Computed, true) => (
+                "exact",
+                "omega(t) from the closed form (4.7) and O(t) from the closed form (4.9), Rot(n_L, |L0| vartheta) O(0) Rz(Omega3~ vartheta): nothing is stepped".to_string(),
+            ),
+            (Orientation::Computed, false) => (
+                "exact+dop853",
+                "omega(t) from the closed form (4.15)-(4.16); the orientation has no closed form, so only Q' = Q Omega^(t) is integrated (DOP853 on SO(3)), driven by the closed-form omega(t)".to_string(),
+            ),
+        };
+        let reason = if exact {
+            format!("method = \"exact\" was asked for in [solve]: {how}")
+        } else {
+            how
+        };
+        TopPlan {
+            chosen: Chosen::new(method_label, reason),
+            orientation,
+            warnings: std::mem::take(&mut warnings),
+        }
+    };
+    let plan = match (model, method) {
+        (Model::Truncated(_) | Model::Reduced(_), MethodChoice::Auto | MethodChoice::Exact) => {
+            symmetric_path(method == MethodChoice::Exact)
+        }
+        (_, MethodChoice::Rk4) => {
+            let steps = t_last / options.step;
+            if steps > MAX_STEPS {
+                return Err(Refusal {
+                    at: Blame::Method,
+                    message: format!(
+                        "[solve] {}",
+                        too_many(steps, "method = \"rk4\" with this step")
+                    ),
+                });
+            }
+            TopPlan {
+                chosen: Chosen::new("rk4", asked("rk4")),
+                orientation: Orientation::Computed,
+                warnings,
+            }
+        }
+        (Model::Full(_), _) => {
+            let steps = angle / FULL_TURN_PER_STEP;
+            if steps > MAX_STEPS {
+                let at = if method == MethodChoice::Auto {
+                    Blame::Times
+                } else {
+                    Blame::Method
+                };
+                return Err(Refusal {
+                    at,
+                    message: format!(
+                        "[solve] {}",
+                        too_many(steps, "the full ALE (3.4), which has no closed form,")
+                    ),
+                });
+            }
+            let (label, reason) = match method {
+                MethodChoice::Forward => ("forward", asked("forward")),
+                MethodChoice::Auto => (
+                    "physical",
+                    "(3.4) has no closed form and runs away forward at a rate of about 1/tau: its physical solution by backward shooting (DOP853), the orientation driven by it".to_string(),
+                ),
+                other => ("physical", asked(if other == MethodChoice::Exact { "exact" } else { "dop853" })),
+            };
+            TopPlan {
+                chosen: Chosen::new(label, reason),
+                orientation: Orientation::Computed,
+                warnings,
+            }
+        }
+        (_, MethodChoice::Dopri5 | MethodChoice::Dop853 | MethodChoice::Auto) => {
+            let steps = angle;
+            let name = label(model, method);
+            if steps > MAX_STEPS {
+                let at = if method == MethodChoice::Auto {
+                    Blame::Times
+                } else {
+                    Blame::Method
+                };
+                let what = if method == MethodChoice::Auto {
+                    "the asymmetric top (3.3), which has no closed form,".to_string()
+                } else {
+                    format!("method = \"{name}\" (at most 1 rad of turning per step)")
+                };
+                return Err(Refusal {
+                    at,
+                    message: format!("[solve] {}", too_many(steps, &what)),
+                });
+            }
+            let reason = if method == MethodChoice::Auto {
+                "the asymmetric top (3.3) has no closed form: omega and the orientation are integrated together by DOP853 (orientation on SO(3))".to_string()
+            } else {
+                asked(name)
+            };
+            TopPlan {
+                chosen: Chosen::new(name, reason),
+                orientation: Orientation::Computed,
+                warnings,
+            }
+        }
+        (_, MethodChoice::Exact | MethodChoice::Forward) => {
+            unreachable!("refused while validating [solve] method")
+        }
+    };
+    Ok(plan)
+}
+
+/// The body-frame observables at one time, where the orientation is skipped.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct OmegaSample {
+    /// Time, in units of τ.
+    pub t: Real,
+    /// Time in the scene's output unit (`[units] time_unit`), when it has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub t_unit: Option<Real>,
+    /// Body-frame Ω, in 1/τ.
+    pub omega: [Real; 3],
+    /// Ω⊥.
+    pub omega_perp: Real,
+    /// E = ½ Ω·IΩ.
+    pub energy: Real,
+    /// L in the body frame.
+    pub l_body: [Real; 3],
+    /// Angle between the symmetry axis and L.
+    pub tilt: Real,
+}
+
+/// Ω(t) and the body-frame observables from the closed forms, for the two
+/// symmetric models (`None` for the others, which have no closed form).
+///
+/// Paper: Eq. (4.7), Eq. (4.15), Eq. (4.16).
+pub fn omega_samples(
+    model: &Model,
+    omega0: &Vec3,
+    times: &[Real],
+    tau_per_unit: Option<Real>,
+) -> Option<Vec<OmegaSample>> {
+    type ClosedForm = fn(&SymmetricTop, &Vec3, Real) -> Vec3;
+    let (top, closed): (SymmetricTop, ClosedForm) = match model {
+        Model::Truncated(top) => (*top, truncated_closed_form),
+        Model::Reduced(top) => (*top, reduced_closed_form),
+        _ => return None,
+    };
+    let inertia = top.inertia();
+    Some(
+        times
+            .iter()
+            .map(|&t| {
+                let omega = closed(&top, omega0, t);
+                OmegaSample {
+                    t,
+                    t_unit: tau_per_unit.map(|k| t / k),
+                    omega: omega.into(),
+                    omega_perp: omega_perp(&omega),
+                    energy: energy(&inertia, &omega),
+                    l_body: angular_momentum_body(&inertia, &omega).into(),
+                    tilt: tilt(&inertia, &omega),
+                }
+            })
+            .collect(),
+    )
+}
+
+/// A warning when Euler angles are printed near their pole, where they are
+/// degenerate; `None` when every sample is clear of it.
+pub fn pole_warning(samples: &[Sample]) -> Option<String> {
+    let near: Vec<&Sample> = samples
+        .iter()
+        .filter(|s| s.euler[1].sin().abs() < POLE_SIN)
+        .collect();
+    let first = near.first()?;
+    Some(format!(
+        "{} of {} samples have the Euler angles near their pole (first: theta = {:.3e} rad at t = {}): there z-x-z angles are degenerate, only phi + psi (theta near 0) or phi - psi (theta near pi) is defined, and the rates (4.8) grow like 1/sin(theta); the rotation matrix (JSON, CSV) and the tilt are exact",
+        near.len(),
+        samples.len(),
+        first.euler[1],
+        first.t
+    ))
+}
+
+/// The choice for a `balance` scene: nothing is integrated.
+pub(super) fn balance_choice() -> Chosen {
+    Chosen::new(
+        "exact",
+        "the dipole trajectory is a closed-form function of time: (2.1), (2.2) and (2.4) are evaluated from its exact derivatives, the period averages by the trapezoid rule, exact for trigonometric polynomials",
+    )
+}
+
+/// The choice for an `orbit` scene, the same mapping as `run_orbit`.
+pub(super) fn orbit_choice(config: &OrbitConfig) -> Chosen {
+    match (config.force, config.charge.potential()) {
+        (Force::LandauLifshitz, Potential::Harmonic) => Chosen::new(
+            "exact",
+            "the Landau-Lifshitz oscillator is linear: its solution is the closed-form mode of the root of s^2 + tau0 s + 1 = 0",
+        ),
+        (Force::AbrahamLorentz, Potential::Harmonic) => Chosen::new(
+            "exact",
+            "the physical solution of (2.5) for the oscillator is the closed-form mode of the physical root of tau0 s^3 - s^2 - 1 = 0",
+        ),
+        (Force::LandauLifshitz, Potential::Coulomb) => Chosen::new(
+            "dop853",
+            "the decaying Kepler orbit has no closed form (only its orbit average has): DOP853 on the Landau-Lifshitz equation",
+        ),
+        (Force::AbrahamLorentz, Potential::Coulomb) => Chosen::new(
+            "dop853-backward",
+            "(2.5) runs away forward: its physical solution by backward integration (DOP853), shooting on the data at t = 0",
+        ),
+        (Force::AbrahamLorentzForward, _) => Chosen::new(
+            "dop853",
+            "force = \"al-forward\" asks for (2.5) integrated forward from the Newtonian acceleration, to show its runaway",
+        ),
+    }
+}
+
+/// The choice for a `shell` scene.
+pub(super) fn shell_choice(model: &ShellModel) -> Chosen {
+    Chosen::new(
+        "rk4-steps",
+        format!(
+            "(A.1) is a neutral delay equation with no closed form: the method of steps, RK4 with {} steps per delay, from the Abraham-Lorentz mode as history",
+            crate::sim::shell::default_steps_per_delay(model.delta())
+        ),
+    )
+}
+
+/// The choice for a `stability` scene.
+pub(super) fn stability_choice(row: u8) -> Chosen {
+    Chosen::new(
+        &format!("stability-row-{row}"),
+        format!(
+            "row {row} runs a natural method beside spintop's own, each with the methods and times the row fixes (spintop stability --row {row})"
+        ),
+    )
+}

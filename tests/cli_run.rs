@@ -1,0 +1,262 @@
+//! `spintop run`, `spintop scenes` and `spintop tui SCENE` as a user meets
+//! them: the JSON contract of the matching command plus `chosen`, the
+//! catalogue by name from any directory, and malformed scene files refused
+//! with exit code 2 and one line naming the file, the line and what was
+//! expected (never a panic, never a second line).
+
+mod support;
+use support::spintop;
+
+use serde_json::Value;
+use spintop::scene::Body;
+use spintop::scene::catalogue::CATALOGUE;
+use std::path::PathBuf;
+use std::process::Command;
+
+/// A scratch folder for scene files, removed when dropped.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(tag: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("spintop-scenes-{tag}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+
+    fn write(&self, name: &str, text: &str) -> String {
+        let path = self.0.join(name);
+        std::fs::write(&path, text).unwrap();
+        path.display().to_string()
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+const HEAD: &str = "[scene]\nname = \"x\"\nkind = \"top\"\ndescription = \"d\"\n\n";
+const SPHERE: &str = "[units]\nshape = \"sphere\"\nradius_nm = 50.0\ndensity_kg_m3 = 2200.0\ndipole_debye = 1e3\nspin_hz = 1e9\n";
+
+/// Malformed scene files: (file name, text, line of the fault, words the message must hold).
+fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
+    vec![
+        ("unknown-key.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nration = 0.4\n"), 8, "unknown key `ration`"),
+        ("missing-key.toml", format!("{HEAD}[top]\nratio = 0.4\n"), 6, "missing the key model"),
+        ("wrong-type.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nratio = \"big\"\n"), 8, "ratio: invalid type: string \"big\", expected a number"),
+        ("ratio-out-of-range.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nratio = 3.0\n"), 8, "0 < I3/I1 <= 2"),
+        ("non-finite.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nomega = [0.0, nan, 0.2]\n"), 8, "not a finite number"),
+        ("infinite-ratio.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\nratio = inf\n"), 8, "not a finite number; expected a number in (0, 2]"),
+        ("unknown-kind.toml", "[scene]\nname = \"x\"\nkind = \"spinner\"\ndescription = \"d\"\n".into(), 3, "expected one of top, balance, orbit, shell, stability"),
+        ("unknown-method.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\nmethod = \"euler\"\n"), 10, "expected one of auto, exact, rk4"),
+        ("bad-time-unit.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n{SPHERE}time_unit = \"fortnight\"\n"), 15, "expected one of s, min, h, d, yr"),
+        ("negative-radius.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n{}", SPHERE.replace("50.0", "-50.0")), 11, "expected a positive radius"),
+        ("units-with-ratio.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\nratio = 0.4\n\n{SPHERE}"), 8, "ratio follows from [units]"),
+        ("units-general.toml", format!("{HEAD}[top]\nmodel = \"general\"\ninertia = [1.0, 1.0, 1.0]\ndipole = [0.0, 0.0, 1.0]\n\n{SPHERE}"), 7, "cannot take [units]"),
+        ("times-decreasing.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 5.0, 2.0]\n"), 10, "2 comes after 5"),
+        ("times-and-t-end.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 1.0]\nt_end = 5.0\n"), 11, "either times"),
+        ("zero-samples.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\nt_end = 5.0\nsamples = 0\n"), 11, "expected 1 to 1000000"),
+        ("empty.toml", String::new(), 1, "there is no [scene] section"),
+        ("syntax.toml", "[scene\nname = \"x\"\n".into(), 1, "expected `]`"),
+        ("missing-description.toml", "[scene]\nname = \"x\"\nkind = \"top\"\n\n[top]\nmodel = \"truncated\"\n".into(), 1, "missing the key description"),
+        ("foreign-section.toml", "[scene]\nname = \"x\"\nkind = \"orbit\"\ndescription = \"d\"\n\n[orbit]\npotential = \"coulomb\"\ntau0 = 1e-3\n\n[solve]\ntimes = [0.0, 1.0]\n\n[top]\nmodel = \"reduced\"\n".into(), 13, "[top] does not belong"),
+        ("orbit-method.toml", "[scene]\nname = \"x\"\nkind = \"orbit\"\ndescription = \"d\"\n\n[orbit]\npotential = \"harmonic\"\ntau0 = 1e-3\n\n[solve]\nmethod = \"rk4\"\ntimes = [0.0, 1.0]\n".into(), 11, "its method follows from force"),
+        ("stability-row.toml", "[scene]\nname = \"x\"\nkind = \"stability\"\ndescription = \"d\"\n\n[stability]\nrow = 9\n".into(), 7, "expected a row number, 1 to 6"),
+        ("foreign-balance-key.toml", "[scene]\nname = \"x\"\nkind = \"balance\"\ndescription = \"d\"\n\n[balance]\ndipole = \"loop\"\ncone = 0.5\n\n[solve]\ntimes = [0.0]\n".into(), 8, "cone belongs to dipole = \"precessing\""),
+        ("eccentricity.toml", "[scene]\nname = \"x\"\nkind = \"orbit\"\ndescription = \"d\"\n\n[orbit]\npotential = \"coulomb\"\ntau0 = 1e-3\neccentricity = 1.5\n\n[solve]\ntimes = [0.0, 1.0]\n".into(), 9, "eccentricity = 1.5 is out of range"),
+        ("forced-integrator.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n{SPHERE}time_unit = \"yr\"\n\n[solve]\nmethod = \"dop853\"\nt_end = 10.0\n"), 18, "more than the 1e7 allowed; method = \"auto\" answers from the closed forms"),
+    ]
+}
+
+#[test]
+fn malformed_scene_files_exit_2_with_the_file_the_line_and_what_was_expected() {
+    let dir = Scratch::new("bad");
+    let cases = malformed();
+    assert!(cases.len() >= 10);
+    for (name, text, line, words) in cases {
+        let path = dir.write(name, &text);
+        let out = spintop(&["run", &path]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        assert!(out.stdout.is_empty(), "{name}: no output on failure");
+        assert_eq!(err.lines().count(), 1, "{name}: one line, got {err}");
+        let prefix = format!("spintop: error: {path}:{line}: ");
+        assert!(
+            err.starts_with(&prefix),
+            "{name}: expected {prefix}…, got {err}"
+        );
+        assert!(err.contains(words), "{name}: expected '{words}' in {err}");
+    }
+}
+
+#[test]
+fn unknown_scene_and_csv_stability_are_refused_with_exit_2() {
+    let out = spintop(&["run", "no-such-scene"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("spintop scenes"));
+    let out = spintop(&["run", "stability-row-5", "--format", "csv"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("not csv"));
+}
+
+#[test]
+fn scenes_lists_the_catalogue_one_line_each() {
+    let out = spintop(&["scenes"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), CATALOGUE.len());
+    for (line, entry) in lines.iter().zip(CATALOGUE) {
+        assert!(line.starts_with(entry.name), "{line}");
+        let scene = entry.scene().unwrap();
+        assert!(line.contains(scene.kind().name()));
+        assert!(
+            line.trim_end().ends_with('.'),
+            "a whole first sentence: {line}"
+        );
+    }
+}
+
+/// The catalogue is compiled in: names work from any directory, and the JSON
+/// is the `simulate` contract plus `scene`, `chosen` and `warnings`.
+#[test]
+fn run_by_name_from_elsewhere_gives_the_simulate_contract_and_chosen() {
+    let elsewhere = Scratch::new("cwd");
+    let out = Command::new(env!("CARGO_BIN_EXE_spintop"))
+        .args(["run", "figure-1", "--format", "json"])
+        .current_dir(&elsewhere.0)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in [
+        "model",
+        "method",
+        "method_detail",
+        "parameters",
+        "stats",
+        "samples",
+    ] {
+        assert!(!v[key].is_null(), "simulate's key {key}");
+    }
+    assert_eq!(v["scene"]["name"], "figure-1");
+    assert_eq!(v["scene"]["kind"], "top");
+    assert_eq!(v["chosen"]["method"], "exact");
+    assert_eq!(v["chosen"]["method"], v["method"]);
+    assert!(
+        v["chosen"]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("closed form")
+    );
+    assert_eq!(v["warnings"].as_array().unwrap().len(), 0);
+    assert_eq!(v["samples"].as_array().unwrap().len(), 11);
+    for key in ["rotation", "euler", "l_lab", "tilt"] {
+        assert!(!v["samples"][3][key].is_null(), "sample key {key}");
+    }
+}
+
+#[test]
+fn run_a_real_particle_reports_units_milestones_and_the_skipped_orientation() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/lessons/scenes/nanoparticle-1e7-debye.toml"
+    );
+    let v = support::json("run", &[path]);
+    let u = &v["units"];
+    assert!((u["tau_s"].as_f64().unwrap() / 2.148e-28 - 1.0).abs() < 5e-4);
+    assert_eq!(u["time_unit"], "yr");
+    assert!(
+        u["conversion"]
+            .as_str()
+            .unwrap()
+            .starts_with("tau = 2 d^2/(3 I1 c^3)")
+    );
+    let upright = u["milestones"]["reduced_upright"]["unit"].as_f64().unwrap();
+    assert!((upright - 27.67).abs() < 0.01, "{upright}");
+    assert!(u["milestones"]["reduced_half_spin"].is_null(), "never");
+    assert!(v["orientation_skipped"].as_str().unwrap().contains("steps"));
+    assert_eq!(v["stats"]["rhs_evals"], 0);
+    let s = &v["samples"][3];
+    assert_eq!(s["t_unit"], 27.7);
+    assert!(
+        s["rotation"].is_null() && s["euler"].is_null(),
+        "no orientation in the samples"
+    );
+    // The table speaks in years and Hz.
+    let out = spintop(&["run", path]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("t [yr]") && text.contains("f [Hz]"), "{text}");
+    assert!(text.contains("falls below 1 deg after 27.6"), "{text}");
+}
+
+#[test]
+fn csv_warnings_go_to_stderr() {
+    let out = spintop(&["run", "euler-pole", "--format", "csv"]);
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.starts_with("spintop: warning: ") && err.contains("pole"),
+        "{err}"
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("t,omega1,"), "{text}");
+}
+
+/// Every kind runs under the same JSON contract as its command.
+#[test]
+fn every_kind_keeps_its_commands_json_keys() {
+    let cases: [(&str, &[&str]); 4] = [
+        (
+            "precessing-dipole",
+            &["dipole", "period", "samples", "period_average"],
+        ),
+        (
+            "coulomb-collapse",
+            &["potential", "force", "method", "samples", "collapse_time"],
+        ),
+        (
+            "appendix-convergence",
+            &["tau0", "delay", "regime", "samples"],
+        ),
+        ("stability-row-2", &["rows"]),
+    ];
+    for (name, keys) in cases {
+        let v = support::json("run", &[name]);
+        for key in keys {
+            assert!(!v[key].is_null(), "{name}: {key}");
+        }
+        assert!(v["chosen"]["method"].is_string() && v["chosen"]["reason"].is_string());
+    }
+}
+
+/// The live view opens every symmetric top scene of the catalogue (headless:
+/// the settings it would start from), and refuses the asymmetric top and
+/// scenes of other kinds with a reason.
+#[test]
+fn tui_opens_every_symmetric_top_scene() {
+    for entry in CATALOGUE {
+        let scene = entry.scene().unwrap();
+        let got = spintop::cli::tui::scene_settings(&scene, None);
+        match &scene.body {
+            Body::Top(top) if top.model.name() != "general" => {
+                let (settings, note) =
+                    got.unwrap_or_else(|e| panic!("{}: {}", entry.name, e.message()));
+                assert_eq!(settings.omega0(), <[f64; 3]>::from(top.initial.omega));
+                assert!(note.starts_with(&format!("scene {}", entry.name)));
+                spintop::tui::app::App::new(settings).unwrap();
+            }
+            _ => assert!(got.is_err(), "{}", entry.name),
+        }
+    }
+    let out = spintop(&["tui", "precessing-dipole"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("opens top scenes"));
+    let out = spintop(&["tui", "figure-1", "--ratio", "0.5"]);
+    assert_eq!(out.status.code(), Some(2), "a scene and --ratio conflict");
+}
