@@ -7,8 +7,11 @@
 //! The book shows this program's output; `tests/book.rs` checks that what the
 //! book shows is what the program prints.
 
-use spintop::integrate::{AdaptiveOptions, Dop853, solve};
-use spintop::math::{State, Vec3};
+use spintop::integrate::{
+    AdaptiveOptions, Composition, Dop853, FreeRigidBody, RigidBodyState, Rk4, Splitting, Stepper,
+    solve,
+};
+use spintop::math::{Mat3, State, Vec3};
 use spintop::physics::full_ale::symmetric_full_ale_rhs;
 use spintop::physics::shell::ShellModel;
 use spintop::physics::symmetric_top::{SymmetricTop, reduced_ale_rhs, reduced_amplitude};
@@ -75,6 +78,111 @@ fn runaway_chart() -> String {
     )
 }
 
+/// Row 3: log10 of the steps each method takes against log10 S.
+fn stiffness_chart() -> String {
+    let Ok(m) = stability::stiffness::measure() else {
+        return "row 3 did not run".into();
+    };
+    let pts = |runs: Vec<(f64, u64)>| -> Vec<(f64, f64)> {
+        runs.iter()
+            .map(|&(s, n)| (s.log10(), (n as f64).log10()))
+            .collect()
+    };
+    chart(
+        "log10 steps over t in [0, 10] against log10 S (Omega0 = S (0, 0.1, 0.2))",
+        &[
+            Series::line(
+                "DP5, rtol 1e-6",
+                pts(m.dp5.iter().map(|r| (r.s, r.stats.steps)).collect()),
+            ),
+            Series::line(
+                "Radau IIA 5",
+                pts(m
+                    .radau5
+                    .iter()
+                    .map(|r| (r.run.s, r.run.stats.steps))
+                    .collect()),
+            ),
+            Series::line(
+                "exact splitting",
+                pts(m.splitting.iter().map(|r| (r.s, r.stats.steps)).collect()),
+            ),
+        ],
+        (0.0, 3.0),
+        120,
+        40,
+    )
+}
+
+/// Row 4: log10 of the largest relative energy error of a free asymmetric top
+/// over [0, t], against t (the row's measure, at 2000 times).
+fn long_run_chart() -> String {
+    let inertia = Vec3::new(1.0, 2.0, 3.0);
+    let l0 = Vec3::new(1.0, 1.0, 0.9);
+    let (h, t_end, samples) = (0.05, 1e4, 2000);
+    let body = FreeRigidBody::new(inertia).expect("valid moments");
+    let e0 = body.energy(&l0);
+    let times: Vec<f64> = (1..=samples)
+        .map(|i| t_end * i as f64 / samples as f64)
+        .collect();
+    let rel = |e: f64| (e - e0).abs() / e0;
+    // Running maximum, drawn on a log scale.
+    let envelope = |errors: Vec<f64>| -> Vec<(f64, f64)> {
+        let mut worst: f64 = 1e-17;
+        times
+            .iter()
+            .zip(errors)
+            .map(|(&t, e)| {
+                worst = worst.max(e);
+                (t, worst.log10())
+            })
+            .collect()
+    };
+    // ANCHOR: euler_equations
+    // Euler's equations for L in the body frame: L' = L x Omega, Omega = I^-1 L.
+    let rhs = |_t: f64, l: &State<3>| l.cross(&l.component_div(&inertia));
+    // ANCHOR_END: euler_equations
+    let mut rk4 = Rk4::new(0.0, l0, h).expect("valid step");
+    let rk4_curve = envelope(
+        times
+            .iter()
+            .map(|&t| {
+                while rk4.t() < t {
+                    rk4.step(&rhs, t).expect("finite");
+                }
+                rel(body.energy(rk4.y()))
+            })
+            .collect(),
+    );
+    let split_curve = |composition| -> Vec<(f64, f64)> {
+        let start = RigidBodyState {
+            l_body: l0,
+            rotation: Mat3::identity(),
+        };
+        let mut split = Splitting::new(body, composition, 0.0, start, h).expect("valid step");
+        envelope(
+            times
+                .iter()
+                .map(|&t| {
+                    split.advance_to(t).expect("finite");
+                    rel(body.energy(&split.state().l_body))
+                })
+                .collect(),
+        )
+    };
+    chart(
+        "log10 max |E - E0|/E0 over [0, t] against t, free top I = (1, 2, 3), h = 0.05",
+        &[
+            Series::line("RK4", rk4_curve),
+            Series::line("Strang", split_curve(Composition::Strang)),
+            Series::line("Yoshida-4", split_curve(Composition::Yoshida4)),
+        ],
+        (0.0, t_end),
+        120,
+        40,
+    )
+}
+
 /// log10 |Z − Z_AL| of (A.1): the small shell against a larger one.
 fn delay_chart() -> String {
     let times: Vec<f64> = (0..=280).map(|i| 0.025 * i as f64).collect();
@@ -123,6 +231,12 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
     writeln!(out, "{}", runaway_chart())?;
     row(out, 2)?;
     writeln!(out)?;
+    row(out, 3)?;
+    writeln!(out)?;
+    writeln!(out, "{}", stiffness_chart())?;
+    row(out, 4)?;
+    writeln!(out)?;
+    writeln!(out, "{}", long_run_chart())?;
     row(out, 5)?;
     writeln!(out)?;
     row(out, 6)?;

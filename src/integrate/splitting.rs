@@ -483,6 +483,7 @@ pub type RigidBodySplitting = Splitting<FreeRigidBody>;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReducedFlow(pub SymmetricTop);
 
+// ANCHOR: reduced_flows
 /// The rotation part of the reduced model: (Ω₁, Ω₂) turn clockwise by Ω̃₃h.
 ///
 /// Paper: Eq. (4.12), Eq. (4.13), Eq. (4.14).
@@ -560,6 +561,7 @@ pub fn reduced_damping_flow(top: &SymmetricTop, omega: &Vec3, h: Real) -> Option
     let out = Vec3::new(o1, o2, omega.z);
     all_finite(&out).then_some(out)
 }
+// ANCHOR_END: reduced_flows
 
 impl SplitFlow for ReducedFlow {
     type State = Vec3;

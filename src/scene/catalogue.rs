@@ -53,6 +53,8 @@ catalogue![
     "appendix-instability",
     "stability-row-1",
     "stability-row-2",
+    "stability-row-3",
+    "stability-row-4",
     "stability-row-5",
     "stability-row-6",
     "nanoparticle-1e3-debye",
