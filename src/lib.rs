@@ -48,6 +48,8 @@ pub mod book {
     pub struct WhereMethodsFail;
     #[doc = include_str!("../book/src/real-particles.md")]
     pub struct RealParticles;
+    #[doc = include_str!("../book/src/assignments.md")]
+    pub struct Assignments;
     #[doc = include_str!("../book/src/errata.md")]
     pub struct Errata;
     #[doc = include_str!("../book/src/scene-reference.md")]
