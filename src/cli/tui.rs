@@ -82,10 +82,13 @@ impl TuiArgs {
 
 /// The live view's settings for a top scene, and the line it opens with.
 ///
-/// The view shows the two symmetric models side by side in τ units, in the
-/// paper's frame: a truncated, reduced or full scene opens with its I₃/I₁,
-/// Ω₀ and method; an asymmetric (general) top has no place in it and is
-/// refused, as are scenes of other kinds.
+/// The view runs in τ units, with the lab z axis along L₀. A truncated,
+/// reduced or full scene opens the symmetric layout, the truncated and
+/// reduced models side by side, with its I₃/I₁, Ω₀ and method. An asymmetric
+/// (general) scene opens the general layout: one column, the truncated ALE
+/// (3.3) with its moments and dipole, integrated by the scene's method
+/// (DOP853 for `auto`, since nothing is closed). Scenes of other kinds are
+/// refused.
 pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, String), CliError> {
     let Body::Top(top) = &scene.body else {
         return Err(bad(format!(
@@ -95,40 +98,39 @@ pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, St
             scene.file
         )));
     };
-    let symmetric = match top.model {
-        Model::Truncated(t) | Model::Reduced(t) | Model::Full(t) => t,
-        Model::General(_) => {
-            return Err(bad(format!(
-                "{}: the live view compares the truncated and reduced symmetric tops, and this scene is an asymmetric (general) top; use `spintop run {}`",
-                scene.file, scene.file
-            )));
-        }
-    };
-    let method = match top.method {
+    let warp = warp.unwrap_or(WARPS[crate::tui::app::DEFAULT_WARP]);
+    let omega0 = top.initial.omega.into();
+    let integrated = |closed: Method| match top.method {
         MethodChoice::Rk4 => Method::Rk4,
         MethodChoice::Dopri5 => Method::Dopri5,
         MethodChoice::Dop853 => Method::Dop853,
-        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => Method::ClosedForm,
+        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => closed,
     };
-    let settings = Settings::new(
-        symmetric.ratio(),
-        top.initial.omega.into(),
-        method,
-        warp.unwrap_or(WARPS[crate::tui::app::DEFAULT_WARP]),
-    )
-    .map_err(bad)?;
     let mut note = format!("scene {}", scene.name);
-    if let Some(u) = &top.units {
-        note.push_str(&format!(
-            ": a real particle, τ = {:.2e} s, far too slow to watch in τ units; `spintop run {}` gives its times",
-            u.tau_seconds(),
-            scene.name
-        ));
-    } else if matches!(top.model, Model::Full(_)) {
-        note.push_str(": the full ALE (3.4) is not in this view; both symmetric models run with its I₃/I₁ and Ω₀");
-    } else {
-        note.push_str(&format!(": {}", scene.summary()));
-    }
+    let settings = match top.model {
+        Model::General(general) => {
+            let method = integrated(Method::Dop853);
+            note.push_str(&format!(
+                ": the general top (3.3), truncated ALE for any top; no closed form, integrated by {}",
+                method.name()
+            ));
+            Settings::general(general, omega0, method, warp).map_err(bad)?
+        }
+        Model::Truncated(t) | Model::Reduced(t) | Model::Full(t) => {
+            if let Some(u) = &top.units {
+                note.push_str(&format!(
+                    ": a real particle, τ = {:.2e} s, far too slow to watch in τ units; `spintop run {}` gives its times",
+                    u.tau_seconds(),
+                    scene.name
+                ));
+            } else if matches!(top.model, Model::Full(_)) {
+                note.push_str(": the full ALE (3.4) is not in this view; both symmetric models run with its I₃/I₁ and Ω₀");
+            } else {
+                note.push_str(&format!(": {}", scene.summary()));
+            }
+            Settings::new(t.ratio(), omega0, integrated(Method::ClosedForm), warp).map_err(bad)?
+        }
+    };
     Ok((settings, note))
 }
 

@@ -1,8 +1,10 @@
 //! The state of the live view and the one function that changes it.
 //!
-//! [`App`] owns two [`Simulation`]s started from the same parameters (the
-//! truncated model on the left, the reduced one on the right), what the view
-//! shows, and the mode. Keys become [`Command`]s; [`App::apply`] is the only
+//! [`App`] owns the [`Simulation`]s of one [`Top`]: for a symmetric top two
+//! started from the same parameters (the truncated model on the left, the
+//! reduced one on the right); for a general (asymmetric) top one, the
+//! truncated ALE (3.3), which has no closed form and is integrated. It also
+//! owns what the view shows, and the mode. Keys become [`Command`]s; [`App::apply`] is the only
 //! place a command changes anything. Wall-clock time enters through
 //! [`App::advance_wall`], which turns it into a whole number of fixed model
 //! steps of [`TICK`] (never one model step per frame), so the models do not
@@ -11,6 +13,7 @@
 //! | code name | symbol | meaning | units |
 //! |---|---|---|---|
 //! | `ratio` | I₃/I₁ | moment ratio of the symmetric top | – |
+//! | `inertia`, `dipole` | I, d | principal moments and body dipole of a general top | κ = 1 units |
 //! | `omega0` | Ω₀ | initial body angular velocity | 1/τ |
 //! | [`TICK`] | Δt | one model step of the view | τ |
 //! | `warp` | – | model time per wall-clock second | τ/s |
@@ -18,7 +21,8 @@
 use crate::cli::parse_number;
 use crate::math::{Real, Vec3};
 use crate::physics::euler_angles::{EulerAngles, frame_with_z_along};
-use crate::physics::rigid_body::angular_momentum_body;
+use crate::physics::general_top::GeneralTop;
+use crate::physics::rigid_body::{angular_momentum_body, energy};
 use crate::physics::symmetric_top::{SymmetricTop, reduced_closed_form, truncated_closed_form};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, Simulation};
 use std::collections::VecDeque;
@@ -106,6 +110,15 @@ impl Method {
         }
     }
 
+    /// The next method of the cycle for `top`: a general top has no closed
+    /// form, so its cycle is RK4, DP5, DOP853.
+    pub fn next_for(self, top: &Top) -> Self {
+        match (self.next(), top) {
+            (Method::ClosedForm, Top::General(_)) => Method::Rk4,
+            (next, _) => next,
+        }
+    }
+
     /// The name shown in the header.
     pub fn name(self) -> &'static str {
         match self {
@@ -127,10 +140,39 @@ impl Method {
     }
 }
 
-/// The parameters both models start from, validated.
+/// The top the view shows, and so its layout.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Top {
+    /// A symmetric top: its truncated (4.2)–(4.4) and reduced (4.12)–(4.14)
+    /// models side by side, each with its closed form.
+    Symmetric(SymmetricTop),
+    /// Any top under the truncated ALE (3.3): one column, integrated (there
+    /// is no closed form).
+    General(GeneralTop),
+}
+
+impl Top {
+    /// The principal moments (I₁ = 1 for the symmetric top).
+    pub fn inertia(&self) -> Vec3 {
+        match self {
+            Top::Symmetric(top) => top.inertia(),
+            Top::General(top) => top.inertia(),
+        }
+    }
+
+    /// The models the view runs, one per column.
+    fn models(&self) -> Vec<Model> {
+        match *self {
+            Top::Symmetric(top) => vec![Model::Truncated(top), Model::Reduced(top)],
+            Top::General(top) => vec![Model::General(top)],
+        }
+    }
+}
+
+/// The parameters the models start from, validated.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
-    top: SymmetricTop,
+    top: Top,
     omega0: [Real; 3],
     method: Method,
     warp: usize,
@@ -141,7 +183,7 @@ impl Default for Settings {
     /// Ω₀ = (0, 0.1, 0.2)/τ, closed forms, 10 τ/s.
     fn default() -> Self {
         Self {
-            top: SymmetricTop::figure(),
+            top: Top::Symmetric(SymmetricTop::figure()),
             omega0: [0.0, 0.1, 0.2],
             method: Method::ClosedForm,
             warp: DEFAULT_WARP,
@@ -154,6 +196,26 @@ impl Settings {
     /// is one line for the user.
     pub fn new(ratio: Real, omega0: [Real; 3], method: Method, warp: Real) -> Result<Self, String> {
         let top = SymmetricTop::new(ratio, 1.0).map_err(|e| e.to_string())?;
+        Self::validated(Top::Symmetric(top), omega0, method, warp)
+    }
+
+    /// Validate the settings of a general top (one column, the truncated ALE
+    /// (3.3)): Ω₀, an integrator (it has no closed form) and the warp.
+    pub fn general(
+        top: GeneralTop,
+        omega0: [Real; 3],
+        method: Method,
+        warp: Real,
+    ) -> Result<Self, String> {
+        if method == Method::ClosedForm {
+            return Err(
+                "the general top (3.3) has no closed form: choose rk4, dopri5 or dop853".into(),
+            );
+        }
+        Self::validated(Top::General(top), omega0, method, warp)
+    }
+
+    fn validated(top: Top, omega0: [Real; 3], method: Method, warp: Real) -> Result<Self, String> {
         check_omega0(omega0)?;
         let warp = WARPS.iter().position(|w| *w == warp).ok_or_else(|| {
             let list: Vec<String> = WARPS.iter().map(|w| w.to_string()).collect();
@@ -167,9 +229,22 @@ impl Settings {
         })
     }
 
-    /// I₃/I₁.
-    pub fn ratio(&self) -> Real {
-        self.top.ratio()
+    /// The top.
+    pub fn top(&self) -> &Top {
+        &self.top
+    }
+
+    /// True for a general top (one column, no closed form).
+    pub fn is_general(&self) -> bool {
+        matches!(self.top, Top::General(_))
+    }
+
+    /// I₃/I₁ of a symmetric top; `None` for a general one.
+    pub fn ratio(&self) -> Option<Real> {
+        match self.top {
+            Top::Symmetric(top) => Some(top.ratio()),
+            Top::General(_) => None,
+        }
     }
 
     /// Ω₀, body frame, in 1/τ.
@@ -202,7 +277,15 @@ fn check_omega0(omega0: [Real; 3]) -> Result<InitialState, String> {
 /// cos θ) = Oᵀẑ, the lab z axis seen from the body; setting it to L₀/|L₀|
 /// gives θ = the tilt and ψ = atan2(L₁, L₂) (φ = 0). L₀ = 0 keeps O = 1.
 pub fn paper_frame(top: &SymmetricTop, omega0: [Real; 3]) -> EulerAngles {
-    frame_with_z_along(&angular_momentum_body(&top.inertia(), &Vec3::from(omega0)))
+    lab_frame(&top.inertia(), omega0)
+}
+
+/// [`paper_frame`] for any principal moments: the lab z axis along
+/// L₀ = I Ω₀. The general top uses it too, so that both layouts show L
+/// starting straight up; its Ω(t) does not depend on the orientation, so this
+/// choice changes only the picture of the top in space.
+pub fn lab_frame(inertia: &Vec3, omega0: [Real; 3]) -> EulerAngles {
+    frame_with_z_along(&angular_momentum_body(inertia, &Vec3::from(omega0)))
 }
 
 /// What `?` shows and what an Ω₀ edit holds.
@@ -271,6 +354,8 @@ impl From<&Sample> for Point {
 pub struct Column {
     sim: Simulation,
     omega0: Vec3,
+    scale: Real,
+    start: Sample,
     recent: VecDeque<Point>,
     log: Vec<Point>,
     next_log_t: Real,
@@ -281,12 +366,12 @@ pub struct Column {
 
 impl Column {
     fn new(model: Model, method: Method, omega0: [Real; 3]) -> Result<Self, String> {
-        let top = match model {
-            Model::Truncated(top) | Model::Reduced(top) => top,
-            // The view compares the two symmetric models of Section 4 only.
-            _ => return Err("the live view shows the truncated and reduced models".into()),
-        };
-        let initial = InitialState::new(Vec3::from(omega0), paper_frame(&top, omega0))
+        // The full ALE needs its horizon in advance; the view is open-ended.
+        if matches!(model, Model::Full(_)) {
+            return Err("the live view does not run the full ALE (3.4)".into());
+        }
+        let inertia = model.inertia();
+        let initial = InitialState::new(Vec3::from(omega0), lab_frame(&inertia, omega0))
             .map_err(|e| e.to_string())?;
         let sim = Simulation::new(
             model,
@@ -298,6 +383,8 @@ impl Column {
         .map_err(|e| e.to_string())?;
         let start = *sim.current();
         let mut column = Self {
+            scale: plot_scale(&model, omega0),
+            start,
             sim,
             omega0: Vec3::from(omega0),
             recent: VecDeque::with_capacity((WINDOW / TICK) as usize / RECENT_STRIDE as usize + 2),
@@ -358,7 +445,12 @@ impl Column {
         self.sim.current()
     }
 
-    /// `truncated` or `reduced`.
+    /// The sample at t = 0.
+    pub fn start(&self) -> &Sample {
+        &self.start
+    }
+
+    /// `truncated`, `reduced` or `general`.
     pub fn name(&self) -> &'static str {
         self.sim.model().name()
     }
@@ -378,7 +470,8 @@ impl Column {
         &self.omega_trail
     }
 
-    /// The trail of the symmetry axis O·e₃ in the lab frame, oldest first.
+    /// The trail of the body axis O·e₃ (the symmetry axis of a symmetric
+    /// top) in the lab frame, oldest first.
     pub fn axis_trail(&self) -> &VecDeque<[Real; 3]> {
         &self.axis_trail
     }
@@ -388,29 +481,49 @@ impl Column {
         self.failure.as_deref()
     }
 
-    /// The larger of Ω⊥₀ and |Ω₃₀| (1 for a top at rest): the scale of the
-    /// plots. Neither model ever makes Ω⊥ or |Ω₃| grow, so it bounds every
-    /// component of Ω at all times.
+    /// The scale of the plots, in 1/τ: a bound on every component of Ω at
+    /// all times (see [`plot_scale`]).
     pub fn scale(&self) -> Real {
-        let s = self.omega0.x.hypot(self.omega0.y).max(self.omega0.z.abs());
-        if s > 0.0 { s } else { 1.0 }
+        self.scale
     }
 
     /// |Ω − Ω_closed form| at the current time, in 1/τ, from the core's closed
-    /// forms (4.7) and (4.15)–(4.16).
-    pub fn closed_form_error(&self) -> Real {
+    /// forms (4.7) and (4.15)–(4.16); `None` for the general top (3.3), which
+    /// has no closed form.
+    pub fn closed_form_error(&self) -> Option<Real> {
         let s = self.sim.current();
         let exact = match self.sim.model() {
             Model::Truncated(top) => truncated_closed_form(top, &self.omega0, s.t),
             Model::Reduced(top) => reduced_closed_form(top, &self.omega0, s.t),
-            // Only these two models are ever built by the view.
-            _ => return Real::NAN,
+            Model::General(_) | Model::Full(_) => return None,
         };
-        (s.omega_vec() - exact).norm()
+        Some((s.omega_vec() - exact).norm())
     }
 }
 
-/// The symmetry axis O·e₃ in the lab frame: the third column of O.
+/// The scale of a column's plots (1 for a top at rest).
+///
+/// For the symmetric models it is the larger of Ω⊥₀ and |Ω₃₀|: neither model
+/// ever makes Ω⊥ or |Ω₃| grow. For the general top it is max_i √(2E₀/I_i),
+/// the most any |Ω_i| can reach at energy E₀ (from ½ I_i Ω_i² ≤ E).
+///
+/// NOTE: radiation drains the general top's energy (E falls monotonically in
+/// every scene run so far, and exactly so without a dipole), so E₀ bounds the
+/// whole run; this is only a drawing scale, and a curve beyond it would be
+/// clipped, not wrong.
+pub fn plot_scale(model: &Model, omega0: [Real; 3]) -> Real {
+    let w = Vec3::from(omega0);
+    let s = match model {
+        Model::General(top) => {
+            let e0 = energy(&top.inertia(), &w);
+            (2.0 * e0 / top.inertia().min()).sqrt()
+        }
+        _ => w.x.hypot(w.y).max(w.z.abs()),
+    };
+    if s > 0.0 { s } else { 1.0 }
+}
+
+/// The body axis O·e₃ in the lab frame: the third column of O.
 fn axis_of(s: &Sample) -> [Real; 3] {
     let r = &s.rotation;
     [r[0][2], r[1][2], r[2][2]]
@@ -433,7 +546,7 @@ fn push_trail(trail: &mut VecDeque<[Real; 3]>, p: [Real; 3], spacing: Real) {
 #[derive(Clone, Debug)]
 pub struct App {
     settings: Settings,
-    columns: [Column; 2],
+    columns: Vec<Column>,
     view: View,
     mode: Mode,
     paused: bool,
@@ -444,7 +557,7 @@ pub struct App {
 }
 
 impl App {
-    /// Start both models from `settings` at t = 0, running.
+    /// Start the models of `settings` at t = 0, running.
     pub fn new(settings: Settings) -> Result<Self, String> {
         Ok(Self {
             columns: Self::columns_for(&settings)?,
@@ -461,19 +574,13 @@ impl App {
         })
     }
 
-    fn columns_for(settings: &Settings) -> Result<[Column; 2], String> {
-        Ok([
-            Column::new(
-                Model::Truncated(settings.top),
-                settings.method,
-                settings.omega0,
-            )?,
-            Column::new(
-                Model::Reduced(settings.top),
-                settings.method,
-                settings.omega0,
-            )?,
-        ])
+    fn columns_for(settings: &Settings) -> Result<Vec<Column>, String> {
+        settings
+            .top
+            .models()
+            .into_iter()
+            .map(|model| Column::new(model, settings.method, settings.omega0))
+            .collect()
     }
 
     /// Show `text` under the header until the first key (how a scene opens).
@@ -487,9 +594,19 @@ impl App {
         &self.settings
     }
 
-    /// The truncated (0) and reduced (1) columns.
-    pub fn columns(&self) -> &[Column; 2] {
+    /// The columns: truncated (0) and reduced (1) for a symmetric top, the
+    /// one general column for a general top.
+    pub fn columns(&self) -> &[Column] {
         &self.columns
+    }
+
+    /// "both models" or "the model": what a restart restarts.
+    fn restarted(&self) -> &'static str {
+        if self.settings.is_general() {
+            "the model restarted"
+        } else {
+            "both models restarted"
+        }
     }
 
     /// What the view shows.
@@ -553,7 +670,7 @@ impl App {
         n
     }
 
-    /// Advance both models by `n` model steps of [`TICK`].
+    /// Advance every model by `n` model steps of [`TICK`].
     pub fn advance_ticks(&mut self, n: u64) {
         for _ in 0..n {
             self.ticks += 1;
@@ -564,7 +681,7 @@ impl App {
         }
     }
 
-    /// Restart both models from the settings, keeping the view and the pause.
+    /// Restart the models from the settings, keeping the view and the pause.
     fn restart(&mut self) {
         // Settings are validated before they are stored, so this cannot fail;
         // if it ever did, the old models keep running and the reason is shown.
@@ -592,7 +709,7 @@ impl App {
         });
     }
 
-    /// Try new settings: on success restart both models, else keep the old
+    /// Try new settings: on success restart the models, else keep the old
     /// ones and say why.
     fn change(&mut self, candidate: Result<Settings, String>, what: String) -> bool {
         match candidate.and_then(|s| Self::columns_for(&s).map(|c| (s, c))) {
@@ -601,7 +718,8 @@ impl App {
                 self.columns = columns;
                 self.ticks = 0;
                 self.backlog = 0;
-                self.inform(format!("{what}: both models restarted"));
+                let restarted = self.restarted();
+                self.inform(format!("{what}: {restarted}"));
                 true
             }
             Err(e) => {
@@ -661,9 +779,17 @@ impl App {
             }
             Command::Reset => {
                 self.restart();
-                self.inform("both models restarted at t = 0");
+                let restarted = self.restarted();
+                self.inform(format!("{restarted} at t = 0"));
             }
             Command::RatioDown | Command::RatioUp => {
+                let Some(ratio) = self.settings.ratio() else {
+                    self.refuse(
+                        "[ and ] change I₃/I₁ of a symmetric top; this general top has three \
+                         moments, set in its scene file",
+                    );
+                    return;
+                };
                 let sign = if command == Command::RatioUp {
                     1.0
                 } else {
@@ -671,19 +797,19 @@ impl App {
                 };
                 // NOTE: stay on the grid of RATIO_STEP so that repeated presses
                 // land on 0.4 and 0.5, not on 0.49999999999999994.
-                let grid = (self.settings.ratio() / RATIO_STEP).round() + sign;
+                let grid = (ratio / RATIO_STEP).round() + sign;
                 let ratio = grid * RATIO_STEP;
                 let ratio = (ratio * 1e12).round() / 1e12;
                 let candidate = SymmetricTop::new(ratio, 1.0)
                     .map(|top| Settings {
-                        top,
+                        top: Top::Symmetric(top),
                         ..self.settings
                     })
                     .map_err(|e| e.to_string());
                 self.change(candidate, format!("I₃/I₁ = {ratio}"));
             }
             Command::CycleMethod => {
-                let method = self.settings.method.next();
+                let method = self.settings.method.next_for(&self.settings.top);
                 let candidate = Ok(Settings {
                     method,
                     ..self.settings

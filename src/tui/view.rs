@@ -8,10 +8,14 @@
 //! │ live numbers                   │ live numbers                    │
 //! └ footer: the keys ──────────────┴─────────────────────────────────┘
 //! ```
+//!
+//! A general (asymmetric) top has one model, the truncated ALE (3.3), and
+//! its column takes the whole width; the header shows I and d instead of
+//! I₃/I₁, and the I₃/I₁ keys leave the footer.
 
-use super::app::{App, Mode, SUBSCRIPTS, TICK, fmt_exact};
+use super::app::{App, Mode, SUBSCRIPTS, TICK, Top, fmt_exact};
 use super::theme;
-use super::widgets::{OmegaSeries, hodograph, numbers, top_in_space};
+use super::widgets::{OmegaSeries, drift, hodograph, numbers, top_in_space};
 use ratatui::Frame;
 use ratatui::layout::{Alignment, Constraint, Layout, Rect};
 use ratatui::text::{Line, Span, Text};
@@ -24,6 +28,10 @@ pub const MIN_HEIGHT: u16 = 24;
 
 /// Above this width the numbers get their long labels.
 const WIDE: u16 = 110;
+
+/// From this width of a column's inside the numbers of a model with no
+/// closed form get a third block (about 32 columns each).
+const DRIFT_WIDTH: u16 = 96;
 
 /// Draw the whole screen for the current state.
 pub fn draw(frame: &mut Frame, app: &App) {
@@ -39,14 +47,14 @@ pub fn draw(frame: &mut Frame, app: &App) {
     ])
     .areas(area);
     draw_header(frame, header, app);
-    let halves: [Rect; 2] =
-        Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).areas(body);
-    for (i, half) in halves.into_iter().enumerate() {
-        draw_column(frame, half, app, i);
+    let n = app.columns().len().max(1) as u32;
+    let parts = Layout::horizontal((0..n).map(|_| Constraint::Ratio(1, n))).split(body);
+    for (i, part) in parts.iter().enumerate() {
+        draw_column(frame, *part, app, i);
     }
-    draw_footer(frame, footer);
+    draw_footer(frame, footer, app.settings().is_general());
     if *app.mode() == Mode::Help {
-        draw_help(frame, area);
+        draw_help(frame, area, app.settings().is_general());
     }
 }
 
@@ -100,14 +108,29 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
         Span::styled("step Δt ", theme::label()),
         Span::styled(format!("{TICK}τ"), theme::value()),
         sep(),
-        Span::styled("units: τ, 1/τ, I₁ = 1", theme::label()),
+        Span::styled(
+            if settings.is_general() {
+                "units: κ = 2/(3c³) = 1"
+            } else {
+                "units: τ, 1/τ, I₁ = 1"
+            },
+            theme::label(),
+        ),
     ]);
-    let mut second = vec![
-        Span::styled(" I₃/I₁ = ", theme::label()),
-        Span::styled(fmt_exact(settings.ratio()), theme::value()),
-        sep(),
-        Span::styled("Ω₀ = (", theme::label()),
-    ];
+    let mut second = match settings.top() {
+        Top::Symmetric(top) => vec![
+            Span::styled(" I₃/I₁ = ", theme::label()),
+            Span::styled(fmt_exact(top.ratio()), theme::value()),
+        ],
+        Top::General(top) => vec![
+            Span::styled(" I = ", theme::label()),
+            Span::styled(fmt_triple(top.inertia().into()), theme::value()),
+            sep(),
+            Span::styled("d = ", theme::label()),
+            Span::styled(fmt_triple(top.dipole().into()), theme::value()),
+        ],
+    };
+    second.extend([sep(), Span::styled("Ω₀ = (", theme::label())]);
     let omega0 = settings.omega0();
     for (i, w) in omega0.iter().enumerate() {
         if i > 0 {
@@ -152,8 +175,12 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
         )),
         None => Line::from(Span::styled(
             format!(
-                " Left: no Schott term, loss law (2.1). Right: Schott term kept, torque (2.2). \
-                 Ω{}₀ selected (↑/↓, Enter edits). ? help",
+                " {} Ω{}₀ selected (↑/↓, Enter edits). ? help",
+                if settings.is_general() {
+                    "General top: the truncated ALE (3.3) for any top, integrated (no closed form)."
+                } else {
+                    "Left: no Schott term, loss law (2.1). Right: Schott term kept, torque (2.2)."
+                },
                 SUBSCRIPTS[app.view().selected]
             ),
             theme::label(),
@@ -162,11 +189,26 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
     frame.render_widget(Paragraph::new(vec![first, Line::from(second), third]), area);
 }
 
+/// `(1, 1.5, 0.8)`: a vector as the user would type it.
+fn fmt_triple(v: [crate::math::Real; 3]) -> String {
+    format!(
+        "({}, {}, {})",
+        fmt_exact(v[0]),
+        fmt_exact(v[1]),
+        fmt_exact(v[2])
+    )
+}
+
 fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
     let column = &app.columns()[i];
-    let (name, equations, gist) = match i {
-        0 => ("truncated", "(4.2)–(4.4)", "no Schott term"),
-        _ => ("reduced", "(4.12)–(4.14)", "Schott term kept"),
+    let (name, equations, gist) = match column.name() {
+        "truncated" => ("truncated", "(4.2)–(4.4)", "no Schott term"),
+        "reduced" => ("reduced", "(4.12)–(4.14)", "Schott term kept"),
+        _ => (
+            "general top",
+            "(3.3)",
+            "truncated ALE for any top, integrated: no closed form",
+        ),
     };
     let mut title = vec![
         Span::styled(format!(" {name} "), theme::title()),
@@ -199,15 +241,25 @@ fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
     frame.render_widget(top_in_space(column, space_area), space_area);
     let [rows, last] =
         Layout::vertical([Constraint::Length(5), Constraint::Fill(1)]).areas(numbers_area);
-    let [left, right] =
-        Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).areas(rows);
+    // A model with no closed form has room (one column) for a third block:
+    // how far E, |L| and the direction of L have moved since t = 0.
+    let third = column.closed_form_error().is_none() && rows.width >= DRIFT_WIDTH;
+    let blocks = Layout::horizontal(if third {
+        [Constraint::Ratio(1, 3); 3].to_vec()
+    } else {
+        [Constraint::Ratio(1, 2); 2].to_vec()
+    })
+    .split(rows);
     let (l, r, bottom) = numbers(app, column, area.width >= WIDE / 2);
-    frame.render_widget(l, left);
-    frame.render_widget(r, right);
+    frame.render_widget(l, blocks[0]);
+    frame.render_widget(r, blocks[1]);
+    if third {
+        frame.render_widget(drift(column), blocks[2]);
+    }
     frame.render_widget(bottom, last);
 }
 
-/// The keys of the footer, in order.
+/// The keys of the footer, in order (`[ ]` only for a symmetric top).
 const KEYS: [(&str, &str); 10] = [
     ("?", "help"),
     ("q", "quit"),
@@ -221,9 +273,12 @@ const KEYS: [(&str, &str); 10] = [
     ("l", "log t"),
 ];
 
-fn draw_footer(frame: &mut Frame, area: Rect) {
+fn draw_footer(frame: &mut Frame, area: Rect, general: bool) {
     let mut spans = vec![Span::raw(" ")];
     for (key, what) in KEYS {
+        if general && key == "[ ]" {
+            continue;
+        }
         spans.push(Span::styled(key, theme::key()));
         spans.push(Span::styled(format!(" {what}  "), theme::label()));
     }
@@ -251,30 +306,66 @@ const HELP_KEYS: [(&str, &str); 11] = [
     ("q Esc ^C", "quit"),
 ];
 
-fn draw_help(frame: &mut Frame, area: Rect) {
-    let mut lines = vec![
-        Line::from(Span::styled(
-            "Duviryak's polarized spinning top, two ways",
-            theme::title(),
-        )),
-        Line::from("Left: truncated (4.2)–(4.4), loss law (2.1) without the Schott term."),
-        Line::from("Right: reduced (4.12)–(4.14), Abraham–Lorentz torque (2.2) with it."),
-        Line::from("Both start from the same I₃/I₁ and Ω₀; the lab z axis is along L₀."),
-        Line::from(""),
-    ];
+/// What the help says instead for a general top.
+const GENERAL_HELP_KEYS: [(&str, &str); 3] = [
+    ("r", "restart the model at t = 0"),
+    (
+        "[ / ]",
+        "off: I₃/I₁ is for symmetric tops; I is set in the scene",
+    ),
+    ("m", "method: RK4, DP5, DOP853 ((3.3) has no closed form)"),
+];
+
+fn draw_help(frame: &mut Frame, area: Rect, general: bool) {
+    let mut lines = if general {
+        vec![
+            Line::from(Span::styled(
+                "Duviryak's polarized top, any shape: the general top",
+                theme::title(),
+            )),
+            Line::from("The truncated ALE (3.3): loss law (2.1) for three different moments"),
+            Line::from("and a dipole anywhere in the body. Nothing is closed: Ω and the"),
+            Line::from("orientation are integrated together. The lab z axis is along L₀."),
+            Line::from(""),
+        ]
+    } else {
+        vec![
+            Line::from(Span::styled(
+                "Duviryak's polarized spinning top, two ways",
+                theme::title(),
+            )),
+            Line::from("Left: truncated (4.2)–(4.4), loss law (2.1) without the Schott term."),
+            Line::from("Right: reduced (4.12)–(4.14), Abraham–Lorentz torque (2.2) with it."),
+            Line::from("Both start from the same I₃/I₁ and Ω₀; the lab z axis is along L₀."),
+            Line::from(""),
+        ]
+    };
     for (key, what) in HELP_KEYS {
+        let what = match GENERAL_HELP_KEYS.iter().find(|(k, _)| general && *k == key) {
+            Some((_, instead)) => instead,
+            None => what,
+        };
         lines.push(Line::from(vec![
             Span::styled(format!("{key:<10}"), theme::key()),
             Span::raw(what),
         ]));
     }
-    lines.extend([
-        Line::from(""),
-        Line::from("Panels: Ω(t) in the body frame; the hodograph of Ω (body frame, with"),
-        Line::from("its shadow on the Ω₁Ω₂ plane); the top in space: axis e₃, L, and the"),
-        Line::from("trail of the axis tip, which traces the precession cone. error is"),
-        Line::from("|Ω − Ω_closed form| at the same t, from (4.7) and (4.15)–(4.16)."),
-    ]);
+    lines.push(Line::from(""));
+    lines.extend(if general {
+        [
+            Line::from("Panels: Ω(t) in the body frame; the hodograph of Ω (body frame, with"),
+            Line::from("its shadow on the Ω₁Ω₂ plane); the top in space: body axis e₃, L, and"),
+            Line::from("the trail of the axis tip. There is no closed form to compare with:"),
+            Line::from("watch E and |L| fall as the top radiates. Times are in κ = 1 units."),
+        ]
+    } else {
+        [
+            Line::from("Panels: Ω(t) in the body frame; the hodograph of Ω (body frame, with"),
+            Line::from("its shadow on the Ω₁Ω₂ plane); the top in space: axis e₃, L, and the"),
+            Line::from("trail of the axis tip, which traces the precession cone. error is"),
+            Line::from("|Ω − Ω_closed form| at the same t, from (4.7) and (4.15)–(4.16)."),
+        ]
+    });
     let width = 76.min(area.width);
     let height = (lines.len() as u16 + 2).min(area.height);
     let [_, h, _] = Layout::horizontal([
