@@ -2,12 +2,17 @@
 //! table maps to one `Command` value, and `App::apply` does what the help
 //! says: steps are whole ticks of Δt, parameters are validated (refused with
 //! a message, never a panic), and a change restarts both models from the same
-//! state.
+//! state. A general (asymmetric) top scene runs in one column: the I₃/I₁ keys
+//! are refused with a reason, the method cycle skips the closed form it does
+//! not have, and every other key works as for the symmetric top.
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use spintop::math::Vec3;
+use spintop::physics::general_top::GeneralTop;
 use spintop::physics::symmetric_top::{SymmetricTop, precession_tilt};
-use spintop::tui::app::{App, Method, Mode, Settings, TICK, WARPS};
+use spintop::scene::catalogue;
+use spintop::sim::Model;
+use spintop::tui::app::{App, Method, Mode, Settings, TICK, Top, WARPS};
 use spintop::tui::{Command, command_for};
 use std::time::Duration;
 
@@ -360,4 +365,168 @@ fn a_failing_integrator_stops_its_column_with_a_message_not_a_panic() {
         let s = column.current();
         assert!(s.omega.iter().all(|w| w.is_finite()));
     }
+}
+
+/// The catalogue's asymmetric top, opened as `spintop tui asymmetric-top` does.
+fn general_app() -> App {
+    let scene = catalogue::find("asymmetric-top")
+        .expect("the catalogue has an asymmetric top")
+        .scene()
+        .expect("the scene parses");
+    let (settings, note) =
+        spintop::cli::tui::scene_settings(&scene, None).expect("the live view opens it");
+    assert!(
+        note.starts_with("scene asymmetric-top: the general top (3.3)"),
+        "{note}"
+    );
+    App::new(settings)
+        .expect("valid settings")
+        .with_message(note)
+}
+
+#[test]
+fn sec3_a_general_top_scene_opens_one_column_of_eq_3_3_with_lab_z_along_l0() {
+    let app = general_app();
+    assert!(app.settings().is_general());
+    assert_eq!(app.settings().ratio(), None);
+    assert_eq!(
+        app.settings().method(),
+        Method::Dop853,
+        "auto: nothing closed"
+    );
+    let [column] = app.columns() else {
+        panic!("one column, got {}", app.columns().len())
+    };
+    assert_eq!(column.name(), "general");
+    assert!(matches!(column.sim().model(), Model::General(_)));
+    assert_eq!(column.closed_form_error(), None);
+    // L₀ = IΩ₀ points up the lab z axis, whatever Euler angles the scene gave.
+    let l = Vec3::from(column.current().l_lab);
+    assert!(l.x.abs() < 1e-15 && l.y.abs() < 1e-15 && l.z > 0.0, "{l}");
+    let message = app.message().expect("the scene is named");
+    assert!(message.text.contains("asymmetric-top") && !message.is_error);
+}
+
+#[test]
+fn general_top_refuses_the_ratio_keys_and_keeps_running() {
+    let mut app = general_app();
+    app.advance_ticks(30);
+    let before = *app.columns()[0].current();
+    for command in [Command::RatioUp, Command::RatioDown] {
+        app.apply(command);
+        let message = app.message().expect("a refusal is explained");
+        assert!(
+            message.is_error && message.text.contains("I₃/I₁") && message.text.contains("general"),
+            "{message:?}"
+        );
+        assert_eq!(app.ticks(), 30, "nothing restarted");
+        assert_eq!(app.columns()[0].current(), &before);
+        assert!(app.settings().is_general());
+    }
+}
+
+#[test]
+fn general_top_method_cycles_rk4_dp5_dop853_and_never_the_closed_form() {
+    let mut app = general_app();
+    assert_eq!(app.columns()[0].sim().method().label(), "dop853");
+    let expected = [
+        (Method::Rk4, "rk4"),
+        (Method::Dopri5, "dopri5"),
+        (Method::Dop853, "dop853"),
+        (Method::Rk4, "rk4"),
+    ];
+    for (method, label) in expected {
+        app.advance_ticks(3);
+        app.apply(Command::CycleMethod);
+        assert_eq!(app.settings().method(), method);
+        assert_eq!(app.columns().len(), 1);
+        assert_eq!(app.columns()[0].sim().method().label(), label);
+        assert_eq!(app.ticks(), 0);
+        let message = app.message().expect("the change is confirmed");
+        assert!(message.text.contains("the model restarted"), "{message:?}");
+    }
+    // Nor can it be built with the closed form.
+    let top = GeneralTop::new(Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2, 0.0, 1.0)).unwrap();
+    let refused = Settings::general(top, [0.1, 0.05, 0.2], Method::ClosedForm, 10.0);
+    assert!(refused.is_err_and(|e| e.contains("no closed form")));
+}
+
+#[test]
+fn general_top_pause_step_warp_reset_edit_view_help_and_quit_work() {
+    let mut app = general_app();
+    assert_eq!(run_for(&mut app, 4), 50, "0.5 s at 10 τ/s is 50 ticks");
+    app.apply(Command::TogglePause);
+    let before = *app.columns()[0].current();
+    assert_eq!(run_for(&mut app, 8), 0);
+    assert_eq!(app.columns()[0].current(), &before);
+    app.apply(Command::Step);
+    assert_eq!(app.columns()[0].current().t, 51.0 * TICK);
+    app.apply(Command::TogglePause);
+
+    app.apply(Command::Faster);
+    assert_eq!(app.settings().warp(), 20.0);
+    app.apply(Command::Slower);
+    app.apply(Command::Slower);
+    assert_eq!(app.settings().warp(), 5.0);
+
+    app.apply(Command::Reset);
+    assert_eq!(app.ticks(), 0);
+    assert!(
+        app.message()
+            .is_some_and(|m| m.text == "the model restarted at t = 0")
+    );
+
+    // Ω₀ is edited as for the symmetric top; the top stays the same.
+    app.apply(Command::StartEdit);
+    for c in "0.3".chars() {
+        app.apply(Command::Input(c));
+    }
+    app.apply(Command::Commit);
+    assert_eq!(app.mode(), &Mode::Normal);
+    assert_eq!(app.settings().omega0(), [0.3, 0.05, 0.2]);
+    assert!(matches!(app.settings().top(), Top::General(_)));
+    assert_eq!(
+        app.columns()[0].sim().initial().omega,
+        Vec3::new(0.3, 0.05, 0.2)
+    );
+    // The frame follows the new L₀.
+    let l = Vec3::from(app.columns()[0].current().l_lab);
+    assert!(l.x.abs() < 1e-15 && l.y.abs() < 1e-15 && l.z > 0.0, "{l}");
+
+    app.apply(Command::ToggleLogTime);
+    assert!(app.view().log_time);
+    app.apply(Command::ToggleHelp);
+    assert_eq!(app.mode(), &Mode::Help);
+    app.apply(Command::ToggleHelp);
+    app.apply(Command::Quit);
+    assert!(app.should_quit());
+}
+
+/// With a dipole a million times smaller the top is free: E and |L| of the
+/// general column stay at their starting values (the Euler equations conserve
+/// both), and the radiation of (3.3) is below the integrator's tolerance.
+#[test]
+fn sec3_general_top_with_a_tiny_dipole_keeps_energy_and_angular_momentum() {
+    let top = GeneralTop::new(Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2e-6, 0.0, 1e-6)).unwrap();
+    let settings = Settings::general(top, [0.1, 0.05, 0.2], Method::Dop853, 10.0).unwrap();
+    let mut app = App::new(settings).unwrap();
+    let start = *app.columns()[0].current();
+    let norm = |l: [f64; 3]| Vec3::from(l).norm();
+    for _ in 0..10 {
+        app.advance_ticks(500);
+        let s = app.columns()[0].current();
+        assert!(
+            (s.energy / start.energy - 1.0).abs() < 1e-9,
+            "E at t = {}",
+            s.t
+        );
+        assert!(
+            (norm(s.l_lab) / norm(start.l_lab) - 1.0).abs() < 1e-9,
+            "|L| at t = {}",
+            s.t
+        );
+    }
+    // Ω itself did move: the top tumbles, it is not a trivial run.
+    let s = app.columns()[0].current();
+    assert!((s.omega_vec() - start.omega_vec()).norm() > 0.01);
 }

@@ -111,7 +111,7 @@ pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, St
         Model::General(general) => {
             let method = integrated(Method::Dop853);
             note.push_str(&format!(
-                ": the general top (3.3), truncated ALE for any top; no closed form, integrated by {}",
+                ": the general top (3.3), integrated by {}",
                 method.name()
             ));
             Settings::general(general, omega0, method, warp).map_err(bad)?

@@ -186,7 +186,29 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
             theme::label(),
         )),
     };
-    frame.render_widget(Paragraph::new(vec![first, Line::from(second), third]), area);
+    frame.render_widget(
+        Paragraph::new(vec![first, fit(second, area.width), third]),
+        area,
+    );
+}
+
+/// The parameter line, shortened to `width` if it must be: narrower
+/// separators first, then without the last cell (the chart's time window,
+/// which its axis shows anyway). The general top's I and d need this at 80
+/// columns; the method stays in view.
+fn fit(mut spans: Vec<Span<'static>>, width: u16) -> Line<'static> {
+    let too_wide = |spans: &[Span]| Line::from(spans.to_vec()).width() > usize::from(width);
+    if too_wide(&spans) {
+        for span in &mut spans {
+            if span.content == sep().content {
+                *span = Span::styled(" │ ", theme::frame());
+            }
+        }
+    }
+    if too_wide(&spans) {
+        spans.truncate(spans.len().saturating_sub(2));
+    }
+    Line::from(spans)
 }
 
 /// `(1, 1.5, 0.8)`: a vector as the user would type it.
