@@ -1,14 +1,21 @@
 //! The live view drawn headless into a ratatui `TestBackend`: the main screen
 //! after a fixed number of model steps, the help overlay, the log-time view,
-//! the smallest layout, and the "please enlarge" message. Each screen is
+//! the smallest layout, the "please enlarge" message, and the one column of
+//! a general (asymmetric) top, whose numbers must be those of an independent
+//! run of its scene and must show a free top's E and |L| unchanged. Each screen is
 //! pinned by an insta snapshot (tests/snapshots/, reviewed by hand) and by
 //! assertions that say what must be on it, so that a changed snapshot is not
 //! the only line of defence.
 
 use ratatui::{Terminal, backend::TestBackend};
+use spintop::math::Vec3;
+use spintop::physics::general_top::GeneralTop;
+use spintop::scene::{Body, Scene, catalogue};
+use spintop::sim::{MethodChoice, Simulation};
 use spintop::tui::Command;
-use spintop::tui::app::{App, Settings};
+use spintop::tui::app::{App, Method, Settings};
 use spintop::tui::view::{self, MIN_HEIGHT, MIN_WIDTH};
+use spintop::tui::widgets::fmt_num;
 
 /// Draw `app` on a `width`×`height` test terminal and return the screen.
 fn screen(app: &App, width: u16, height: u16) -> Terminal<TestBackend> {
@@ -141,4 +148,171 @@ fn every_state_draws_at_every_size_without_panicking() {
             assert!(s.contains("reduced"), "{command:?} at {w}×{h}");
         }
     }
+}
+
+fn asymmetric_scene() -> Scene {
+    catalogue::find("asymmetric-top")
+        .expect("in the catalogue")
+        .scene()
+        .expect("the scene parses")
+}
+
+/// The catalogue's asymmetric top as `spintop tui asymmetric-top` opens it.
+fn general_app() -> App {
+    let (settings, note) = spintop::cli::tui::scene_settings(&asymmetric_scene(), None)
+        .expect("the live view opens it");
+    App::new(settings)
+        .expect("valid settings")
+        .with_message(note)
+}
+
+/// The value printed after `label` on the screen (the first occurrence).
+fn value_after<'a>(screen: &'a str, label: &str) -> &'a str {
+    let at = screen
+        .find(label)
+        .unwrap_or_else(|| panic!("{label}:\n{screen}"))
+        + label.len();
+    screen[at..].split_whitespace().next().expect("a value")
+}
+
+#[test]
+fn general_top_screen_after_600_steps() {
+    let mut app = general_app();
+    app.advance_ticks(600);
+    let terminal = screen(&app, 120, 40);
+    let s = text(&terminal);
+    assert!(s.contains("t = 60.00τ"), "{s}");
+    assert!(s.contains("scene asymmetric-top: the general top (3.3), integrated by DOP853"));
+    assert!(s.contains("general top (3.3)") && !s.contains("truncated (4.2)"));
+    assert!(s.contains("I = (1, 1.5, 0.8)") && s.contains("d = (0.2, 0, 1)"));
+    for panel in [
+        "Ω(t) [1/τ]",
+        "hodograph of Ω",
+        "the top in space",
+        "since t = 0",
+    ] {
+        assert!(s.contains(panel), "{panel}");
+    }
+    assert!(s.contains("— (no closed form)"));
+    assert!(!s.contains("[ ]"), "no I₃/I₁ keys in the footer");
+    assert!(braille_count(&s) > 200);
+    insta::assert_snapshot!(terminal.backend());
+}
+
+/// The Ω, E and |L| on the screen at t = 50 are those of the scene run on its
+/// own by `Simulation` (its own Euler angles, its own method): the view's
+/// frame changes the picture, never Ω(t).
+#[test]
+fn sec3_general_top_shows_the_omega_of_an_independent_run_of_its_scene() {
+    let scene = asymmetric_scene();
+    let Body::Top(top) = &scene.body else {
+        panic!("a top scene")
+    };
+    let mut sim = Simulation::new(top.model, top.method, top.options, top.initial, Some(50.0))
+        .expect("the scene runs");
+    let other = *sim.advance_to(50.0).expect("to t = 50");
+    let mut app = general_app();
+    app.apply(Command::TogglePause);
+    app.advance_ticks(500);
+    let s = app.columns()[0].current();
+    assert_eq!(s.t, 50.0);
+    assert!(
+        (s.omega_vec() - other.omega_vec()).norm() < 1e-9,
+        "{:?} vs {:?}",
+        s.omega,
+        other.omega
+    );
+    assert!((s.energy - other.energy).abs() < 1e-10);
+    let screen = text(&screen(&app, 120, 40));
+    let [o1, o2, o3] = other.omega.map(fmt_num);
+    assert!(
+        screen.contains(&format!("({o1}, {o2}, {o3})/τ")),
+        "Ω = ({o1}, {o2}, {o3}) on\n{screen}"
+    );
+    assert_eq!(value_after(&screen, "│E "), fmt_num(other.energy));
+    let l = Vec3::from(other.l_lab).norm();
+    assert_eq!(value_after(&screen, "│|L| "), fmt_num(l));
+    // The two runs started from different orientations (the scene's Euler
+    // angles, the view's lab z ∥ L₀) and still agree on Ω: it does not
+    // depend on the orientation.
+    assert_eq!(
+        top.method,
+        MethodChoice::Auto,
+        "the scene leaves the method to auto"
+    );
+    assert!((s.rotation_matrix() - other.rotation_matrix()).norm() > 0.1);
+}
+
+/// A free top (dipole a million times smaller): the E and |L| shown do not
+/// change over 500 time units, and the drift block reads 1 for both.
+#[test]
+fn sec3_general_top_with_a_tiny_dipole_shows_constant_energy_and_momentum() {
+    let top = GeneralTop::new(Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2e-6, 0.0, 1e-6)).unwrap();
+    // NOTE: not the scene's Ω₀, whose E₀ = 0.022875 sits on a rounding
+    // boundary of the four digits shown, where a drift of 1e-15 flips a digit.
+    let settings = Settings::general(top, [0.1, 0.06, 0.2], Method::Dop853, 10.0).unwrap();
+    let mut app = App::new(settings).unwrap();
+    let at_start = text(&screen(&app, 120, 40));
+    let (e0, l0) = (
+        value_after(&at_start, "│E ").to_owned(),
+        value_after(&at_start, "│|L| ").to_owned(),
+    );
+    assert_eq!(e0, "0.02370", "E₀ = ½ Ω₀·IΩ₀ = 0.0237");
+    assert_eq!(l0, "0.2090", "|L₀| = |IΩ₀| = √0.0437");
+    for _ in 0..10 {
+        app.advance_ticks(500);
+        let later = text(&screen(&app, 120, 40));
+        assert_eq!(value_after(&later, "│E "), e0);
+        assert_eq!(value_after(&later, "│|L| "), l0);
+        // "1.000", or "1.0000" for a ratio a hair below 1: one, to the digits shown.
+        for label in ["E/E₀", "|L|/|L₀|"] {
+            let shown = value_after(&later, label);
+            assert_eq!(shown.parse::<f64>(), Ok(1.0), "{label} = {shown}");
+        }
+    }
+    // With the scene's dipole the same top radiates: E falls by half by t = 60.
+    let mut app = general_app();
+    app.advance_ticks(600);
+    let later = text(&screen(&app, 120, 40));
+    let ratio: f64 = value_after(&later, "E/E₀").parse().unwrap();
+    assert!(ratio < 0.6, "{ratio}");
+}
+
+#[test]
+fn general_top_draws_every_state_at_every_size() {
+    let mut app = general_app();
+    app.advance_ticks(100);
+    let small = text(&screen(&app, MIN_WIDTH, MIN_HEIGHT));
+    for label in [
+        "general top (3.3)",
+        "method DOP853",
+        "error",
+        "tilt",
+        "? help",
+    ] {
+        assert!(small.contains(label), "{label} at 80×24:\n{small}");
+    }
+    let commands = [
+        Command::ToggleLogTime,
+        Command::RatioUp,
+        Command::StartEdit,
+        Command::Input('7'),
+        Command::Commit,
+        Command::CycleMethod,
+        Command::ToggleHelp,
+        Command::ToggleHelp,
+        Command::TogglePause,
+        Command::Step,
+    ];
+    for command in commands {
+        app.apply(command);
+        app.advance_ticks(3);
+        for (w, h) in [(80, 24), (97, 31), (120, 40), (250, 80)] {
+            let s = text(&screen(&app, w, h));
+            assert!(s.contains("general top"), "{command:?} at {w}×{h}");
+        }
+    }
+    app.apply(Command::ToggleHelp);
+    let help = text(&screen(&app, 120, 40));
+    assert!(help.contains("the general top") && help.contains("no closed form"));
 }
