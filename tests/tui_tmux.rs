@@ -3,7 +3,9 @@
 //! pause the time must stand still; one step must advance it by exactly one
 //! Δt; `q` must end it with exit status 0 and leave the alternate screen.
 //! Opened on a catalogue scene (`spintop tui NAME`), it must start from the
-//! scene's I₃/I₁ and Ω₀ and name the scene.
+//! scene's I₃/I₁ and Ω₀ and name the scene; opened on the asymmetric top it
+//! must show the one column of the general top (3.3) with all its panels,
+//! refuse the I₃/I₁ keys, and still quit cleanly.
 //!
 //! In CI (`CI=true`) tmux is required and its absence fails the test; on a
 //! machine without tmux the test says so and passes.
@@ -231,16 +233,70 @@ fn the_live_view_opens_a_top_scene() {
         "{screen}"
     );
     tmux.keys("q");
-    let status = tmux.status_file.clone();
+    assert_eq!(exit_status(&tmux, long), "0", "exit status");
+}
+
+/// Wait for the binary's exit status (written by the pane's shell).
+fn exit_status(tmux: &Tmux, limit: Duration) -> String {
     let start = Instant::now();
-    let code = loop {
-        match std::fs::read_to_string(&status) {
-            Ok(code) if code.ends_with('\n') => break code,
+    loop {
+        match std::fs::read_to_string(&tmux.status_file) {
+            Ok(code) if code.ends_with('\n') => return code.trim().to_owned(),
             _ => {
-                assert!(start.elapsed() < long, "q did not end the program");
+                assert!(start.elapsed() < limit, "q did not end the program");
                 sleep(Duration::from_millis(50));
             }
         }
+    }
+}
+
+/// `spintop tui asymmetric-top` opens the general top (3.3) in one column:
+/// its I and d in the header, the Ω(t) chart, the hodograph, the top in
+/// space and the numbers with no closed-form error; `]` is refused with a
+/// reason while the clock keeps running; `q` ends it with exit status 0 and
+/// the terminal restored.
+#[test]
+fn the_live_view_opens_the_asymmetric_top_scene() {
+    let Some(tmux) = launch("general", "tui asymmetric-top") else {
+        return;
     };
-    assert_eq!(code.trim(), "0", "exit status");
+    let long = Duration::from_secs(20);
+    let screen = tmux.wait_for("the general top and a moving clock", long, |s| {
+        s.contains("scene asymmetric-top: the general top (3.3)")
+            && header_time(s).is_some_and(|t| t > 0.0)
+            && braille(s) > 100
+    });
+    assert_eq!(tmux.format("#{alternate_on}"), "1");
+    for text in [
+        "general top (3.3)",
+        "I = (1, 1.5, 0.8)",
+        "d = (0.2, 0, 1)",
+        "Ω₀ = (0.1, 0.05, 0.2)/τ",
+        "method DOP853",
+        "Ω(t) [1/τ]",
+        "hodograph of Ω",
+        "the top in space",
+        "— (no closed form)",
+        "E/E₀",
+    ] {
+        assert!(screen.contains(text), "{text} on\n{screen}");
+    }
+    assert!(!screen.contains("truncated (4.2)"), "one column:\n{screen}");
+
+    tmux.keys("]");
+    let screen = tmux.wait_for("the refusal of ]", long, |s| s.contains("change I₃/I₁"));
+    let t1 = header_time(&screen).expect("t on the screen");
+    let screen = tmux.wait_for("the clock to go on", long, |s| {
+        header_time(s).is_some_and(|t| t > t1)
+    });
+    assert!(screen.contains("general top (3.3)"), "{screen}");
+
+    tmux.keys("q");
+    assert_eq!(exit_status(&tmux, long), "0", "exit status");
+    assert_eq!(
+        tmux.format("#{alternate_on}"),
+        "0",
+        "the terminal must be restored (alternate screen left)"
+    );
+    assert!(!tmux.capture().contains("general top (3.3)"));
 }
