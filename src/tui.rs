@@ -1,4 +1,5 @@
-//! The live terminal UI: the truncated and the reduced top, side by side.
+//! The live terminal UI: the truncated and the reduced top, side by side, or
+//! a general (asymmetric) top under the truncated ALE (3.3) in one column.
 //!
 //! A thin shell over [`crate::sim`]: every number on the screen is read from a
 //! [`crate::sim::Sample`] or from the core's closed forms; nothing here redoes
@@ -6,7 +7,7 @@
 //!
 //! | module | what it holds |
 //! |---|---|
-//! | [`app`] | the state: [`app::App`] (two simulations, the view, the mode) and the one [`app::App::apply`] that changes it |
+//! | [`app`] | the state: [`app::App`] (the simulations of one [`app::Top`], the view, the mode) and the one [`app::App::apply`] that changes it |
 //! | [`event`] | keys → [`event::Command`] values, and the terminal loop that turns wall-clock time into model steps |
 //! | [`view`] | the layout; drawing only reads the state |
 //! | [`widgets`] | the charts, the hodograph, the top in space, the live numbers |
