@@ -4,11 +4,11 @@
 //! started from the same parameters (the truncated model on the left, the
 //! reduced one on the right); for a general (asymmetric) top one, the
 //! truncated ALE (3.3), which has no closed form and is integrated. It also
-//! owns what the view shows, and the mode. Keys become [`Command`]s; [`App::apply`] is the only
-//! place a command changes anything. Wall-clock time enters through
-//! [`App::advance_wall`], which turns it into a whole number of fixed model
-//! steps of [`TICK`] (never one model step per frame), so the models do not
-//! depend on the frame rate.
+//! owns what the view shows, and the mode. Keys become [`Command`]s;
+//! [`App::apply`] is the only place a command changes anything. Wall-clock
+//! time enters through [`App::advance_wall`], which turns it into a whole
+//! number of fixed model steps of [`TICK`] (never one model step per frame),
+//! so the models do not depend on the frame rate.
 //!
 //! | code name | symbol | meaning | units |
 //! |---|---|---|---|
@@ -152,14 +152,6 @@ pub enum Top {
 }
 
 impl Top {
-    /// The principal moments (I₁ = 1 for the symmetric top).
-    pub fn inertia(&self) -> Vec3 {
-        match self {
-            Top::Symmetric(top) => top.inertia(),
-            Top::General(top) => top.inertia(),
-        }
-    }
-
     /// The models the view runs, one per column.
     fn models(&self) -> Vec<Model> {
         match *self {
@@ -507,10 +499,12 @@ impl Column {
 /// ever makes Ω⊥ or |Ω₃| grow. For the general top it is max_i √(2E₀/I_i),
 /// the most any |Ω_i| can reach at energy E₀ (from ½ I_i Ω_i² ≤ E).
 ///
-/// NOTE: radiation drains the general top's energy (E falls monotonically in
-/// every scene run so far, and exactly so without a dipole), so E₀ bounds the
-/// whole run; this is only a drawing scale, and a curve beyond it would be
-/// clipped, not wrong.
+/// NOTE: (3.3) does not make E fall monotonically for an asymmetric top: the
+/// loss law's power is −|Ω × ḋ|² − (Ω̇ × d)·(Ω × ḋ), and the second term has
+/// no sign (probes with I = (1, 2, 2.5) show E rising by a few 1e-6 of
+/// itself over 0.1τ). On the whole it drains, and E stayed below E₀ in every
+/// run tried, so E₀ serves as the bound; this is only a drawing scale, and a
+/// curve beyond it would be clipped, not wrong.
 pub fn plot_scale(model: &Model, omega0: [Real; 3]) -> Real {
     let w = Vec3::from(omega0);
     let s = match model {

@@ -16,6 +16,7 @@
 use super::app::{App, Mode, SUBSCRIPTS, TICK, Top, fmt_exact};
 use super::theme;
 use super::widgets::{OmegaSeries, drift, hodograph, numbers, top_in_space};
+use crate::sim::Model;
 use ratatui::Frame;
 use ratatui::layout::{Alignment, Constraint, Layout, Rect};
 use ratatui::text::{Line, Span, Text};
@@ -223,10 +224,11 @@ fn fmt_triple(v: [crate::math::Real; 3]) -> String {
 
 fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
     let column = &app.columns()[i];
-    let (name, equations, gist) = match column.name() {
-        "truncated" => ("truncated", "(4.2)–(4.4)", "no Schott term"),
-        "reduced" => ("reduced", "(4.12)–(4.14)", "Schott term kept"),
-        _ => (
+    let (name, equations, gist) = match column.sim().model() {
+        Model::Truncated(_) => ("truncated", "(4.2)–(4.4)", "no Schott term"),
+        Model::Reduced(_) => ("reduced", "(4.12)–(4.14)", "Schott term kept"),
+        // The view builds no other model than these and the general top.
+        Model::General(_) | Model::Full(_) => (
             "general top",
             "(3.3)",
             "truncated ALE for any top, integrated: no closed form",
@@ -378,7 +380,7 @@ fn draw_help(frame: &mut Frame, area: Rect, general: bool) {
             Line::from("Panels: Ω(t) in the body frame; the hodograph of Ω (body frame, with"),
             Line::from("its shadow on the Ω₁Ω₂ plane); the top in space: body axis e₃, L, and"),
             Line::from("the trail of the axis tip. There is no closed form to compare with:"),
-            Line::from("watch E and |L| fall as the top radiates. Times are in κ = 1 units."),
+            Line::from("E and |L| drain away as the top radiates. Times are in κ = 1 units."),
         ]
     } else {
         [
