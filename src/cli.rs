@@ -19,6 +19,7 @@ use std::io::{self, Write};
 use std::process::ExitCode;
 
 pub mod balance;
+pub mod bench;
 pub mod orbit;
 pub mod plot;
 pub mod shell;
@@ -59,6 +60,8 @@ enum Command {
     Tui(tui::TuiArgs),
     /// Print the curves of the live view as text charts (for pipes and the book).
     Plot(plot::PlotArgs),
+    /// Work against precision: every method's error against its cost, as charts, a table and CSV/JSON.
+    Bench(bench::BenchArgs),
 }
 
 /// Output format.
@@ -247,6 +250,7 @@ where
         Some(Command::Shell(args)) => shell::execute(args, stdout, stderr),
         Some(Command::Tui(args)) => tui::execute(args, stdout),
         Some(Command::Plot(args)) => plot::execute(args, stdout),
+        Some(Command::Bench(args)) => bench::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,

@@ -10,6 +10,8 @@
 //! - [`integrate`]: RK4, Dormand–Prince 5(4) and DOP853 over one small trait.
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
 //! - [`stability`]: where natural methods fail, beside what spintop does instead (pure).
+//! - [`workprecision`]: error against cost for every method on the paper's problems (pure;
+//!   the clock is injected).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
 //! - [`tui`]: the live terminal view, another thin shell over [`sim`].
@@ -24,6 +26,7 @@ pub mod plot;
 pub mod sim;
 pub mod stability;
 pub mod tui;
+pub mod workprecision;
 
 /// The book's chapters (`book/src`). `cargo test` compiles and runs every Rust
 /// block in them as a doctest; `tests/book.rs` checks that every chapter in
