@@ -78,7 +78,11 @@ fn step(c: &mut Criterion) {
     let before = dop853.stats();
     let mut probe = dop853.clone();
     probe.step(&f, 1e9).expect("a step");
-    assert_eq!(probe.stats().rejected, before.rejected, "the timed step is accepted");
+    assert_eq!(
+        probe.stats().rejected,
+        before.rejected,
+        "the timed step is accepted"
+    );
     g.bench_function("dop853 (12 evaluations)", |b| {
         b.iter_batched(
             || dop853.clone(),

@@ -70,29 +70,15 @@ impl OdeSolvers {
         // times hits 1, 2, …, 200 exactly, the problem's output times.
         let (stats, times, ys) = match self.0 {
             Which::Dopri5 => {
-                let mut s = ode_solvers::Dopri5::new(
-                    OmegaSystem(rhs),
-                    0.0,
-                    t_end,
-                    1.0,
-                    y0,
-                    rtol,
-                    atol,
-                );
+                let mut s =
+                    ode_solvers::Dopri5::new(OmegaSystem(rhs), 0.0, t_end, 1.0, y0, rtol, atol);
                 s.set_output(output);
                 let stats = s.integrate().map_err(|e| e.to_string())?;
                 (stats, s.x_out().clone(), s.y_out().clone())
             }
             Which::Dop853 => {
-                let mut s = ode_solvers::Dop853::new(
-                    OmegaSystem(rhs),
-                    0.0,
-                    t_end,
-                    1.0,
-                    y0,
-                    rtol,
-                    atol,
-                );
+                let mut s =
+                    ode_solvers::Dop853::new(OmegaSystem(rhs), 0.0, t_end, 1.0, y0, rtol, atol);
                 s.set_output(output);
                 let stats = s.integrate().map_err(|e| e.to_string())?;
                 (stats, s.x_out().clone(), s.y_out().clone())
@@ -225,8 +211,7 @@ fn main() {
     let rows = spintop::workprecision::sweep(&problems, &solvers, &plan, Some(&mut WallClock));
 
     println!(
-        "# peers: spintop and ode_solvers {} on the same problems, same references, one process",
-        "0.6.2"
+        "# peers: spintop and ode_solvers 0.6.2 on the same problems, same references, one process"
     );
     print!("{}", report::table(&rows));
     print!("{}", report::join_table(&rows));

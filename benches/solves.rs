@@ -25,7 +25,11 @@ fn solves(c: &mut Criterion) {
             };
             for rtol in [1e-8, 1e-12] {
                 g.bench_function(format!("{} rtol {rtol:e}", method.name()), |b| {
-                    b.iter(|| entry.solve(black_box(&problem), Some(rtol)).expect("a solve"))
+                    b.iter(|| {
+                        entry
+                            .solve(black_box(&problem), Some(rtol))
+                            .expect("a solve")
+                    })
                 });
             }
         }

@@ -145,8 +145,12 @@ pub fn loglog_chart(
     let shapes: Vec<Shape> = logs.iter().map(|p| Shape::Lines(p)).collect();
     let mut c = Chart::new_with_y_range(width, height, x0, x1, y0, y1);
     let mut chart = c
-        .x_label_format(LabelFormat::Custom(Box::new(|v| format!("1e{}", v.round()))))
-        .y_label_format(LabelFormat::Custom(Box::new(|v| format!("1e{}", v.round()))));
+        .x_label_format(LabelFormat::Custom(Box::new(|v| {
+            format!("1e{}", v.round())
+        })))
+        .y_label_format(LabelFormat::Custom(Box::new(|v| {
+            format!("1e{}", v.round())
+        })));
     for shape in &shapes {
         chart = chart.lineplot(shape);
     }

@@ -123,6 +123,11 @@ pub trait Solver {
     /// Solve `problem` with the knob at `knob` (`None` for [`KnobKind::None`]),
     /// at exactly the problem's output times. A failure is reported in one line.
     fn solve(&self, problem: &Problem, knob: Option<Real>) -> Result<Solution, String>;
+    /// False for a knob value that cannot be measured on `problem` (the sweep
+    /// skips it); every value by default.
+    fn accepts(&self, _problem: &Problem, _knob: Option<Real>) -> bool {
+        true
+    }
 }
 
 /// Measures the wall time of a piece of work. The core never reads a clock;
@@ -285,7 +290,19 @@ pub fn measure(
         repeats: 0,
         status: "ok".to_string(),
     };
-    let solution = match solver.solve(problem, knob) {
+    // With a clock, the first solve is also the first timing (it sizes the
+    // batches); without one, it is the only solve.
+    let mut result = None;
+    let mut first = || result = Some(solver.solve(problem, knob));
+    let mut clock = clock;
+    let first_time = match clock.as_mut() {
+        Some((stopwatch, _)) => Some(stopwatch.seconds(&mut first)),
+        None => {
+            first();
+            None
+        }
+    };
+    let solution = match result.expect("the solve ran") {
         Ok(s) => s,
         Err(e) => {
             row.status = e;
@@ -302,26 +319,27 @@ pub fn measure(
         row.steps = Some(stats.steps);
         row.rejected = Some(stats.rejected);
     }
-    if let Some((stopwatch, timing)) = clock {
-        row.time_s = Some(time_solve(problem, solver, knob, stopwatch, timing));
+    if let (Some((stopwatch, timing)), Some(first)) = (clock, first_time) {
+        row.time_s = Some(time_solve(problem, solver, knob, stopwatch, timing, first));
         row.repeats = timing.repeats;
     }
     row
 }
 
-/// The median over `timing.repeats` samples of the time of one solve.
+/// The median over `timing.repeats` samples of the time of one solve, in
+/// batches sized by the time of the first solve.
 fn time_solve(
     problem: &Problem,
     solver: &dyn Solver,
     knob: Option<Real>,
     stopwatch: &mut dyn Stopwatch,
     timing: Timing,
+    first: Real,
 ) -> Real {
-    let mut once = || {
+    let once = || {
         std::hint::black_box(solver.solve(std::hint::black_box(problem), knob)).ok();
     };
-    // The first call also warms the caches; its time sizes the batches.
-    let first = stopwatch.seconds(&mut once).max(1e-9);
+    let first = first.max(1e-9);
     let batch = (timing.min_sample / first).ceil().clamp(1.0, 1e6) as u64;
     let mut samples: Vec<Real> = (0..timing.repeats.max(1))
         .map(|_| {
@@ -407,6 +425,9 @@ pub fn sweep(
                 continue;
             }
             for knob in plan.knobs(solver.knob()) {
+                if !solver.accepts(problem, knob) {
+                    continue;
+                }
                 let clock = match (&mut stopwatch, plan.timing) {
                     (Some(s), Some(t)) => Some((&mut **s as &mut dyn Stopwatch, t)),
                     _ => None,

@@ -220,12 +220,16 @@ fn sweep(config: &BenchConfig, out: &mut impl Write) -> Result<(), CliError> {
         )?;
     }
     for p in &problems {
-        writeln!(out, "# {} reference: {}", p.name(), p.reference().provenance)?;
+        writeln!(
+            out,
+            "# {} reference: {}",
+            p.name(),
+            p.reference().provenance
+        )?;
     }
     let chart = config.chart.name();
     for axis in [CostAxis::Time, CostAxis::Evals] {
-        if let Some(text) = report::chart(&rows, chart, axis, 2 * config.width, 4 * config.height)
-        {
+        if let Some(text) = report::chart(&rows, chart, axis, 2 * config.width, 4 * config.height) {
             writeln!(out)?;
             write!(out, "{text}")?;
         }
@@ -260,14 +264,9 @@ fn summary(rows: &[Row]) -> Vec<String> {
         }
     }
     for model in models {
-        let integrators: Vec<_> = matched
-            .iter()
-            .filter(|m| m.model == model && m.source == "spintop" && m.method != "closed-form")
-            .cloned()
-            .collect();
         let mut parts = Vec::new();
         for (i, e) in report::MATCHED_ERRORS.iter().enumerate() {
-            if let Some(b) = report::best(&integrators, model, "spintop", i) {
+            if let Some(b) = report::best(&matched, model, "spintop", i) {
                 parts.push(format!(
                     "at {e:.0e} {} in {}",
                     b.method,
@@ -279,7 +278,7 @@ fn summary(rows: &[Row]) -> Vec<String> {
             r.model == model && r.method == "closed-form" && r.target == Target::Omega && r.ok()
         });
         if let Some(c) = closed {
-            let at_12 = report::best(&integrators, model, "spintop", 1).and_then(|b| b.time[1]);
+            let at_12 = report::best(&matched, model, "spintop", 1).and_then(|b| b.time[1]);
             if let (Some(tc), Some(ti)) = (c.time_s, at_12) {
                 parts.push(format!(
                     "closed form {} (error {}), {:.0}x faster than the best integrator at 1e-12",

@@ -17,9 +17,7 @@
 
 use super::problem::{Problem, ProblemKind};
 use super::{KnobKind, Solution, Solver, Target};
-use crate::integrate::{
-    self, AdaptiveOptions, Dop853, Dopri5, IntegrateError, Rhs, Rk4, Stepper,
-};
+use crate::integrate::{self, AdaptiveOptions, Dop853, Dopri5, IntegrateError, Rhs, Rk4, Stepper};
 use crate::math::{Real, Vec3};
 use crate::sim::physical::physical_solution;
 use crate::sim::{MethodChoice, MethodOptions, Model, Simulation};
@@ -155,6 +153,14 @@ impl Solver for Spintop {
         self.method.applies_to(problem.kind(), self.target)
     }
 
+    /// The full ALE's reference is the physical solution at rtol 1e-13: a run
+    /// at that tolerance or tighter would be measured against itself.
+    fn accepts(&self, problem: &Problem, knob: Option<Real>) -> bool {
+        !(self.method == Method::Physical
+            && problem.kind() == ProblemKind::Full
+            && knob.is_some_and(|rtol| rtol <= super::problem::FULL_REFERENCE_RTOL))
+    }
+
     fn solve(&self, problem: &Problem, knob: Option<Real>) -> Result<Solution, String> {
         match self.target {
             Target::Omega => solve_omega(self.method, problem, knob),
@@ -221,7 +227,11 @@ fn solve_omega(
     if method == Method::ClosedForm {
         let omega = times
             .iter()
-            .map(|&t| problem.closed_form(t).ok_or_else(|| not_applicable(method, problem)))
+            .map(|&t| {
+                problem
+                    .closed_form(t)
+                    .ok_or_else(|| not_applicable(method, problem))
+            })
             .collect::<Result<Vec<Vec3>, _>>()?;
         return Ok(Solution {
             omega,
@@ -247,8 +257,12 @@ fn solve_omega(
     let knob = knob_value(method, knob)?;
     Ok(match method {
         Method::Rk4 => run_stepper(Rk4::new(0.0, y0, knob)?, &rhs, times)?,
-        Method::Dopri5 => run_stepper(Dopri5::new(0.0, y0, adaptive(problem, knob)?)?, &rhs, times)?,
-        Method::Dop853 => run_stepper(Dop853::new(0.0, y0, adaptive(problem, knob)?)?, &rhs, times)?,
+        Method::Dopri5 => {
+            run_stepper(Dopri5::new(0.0, y0, adaptive(problem, knob)?)?, &rhs, times)?
+        }
+        Method::Dop853 => {
+            run_stepper(Dop853::new(0.0, y0, adaptive(problem, knob)?)?, &rhs, times)?
+        }
         Method::ClosedForm | Method::ClosedFormDop853 | Method::Physical => {
             return Err(not_applicable(method, problem));
         }

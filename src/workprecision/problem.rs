@@ -321,7 +321,11 @@ fn parse_stored(text: &str, times: &[Real]) -> Result<Reference, String> {
             return Err(format!("line {}: expected 8 numbers", n + 1));
         }
         if times.get(n) != Some(&v[0]) {
-            return Err(format!("line {}: time {} is not the expected one", n + 1, v[0]));
+            return Err(format!(
+                "line {}: time {} is not the expected one",
+                n + 1,
+                v[0]
+            ));
         }
         omega.push(Vec3::new(v[1], v[2], v[3]));
         let q = Quat::from_quaternion(Quaternion::new(v[4], v[5], v[6], v[7]));
