@@ -43,6 +43,8 @@ pub mod book {
     pub struct Section4;
     #[doc = include_str!("../book/src/appendix.md")]
     pub struct Appendix;
+    #[doc = include_str!("../book/src/speed-accuracy.md")]
+    pub struct SpeedAccuracy;
     #[doc = include_str!("../book/src/errata.md")]
     pub struct Errata;
 }

@@ -21,6 +21,8 @@ mod ch2;
 mod ch3;
 #[path = "../lessons/ch4_symmetric_top.rs"]
 mod ch4;
+#[path = "../lessons/speed_accuracy.rs"]
+mod speed;
 
 type Lesson = fn(&mut dyn io::Write) -> io::Result<()>;
 
@@ -30,6 +32,7 @@ const LESSONS: &[(&str, Lesson)] = &[
     ("ch3_equations_of_motion", ch3::run),
     ("ch4_symmetric_top", ch4::run),
     ("appendix_shell", appendix::run),
+    ("speed_accuracy", speed::run),
 ];
 
 fn root() -> PathBuf {

@@ -189,7 +189,7 @@ impl Problem {
                     .find(|(k, _)| *k == kind)
                     .map(|(_, text)| *text)
                     .ok_or_else(|| SweepError::Reference(format!("no stored {}", kind.name())))?;
-                parse_stored(text, &times)
+                parse_stored(text, &times, kind.name())
                     .map_err(|e| SweepError::Reference(format!("{}.csv: {e}", kind.name())))?
             }
         };
@@ -297,18 +297,12 @@ fn full_reference(
 
 /// Read a stored reference: `#` comment lines, a header, then one line per
 /// output time `t, Ω₁, Ω₂, Ω₃, q_w, q_x, q_y, q_z`.
-fn parse_stored(text: &str, times: &[Real]) -> Result<Reference, String> {
+fn parse_stored(text: &str, times: &[Real], name: &str) -> Result<Reference, String> {
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let header = lines.next().ok_or("empty file")?;
     if header.trim() != "t,omega1,omega2,omega3,qw,qx,qy,qz" {
         return Err(format!("unexpected header '{header}'"));
     }
-    let first_comment = text
-        .lines()
-        .next()
-        .unwrap_or_default()
-        .trim_start_matches('#')
-        .trim();
     let mut omega = Vec::with_capacity(times.len());
     let mut rotation = Vec::with_capacity(times.len());
     for (n, line) in lines.enumerate() {
@@ -342,7 +336,7 @@ fn parse_stored(text: &str, times: &[Real]) -> Result<Reference, String> {
         omega,
         rotation: Some(rotation),
         provenance: format!(
-            "{first_comment}: mpmath Taylor series at 40 digits (benches/reference/make_reference.py)"
+            "Ω and O(t) by mpmath's Taylor series at 40 digits (benches/reference/{name}.csv)"
         ),
         stats: None,
     })

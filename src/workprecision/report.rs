@@ -279,7 +279,8 @@ fn curves(rows: &[Row], model: &str, target: Target, axis: CostAxis) -> Vec<Mark
             CostAxis::Time => r.time_s,
             CostAxis::Evals => r.rhs_evals.map(|n| n as Real),
         };
-        let (Some(cost), Some(err)) = (cost, r.omega_error) else {
+        // A closed form does no evaluations: it has no place on a log axis of them.
+        let (Some(cost), Some(err)) = (cost.filter(|c| *c > 0.0), r.omega_error) else {
             continue;
         };
         let key = (r.source.clone(), r.method.clone());
