@@ -134,8 +134,8 @@ fn stiffness(out: &mut dyn Write) -> io::Result<()> {
     )?;
     writeln!(
         out,
-        "{:>6} {:>7} {:>8} {:>6} {:>9} {:>10}  {}",
-        "T", "rtol", "evals", "steps", "rejected", "mean h|l|", "max error against the closed form"
+        "{:>6} {:>7} {:>8} {:>6} {:>9} {:>15}  max error against the closed form",
+        "T", "rtol", "evals", "steps", "rejected", "mean h|lambda|"
     )?;
     for (t_end, rtol) in [
         (50.0, 1e-6),
@@ -159,7 +159,7 @@ fn stiffness(out: &mut dyn Write) -> io::Result<()> {
         let s = dop853.stats();
         writeln!(
             out,
-            "{t_end:>6} {rtol:>7.0e} {:>8} {:>6} {:>9} {:>10.2}  {error:.1e}",
+            "{t_end:>6} {rtol:>7.0e} {:>8} {:>6} {:>9} {:>15.2}  {error:.1e}",
             s.rhs_evals,
             s.steps,
             s.rejected,
