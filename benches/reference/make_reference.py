@@ -17,7 +17,7 @@ also checks Omega against the paper's closed forms (4.6)-(4.7) and
 (4.15)-(4.16), evaluated here in the printed form (beta, sigma) at 40 digits.
 
     pip install mpmath
-    python3 benches/reference/make_reference.py     # about two minutes
+    python3 benches/reference/make_reference.py     # about 13 minutes (9 of them the general top)
 
 writes benches/reference/{truncated,reduced,general}.csv next to this file.
 """

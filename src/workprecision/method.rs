@@ -53,6 +53,8 @@ pub enum Method {
     //   free top (knob h; they need a τ = 0 problem next to the four here), and
     //   the exact rotation∘damping splitting of the reduced model (knob h,
     //   applies to `ProblemKind::Reduced`).
+    // Chart markers are reserved for the names `radau5`, `strang`, `yoshida4`
+    // and `rotation-damping` (`report::marker`).
 }
 // ANCHOR_END: method_enum
 

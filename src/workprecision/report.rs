@@ -257,6 +257,11 @@ pub fn marker(source: &str, method: &str) -> char {
         ("spintop", "dopri5") => '5',
         ("spintop", "dop853") => '8',
         ("spintop", "physical") => 'P',
+        // Reserved for the methods being added (see `Method`).
+        ("spintop", "radau5") => 'I',
+        ("spintop", "strang") => 'S',
+        ("spintop", "yoshida4") => 'Y',
+        ("spintop", "rotation-damping") => 'X',
         ("ode_solvers", "Dopri5") => 'd',
         ("ode_solvers", "Dop853") => 'D',
         ("scipy", "RK45") => 'r',
