@@ -11,6 +11,8 @@
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
 //! - [`scene`]: one question in a TOML file, and the lightest model that answers it (pure).
 //! - [`stability`]: where natural methods fail, beside what spintop does instead (pure).
+//! - [`workprecision`]: error against cost for every method on the paper's problems (pure;
+//!   the clock is injected).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
 //! - [`tui`]: the live terminal view, another thin shell over [`sim`].
@@ -28,6 +30,7 @@ pub mod scene;
 pub mod sim;
 pub mod stability;
 pub mod tui;
+pub mod workprecision;
 
 /// The book's chapters (`book/src`). `cargo test` compiles and runs every Rust
 /// block in them as a doctest; `tests/book.rs` checks that every chapter in
@@ -50,6 +53,8 @@ pub mod book {
     pub struct RealParticles;
     #[doc = include_str!("../book/src/assignments.md")]
     pub struct Assignments;
+    #[doc = include_str!("../book/src/speed-accuracy.md")]
+    pub struct SpeedAccuracy;
     #[doc = include_str!("../book/src/errata.md")]
     pub struct Errata;
     #[doc = include_str!("../book/src/scene-reference.md")]

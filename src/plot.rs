@@ -92,6 +92,101 @@ pub fn chart(
         + "\n"
 }
 
+/// One curve of a log-log chart: its points (x, y > 0, in linear units) and
+/// the character that marks each of them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Marked {
+    /// What the curve is, printed in the legend.
+    pub label: String,
+    /// The character drawn at every point.
+    pub marker: char,
+    /// The points, in the order they are joined.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A log-log chart `width × height` Braille dots: each curve is drawn as
+/// lines between its points (log₁₀ of both coordinates), and every point is
+/// overwritten by its curve's marker, so curves stay apart in plain text.
+/// The ranges are padded out to whole decades. Points with a coordinate ≤ 0
+/// or non-finite are left out. The first line names the chart, the axes and
+/// the markers; the corner labels are powers of ten.
+pub fn loglog_chart(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    curves: &[Marked],
+    width: u32,
+    height: u32,
+) -> String {
+    let logs: Vec<Vec<(f32, f32)>> = curves
+        .iter()
+        .map(|c| {
+            c.points
+                .iter()
+                .filter(|(x, y)| x.is_finite() && y.is_finite() && *x > 0.0 && *y > 0.0)
+                .map(|&(x, y)| (x.log10() as f32, y.log10() as f32))
+                .collect()
+        })
+        .collect();
+    let all = || logs.iter().flatten();
+    let lo = |f: fn(&(f32, f32)) -> f32| all().map(f).fold(f32::INFINITY, f32::min).floor();
+    let hi = |f: fn(&(f32, f32)) -> f32| all().map(f).fold(f32::NEG_INFINITY, f32::max).ceil();
+    let (mut x0, mut x1) = (lo(|p| p.0), hi(|p| p.0));
+    let (mut y0, mut y1) = (lo(|p| p.1), hi(|p| p.1));
+    if !(x0.is_finite() && x1.is_finite()) {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    if x1 <= x0 {
+        x1 = x0 + 1.0;
+    }
+    if y1 <= y0 {
+        y1 = y0 + 1.0;
+    }
+    let shapes: Vec<Shape> = logs.iter().map(|p| Shape::Lines(p)).collect();
+    let mut c = Chart::new_with_y_range(width, height, x0, x1, y0, y1);
+    let mut chart = c
+        .x_label_format(LabelFormat::Custom(Box::new(|v| {
+            format!("1e{}", v.round())
+        })))
+        .y_label_format(LabelFormat::Custom(Box::new(|v| {
+            format!("1e{}", v.round())
+        })));
+    for shape in &shapes {
+        chart = chart.lineplot(shape);
+    }
+    chart.figures();
+    let text = format!("{chart}");
+    // NOTE: the markers go where textplots puts each point: dot column
+    // round((x − x0)/(x1 − x0)·width), dot row height − round((y − y0)/(y1 − y0)·height),
+    // two dot columns and four dot rows per character cell.
+    let mut grid: Vec<Vec<char>> = text.lines().map(|l| l.chars().collect()).collect();
+    let rows = (height / 4 + 1) as usize;
+    for (curve, pts) in curves.iter().zip(&logs) {
+        for &(x, y) in pts {
+            let i = ((x - x0) / (x1 - x0) * width as f32).round() as usize;
+            let j = height as usize - ((y - y0) / (y1 - y0) * height as f32).round() as usize;
+            let (col, row) = (i / 2, j / 4);
+            if row < rows.min(grid.len())
+                && let Some(cell) = grid[row].get_mut(col)
+            {
+                *cell = curve.marker;
+            }
+        }
+    }
+    let legend: Vec<String> = curves
+        .iter()
+        .map(|c| format!("{} {}", c.marker, c.label))
+        .collect();
+    let mut out = format!("{title} ({y_label} against {x_label}, log-log)\n");
+    let _ = writeln!(out, "  {}", legend.join(", "));
+    for line in grid {
+        let line: String = line.into_iter().collect();
+        out.push_str(line.trim_end_matches(['\u{2800}', ' ']));
+        out.push('\n');
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -117,5 +212,25 @@ mod tests {
             last.starts_with("0.0") && last.trim_end().ends_with("49.0"),
             "{last}"
         );
+    }
+
+    #[test]
+    fn loglog_chart_marks_every_point_where_it_lies() {
+        // Two decades each way: (1, 1) bottom left, (100, 100) top right.
+        let curve = Marked {
+            label: "diagonal".into(),
+            marker: 'X',
+            points: vec![(1.0, 1.0), (10.0, 10.0), (100.0, 100.0)],
+        };
+        let text = loglog_chart("t", "x", "y", &[curve], 40, 20);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[1], "  X diagonal");
+        let grid = &lines[2..2 + 6];
+        let at = |row: usize, col: usize| grid[row].chars().nth(col);
+        // 40 dots = 20 columns, 20 dots = 5 rows (+1 for the edge).
+        assert_eq!(at(5, 0), Some('X'), "{text}");
+        assert_eq!(at(0, 20), Some('X'), "{text}");
+        assert_eq!(at(3, 10).or(at(2, 10)), Some('X'), "{text}");
+        assert!(text.contains("1e0") && text.contains("1e2"), "{text}");
     }
 }

@@ -25,6 +25,8 @@ mod ch4;
 mod fail;
 #[path = "../lessons/real_particles.rs"]
 mod particles;
+#[path = "../lessons/speed_accuracy.rs"]
+mod speed;
 
 type Lesson = fn(&mut dyn io::Write) -> io::Result<()>;
 
@@ -36,6 +38,7 @@ const LESSONS: &[(&str, Lesson)] = &[
     ("appendix_shell", appendix::run),
     ("where_methods_fail", fail::run),
     ("real_particles", particles::run),
+    ("speed_accuracy", speed::run),
 ];
 
 fn root() -> PathBuf {

@@ -1,0 +1,309 @@
+//! spintop's own entries in the sweep: one [`Method`], solved for one [`Target`].
+//!
+//! | method | knob | Ω alone | Ω and O(t) |
+//! |---|---|---|---|
+//! | [`Method::ClosedForm`] | – | truncated (4.7), reduced (4.15)–(4.16) | truncated (4.7), (4.9)–(4.11) |
+//! | [`Method::ClosedFormDop853`] | rtol | – | reduced: Ω closed form, O by DOP853 on SO(3) |
+//! | [`Method::Rk4`] | step h | truncated, reduced, general | the same, O on SO(3) |
+//! | [`Method::Dopri5`] | rtol | truncated, reduced, general | the same, O on SO(3) |
+//! | [`Method::Dop853`] | rtol | truncated, reduced, general | the same, O on SO(3) |
+//! | [`Method::Physical`] | rtol | full ALE (3.4): backward DOP853 + shooting | – |
+//!
+//! "Ω alone" integrates Ω̇ = F(Ω), the three equations a student would hand to
+//! SciPy, through [`crate::integrate::solve`]: this is the row the peers are
+//! compared with. "Ω and O(t)" is what `spintop simulate` computes: Ω and the
+//! orientation together through [`crate::sim::Simulation`], with the cost of
+//! the orientation and of the observables of each sample.
+
+use super::problem::{Problem, ProblemKind};
+use super::{KnobKind, Solution, Solver, Target};
+use crate::integrate::{self, AdaptiveOptions, Dop853, Dopri5, IntegrateError, Rhs, Rk4, Stepper};
+use crate::math::{Real, Vec3};
+use crate::sim::physical::physical_solution;
+use crate::sim::{MethodChoice, MethodOptions, Model, Simulation};
+
+// ANCHOR: method_enum
+/// A numerical method of spintop, as the sweep knows it.
+///
+/// To add a method: one variant here, its name, marker and knob in the three
+/// `match`es below, where it applies in [`Method::applies_to`], and one arm in
+/// `solve_omega` (and in `solve_with_orientation` once [`crate::sim`] can run
+/// it). The sweep, the table, the charts, the CSV and the join need no change.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// The closed forms of Section 4: no integration at all.
+    ClosedForm,
+    /// The reduced model's Ω from its closed form, the orientation integrated
+    /// by DOP853 along it (`spintop simulate --model reduced --method exact`).
+    ClosedFormDop853,
+    /// Classical RK4 at a fixed step.
+    Rk4,
+    /// Dormand–Prince 5(4), adaptive.
+    Dopri5,
+    /// DOP853, adaptive.
+    Dop853,
+    /// The full ALE's physical solution: DOP853 backward from the slow
+    /// manifold, shooting on the final amplitude.
+    Physical,
+    // PLACEHOLDER (merged later, one entry each):
+    // - `Radau5`: the implicit Radau IIA 5 (`integrate::radau5::Radau5`, a
+    //   `Stepper<N>`), knob rtol; on Ω alone it is one arm in `solve_omega`,
+    //   `run_stepper(Radau5::new(0.0, y0, adaptive(problem, rtol)?)?, …)`.
+    // - the splittings of `integrate::splitting`: Strang and Yoshida-4 for the
+    //   free top (knob h; they need a τ = 0 problem next to the four here), and
+    //   the exact rotation∘damping splitting of the reduced model (knob h,
+    //   applies to `ProblemKind::Reduced`).
+    // Chart markers are reserved for the names `radau5`, `strang`, `yoshida4`
+    // and `rotation-damping` (`report::marker`).
+}
+// ANCHOR_END: method_enum
+
+impl Method {
+    /// Every method built so far.
+    pub const ALL: [Method; 6] = [
+        Method::ClosedForm,
+        Method::ClosedFormDop853,
+        Method::Rk4,
+        Method::Dopri5,
+        Method::Dop853,
+        Method::Physical,
+    ];
+
+    /// The name in tables and CSV files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::ClosedForm => "closed-form",
+            Method::ClosedFormDop853 => "closed-form+dop853",
+            Method::Rk4 => "rk4",
+            Method::Dopri5 => "dopri5",
+            Method::Dop853 => "dop853",
+            Method::Physical => "physical",
+        }
+    }
+
+    /// The knob the sweep turns.
+    pub fn knob(self) -> KnobKind {
+        match self {
+            Method::ClosedForm => KnobKind::None,
+            Method::Rk4 => KnobKind::Step,
+            Method::ClosedFormDop853 | Method::Dopri5 | Method::Dop853 | Method::Physical => {
+                KnobKind::Rtol
+            }
+        }
+    }
+
+    /// True when the method solves `target` of `problem`.
+    pub fn applies_to(self, problem: ProblemKind, target: Target) -> bool {
+        use ProblemKind as P;
+        match (self, target) {
+            (Method::ClosedForm, Target::Omega) => matches!(problem, P::Truncated | P::Reduced),
+            (Method::ClosedForm, Target::OmegaOrientation) => problem == P::Truncated,
+            (Method::ClosedFormDop853, Target::OmegaOrientation) => problem == P::Reduced,
+            (Method::ClosedFormDop853, Target::Omega) => false,
+            (Method::Rk4 | Method::Dopri5 | Method::Dop853, _) => problem != P::Full,
+            (Method::Physical, Target::Omega) => problem == P::Full,
+            (Method::Physical, Target::OmegaOrientation) => false,
+        }
+    }
+}
+
+/// One of spintop's methods solving one target.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Spintop {
+    /// The method.
+    pub method: Method,
+    /// What it solves for.
+    pub target: Target,
+}
+
+impl Spintop {
+    /// Every (method, target) pair that applies to at least one problem.
+    pub fn all() -> Vec<Spintop> {
+        let mut out = Vec::new();
+        for target in [Target::Omega, Target::OmegaOrientation] {
+            for method in Method::ALL {
+                if ProblemKind::ALL
+                    .iter()
+                    .any(|p| method.applies_to(*p, target))
+                {
+                    out.push(Spintop { method, target });
+                }
+            }
+        }
+        out
+    }
+}
+
+impl Solver for Spintop {
+    fn source(&self) -> &str {
+        "spintop"
+    }
+
+    fn method(&self) -> &str {
+        self.method.name()
+    }
+
+    fn target(&self) -> Target {
+        self.target
+    }
+
+    fn knob(&self) -> KnobKind {
+        self.method.knob()
+    }
+
+    fn applies_to(&self, problem: &Problem) -> bool {
+        self.method.applies_to(problem.kind(), self.target)
+    }
+
+    /// The full ALE's reference is the physical solution at rtol 1e-13: a run
+    /// at that tolerance or tighter would be measured against itself.
+    fn accepts(&self, problem: &Problem, knob: Option<Real>) -> bool {
+        !(self.method == Method::Physical
+            && problem.kind() == ProblemKind::Full
+            && knob.is_some_and(|rtol| rtol <= super::problem::FULL_REFERENCE_RTOL))
+    }
+
+    fn solve(&self, problem: &Problem, knob: Option<Real>) -> Result<Solution, String> {
+        match self.target {
+            Target::Omega => solve_omega(self.method, problem, knob),
+            Target::OmegaOrientation => solve_with_orientation(self.method, problem, knob),
+        }
+        .map_err(|e| e.to_string())
+    }
+}
+
+/// Why a spintop entry could not run.
+#[derive(Debug, thiserror::Error)]
+enum RunError {
+    #[error(transparent)]
+    Integrate(#[from] IntegrateError),
+    #[error(transparent)]
+    Sim(#[from] crate::sim::SimError),
+    #[error(transparent)]
+    Physical(#[from] crate::sim::physical::PhysicalError),
+    #[error("{0}")]
+    NotApplicable(String),
+}
+
+fn not_applicable(method: Method, problem: &Problem) -> RunError {
+    RunError::NotApplicable(format!(
+        "{} does not apply to the {} problem",
+        method.name(),
+        problem.name()
+    ))
+}
+
+fn knob_value(method: Method, knob: Option<Real>) -> Result<Real, RunError> {
+    knob.ok_or_else(|| RunError::NotApplicable(format!("{} needs a knob value", method.name())))
+}
+
+/// The adaptive options for `rtol` on `problem`.
+fn adaptive(problem: &Problem, rtol: Real) -> Result<AdaptiveOptions, IntegrateError> {
+    AdaptiveOptions::new(rtol, problem.atol(rtol))
+}
+
+// ANCHOR: run_stepper
+/// Drive any [`Stepper`] through the problem's output times and keep its count.
+fn run_stepper<S: Stepper<3>, R: Rhs<3>>(
+    mut stepper: S,
+    rhs: &R,
+    times: &[Real],
+) -> Result<Solution, IntegrateError> {
+    let omega = integrate::solve(&mut stepper, rhs, times)?;
+    Ok(Solution {
+        omega,
+        rotation: None,
+        stats: Some(stepper.stats()),
+    })
+}
+// ANCHOR_END: run_stepper
+
+/// Ω alone.
+fn solve_omega(
+    method: Method,
+    problem: &Problem,
+    knob: Option<Real>,
+) -> Result<Solution, RunError> {
+    let times = problem.times();
+    let y0 = problem.initial().omega;
+    if method == Method::ClosedForm {
+        let omega = times
+            .iter()
+            .map(|&t| {
+                problem
+                    .closed_form(t)
+                    .ok_or_else(|| not_applicable(method, problem))
+            })
+            .collect::<Result<Vec<Vec3>, _>>()?;
+        return Ok(Solution {
+            omega,
+            rotation: None,
+            stats: Some(Default::default()),
+        });
+    }
+    if method == Method::Physical {
+        let Model::Full(top) = problem.model() else {
+            return Err(not_applicable(method, problem));
+        };
+        let rtol = knob_value(method, knob)?;
+        let sol = physical_solution(top, &y0, times, rtol)?;
+        return Ok(Solution {
+            omega: sol.z.iter().map(|z| Vec3::new(z.re, z.im, y0.z)).collect(),
+            rotation: None,
+            stats: Some(sol.stats),
+        });
+    }
+    let rhs = problem
+        .omega_rhs()
+        .ok_or_else(|| not_applicable(method, problem))?;
+    let knob = knob_value(method, knob)?;
+    Ok(match method {
+        Method::Rk4 => run_stepper(Rk4::new(0.0, y0, knob)?, &rhs, times)?,
+        Method::Dopri5 => {
+            run_stepper(Dopri5::new(0.0, y0, adaptive(problem, knob)?)?, &rhs, times)?
+        }
+        Method::Dop853 => {
+            run_stepper(Dop853::new(0.0, y0, adaptive(problem, knob)?)?, &rhs, times)?
+        }
+        Method::ClosedForm | Method::ClosedFormDop853 | Method::Physical => {
+            return Err(not_applicable(method, problem));
+        }
+    })
+}
+
+/// Ω and O(t), the way `spintop simulate` computes them.
+fn solve_with_orientation(
+    method: Method,
+    problem: &Problem,
+    knob: Option<Real>,
+) -> Result<Solution, RunError> {
+    if !method.applies_to(problem.kind(), Target::OmegaOrientation) {
+        return Err(not_applicable(method, problem));
+    }
+    let choice = match method {
+        Method::ClosedForm | Method::ClosedFormDop853 => MethodChoice::Exact,
+        Method::Rk4 => MethodChoice::Rk4,
+        Method::Dopri5 => MethodChoice::Dopri5,
+        Method::Dop853 => MethodChoice::Dop853,
+        Method::Physical => return Err(not_applicable(method, problem)),
+    };
+    let mut options = MethodOptions::default();
+    match method.knob() {
+        KnobKind::Rtol => options.rtol = knob_value(method, knob)?,
+        KnobKind::Step => options.step = knob_value(method, knob)?,
+        KnobKind::None => {}
+    }
+    let mut sim = Simulation::new(
+        *problem.model(),
+        choice,
+        options,
+        *problem.initial(),
+        Some(problem.t_end()),
+    )?;
+    let samples = sim.run(problem.times())?;
+    Ok(Solution {
+        omega: samples.iter().map(|s| s.omega_vec()).collect(),
+        rotation: Some(samples.iter().map(|s| s.rotation_matrix()).collect()),
+        stats: Some(sim.stats()),
+    })
+}

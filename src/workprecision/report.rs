@@ -1,0 +1,499 @@
+//! The sweep's rows as text: the table, the two log-log charts, CSV and JSON,
+//! and the join of runs from different tools at matched error.
+//!
+//! Strings in, strings out: the command line and the peers bench do the
+//! writing. The CSV columns are the contract that SciPy's script
+//! (`benches/scipy_work_precision.py`) and the peers bench follow too:
+//!
+//! ```text
+//! source,model,method,target,knob,value,omega_error,orientation_error,rhs_evals,steps,rejected,time_s,repeats,status
+//! ```
+//!
+//! An unknown value is an empty cell.
+
+use super::{KnobKind, Row, Target};
+use crate::math::Real;
+use crate::plot::{Marked, loglog_chart};
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+/// The CSV header, in order.
+pub const CSV_COLUMNS: [&str; 14] = [
+    "source",
+    "model",
+    "method",
+    "target",
+    "knob",
+    "value",
+    "omega_error",
+    "orientation_error",
+    "rhs_evals",
+    "steps",
+    "rejected",
+    "time_s",
+    "repeats",
+    "status",
+];
+
+/// The matched errors of the join.
+pub const MATCHED_ERRORS: [Real; 2] = [1e-8, 1e-12];
+
+fn cell<T: ToString>(x: Option<T>) -> String {
+    x.map(|v| v.to_string()).unwrap_or_default()
+}
+
+/// The rows as CSV with a header line (full precision, `.` decimal point).
+pub fn to_csv(rows: &[Row]) -> String {
+    let mut out = CSV_COLUMNS.join(",");
+    out.push('\n');
+    for r in rows {
+        // NOTE: a failure message is free text; commas and line breaks would
+        // break the columns, so they become semicolons and spaces.
+        let status = r.status.replace(',', ";").replace(['\n', '\r'], " ");
+        let fields = [
+            r.source.clone(),
+            r.model.clone(),
+            r.method.clone(),
+            r.target.name().to_string(),
+            r.knob.name().to_string(),
+            cell(r.value),
+            cell(r.omega_error),
+            cell(r.orientation_error),
+            cell(r.rhs_evals),
+            cell(r.steps),
+            cell(r.rejected),
+            cell(r.time_s),
+            r.repeats.to_string(),
+            status,
+        ];
+        out.push_str(&fields.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+/// The rows as one JSON object `{"columns": [...], "rows": [...]}`.
+pub fn to_json(rows: &[Row]) -> String {
+    serde_json::json!({ "columns": CSV_COLUMNS, "rows": rows }).to_string()
+}
+
+/// Read rows written by [`to_csv`] (or by SciPy's script). Errors name the line.
+pub fn parse_csv(text: &str) -> Result<Vec<Row>, String> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty() && !l.starts_with('#'));
+    let Some((_, header)) = lines.next() else {
+        return Err("the file is empty".into());
+    };
+    let names: Vec<&str> = header.trim().split(',').collect();
+    let index = |col: &str| names.iter().position(|n| *n == col);
+    let columns: Vec<usize> = CSV_COLUMNS
+        .iter()
+        .map(|c| index(c).ok_or_else(|| format!("the header has no column '{c}'")))
+        .collect::<Result<_, _>>()?;
+    let mut rows = Vec::new();
+    for (n, line) in lines {
+        let at = |line_no: usize, what: &str| format!("line {}: {what}", line_no + 1);
+        let fields: Vec<&str> = line.trim_end_matches('\r').split(',').collect();
+        if fields.len() != names.len() {
+            return Err(at(
+                n,
+                &format!("{} fields for {} columns", fields.len(), names.len()),
+            ));
+        }
+        let get = |i: usize| fields[columns[i]].trim();
+        let real = |i: usize| -> Result<Option<Real>, String> {
+            let s = get(i);
+            if s.is_empty() {
+                return Ok(None);
+            }
+            // Python writes inf and nan; Rust reads both spellings.
+            s.parse::<Real>()
+                .map(Some)
+                .map_err(|_| at(n, &format!("{} '{s}' is not a number", CSV_COLUMNS[i])))
+        };
+        let count = |i: usize| -> Result<Option<u64>, String> {
+            let s = get(i);
+            if s.is_empty() {
+                return Ok(None);
+            }
+            s.parse::<u64>()
+                .map(Some)
+                .map_err(|_| at(n, &format!("{} '{s}' is not a count", CSV_COLUMNS[i])))
+        };
+        let target = Target::from_name(get(3))
+            .ok_or_else(|| at(n, &format!("unknown target '{}'", get(3))))?;
+        let knob = KnobKind::from_name(get(4))
+            .ok_or_else(|| at(n, &format!("unknown knob '{}'", get(4))))?;
+        rows.push(Row {
+            source: get(0).to_string(),
+            model: get(1).to_string(),
+            method: get(2).to_string(),
+            target,
+            knob,
+            value: real(5)?,
+            omega_error: real(6)?,
+            orientation_error: real(7)?,
+            rhs_evals: count(8)?,
+            steps: count(9)?,
+            rejected: count(10)?,
+            time_s: real(11)?,
+            repeats: count(12)?.unwrap_or(0) as u32,
+            status: get(13).to_string(),
+        });
+    }
+    Ok(rows)
+}
+
+/// A number in 3 significant digits with an exponent (`1.23e-8`), or `-`.
+pub fn sci(x: Option<Real>) -> String {
+    match x {
+        Some(0.0) => "0".into(),
+        Some(v) if v.is_finite() => format!("{v:.2e}"),
+        Some(v) => v.to_string(),
+        None => "-".into(),
+    }
+}
+
+/// A duration in seconds as µs or ms, 3 significant digits, or `-`.
+pub fn duration(x: Option<Real>) -> String {
+    match x {
+        Some(s) if s < 1e-3 => format!("{:.3} µs", s * 1e6),
+        Some(s) if s < 1.0 => format!("{:.3} ms", s * 1e3),
+        Some(s) => format!("{s:.3} s"),
+        None => "-".into(),
+    }
+}
+
+fn knob_text(r: &Row) -> String {
+    match (r.knob, r.value) {
+        (KnobKind::None, _) | (_, None) => "-".into(),
+        (KnobKind::Step, Some(h)) => format!("h={h}"),
+        (k, Some(v)) => format!("{}={v:.0e}", k.name()),
+    }
+}
+
+/// The rows as an aligned table, one line per row, grouped by problem.
+pub fn table(rows: &[Row]) -> String {
+    let header = [
+        "source", "method", "target", "knob", "err Ω", "err O", "evals", "steps", "rej", "time",
+    ];
+    let mut lines: Vec<(&str, Vec<String>, &str)> = Vec::new();
+    for r in rows {
+        let cells = vec![
+            r.source.clone(),
+            r.method.clone(),
+            r.target.name().to_string(),
+            knob_text(r),
+            sci(r.omega_error),
+            sci(r.orientation_error),
+            cell(r.rhs_evals),
+            cell(r.steps),
+            cell(r.rejected),
+            duration(r.time_s),
+        ];
+        lines.push((&r.model, cells, &r.status));
+    }
+    let mut width: Vec<usize> = header.iter().map(|h| h.chars().count()).collect();
+    for (_, cells, _) in &lines {
+        for (w, c) in width.iter_mut().zip(cells) {
+            *w = (*w).max(c.chars().count());
+        }
+    }
+    let render = |cells: &[String]| {
+        let mut s = String::new();
+        for (i, (c, w)) in cells.iter().zip(&width).enumerate() {
+            let pad = w - c.chars().count();
+            // Text columns to the left, numbers to the right.
+            if i < 4 {
+                s.push_str(c);
+                s.push_str(&" ".repeat(pad));
+            } else {
+                s.push_str(&" ".repeat(pad));
+                s.push_str(c);
+            }
+            s.push_str("  ");
+        }
+        s.trim_end().to_string()
+    };
+    let mut out = String::new();
+    let mut model = None;
+    for (m, cells, status) in &lines {
+        if model != Some(*m) {
+            let _ = writeln!(out, "\n[{m}]");
+            let head: Vec<String> = header.iter().map(|h| h.to_string()).collect();
+            let _ = writeln!(out, "{}", render(&head));
+            model = Some(*m);
+        }
+        let failed = if *status == "ok" {
+            String::new()
+        } else {
+            format!("  failed: {status}")
+        };
+        let _ = writeln!(out, "{}{failed}", render(cells));
+    }
+    out
+}
+
+/// The horizontal axis of a chart.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CostAxis {
+    /// Median wall time of a solve.
+    Time,
+    /// Right-hand-side evaluations of a solve.
+    Evals,
+}
+
+/// An error of exactly 0 (the reference itself) is drawn here.
+pub const ERROR_FLOOR: Real = 1e-17;
+
+/// The marker of a method in the charts.
+pub fn marker(source: &str, method: &str) -> char {
+    match (source, method) {
+        ("spintop", "closed-form") => 'C',
+        ("spintop", "closed-form+dop853") => 'c',
+        ("spintop", "rk4") => '4',
+        ("spintop", "dopri5") => '5',
+        ("spintop", "dop853") => '8',
+        ("spintop", "physical") => 'P',
+        // Reserved for the methods being added (see `Method`).
+        ("spintop", "radau5") => 'I',
+        ("spintop", "strang") => 'S',
+        ("spintop", "yoshida4") => 'Y',
+        ("spintop", "rotation-damping") => 'X',
+        ("ode_solvers", "Dopri5") => 'd',
+        ("ode_solvers", "Dop853") => 'D',
+        ("scipy", "RK45") => 'r',
+        ("scipy", "DOP853") => 's',
+        ("scipy", "Radau") => 'R',
+        ("scipy", "LSODA") => 'L',
+        _ => method.chars().next().unwrap_or('?'),
+    }
+}
+
+/// The Ω rows of one problem as one curve per (source, method), in cost order.
+fn curves(rows: &[Row], model: &str, target: Target, axis: CostAxis) -> Vec<Marked> {
+    let mut groups: BTreeMap<(String, String), Vec<(Real, Real)>> = BTreeMap::new();
+    let mut order: Vec<(String, String)> = Vec::new();
+    for r in rows
+        .iter()
+        .filter(|r| r.ok() && r.model == model && r.target == target)
+    {
+        let cost = match axis {
+            CostAxis::Time => r.time_s,
+            CostAxis::Evals => r.rhs_evals.map(|n| n as Real),
+        };
+        // A closed form does no evaluations: it has no place on a log axis of them.
+        let (Some(cost), Some(err)) = (cost.filter(|c| *c > 0.0), r.omega_error) else {
+            continue;
+        };
+        let key = (r.source.clone(), r.method.clone());
+        if !groups.contains_key(&key) {
+            order.push(key.clone());
+        }
+        groups
+            .entry(key)
+            .or_default()
+            .push((cost, err.max(ERROR_FLOOR)));
+    }
+    order
+        .into_iter()
+        .filter_map(|key| {
+            let mut points = groups.remove(&key)?;
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let label = if key.0 == "spintop" {
+                key.1.clone()
+            } else {
+                format!("{} {}", key.0, key.1)
+            };
+            Some(Marked {
+                label,
+                marker: marker(&key.0, &key.1),
+                points,
+            })
+        })
+        .collect()
+}
+
+/// The log-log chart of Ω's error against cost for one problem (its
+/// [`Target::Omega`] rows); `None` when no row has both numbers.
+pub fn chart(rows: &[Row], model: &str, axis: CostAxis, width: u32, height: u32) -> Option<String> {
+    let curves = curves(rows, model, Target::Omega, axis);
+    if curves.iter().all(|c| c.points.is_empty()) {
+        return None;
+    }
+    let (x_label, what) = match axis {
+        CostAxis::Time => ("wall time per solve [s]", "time"),
+        CostAxis::Evals => ("RHS evaluations per solve", "RHS evaluations"),
+    };
+    let title = format!("{model} model, T = 200: max relative error of Ω against {what}");
+    Some(loglog_chart(
+        &title, x_label, "error", &curves, width, height,
+    ))
+}
+
+// ANCHOR: cost_at
+/// The cost needed to reach `error`, read off a method's (cost, error) points
+/// by straight lines in log-log.
+///
+/// Walking from the cheapest point up, the answer lies on the first segment
+/// that crosses below `error`: a method that reaches an error only by luck at
+/// one loose tolerance and then loses it again does not get credit for it.
+/// `None` when no point reaches `error`; the cheapest point when it already
+/// does (no extrapolation).
+pub fn cost_at(points: &[(Real, Real)], error: Real) -> Option<Real> {
+    let mut pts: Vec<(Real, Real)> = points
+        .iter()
+        .copied()
+        .filter(|(c, e)| c.is_finite() && *c > 0.0 && e.is_finite())
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let first = pts.iter().position(|p| p.1 <= error)?;
+    if first == 0 {
+        return Some(pts[0].0);
+    }
+    let (c0, e0) = pts[first - 1];
+    let (c1, e1) = pts[first];
+    let (l0, l1) = (e0.max(ERROR_FLOOR).log10(), e1.max(ERROR_FLOOR).log10());
+    let s = (error.log10() - l0) / (l1 - l0);
+    let log_cost = c0.log10() + s * (c1.log10() - c0.log10());
+    Some((10.0 as Real).powf(log_cost))
+}
+// ANCHOR_END: cost_at
+
+/// One method's cost at the matched errors.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Matched {
+    /// The problem.
+    pub model: String,
+    /// Whose implementation.
+    pub source: String,
+    /// The method.
+    pub method: String,
+    /// Wall time at each of [`MATCHED_ERRORS`].
+    pub time: [Option<Real>; 2],
+    /// RHS evaluations at each of [`MATCHED_ERRORS`].
+    pub evals: [Option<Real>; 2],
+}
+
+/// Every (problem, source, method) of the [`Target::Omega`] rows, with its
+/// cost at the matched errors.
+pub fn matched(rows: &[Row]) -> Vec<Matched> {
+    let mut keys: Vec<(String, String, String)> = Vec::new();
+    for r in rows.iter().filter(|r| r.target == Target::Omega) {
+        let key = (r.model.clone(), r.source.clone(), r.method.clone());
+        if !keys.contains(&key) {
+            keys.push(key);
+        }
+    }
+    keys.into_iter()
+        .map(|(model, source, method)| {
+            let of = |cost: fn(&Row) -> Option<Real>| -> Vec<(Real, Real)> {
+                rows.iter()
+                    .filter(|r| {
+                        r.ok()
+                            && r.target == Target::Omega
+                            && r.model == model
+                            && r.source == source
+                            && r.method == method
+                    })
+                    .filter_map(|r| Some((cost(r)?, r.omega_error?)))
+                    .collect()
+            };
+            let time = of(|r| r.time_s);
+            let evals = of(|r| r.rhs_evals.map(|n| n as Real));
+            Matched {
+                time: MATCHED_ERRORS.map(|e| cost_at(&time, e)),
+                evals: MATCHED_ERRORS.map(|e| cost_at(&evals, e)),
+                model,
+                source,
+                method,
+            }
+        })
+        .collect()
+}
+
+/// The fastest integrator of `source` on `model` at matched error `i` (the
+/// closed forms are not integrators: they are the limit, shown on their own).
+pub fn best<'a>(m: &'a [Matched], model: &str, source: &str, i: usize) -> Option<&'a Matched> {
+    m.iter()
+        .filter(|x| {
+            x.model == model
+                && x.source == source
+                && !x.method.starts_with("closed-form")
+                && x.time[i].is_some()
+        })
+        .min_by(|a, b| {
+            a.time[i]
+                .unwrap_or(Real::INFINITY)
+                .total_cmp(&b.time[i].unwrap_or(Real::INFINITY))
+        })
+}
+
+/// The side-by-side table of a join: every method's time and evaluations at
+/// error 1e-8 and 1e-12, and per problem each source's best against spintop's
+/// best (how many times longer it takes).
+pub fn join_table(rows: &[Row]) -> String {
+    let m = matched(rows);
+    let mut out = String::new();
+    let mut models: Vec<&str> = Vec::new();
+    for x in &m {
+        if !models.contains(&x.model.as_str()) {
+            models.push(&x.model);
+        }
+    }
+    let mut sources: Vec<&str> = Vec::new();
+    for x in &m {
+        if !sources.contains(&x.source.as_str()) {
+            sources.push(&x.source);
+        }
+    }
+    let fmt_evals = |e: Option<Real>| e.map(|v| format!("{v:.0}")).unwrap_or("-".into());
+    for model in models {
+        let _ = writeln!(
+            out,
+            "\n[{model}] cost at matched max relative error of Ω (interpolated in log-log; - = not reached)"
+        );
+        let _ = writeln!(
+            out,
+            "{:<12} {:<20} {:>12} {:>12} {:>10} {:>10}",
+            "source", "method", "time @1e-8", "time @1e-12", "evals 1e-8", "evals 1e-12"
+        );
+        for x in m.iter().filter(|x| x.model == model) {
+            let _ = writeln!(
+                out,
+                "{:<12} {:<20} {:>12} {:>12} {:>10} {:>10}",
+                x.source,
+                x.method,
+                duration(x.time[0]),
+                duration(x.time[1]),
+                fmt_evals(x.evals[0]),
+                fmt_evals(x.evals[1]),
+            );
+        }
+        for (i, e) in MATCHED_ERRORS.iter().enumerate() {
+            let Some(ours) = best(&m, model, "spintop", i) else {
+                continue;
+            };
+            let mut parts = vec![format!(
+                "spintop {} {}",
+                ours.method,
+                duration(ours.time[i])
+            )];
+            for source in sources.iter().filter(|s| **s != "spintop") {
+                if let Some(theirs) = best(&m, model, source, i) {
+                    let ratio =
+                        theirs.time[i].unwrap_or(Real::NAN) / ours.time[i].unwrap_or(Real::NAN);
+                    parts.push(format!(
+                        "{source} {} {} ({ratio:.1}x)",
+                        theirs.method,
+                        duration(theirs.time[i])
+                    ));
+                }
+            }
+            let _ = writeln!(out, "best integrator at {e:.0e}: {}", parts.join(" | "));
+        }
+    }
+    out
+}

@@ -1,0 +1,117 @@
+//! `spintop bench` as a user meets it: the quick sweep prints both charts and
+//! the table, `--out` writes rows that read back and that `--join` accepts,
+//! and bad input is refused with one line on stderr and exit code 2.
+
+mod support;
+use support::spintop;
+
+use spintop::workprecision::report;
+use std::path::PathBuf;
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_bench");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
+    let csv = scratch("reduced.csv");
+    let out = spintop(&[
+        "bench",
+        "--quick",
+        "--model",
+        "reduced",
+        "--repeats",
+        "1",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    let stdout = text(&out.stdout);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(stdout.contains("reference: "), "{stdout}");
+    assert!(stdout.contains("error of Ω against time"), "{stdout}");
+    assert!(
+        stdout.contains("error of Ω against RHS evaluations"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("8 dop853") && stdout.contains("C closed-form"));
+    assert!(stdout.contains("[reduced]"), "{stdout}");
+    for method in [
+        "closed-form",
+        "rk4",
+        "dopri5",
+        "dop853",
+        "closed-form+dop853",
+    ] {
+        assert!(stdout.contains(method), "{method} missing:\n{stdout}");
+    }
+    assert!(stdout.contains("reduced: fastest: at 1e-8"), "{stdout}");
+    let rows = report::parse_csv(&std::fs::read_to_string(&csv).unwrap()).unwrap();
+    assert!(rows.len() >= 20, "{}", rows.len());
+    assert!(rows.iter().all(|r| r.ok() && r.model == "reduced"));
+    assert!(rows.iter().all(|r| r.time_s.is_some_and(|t| t > 0.0)));
+
+    // The join reads it back (alone here: a run joined with itself, ratio 1).
+    let out = spintop(&["bench", "--join", csv.to_str().unwrap()]);
+    let stdout = text(&out.stdout);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        stdout.contains("time @1e-8")
+            && stdout.contains("best integrator at 1e-12: spintop dop853"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn bench_json_out_is_one_object_with_rows() {
+    let json = scratch("general.json");
+    let out = spintop(&[
+        "bench",
+        "--quick",
+        "--model",
+        "general",
+        "--repeats",
+        "1",
+        "--out",
+        json.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    assert!(!rows.is_empty());
+    for key in report::CSV_COLUMNS {
+        assert!(rows[0].get(key).is_some(), "{key}");
+    }
+}
+
+#[test]
+fn bench_bad_input_exits_2_with_one_line() {
+    let missing = scratch("does-not-exist.csv");
+    let garbage = scratch("garbage.csv");
+    std::fs::write(&garbage, "source,model\nspintop,reduced\n").unwrap();
+    let cases: Vec<Vec<&str>> = vec![
+        vec!["bench", "--out", "rows.txt"],
+        vec!["bench", "--repeats", "0"],
+        vec!["bench", "--model", "reduced", "--chart", "general"],
+        vec!["bench", "--chart", "all"],
+        vec!["bench", "--width", "5"],
+        vec!["bench", "--model", "sideways"],
+        vec!["bench", "--join", missing.to_str().unwrap()],
+        vec!["bench", "--join", garbage.to_str().unwrap()],
+        vec!["bench", "--join", garbage.to_str().unwrap(), "--quick"],
+    ];
+    for args in cases {
+        let out = spintop(&args);
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("spintop: error: "), "{err}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+}
