@@ -19,6 +19,7 @@ use std::io::{self, Write};
 use std::process::ExitCode;
 
 pub mod balance;
+pub mod figure;
 pub mod orbit;
 pub mod plot;
 pub mod run;
@@ -68,6 +69,8 @@ enum Command {
     Run(run::RunArgs),
     /// List the catalogue of scenes, one line each.
     Scenes(scenes::ScenesArgs),
+    /// The paper's Figures 1 and 2 as text charts, and as SVG with --svg FILE.
+    Figure(figure::FigureArgs),
 }
 
 /// Output format.
@@ -262,6 +265,7 @@ where
         Some(Command::Stability(args)) => stability::execute(args, stdout),
         Some(Command::Run(args)) => run::execute(args, stdout, stderr),
         Some(Command::Scenes(args)) => scenes::execute(args, stdout),
+        Some(Command::Figure(args)) => figure::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,

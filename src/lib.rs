@@ -11,13 +11,15 @@
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
 //! - [`scene`]: one question in a TOML file, and the lightest model that answers it (pure).
 //! - [`stability`]: where natural methods fail, beside what spintop does instead (pure).
-//! - [`plot`]: ASCII charts for the lessons, the book and the command line.
+//! - [`figure`]: the paper's Figures 1 and 2 as point sets (pure).
+//! - [`plot`]: ASCII charts for the lessons, the book and the command line; the figures as text and SVG.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
 //! - [`tui`]: the live terminal view, another thin shell over [`sim`].
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod cli;
+pub mod figure;
 #[doc(hidden)]
 pub mod grading;
 pub mod integrate;

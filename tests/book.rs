@@ -5,8 +5,11 @@
 //! and is compiled as a doctest, every included file and anchor exists, and the
 //! program output shown in each chapter is what the lesson program prints now.
 //!
-//! After a deliberate change to a lesson, refresh the book's copies with
-//! `UPDATE_BOOK=1 cargo test --test book`, and review the diff.
+//! The same holds for the SVG figures: the book's `figures/figure-N.svg` are
+//! what `spintop figure N --svg FILE` draws now.
+//!
+//! After a deliberate change to a lesson or a figure, refresh the book's copies
+//! with `UPDATE_BOOK=1 cargo test --test book`, and review the diff.
 
 use std::collections::BTreeSet;
 use std::fs;
@@ -23,6 +26,8 @@ mod ch3;
 mod ch4;
 #[path = "../lessons/where_methods_fail.rs"]
 mod fail;
+#[path = "../lessons/figures.rs"]
+mod figures;
 #[path = "../lessons/real_particles.rs"]
 mod particles;
 
@@ -36,6 +41,7 @@ const LESSONS: &[(&str, Lesson)] = &[
     ("appendix_shell", appendix::run),
     ("where_methods_fail", fail::run),
     ("real_particles", particles::run),
+    ("figures", figures::run),
 ];
 
 fn root() -> PathBuf {
@@ -214,6 +220,47 @@ fn book_shows_the_current_output_of_every_lesson() {
             shows,
             "no chapter shows {name}'s output with its Run it command"
         );
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// The paper's figures in the book are what `spintop figure N --svg FILE`
+/// draws now, and a chapter embeds each of them.
+#[test]
+fn book_figures_are_what_spintop_figure_draws_now() {
+    let update = std::env::var_os("UPDATE_BOOK").is_some();
+    let mut problems = Vec::new();
+    for n in ["1", "2"] {
+        let fresh_path =
+            std::env::temp_dir().join(format!("spintop-book-figure-{n}-{}.svg", std::process::id()));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_spintop"))
+            .args(["figure", n, "--svg"])
+            .arg(&fresh_path)
+            .output()
+            .expect("the binary runs");
+        assert!(
+            out.status.success(),
+            "spintop figure {n}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let fresh = fs::read_to_string(&fresh_path).expect("the SVG was written");
+        fs::remove_file(&fresh_path).unwrap();
+        let name = format!("figures/figure-{n}.svg");
+        let shown = book_src().join(&name);
+        if update {
+            fs::create_dir_all(shown.parent().unwrap()).unwrap();
+            fs::write(&shown, &fresh).unwrap();
+        } else if fs::read_to_string(&shown).unwrap_or_default() != fresh {
+            problems.push(format!(
+                "the book's {name} is not what `spintop figure {n} --svg` draws now; run UPDATE_BOOK=1 cargo test --test book"
+            ));
+        }
+        let embedded = summary_chapters().iter().any(|c| {
+            fs::read_to_string(book_src().join(c))
+                .unwrap_or_default()
+                .contains(&format!("]({name})"))
+        });
+        assert!(embedded, "no chapter embeds {name}");
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
