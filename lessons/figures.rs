@@ -13,7 +13,10 @@ use std::io::{self, Write};
 
 /// Print the lesson to `out`.
 pub fn run(out: &mut dyn Write) -> io::Result<()> {
-    for (i, number) in [FigureNumber::One, FigureNumber::Two].into_iter().enumerate() {
+    for (i, number) in [FigureNumber::One, FigureNumber::Two]
+        .into_iter()
+        .enumerate()
+    {
         if i > 0 {
             writeln!(out, "\n{}\n", "=".repeat(100))?;
         }

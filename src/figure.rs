@@ -102,6 +102,7 @@ impl FigureNumber {
         }
     }
 
+    // ANCHOR: figure_times
     /// The plotted times: N + 1 of them from 0 to [`t_end`](Self::t_end).
     ///
     /// NOTE: Figure 1 is sampled evenly in the slowed clock ϑ of (4.9), not in
@@ -133,6 +134,7 @@ impl FigureNumber {
                 .collect(),
         }
     }
+    // ANCHOR_END: figure_times
 }
 
 /// One of the paper's figures as points: the hodograph and the motion in space.
@@ -183,6 +185,7 @@ impl Figure {
                 (sim.run(&times)?, Vec3::z(), initial.rotation)
             }
             FigureNumber::Two => {
+                // ANCHOR: reduced_frame
                 // L turns while the top stands up. Run on to where it has settled,
                 // then turn the whole lab so that its final direction is z: all
                 // orientations of a free top are equivalent (paper §4.1), so the
@@ -205,6 +208,7 @@ impl Figure {
                     })
                     .collect();
                 (samples, Vec3::z(), turn * initial.rotation)
+                // ANCHOR_END: reduced_frame
             }
         };
         Ok(Self {
@@ -293,7 +297,7 @@ mod tests {
     }
 
     #[test]
-    fn figure_one_times_are_even_in_the_slowed_clock() {
+    fn figure_times_are_even_in_the_slowed_clock() {
         let times = FigureNumber::One.times();
         assert_eq!(times.len(), 901);
         assert_eq!(times[0], 0.0);

@@ -38,14 +38,22 @@ pub mod tui;
 pub mod book {
     #[doc = include_str!("../book/src/preface.md")]
     pub struct Preface;
+    #[doc = include_str!("../book/src/question-and-scales.md")]
+    pub struct QuestionAndScales;
     #[doc = include_str!("../book/src/section-2.md")]
     pub struct Section2;
     #[doc = include_str!("../book/src/section-3.md")]
     pub struct Section3;
-    #[doc = include_str!("../book/src/section-4.md")]
-    pub struct Section4;
+    #[doc = include_str!("../book/src/section-4-1.md")]
+    pub struct Section4_1;
+    #[doc = include_str!("../book/src/section-4-2.md")]
+    pub struct Section4_2;
+    #[doc = include_str!("../book/src/section-5.md")]
+    pub struct Section5;
     #[doc = include_str!("../book/src/appendix.md")]
     pub struct Appendix;
+    #[doc = include_str!("../book/src/numerical-methods.md")]
+    pub struct NumericalMethods;
     #[doc = include_str!("../book/src/where-methods-fail.md")]
     pub struct WhereMethodsFail;
     #[doc = include_str!("../book/src/real-particles.md")]
@@ -54,6 +62,8 @@ pub mod book {
     pub struct Assignments;
     #[doc = include_str!("../book/src/errata.md")]
     pub struct Errata;
+    #[doc = include_str!("../book/src/symbols.md")]
+    pub struct Symbols;
     #[doc = include_str!("../book/src/scene-reference.md")]
     pub struct SceneReference;
 }

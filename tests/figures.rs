@@ -86,7 +86,10 @@ fn figures_use_the_captions_parameters() {
         assert!(f.samples.windows(2).all(|w| w[1].t > w[0].t));
         assert!(f.samples.len() > 500, "smooth curves need many points");
     }
-    assert!(matches!(figure(FigureNumber::One).model, Model::Truncated(_)));
+    assert!(matches!(
+        figure(FigureNumber::One).model,
+        Model::Truncated(_)
+    ));
     assert!(matches!(figure(FigureNumber::Two).model, Model::Reduced(_)));
 }
 
@@ -106,7 +109,11 @@ fn eq_4_15_every_point_of_figure_2_lies_on_the_printed_closed_form() {
         let err = (s.omega_vec() - expected).norm();
         // Ω₃ = 0.2 dominates the norm; compare Ω⊥ relatively as well.
         let perp = (s.omega_vec().xy() - expected.xy()).norm() / expected.xy().norm();
-        assert!(err < 1e-14 && perp < 1e-11, "t = {}: {err:e}, {perp:e}", s.t);
+        assert!(
+            err < 1e-14 && perp < 1e-11,
+            "t = {}: {err:e}, {perp:e}",
+            s.t
+        );
     }
 }
 
@@ -123,7 +130,9 @@ fn sec4_1_figure_1_hodograph_lies_on_its_cone() {
     }
     // And it spirals down it: |Ω| falls as 1/R, ten-fold by t = 5000.
     let last = f.samples.last().unwrap();
-    assert!((f.samples[0].omega_vec().norm() / last.omega_vec().norm() - 101f64.sqrt()).abs() < 1e-9);
+    assert!(
+        (f.samples[0].omega_vec().norm() / last.omega_vec().norm() - 101f64.sqrt()).abs() < 1e-9
+    );
 }
 
 #[test]
@@ -157,8 +166,16 @@ fn eq_4_11_figure_1_axis_keeps_its_tilt_and_precesses_on_the_clock_vartheta() {
         let vartheta = (r - 1.0) / (W20 * W20);
         let phi = W20 / theta.sin() * vartheta;
         let psi = (1.0 - RATIO) * W30 * vartheta;
-        assert!(wrap(s.euler[0] - s0.euler[0] - phi).abs() < 1e-9, "phi at t = {}", s.t);
-        assert!(wrap(s.euler[2] - s0.euler[2] - psi).abs() < 1e-9, "psi at t = {}", s.t);
+        assert!(
+            wrap(s.euler[0] - s0.euler[0] - phi).abs() < 1e-9,
+            "phi at t = {}",
+            s.t
+        );
+        assert!(
+            wrap(s.euler[2] - s0.euler[2] - psi).abs() < 1e-9,
+            "psi at t = {}",
+            s.t
+        );
         // The rates fall as 1/R: 1/sqrt(t) late.
         let rates = s.euler_rates.unwrap();
         assert!((rates[0] * r - W20 / theta.sin()).abs() < 1e-12);
@@ -352,7 +369,10 @@ fn cli_figure_prints_the_charts_and_writes_the_svg() {
         // Without --svg: the charts alone.
         let out = spintop(&["figure", arg]);
         assert_eq!(out.status.code(), Some(0));
-        assert_eq!(String::from_utf8(out.stdout).unwrap(), ascii(figure(number)));
+        assert_eq!(
+            String::from_utf8(out.stdout).unwrap(),
+            ascii(figure(number))
+        );
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -364,7 +384,10 @@ fn cli_figure_refuses_bad_input_with_one_line_and_exit_code_2() {
         (&["figure", "3"], "Figures 1 and 2 only, not 3"),
         (&["figure", "one"], "not one"),
         (&["figure"], "required"),
-        (&["figure", "1", "--svg", unwritable], "cannot write the SVG"),
+        (
+            &["figure", "1", "--svg", unwritable],
+            "cannot write the SVG",
+        ),
         (&["figure", "1", "--svg"], "--svg"),
     ];
     for (args, needle) in cases {

@@ -295,18 +295,17 @@ fn hodograph_panel(figure: &Figure, area: &Area) -> DrawResult {
         CURVE_COLOR.stroke_width(2),
     ))?;
     let start = omega[0];
-    chart.draw_series(std::iter::once(Circle::new(
-        start,
-        4,
-        CURVE_COLOR.filled(),
-    )))?;
+    chart.draw_series(std::iter::once(Circle::new(start, 4, CURVE_COLOR.filled())))?;
     let label = ("sans-serif", 15).into_font().color(&BLACK);
     // The axis names sit beyond the tick labels of the two front edges.
     for (text, at) in [
         ("\u{3a9}\u{2081}", (0.0, 0.0, p * 1.55)),
         ("\u{3a9}\u{2082}", (p * 1.5, 0.0, 0.0)),
         ("\u{3a9}\u{2083}", (-p * 0.9, OMEGA3_AXIS * 0.97, -p)),
-        ("\u{3a9}\u{2080}", (start.0 + 0.012, start.1 + 0.01, start.2)),
+        (
+            "\u{3a9}\u{2080}",
+            (start.0 + 0.012, start.1 + 0.01, start.2),
+        ),
     ] {
         chart.draw_series(std::iter::once(Text::new(text, at, label.clone())))?;
     }
@@ -339,11 +338,7 @@ fn space_panel(figure: &Figure, area: &Area) -> DrawResult {
         .label_style(("sans-serif", 11))
         .draw()?;
     let up = |v: Vec3| (v.x, v.z, v.y);
-    let tip: Vec<(Real, Real, Real)> = figure
-        .samples
-        .iter()
-        .map(|s| up(Figure::axis(s)))
-        .collect();
+    let tip: Vec<(Real, Real, Real)> = figure.samples.iter().map(|s| up(Figure::axis(s))).collect();
     let l_dir: Vec<(Real, Real, Real)> = figure
         .samples
         .iter()
