@@ -1,7 +1,7 @@
 //! The `spintop` command line: a thin shell over [`crate::sim`].
 //!
 //! Raw arguments are parsed by clap, then validated into the objects the core
-//! runs on ([`SimulateConfig`]), then run; every failure becomes one line on
+//! runs on ([`simulate::SimulateConfig`]), then run; every failure becomes one line on
 //! stderr and an exit code:
 //!
 //! | code | meaning |
@@ -20,6 +20,7 @@ use std::process::ExitCode;
 
 pub mod balance;
 pub mod bench;
+pub mod figure;
 pub mod orbit;
 pub mod plot;
 pub mod run;
@@ -71,6 +72,8 @@ enum Command {
     Scenes(scenes::ScenesArgs),
     /// Work against precision: every method's error against its cost, as charts, a table and CSV/JSON.
     Bench(bench::BenchArgs),
+    /// The paper's Figures 1 and 2 as text charts, and as SVG with --svg FILE.
+    Figure(figure::FigureArgs),
 }
 
 /// Output format.
@@ -266,6 +269,7 @@ where
         Some(Command::Run(args)) => run::execute(args, stdout, stderr),
         Some(Command::Scenes(args)) => scenes::execute(args, stdout),
         Some(Command::Bench(args)) => bench::execute(args, stdout),
+        Some(Command::Figure(args)) => figure::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,

@@ -50,6 +50,7 @@ pub use splitting::{
     SplitFlow, Splitting, reduced_split_solve,
 };
 
+// ANCHOR: rhs_trait
 /// A right-hand side `y' = f(t, y)` on ℝᴺ.
 pub trait Rhs<const N: usize> {
     /// Evaluate `f(t, y)`.
@@ -67,6 +68,7 @@ pub trait Rhs<const N: usize> {
         forward_difference_jacobian(self, t, y)
     }
 }
+// ANCHOR_END: rhs_trait
 
 /// The Jacobian `∂f/∂y` of `rhs` at `(t, y)` by forward differences, one
 /// column per component: `(f(t, y + δⱼeⱼ) − f(t, y)) / δⱼ`.
@@ -207,6 +209,7 @@ impl AdaptiveOptions {
     }
 }
 
+// ANCHOR: stepper_trait
 /// A one-step method that owns its current time and state.
 ///
 /// The driver calls [`Stepper::step`] until [`Stepper::t`] reaches its goal, and
@@ -234,6 +237,7 @@ pub trait Stepper<const N: usize> {
     /// orientation. Cached stages (FSAL) are dropped.
     fn reset(&mut self, y: State<N>);
 }
+// ANCHOR_END: stepper_trait
 
 /// Refuse a non-finite `t_stop` (shared by the steppers).
 pub(crate) fn check_t_stop(t_stop: Real) -> Result<(), IntegrateError> {
@@ -268,6 +272,7 @@ pub(crate) fn first_stage<const N: usize, R: Rhs<N>>(
     Ok(f)
 }
 
+// ANCHOR: solve
 /// Integrate from the stepper's current time through every time in `times`
 /// (all on the same side of the start, in order) and return the states there.
 ///
@@ -300,3 +305,4 @@ pub fn solve<const N: usize, S: Stepper<N>, R: Rhs<N>>(
     }
     Ok(out)
 }
+// ANCHOR_END: solve

@@ -11,15 +11,17 @@
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
 //! - [`scene`]: one question in a TOML file, and the lightest model that answers it (pure).
 //! - [`stability`]: where natural methods fail, beside what spintop does instead (pure).
+//! - [`figure`]: the paper's Figures 1 and 2 as point sets (pure).
 //! - [`workprecision`]: error against cost for every method on the paper's problems (pure;
 //!   the clock is injected).
-//! - [`plot`]: ASCII charts for the lessons, the book and the command line.
+//! - [`plot`]: ASCII charts for the lessons, the book and the command line; the figures as text and SVG.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
 //! - [`tui`]: the live terminal view, another thin shell over [`sim`].
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod cli;
+pub mod figure;
 #[doc(hidden)]
 pub mod grading;
 pub mod integrate;
@@ -39,14 +41,22 @@ pub mod workprecision;
 pub mod book {
     #[doc = include_str!("../book/src/preface.md")]
     pub struct Preface;
+    #[doc = include_str!("../book/src/question-and-scales.md")]
+    pub struct QuestionAndScales;
     #[doc = include_str!("../book/src/section-2.md")]
     pub struct Section2;
     #[doc = include_str!("../book/src/section-3.md")]
     pub struct Section3;
-    #[doc = include_str!("../book/src/section-4.md")]
-    pub struct Section4;
+    #[doc = include_str!("../book/src/section-4-1.md")]
+    pub struct Section4_1;
+    #[doc = include_str!("../book/src/section-4-2.md")]
+    pub struct Section4_2;
+    #[doc = include_str!("../book/src/section-5.md")]
+    pub struct Section5;
     #[doc = include_str!("../book/src/appendix.md")]
     pub struct Appendix;
+    #[doc = include_str!("../book/src/numerical-methods.md")]
+    pub struct NumericalMethods;
     #[doc = include_str!("../book/src/where-methods-fail.md")]
     pub struct WhereMethodsFail;
     #[doc = include_str!("../book/src/real-particles.md")]
@@ -57,6 +67,8 @@ pub mod book {
     pub struct SpeedAccuracy;
     #[doc = include_str!("../book/src/errata.md")]
     pub struct Errata;
+    #[doc = include_str!("../book/src/symbols.md")]
+    pub struct Symbols;
     #[doc = include_str!("../book/src/scene-reference.md")]
     pub struct SceneReference;
 }

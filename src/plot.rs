@@ -5,6 +5,8 @@
 //! it goes stale.
 
 use std::fmt::Write as _;
+
+pub mod figure;
 use textplots::{Chart, LabelBuilder, LabelFormat, Plot, Shape};
 
 /// One curve: a label and its points (x, y).

@@ -495,6 +495,7 @@ impl<const N: usize> OnGroup<N> {
         y.fixed_rows::<3>(N - 3).into_owned()
     }
 
+    // ANCHOR: fold
     /// Step once; σ is folded into the base first if it has grown, so that the
     /// base is always the one the last step's continuous output refers to.
     /// `omega` gives the body rate at a time and state, to cap the step.
@@ -518,6 +519,7 @@ impl<const N: usize> OnGroup<N> {
         }
         self.stepper.step(rhs, t_stop)
     }
+    // ANCHOR_END: fold
 
     /// Step until `t` lies in the last step, then read the state and O there.
     fn advance<R: Rhs<N>>(
@@ -649,6 +651,7 @@ impl Simulation {
                     }
                 }
             }
+            // ANCHOR: auto_choice
             (MethodChoice::Forward, Some(_)) => {
                 return Err(SimError::MethodNotForModel(model.name()));
             }
@@ -666,6 +669,7 @@ impl Simulation {
             }
             (MethodChoice::Rk4, Some(d)) => on_group(Integrator::Rk4, d)?,
             (MethodChoice::Dopri5, Some(d)) => on_group(Integrator::Dopri5, d)?,
+            // ANCHOR_END: auto_choice
         };
         let current = Sample::new(0.0, &model.inertia(), &initial.rotation, &initial.omega);
         Ok(Self {

@@ -5,8 +5,11 @@
 //! and is compiled as a doctest, every included file and anchor exists, and the
 //! program output shown in each chapter is what the lesson program prints now.
 //!
-//! After a deliberate change to a lesson, refresh the book's copies with
-//! `UPDATE_BOOK=1 cargo test --test book`, and review the diff.
+//! The same holds for the SVG figures: the book's `figures/figure-N.svg` are
+//! what `spintop figure N --svg FILE` draws now.
+//!
+//! After a deliberate change to a lesson or a figure, refresh the book's copies
+//! with `UPDATE_BOOK=1 cargo test --test book`, and review the diff.
 
 use std::collections::BTreeSet;
 use std::fs;
@@ -23,6 +26,8 @@ mod ch3;
 mod ch4;
 #[path = "../lessons/where_methods_fail.rs"]
 mod fail;
+#[path = "../lessons/figures.rs"]
+mod figures;
 #[path = "../lessons/real_particles.rs"]
 mod particles;
 #[path = "../lessons/speed_accuracy.rs"]
@@ -39,6 +44,7 @@ const LESSONS: &[(&str, Lesson)] = &[
     ("where_methods_fail", fail::run),
     ("real_particles", particles::run),
     ("speed_accuracy", speed::run),
+    ("figures", figures::run),
 ];
 
 fn root() -> PathBuf {
@@ -219,6 +225,216 @@ fn book_shows_the_current_output_of_every_lesson() {
         );
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// The paper's figures in the book are what `spintop figure N --svg FILE`
+/// draws now, and a chapter embeds each of them.
+#[test]
+fn book_figures_are_what_spintop_figure_draws_now() {
+    let update = std::env::var_os("UPDATE_BOOK").is_some();
+    let mut problems = Vec::new();
+    for n in ["1", "2"] {
+        let fresh_path = std::env::temp_dir().join(format!(
+            "spintop-book-figure-{n}-{}.svg",
+            std::process::id()
+        ));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_spintop"))
+            .args(["figure", n, "--svg"])
+            .arg(&fresh_path)
+            .output()
+            .expect("the binary runs");
+        assert!(
+            out.status.success(),
+            "spintop figure {n}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let fresh = fs::read_to_string(&fresh_path).expect("the SVG was written");
+        fs::remove_file(&fresh_path).unwrap();
+        let name = format!("figures/figure-{n}.svg");
+        let shown = book_src().join(&name);
+        if update {
+            fs::create_dir_all(shown.parent().unwrap()).unwrap();
+            fs::write(&shown, &fresh).unwrap();
+        } else if fs::read_to_string(&shown).unwrap_or_default() != fresh {
+            problems.push(format!(
+                "the book's {name} is not what `spintop figure {n} --svg` draws now; run UPDATE_BOOK=1 cargo test --test book"
+            ));
+        }
+        let embedded = summary_chapters().iter().any(|c| {
+            fs::read_to_string(book_src().join(c))
+                .unwrap_or_default()
+                .contains(&format!("]({name})"))
+        });
+        assert!(embedded, "no chapter embeds {name}");
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// The modules whose header tables make up the book's symbol table, in the
+/// paper's order, with the chapter that uses them.
+const SYMBOL_MODULES: &[(&str, &str, &str, &str)] = &[
+    (
+        "src/physics/balance.rs",
+        "physics::balance",
+        "section-2.md",
+        "Section 2",
+    ),
+    (
+        "src/physics/central.rs",
+        "physics::central",
+        "section-2.md",
+        "Section 2",
+    ),
+    (
+        "src/physics/rigid_body.rs",
+        "physics::rigid_body",
+        "section-3.md",
+        "Section 3",
+    ),
+    (
+        "src/physics/euler_angles.rs",
+        "physics::euler_angles",
+        "section-3.md",
+        "Section 3",
+    ),
+    (
+        "src/physics/general_top.rs",
+        "physics::general_top",
+        "section-3.md",
+        "Section 3",
+    ),
+    (
+        "src/physics/full_ale.rs",
+        "physics::full_ale",
+        "section-3.md",
+        "Section 3",
+    ),
+    (
+        "src/sim/physical.rs",
+        "sim::physical",
+        "where-methods-fail.md",
+        "Where methods fail",
+    ),
+    (
+        "src/physics/symmetric_top.rs",
+        "physics::symmetric_top",
+        "section-4-1.md",
+        "Section 4.1",
+    ),
+    ("src/figure.rs", "figure", "section-5.md", "Section 5"),
+    (
+        "src/physics/shell.rs",
+        "physics::shell",
+        "appendix.md",
+        "Appendix",
+    ),
+    (
+        "src/physics/particle.rs",
+        "physics::particle",
+        "real-particles.md",
+        "Real particles",
+    ),
+    (
+        "src/math.rs",
+        "math",
+        "numerical-methods.md",
+        "Numerical methods",
+    ),
+];
+
+/// The symbol table page: for each module in [`SYMBOL_MODULES`], the first
+/// paragraph of its documentation and its `| code name | symbol | …` table,
+/// copied from the source so that the page cannot drift from the code.
+fn symbol_table() -> String {
+    let mut out = String::from(
+        "<!-- Generated from the module headers by tests/book.rs; refresh with UPDATE_BOOK=1 cargo test --test book -->\n",
+    );
+    for (file, module, chapter, title) in SYMBOL_MODULES {
+        let source = fs::read_to_string(root().join(file)).expect("a listed module exists");
+        let doc: Vec<&str> = source
+            .lines()
+            .take_while(|l| l.starts_with("//!"))
+            .map(|l| l.trim_start_matches("//!").trim())
+            .collect();
+        let summary = doc
+            .iter()
+            .take_while(|l| !l.is_empty())
+            .copied()
+            .collect::<Vec<_>>()
+            .join(" ");
+        let start = doc
+            .iter()
+            .position(|l| l.starts_with("| code name | symbol |"))
+            .unwrap_or_else(|| panic!("{file} has no | code name | symbol | table"));
+        let table: Vec<&str> = doc[start..]
+            .iter()
+            .take_while(|l| l.starts_with('|'))
+            .copied()
+            .collect();
+        out.push_str(&format!(
+            "\n## `spintop::{module}`\n\n{} Chapter: [{title}]({chapter}).\n\n{}\n",
+            plain_code_names(&summary),
+            plain_code_names(&table.join("\n"))
+        ));
+    }
+    out
+}
+
+/// Rustdoc's intra-doc links, [`name`], as plain code, `name`: mdBook does
+/// not resolve them and would show the brackets.
+fn plain_code_names(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(open) = rest.find("[`") {
+        let Some(close) = rest[open + 2..].find("`]").map(|i| i + open + 2) else {
+            break;
+        };
+        let after = &rest[close + 2..];
+        out.push_str(&rest[..open]);
+        if after.starts_with('(') {
+            // A real Markdown link: keep it.
+            out.push_str(&rest[open..close + 2]);
+        } else {
+            out.push_str(&rest[open + 1..close + 1]);
+        }
+        rest = after;
+    }
+    out.push_str(rest);
+    out
+}
+
+#[test]
+fn book_symbol_table_drops_intra_doc_brackets_only() {
+    assert_eq!(
+        plain_code_names("a [`f`] b [`g`](x.md) c [`T::m`]"),
+        "a `f` b [`g`](x.md) c `T::m`"
+    );
+}
+
+#[test]
+fn book_symbol_table_is_the_module_headers_now() {
+    let fresh = symbol_table();
+    let shown = book_src().join("generated/symbols.md");
+    if std::env::var_os("UPDATE_BOOK").is_some() {
+        fs::write(&shown, &fresh).unwrap();
+    } else if let Some(problem) = stale("symbol table", &fresh, &shown) {
+        panic!("{problem}");
+    }
+    let chapters = summary_chapters();
+    assert!(
+        chapters
+            .iter()
+            .any(|c| fs::read_to_string(book_src().join(c))
+                .unwrap_or_default()
+                .contains("{{#include generated/symbols.md}}")),
+        "no chapter shows the symbol table"
+    );
+    for (_, _, chapter, _) in SYMBOL_MODULES {
+        assert!(
+            chapters.iter().any(|c| c == chapter),
+            "{chapter} is not in SUMMARY.md"
+        );
+    }
 }
 
 /// The staleness check can fail: a changed line is caught and located.

@@ -16,7 +16,7 @@
 //! |---|---|---|
 //! | [`ch2`] | Section 2 | (2.1), (2.2), (2.4), the axial part of dL_S/dt |
 //! | [`ch3`] | Section 3 | the truncated ALE (3.3) of a general top |
-//! | [`ch4`] | Section 4 | the reduced closed form (4.15)–(4.16); the tilt (4.11) |
+//! | [`ch4`] | Sections 4.1, 4.2 | the reduced closed form (4.15)–(4.16); the tilt (4.11) |
 //! | [`numerics`] | Where methods fail | one RK4 step; one DP5 step; Euler angles with the pole |
 //! | [`appendix`] | Appendix | the method-of-steps update of (A.1) |
 

@@ -380,6 +380,7 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
                 h = hs.abs() * NONFINITE_CUT;
                 continue;
             }
+            // ANCHOR: pi_controller
             let fac11 = err.powf(EXPO1);
             if err <= 1.0 {
                 // NOTE: PI control (Gustafsson; HNW I, Sec. IV.2 and DOPRI5):
@@ -388,6 +389,7 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
                 let fac = fac11 / self.facold.powf(BETA);
                 let fac = (fac / SAFETY).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
                 let mut h_new = hs.abs() / fac;
+                // ANCHOR_END: pi_controller
                 if rejected_here {
                     h_new = h_new.min(hs.abs());
                 }

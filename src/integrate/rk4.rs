@@ -46,6 +46,7 @@ pub struct Rk4<const N: usize> {
     stats: Stats,
 }
 
+// ANCHOR: rk4_step
 /// One RK4 step from `(t, y)` with the first stage `k1 = f(t, y)` given.
 fn rk4_with_k1<const N: usize, R: Rhs<N>>(
     rhs: &R,
@@ -60,6 +61,7 @@ fn rk4_with_k1<const N: usize, R: Rhs<N>>(
     let k4 = rhs.eval(t + h, &(y + k3 * h));
     y + (k1 + (k2 + k3) * 2.0 + k4) * (h / 6.0)
 }
+// ANCHOR_END: rk4_step
 
 /// One classical RK4 step of size `h` from `(t, y)` (4 evaluations).
 pub fn rk4_step<const N: usize, R: Rhs<N>>(rhs: &R, t: Real, y: &State<N>, h: Real) -> State<N> {

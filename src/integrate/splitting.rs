@@ -72,6 +72,7 @@ pub enum Composition {
     Yoshida4,
 }
 
+// ANCHOR: yoshida_weights
 /// Yoshida's weights `(w₁, w₀)` of the fourth-order triple jump
 /// `S_{w₁h} ∘ S_{w₀h} ∘ S_{w₁h}`.
 ///
@@ -85,6 +86,7 @@ pub fn yoshida_weights() -> (Real, Real) {
     let c = 2.0_f64.cbrt();
     (1.0 / (2.0 - c), -c / (2.0 - c))
 }
+// ANCHOR_END: yoshida_weights
 
 impl Composition {
     /// The order of the method (for smooth flows and any number of parts).

@@ -17,7 +17,7 @@
 //! | [`torque_rate`] | 𝔡 × 𝔡⃛ | dL/dt by the radiation-reaction torque (2.2) | angular momentum / time |
 //! | [`schott_angular_momentum`] | L_S = 𝔡 × 𝔡̈ | Schott angular momentum (2.4) | angular momentum |
 //! | [`schott_rate`] | L̇_S = 𝔡̇ × 𝔡̈ + 𝔡 × 𝔡⃛ | its rate of change | angular momentum / time |
-//! | `axial` | n · (…), n = 𝔡/|𝔡| | projection on the dipole direction | – |
+//! | `axial` | n · (…), n = 𝔡/\|𝔡\| | projection on the dipole direction | – |
 //! | `theta`, `omega` | θ, ω | cone angle and rate of the precessing dipole | rad, 1/time |
 
 use super::{ParamError, finite};
