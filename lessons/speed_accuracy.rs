@@ -101,19 +101,12 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
 /// Least-squares slope of log10(error) against log10(cost), over the points
 /// with error between 1e-13 and 1e-4 (the straight part of the curve).
 fn slope(points: &[(Real, Real)]) -> Real {
-    let xy: Vec<(Real, Real)> = points
-        .iter()
-        .filter(|(_, e)| (1e-13..1e-4).contains(e))
-        .map(|(c, e)| (c.log10(), e.log10()))
-        .collect();
-    let n = xy.len() as Real;
-    let (mx, my) = (
-        xy.iter().map(|p| p.0).sum::<Real>() / n,
-        xy.iter().map(|p| p.1).sum::<Real>() / n,
-    );
-    let num: Real = xy.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
-    let den: Real = xy.iter().map(|(x, _)| (x - mx) * (x - mx)).sum();
-    num / den
+    spintop::math::least_squares_slope(
+        points
+            .iter()
+            .filter(|(_, e)| (1e-13..1e-4).contains(e))
+            .map(|(c, e)| (c.log10(), e.log10())),
+    )
 }
 
 /// DOP853 on a stiff reduced top: a fast spin makes the damping rate of Ω⊥

@@ -225,12 +225,29 @@ impl From<io::Error> for CliError {
 
 /// Format a number for the table: fixed where that reads well, else exponent.
 pub(crate) fn num(x: Real) -> String {
-    let a = x.abs();
-    if x == 0.0 || (1e-3..1e6).contains(&a) {
-        format!("{x:.7}")
+    fixed_or_exp(x, 7, 6, 1e6)
+}
+
+/// `x` with `digits` decimals when it is 0 or 1e-3 ≤ |x| < `upper`, else in
+/// exponent notation with `exp_digits` decimals in the mantissa.
+pub(crate) fn fixed_or_exp(x: Real, digits: usize, exp_digits: usize, upper: Real) -> String {
+    if x == 0.0 || (1e-3..upper).contains(&x.abs()) {
+        format!("{x:.digits$}")
     } else {
-        format!("{x:.6e}")
+        format!("{x:.exp_digits$e}")
     }
+}
+
+/// One row of an aligned table: every cell right-aligned in `width` columns.
+pub(crate) fn write_aligned<S: std::fmt::Display>(
+    out: &mut impl Write,
+    cells: impl IntoIterator<Item = S>,
+    width: usize,
+) -> io::Result<()> {
+    for c in cells {
+        write!(out, "{c:>width$}")?;
+    }
+    writeln!(out)
 }
 
 /// Parse, validate, run and print; returns the process exit code.

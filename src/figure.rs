@@ -82,7 +82,7 @@ impl FigureNumber {
 
     /// The model the figure shows.
     pub fn model(self) -> Model {
-        let top = SymmetricTop::new(FIGURE_RATIO, 1.0).expect("2/5 is a rigid body");
+        let top = SymmetricTop::figure();
         match self {
             Self::One => Model::Truncated(top),
             Self::Two => Model::Reduced(top),
@@ -165,9 +165,7 @@ impl Figure {
         let model = number.model();
         let omega0 = Vec3::from(FIGURE_OMEGA0);
         let inertia = model.inertia();
-        let (Model::Truncated(top) | Model::Reduced(top)) = model else {
-            unreachable!("the figures show the symmetric top");
-        };
+        let top = SymmetricTop::figure();
         // Start with lab z along L₀, the frame of (4.11).
         let start = frame_with_z_along(&angular_momentum_body(&top.inertia(), &omega0));
         let initial = InitialState::new(omega0, start)?;
@@ -223,10 +221,7 @@ impl Figure {
 
     /// The symmetric top both figures share.
     pub fn top(&self) -> SymmetricTop {
-        match self.model {
-            Model::Truncated(top) | Model::Reduced(top) => top,
-            _ => unreachable!("the figures show the symmetric top"),
-        }
+        SymmetricTop::figure()
     }
 
     /// The initial orientation as z-x-z Euler angles (to start another run there).

@@ -109,6 +109,20 @@ pub fn all_finite<const R: usize, const C: usize>(m: &nalgebra::SMatrix<Real, R,
     m.iter().all(|x| x.is_finite())
 }
 
+/// The least-squares slope of the line through `points` (x, y); NaN for
+/// fewer than two distinct x. Used for growth rates, orders and exponents
+/// (pass logarithms for a power law).
+pub fn least_squares_slope(points: impl IntoIterator<Item = (Real, Real)>) -> Real {
+    let points: Vec<(Real, Real)> = points.into_iter().collect();
+    let n = points.len() as Real;
+    let mx = points.iter().map(|p| p.0).sum::<Real>() / n;
+    let my = points.iter().map(|p| p.1).sum::<Real>() / n;
+    let (num, den) = points.iter().fold((0.0, 0.0), |(num, den), &(x, y)| {
+        (num + (x - mx) * (y - my), den + (x - mx) * (x - mx))
+    });
+    num / den
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

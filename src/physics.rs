@@ -84,3 +84,26 @@ pub(crate) fn finite(name: &'static str, value: Real) -> Result<Real, ParamError
         Err(ParamError::NotFinite { name, value })
     }
 }
+
+/// Refuse principal moments that no rigid body has: each finite and positive,
+/// and each at most the sum of the other two (the triangle inequality).
+///
+/// NOTE: a tiny relative slack lets the flat limit I₃ = I₁ + I₂ (a disc)
+/// through when it is written with rounded decimals.
+pub(crate) fn check_principal_moments(inertia: &crate::math::Vec3) -> Result<(), ParamError> {
+    for (i, name) in ["I1", "I2", "I3"].into_iter().enumerate() {
+        finite(name, inertia[i])?;
+        if inertia[i] <= 0.0 {
+            return Err(ParamError::MomentNotPositive {
+                index: i + 1,
+                value: inertia[i],
+            });
+        }
+    }
+    let (a, b, c) = (inertia.x, inertia.y, inertia.z);
+    let slack = 1e-12 * (a + b + c);
+    if a > b + c + slack || b > a + c + slack || c > a + b + slack {
+        return Err(ParamError::TriangleInequality(a, b, c));
+    }
+    Ok(())
+}

@@ -1,7 +1,10 @@
 //! `spintop orbit`: one charge in a Coulomb or oscillator field under
 //! radiation reaction (§2, (2.5)–(2.9)), sampled at given times.
 
-use super::{CliError, Format, TimeList, bad, check_output_times, num, parse_number, parse_times};
+use super::{
+    CliError, Format, TimeList, bad, check_output_times, num, parse_number, parse_times,
+    write_aligned,
+};
 use crate::integrate::Stats;
 use crate::math::Real;
 use crate::physics::central::{
@@ -325,8 +328,7 @@ pub fn write_output(out: &mut impl Write, output: &OrbitOutput, format: Format) 
                 )?;
             }
             let head = ["t", "x", "y", "vx", "vy", "r", "L", "energy"];
-            let line: Vec<String> = head.iter().map(|h| format!("{h:>14}")).collect();
-            writeln!(out, "{}", line.join(""))?;
+            write_aligned(out, head, 14)?;
             for s in &output.samples {
                 let row = [
                     s.t,
@@ -338,8 +340,7 @@ pub fn write_output(out: &mut impl Write, output: &OrbitOutput, format: Format) 
                     s.l,
                     s.energy,
                 ];
-                let line: Vec<String> = row.iter().map(|x| format!("{:>14}", num(*x))).collect();
-                writeln!(out, "{}", line.join(""))?;
+                write_aligned(out, row.iter().map(|x| num(*x)), 14)?;
             }
             if let Some(tc) = output.collapse_time {
                 writeln!(

@@ -10,7 +10,7 @@ use super::balance::{BalanceConfig, BalanceOutput, BalanceParameters, DipoleChoi
 use super::orbit::{MAX_BACKWARD_SPAN, OrbitOutput, OrbitRequest};
 use super::shell::{MAX_STEPS as SHELL_MAX_STEPS, ShellOutput, ShellRequest};
 use super::simulate::{Parameters, SimulateConfig, SimulateOutput, simulate};
-use super::{CliError, Format, bad, num};
+use super::{CliError, Format, bad, fixed_or_exp, num, write_aligned};
 use crate::integrate::Stats;
 use crate::math::{Real, Vec3};
 use crate::physics::particle::{DEBYE_ESU_CM, Milestones, SPEED_OF_LIGHT_CM_S};
@@ -305,16 +305,17 @@ fn run_top(
         }
         Orientation::Skipped(why) => {
             let tau_per_unit = top.units.as_ref().map(RealUnits::tau_per_unit);
-            let samples = omega_samples(&top.model, &top.initial.omega, &top.times, tau_per_unit)
-                .ok_or_else(|| {
+            let only_symmetric = || {
                 bad(format!(
                     "{}: only the symmetric models can skip the orientation",
                     scene.file
                 ))
-            })?;
-            let (Model::Truncated(t) | Model::Reduced(t)) = top.model else {
-                unreachable!("omega_samples answered for a symmetric model");
             };
+            let (Model::Truncated(t) | Model::Reduced(t)) = top.model else {
+                return Err(only_symmetric());
+            };
+            let samples = omega_samples(&top.model, &top.initial.omega, &top.times, tau_per_unit)
+                .ok_or_else(only_symmetric)?;
             TopRun::OmegaOnly(OmegaOnlyOutput {
                 model: top.model.name(),
                 method: "exact",
@@ -445,12 +446,7 @@ pub fn answer(scene: &Scene) -> Result<Report, CliError> {
 
 /// A number with four significant digits, in whichever notation reads better.
 fn sig(x: Real) -> String {
-    let a = x.abs();
-    if x == 0.0 || (1e-3..1e5).contains(&a) {
-        format!("{x:.4}")
-    } else {
-        format!("{x:.4e}")
-    }
+    fixed_or_exp(x, 4, 4, 1e5)
 }
 
 /// A CSV cell, lossless: plain digits for ordinary sizes, exponent notation
@@ -466,12 +462,7 @@ fn csv_cell(x: Real) -> String {
 
 /// A table cell with six significant digits, never wider than 14 characters.
 fn cell(x: Real) -> String {
-    let a = x.abs();
-    if x == 0.0 || (1e-3..1e5).contains(&a) {
-        format!("{x:.6}")
-    } else {
-        format!("{x:.6e}")
-    }
+    fixed_or_exp(x, 6, 6, 1e5)
 }
 
 /// A number as given: up to six significant digits, trailing zeros dropped.
@@ -622,8 +613,7 @@ fn write_omega_only(
                         "tilt [deg]".into(),
                         "E/E0".into(),
                     ];
-                    let line: Vec<String> = head.iter().map(|h| format!("{h:>15}")).collect();
-                    writeln!(out, "{}", line.join(""))?;
+                    write_aligned(out, head, 15)?;
                     for s in &o.samples {
                         let w = Vec3::from(s.omega);
                         let row = [
@@ -634,9 +624,7 @@ fn write_omega_only(
                             s.tilt.to_degrees(),
                             if e0 > 0.0 { s.energy / e0 } else { 0.0 },
                         ];
-                        let line: Vec<String> =
-                            row.iter().map(|x| format!("{:>15}", cell(*x))).collect();
-                        writeln!(out, "{}", line.join(""))?;
+                        write_aligned(out, row.iter().map(|x| cell(*x)), 15)?;
                     }
                 }
                 None => {
@@ -650,8 +638,7 @@ fn write_omega_only(
                         "|L|",
                         "tilt",
                     ];
-                    let line: Vec<String> = head.iter().map(|h| format!("{h:>14}")).collect();
-                    writeln!(out, "{}", line.join(""))?;
+                    write_aligned(out, head, 14)?;
                     for s in &o.samples {
                         let l = Vec3::from(s.l_body).norm();
                         let row = [
@@ -664,9 +651,7 @@ fn write_omega_only(
                             l,
                             s.tilt,
                         ];
-                        let line: Vec<String> =
-                            row.iter().map(|x| format!("{:>14}", num(*x))).collect();
-                        writeln!(out, "{}", line.join(""))?;
+                        write_aligned(out, row.iter().map(|x| num(*x)), 14)?;
                     }
                 }
             }

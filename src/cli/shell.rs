@@ -2,7 +2,10 @@
 //! neutral delay equation solved by the method of steps and sampled at given
 //! times.
 
-use super::{CliError, Format, TimeList, bad, check_output_times, num, parse_number, parse_times};
+use super::{
+    CliError, Format, TimeList, bad, check_output_times, num, parse_number, parse_times,
+    write_aligned,
+};
 use crate::math::Real;
 use crate::physics::central::abraham_lorentz_oscillator_roots;
 use crate::physics::shell::ShellModel;
@@ -195,8 +198,7 @@ pub fn write_output(out: &mut impl Write, output: &ShellOutput, format: Format) 
                 output.steps_per_delay
             )?;
             let head = ["t", "x", "y", "L", "J", "L-J", "L_S", "|Z-Z_AL|", "L-L_AL"];
-            let line: Vec<String> = head.iter().map(|h| format!("{h:>14}")).collect();
-            writeln!(out, "{}", line.join(""))?;
+            write_aligned(out, head, 14)?;
             for s in &output.samples {
                 let row = [
                     s.t,
@@ -209,8 +211,7 @@ pub fn write_output(out: &mut impl Write, output: &ShellOutput, format: Format) 
                     mag(s.z_minus_z_al),
                     s.l - s.l_al,
                 ];
-                let line: Vec<String> = row.iter().map(|x| format!("{:>14}", num(*x))).collect();
-                writeln!(out, "{}", line.join(""))?;
+                write_aligned(out, row.iter().map(|x| num(*x)), 14)?;
             }
             if let Some(last) = output.samples.last() {
                 writeln!(

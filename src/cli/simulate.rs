@@ -2,7 +2,8 @@
 //! table, CSV or the JSON contract.
 
 use super::{
-    CliError, Format, TimeList, bad, check_output_times, num, parse_number, parse_times, parse_vec3,
+    CliError, Format, TimeList, bad, check_output_times, num, parse_number, parse_times,
+    parse_vec3, write_aligned,
 };
 use crate::math::{Real, Vec3};
 use crate::physics::euler_angles::EulerAngles;
@@ -413,8 +414,7 @@ pub fn write_output(
                 "theta",
                 "psi",
             ];
-            let line: Vec<String> = head.iter().map(|h| format!("{h:>14}")).collect();
-            writeln!(out, "{}", line.join(""))?;
+            write_aligned(out, head, 14)?;
             for s in &output.samples {
                 let l = Vec3::from(s.l_lab).norm();
                 let row = [
@@ -430,8 +430,7 @@ pub fn write_output(
                     s.euler[1],
                     s.euler[2],
                 ];
-                let line: Vec<String> = row.iter().map(|x| format!("{:>14}", num(*x))).collect();
-                writeln!(out, "{}", line.join(""))?;
+                write_aligned(out, row.iter().map(|x| num(*x)), 14)?;
             }
             Ok(())
         }

@@ -362,22 +362,7 @@ impl FreeRigidBody {
     /// Validate the principal moments: finite, positive, each at most the sum of
     /// the other two (the same check as [`crate::physics::general_top::GeneralTop`]).
     pub fn new(inertia: Vec3) -> Result<Self, ParamError> {
-        for (i, name) in ["I1", "I2", "I3"].into_iter().enumerate() {
-            crate::physics::finite(name, inertia[i])?;
-            if inertia[i] <= 0.0 {
-                return Err(ParamError::MomentNotPositive {
-                    index: i + 1,
-                    value: inertia[i],
-                });
-            }
-        }
-        let (a, b, c) = (inertia.x, inertia.y, inertia.z);
-        // NOTE: the same relative slack as `GeneralTop::new`, so the flat limit
-        // I₃ = I₁ + I₂ (a disc, e.g. (1, 2, 3)) is accepted.
-        let slack = 1e-12 * (a + b + c);
-        if a > b + c + slack || b > a + c + slack || c > a + b + slack {
-            return Err(ParamError::TriangleInequality(a, b, c));
-        }
+        crate::physics::check_principal_moments(&inertia)?;
         Ok(Self { inertia })
     }
 

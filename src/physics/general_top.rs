@@ -14,7 +14,7 @@
 //! | `omega` | Ω | body angular velocity | 1/time |
 
 use super::rigid_body::BodyDynamics;
-use super::{ParamError, finite};
+use super::{ParamError, check_principal_moments, finite};
 use crate::math::Vec3;
 
 /// A free top with principal moments `inertia` and a fixed body dipole `dipole`.
@@ -30,26 +30,9 @@ pub struct GeneralTop {
 impl GeneralTop {
     /// Validate the principal moments and the dipole.
     pub fn new(inertia: Vec3, dipole: Vec3) -> Result<Self, ParamError> {
-        for (i, name) in ["I1", "I2", "I3"].into_iter().enumerate() {
-            finite(name, inertia[i])?;
-        }
+        check_principal_moments(&inertia)?;
         for (i, name) in ["d1", "d2", "d3"].into_iter().enumerate() {
             finite(name, dipole[i])?;
-        }
-        for i in 0..3 {
-            if inertia[i] <= 0.0 {
-                return Err(ParamError::MomentNotPositive {
-                    index: i + 1,
-                    value: inertia[i],
-                });
-            }
-        }
-        let (a, b, c) = (inertia.x, inertia.y, inertia.z);
-        // NOTE: a tiny relative slack lets the flat limit I₃ = I₁ + I₂ (a disc)
-        // through when it is written with rounded decimals.
-        let slack = 1e-12 * (a + b + c);
-        if a > b + c + slack || b > a + c + slack || c > a + b + slack {
-            return Err(ParamError::TriangleInequality(a, b, c));
         }
         if dipole == Vec3::zeros() {
             return Err(ParamError::ZeroDipole);

@@ -172,10 +172,8 @@ pub(super) fn plan_top(
     };
     let asked =
         |name: &str| format!("method = \"{name}\" was asked for in [solve]; auto would use {auto}");
-    let mut symmetric_path = |exact: bool| -> TopPlan {
-        let (Model::Truncated(top) | Model::Reduced(top)) = model else {
-            unreachable!("only the symmetric models have closed forms");
-        };
+    // The symmetric models' path: `top` comes from the match arm below.
+    let mut symmetric_path = |top: &SymmetricTop, exact: bool| -> TopPlan {
         let truncated = matches!(model, Model::Truncated(_));
         let steps = angle; // at most 1 rad per orientation step
         let skip = if truncated {
@@ -238,8 +236,8 @@ pub(super) fn plan_top(
         }
     };
     let plan = match (model, method) {
-        (Model::Truncated(_) | Model::Reduced(_), MethodChoice::Auto | MethodChoice::Exact) => {
-            symmetric_path(method == MethodChoice::Exact)
+        (Model::Truncated(top) | Model::Reduced(top), MethodChoice::Auto | MethodChoice::Exact) => {
+            symmetric_path(top, method == MethodChoice::Exact)
         }
         (_, MethodChoice::Rk4) => {
             let steps = t_last / options.step;

@@ -336,16 +336,7 @@ pub fn integrate_forward(
 
 /// Slope of equally spaced samples `ys` (spacing `dt`) by least squares.
 fn least_squares_slope(ys: &[Real], dt: Real) -> Real {
-    let n = ys.len() as Real;
-    let mean_x = 0.5 * (n - 1.0);
-    let mean_y = ys.iter().sum::<Real>() / n;
-    let (mut num, mut den) = (0.0, 0.0);
-    for (i, y) in ys.iter().enumerate() {
-        let dx = i as Real - mean_x;
-        num += dx * (y - mean_y);
-        den += dx * dx;
-    }
-    num / den / dt
+    crate::math::least_squares_slope(ys.iter().enumerate().map(|(i, &y)| (i as Real * dt, y)))
 }
 
 /// Ω(t) of the full ALE sampled on a uniform grid, with z and ż at every node,

@@ -209,14 +209,7 @@ impl Worst {
 
 /// Least-squares slope of ln y against ln x (NaN if a y is not positive).
 pub fn log_log_slope(x: &[Real], y: &[Real]) -> Real {
-    let n = x.len().min(y.len()) as Real;
-    let lx: Vec<Real> = x.iter().map(|v| v.ln()).collect();
-    let ly: Vec<Real> = y.iter().map(|v| v.ln()).collect();
-    let mx = lx.iter().sum::<Real>() / n;
-    let my = ly.iter().sum::<Real>() / n;
-    let sxy: Real = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: Real = lx.iter().map(|a| (a - mx) * (a - mx)).sum();
-    sxy / sxx
+    crate::math::least_squares_slope(x.iter().zip(y).map(|(a, b)| (a.ln(), b.ln())))
 }
 
 fn finish(method: LongRunMethod, worst: [Worst; 3], stats: Stats) -> Drift {

@@ -12,13 +12,14 @@
 //! wrong by orders of magnitude.
 
 use super::{Outcome, Row, RowError};
+use crate::integrate::forward_difference_jacobian;
 use crate::math::{Real, State, Vec3};
 use crate::physics::full_ale::symmetric_full_ale_rhs;
 use crate::physics::symmetric_top::{SymmetricTop, reduced_ale_rhs, reduced_amplitude};
 use crate::sim::physical::{
     Runaway, integrate_forward, late_time_decay_time, physical_solution, slow_manifold_rate,
 };
-use nalgebra::{Complex, SMatrix};
+use nalgebra::Complex;
 
 /// Physical against reduced at one time.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -89,19 +90,12 @@ pub struct Measurement {
 pub const DRIFT_TIMES: [Real; 5] = [1.0, 10.0, 100.0, 300.0, 1000.0];
 
 /// The largest real part among the eigenvalues of the Jacobian of (3.4) at
-/// `y` (central differences): the runaway rate of the frozen linearisation.
+/// `y` (the integrators' finite-difference Jacobian): the runaway rate of the
+/// frozen linearisation.
 pub fn frozen_rate(top: &SymmetricTop, omega3: Real, y: &State<4>) -> Real {
-    let h = 1e-7 * (1.0 + y.norm());
-    let mut jac = SMatrix::<Real, 4, 4>::zeros();
-    for j in 0..4 {
-        let mut e = State::<4>::zeros();
-        e[j] = h;
-        let col = (symmetric_full_ale_rhs(top, omega3, &(y + e))
-            - symmetric_full_ale_rhs(top, omega3, &(y - e)))
-            / (2.0 * h);
-        jac.set_column(j, &col);
-    }
-    jac.complex_eigenvalues()
+    let rhs = |_t: Real, y: &State<4>| symmetric_full_ale_rhs(top, omega3, y);
+    forward_difference_jacobian(&rhs, 0.0, y)
+        .complex_eigenvalues()
         .iter()
         .map(|l| l.re)
         .fold(Real::NEG_INFINITY, Real::max)

@@ -388,16 +388,7 @@ fn radau5_run(top: &SymmetricTop, s: Real) -> Result<Radau5Run, RowError> {
 
 /// Least-squares slope of ln y against ln x.
 pub fn log_log_slope(points: &[(Real, Real)]) -> Real {
-    let n = points.len() as Real;
-    let (sx, sy) = points
-        .iter()
-        .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x.ln(), b + y.ln()));
-    let (mx, my) = (sx / n, sy / n);
-    let (num, den) = points.iter().fold((0.0, 0.0), |(num, den), &(x, y)| {
-        let dx = x.ln() - mx;
-        (num + dx * (y.ln() - my), den + dx * dx)
-    });
-    num / den
+    crate::math::least_squares_slope(points.iter().map(|&(x, y)| (x.ln(), y.ln())))
 }
 
 /// Slope of ln(steps) against ln S between the two largest S of `runs`.
