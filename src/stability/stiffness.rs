@@ -537,7 +537,7 @@ impl Measurement {
             })
             .into_iter()
             .collect();
-        // The exact splitting, once merged, is a second fix.
+        // The exact splitting is the second fix.
         if let Some(r) = self.splitting.last() {
             fix.push(Outcome {
                 method: format!("exact rotation o damping splitting, S = {}", r.s),
