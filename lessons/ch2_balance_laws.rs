@@ -2,7 +2,7 @@
 //!
 //! Run it: `cargo run --release --example ch2_balance_laws`
 //!
-//! The book shows this program's output; `tests/book.rs` checks that what the
+//! The book shows this program's output; `tests/project/book.rs` checks that what the
 //! book shows is what the program prints.
 
 use spintop::integrate::{AdaptiveOptions, Dop853, solve};

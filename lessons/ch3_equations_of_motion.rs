@@ -3,7 +3,7 @@
 //!
 //! Run it: `cargo run --release --example ch3_equations_of_motion`
 //!
-//! The book shows this program's output; `tests/book.rs` checks that what the
+//! The book shows this program's output; `tests/project/book.rs` checks that what the
 //! book shows is what the program prints.
 
 use spintop::math::{Vec3, orthonormality_error, vee};

@@ -4,7 +4,7 @@
 //! (the same charts as `spintop figure 1` and `spintop figure 2`; add
 //! `--svg FILE` to the command for the vector version).
 //!
-//! The book shows this program's output; `tests/book.rs` checks that what the
+//! The book shows this program's output; `tests/project/book.rs` checks that what the
 //! book shows is what the program prints.
 
 use spintop::figure::{Figure, FigureNumber};

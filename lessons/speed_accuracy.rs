@@ -3,7 +3,7 @@
 //! Run it: `cargo run --release --example speed_accuracy`
 //!
 //! Everything here is counted, not timed, so the output is the same on every
-//! machine and the book can show it (`tests/book.rs` checks that it does).
+//! machine and the book can show it (`tests/project/book.rs` checks that it does).
 //! `spintop bench` measures the wall time of the same runs.
 
 use spintop::integrate::{AdaptiveOptions, Dop853, Stepper, solve};

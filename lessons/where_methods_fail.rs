@@ -4,7 +4,7 @@
 //!
 //! Run it: `cargo run --release --example where_methods_fail`
 //!
-//! The book shows this program's output; `tests/book.rs` checks that what the
+//! The book shows this program's output; `tests/project/book.rs` checks that what the
 //! book shows is what the program prints.
 
 use spintop::integrate::{

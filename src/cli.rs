@@ -12,6 +12,7 @@
 
 use crate::integrate::IntegrateError;
 use crate::math::Real;
+pub(crate) use crate::present::parse_number;
 use crate::sim::SimError;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::ffi::OsString;
@@ -85,18 +86,6 @@ pub enum Format {
     Csv,
     /// One JSON object (the documented contract).
     Json,
-}
-
-pub(crate) fn parse_number(s: &str) -> Result<Real, String> {
-    let x: Real = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("'{s}' is not a number"))?;
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(format!("'{s}' is not a finite number"))
-    }
 }
 
 pub(crate) fn parse_list(s: &str) -> Result<Vec<Real>, String> {

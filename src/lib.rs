@@ -15,6 +15,8 @@
 //! - [`workprecision`]: error against cost for every method on the paper's problems (pure;
 //!   the clock is injected).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line; the figures as text and SVG.
+//! - [`present`]: what the shells show the same way (method names, frames, number parsing
+//!   and axis formatting), below all of them.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
 //! - [`tui`]: the live terminal view, another thin shell over [`sim`].
 #![forbid(unsafe_code)]
@@ -28,6 +30,7 @@ pub mod integrate;
 pub mod math;
 pub mod physics;
 pub mod plot;
+pub mod present;
 pub mod scene;
 pub mod sim;
 pub mod stability;
@@ -35,7 +38,7 @@ pub mod tui;
 pub mod workprecision;
 
 /// The book's chapters (`book/src`). `cargo test` compiles and runs every Rust
-/// block in them as a doctest; `tests/book.rs` checks that every chapter in
+/// block in them as a doctest; `tests/project/book.rs` checks that every chapter in
 /// `SUMMARY.md` is listed here.
 #[cfg(doctest)]
 pub mod book {

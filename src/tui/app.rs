@@ -18,13 +18,14 @@
 //! | [`TICK`] | Δt | one model step of the view | τ |
 //! | `warp` | – | model time per wall-clock second | τ/s |
 
-use crate::cli::parse_number;
 use crate::math::{Real, Vec3};
-use crate::physics::euler_angles::{EulerAngles, frame_with_z_along};
+use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
-use crate::physics::rigid_body::{angular_momentum_body, energy};
+use crate::physics::rigid_body::energy;
 use crate::physics::symmetric_top::{SymmetricTop, reduced_closed_form, truncated_closed_form};
-use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, Simulation};
+use crate::present::parse_number;
+pub use crate::present::{Method, lab_frame, paper_frame};
+use crate::sim::{InitialState, MethodOptions, Model, Sample, Simulation};
 use std::collections::VecDeque;
 use std::time::Duration;
 
@@ -85,57 +86,13 @@ pub const TRAIL_SPACING: Real = 0.01;
 /// exactly [`TICK`].
 pub const MAX_LAG: Duration = Duration::from_millis(250);
 
-/// The numerical method the view runs both models with, cycled by `m`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Method {
-    /// The closed forms (for the reduced model Ω only; its orientation is
-    /// integrated by DOP853).
-    ClosedForm,
-    /// Fixed-step classical RK4 (step 0.01τ).
-    Rk4,
-    /// Dormand–Prince 5(4), adaptive.
-    Dopri5,
-    /// DOP853, adaptive.
-    Dop853,
-}
-
 impl Method {
-    /// The next method of the cycle: closed form, RK4, DP5, DOP853.
-    pub fn next(self) -> Self {
-        match self {
-            Method::ClosedForm => Method::Rk4,
-            Method::Rk4 => Method::Dopri5,
-            Method::Dopri5 => Method::Dop853,
-            Method::Dop853 => Method::ClosedForm,
-        }
-    }
-
     /// The next method of the cycle for `top`: a general top has no closed
     /// form, so its cycle is RK4, DP5, DOP853.
     pub fn next_for(self, top: &Top) -> Self {
         match (self.next(), top) {
             (Method::ClosedForm, Top::General(_)) => Method::Rk4,
             (next, _) => next,
-        }
-    }
-
-    /// The name shown in the header.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::ClosedForm => "closed form",
-            Method::Rk4 => "RK4",
-            Method::Dopri5 => "DP5",
-            Method::Dop853 => "DOP853",
-        }
-    }
-
-    /// The simulation's method choice.
-    pub fn choice(self) -> MethodChoice {
-        match self {
-            Method::ClosedForm => MethodChoice::Exact,
-            Method::Rk4 => MethodChoice::Rk4,
-            Method::Dopri5 => MethodChoice::Dopri5,
-            Method::Dop853 => MethodChoice::Dop853,
         }
     }
 }
@@ -259,25 +216,6 @@ impl Settings {
 fn check_omega0(omega0: [Real; 3]) -> Result<InitialState, String> {
     InitialState::new(Vec3::from(omega0), EulerAngles::new(0.0, 0.0, 0.0))
         .map_err(|e| e.to_string())
-}
-
-/// The initial orientation that puts the lab z axis along L₀, as in the
-/// paper's particular solution (4.11) and its figures: then θ is the tilt
-/// between the axis and L, and φ̇ and ψ̇ are the precession and spin rates.
-///
-/// The third row of O = R_z(φ)R_x(θ)R_z(ψ) is (sin θ sin ψ, sin θ cos ψ,
-/// cos θ) = Oᵀẑ, the lab z axis seen from the body; setting it to L₀/|L₀|
-/// gives θ = the tilt and ψ = atan2(L₁, L₂) (φ = 0). L₀ = 0 keeps O = 1.
-pub fn paper_frame(top: &SymmetricTop, omega0: [Real; 3]) -> EulerAngles {
-    lab_frame(&top.inertia(), omega0)
-}
-
-/// [`paper_frame`] for any principal moments: the lab z axis along
-/// L₀ = I Ω₀. The general top uses it too, so that both layouts show L
-/// starting straight up; its Ω(t) does not depend on the orientation, so this
-/// choice changes only the picture of the top in space.
-pub fn lab_frame(inertia: &Vec3, omega0: [Real; 3]) -> EulerAngles {
-    frame_with_z_along(&angular_momentum_body(inertia, &Vec3::from(omega0)))
 }
 
 /// What `?` shows and what an Ω₀ edit holds.

@@ -9,43 +9,13 @@
 use super::app::{App, Column, Method, Point, TICK, WINDOW};
 use super::theme;
 use crate::math::Real;
+pub use crate::present::{fmt_axis, fmt_num, nice_ceiling};
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Context, Line as CanvasLine, Points};
 use ratatui::widgets::{Axis, Block, Borders, Chart, Dataset, GraphType, Paragraph};
-
-/// A number for the screen: four significant digits, an exponent outside
-/// [1e-3, 1e5), "—" when undefined.
-pub fn fmt_num(x: Real) -> String {
-    if !x.is_finite() {
-        return "—".into();
-    }
-    let a = x.abs();
-    if a == 0.0 {
-        "0".into()
-    } else if (1e-3..1e5).contains(&a) {
-        let digits = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
-        format!("{x:.digits$}")
-    } else {
-        format!("{x:.3e}")
-    }
-}
-
-/// The smallest of 1, 2, 2.5, 5 times a power of ten that is at least `x`
-/// (1 for zero or non-finite `x`): a round axis bound.
-pub fn nice_ceiling(x: Real) -> Real {
-    if !(x.is_finite() && x > 0.0) {
-        return 1.0;
-    }
-    let p = (10.0 as Real).powf(x.log10().floor());
-    [1.0, 2.0, 2.5, 5.0, 10.0]
-        .into_iter()
-        .map(|m| m * p)
-        .find(|b| *b >= x * (1.0 - 1e-12))
-        .unwrap_or(10.0 * p)
-}
 
 /// The four curves of one Ω(t) chart and their axes.
 #[derive(Clone, Debug, PartialEq)]
@@ -526,12 +496,6 @@ pub fn drift(column: &Column) -> Paragraph<'static> {
             },
         ),
     ])
-}
-
-/// An axis label: the shortest exact form when it is short, else [`fmt_num`].
-pub fn fmt_axis(x: Real) -> String {
-    let plain = format!("{x}");
-    if plain.len() <= 6 { plain } else { fmt_num(x) }
 }
 
 #[cfg(test)]

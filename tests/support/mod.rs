@@ -1,6 +1,6 @@
 //! Helpers shared by the tests that run the real `spintop` binary.
-//! (`tests/support/mod.rs` rather than `tests/support.rs`, so that Cargo does
-//! not build it as a test target of its own.)
+//! Each test binary includes it with `#[path = "../support/mod.rs"] mod support;`
+//! (a folder without `main.rs`, so Cargo does not build it as a test target).
 
 #![allow(dead_code)]
 

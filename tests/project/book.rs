@@ -9,28 +9,28 @@
 //! what `spintop figure N --svg FILE` draws now.
 //!
 //! After a deliberate change to a lesson or a figure, refresh the book's copies
-//! with `UPDATE_BOOK=1 cargo test --test book`, and review the diff.
+//! with `UPDATE_BOOK=1 cargo test --test project`, and review the diff.
 
 use std::collections::BTreeSet;
 use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
 
-#[path = "../lessons/appendix_shell.rs"]
+#[path = "../../lessons/appendix_shell.rs"]
 mod appendix;
-#[path = "../lessons/ch2_balance_laws.rs"]
+#[path = "../../lessons/ch2_balance_laws.rs"]
 mod ch2;
-#[path = "../lessons/ch3_equations_of_motion.rs"]
+#[path = "../../lessons/ch3_equations_of_motion.rs"]
 mod ch3;
-#[path = "../lessons/ch4_symmetric_top.rs"]
+#[path = "../../lessons/ch4_symmetric_top.rs"]
 mod ch4;
-#[path = "../lessons/where_methods_fail.rs"]
+#[path = "../../lessons/where_methods_fail.rs"]
 mod fail;
-#[path = "../lessons/figures.rs"]
+#[path = "../../lessons/figures.rs"]
 mod figures;
-#[path = "../lessons/real_particles.rs"]
+#[path = "../../lessons/real_particles.rs"]
 mod particles;
-#[path = "../lessons/speed_accuracy.rs"]
+#[path = "../../lessons/speed_accuracy.rs"]
 mod speed;
 
 type Lesson = fn(&mut dyn io::Write) -> io::Result<()>;
@@ -129,7 +129,7 @@ fn stale(name: &str, output: &str, shown: &Path) -> Option<String> {
         .position(|(a, b)| a != b)
         .map_or_else(|| "its length".to_string(), |i| format!("line {}", i + 1));
     Some(format!(
-        "the book's copy of `{name}` output ({}) is stale at {line}; run UPDATE_BOOK=1 cargo test --test book",
+        "the book's copy of `{name}` output ({}) is stale at {line}; run UPDATE_BOOK=1 cargo test --test project",
         shown.display()
     ))
 }
@@ -257,7 +257,7 @@ fn book_figures_are_what_spintop_figure_draws_now() {
             fs::write(&shown, &fresh).unwrap();
         } else if fs::read_to_string(&shown).unwrap_or_default() != fresh {
             problems.push(format!(
-                "the book's {name} is not what `spintop figure {n} --svg` draws now; run UPDATE_BOOK=1 cargo test --test book"
+                "the book's {name} is not what `spintop figure {n} --svg` draws now; run UPDATE_BOOK=1 cargo test --test project"
             ));
         }
         let embedded = summary_chapters().iter().any(|c| {
@@ -347,7 +347,7 @@ const SYMBOL_MODULES: &[(&str, &str, &str, &str)] = &[
 /// copied from the source so that the page cannot drift from the code.
 fn symbol_table() -> String {
     let mut out = String::from(
-        "<!-- Generated from the module headers by tests/book.rs; refresh with UPDATE_BOOK=1 cargo test --test book -->\n",
+        "<!-- Generated from the module headers by tests/project/book.rs; refresh with UPDATE_BOOK=1 cargo test --test project -->\n",
     );
     for (file, module, chapter, title) in SYMBOL_MODULES {
         let source = fs::read_to_string(root().join(file)).expect("a listed module exists");

@@ -1,7 +1,7 @@
 //! `spintop balance` as a user meets it: the JSON contract, values that match
 //! the closed forms of §2, and bad input refused with one line and exit code 2.
 
-mod support;
+use crate::support;
 use support::spintop;
 
 use serde_json::Value;

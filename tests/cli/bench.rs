@@ -2,7 +2,7 @@
 //! the table, `--out` writes rows that read back and that `--join` accepts,
 //! and bad input is refused with one line on stderr and exit code 2.
 
-mod support;
+use crate::support;
 use support::spintop;
 
 use spintop::workprecision::report;

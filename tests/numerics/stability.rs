@@ -3,10 +3,10 @@
 //! invariants, independent predictions or documented high-precision values,
 //! never against numbers the code printed.
 //!
-//! Rows 3 and 4 (stiffness, long runs) live in `tests/stability_stiffness.rs`
-//! and `tests/stability_long_run.rs`.
+//! Rows 3 and 4 (stiffness, long runs) live in `tests/numerics/stability_stiffness.rs`
+//! and `tests/numerics/stability_long_run.rs`.
 
-mod support;
+use crate::support;
 
 use spintop::physics::shell::Regime;
 use spintop::stability::{closed_forms, delay, pole, runaway};
@@ -107,7 +107,7 @@ fn eq_4_8_row_2_euler_angles_fail_at_the_pole_so3_does_not() {
 #[allow(clippy::excessive_precision)] // the mpmath digits are kept as printed
 /// Row 5. The printed (4.9) and (4.16) return 0 or lose digits where the
 /// careful forms stay exact; checked against 60-digit mpmath values (the
-/// script and the values are in tests/closed_forms.rs: REFS[7] and REFS[6]),
+/// script and the values are in tests/physics/closed_forms.rs: REFS[7] and REFS[6]),
 /// and against the series ϑ = t(1 − x/2 + …) at x = 1e-20.
 #[test]
 fn eq_4_9_eq_4_16_row_5_printed_closed_forms_fail_careful_forms_do_not() {

@@ -430,7 +430,7 @@ fn erratum_1_eq_2_9_holds_at_every_instant_with_dv_dr() {
 
 /// Appendix, stable shell (δ = 0.03 > 2τ₀): the motion stays on the
 /// Abraham–Lorentz physical solution with the phase slip τ₀δt/4 (the
-/// appendix's convergence, tests/shell_model.rs).
+/// appendix's convergence, tests/physics/shell_model.rs).
 #[test]
 fn appendix_convergence_phase_slips_by_tau0_delta_t_over_4() {
     let r = run("appendix-convergence");
@@ -485,7 +485,7 @@ fn stability_row(n: u8) {
 }
 
 /// Each stability row shows what it claims: the naive methods fail, spintop's succeed
-/// (the numbers themselves are pinned in tests/stability.rs).
+/// (the numbers themselves are pinned in tests/numerics/stability.rs).
 #[test]
 fn stability_rows_hold_as_scenes() {
     for n in 1..=6 {

@@ -4,7 +4,7 @@
 //! with exit code 2 and one line naming the file, the line and what was
 //! expected (never a panic, never a second line).
 
-mod support;
+use crate::support;
 use support::spintop;
 
 use serde_json::Value;

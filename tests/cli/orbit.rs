@@ -2,7 +2,7 @@
 //! crossing times, the runaway report, bad input refused with exit code 2 and
 //! one line, and a run past the collapse stopped with exit code 3 and the time.
 
-mod support;
+use crate::support;
 use support::spintop;
 
 use serde_json::Value;

@@ -2,7 +2,7 @@
 //! method, and bad input refused with one line and exit code 2 (never a panic,
 //! exit code 101), numerical failures with exit code 3 and the time.
 
-mod support;
+use crate::support;
 use support::spintop;
 
 use serde_json::Value;

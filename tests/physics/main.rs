@@ -1,0 +1,14 @@
+//! The paper's physics, one module per claim: the balance laws of Section 2, the central field, the closed forms of Section 4, the Euler angles (3.5), the full ALE (3.4), the shell of the appendix, the symmetric top and the paper's figures.
+//! (One test binary for all of them: each file under tests/ is a binary to link.)
+
+#[path = "../support/mod.rs"]
+mod support;
+
+mod balance_laws;
+mod central_field;
+mod closed_forms;
+mod euler_angles;
+mod figures;
+mod full_ale;
+mod shell_model;
+mod symmetric_top;
