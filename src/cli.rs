@@ -22,6 +22,7 @@ use std::process::ExitCode;
 pub mod balance;
 pub mod bench;
 pub mod figure;
+pub mod learn;
 pub mod orbit;
 pub mod plot;
 pub mod run;
@@ -75,6 +76,8 @@ enum Command {
     Bench(bench::BenchArgs),
     /// The paper's Figures 1 and 2 as text charts, and as SVG with --svg FILE.
     Figure(figure::FigureArgs),
+    /// Study in the terminal: the book's chapters, each beside its live scene.
+    Learn(learn::LearnArgs),
 }
 
 /// Output format.
@@ -276,6 +279,7 @@ where
         Some(Command::Scenes(args)) => scenes::execute(args, stdout),
         Some(Command::Bench(args)) => bench::execute(args, stdout),
         Some(Command::Figure(args)) => figure::execute(args, stdout),
+        Some(Command::Learn(args)) => learn::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,

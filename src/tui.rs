@@ -12,9 +12,11 @@
 //! | [`view`] | the layout; drawing only reads the state |
 //! | [`widgets`] | the charts, the hodograph, the top in space, the live numbers |
 //! | [`theme`] | every colour and style, in one place |
+//! | [`learn`] | `spintop learn`: the book's chapters beside their live scenes |
 
 pub mod app;
 pub mod event;
+pub mod learn;
 pub mod theme;
 pub mod view;
 pub mod widgets;

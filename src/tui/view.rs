@@ -222,7 +222,9 @@ fn fmt_triple(v: [crate::math::Real; 3]) -> String {
     )
 }
 
-fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
+/// One model's column: its chart, hodograph, top in space and numbers
+/// (also the scene panel of `spintop learn`).
+pub(crate) fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
     let column = &app.columns()[i];
     let (name, equations, gist) = match column.sim().model() {
         Model::Truncated(_) => ("truncated", "(4.2)–(4.4)", "no Schott term"),

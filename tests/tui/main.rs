@@ -5,5 +5,6 @@
 mod support;
 
 mod keys;
+mod learn;
 mod screens;
 mod tmux;

@@ -1,0 +1,182 @@
+//! `spintop learn`: the book's chapters in the terminal beside their live
+//! scenes (the screen itself is [`crate::tui::learn`]; this file validates,
+//! keeps the progress file and restores the terminal).
+//!
+//! The chapters are read from the repository's `book/src` (one source: the
+//! same Markdown mdBook builds), so `spintop learn` needs the repository, as
+//! the course does. Progress is one small file, `target/spintop-learn.json`.
+
+use super::{CliError, bad};
+use crate::tui::learn::{self, Learn, Progress};
+use clap::Args;
+use std::io::{self, IsTerminal, Write};
+use std::path::{Path, PathBuf};
+
+/// The raw arguments of `learn`.
+#[derive(Debug, Default, Args)]
+pub struct LearnArgs {
+    /// Open this chapter: a section of the paper (2, 3, 4.1, 4.2, 5, A) or a
+    /// file name of the book (section-4-2, numerical-methods, …).
+    #[arg(long, value_name = "CHAPTER")]
+    chapter: Option<String>,
+    /// Print the chapters, their scenes and experiments, and the progress, as
+    /// plain text, and exit.
+    #[arg(long)]
+    list: bool,
+    /// Forget the progress (the chapters opened) and exit.
+    #[arg(long)]
+    reset: bool,
+}
+
+fn repository() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn book_dir(repo: &Path) -> Result<PathBuf, CliError> {
+    let book = repo.join("book").join("src");
+    if book.join("SUMMARY.md").is_file() {
+        Ok(book)
+    } else {
+        Err(bad(format!(
+            "spintop learn reads the book from the repository, and {} is missing; run it from a clone of spintop (`cargo run --release -- learn`)",
+            book.join("SUMMARY.md").display()
+        )))
+    }
+}
+
+fn progress_file(repo: &Path) -> PathBuf {
+    repo.join("target").join("spintop-learn.json")
+}
+
+fn read_progress(path: &Path) -> Progress {
+    // A missing or unreadable file is a fresh start, never an error.
+    std::fs::read(path)
+        .ok()
+        .filter(|b| b.len() < 1 << 20)
+        .and_then(|b| serde_json::from_slice(&b).ok())
+        .unwrap_or_default()
+}
+
+/// Restores the terminal when dropped.
+struct Restore;
+
+impl Drop for Restore {
+    fn drop(&mut self) {
+        ratatui::restore();
+    }
+}
+
+/// Runs `spintop learn`.
+pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliError> {
+    let repo = repository();
+    let progress_path = progress_file(&repo);
+    if args.reset {
+        match std::fs::remove_file(&progress_path) {
+            Ok(()) => writeln!(
+                out,
+                "spintop learn: progress forgotten ({})",
+                progress_path.display()
+            )?,
+            Err(e) if e.kind() == io::ErrorKind::NotFound => {
+                writeln!(out, "spintop learn: no progress to forget")?
+            }
+            Err(e) => return Err(CliError::Io(e)),
+        }
+        return Ok(());
+    }
+    let book = book_dir(&repo)?;
+    let progress = read_progress(&progress_path);
+    let start = args.chapter.clone().or(if args.list {
+        None
+    } else {
+        progress.last.clone()
+    });
+    let mut session = match Learn::open(&book, start.as_deref()) {
+        Ok(s) => s,
+        // A stale "last chapter" in the progress file falls back to the preface.
+        Err(_) if args.chapter.is_none() => Learn::open(&book, None).map_err(bad)?,
+        Err(e) => return Err(bad(e)),
+    };
+    session.mark_visited(&progress.opened);
+    if args.list {
+        return list(&mut session, &progress, out);
+    }
+    if !io::stdout().is_terminal() {
+        return Err(bad(
+            "spintop learn needs a terminal, but stdout is not one; `spintop learn --list` prints the course as text",
+        ));
+    }
+    {
+        let _restore = Restore;
+        let mut terminal = ratatui::try_init()?;
+        learn::run(&mut terminal, &mut session)?;
+    }
+    let progress = Progress::of(&session);
+    if let Some(dir) = progress_path.parent() {
+        // Progress is a convenience: failing to save it is reported, not fatal.
+        let saved = std::fs::create_dir_all(dir).and_then(|()| {
+            std::fs::write(
+                &progress_path,
+                serde_json::to_vec_pretty(&progress).unwrap_or_default(),
+            )
+        });
+        if let Err(e) = saved {
+            writeln!(
+                out,
+                "spintop learn: progress not saved to {}: {e}",
+                progress_path.display()
+            )?;
+        }
+    }
+    Ok(())
+}
+
+fn list(session: &mut Learn, progress: &Progress, out: &mut impl Write) -> Result<(), CliError> {
+    let opened = progress.opened.len();
+    writeln!(
+        out,
+        "spintop learn: {} chapters, {opened} opened",
+        session.chapters().len()
+    )?;
+    let chapters = session.chapters().to_vec();
+    let mut part = None;
+    for (i, c) in chapters.iter().enumerate() {
+        if c.part != part {
+            part = c.part.clone();
+            if let Some(p) = &part {
+                writeln!(out, "{p}")?;
+            }
+        }
+        let mark = if progress.opened.contains(&c.file) {
+            "✓"
+        } else {
+            " "
+        };
+        let section = c.section().map(|s| format!("§{s}")).unwrap_or_default();
+        writeln!(
+            out,
+            "  {mark} {:>2} {section:<5} {} ({})",
+            i + 1,
+            c.title,
+            c.file.trim_end_matches(".md")
+        )?;
+        let experiments = match experiments_of(session, i)? {
+            0 => String::new(),
+            1 => "; 1 experiment".into(),
+            n => format!("; {n} experiments"),
+        };
+        writeln!(out, "           scene: {}{experiments}", c.scene().about)?;
+    }
+    writeln!(
+        out,
+        "open one with: spintop learn --chapter 4.2 (a section) or --chapter numerical-methods (a file)"
+    )?;
+    Ok(())
+}
+
+fn experiments_of(session: &Learn, index: usize) -> Result<usize, CliError> {
+    let book = book_dir(&repository())?;
+    let file = &session.chapters()[index].file;
+    let text = std::fs::read_to_string(book.join(file)).map_err(CliError::Io)?;
+    Ok(text.matches("<!-- spintop:").count())
+}

@@ -1,0 +1,823 @@
+//! The book's Markdown, rendered for a terminal.
+//!
+//! The parsing is pulldown-cmark's (the parser mdBook itself uses), with its
+//! math extension on so that `$…$` and `$$…$$` arrive as math events. What is
+//! written here is the part no crate does for this book: mdBook's
+//! `{{#include file:anchor}}` is resolved the way mdBook resolves it, rustdoc's
+//! hidden `# ` lines are dropped from Rust snippets as mdBook hides them,
+//! MathJax-style `\\[ … \\]` and `\\( … \\)` are read as math, every equation
+//! goes through [`super::tex`] to Unicode, and the result is wrapped to the
+//! panel's width as styled ratatui lines. `<!-- spintop: … -->` comments (which
+//! mdBook drops) mark the chapter's experiments.
+
+use super::tex;
+use pulldown_cmark::{Alignment, CodeBlockKind, Event, HeadingLevel, Options, Parser, Tag, TagEnd};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use std::path::Path;
+use unicode_width::UnicodeWidthStr;
+
+/// A chapter rendered at one width.
+#[derive(Debug, Clone, Default)]
+pub struct Rendered {
+    /// The lines, ready for a `Paragraph`.
+    pub lines: Vec<Line<'static>>,
+    /// Headings: (line index, level 1–6, text).
+    pub headings: Vec<(usize, u8, String)>,
+    /// Experiments: (line index, the text after `spintop:`).
+    pub experiments: Vec<(usize, String)>,
+    /// TeX commands the converter did not know (a test keeps this empty).
+    pub unknown_tex: Vec<String>,
+}
+
+/// Resolves mdBook's `{{#include path}}` and `{{#include path:anchor}}`
+/// against `dir` (the chapter's folder), as mdBook does: an anchor keeps the
+/// lines between `ANCHOR: name` and `ANCHOR_END: name`, minus any other
+/// anchor lines. A file that cannot be read leaves a visible note.
+pub fn resolve_includes(source: &str, dir: &Path) -> String {
+    let mut out = String::with_capacity(source.len());
+    let mut rest = source;
+    while let Some(start) = rest.find("{{#include ") {
+        out.push_str(&rest[..start]);
+        let after = &rest[start + "{{#include ".len()..];
+        let Some(end) = after.find("}}") else {
+            out.push_str(&rest[start..]);
+            return out;
+        };
+        let spec = after[..end].trim();
+        out.push_str(&include(spec, dir));
+        rest = &after[end + 2..];
+    }
+    out.push_str(rest);
+    out
+}
+
+fn include(spec: &str, dir: &Path) -> String {
+    let (path, anchor) = match spec.rsplit_once(':') {
+        Some((p, a)) if !a.is_empty() && !a.contains('/') => (p, Some(a)),
+        _ => (spec, None),
+    };
+    let Ok(text) = std::fs::read_to_string(dir.join(path)) else {
+        return format!("(not found: {path})");
+    };
+    let Some(anchor) = anchor else {
+        return text.trim_end_matches('\n').to_string();
+    };
+    let mut keep = false;
+    let mut lines = Vec::new();
+    for line in text.lines() {
+        let t = line.trim();
+        if t.contains(&format!("ANCHOR_END: {anchor}")) {
+            break;
+        }
+        if keep && !t.contains("ANCHOR:") && !t.contains("ANCHOR_END:") {
+            lines.push(line);
+        }
+        if t.contains(&format!("ANCHOR: {anchor}")) {
+            keep = true;
+        }
+    }
+    // mdBook removes the common indentation of an anchored region.
+    let indent = lines
+        .iter()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.len() - l.trim_start().len())
+        .min()
+        .unwrap_or(0);
+    lines
+        .iter()
+        .map(|l| {
+            if l.len() >= indent {
+                &l[indent..]
+            } else {
+                l.trim_start()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// `\\[ … \\]` → `$$ … $$` and `\\( … \\)` → `$ … $`, outside code, so that
+/// MathJax-style math (which needs doubled backslashes in mdBook's Markdown)
+/// reaches the same math events as `$` math.
+fn normalise_math_delimiters(source: &str) -> String {
+    let mut out = String::with_capacity(source.len());
+    let mut in_fence = false;
+    for line in source.split_inclusive('\n') {
+        if line.trim_start().starts_with("```") {
+            in_fence = !in_fence;
+        }
+        if in_fence {
+            out.push_str(line);
+        } else {
+            out.push_str(
+                &line
+                    .replace(r"\\[", "$$")
+                    .replace(r"\\]", "$$")
+                    .replace(r"\\(", "$")
+                    .replace(r"\\)", "$"),
+            );
+        }
+    }
+    out
+}
+
+/// The styles of the rendered text.
+mod style {
+    use super::*;
+    pub fn heading(level: u8) -> Style {
+        match level {
+            1 => Style::new()
+                .fg(Color::Yellow)
+                .add_modifier(Modifier::BOLD | Modifier::UNDERLINED),
+            2 => Style::new().fg(Color::Yellow).add_modifier(Modifier::BOLD),
+            _ => Style::new().add_modifier(Modifier::BOLD),
+        }
+    }
+    pub fn code() -> Style {
+        Style::new().fg(Color::Cyan)
+    }
+    pub fn math() -> Style {
+        Style::new().fg(Color::LightMagenta)
+    }
+    pub fn link() -> Style {
+        Style::new()
+            .fg(Color::LightBlue)
+            .add_modifier(Modifier::UNDERLINED)
+    }
+    pub fn quote() -> Style {
+        Style::new().fg(Color::Gray).add_modifier(Modifier::ITALIC)
+    }
+    pub fn rule() -> Style {
+        Style::new().fg(Color::DarkGray)
+    }
+    pub fn experiment() -> Style {
+        Style::new()
+            .fg(Color::Black)
+            .bg(Color::Yellow)
+            .add_modifier(Modifier::BOLD)
+    }
+}
+
+/// A word (or a space) waiting to be wrapped.
+#[derive(Clone)]
+struct Piece {
+    text: String,
+    style: Style,
+}
+
+struct Renderer {
+    width: usize,
+    out: Rendered,
+    /// The inline pieces of the paragraph being built.
+    pieces: Vec<Piece>,
+    /// Inline style stack (emphasis, strong, link…).
+    styles: Vec<Style>,
+    /// Prefix of each line: list indentation, quote bars.
+    prefix: Vec<String>,
+    /// Pending first-line prefix of a list item (`• `, `3. `).
+    item_marker: Option<String>,
+    lists: Vec<Option<u64>>,
+    code: Option<(String, String)>,
+    heading: Option<u8>,
+    table: Option<Table>,
+}
+
+#[derive(Default)]
+struct Table {
+    align: Vec<Alignment>,
+    rows: Vec<Vec<String>>,
+    cell: String,
+    row: Vec<String>,
+}
+
+/// Renders one chapter (`source` already with includes resolved) at `width`
+/// columns (at least 20).
+pub fn render(source: &str, width: u16) -> Rendered {
+    let source = normalise_math_delimiters(source);
+    let mut options = Options::empty();
+    options.insert(Options::ENABLE_TABLES);
+    options.insert(Options::ENABLE_MATH);
+    options.insert(Options::ENABLE_STRIKETHROUGH);
+    options.insert(Options::ENABLE_FOOTNOTES);
+    let mut r = Renderer {
+        width: usize::from(width.max(20)),
+        out: Rendered::default(),
+        pieces: Vec::new(),
+        styles: vec![Style::new()],
+        prefix: Vec::new(),
+        item_marker: None,
+        lists: Vec::new(),
+        code: None,
+        heading: None,
+        table: None,
+    };
+    for event in Parser::new_ext(&source, options) {
+        r.event(event);
+    }
+    r.flush();
+    while r.out.lines.last().is_some_and(|l| l.width() == 0) {
+        r.out.lines.pop();
+    }
+    r.out
+}
+
+impl Renderer {
+    fn style(&self) -> Style {
+        *self.styles.last().unwrap_or(&Style::new())
+    }
+
+    fn push_style(&mut self, s: Style) {
+        let merged = self.style().patch(s);
+        self.styles.push(merged);
+    }
+
+    fn pop_style(&mut self) {
+        if self.styles.len() > 1 {
+            self.styles.pop();
+        }
+    }
+
+    fn blank(&mut self) {
+        if self.out.lines.last().is_some_and(|l| l.width() > 0) {
+            self.out.lines.push(Line::default());
+        }
+    }
+
+    fn text(&mut self, text: &str, style: Style) {
+        if let Some(t) = self.table.as_mut() {
+            t.cell.push_str(text);
+            return;
+        }
+        // Split into words and single spaces so that wrapping can break there.
+        let mut word = String::new();
+        for c in text.chars() {
+            if c == ' ' || c == '\n' {
+                if !word.is_empty() {
+                    self.pieces.push(Piece {
+                        text: std::mem::take(&mut word),
+                        style,
+                    });
+                }
+                self.pieces.push(Piece {
+                    text: " ".into(),
+                    style,
+                });
+            } else {
+                word.push(c);
+            }
+        }
+        if !word.is_empty() {
+            self.pieces.push(Piece { text: word, style });
+        }
+    }
+
+    fn line_prefix(&mut self, first: bool) -> String {
+        let base: String = self.prefix.concat();
+        if first && let Some(marker) = self.item_marker.take() {
+            return format!("{base}{marker}");
+        }
+        if !self.lists.is_empty() {
+            return format!("{base}  ");
+        }
+        base
+    }
+
+    /// Wraps the pending pieces into lines.
+    fn flush(&mut self) {
+        if self.pieces.is_empty() {
+            return;
+        }
+        let pieces = std::mem::take(&mut self.pieces);
+        let mut first = true;
+        let mut prefix = self.line_prefix(first);
+        let mut line: Vec<Span<'static>> = vec![Span::raw(prefix.clone())];
+        let mut used = prefix.width();
+        for piece in pieces {
+            let w = piece.text.width();
+            if piece.text == " " {
+                if used > prefix.width() {
+                    line.push(Span::styled(" ", piece.style));
+                    used += 1;
+                }
+                continue;
+            }
+            if used + w > self.width && used > prefix.width() {
+                // Drop a trailing space before breaking.
+                if line.last().is_some_and(|s| s.content == " ") {
+                    line.pop();
+                }
+                self.out.lines.push(Line::from(std::mem::take(&mut line)));
+                first = false;
+                prefix = self.line_prefix(first);
+                line.push(Span::raw(prefix.clone()));
+                used = prefix.width();
+            }
+            used += w;
+            line.push(Span::styled(piece.text, piece.style));
+        }
+        let _ = first;
+        self.out.lines.push(Line::from(line));
+    }
+
+    fn display_math(&mut self, tex_source: &str) {
+        self.flush();
+        let converted = tex::to_unicode(tex_source);
+        self.out.unknown_tex.extend(converted.unknown);
+        let indent = format!("{}    ", self.prefix.concat());
+        for row in converted.text.lines() {
+            // Long rows are broken at spaces like prose, with a deeper indent.
+            let mut current = indent.clone();
+            for word in row.split(' ') {
+                if current.width() + word.width() + 1 > self.width && !current.trim().is_empty() {
+                    self.out
+                        .lines
+                        .push(Line::from(Span::styled(current.clone(), style::math())));
+                    current = format!("{indent}  ");
+                }
+                if !current.trim().is_empty() {
+                    current.push(' ');
+                }
+                current.push_str(word);
+            }
+            self.out
+                .lines
+                .push(Line::from(Span::styled(current, style::math())));
+        }
+    }
+
+    fn event(&mut self, event: Event) {
+        match event {
+            Event::Start(tag) => self.start(tag),
+            Event::End(tag) => self.end(tag),
+            Event::Text(t) => {
+                if let Some((_, code)) = self.code.as_mut() {
+                    code.push_str(&t);
+                } else {
+                    let s = self.style();
+                    self.text(&t, s);
+                }
+            }
+            Event::Code(t) => {
+                let s = self.style().patch(style::code());
+                self.text(&t, s);
+            }
+            Event::InlineMath(t) => {
+                let c = tex::to_unicode(&t);
+                self.out.unknown_tex.extend(c.unknown);
+                let s = self.style().patch(style::math());
+                self.text(&c.text.replace('\n', " "), s);
+            }
+            Event::DisplayMath(t) => {
+                let t = t.to_string();
+                self.display_math(&t);
+                self.blank();
+            }
+            Event::Html(h) | Event::InlineHtml(h) => self.html(&h),
+            Event::SoftBreak => {
+                let s = self.style();
+                self.text(" ", s);
+            }
+            Event::HardBreak => self.flush(),
+            Event::Rule => {
+                self.flush();
+                self.blank();
+                let w = self.width.min(60);
+                self.out
+                    .lines
+                    .push(Line::from(Span::styled("─".repeat(w), style::rule())));
+                self.blank();
+            }
+            Event::FootnoteReference(name) => {
+                let s = self.style();
+                self.text(&format!("[{name}]"), s);
+            }
+            Event::TaskListMarker(done) => {
+                let s = self.style();
+                self.text(if done { "[x] " } else { "[ ] " }, s);
+            }
+        }
+    }
+
+    fn html(&mut self, html: &str) {
+        let h = html.trim();
+        if let Some(body) = h.strip_prefix("<!--").and_then(|b| b.strip_suffix("-->"))
+            && let Some(exp) = body.trim().strip_prefix("spintop:")
+        {
+            self.flush();
+            let line = self.out.lines.len();
+            let text = exp.trim().to_string();
+            self.out.experiments.push((line, text.clone()));
+            let (settings, caption) = match text.split_once('|') {
+                Some((s, c)) => (s.trim().to_string(), c.trim().to_string()),
+                None => (text.clone(), String::new()),
+            };
+            let mut pieces = vec![Piece {
+                text: " ▶ try this ".into(),
+                style: style::experiment(),
+            }];
+            pieces.push(Piece {
+                text: " ".into(),
+                style: Style::new(),
+            });
+            for word in caption.split_whitespace() {
+                pieces.push(Piece {
+                    text: word.to_string(),
+                    style: style::quote(),
+                });
+                pieces.push(Piece {
+                    text: " ".into(),
+                    style: style::quote(),
+                });
+            }
+            pieces.push(Piece {
+                text: format!("[{settings}]"),
+                style: style::code(),
+            });
+            self.pieces = pieces;
+            self.flush();
+            self.blank();
+        }
+        // Other HTML (comments, <br>, anchors) has no terminal form.
+    }
+
+    fn start(&mut self, tag: Tag) {
+        match tag {
+            Tag::Paragraph => {}
+            Tag::Heading { level, .. } => {
+                self.flush();
+                self.blank();
+                let n = match level {
+                    HeadingLevel::H1 => 1,
+                    HeadingLevel::H2 => 2,
+                    HeadingLevel::H3 => 3,
+                    HeadingLevel::H4 => 4,
+                    HeadingLevel::H5 => 5,
+                    HeadingLevel::H6 => 6,
+                };
+                self.heading = Some(n);
+                self.push_style(style::heading(n));
+            }
+            Tag::BlockQuote(_) => {
+                self.flush();
+                self.prefix.push("│ ".into());
+                self.push_style(style::quote());
+            }
+            Tag::CodeBlock(kind) => {
+                self.flush();
+                let lang = match kind {
+                    CodeBlockKind::Fenced(l) => l.to_string(),
+                    CodeBlockKind::Indented => String::new(),
+                };
+                self.code = Some((lang, String::new()));
+            }
+            Tag::List(start) => {
+                self.flush();
+                if self.lists.is_empty() {
+                    self.blank();
+                } else {
+                    self.prefix.push("  ".into());
+                }
+                self.lists.push(start);
+            }
+            Tag::Item => {
+                self.flush();
+                let marker = match self.lists.last_mut() {
+                    Some(Some(n)) => {
+                        let m = format!("{n}. ");
+                        *n += 1;
+                        m
+                    }
+                    _ => "• ".to_string(),
+                };
+                self.item_marker = Some(marker);
+            }
+            Tag::Emphasis => self.push_style(Style::new().add_modifier(Modifier::ITALIC)),
+            Tag::Strong => self.push_style(Style::new().add_modifier(Modifier::BOLD)),
+            Tag::Strikethrough => self.push_style(Style::new().add_modifier(Modifier::CROSSED_OUT)),
+            Tag::Link { .. } => self.push_style(style::link()),
+            Tag::Image { .. } => self.push_style(style::link()),
+            Tag::Table(align) => {
+                self.flush();
+                self.table = Some(Table {
+                    align,
+                    ..Table::default()
+                });
+            }
+            Tag::TableHead | Tag::TableRow => {
+                if let Some(t) = self.table.as_mut() {
+                    t.row.clear();
+                }
+            }
+            Tag::TableCell => {
+                if let Some(t) = self.table.as_mut() {
+                    t.cell.clear();
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn end(&mut self, tag: TagEnd) {
+        match tag {
+            TagEnd::Paragraph => {
+                self.flush();
+                if self.lists.is_empty() {
+                    self.blank();
+                }
+            }
+            TagEnd::Heading(_) => {
+                let text: String = self.pieces.iter().map(|p| p.text.as_str()).collect();
+                let level = self.heading.take().unwrap_or(1);
+                let line = self.out.lines.len();
+                self.flush();
+                self.out
+                    .headings
+                    .push((line, level, text.trim().to_string()));
+                self.pop_style();
+                self.blank();
+            }
+            TagEnd::BlockQuote(_) => {
+                self.flush();
+                self.prefix.pop();
+                self.pop_style();
+                self.blank();
+            }
+            TagEnd::CodeBlock => {
+                if let Some((lang, code)) = self.code.take() {
+                    self.code_block(&lang, &code);
+                }
+            }
+            TagEnd::List(_) => {
+                self.flush();
+                self.lists.pop();
+                if !self.lists.is_empty() {
+                    self.prefix.pop();
+                } else {
+                    self.blank();
+                }
+            }
+            TagEnd::Item => self.flush(),
+            TagEnd::Emphasis
+            | TagEnd::Strong
+            | TagEnd::Strikethrough
+            | TagEnd::Link
+            | TagEnd::Image => self.pop_style(),
+            TagEnd::TableCell => {
+                if let Some(t) = self.table.as_mut() {
+                    let cell = std::mem::take(&mut t.cell);
+                    t.row.push(cell.trim().to_string());
+                }
+            }
+            TagEnd::TableHead | TagEnd::TableRow => {
+                if let Some(t) = self.table.as_mut() {
+                    let row = std::mem::take(&mut t.row);
+                    t.rows.push(row);
+                }
+            }
+            TagEnd::Table => {
+                if let Some(t) = self.table.take() {
+                    self.draw_table(t);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn code_block(&mut self, lang: &str, code: &str) {
+        let is_rust = lang.is_empty() || lang.split(',').next().is_some_and(|l| l.trim() == "rust");
+        let indent = format!("{}  ", self.prefix.concat());
+        let usable = self.width.saturating_sub(indent.width()).max(10);
+        for line in code.trim_end_matches('\n').lines() {
+            // rustdoc's hidden lines: `# code` and a lone `#`.
+            if is_rust && (line.trim() == "#" || line.trim_start().starts_with("# ")) {
+                continue;
+            }
+            let line = line.replace('\t', "    ");
+            // Hard-wrap long lines; code keeps its own spacing.
+            let mut rest: &str = &line;
+            loop {
+                let mut cut = rest.len();
+                let mut w = 0;
+                for (i, c) in rest.char_indices() {
+                    w += UnicodeWidthStr::width(c.encode_utf8(&mut [0; 4]) as &str);
+                    if w > usable {
+                        cut = i;
+                        break;
+                    }
+                }
+                let (head, tail) = rest.split_at(cut);
+                self.out.lines.push(Line::from(vec![
+                    Span::raw(indent.clone()),
+                    Span::styled(head.to_string(), style::code()),
+                ]));
+                if tail.is_empty() {
+                    break;
+                }
+                rest = tail;
+            }
+        }
+        self.blank();
+    }
+
+    fn draw_table(&mut self, t: Table) {
+        let columns = t.rows.iter().map(Vec::len).max().unwrap_or(0);
+        if columns == 0 {
+            return;
+        }
+        let indent = self.prefix.concat();
+        // Cells may hold math or code spans; they are plain text here.
+        let mut widths = vec![0usize; columns];
+        for row in &t.rows {
+            for (i, cell) in row.iter().enumerate() {
+                widths[i] = widths[i].max(cell.width());
+            }
+        }
+        // Shrink the widest columns until the table fits.
+        let budget = self
+            .width
+            .saturating_sub(indent.width() + 3 * columns)
+            .max(columns * 4);
+        while widths.iter().sum::<usize>() > budget {
+            let (i, _) = widths
+                .iter()
+                .enumerate()
+                .max_by_key(|(_, w)| **w)
+                .unwrap_or((0, &0));
+            widths[i] -= 1;
+        }
+        for (r, row) in t.rows.iter().enumerate() {
+            let cells: Vec<Vec<String>> = (0..columns)
+                .map(|i| wrap_plain(row.get(i).map(String::as_str).unwrap_or(""), widths[i]))
+                .collect();
+            let height = cells.iter().map(Vec::len).max().unwrap_or(1);
+            for k in 0..height {
+                let mut spans = vec![Span::raw(indent.clone())];
+                for i in 0..columns {
+                    let text = cells[i].get(k).cloned().unwrap_or_default();
+                    let pad = widths[i].saturating_sub(text.width());
+                    let cell = match t.align.get(i) {
+                        Some(Alignment::Right) => format!("{}{text}", " ".repeat(pad)),
+                        Some(Alignment::Center) => {
+                            format!("{}{text}{}", " ".repeat(pad / 2), " ".repeat(pad - pad / 2))
+                        }
+                        _ => format!("{text}{}", " ".repeat(pad)),
+                    };
+                    let s = if r == 0 {
+                        Style::new().add_modifier(Modifier::BOLD)
+                    } else {
+                        Style::new()
+                    };
+                    spans.push(Span::styled(cell, s));
+                    if i + 1 < columns {
+                        spans.push(Span::styled(" │ ", style::rule()));
+                    }
+                }
+                self.out.lines.push(Line::from(spans));
+            }
+            if r == 0 {
+                let rule: Vec<String> = widths.iter().map(|w| "─".repeat(*w)).collect();
+                self.out.lines.push(Line::from(Span::styled(
+                    format!("{indent}{}", rule.join("─┼─")),
+                    style::rule(),
+                )));
+            }
+        }
+        self.blank();
+    }
+}
+
+/// Greedy word wrap of plain text into lines of at most `width` columns.
+fn wrap_plain(text: &str, width: usize) -> Vec<String> {
+    let width = width.max(1);
+    let mut lines = Vec::new();
+    let mut current = String::new();
+    for word in text.split_whitespace() {
+        let mut word = word.to_string();
+        while word.width() > width {
+            // A word longer than the column is cut.
+            let mut cut = 0;
+            let mut w = 0;
+            for (i, c) in word.char_indices() {
+                w += c.to_string().width();
+                if w > width {
+                    break;
+                }
+                cut = i + c.len_utf8();
+            }
+            if !current.is_empty() {
+                lines.push(std::mem::take(&mut current));
+            }
+            lines.push(word[..cut.max(1)].to_string());
+            word = word[cut.max(1)..].to_string();
+        }
+        if !current.is_empty() && current.width() + 1 + word.width() > width {
+            lines.push(std::mem::take(&mut current));
+        }
+        if !current.is_empty() {
+            current.push(' ');
+        }
+        current.push_str(&word);
+    }
+    if !current.is_empty() || lines.is_empty() {
+        lines.push(current);
+    }
+    lines
+}
+
+/// The style of code (spans in it may hold backslashes legitimately).
+pub fn code_style() -> Style {
+    style::code()
+}
+
+/// The plain text of rendered lines (for tests and `--list`).
+pub fn plain(lines: &[Line]) -> String {
+    lines
+        .iter()
+        .map(|l| {
+            l.spans
+                .iter()
+                .map(|s| s.content.as_ref())
+                .collect::<String>()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn headings_lists_and_emphasis_lose_their_markup() {
+        let r = render(
+            "# Title\n\nSome *emphasis* and **strong** text.\n\n- one\n- two\n\n1. first\n2. second\n",
+            40,
+        );
+        let text = plain(&r.lines);
+        assert!(text.contains("Title"), "{text}");
+        assert!(text.contains("• one"), "{text}");
+        assert!(text.contains("2. second"), "{text}");
+        assert!(!text.contains('*') && !text.contains('#'), "{text}");
+        assert_eq!(r.headings[0].2, "Title");
+    }
+
+    #[test]
+    fn math_of_both_kinds_becomes_unicode() {
+        let r = render(
+            "Inline $\\dot{\\Omega}_3 = 0$ and display:\n\n$$\\frac{1}{\\tau}$$\n\nand \\\\[ \\kappa \\\\]\n",
+            60,
+        );
+        let text = plain(&r.lines);
+        assert!(text.contains("Ω\u{307}₃ = 0"), "{text}");
+        assert!(text.contains("1/τ"), "{text}");
+        assert!(text.contains('κ'), "{text}");
+        assert!(!text.contains('\\') && !text.contains('$'), "{text}");
+    }
+
+    #[test]
+    fn lines_never_exceed_the_width() {
+        let long = "word ".repeat(200);
+        let r = render(
+            &format!("{long}\n\n| a | b |\n|---|---|\n| {long} | x |\n"),
+            30,
+        );
+        for line in &r.lines {
+            assert!(line.width() <= 30, "{:?}", line);
+        }
+    }
+
+    #[test]
+    fn hidden_rust_lines_are_dropped_and_includes_resolved() {
+        let r = render("```rust\n# use hidden;\nlet shown = 1;\n```\n", 40);
+        let text = plain(&r.lines);
+        assert!(
+            text.contains("let shown") && !text.contains("hidden"),
+            "{text}"
+        );
+        let dir = std::env::temp_dir().join(format!("spintop-include-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(
+            dir.join("x.rs"),
+            "a\n    // ANCHOR: part\n    fn kept() {}\n    // ANCHOR_END: part\nb\n",
+        )
+        .unwrap();
+        let s = resolve_includes("```rust\n{{#include x.rs:part}}\n```", &dir);
+        assert_eq!(s, "```rust\nfn kept() {}\n```");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn experiments_are_found_and_shown() {
+        let r = render("Text.\n\n<!-- spintop: ratio=1.5 -->\n\nMore.\n", 40);
+        assert_eq!(r.experiments.len(), 1);
+        assert_eq!(r.experiments[0].1, "ratio=1.5");
+        let r = render("<!-- spintop: ratio=1.5 | a flat top -->\n", 40);
+        assert!(
+            plain(&r.lines).contains("a flat top [ratio=1.5]"),
+            "{}",
+            plain(&r.lines)
+        );
+        assert!(plain(&r.lines).contains("try this"));
+    }
+}

@@ -1,0 +1,988 @@
+//! TeX math → plain Unicode, so that every equation of the book is legible in
+//! a terminal: `I\dot{\boldsymbol\Omega} = -\kappa\,\mathbf d` becomes
+//! `IΩ̇ = −κ d`, `e^{2t/\sigma}` becomes `e²ᵗ/σ`… where a superscript form
+//! exists and `e^(2t/σ)` where it does not.
+//!
+//! Written here rather than taken from a crate: the crates that turn LaTeX
+//! into something else aim at MathML or HTML (for a browser), and the few that
+//! aim at Unicode cover symbols but not the accents (Ω̇, Ω̈), fractions and
+//! environments the book uses. This converter knows exactly the subset of TeX
+//! the book writes and reports every command it does not know (see
+//! [`Converted::unknown`]), and a test runs it over every equation in
+//! `book/src` and fails on any unknown command or stray backslash.
+
+/// The result of a conversion: the text, possibly several lines (an aligned
+/// environment keeps its rows), and the commands that were not understood.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Converted {
+    /// Unicode text; rows of `aligned`/`cases` are separated by `\n`.
+    pub text: String,
+    /// Every `\command` the converter does not know, in order of appearance.
+    pub unknown: Vec<String>,
+}
+
+/// Converts one TeX math expression (without its `$`, `\[`, `\(` delimiters).
+pub fn to_unicode(tex: &str) -> Converted {
+    let tokens = tokenize(tex);
+    let mut parser = Parser {
+        tokens,
+        pos: 0,
+        unknown: Vec::new(),
+    };
+    let text = parser.sequence(None);
+    let text = tidy(&text);
+    Converted {
+        text,
+        unknown: parser.unknown,
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Token {
+    Command(String),
+    Open,
+    Close,
+    Sup,
+    Sub,
+    Align,
+    /// Source whitespace: ignored in math, kept in `\text{…}`.
+    Space,
+    Char(char),
+}
+
+fn tokenize(tex: &str) -> Vec<Token> {
+    let mut out = Vec::new();
+    let mut chars = tex.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\\' => {
+                let mut name = String::new();
+                match chars.peek() {
+                    Some(&n) if n.is_ascii_alphabetic() => {
+                        while let Some(&n) = chars.peek() {
+                            if n.is_ascii_alphabetic() {
+                                name.push(n);
+                                chars.next();
+                            } else {
+                                break;
+                            }
+                        }
+                    }
+                    Some(&n) => {
+                        name.push(n);
+                        chars.next();
+                    }
+                    None => name.push('\\'),
+                }
+                let alphabetic = name.chars().all(|c| c.is_ascii_alphabetic());
+                out.push(Token::Command(name));
+                // As in TeX, the spaces that end a command name are not text.
+                if alphabetic {
+                    while chars.peek().is_some_and(|c| c.is_whitespace()) {
+                        chars.next();
+                    }
+                }
+            }
+            '{' => out.push(Token::Open),
+            '}' => out.push(Token::Close),
+            '^' => out.push(Token::Sup),
+            '_' => out.push(Token::Sub),
+            '&' => out.push(Token::Align),
+            '~' => out.push(Token::Command(" ".into())),
+            c if c.is_whitespace() => {
+                if out.last() != Some(&Token::Space) {
+                    out.push(Token::Space);
+                }
+            }
+            c => out.push(Token::Char(c)),
+        }
+    }
+    out
+}
+
+struct Parser {
+    tokens: Vec<Token>,
+    pos: usize,
+    unknown: Vec<String>,
+}
+
+/// A TeX accent command and the combining character it becomes.
+fn accent(name: &str) -> Option<char> {
+    Some(match name {
+        "dot" => '\u{307}',
+        "ddot" => '\u{308}',
+        "dddot" => '\u{20DB}',
+        "hat" | "widehat" => '\u{302}',
+        "vec" => '\u{20D7}',
+        "bar" | "overline" => '\u{304}',
+        "tilde" | "widetilde" => '\u{303}',
+        "check" => '\u{30C}',
+        _ => return None,
+    })
+}
+
+fn symbol(name: &str) -> Option<&'static str> {
+    Some(match name {
+        // Greek, lower case.
+        "alpha" => "α",
+        "beta" => "β",
+        "gamma" => "γ",
+        "delta" => "δ",
+        "epsilon" => "ϵ",
+        "varepsilon" => "ε",
+        "zeta" => "ζ",
+        "eta" => "η",
+        "theta" => "θ",
+        "vartheta" => "ϑ",
+        "iota" => "ι",
+        "kappa" => "κ",
+        "lambda" => "λ",
+        "mu" => "μ",
+        "nu" => "ν",
+        "xi" => "ξ",
+        "pi" => "π",
+        "varpi" => "ϖ",
+        "rho" => "ρ",
+        "varrho" => "ϱ",
+        "sigma" => "σ",
+        "varsigma" => "ς",
+        "tau" => "τ",
+        "upsilon" => "υ",
+        "phi" => "ϕ",
+        "varphi" => "φ",
+        "chi" => "χ",
+        "psi" => "ψ",
+        "omega" => "ω",
+        // Greek, upper case.
+        "Gamma" => "Γ",
+        "Delta" => "Δ",
+        "Theta" => "Θ",
+        "Lambda" => "Λ",
+        "Xi" => "Ξ",
+        "Pi" => "Π",
+        "Sigma" => "Σ",
+        "Upsilon" => "Υ",
+        "Phi" => "Φ",
+        "Psi" => "Ψ",
+        "Omega" => "Ω",
+        // Operators and relations.
+        "times" => "×",
+        "cdot" => "·",
+        "cdots" => "⋯",
+        "ldots" | "dots" | "dotsc" | "dotsb" => "…",
+        "pm" => "±",
+        "mp" => "∓",
+        "div" => "÷",
+        "ast" => "∗",
+        "star" => "⋆",
+        "circ" => "∘",
+        "bullet" => "∙",
+        "wedge" => "∧",
+        "otimes" => "⊗",
+        "oplus" => "⊕",
+        "le" | "leq" => "≤",
+        "ge" | "geq" => "≥",
+        "ne" | "neq" => "≠",
+        "ll" => "≪",
+        "gg" => "≫",
+        "approx" => "≈",
+        "simeq" => "≃",
+        "sim" => "∼",
+        "equiv" => "≡",
+        "propto" => "∝",
+        "in" => "∈",
+        "notin" => "∉",
+        "subset" => "⊂",
+        "perp" => "⊥",
+        "parallel" => "∥",
+        "mid" => "∣",
+        "to" | "rightarrow" => "→",
+        "leftarrow" | "gets" => "←",
+        "Rightarrow" | "implies" => "⇒",
+        "Leftarrow" => "⇐",
+        "Leftrightarrow" | "iff" => "⇔",
+        "leftrightarrow" => "↔",
+        "mapsto" => "↦",
+        "longrightarrow" => "⟶",
+        "uparrow" => "↑",
+        "downarrow" => "↓",
+        "infty" => "∞",
+        "partial" => "∂",
+        "nabla" => "∇",
+        "sum" => "Σ",
+        "prod" => "Π",
+        "int" => "∫",
+        "oint" => "∮",
+        "forall" => "∀",
+        "exists" => "∃",
+        "emptyset" => "∅",
+        "hbar" => "ℏ",
+        "ell" => "ℓ",
+        "prime" => "′",
+        "dagger" => "†",
+        "top" => "ᵀ",
+        "angle" => "∠",
+        "langle" => "⟨",
+        "rangle" => "⟩",
+        "lvert" | "rvert" | "vert" => "|",
+        "lVert" | "rVert" | "Vert" => "‖",
+        "lfloor" => "⌊",
+        "rfloor" => "⌋",
+        "lceil" => "⌈",
+        "rceil" => "⌉",
+        "backslash" => "\u{2216}",
+        // Named functions, upright in TeX, plain here.
+        "sin" => "sin",
+        "cos" => "cos",
+        "tan" => "tan",
+        "cot" => "cot",
+        "sinh" => "sinh",
+        "cosh" => "cosh",
+        "tanh" => "tanh",
+        "arcsin" => "arcsin",
+        "arccos" => "arccos",
+        "arctan" => "arctan",
+        "exp" => "exp",
+        "ln" => "ln",
+        "log" => "log",
+        "det" => "det",
+        "dim" => "dim",
+        "max" => "max",
+        "min" => "min",
+        "sup" => "sup",
+        "inf" => "inf",
+        "lim" => "lim",
+        "sgn" => "sgn",
+        "Re" => "Re",
+        "Im" => "Im",
+        "tr" => "tr",
+        // Spacing.
+        "quad" => "  ",
+        "qquad" => "    ",
+        "," | ":" | ";" | " " | "enspace" | "thinspace" => " ",
+        "!" | "displaystyle" | "textstyle" | "limits" | "nolimits" | "nonumber" | "notag" => "",
+        // Escaped characters.
+        "{" | "lbrace" => "{",
+        "}" | "rbrace" => "}",
+        "|" => "‖",
+        "%" => "%",
+        "$" => "$",
+        "#" => "#",
+        "&" => "&",
+        "_" => "_",
+        _ => return None,
+    })
+}
+
+/// The fonts whose argument keeps its letters (bold, upright and the like
+/// cannot be shown in every terminal font, and the book's prose names the
+/// vectors in words anyway).
+fn is_plain_font(name: &str) -> bool {
+    matches!(
+        name,
+        "mathbf"
+            | "boldsymbol"
+            | "bm"
+            | "mathrm"
+            | "mathit"
+            | "mathsf"
+            | "mathtt"
+            | "operatorname"
+            | "mathnormal"
+            | "pmb"
+    )
+}
+
+fn is_text(name: &str) -> bool {
+    matches!(
+        name,
+        "text" | "textrm" | "textit" | "textbf" | "mbox" | "hbox"
+    )
+}
+
+fn is_sizing(name: &str) -> bool {
+    matches!(
+        name,
+        "left"
+            | "right"
+            | "big"
+            | "Big"
+            | "bigg"
+            | "Bigg"
+            | "bigl"
+            | "bigr"
+            | "Bigl"
+            | "Bigr"
+            | "biggl"
+            | "biggr"
+            | "middle"
+    )
+}
+
+fn fraktur(c: char) -> Option<char> {
+    let table = [
+        ('a', '𝔞'),
+        ('b', '𝔟'),
+        ('c', '𝔠'),
+        ('d', '𝔡'),
+        ('e', '𝔢'),
+        ('f', '𝔣'),
+        ('g', '𝔤'),
+        ('h', '𝔥'),
+        ('i', '𝔦'),
+        ('j', '𝔧'),
+        ('k', '𝔨'),
+        ('l', '𝔩'),
+        ('m', '𝔪'),
+        ('n', '𝔫'),
+        ('o', '𝔬'),
+        ('p', '𝔭'),
+        ('q', '𝔮'),
+        ('r', '𝔯'),
+        ('s', '𝔰'),
+        ('t', '𝔱'),
+        ('u', '𝔲'),
+        ('v', '𝔳'),
+        ('w', '𝔴'),
+        ('x', '𝔵'),
+        ('y', '𝔶'),
+        ('z', '𝔷'),
+    ];
+    table.iter().find(|(k, _)| *k == c).map(|(_, v)| *v)
+}
+
+fn calligraphic(c: char) -> Option<char> {
+    Some(match c {
+        'A' => '𝒜',
+        'B' => 'ℬ',
+        'C' => '𝒞',
+        'D' => '𝒟',
+        'E' => 'ℰ',
+        'F' => 'ℱ',
+        'H' => 'ℋ',
+        'L' => 'ℒ',
+        'M' => 'ℳ',
+        'N' => '𝒩',
+        'O' => '𝒪',
+        'P' => '𝒫',
+        'R' => 'ℛ',
+        'S' => '𝒮',
+        'T' => '𝒯',
+        _ => return None,
+    })
+}
+
+pub(crate) fn superscript(c: char) -> Option<char> {
+    Some(match c {
+        '0' => '⁰',
+        '1' => '¹',
+        '2' => '²',
+        '3' => '³',
+        '4' => '⁴',
+        '5' => '⁵',
+        '6' => '⁶',
+        '7' => '⁷',
+        '8' => '⁸',
+        '9' => '⁹',
+        '+' => '⁺',
+        '-' | '−' => '⁻',
+        '=' => '⁼',
+        '(' => '⁽',
+        ')' => '⁾',
+        'a' => 'ᵃ',
+        'b' => 'ᵇ',
+        'c' => 'ᶜ',
+        'd' => 'ᵈ',
+        'e' => 'ᵉ',
+        'f' => 'ᶠ',
+        'g' => 'ᵍ',
+        'h' => 'ʰ',
+        'i' => 'ⁱ',
+        'j' => 'ʲ',
+        'k' => 'ᵏ',
+        'l' => 'ˡ',
+        'm' => 'ᵐ',
+        'n' => 'ⁿ',
+        'o' => 'ᵒ',
+        'p' => 'ᵖ',
+        'r' => 'ʳ',
+        's' => 'ˢ',
+        't' => 'ᵗ',
+        'u' => 'ᵘ',
+        'v' => 'ᵛ',
+        'w' => 'ʷ',
+        'x' => 'ˣ',
+        'y' => 'ʸ',
+        'z' => 'ᶻ',
+        'T' => 'ᵀ',
+        'ᵀ' => 'ᵀ',
+        'A' => 'ᴬ',
+        'B' => 'ᴮ',
+        'D' => 'ᴰ',
+        'E' => 'ᴱ',
+        'G' => 'ᴳ',
+        'H' => 'ᴴ',
+        'I' => 'ᴵ',
+        'J' => 'ᴶ',
+        'K' => 'ᴷ',
+        'L' => 'ᴸ',
+        'M' => 'ᴹ',
+        'N' => 'ᴺ',
+        'O' => 'ᴼ',
+        'P' => 'ᴾ',
+        'R' => 'ᴿ',
+        'U' => 'ᵁ',
+        'V' => 'ⱽ',
+        'W' => 'ᵂ',
+        'β' => 'ᵝ',
+        'γ' => 'ᵞ',
+        'δ' => 'ᵟ',
+        'θ' => 'ᶿ',
+        'ϕ' | 'φ' => 'ᵠ',
+        'χ' => 'ᵡ',
+        '′' => '′',
+        '*' | '∗' => '*',
+        _ => return None,
+    })
+}
+
+pub(crate) fn subscript(c: char) -> Option<char> {
+    Some(match c {
+        '0' => '₀',
+        '1' => '₁',
+        '2' => '₂',
+        '3' => '₃',
+        '4' => '₄',
+        '5' => '₅',
+        '6' => '₆',
+        '7' => '₇',
+        '8' => '₈',
+        '9' => '₉',
+        '+' => '₊',
+        '-' | '−' => '₋',
+        '=' => '₌',
+        '(' => '₍',
+        ')' => '₎',
+        'a' => 'ₐ',
+        'e' => 'ₑ',
+        'h' => 'ₕ',
+        'i' => 'ᵢ',
+        'j' => 'ⱼ',
+        'k' => 'ₖ',
+        'l' => 'ₗ',
+        'm' => 'ₘ',
+        'n' => 'ₙ',
+        'o' => 'ₒ',
+        'p' => 'ₚ',
+        'r' => 'ᵣ',
+        's' => 'ₛ',
+        't' => 'ₜ',
+        'u' => 'ᵤ',
+        'v' => 'ᵥ',
+        'x' => 'ₓ',
+        'β' => 'ᵦ',
+        'γ' => 'ᵧ',
+        'ρ' => 'ᵨ',
+        'ϕ' | 'φ' => 'ᵩ',
+        'χ' => 'ᵪ',
+        // Marks that read as subscripts when written after a letter.
+        '⊥' => '⊥',
+        '∥' => '∥',
+        '‖' => '‖',
+        '*' => '*',
+        ',' => ',',
+        _ => return None,
+    })
+}
+
+impl Parser {
+    fn peek(&self) -> Option<&Token> {
+        self.tokens.get(self.pos)
+    }
+
+    fn next(&mut self) -> Option<Token> {
+        let t = self.tokens.get(self.pos).cloned();
+        self.pos += 1;
+        t
+    }
+
+    /// Everything up to the closing brace (or `\end{name}`, or the end).
+    fn sequence(&mut self, end_env: Option<&str>) -> String {
+        let mut out = String::new();
+        while let Some(token) = self.peek().cloned() {
+            match token {
+                Token::Close => break,
+                Token::Command(ref name) if name == "end" => {
+                    if end_env.is_some() {
+                        break;
+                    }
+                    self.next();
+                    let _ = self.argument_raw();
+                }
+                Token::Command(ref name) if name == "\\" || name == "cr" => {
+                    self.next();
+                    // An optional spacing argument: `\\[4pt]`.
+                    if self.peek() == Some(&Token::Char('[')) {
+                        while let Some(t) = self.next() {
+                            if t == Token::Char(']') {
+                                break;
+                            }
+                        }
+                    }
+                    out.push('\n');
+                }
+                Token::Align => {
+                    self.next();
+                    out.push(' ');
+                }
+                Token::Space => {
+                    self.next();
+                }
+                Token::Sup | Token::Sub => {
+                    self.next();
+                    let arg = self.argument();
+                    let script = if token == Token::Sup {
+                        raise(&arg)
+                    } else {
+                        lower(&arg)
+                    };
+                    out.push_str(&script);
+                }
+                _ => {
+                    let atom = self.atom();
+                    push_spaced(&mut out, &atom);
+                }
+            }
+        }
+        out
+    }
+
+    /// One argument: a braced group, a command, or a single character.
+    fn argument(&mut self) -> String {
+        while self.peek() == Some(&Token::Space) {
+            self.next();
+        }
+        match self.peek() {
+            Some(Token::Open) => {
+                self.next();
+                let s = self.sequence(None);
+                if self.peek() == Some(&Token::Close) {
+                    self.next();
+                }
+                s
+            }
+            Some(_) => self.atom(),
+            None => String::new(),
+        }
+    }
+
+    /// A braced argument taken verbatim (environment names, `\text{…}`).
+    fn argument_raw(&mut self) -> String {
+        while self.peek() == Some(&Token::Space) {
+            self.next();
+        }
+        if self.peek() != Some(&Token::Open) {
+            return match self.next() {
+                Some(Token::Char(c)) => c.to_string(),
+                _ => String::new(),
+            };
+        }
+        self.next();
+        let mut depth = 0;
+        let mut out = String::new();
+        while let Some(t) = self.next() {
+            match t {
+                Token::Open => {
+                    depth += 1;
+                    out.push('{');
+                }
+                Token::Close if depth == 0 => break,
+                Token::Close => {
+                    depth -= 1;
+                    out.push('}');
+                }
+                Token::Char(c) => out.push(c),
+                Token::Space => out.push(' '),
+                Token::Sup => out.push('^'),
+                Token::Sub => out.push('_'),
+                Token::Align => out.push('&'),
+                Token::Command(name) => match symbol(&name) {
+                    Some(s) => out.push_str(s),
+                    None => out.push_str(&name),
+                },
+            }
+        }
+        out
+    }
+
+    fn atom(&mut self) -> String {
+        match self.next() {
+            None | Some(Token::Close) => String::new(),
+            Some(Token::Open) => {
+                let s = self.sequence(None);
+                if self.peek() == Some(&Token::Close) {
+                    self.next();
+                }
+                s
+            }
+            Some(Token::Char('-')) => "−".to_string(),
+            Some(Token::Char('\'')) => "′".to_string(),
+            Some(Token::Char(c)) => c.to_string(),
+            Some(Token::Sup) | Some(Token::Sub) | Some(Token::Align) | Some(Token::Space) => {
+                String::new()
+            }
+            Some(Token::Command(name)) => self.command(&name),
+        }
+    }
+
+    fn command(&mut self, name: &str) -> String {
+        if let Some(mark) = accent(name) {
+            let arg = self.argument();
+            return with_accent(&arg, mark);
+        }
+        if let Some(s) = symbol(name) {
+            return s.to_string();
+        }
+        if is_plain_font(name) {
+            return self.argument();
+        }
+        if is_text(name) {
+            return self.argument_raw();
+        }
+        if is_sizing(name) {
+            // The delimiter that follows is printed as itself; `.` is none.
+            return match self.peek() {
+                Some(Token::Char('.')) => {
+                    self.next();
+                    String::new()
+                }
+                _ => String::new(),
+            };
+        }
+        match name {
+            "frac" | "dfrac" | "tfrac" | "cfrac" => {
+                let num = self.argument();
+                let den = self.argument();
+                format!("{}/{}", wrap(&num), wrap(&den))
+            }
+            "sqrt" => {
+                let mut index = String::new();
+                if self.peek() == Some(&Token::Char('[')) {
+                    self.next();
+                    while let Some(t) = self.next() {
+                        match t {
+                            Token::Char(']') => break,
+                            Token::Char(c) => index.push(c),
+                            _ => {}
+                        }
+                    }
+                }
+                let arg = self.argument();
+                let root = match index.as_str() {
+                    "" | "2" => "√",
+                    "3" => "∛",
+                    "4" => "∜",
+                    _ => {
+                        return format!("{}√{}", raise(&index), wrap(&arg));
+                    }
+                };
+                format!("{root}{}", wrap(&arg))
+            }
+            "mathfrak" => {
+                let arg = self.argument();
+                arg.chars().map(|c| fraktur(c).unwrap_or(c)).collect()
+            }
+            "mathcal" | "mathscr" => {
+                let arg = self.argument();
+                arg.chars().map(|c| calligraphic(c).unwrap_or(c)).collect()
+            }
+            "mathbb" => {
+                let arg = self.argument();
+                arg.chars()
+                    .map(|c| match c {
+                        'R' => 'ℝ',
+                        'C' => 'ℂ',
+                        'N' => 'ℕ',
+                        'Z' => 'ℤ',
+                        'Q' => 'ℚ',
+                        c => c,
+                    })
+                    .collect()
+            }
+            "underbrace" | "overbrace" | "boxed" | "underline" | "phantom_skip" => self.argument(),
+            "tag" => format!("    ({})", self.argument_raw()),
+            "label" => {
+                let _ = self.argument_raw();
+                String::new()
+            }
+            "begin" => {
+                let env = self.argument_raw();
+                if matches!(env.as_str(), "array" | "tabular") {
+                    let _ = self.argument_raw();
+                }
+                let body = self.sequence(Some(&env));
+                // Consume `\end{env}`.
+                if let Some(Token::Command(n)) = self.peek()
+                    && n == "end"
+                {
+                    self.next();
+                    let _ = self.argument_raw();
+                }
+                match env.as_str() {
+                    "pmatrix" | "bmatrix" | "vmatrix" | "matrix" => {
+                        let rows: Vec<String> = body
+                            .split('\n')
+                            .map(|r| r.split_whitespace().collect::<Vec<_>>().join(", "))
+                            .collect();
+                        let (open, close) = match env.as_str() {
+                            "bmatrix" => ("[", "]"),
+                            "vmatrix" => ("|", "|"),
+                            _ => ("(", ")"),
+                        };
+                        format!("{open}{}{close}", rows.join("; "))
+                    }
+                    "cases" => body
+                        .split('\n')
+                        .map(|r| format!("{{ {}", r.trim()))
+                        .collect::<Vec<_>>()
+                        .join("\n"),
+                    _ => body,
+                }
+            }
+            "not" => {
+                let arg = self.argument();
+                match arg.as_str() {
+                    "=" => "≠".to_string(),
+                    "∈" => "∉".to_string(),
+                    other => format!("{other}\u{338}"),
+                }
+            }
+            "stackrel" | "overset" => {
+                let over = self.argument();
+                let base = self.argument();
+                format!("{base}{}", raise(&over))
+            }
+            _ => {
+                self.unknown.push(format!("\\{name}"));
+                name.to_string()
+            }
+        }
+    }
+}
+
+/// Relations, spaced on both sides as TeX spaces them.
+const RELATIONS: [&str; 19] = [
+    "=", "≈", "≃", "∼", "≡", "∝", "≤", "≥", "≠", "<", ">", "→", "←", "⇒", "⇐", "⇔", "↦", "≪", "≫",
+];
+
+/// Appends an atom, with TeX's spacing: relations get a space on each side,
+/// `+` and `−` too when they are binary (after an operand), not when unary.
+fn push_spaced(out: &mut String, atom: &str) {
+    let binary_capable = atom == "+" || atom == "−" || atom == "±" || atom == "∓";
+    if RELATIONS.contains(&atom) || (binary_capable && ends_with_operand(out)) {
+        out.push(' ');
+        out.push_str(atom);
+        out.push(' ');
+    } else {
+        out.push_str(atom);
+    }
+}
+
+fn ends_with_operand(s: &str) -> bool {
+    match s.trim_end().chars().last() {
+        None => false,
+        Some(c) => {
+            c.is_alphanumeric()
+                || is_combining(c)
+                || superscript_char(c)
+                || subscript_char(c)
+                || matches!(
+                    c,
+                    ')' | ']' | '}' | '|' | '‖' | '′' | '⟩' | '∞' | '.' | '!' | '*' | '†'
+                )
+        }
+    }
+}
+
+/// Puts a combining accent on the last letter of `base` (`\dot{\boldsymbol\Omega}` → Ω̇).
+fn with_accent(base: &str, mark: char) -> String {
+    if base.is_empty() {
+        return mark.to_string();
+    }
+    let mut s = base.to_string();
+    s.push(mark);
+    s
+}
+
+/// Parentheses around a numerator or denominator that is more than one term.
+fn wrap(s: &str) -> String {
+    let t = s.trim();
+    let simple = t.chars().filter(|c| !is_combining(*c)).count() <= 1
+        || t.chars().all(|c| {
+            c.is_alphanumeric()
+                || c == '.'
+                || is_combining(c)
+                || superscript_char(c)
+                || subscript_char(c)
+        })
+        || (t.starts_with('(') && t.ends_with(')') && balanced_outer(t));
+    if simple {
+        t.to_string()
+    } else {
+        format!("({t})")
+    }
+}
+
+fn balanced_outer(t: &str) -> bool {
+    let mut depth = 0i32;
+    let n = t.chars().count();
+    for (i, c) in t.chars().enumerate() {
+        match c {
+            '(' => depth += 1,
+            ')' => {
+                depth -= 1;
+                if depth == 0 && i + 1 < n {
+                    return false;
+                }
+            }
+            _ => {}
+        }
+    }
+    depth == 0
+}
+
+fn is_combining(c: char) -> bool {
+    matches!(c as u32, 0x300..=0x36F | 0x20D0..=0x20FF)
+}
+
+fn superscript_char(c: char) -> bool {
+    "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁼⁽⁾ⁿⁱᵀ′".contains(c)
+}
+
+fn subscript_char(c: char) -> bool {
+    "₀₁₂₃₄₅₆₇₈₉₊₋₌₍₎ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓ⊥∥".contains(c)
+}
+
+/// A superscript: Unicode superscript letters when every character has one,
+/// otherwise `^x` for one character and `^(…)` for more.
+fn raise(s: &str) -> String {
+    let t = s.trim();
+    if t.is_empty() {
+        return String::new();
+    }
+    if t == "′" || t == "′′" || t == "*" || t == "∗" || t == "†" || t == "ᵀ" {
+        return t.to_string();
+    }
+    let mapped: Option<String> = t.chars().filter(|c| *c != ' ').map(superscript).collect();
+    match mapped {
+        Some(m) => m,
+        None if t.chars().count() == 1 => format!("^{t}"),
+        None => format!("^({t})"),
+    }
+}
+
+/// A subscript, in the same spirit as [`raise`].
+fn lower(s: &str) -> String {
+    let t = s.trim();
+    if t.is_empty() {
+        return String::new();
+    }
+    let mapped: Option<String> = t.chars().filter(|c| *c != ' ').map(subscript).collect();
+    match mapped {
+        Some(m) => m,
+        None if t.chars().count() == 1 => format!("_{t}"),
+        None => format!("_({t})"),
+    }
+}
+
+/// Collapses runs of spaces (TeX ignores them; `\,` and `\quad` made them on
+/// purpose, so at most four are kept), puts spaces around `=`, and trims.
+fn tidy(s: &str) -> String {
+    s.split('\n')
+        .map(|line| {
+            let mut out = String::new();
+            let mut spaces = 0;
+            for c in line.chars() {
+                if c == ' ' {
+                    spaces += 1;
+                    continue;
+                }
+                if spaces > 0 && !out.is_empty() {
+                    out.push_str(&" ".repeat(spaces.min(4)));
+                }
+                spaces = 0;
+                out.push(c);
+            }
+            out
+        })
+        .filter(|l| !l.trim().is_empty())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn u(tex: &str) -> String {
+        let c = to_unicode(tex);
+        assert!(
+            c.unknown.is_empty(),
+            "unknown commands in {tex:?}: {:?}",
+            c.unknown
+        );
+        c.text
+    }
+
+    #[test]
+    fn greek_accents_and_fonts() {
+        assert_eq!(u(r"\dot{\boldsymbol\Omega}"), "Ω\u{307}");
+        assert_eq!(u(r"\ddot{\boldsymbol\Omega}"), "Ω\u{308}");
+        assert_eq!(u(r"\mathbf d\times\boldsymbol\Omega"), "d×Ω");
+        assert_eq!(u(r"\mathfrak d"), "𝔡");
+    }
+
+    #[test]
+    fn truncated_ale_3_3_keeps_its_braces_and_sign() {
+        let s = u(
+            r"I\dot{\boldsymbol\Omega} + \boldsymbol\Omega\times I\boldsymbol\Omega =
+  -\kappa\{(\mathbf d\times\boldsymbol\Omega)^2\boldsymbol\Omega +
+  (\mathbf d\cdot(\boldsymbol\Omega\times\dot{\boldsymbol\Omega}))\,\mathbf d\}",
+        );
+        assert_eq!(s, "IΩ\u{307} + Ω×IΩ = −κ{(d×Ω)²Ω + (d·(Ω×Ω\u{307})) d}");
+    }
+
+    #[test]
+    fn scripts_use_unicode_where_it_exists() {
+        assert_eq!(u(r"e^{-t/\sigma}"), "e^(−t/σ)");
+        assert_eq!(u(r"e^{2t}"), "e²ᵗ");
+        assert_eq!(u(r"\Omega_{30}"), "Ω₃₀");
+        assert_eq!(u(r"\Omega_\perp^2"), "Ω⊥²");
+        assert_eq!(u(r"O^\top"), "Oᵀ");
+        assert_eq!(u(r"x^{-1}"), "x⁻¹");
+        assert_eq!(u(r"t_{\text{run}}"), "tᵣᵤₙ");
+        assert_eq!(u(r"t_{\text{end}}"), "t_(end)");
+    }
+
+    #[test]
+    fn fractions_and_roots_are_bracketed_only_when_needed() {
+        assert_eq!(u(r"\frac{1}{\tau}"), "1/τ");
+        assert_eq!(u(r"\frac{a+b}{2}"), "(a + b)/2");
+        assert_eq!(u(r"\sqrt{1 - \varepsilon^2}"), "√(1 − ε²)");
+        assert_eq!(u(r"-\frac{a}{b}"), "−a/b");
+        assert_eq!(u(r"\sqrt{x}"), "√x");
+    }
+
+    #[test]
+    fn aligned_rows_become_lines() {
+        let s = u(r"\begin{aligned} a &= b \\ c &= d \end{aligned}");
+        assert_eq!(s.lines().count(), 2, "{s:?}");
+        assert!(!s.contains('\\'));
+    }
+
+    #[test]
+    fn unknown_commands_are_reported_not_hidden() {
+        let c = to_unicode(r"\frobnicate{x}");
+        assert_eq!(c.unknown, vec![r"\frobnicate".to_string()]);
+    }
+}

@@ -1,0 +1,236 @@
+//! `spintop learn`: every chapter of the book rendered for the terminal.
+//!
+//! The chapters come from `book/src` itself, so these tests read the real
+//! book: every chapter (and every page of it, scrolled through) is drawn on a
+//! `TestBackend` at 80×24 and 160×48, and the screen must hold no raw TeX, no
+//! mdBook directive and no Markdown markup outside code. Every experiment
+//! comment in the book must parse and apply to its chapter's scene. Two
+//! screens of Section 4.2 are pinned by insta snapshots (reviewed by hand).
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use ratatui::{Terminal, backend::TestBackend};
+use spintop::tui::learn::markdown::{self, code_style};
+use spintop::tui::learn::{Experiment, Learn, Mode, find_chapter};
+use std::path::{Path, PathBuf};
+
+fn book() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("book")
+        .join("src")
+}
+
+fn draw(learn: &mut Learn, width: u16, height: u16) -> String {
+    let mut terminal = Terminal::new(TestBackend::new(width, height)).expect("a test terminal");
+    terminal
+        .draw(|f| learn.draw(f))
+        .expect("drawing never fails on a TestBackend");
+    terminal.backend().to_string()
+}
+
+fn key(code: KeyCode) -> KeyEvent {
+    KeyEvent::new(code, KeyModifiers::NONE)
+}
+
+/// Marks of text that was not rendered: raw TeX, mdBook directives, Markdown.
+fn unrendered(text: &str) -> Option<&'static str> {
+    let raw_tex = text.char_indices().any(|(i, c)| {
+        c == '\\'
+            && text[i + 1..]
+                .chars()
+                .next()
+                .is_some_and(|n| n.is_ascii_alphabetic() || "[](){},".contains(n))
+    });
+    if raw_tex {
+        return Some("raw TeX");
+    }
+    // A link target left in the text: `](http…`, `](#…` or `](….md…`.
+    for (i, _) in text.match_indices("](") {
+        let target = &text[i + 2..];
+        let target = &target[..target.find(')').unwrap_or(target.len())];
+        if target.starts_with("http") || target.starts_with('#') || target.contains(".md") {
+            return Some("a Markdown link");
+        }
+    }
+    for (needle, what) in [
+        ("{{#", "an mdBook directive"),
+        ("$$", "display-math delimiters"),
+        ("**", "Markdown strong markup"),
+        ("```", "a code fence"),
+        ("<!--", "an HTML comment"),
+    ] {
+        if text.contains(needle) {
+            return Some(what);
+        }
+    }
+    None
+}
+
+#[test]
+fn every_chapter_renders_with_no_raw_tex_or_markup_outside_code() {
+    let learn = Learn::open(&book(), None).expect("the book opens");
+    let chapters = learn.chapters().to_vec();
+    assert!(
+        chapters.len() >= 16,
+        "SUMMARY.md lists {} chapters",
+        chapters.len()
+    );
+    for chapter in &chapters {
+        let source = std::fs::read_to_string(book().join(&chapter.file)).unwrap();
+        let source = markdown::resolve_includes(&source, &book());
+        for width in [60u16, 78, 100] {
+            let rendered = markdown::render(&source, width);
+            assert!(
+                rendered.unknown_tex.is_empty(),
+                "{}: TeX commands the terminal cannot show: {:?}",
+                chapter.file,
+                rendered.unknown_tex
+            );
+            assert!(
+                rendered.lines.len() > 3,
+                "{} rendered to almost nothing",
+                chapter.file
+            );
+            for (n, line) in rendered.lines.iter().enumerate() {
+                assert!(
+                    line.width() <= usize::from(width),
+                    "{} line {n} is wider than {width}",
+                    chapter.file
+                );
+                let prose: String = line
+                    .spans
+                    .iter()
+                    .filter(|s| s.style != code_style())
+                    .map(|s| s.content.as_ref())
+                    .collect();
+                if let Some(what) = unrendered(&prose) {
+                    panic!(
+                        "{} at width {width}, line {n}: {what} on screen: {prose:?}",
+                        chapter.file
+                    );
+                }
+                let all: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
+                assert!(
+                    !all.contains("{{#include"),
+                    "{}: an include was not resolved: {all:?}",
+                    chapter.file
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_page_of_every_chapter_draws_at_both_sizes() {
+    for (w, h) in [(80u16, 24u16), (160, 48)] {
+        let mut learn = Learn::open(&book(), None).expect("the book opens");
+        let n = learn.chapters().len();
+        for i in 0..n {
+            let shown = draw(&mut learn, w, h);
+            assert!(
+                shown.contains(&learn.chapters()[i].title),
+                "{}: title not in the header",
+                learn.chapters()[i].file
+            );
+            // Scroll to the end page by page; the screen must stay clean.
+            for _ in 0..400 {
+                let before = learn.scroll();
+                learn.key(key(KeyCode::PageDown));
+                let page = draw(&mut learn, w, h);
+                for line in page.lines() {
+                    assert!(
+                        !line.contains("{{#") && !line.contains("$$"),
+                        "{}: {line}",
+                        learn.chapters()[i].file
+                    );
+                }
+                if learn.scroll() == before {
+                    break;
+                }
+            }
+            learn.key(key(KeyCode::Right));
+        }
+        assert_eq!(learn.current(), n - 1, "→ walks through every chapter");
+    }
+}
+
+#[test]
+fn every_experiment_in_the_book_applies_to_its_chapters_scene() {
+    let learn = Learn::open(&book(), None).expect("the book opens");
+    let mut total = 0;
+    for chapter in learn.chapters() {
+        let source = std::fs::read_to_string(book().join(&chapter.file)).unwrap();
+        let rendered = markdown::render(&source, 100);
+        let scene = chapter.scene();
+        for (_, text) in &rendered.experiments {
+            let e = Experiment::parse(text)
+                .unwrap_or_else(|err| panic!("{}: `{text}`: {err}", chapter.file));
+            e.apply(&scene.settings)
+                .unwrap_or_else(|err| panic!("{}: `{text}`: {err}", chapter.file));
+            total += 1;
+        }
+    }
+    assert!(total >= 8, "only {total} experiments in the book");
+}
+
+#[test]
+fn the_experiment_key_changes_the_scene_and_scrolls_to_the_experiment() {
+    let mut learn = Learn::open(&book(), Some("4.2")).expect("chapter 4.2 opens");
+    draw(&mut learn, 160, 48);
+    let before = *learn.scene().settings();
+    learn.key(key(KeyCode::Char('x')));
+    let after = *learn.scene().settings();
+    assert_ne!(before, after, "x must change the scene's parameters");
+    assert!(learn.scroll() > 0, "x scrolls the text to the experiment");
+    let shown = draw(&mut learn, 160, 48);
+    assert!(shown.contains("experiment 1 of"), "{shown}");
+}
+
+#[test]
+fn chapters_are_found_by_section_or_file_name_and_contents_jump() {
+    let learn = Learn::open(&book(), None).unwrap();
+    let chapters = learn.chapters();
+    for (wanted, file) in [
+        ("2", "section-2.md"),
+        ("4.1", "section-4-1.md"),
+        ("a", "appendix.md"),
+        ("numerical-methods", "numerical-methods.md"),
+    ] {
+        let i = find_chapter(chapters, wanted).unwrap_or_else(|| panic!("--chapter {wanted}"));
+        assert_eq!(chapters[i].file, file);
+    }
+    assert!(find_chapter(chapters, "9.9").is_none());
+    assert!(
+        Learn::open(&book(), Some("9.9"))
+            .err()
+            .is_some_and(|e| e.contains("4.2"))
+    );
+
+    let mut learn = Learn::open(&book(), None).unwrap();
+    learn.key(key(KeyCode::Char('c')));
+    assert_eq!(learn.mode(), Mode::Contents(0));
+    for _ in 0..3 {
+        learn.key(key(KeyCode::Down));
+    }
+    learn.key(key(KeyCode::Enter));
+    assert_eq!(learn.current(), 3);
+    assert_eq!(learn.mode(), Mode::Read);
+}
+
+#[test]
+fn section_4_2_at_80x24_and_160x48() {
+    for (w, h) in [(80u16, 24u16), (160, 48)] {
+        let mut learn = Learn::open(&book(), Some("4.2")).unwrap();
+        let shown = draw(&mut learn, w, h);
+        assert!(shown.contains("Section 4.2: the reduced top"));
+        if w >= 120 {
+            // The scene beside the text: the chart's Braille dots are drawn.
+            assert!(
+                shown
+                    .chars()
+                    .any(|c| ('\u{2801}'..='\u{28FF}').contains(&c)),
+                "{shown}"
+            );
+        }
+        insta::assert_snapshot!(format!("learn_section_4_2_{w}x{h}"), shown);
+    }
+}
