@@ -644,14 +644,22 @@ impl Learn {
     }
 
     fn draw_scene(&self, frame: &mut Frame, area: Rect) {
-        let [about, rest] =
-            Layout::vertical([Constraint::Length(1), Constraint::Fill(1)]).areas(area);
+        let [about, params, rest] = Layout::vertical([
+            Constraint::Length(1),
+            Constraint::Length(1),
+            Constraint::Fill(1),
+        ])
+        .areas(area);
         let text = match &self.message {
             Some((m, true)) => Span::styled(format!(" {m}"), theme::error()),
             Some((m, false)) => Span::styled(format!(" {m}"), theme::info()),
             None => Span::styled(format!(" scene: {}", self.scene_info.about), theme::label()),
         };
         frame.render_widget(Paragraph::new(Line::from(text)), about);
+        frame.render_widget(
+            Paragraph::new(Line::from(scene_parameters(self.scene.settings()))),
+            params,
+        );
         let columns: Vec<usize> = self
             .scene_info
             .columns
@@ -762,6 +770,33 @@ impl Learn {
             &mut state,
         );
     }
+}
+
+/// The scene's parameters, one line: what an experiment changes.
+fn scene_parameters(settings: &Settings) -> Vec<Span<'static>> {
+    let w = settings.omega0();
+    let mut spans = vec![Span::raw(" ")];
+    if let Some(r) = settings.ratio() {
+        spans.push(Span::styled("I₃/I₁ = ", theme::label()));
+        spans.push(Span::styled(format!("{r}"), theme::value()));
+        spans.push(Span::styled("  ", theme::label()));
+    }
+    spans.push(Span::styled("Ω₀ = ", theme::label()));
+    spans.push(Span::styled(
+        format!("({}, {}, {})", w[0], w[1], w[2]),
+        theme::value(),
+    ));
+    spans.push(Span::styled("  method ", theme::label()));
+    spans.push(Span::styled(
+        settings.method().name().to_string(),
+        theme::value(),
+    ));
+    spans.push(Span::styled("  warp ", theme::label()));
+    spans.push(Span::styled(
+        format!("{} τ/s", settings.warp()),
+        theme::value(),
+    ));
+    spans
 }
 
 fn centered(area: Rect, width: u16, height: u16) -> Rect {

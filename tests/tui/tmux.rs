@@ -107,6 +107,11 @@ fn braille(screen: &str) -> usize {
 /// Start `spintop ARGS` in a private tmux server at 120×40; `None` (after
 /// saying so) when tmux is missing outside CI.
 fn launch(tag: &str, args: &str) -> Option<Tmux> {
+    launch_with(tag, "", args)
+}
+
+/// [`launch`] with environment variables (`NAME='value' …`) for the binary.
+fn launch_with(tag: &str, env: &str, args: &str) -> Option<Tmux> {
     if !tmux_available() {
         if std::env::var("CI").is_ok_and(|v| !matches!(v.as_str(), "" | "0" | "false")) {
             panic!("CI is set but tmux is missing: .ci/run installs it with apt-get");
@@ -154,7 +159,7 @@ fn launch(tag: &str, args: &str) -> Option<Tmux> {
         "-k",
         "-t",
         "spintop",
-        &format!("'{binary}' {args}; echo $? > '{status}'"),
+        &format!("{env} '{binary}' {args}; echo $? > '{status}'"),
     ]);
     Some(tmux)
 }
@@ -299,4 +304,50 @@ fn the_live_view_opens_the_asymmetric_top_scene() {
         "the terminal must be restored (alternate screen left)"
     );
     assert!(!tmux.capture().contains("general top (3.3)"));
+}
+
+/// `spintop learn --chapter 4.2` in a real terminal: the chapter's text beside
+/// its live scene (Braille chart), `x` runs the chapter's experiments on the
+/// scene (its parameters change on screen), and `q` ends it with exit status
+/// 0, the terminal restored, and the progress written where it was told to.
+#[test]
+fn spintop_learn_shows_a_chapter_beside_its_scene_and_runs_its_experiments() {
+    let progress = std::env::temp_dir().join(format!("spintop-learn-{}.json", std::process::id()));
+    let _ = std::fs::remove_file(&progress);
+    let env = format!("SPINTOP_LEARN_PROGRESS='{}'", progress.display());
+    let Some(tmux) = launch_with("learn", &env, "learn --chapter 4.2") else {
+        return;
+    };
+    let long = Duration::from_secs(20);
+    let screen = tmux.wait_for("the chapter and its scene", long, |s| {
+        s.contains("Section 4.2: the reduced top")
+            && s.contains("reduced (4.12)")
+            && braille(s) > 50
+    });
+    assert_eq!(tmux.format("#{alternate_on}"), "1");
+    assert!(screen.contains("I₃/I₁ = 0.4"), "{screen}");
+    assert!(
+        !screen.contains("\\frac") && !screen.contains("{{#"),
+        "{screen}"
+    );
+    // The second experiment of Section 4.2 sets I₃/I₁ = 1.
+    tmux.keys("x");
+    tmux.wait_for("the first experiment", long, |s| {
+        s.contains("experiment 1 of")
+    });
+    tmux.keys("x");
+    let screen = tmux.wait_for("the second experiment", long, |s| {
+        s.contains("experiment 2 of")
+    });
+    assert!(screen.contains("I₃/I₁ = 1 "), "{screen}");
+    tmux.keys("q");
+    assert_eq!(exit_status(&tmux, long), "0", "exit status");
+    assert_eq!(
+        tmux.format("#{alternate_on}"),
+        "0",
+        "the terminal must be restored"
+    );
+    let saved = std::fs::read_to_string(&progress).expect("the progress file is written on quit");
+    assert!(saved.contains("section-4-2.md"), "{saved}");
+    let _ = std::fs::remove_file(&progress);
 }
