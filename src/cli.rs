@@ -141,6 +141,9 @@ pub enum CliError {
     Stopped(String),
     /// Writing the output failed.
     Io(io::Error),
+    /// A terminal session was ended by a signal (the terminal was restored).
+    /// (its number and name).
+    Signal(i32, String),
 }
 
 impl CliError {
@@ -150,6 +153,8 @@ impl CliError {
             CliError::BadInput(_) => EXIT_BAD_INPUT,
             CliError::Numerical(_) | CliError::Stopped(_) => EXIT_NUMERICAL,
             CliError::Io(_) => 1,
+            // As a shell reports a process a signal stopped: 128 + its number.
+            CliError::Signal(n, _) => u8::try_from(128 + n).unwrap_or(EXIT_NUMERICAL),
         }
     }
 
@@ -159,6 +164,7 @@ impl CliError {
             CliError::BadInput(msg) | CliError::Stopped(msg) => msg.clone(),
             CliError::Numerical(e) => format!("{e}; {}", advice(e)),
             CliError::Io(e) => format!("cannot write output: {e}"),
+            CliError::Signal(_, name) => format!("stopped by {name}; the terminal is restored"),
         }
     }
 }

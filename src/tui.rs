@@ -17,6 +17,7 @@
 pub mod app;
 pub mod event;
 pub mod learn;
+pub mod signals;
 pub mod theme;
 pub mod view;
 pub mod widgets;

@@ -110,11 +110,16 @@ pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliEr
             "spintop learn needs a terminal, but stdout is not one; `spintop learn --list` prints the course as text",
         ));
     }
-    {
+    crate::tui::signals::check_terminal_capable().map_err(|e| {
+        bad(format!(
+            "{e}; `spintop learn --list` prints the course as text"
+        ))
+    })?;
+    let signal = {
         let _restore = Restore;
         let mut terminal = ratatui::try_init()?;
-        learn::run(&mut terminal, &mut session)?;
-    }
+        learn::run(&mut terminal, &mut session)?
+    };
     let progress = Progress::of(&session);
     if let Some(dir) = progress_path.parent() {
         // Progress is a convenience: failing to save it is reported, not fatal.
@@ -131,6 +136,9 @@ pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliEr
                 progress_path.display()
             )?;
         }
+    }
+    if let Some(signal) = signal {
+        return Err(CliError::Signal(signal, crate::tui::signals::name(signal)));
     }
     Ok(())
 }

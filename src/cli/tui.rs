@@ -159,6 +159,11 @@ pub(crate) fn execute(args: TuiArgs, out: &mut impl Write) -> Result<(), CliErro
              `spintop simulate` (numbers) or `spintop plot` (ASCII charts)",
         ));
     }
+    crate::tui::signals::check_terminal_capable().map_err(|e| {
+        bad(format!(
+            "{e}; for text output use `spintop simulate` (numbers) or `spintop plot` (ASCII charts)"
+        ))
+    })?;
     let mut app = App::new(settings).map_err(bad)?;
     if let Some(note) = note {
         app = app.with_message(note);
@@ -168,6 +173,9 @@ pub(crate) fn execute(args: TuiArgs, out: &mut impl Write) -> Result<(), CliErro
         let mut terminal = ratatui::try_init()?;
         event::run(&mut terminal, &mut app, limit)?
     };
+    if let Some(signal) = report.signal {
+        return Err(CliError::Signal(signal, crate::tui::signals::name(signal)));
+    }
     if limit.is_some() {
         let cpu = match (report.cpu, report.cpu_share()) {
             (Some(cpu), Some(share)) => format!(

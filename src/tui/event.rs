@@ -117,6 +117,9 @@ pub struct LoopReport {
     /// CPU time of the process during the loop (user + system), where the
     /// platform reports it.
     pub cpu: Option<Duration>,
+    /// The signal that ended the loop (SIGTERM, SIGINT, SIGHUP, SIGQUIT), if
+    /// one did.
+    pub signal: Option<i32>,
 }
 
 impl LoopReport {
@@ -158,12 +161,13 @@ pub fn run<B: Backend>(
 where
     B::Error: Send + Sync + 'static,
 {
+    let signals = super::signals::Signals::install()?;
     let start = Instant::now();
     let cpu_start = process_cpu_time();
     let mut last = start;
     let mut next_frame = start;
     let mut frames = 0;
-    while !app.should_quit() {
+    while !app.should_quit() && signals.received().is_none() {
         let now = Instant::now();
         if limit.is_some_and(|l| now - start >= l) {
             break;
@@ -182,7 +186,7 @@ where
         // Handle keys until the next frame is due.
         loop {
             let timeout = next_frame.saturating_duration_since(Instant::now());
-            if timeout.is_zero() || !event::poll(timeout)? {
+            if timeout.is_zero() || !super::signals::poll(timeout)? {
                 break;
             }
             if let Event::Key(key) = event::read()? {
@@ -193,6 +197,9 @@ where
                     break;
                 }
             }
+            if signals.received().is_some() {
+                break;
+            }
             // A resize needs nothing: the next draw fits the new size.
         }
     }
@@ -200,7 +207,12 @@ where
     let cpu = process_cpu_time()
         .zip(cpu_start)
         .map(|(end, begin)| end.saturating_sub(begin));
-    Ok(LoopReport { frames, wall, cpu })
+    Ok(LoopReport {
+        frames,
+        wall,
+        cpu,
+        signal: signals.received(),
+    })
 }
 
 #[cfg(test)]

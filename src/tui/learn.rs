@@ -836,18 +836,20 @@ impl Progress {
 }
 
 /// Runs `spintop learn` on a terminal until quit.
+/// Returns the signal that ended it, if one did (see [`super::signals`]).
 pub fn run<B: ratatui::backend::Backend>(
     terminal: &mut ratatui::Terminal<B>,
     learn: &mut Learn,
-) -> std::io::Result<()>
+) -> std::io::Result<Option<i32>>
 where
     B::Error: Send + Sync + 'static,
 {
     use crossterm::event::{self, Event, KeyEventKind};
     use std::time::Instant;
+    let signals = super::signals::Signals::install()?;
     let frame_time = Duration::from_millis(33);
     let mut last = Instant::now();
-    while !learn.should_quit() {
+    while !learn.should_quit() && signals.received().is_none() {
         let now = Instant::now();
         learn.advance(now - last);
         last = now;
@@ -857,7 +859,7 @@ where
         let deadline = Instant::now() + frame_time;
         loop {
             let timeout = deadline.saturating_duration_since(Instant::now());
-            if timeout.is_zero() || !event::poll(timeout)? {
+            if timeout.is_zero() || !super::signals::poll(timeout)? {
                 break;
             }
             if let Event::Key(key) = event::read()?
@@ -868,7 +870,10 @@ where
                     break;
                 }
             }
+            if signals.received().is_some() {
+                break;
+            }
         }
     }
-    Ok(())
+    Ok(signals.received())
 }

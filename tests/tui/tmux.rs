@@ -81,6 +81,7 @@ impl Drop for Tmux {
             let _ = std::fs::remove_file(path);
         }
         let _ = std::fs::remove_file(&self.status_file);
+        let _ = std::fs::remove_file(format!("{}.stty", self.status_file.display()));
     }
 }
 
@@ -159,7 +160,11 @@ fn launch_with(tag: &str, env: &str, args: &str) -> Option<Tmux> {
         "-k",
         "-t",
         "spintop",
-        &format!("{env} '{binary}' {args}; echo $? > '{status}'"),
+        // After the program: its exit status, and the tty's modes as it left
+        // them (`stty -a`), written before the status so both are there.
+        &format!(
+            "{env} '{binary}' {args}; code=$?; stty -a > '{status}.stty' 2>&1; echo $code > '{status}'"
+        ),
     ]);
     Some(tmux)
 }
@@ -350,4 +355,94 @@ fn spintop_learn_shows_a_chapter_beside_its_scene_and_runs_its_experiments() {
     let saved = std::fs::read_to_string(&progress).expect("the progress file is written on quit");
     assert!(saved.contains("section-4-2.md"), "{saved}");
     let _ = std::fs::remove_file(&progress);
+}
+
+/// The pid of the program running in the pane (the shell's child).
+fn program_pid(tmux: &Tmux, program: &str, limit: Duration) -> String {
+    let shell = tmux.format("#{pane_pid}");
+    let start = Instant::now();
+    loop {
+        let out = Command::new("pgrep")
+            .args(["-P", &shell, "-f", program])
+            .output()
+            .expect("pgrep runs");
+        let pid = String::from_utf8_lossy(&out.stdout)
+            .trim()
+            .lines()
+            .next()
+            .unwrap_or("")
+            .to_owned();
+        if !pid.is_empty() {
+            return pid;
+        }
+        assert!(
+            start.elapsed() < limit,
+            "no {program} process under the pane's shell {shell}"
+        );
+        sleep(Duration::from_millis(50));
+    }
+}
+
+/// `kill -TERM`, `-INT`, `-HUP` and `-QUIT` of the live view and of
+/// `spintop learn` must leave the terminal as it was: the alternate screen
+/// left, and the pane's tty back in canonical mode with echo (checked with
+/// `stty` on the pane's own tty after the program ended). The exit status is
+/// 128 + the signal's number, as for any process a signal stopped.
+#[test]
+fn a_signal_restores_the_terminal() {
+    for (signal, number) in [("TERM", 15), ("INT", 2), ("HUP", 1), ("QUIT", 3)] {
+        for (args, ready) in [("", "reduced"), ("learn --chapter 4.1", "Section 4.1")] {
+            let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
+            let Some(tmux) = launch_with(&format!("sig{number}"), env, args) else {
+                return;
+            };
+            let long = Duration::from_secs(20);
+            tmux.wait_for("the view", long, |s| s.contains(ready));
+            assert_eq!(tmux.format("#{alternate_on}"), "1");
+            let pid = program_pid(&tmux, "spintop", long);
+            let killed = Command::new("kill")
+                .args([&format!("-{signal}"), &pid])
+                .status()
+                .expect("kill runs");
+            assert!(killed.success());
+            let code = exit_status(&tmux, long);
+            assert_eq!(
+                code,
+                (128 + number).to_string(),
+                "SIG{signal} on `spintop {args}`"
+            );
+            assert_eq!(
+                tmux.format("#{alternate_on}"),
+                "0",
+                "SIG{signal}: alternate screen left"
+            );
+            let stty = format!("{}.stty", tmux.status_file.display());
+            let modes = std::fs::read_to_string(&stty).expect("the pane's shell ran stty -a");
+            let words: Vec<&str> = modes.split_whitespace().collect();
+            for flag in ["icanon", "echo", "isig"] {
+                assert!(
+                    words.contains(&flag),
+                    "SIG{signal} on `spintop {args}`: the tty lacks {flag}:\n{modes}"
+                );
+            }
+        }
+    }
+}
+
+/// `TERM=dumb` cannot draw the full-screen view: on a real terminal with that
+/// TERM, both views refuse with exit code 2 instead of drawing escape codes.
+#[test]
+fn term_dumb_is_refused_like_a_missing_terminal() {
+    for args in ["", "learn"] {
+        let Some(tmux) = launch_with("dumb", "TERM=dumb", args) else {
+            return;
+        };
+        let long = Duration::from_secs(20);
+        assert_eq!(exit_status(&tmux, long), "2", "TERM=dumb spintop {args}");
+        let screen = tmux.capture();
+        assert!(
+            !screen.contains("reduced (4.12)"),
+            "nothing drawn:\n{screen}"
+        );
+    }
 }
