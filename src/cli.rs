@@ -248,6 +248,140 @@ pub(crate) fn write_aligned<S: std::fmt::Display>(
     writeln!(out)
 }
 
+/// Reads a text file given on the command line, refusing what is not one: a
+/// folder, a FIFO, a device (`/dev/zero` never ends), a symlink loop, or a
+/// file over `max_bytes` (checked before and while reading, so nothing
+/// unbounded is read). `what` names the file in the message ("scene file").
+pub(crate) fn read_text_file(
+    path: &std::path::Path,
+    what: &str,
+    max_bytes: u64,
+) -> Result<String, CliError> {
+    use std::io::Read;
+    let shown = path.display();
+    let meta = std::fs::metadata(path)
+        .map_err(|e| bad(format!("{shown}: cannot read the {what}: {e}")))?;
+    if !meta.is_file() {
+        let kind = if meta.is_dir() {
+            "a folder"
+        } else {
+            "not a regular file (a device, FIFO or socket)"
+        };
+        return Err(bad(format!(
+            "{shown}: the {what} is {kind}; give the path of a text file"
+        )));
+    }
+    if meta.len() > max_bytes {
+        return Err(bad(format!(
+            "{shown}: the {what} has {} bytes, more than the {max_bytes} allowed",
+            meta.len()
+        )));
+    }
+    let file = std::fs::File::open(path)
+        .map_err(|e| bad(format!("{shown}: cannot read the {what}: {e}")))?;
+    let mut bytes = Vec::new();
+    file.take(max_bytes + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| bad(format!("{shown}: cannot read the {what}: {e}")))?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(bad(format!(
+            "{shown}: the {what} is longer than the {max_bytes} bytes allowed"
+        )));
+    }
+    String::from_utf8(bytes).map_err(|_| bad(format!("{shown}: the {what} is not UTF-8 text")))
+}
+
+/// The path of the first number in `value` that is NaN or infinite
+/// (`samples[3].larmor[2]`), if any: every command checks its output with this
+/// before writing it, so no NaN, `inf` or JSON `null` is ever reported as a
+/// result.
+///
+/// NOTE: the output is walked as a `toml::Value`, which, unlike JSON, keeps
+/// NaN and infinities as numbers; `None` fields are simply absent there.
+pub(crate) fn first_non_finite<T: serde::Serialize>(value: &T) -> Option<String> {
+    fn walk(v: &toml::Value, path: &mut String) -> bool {
+        match v {
+            toml::Value::Float(x) => !x.is_finite(),
+            toml::Value::Array(items) => items.iter().enumerate().any(|(i, item)| {
+                let len = path.len();
+                path.push_str(&format!("[{i}]"));
+                let found = walk(item, path);
+                if !found {
+                    path.truncate(len);
+                }
+                found
+            }),
+            toml::Value::Table(table) => table.iter().any(|(k, item)| {
+                let len = path.len();
+                if !path.is_empty() {
+                    path.push('.');
+                }
+                path.push_str(k);
+                let found = walk(item, path);
+                if !found {
+                    path.truncate(len);
+                }
+                found
+            }),
+            _ => false,
+        }
+    }
+    let value = toml::Value::try_from(value).ok()?;
+    let mut path = String::new();
+    walk(&value, &mut path).then_some(path)
+}
+
+/// Refuses an output holding a NaN or an infinity: a numerical failure (exit
+/// 3) that names where, with `advice` for the command at hand.
+pub(crate) fn ensure_finite<T: serde::Serialize>(value: &T, advice: &str) -> Result<(), CliError> {
+    match first_non_finite(value) {
+        None => Ok(()),
+        Some(path) => Err(CliError::Stopped(format!(
+            "the result is not a finite number at {path}: the inputs are beyond what a double can carry through this computation; {advice}"
+        ))),
+    }
+}
+
+/// clap's report on one line: the error, the missing arguments, the possible
+/// values and the tip ("a similar argument exists"), without the usage block
+/// and the pointer to `--help` (the caller adds its own).
+fn clap_message(e: &clap::Error) -> String {
+    let rendered = e.render().to_string();
+    let mut parts: Vec<String> = Vec::new();
+    for line in rendered.lines() {
+        let t = line.trim();
+        if t.starts_with("Usage:") || t.starts_with("For more information") {
+            break;
+        }
+        if t.is_empty() {
+            continue;
+        }
+        parts.push(t.strip_prefix("error: ").unwrap_or(t).to_string());
+    }
+    let mut message = String::new();
+    // After "…not provided:" the parts are a list of arguments.
+    let mut listing = false;
+    for part in parts {
+        if message.is_empty() {
+            listing = part.ends_with(':');
+            message = part;
+        } else if part.starts_with('[') {
+            message = format!("{message} {part}");
+        } else if listing && !part.starts_with("tip:") {
+            let sep = if message.ends_with(':') { " " } else { ", " };
+            message = format!("{message}{sep}{part}");
+        } else {
+            listing = false;
+            message = format!("{message}; {part}");
+        }
+    }
+    if message.is_empty() {
+        "invalid arguments".to_string()
+    } else {
+        message
+    }
+}
+
 /// Parse, validate, run and print; returns the process exit code.
 pub fn run<I, T>(args: I, stdout: &mut impl Write, stderr: &mut impl Write) -> ExitCode
 where
@@ -262,12 +396,7 @@ where
                 let _ = write!(stdout, "{e}");
                 return ExitCode::SUCCESS;
             }
-            // NOTE: clap's own report spans several lines (usage, hint); the
-            // contract is one line, so keep its first line and point at --help.
-            let rendered = e.to_string();
-            let first = rendered.lines().next().unwrap_or("invalid arguments");
-            let first = first.strip_prefix("error: ").unwrap_or(first);
-            let _ = writeln!(stderr, "spintop: error: {first} (see --help)");
+            let _ = writeln!(stderr, "spintop: error: {} (see --help)", clap_message(&e));
             return ExitCode::from(EXIT_BAD_INPUT);
         }
     };

@@ -127,3 +127,13 @@ pub fn fmt_axis(x: Real) -> String {
     let plain = format!("{x}");
     if plain.len() <= 6 { plain } else { fmt_num(x) }
 }
+
+/// A count for a message: in full below ten million, else in exponent form
+/// (`1.8e19`), never a saturated integer's twenty digits.
+pub fn fmt_count(n: f64) -> String {
+    if n.is_finite() && n.abs() < 1e7 {
+        format!("{n:.0}")
+    } else {
+        format!("{n:.1e}")
+    }
+}

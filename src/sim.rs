@@ -30,6 +30,7 @@ use crate::physics::symmetric_top::{
 use serde::Serialize;
 use thiserror::Error;
 
+pub mod cost;
 pub mod orbit;
 pub mod physical;
 pub mod shell;
@@ -224,6 +225,9 @@ pub enum SimError {
     /// A forward run of the full ALE ran away before the requested time.
     #[error("{0}")]
     Runaway(physical::Runaway),
+    /// The run would take more work than allowed (estimated before it starts).
+    #[error(transparent)]
+    TooCostly(#[from] cost::TooCostly),
 }
 
 /// The method actually used, as reported in outputs.
@@ -335,6 +339,18 @@ impl Sample {
             tilt: obs.tilt,
             euler_rates: euler_rates(&euler, omega).map(|r| [r.phi_dot, r.theta_dot, r.psi_dot]),
         }
+    }
+
+    /// True when every number of the sample is finite.
+    pub fn is_finite(&self) -> bool {
+        let finite = |xs: &[Real]| xs.iter().all(|x| x.is_finite());
+        finite(&[self.t, self.energy, self.omega_perp, self.tilt])
+            && finite(&self.omega)
+            && finite(&self.l_lab)
+            && finite(&self.l_body)
+            && finite(&self.euler)
+            && self.rotation.iter().all(|r| finite(r))
+            && self.euler_rates.is_none_or(|r| finite(&r))
     }
 
     /// Ω as a vector.
@@ -592,6 +608,9 @@ impl Simulation {
         if horizon.is_nan() || horizon < 0.0 {
             return Err(SimError::BadTime(horizon, 0.0));
         }
+        if horizon < Real::MAX {
+            cost::check(&model, choice, &options, &initial.omega, horizon)?;
+        }
         let base = Quat::from_matrix(&initial.rotation);
         let scale = initial.omega.norm();
         let on_group = |which: Integrator, dynamics: FirstOrder| -> Result<Engine, SimError> {
@@ -774,7 +793,13 @@ impl Simulation {
         if !(all_finite(&omega) && all_finite(&rotation)) {
             return Err(SimError::NonFiniteSample(t));
         }
-        self.current = Sample::new(t, &inertia, &rotation, &omega);
+        let sample = Sample::new(t, &inertia, &rotation, &omega);
+        // The observables can overflow where Ω does not (E = ΩᵀIΩ/2 with a
+        // huge I or Ω): a sample is reported only when every number in it is.
+        if !sample.is_finite() {
+            return Err(SimError::NonFiniteSample(t));
+        }
+        self.current = sample;
         Ok(&self.current)
     }
 

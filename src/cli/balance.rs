@@ -431,6 +431,10 @@ fn describe(p: &BalanceParameters) -> String {
 pub(crate) fn execute(args: BalanceArgs, out: &mut impl Write) -> Result<(), CliError> {
     let config = args.validate()?;
     let output = balance(&config);
+    super::ensure_finite(
+        &output,
+        "the torques grow like the third power of --rate (and of the loop's size): use a smaller --rate",
+    )?;
     write_output(out, &output, config.format)?;
     Ok(())
 }

@@ -86,10 +86,10 @@ pub struct BenchArgs {
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
     /// Width of each chart, in characters (16 to 250).
-    #[arg(long, default_value_t = 60)]
+    #[arg(long, default_value_t = 60, allow_hyphen_values = true)]
     width: u32,
     /// Height of each chart, in lines (4 to 100).
-    #[arg(long, default_value_t = 18)]
+    #[arg(long, default_value_t = 18, allow_hyphen_values = true)]
     height: u32,
     /// Instead of a sweep: join CSV files of earlier runs and print each method's time at matched error 1e-8 and 1e-12, with ratios.
     #[arg(long, value_name = "CSV", num_args = 1..,
@@ -338,7 +338,7 @@ fn join(files: &[PathBuf], out: &mut impl Write) -> Result<(), CliError> {
 }
 
 fn read_rows(path: &Path) -> Result<Vec<Row>, CliError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| bad(format!("cannot read '{}': {e}", path.display())))?;
+    // A sweep's CSV is a few hundred kB; 64 MB is generous and bounded.
+    let text = super::read_text_file(path, "CSV file", 64 << 20)?;
     report::parse_csv(&text).map_err(|e| bad(format!("'{}': {e}", path.display())))
 }

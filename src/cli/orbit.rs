@@ -63,7 +63,7 @@ pub struct OrbitArgs {
     #[arg(long, value_name = "T1,T2,...", value_parser = parse_times, allow_hyphen_values = true)]
     times: TimeList,
     /// Relative tolerance of the integrations, in [1e-14, 1e-3] [default: 1e-11]
-    #[arg(long, value_parser = parse_number)]
+    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     rtol: Option<Real>,
     /// Output format.
     #[arg(long, value_enum, default_value = "table")]
@@ -380,6 +380,10 @@ pub fn write_output(out: &mut impl Write, output: &OrbitOutput, format: Format) 
 pub(crate) fn execute(args: OrbitArgs, out: &mut impl Write) -> Result<(), CliError> {
     let request = args.validate()?;
     let output = orbit(&request)?;
+    super::ensure_finite(
+        &output,
+        "keep --tau0 and --r0 within a few decades of 1 (the radiation rate goes like tau0/r0^3)",
+    )?;
     write_output(out, &output, request.format)?;
     Ok(())
 }

@@ -32,14 +32,14 @@ pub struct PlotArgs {
     #[arg(long, value_enum, default_value = "both")]
     model: PlotModel,
     /// I3/I1, in (0, 2].
-    #[arg(long, value_parser = parse_number, default_value = "0.4")]
+    #[arg(long, value_parser = parse_number, allow_hyphen_values = true, default_value = "0.4")]
     ratio: Real,
     /// Initial body angular velocity, in 1/tau.
     #[arg(long, value_name = "W1,W2,W3", value_parser = parse_vec3, allow_hyphen_values = true,
           default_value = "0,0.1,0.2")]
     omega: [Real; 3],
     /// Last time of the plot, in tau.
-    #[arg(long, value_parser = parse_number, default_value = "500")]
+    #[arg(long, value_parser = parse_number, allow_hyphen_values = true, default_value = "500")]
     t_end: Real,
     /// Plot against log10 t over the four decades that end at --t-end.
     #[arg(long)]
@@ -48,10 +48,10 @@ pub struct PlotArgs {
     #[arg(long, value_enum, default_value = "exact")]
     method: ViewMethod,
     /// Width of each chart, in characters (16 to 500).
-    #[arg(long, default_value_t = 60)]
+    #[arg(long, default_value_t = 60, allow_hyphen_values = true)]
     width: u32,
     /// Height of each chart, in lines (2 to 200).
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, allow_hyphen_values = true)]
     height: u32,
 }
 
@@ -151,9 +151,15 @@ fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError
     let [w1, w2, w3] = config.omega0;
     let reach = w1.hypot(w2).max(w3.abs());
     let y = nice_ceiling(reach * 1.05) as f32;
-    for model in &config.models {
+    // Every model runs before anything is written: a refusal or a failure
+    // leaves no half-printed chart behind.
+    let runs = config
+        .models
+        .iter()
+        .map(|model| samples(config, *model, &config.top))
+        .collect::<Result<Vec<_>, _>>()?;
+    for (model, (samples, method)) in config.models.iter().zip(runs) {
         let top = &config.top;
-        let (samples, method) = samples(config, *model, top)?;
         writeln!(
             out,
             "# spintop plot: {} model, {}; I3/I1 = {}, tau = 1; omega0 = ({w1}, {w2}, {w3}) 1/tau; \

@@ -47,9 +47,10 @@ pub struct RunArgs {
 /// Read and validate a scene: the file `arg`, or the catalogue scene of that name.
 pub fn load(arg: &str) -> Result<Scene, CliError> {
     let path = Path::new(arg);
-    if path.is_file() {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| bad(format!("{arg}: cannot read the scene file: {e}")))?;
+    // Anything at that path (a file, a folder, a device, a dangling or looping
+    // link) is what was meant: read it or say why not.
+    if path.symlink_metadata().is_ok() {
+        let text = super::read_text_file(path, "scene file", 1 << 20)?;
         return crate::scene::parse(&text, arg).map_err(|e| bad(e.to_string()));
     }
     if let Some(entry) = catalogue::find(arg) {
@@ -414,7 +415,8 @@ pub fn answer(scene: &Scene) -> Result<Report, CliError> {
                 return Err(bad(scene.error_at(
                     scene.lines.times,
                     format!(
-                        "[solve] the run needs {work:.1e} RK4 steps ({steps} per delay up to t = {t_last}), more than {SHELL_MAX_STEPS:.0e}; expected shorter times or a longer delay"
+                        "[solve] the run needs {work:.1e} RK4 steps ({} per delay up to t = {t_last}), more than {SHELL_MAX_STEPS:.0e}; expected shorter times or a longer delay",
+                        crate::present::fmt_count(steps as Real)
                     ),
                 ).to_string()));
             }

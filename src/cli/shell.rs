@@ -64,8 +64,13 @@ impl ShellArgs {
         let work = (t_last / self.delay).ceil().max(1.0) * steps as Real;
         if work > MAX_STEPS {
             return Err(bad(format!(
-                "the run needs {work:.1e} RK4 steps ({steps} per delay up to t = {t_last}), more than {MAX_STEPS:.0e}: \
-                 ask for shorter --times or a longer --delay"
+                "the run needs {work:.1e} RK4 steps ({} per delay up to t = {t_last}), more than {MAX_STEPS:.0e}: {}",
+                crate::present::fmt_count(steps as Real),
+                if self.delay > t_last {
+                    "the delay is longer than the run itself; choose a shorter --delay"
+                } else {
+                    "ask for shorter --times or a longer --delay"
+                }
             )));
         }
         Ok(ShellRequest {
@@ -283,6 +288,10 @@ pub(crate) fn execute(
         err.flush()?;
     }
     let output = shell(&request)?;
+    super::ensure_finite(
+        &output,
+        "use a shell radius and times within a few decades of 1",
+    )?;
     write_output(out, &output, request.format)?;
     Ok(())
 }

@@ -51,7 +51,7 @@ pub struct SimulateArgs {
     #[arg(long, value_enum)]
     model: ModelArg,
     /// I3/I1 of the symmetric models, in (0, 2] [default: 0.4]
-    #[arg(long, value_parser = parse_number)]
+    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     ratio: Option<Real>,
     /// Principal moments of the general model (kappa = 1 units).
     #[arg(long, value_name = "I1,I2,I3", value_parser = parse_vec3, allow_hyphen_values = true)]
@@ -71,7 +71,7 @@ pub struct SimulateArgs {
     #[arg(long, value_name = "T1,T2,...", value_parser = parse_times, conflicts_with_all = ["t_end", "samples"])]
     times: Option<TimeList>,
     /// Last output time (with --samples evenly spaced times from 0) [default: 100]
-    #[arg(long, value_parser = parse_number)]
+    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     t_end: Option<Real>,
     /// Number of evenly spaced output times from 0 to --t-end [default: 11]
     #[arg(long)]
@@ -80,10 +80,10 @@ pub struct SimulateArgs {
     #[arg(long, value_enum, default_value = "auto")]
     method: MethodArg,
     /// Relative tolerance of the adaptive methods [default: 1e-10]
-    #[arg(long, value_parser = parse_number)]
+    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     rtol: Option<Real>,
     /// Step size of RK4, in tau [default: 0.01]
-    #[arg(long, value_parser = parse_number)]
+    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     step: Option<Real>,
     /// Output format.
     #[arg(long, value_enum, default_value = "table")]
@@ -416,7 +416,12 @@ pub fn write_output(
             ];
             write_aligned(out, head, 14)?;
             for s in &output.samples {
-                let l = Vec3::from(s.l_lab).norm();
+                // Scaled, so that |L| does not overflow where its components do not.
+                let l = {
+                    let v = Vec3::from(s.l_lab);
+                    let m = v.amax();
+                    if m > 0.0 { m * (v / m).norm() } else { 0.0 }
+                };
                 let row = [
                     s.t,
                     s.omega[0],
@@ -445,6 +450,10 @@ pub(crate) fn execute(
 ) -> Result<(), CliError> {
     let config = args.validate()?;
     let output = simulate(&config)?;
+    super::ensure_finite(
+        &output,
+        "use smaller rates or moments (in units of 1/tau and I1)",
+    )?;
     if let Some(r) = &output.runaway {
         writeln!(
             err,

@@ -45,7 +45,7 @@ pub struct TuiArgs {
     #[arg(value_name = "SCENE", conflicts_with_all = ["ratio", "omega", "method"])]
     scene: Option<String>,
     /// I3/I1 of both models, in (0, 2] [default: 0.4]
-    #[arg(long, value_parser = parse_number)]
+    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     ratio: Option<Real>,
     /// Initial body angular velocity, in 1/tau [default: 0,0.1,0.2]
     #[arg(long, value_name = "W1,W2,W3", value_parser = parse_vec3, allow_hyphen_values = true)]
@@ -55,10 +55,10 @@ pub struct TuiArgs {
     method: Option<ViewMethod>,
     /// Model time per wall-clock second, in tau: 0.5, 1, 2, 5, 10, 20, 50, 100,
     /// 200, 500 or 1000 [default: 10]
-    #[arg(long, value_parser = parse_number)]
+    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     warp: Option<Real>,
     /// Benchmark: run for SECONDS, then print frames per second and CPU use.
-    #[arg(long, value_name = "SECONDS", value_parser = parse_number)]
+    #[arg(long, value_name = "SECONDS", value_parser = parse_number, allow_hyphen_values = true)]
     bench: Option<Real>,
 }
 

@@ -26,7 +26,7 @@ use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample};
 use serde::Serialize;
 
 /// The most steps any integration of a scene may take (the integrators' own cap).
-pub const MAX_STEPS: Real = crate::integrate::DEFAULT_MAX_STEPS as Real;
+pub use crate::sim::cost::MAX_STEPS;
 
 /// Above this many steps, `auto` skips the reduced model's orientation
 /// rather than integrate it.
@@ -50,8 +50,7 @@ pub const STRONG_SPIN: Real = 0.3;
 /// Euler angles within this sin θ of a pole get a warning.
 pub const POLE_SIN: Real = 1e-2;
 
-/// The full model's physical solution is tabulated with hΩ ≤ 0.05.
-const FULL_TURN_PER_STEP: Real = 0.05;
+use crate::sim::cost::FULL_TURN_PER_STEP;
 
 /// The method used, as outputs label it, and why.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -103,22 +102,7 @@ pub(super) struct TopPlan {
     pub warnings: Vec<String>,
 }
 
-/// How far the body turns by `t`, in radians: exactly |Ω₀|ϑ(t) for the
-/// truncated model (every rate falls as 1/R), at most |Ω₀|t for the reduced
-/// and full ones (neither speeds up), and about √(2E₀/I_min) t for the general
-/// top (a bound on |Ω| while the energy does not grow).
-pub fn turning_angle(model: &Model, omega0: &Vec3, t: Real) -> Real {
-    match model {
-        Model::Truncated(top) => {
-            omega0.norm() * truncated_clock(top, omega_perp(omega0), t).vartheta
-        }
-        Model::Reduced(_) | Model::Full(_) => omega0.norm() * t,
-        Model::General(top) => {
-            let inertia = top.inertia();
-            (2.0 * energy(&inertia, omega0) / inertia.min()).sqrt() * t
-        }
-    }
-}
+pub use crate::sim::cost::turning_angle;
 
 /// The label the simulation will report for a method on a model.
 fn label(model: &Model, method: MethodChoice) -> &'static str {

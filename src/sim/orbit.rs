@@ -103,7 +103,7 @@ impl OrbitConfig {
                 name: "r0",
                 value: r0,
                 range: "above (10 tau0)^(2/3) for coulomb, where the orbital time r0^(3/2) is still \
-                        longer than 10 tau0 (else no orbit exists to decay)",
+                        longer than 10 tau0 (else no orbit exists to decay): raise r0 or lower tau0",
             });
         }
         Ok(config)
