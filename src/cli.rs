@@ -211,6 +211,60 @@ fn advice(e: &IntegrateError) -> &'static str {
     }
 }
 
+/// A simulation's failure, with advice that applies to the model and the
+/// method in use: it names only options that exist for them and are not
+/// already chosen (no "--method exact" for a model without a closed form or a
+/// run already exact, no "--step" for an adaptive method).
+pub(crate) fn sim_failure(
+    e: SimError,
+    model: &crate::sim::Model,
+    choice: crate::sim::MethodChoice,
+) -> CliError {
+    use crate::sim::MethodChoice as M;
+    let integrate = match &e {
+        SimError::Integrate(ie) if !matches!(ie, IntegrateError::InvalidOption(_)) => ie.clone(),
+        SimError::NonFiniteSample(t) => IntegrateError::NonFinite { t: *t },
+        SimError::Physical(crate::sim::physical::PhysicalError::Integrate(ie)) => ie.clone(),
+        _ => return CliError::from(e),
+    };
+    let closed = model.has_closed_form();
+    let full = matches!(model, crate::sim::Model::Full(_));
+    let exact = if closed && matches!(choice, M::Rk4 | M::Dopri5 | M::Dop853) {
+        ", or --method exact (the closed forms take no steps)"
+    } else {
+        ""
+    };
+    let advice: String = match (&integrate, choice) {
+        (IntegrateError::NonFinite { .. }, M::Rk4) => {
+            format!("RK4's fixed step is too large for these rates (its stability limit is about 2.8 over the largest decay rate): use a smaller --step, or an adaptive method (--method dop853){exact}")
+        }
+        (IntegrateError::NonFinite { .. }, _) if full => {
+            "the full ALE's solution left the range of a double: use smaller --omega or a shorter --t-end, or compare --model reduced".into()
+        }
+        (IntegrateError::NonFinite { .. }, _) => {
+            format!("the rates overflow a double: use a smaller --omega (in units of 1/tau){exact}")
+        }
+        (IntegrateError::StepSizeUnderflow { .. }, _) => {
+            if closed && choice != M::Exact && choice != M::Auto {
+                "the problem is stiff or singular here: --method exact takes no steps; else use a smaller --omega".into()
+            } else {
+                "the problem is stiff or singular here: use a smaller --omega or a looser --rtol".into()
+            }
+        }
+        (IntegrateError::TooManySteps { .. }, M::Rk4) => {
+            format!("use a larger --step (if RK4 stays stable) or a shorter --t-end{exact}")
+        }
+        (IntegrateError::TooManySteps { .. }, _) => {
+            format!("use a looser --rtol or a shorter --t-end{exact}")
+        }
+        (IntegrateError::NoConvergence { .. }, _) => {
+            "the implicit method's Newton iteration failed: use an adaptive method or a smaller --omega".into()
+        }
+        (IntegrateError::InvalidOption(_), _) => "check the method options".into(),
+    };
+    CliError::Stopped(format!("{integrate}; {advice}"))
+}
+
 pub(crate) fn bad(msg: impl Into<String>) -> CliError {
     CliError::BadInput(msg.into())
 }

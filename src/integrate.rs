@@ -129,13 +129,13 @@ impl std::ops::AddAssign for Stats {
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum IntegrateError {
     /// The state or the error estimate stopped being finite.
-    #[error("the solution became non-finite at t = {t}")]
+    #[error("the solution became non-finite at t = {}", crate::math::fmt_time(*t))]
     NonFinite {
         /// Time of the last finite state.
         t: Real,
     },
     /// The adaptive step size fell below what the floating-point time axis can resolve.
-    #[error("the step size fell to {h:e} at t = {t}, below what the time axis can resolve")]
+    #[error("the step size fell to {h:.3e} at t = {}, below what the time axis can resolve", crate::math::fmt_time(*t))]
     StepSizeUnderflow {
         /// Time where the method gave up.
         t: Real,
@@ -143,7 +143,7 @@ pub enum IntegrateError {
         h: Real,
     },
     /// More accepted steps than the budget allows (a guard against hangs).
-    #[error("the step budget of {max_steps} steps ran out at t = {t}")]
+    #[error("the step budget of {max_steps} steps ran out at t = {}", crate::math::fmt_time(*t))]
     TooManySteps {
         /// Time reached when the budget ran out.
         t: Real,
@@ -153,7 +153,7 @@ pub enum IntegrateError {
     /// The implicit method's Newton iteration did not converge and the step
     /// could not be shortened (the fixed-step mode of [`Radau5`]).
     #[error(
-        "the Newton iteration of the implicit method did not converge at t = {t} with step {h:e}"
+        "the Newton iteration of the implicit method did not converge at t = {} with step {h:.3e}", crate::math::fmt_time(*t)
     )]
     NoConvergence {
         /// Time of the step's start (the state there is kept).

@@ -168,3 +168,30 @@ mod tests {
         }
     }
 }
+
+/// A time for a message: as written below 10⁷ (and above 10⁻³, or 0), in
+/// exponent form outside that (`5.0000e299`, not three hundred digits).
+pub fn fmt_time(t: Real) -> String {
+    if t == 0.0 || (1e-3..1e7).contains(&t.abs()) {
+        let s = format!("{t:.6}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    } else {
+        format!("{t:.4e}")
+    }
+}
+
+#[cfg(test)]
+mod fmt_time_tests {
+    use super::fmt_time;
+
+    #[test]
+    fn times_in_messages_are_short() {
+        assert_eq!(fmt_time(10.0), "10");
+        assert_eq!(fmt_time(0.0), "0");
+        assert_eq!(fmt_time(1.02), "1.02");
+        assert_eq!(fmt_time(5e299), "5.0000e299");
+        assert_eq!(fmt_time(124999737.03362894), "1.2500e8");
+        assert_eq!(fmt_time(1e-9), "1.0000e-9");
+    }
+}

@@ -136,14 +136,11 @@ fn samples(
         InitialState::new(Vec3::from(config.omega0), paper_frame(top, config.omega0))?;
     initial.rotation = paper_frame(top, config.omega0).to_rotation();
     let horizon = config.times.last().copied();
-    let mut sim = Simulation::new(
-        model,
-        config.method.choice(),
-        MethodOptions::default(),
-        initial,
-        horizon,
-    )?;
-    let samples = sim.run(&config.times)?;
+    let choice = config.method.choice();
+    let failure = |e| super::sim_failure(e, &model, choice);
+    let mut sim = Simulation::new(model, choice, MethodOptions::default(), initial, horizon)
+        .map_err(failure)?;
+    let samples = sim.run(&config.times).map_err(failure)?;
     Ok((samples, sim.method().label()))
 }
 

@@ -68,13 +68,13 @@ pub struct SimulateArgs {
           default_value = "0,0,0")]
     euler: [Real; 3],
     /// Output times, comma-separated, >= 0 and non-decreasing.
-    #[arg(long, value_name = "T1,T2,...", value_parser = parse_times, conflicts_with_all = ["t_end", "samples"])]
+    #[arg(long, value_name = "T1,T2,...", value_parser = parse_times, allow_hyphen_values = true, conflicts_with_all = ["t_end", "samples"])]
     times: Option<TimeList>,
     /// Last output time (with --samples evenly spaced times from 0) [default: 100]
     #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     t_end: Option<Real>,
     /// Number of evenly spaced output times from 0 to --t-end [default: 11]
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     samples: Option<usize>,
     /// Numerical method.
     #[arg(long, value_enum, default_value = "auto")]
@@ -165,7 +165,7 @@ impl SimulateArgs {
             // NOTE: below ~1e-14 the tolerance asks for digits f64 does not have.
             if rtol < 1e-14 {
                 return Err(bad(format!(
-                    "--rtol {rtol} is below what double precision can deliver; use 1e-14 or more"
+                    "--rtol {rtol:e} is below what double precision can deliver; use 1e-14 or more"
                 )));
             }
             options.rtol = rtol;
@@ -275,13 +275,15 @@ pub struct Parameters {
 /// Run a validated `simulate` request.
 pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, CliError> {
     let horizon = config.times.last().copied().unwrap_or(0.0);
+    let failure = |e| super::sim_failure(e, &config.model, config.method);
     let mut sim = Simulation::new(
         config.model,
         config.method,
         config.options,
         config.initial,
         Some(horizon),
-    )?;
+    )
+    .map_err(failure)?;
     // A forward run of the full ALE stops at its runaway: the samples before it
     // are the answer, the runaway is reported beside them.
     let mut samples = Vec::with_capacity(config.times.len());
@@ -297,7 +299,7 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, CliError> {
                 });
                 break;
             }
-            Err(e) => return Err(e.into()),
+            Err(e) => return Err(failure(e)),
         }
     }
     let samples_omitted = runaway.map(|_| config.times.len() - samples.len());

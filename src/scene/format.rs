@@ -10,6 +10,24 @@ use toml::Spanned;
 /// An optional key with the byte range of its value in the file.
 pub(super) type Key<T> = Option<Spanned<T>>;
 
+/// A key holding exactly `N` numbers: serde's arrays would take the first
+/// `N` of a longer list and drop the rest without a word.
+fn exact<'de, D, const N: usize>(d: D) -> Result<Key<[Real; N]>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+{
+    use serde::de::Error;
+    let Some(list) = Option::<Spanned<Vec<Real>>>::deserialize(d)? else {
+        return Ok(None);
+    };
+    let span = list.span();
+    let values = list.into_inner();
+    let n = values.len();
+    <[Real; N]>::try_from(values)
+        .map(|a| Some(Spanned::new(span, a)))
+        .map_err(|_| D::Error::custom(format!("expected {N} numbers, got {n}")))
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawFile {
@@ -36,9 +54,13 @@ pub(super) struct RawScene {
 pub(super) struct RawTop {
     pub model: Key<String>,
     pub ratio: Key<Real>,
+    #[serde(default, deserialize_with = "exact")]
     pub inertia: Key<[Real; 3]>,
+    #[serde(default, deserialize_with = "exact")]
     pub dipole: Key<[Real; 3]>,
+    #[serde(default, deserialize_with = "exact")]
     pub omega: Key<[Real; 3]>,
+    #[serde(default, deserialize_with = "exact")]
     pub euler: Key<[Real; 3]>,
     pub frame: Key<String>,
 }
@@ -51,7 +73,9 @@ pub(super) struct RawBalance {
     pub rate: Key<Real>,
     pub b: Key<Real>,
     pub eps: Key<Real>,
+    #[serde(default, deserialize_with = "exact")]
     pub charges: Key<[Real; 2]>,
+    #[serde(default, deserialize_with = "exact")]
     pub masses: Key<[Real; 2]>,
     pub length: Key<Real>,
 }

@@ -1,0 +1,1312 @@
+//! The bad-input corpus: several hundred bad, edge and numerically hard
+//! invocations of the real binary, each with the exit code and a fragment of
+//! the message a user should get.
+//!
+//! Every case must hold the command-line contract: it ends within a time
+//! limit; a refusal or failure prints exactly one line on stderr, starting
+//! `spintop: error:`, naming what was wrong; the exit code is the documented
+//! one (2 bad input, 3 numerical failure, 1 output not writable, 0 success);
+//! nothing panics or aborts; and no output, on success or failure, holds a
+//! NaN, an infinity or a JSON `null` standing for one.
+//!
+//! The cases are data: a table of scalar flags crossed with malformed numbers
+//! (each must be refused naming the flag), a table of out-of-range values
+//! with the quantity each must name, broken scene files, numerical failures,
+//! and edge values that must succeed.
+
+use std::io::Read;
+use std::process::{Command, Stdio};
+use std::thread;
+use std::time::{Duration, Instant};
+
+/// One invocation and what it must give.
+#[derive(Clone, Debug)]
+struct Case {
+    args: Vec<String>,
+    code: i32,
+    /// A fragment the message (stderr) must hold; for exit 0, stdout.
+    fragment: String,
+    /// Stdout goes to /dev/full instead of a pipe.
+    full: bool,
+}
+
+fn case(args: &[&str], code: i32, fragment: &str) -> Case {
+    Case {
+        args: args.iter().map(|s| s.to_string()).collect(),
+        code,
+        fragment: fragment.to_string(),
+        full: false,
+    }
+}
+
+/// Runs a case with a time limit; returns (exit code, stdout, stderr).
+fn run(c: &Case) -> Result<(i32, String, String), String> {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_spintop"));
+    cmd.args(&c.args)
+        .stdin(Stdio::null())
+        .stderr(Stdio::piped());
+    // Tests must never touch a student's progress file.
+    cmd.env("SPINTOP_LEARN_PROGRESS", "/dev/null");
+    if c.full {
+        cmd.stdout(
+            std::fs::OpenOptions::new()
+                .write(true)
+                .open("/dev/full")
+                .map_err(|e| e.to_string())?,
+        );
+    } else {
+        cmd.stdout(Stdio::piped());
+    }
+    let mut child = cmd.spawn().map_err(|e| e.to_string())?;
+    // Drain the pipes on threads so a chatty child never blocks.
+    let mut out = child.stdout.take();
+    let mut err = child.stderr.take();
+    let t_out = thread::spawn(move || {
+        let mut s = Vec::new();
+        if let Some(o) = out.as_mut() {
+            let _ = o.take(1 << 24).read_to_end(&mut s);
+        }
+        s
+    });
+    let t_err = thread::spawn(move || {
+        let mut s = Vec::new();
+        if let Some(e) = err.as_mut() {
+            let _ = e.take(1 << 20).read_to_end(&mut s);
+        }
+        s
+    });
+    let limit = Duration::from_secs(30);
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
+            break status;
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(format!("no answer within {limit:?}"));
+        }
+        thread::sleep(Duration::from_millis(5));
+    };
+    let stdout = String::from_utf8_lossy(&t_out.join().unwrap_or_default()).into_owned();
+    let stderr = String::from_utf8_lossy(&t_err.join().unwrap_or_default()).into_owned();
+    let code = status
+        .code()
+        .ok_or_else(|| format!("killed by a signal: {status:?}; stderr: {stderr}"))?;
+    Ok((code, stdout, stderr))
+}
+
+/// What is wrong with a case's result, if anything.
+fn check(c: &Case) -> Option<String> {
+    let (code, stdout, stderr) = match run(c) {
+        Ok(r) => r,
+        Err(e) => return Some(e),
+    };
+    let mut problems = Vec::new();
+    if code != c.code {
+        problems.push(format!("exit {code}, expected {}", c.code));
+    }
+    if stderr.contains("panicked")
+        || stderr.contains("RUST_BACKTRACE")
+        || code == 101
+        || code == 134
+    {
+        problems.push("a panic or an abort".into());
+    }
+    if code != 0 {
+        let lines: Vec<&str> = stderr.lines().collect();
+        if lines.len() != 1 || !lines[0].starts_with("spintop: error: ") {
+            problems.push(format!(
+                "stderr is not one `spintop: error:` line: {stderr:?}"
+            ));
+        }
+    }
+    let haystack = if code == 0 { &stdout } else { &stderr };
+    if !haystack.contains(&c.fragment) {
+        problems.push(format!("no {:?} in the message", c.fragment));
+    }
+    // No NaN, infinity or null anywhere in the output (the command names
+    // themselves hold none of these words).
+    // In JSON, `null` is allowed only where a value is undefined by
+    // definition: the Euler rates at the pole.
+    let stdout_checked = stdout.replace("\"euler_rates\":null", "");
+    for word in ["NaN", "nan,", " inf", "-inf", ",inf", "null", "infinity"] {
+        if stdout_checked.contains(word) {
+            problems.push(format!("{word:?} in stdout"));
+        }
+    }
+    if problems.is_empty() {
+        None
+    } else {
+        Some(format!(
+            "{} | stderr: {}",
+            problems.join("; "),
+            stderr.trim()
+        ))
+    }
+}
+
+/// Malformed numbers: each must be refused by name of the flag.
+const MALFORMED: [&str; 10] = [
+    "nan", "NaN", "inf", "-inf", "abc", "", "1e400", "1,,2", "0x10", "1e",
+];
+
+/// Scalar numeric flags, each with a valid command it can be added to.
+fn scalar_flags() -> Vec<(Vec<&'static str>, &'static str)> {
+    let sim = vec![
+        "simulate",
+        "--model",
+        "reduced",
+        "--t-end",
+        "10",
+        "--samples",
+        "3",
+    ];
+    let rk4 = vec![
+        "simulate",
+        "--model",
+        "reduced",
+        "--method",
+        "rk4",
+        "--t-end",
+        "1",
+        "--samples",
+        "2",
+    ];
+    let bal = vec!["balance", "--dipole", "precessing", "--times", "0,1"];
+    let orb = vec![
+        "orbit",
+        "--potential",
+        "coulomb",
+        "--tau0",
+        "0.001",
+        "--times",
+        "1",
+    ];
+    let orb_no_tau = vec!["orbit", "--potential", "coulomb", "--times", "1"];
+    let shell_no_tau = vec!["shell", "--delay", "0.03", "--times", "1"];
+    let shell_no_delay = vec!["shell", "--tau0", "0.001", "--times", "1"];
+    let plot = vec!["plot"];
+    let tui = vec!["tui"];
+    vec![
+        (sim.clone(), "--ratio"),
+        (
+            vec!["simulate", "--model", "reduced", "--samples", "3"],
+            "--t-end",
+        ),
+        (sim.clone(), "--rtol"),
+        (rk4, "--step"),
+        (bal.clone(), "--cone"),
+        (bal.clone(), "--rate"),
+        (vec!["balance", "--dipole", "loop", "--times", "0,1"], "--b"),
+        (
+            vec!["balance", "--dipole", "loop", "--times", "0,1"],
+            "--eps",
+        ),
+        (
+            vec!["balance", "--dipole", "dumbbell", "--times", "0,1"],
+            "--length",
+        ),
+        (orb_no_tau, "--tau0"),
+        (orb.clone(), "--r0"),
+        (orb.clone(), "--eccentricity"),
+        (orb, "--rtol"),
+        (shell_no_tau, "--tau0"),
+        (shell_no_delay, "--delay"),
+        (plot.clone(), "--ratio"),
+        (plot, "--t-end"),
+        (tui.clone(), "--ratio"),
+        (tui.clone(), "--warp"),
+        (tui, "--bench"),
+    ]
+}
+
+/// Flags of three numbers, with malformed values for them.
+fn vector_flags() -> Vec<(Vec<&'static str>, &'static str, &'static [&'static str])> {
+    const TRIPLE: &[&str] = &[
+        "1,2", "1,2,3,4", "a,b,c", "nan,0,0", "0,inf,0", "", ",,", "1;2;3",
+    ];
+    const PAIR: &[&str] = &["1", "1,2,3", "a,b", "nan,1", "1,inf", "", ",", "1;2"];
+    const LIST: &[&str] = &["", ",,", "a,b", "nan", "1,inf", "1;2", "1e400", "0,,1"];
+    vec![
+        (
+            vec![
+                "simulate",
+                "--model",
+                "reduced",
+                "--t-end",
+                "1",
+                "--samples",
+                "2",
+            ],
+            "--omega",
+            TRIPLE,
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "reduced",
+                "--t-end",
+                "1",
+                "--samples",
+                "2",
+            ],
+            "--euler",
+            TRIPLE,
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "general",
+                "--dipole",
+                "0,0,1",
+                "--t-end",
+                "1",
+                "--samples",
+                "2",
+            ],
+            "--inertia",
+            TRIPLE,
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "general",
+                "--inertia",
+                "1,2,3",
+                "--t-end",
+                "1",
+                "--samples",
+                "2",
+            ],
+            "--dipole",
+            TRIPLE,
+        ),
+        (vec!["simulate", "--model", "reduced"], "--times", LIST),
+        (vec!["balance", "--dipole", "precessing"], "--times", LIST),
+        (
+            vec!["balance", "--dipole", "dumbbell", "--times", "0"],
+            "--charges",
+            PAIR,
+        ),
+        (
+            vec!["balance", "--dipole", "dumbbell", "--times", "0"],
+            "--masses",
+            PAIR,
+        ),
+        (
+            vec!["orbit", "--potential", "harmonic", "--tau0", "0.01"],
+            "--times",
+            LIST,
+        ),
+        (
+            vec!["shell", "--tau0", "0.001", "--delay", "0.03"],
+            "--times",
+            LIST,
+        ),
+        (vec!["plot"], "--omega", TRIPLE),
+        (vec!["tui"], "--omega", TRIPLE),
+    ]
+}
+
+fn with(base: &[&str], extra: &[&str]) -> Vec<String> {
+    base.iter().chain(extra).map(|s| s.to_string()).collect()
+}
+
+/// A scene file with `body` written to a temporary folder; returns its path.
+fn scene_file(dir: &std::path::Path, name: &str, body: &str) -> String {
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, body).expect("a temporary scene file");
+    path.display().to_string()
+}
+
+fn corpus(dir: &std::path::Path) -> Vec<Case> {
+    let mut cases = Vec::new();
+    // 1. Malformed numbers in every scalar flag: refused, naming the flag.
+    for (base, flag) in scalar_flags() {
+        for value in MALFORMED {
+            cases.push(Case {
+                args: with(&base, &[flag, value]),
+                code: 2,
+                fragment: flag.into(),
+                full: false,
+            });
+        }
+    }
+    // 2. Malformed vectors and lists.
+    for (base, flag, values) in vector_flags() {
+        for value in values.iter().copied() {
+            cases.push(Case {
+                args: with(&base, &[flag, value]),
+                code: 2,
+                fragment: flag.into(),
+                full: false,
+            });
+        }
+    }
+    // 3. Out of range: the message names the quantity.
+    let sim = [
+        "simulate",
+        "--model",
+        "reduced",
+        "--t-end",
+        "10",
+        "--samples",
+        "3",
+    ];
+    let ranges: Vec<(Vec<String>, &str)> = vec![
+        (with(&sim, &["--ratio", "0"]), "I3/I1"),
+        (with(&sim, &["--ratio", "-0.4"]), "I3/I1"),
+        (with(&sim, &["--ratio=-0.4"]), "I3/I1"),
+        (with(&sim, &["--ratio", "2.5"]), "I3/I1"),
+        (with(&sim, &["--ratio", "1e300"]), "I3/I1"),
+        (with(&sim, &["--rtol", "0"]), "rtol"),
+        (with(&sim, &["--rtol", "-1e-8"]), "rtol"),
+        (with(&sim, &["--rtol", "1"]), "rtol"),
+        (with(&sim, &["--rtol", "1e-15"]), "--rtol 1e-15 is below"),
+        (with(&sim, &["--omega", "1e101,0,0"]), "1e100"),
+        (
+            with(
+                &["simulate", "--model", "reduced", "--samples", "3"],
+                &["--t-end", "-1"],
+            ),
+            "t-end",
+        ),
+        (
+            with(
+                &["simulate", "--model", "reduced", "--t-end", "1"],
+                &["--samples", "0"],
+            ),
+            "samples",
+        ),
+        (
+            with(
+                &["simulate", "--model", "reduced", "--t-end", "1"],
+                &["--samples", "-3"],
+            ),
+            "samples",
+        ),
+        (
+            with(
+                &["simulate", "--model", "reduced", "--t-end", "1"],
+                &["--samples", "1e12"],
+            ),
+            "samples",
+        ),
+        (
+            with(&["simulate", "--model", "reduced"], &["--times", "3,2,1"]),
+            "times",
+        ),
+        (
+            with(&["simulate", "--model", "reduced"], &["--times", "-1,2"]),
+            "times",
+        ),
+        (
+            with(
+                &[
+                    "simulate", "--model", "reduced", "--method", "rk4", "--t-end", "1",
+                ],
+                &["--step", "0"],
+            ),
+            "step",
+        ),
+        (
+            with(
+                &[
+                    "simulate", "--model", "reduced", "--method", "rk4", "--t-end", "1",
+                ],
+                &["--step", "-0.1"],
+            ),
+            "step",
+        ),
+        (
+            with(
+                &[
+                    "simulate", "--model", "general", "--dipole", "0,0,1", "--t-end", "1",
+                ],
+                &["--inertia", "1,1,3"],
+            ),
+            "not a rigid body",
+        ),
+        (
+            with(
+                &[
+                    "simulate", "--model", "general", "--dipole", "0,0,1", "--t-end", "1",
+                ],
+                &["--inertia", "0,1,1"],
+            ),
+            "moment I1",
+        ),
+        (
+            with(
+                &[
+                    "simulate", "--model", "general", "--dipole", "0,0,1", "--t-end", "1",
+                ],
+                &["--inertia", "-1,1,1"],
+            ),
+            "moment I1",
+        ),
+        (
+            with(
+                &[
+                    "simulate",
+                    "--model",
+                    "general",
+                    "--inertia",
+                    "1,2,3",
+                    "--t-end",
+                    "1",
+                ],
+                &["--dipole", "0,0,0"],
+            ),
+            "dipole",
+        ),
+        (
+            vec![
+                "simulate".into(),
+                "--model".into(),
+                "general".into(),
+                "--t-end".into(),
+                "1".into(),
+            ],
+            "--inertia",
+        ),
+        (with(&sim, &["--inertia", "1,2,3"]), "--inertia"),
+        (with(&sim, &["--method", "forward"]), "forward"),
+        (
+            with(
+                &[
+                    "simulate",
+                    "--model",
+                    "general",
+                    "--inertia",
+                    "1,2,3",
+                    "--dipole",
+                    "0,0,1",
+                    "--t-end",
+                    "1",
+                ],
+                &["--method", "exact"],
+            ),
+            "closed form",
+        ),
+        (
+            with(
+                &["simulate", "--model", "full", "--t-end", "1"],
+                &["--method", "rk4"],
+            ),
+            "full",
+        ),
+        (
+            with(
+                &["simulate", "--model", "full", "--t-end", "1"],
+                &["--method", "dopri5"],
+            ),
+            "full",
+        ),
+        (
+            with(
+                &["balance", "--dipole", "precessing", "--times", "0"],
+                &["--cone", "4"],
+            ),
+            "cone",
+        ),
+        (
+            with(
+                &["balance", "--dipole", "precessing", "--times", "0"],
+                &["--cone", "-0.1"],
+            ),
+            "cone",
+        ),
+        (
+            with(
+                &["balance", "--dipole", "precessing", "--times", "0"],
+                &["--rate", "0"],
+            ),
+            "rate",
+        ),
+        (
+            with(
+                &["balance", "--dipole", "dumbbell", "--times", "0"],
+                &["--masses", "0,1"],
+            ),
+            "m1",
+        ),
+        (
+            with(
+                &["balance", "--dipole", "dumbbell", "--times", "0"],
+                &["--masses", "-1,1"],
+            ),
+            "m1",
+        ),
+        (
+            with(
+                &["balance", "--dipole", "dumbbell", "--times", "0"],
+                &["--length", "0"],
+            ),
+            "length",
+        ),
+        (
+            with(
+                &["orbit", "--potential", "coulomb", "--times", "1"],
+                &["--tau0", "0"],
+            ),
+            "tau0",
+        ),
+        (
+            with(
+                &["orbit", "--potential", "coulomb", "--times", "1"],
+                &["--tau0", "-1"],
+            ),
+            "tau0",
+        ),
+        (
+            with(
+                &["orbit", "--potential", "coulomb", "--times", "1"],
+                &["--tau0", "1"],
+            ),
+            "lower tau0",
+        ),
+        (
+            with(
+                &[
+                    "orbit",
+                    "--potential",
+                    "coulomb",
+                    "--tau0",
+                    "0.001",
+                    "--times",
+                    "1",
+                ],
+                &["--r0", "0"],
+            ),
+            "r0",
+        ),
+        (
+            with(
+                &[
+                    "orbit",
+                    "--potential",
+                    "coulomb",
+                    "--tau0",
+                    "0.001",
+                    "--times",
+                    "1",
+                ],
+                &["--r0", "-1"],
+            ),
+            "r0",
+        ),
+        (
+            with(
+                &[
+                    "orbit",
+                    "--potential",
+                    "coulomb",
+                    "--tau0",
+                    "0.001",
+                    "--times",
+                    "1",
+                ],
+                &["--eccentricity", "1"],
+            ),
+            "eccentricity",
+        ),
+        (
+            with(
+                &[
+                    "orbit",
+                    "--potential",
+                    "coulomb",
+                    "--tau0",
+                    "0.001",
+                    "--times",
+                    "1",
+                ],
+                &["--eccentricity", "-0.1"],
+            ),
+            "eccentricity",
+        ),
+        (
+            with(
+                &["orbit", "--potential", "coulomb", "--tau0", "0.001"],
+                &["--times", "2,1"],
+            ),
+            "times",
+        ),
+        (
+            with(
+                &["shell", "--delay", "0.03", "--times", "1"],
+                &["--tau0", "0"],
+            ),
+            "tau0",
+        ),
+        (
+            with(
+                &["shell", "--tau0", "0.001", "--times", "1"],
+                &["--delay", "0"],
+            ),
+            "delay",
+        ),
+        (
+            with(
+                &["shell", "--tau0", "0.001", "--times", "1"],
+                &["--delay", "-1"],
+            ),
+            "delay",
+        ),
+        (
+            with(
+                &["shell", "--tau0", "0.01", "--times", "1"],
+                &["--delay", "1e300"],
+            ),
+            "shorter --delay",
+        ),
+        (
+            with(
+                &["shell", "--tau0", "0.001", "--delay", "0.03"],
+                &["--times", "1e12"],
+            ),
+            "RK4 steps",
+        ),
+        (with(&["plot"], &["--ratio", "0"]), "I3/I1"),
+        (with(&["plot"], &["--t-end", "0"]), "t-end"),
+        (with(&["plot"], &["--t-end", "-5"]), "t-end"),
+        (with(&["plot"], &["--width", "3"]), "width"),
+        (with(&["plot"], &["--width", "100000"]), "width"),
+        (with(&["plot"], &["--width", "-3"]), "width"),
+        (with(&["plot"], &["--height", "1"]), "height"),
+        (with(&["plot"], &["--height", "1000"]), "height"),
+        (with(&["tui"], &["--warp", "3"]), "warp"),
+        (with(&["tui"], &["--ratio", "5"]), "I3/I1"),
+        (with(&["tui"], &["--bench", "0"]), "bench"),
+        (with(&["tui"], &["--bench", "1e9"]), "bench"),
+        (with(&["tui"], &["nosuch-scene"]), "nosuch-scene"),
+        (with(&["tui"], &["coulomb-collapse"]), "top scenes"),
+        (with(&["tui"], &[]), "terminal"),
+        (with(&["stability"], &["--row", "0"]), "row"),
+        (with(&["stability"], &["--row", "7"]), "row"),
+        (with(&["stability"], &["--row", "x"]), "--row"),
+        (with(&["figure"], &["3"]), "Figures 1 and 2"),
+        (with(&["figure"], &["x"]), "Figures 1 and 2"),
+        (
+            with(&["figure"], &["1", "--svg", "/nonexistent-dir/f.svg"]),
+            "nonexistent-dir",
+        ),
+        (with(&["bench", "--quick"], &["--width", "2"]), "width"),
+        (with(&["bench", "--quick"], &["--height", "0"]), "height"),
+        (
+            with(&["bench"], &["--join", "/nonexistent.csv"]),
+            "nonexistent.csv",
+        ),
+        (
+            with(&["bench"], &["--join", "/dev/zero"]),
+            "not a regular file",
+        ),
+        (with(&["bench"], &["--join", "/tmp"]), "folder"),
+        (with(&["run"], &["/tmp"]), "folder"),
+        (with(&["run"], &["/dev/zero"]), "not a regular file"),
+        (with(&["run"], &["/dev/null"]), "not a regular file"),
+        (with(&["run"], &["nosuch"]), "no such scene"),
+        (
+            with(&["run"], &["figure-1", "--format", "xml"]),
+            "possible values",
+        ),
+        (with(&["learn"], &["--chapter", "9.9"]), "no such chapter"),
+        (with(&["learn"], &[]), "terminal"),
+        (with(&["nosuch-command"], &[]), "unrecognized subcommand"),
+        (
+            with(&["simulate"], &["--model", "reduced", "--t_end", "5"]),
+            "--t-end",
+        ),
+        (with(&["simulate"], &["--model", "xml"]), "possible values"),
+        (
+            with(
+                &["simulate", "--model", "reduced", "--t-end", "1"],
+                &["--format", "xml"],
+            ),
+            "possible values",
+        ),
+        (with(&["simulate"], &["--t-end", "5"]), "--model"),
+        (with(&["balance"], &[]), "--dipole"),
+        (with(&["orbit"], &["--potential", "coulomb"]), "--tau0"),
+        (with(&["shell"], &["--tau0", "0.001"]), "--delay"),
+    ];
+    for (args, fragment) in ranges {
+        cases.push(Case {
+            args,
+            code: 2,
+            fragment: fragment.into(),
+            full: false,
+        });
+    }
+    // 4. Costs checked before running: refused up front with the estimate.
+    for args in [
+        vec![
+            "simulate",
+            "--model",
+            "full",
+            "--t-end",
+            "1e300",
+            "--samples",
+            "2",
+        ],
+        vec![
+            "simulate",
+            "--model",
+            "full",
+            "--omega",
+            "0,1e50,1e50",
+            "--t-end",
+            "10",
+        ],
+        vec!["simulate", "--model", "full", "--t-end", "1e8"],
+        vec![
+            "simulate", "--model", "full", "--method", "forward", "--t-end", "1e9",
+        ],
+        vec!["simulate", "--model", "reduced", "--times", "1e308"],
+        vec![
+            "simulate", "--model", "reduced", "--method", "rk4", "--t-end", "1e6",
+        ],
+        vec![
+            "simulate", "--model", "reduced", "--method", "rk4", "--step", "1e-9", "--t-end", "1",
+        ],
+        vec![
+            "simulate",
+            "--model",
+            "reduced",
+            "--method",
+            "dop853",
+            "--omega",
+            "0,1e4,2e4",
+            "--t-end",
+            "100",
+        ],
+        vec![
+            "simulate",
+            "--model",
+            "reduced",
+            "--method",
+            "dopri5",
+            "--omega",
+            "0,100,200",
+            "--t-end",
+            "1e4",
+        ],
+        vec![
+            "simulate",
+            "--model",
+            "general",
+            "--inertia",
+            "1,2,3",
+            "--dipole",
+            "1,1,1",
+            "--omega",
+            "1e60,0,0",
+            "--t-end",
+            "10",
+        ],
+        vec![
+            "simulate",
+            "--model",
+            "general",
+            "--inertia",
+            "1,2,3",
+            "--dipole",
+            "1,1,1",
+            "--t-end",
+            "1e12",
+        ],
+        vec![
+            "simulate",
+            "--model",
+            "truncated",
+            "--method",
+            "dop853",
+            "--t-end",
+            "1e300",
+        ],
+        vec!["plot", "--t-end", "1e300"],
+        vec!["plot", "--method", "rk4", "--t-end", "1e6"],
+    ] {
+        let fragment = "more than the 1e7 allowed";
+        cases.push(Case {
+            args: args.iter().map(|s| s.to_string()).collect(),
+            code: 2,
+            fragment: fragment.into(),
+            full: false,
+        });
+    }
+    // 5. Numerical failures: exit 3 with the time and advice that applies.
+    let failures: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec![
+                "simulate", "--model", "reduced", "--method", "rk4", "--step", "1000", "--omega",
+                "0,1,2",
+            ],
+            "smaller --step",
+        ),
+        (
+            vec![
+                "simulate", "--model", "reduced", "--method", "rk4", "--step", "1000", "--omega",
+                "0,1,2", "--format", "json",
+            ],
+            "at t =",
+        ),
+        (
+            vec![
+                "simulate", "--model", "reduced", "--method", "rk4", "--step", "1000", "--omega",
+                "0,1,2", "--format", "csv",
+            ],
+            "at t =",
+        ),
+        (
+            vec![
+                "simulate", "--model", "reduced", "--method", "rk4", "--step", "0.5", "--omega",
+                "0,10,20", "--t-end", "10",
+            ],
+            "--method exact",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "truncated",
+                "--method",
+                "rk4",
+                "--step",
+                "0.5",
+                "--omega",
+                "0,10,20",
+                "--t-end",
+                "10",
+            ],
+            "smaller --step",
+        ),
+        (
+            vec![
+                "balance",
+                "--dipole",
+                "precessing",
+                "--times",
+                "0,1",
+                "--rate",
+                "1e308",
+            ],
+            "--rate",
+        ),
+        (
+            vec![
+                "balance",
+                "--dipole",
+                "precessing",
+                "--times",
+                "0,1",
+                "--rate",
+                "1e200",
+                "--format",
+                "json",
+            ],
+            "--rate",
+        ),
+        (
+            vec![
+                "balance",
+                "--dipole",
+                "precessing",
+                "--times",
+                "0,1",
+                "--rate",
+                "1e200",
+                "--format",
+                "csv",
+            ],
+            "--rate",
+        ),
+        (
+            vec![
+                "orbit",
+                "--potential",
+                "coulomb",
+                "--tau0",
+                "0.01",
+                "--r0",
+                "1e300",
+                "--times",
+                "1",
+            ],
+            "--r0",
+        ),
+        (
+            vec![
+                "simulate", "--model", "full", "--omega", "0,10,10", "--t-end", "10",
+            ],
+            "--t-end",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "truncated",
+                "--omega",
+                "0,0,1e100",
+                "--t-end",
+                "1e300",
+                "--samples",
+                "3",
+            ],
+            "at t = 5.0000e299",
+        ),
+    ];
+    for (args, fragment) in failures {
+        cases.push(Case {
+            args: args.iter().map(|s| s.to_string()).collect(),
+            code: 3,
+            fragment: fragment.into(),
+            full: false,
+        });
+    }
+    // 6. Output that cannot be written: exit 1, one line.
+    for args in [
+        vec![
+            "simulate",
+            "--model",
+            "reduced",
+            "--t-end",
+            "10",
+            "--samples",
+            "3",
+        ],
+        vec!["scenes"],
+        vec!["figure", "1"],
+        vec!["stability", "--row", "5"],
+        vec!["balance", "--dipole", "loop", "--times", "0,1"],
+    ] {
+        let mut c = case(&args, 1, "cannot write output");
+        c.full = true;
+        cases.push(c);
+    }
+    // 7. Broken scene files: refused with the file, the line and the key.
+    let good_top = "[scene]\nname = \"x\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"reduced\"\nratio = 0.4\nomega = [0.0, 0.1, 0.2]\n\n[solve]\nt_end = 10.0\nsamples = 3\n";
+    let broken: Vec<(&str, String, &str)> = vec![
+        ("not-toml", "this is = = not toml".into(), "not-toml"),
+        ("empty", String::new(), "scene"),
+        ("no-kind", good_top.replace("kind = \"top\"\n", ""), "kind"),
+        ("bad-kind", good_top.replace("kind = \"top\"", "kind = \"planet\""), "kind"),
+        ("bad-model", good_top.replace("model = \"reduced\"", "model = \"magic\""), "model"),
+        ("bad-ratio", good_top.replace("ratio = 0.4", "ratio = 3.0"), "ratio"),
+        ("neg-ratio", good_top.replace("ratio = 0.4", "ratio = -0.4"), "ratio"),
+        ("nan-ratio", good_top.replace("ratio = 0.4", "ratio = nan"), "ratio"),
+        ("inf-ratio", good_top.replace("ratio = 0.4", "ratio = inf"), "ratio"),
+        ("str-ratio", good_top.replace("ratio = 0.4", "ratio = \"big\""), "ratio"),
+        ("short-omega", good_top.replace("omega = [0.0, 0.1, 0.2]", "omega = [0.0, 0.1]"), "expected 3 numbers, got 2"),
+        ("long-omega", good_top.replace("omega = [0.0, 0.1, 0.2]", "omega = [0.0, 0.1, 0.2, 0.3]"), "expected 3 numbers, got 4"),
+        ("huge-omega", good_top.replace("omega = [0.0, 0.1, 0.2]", "omega = [0.0, 1e200, 0.2]"), "omega"),
+        ("neg-tend", good_top.replace("t_end = 10.0", "t_end = -10.0"), "t_end"),
+        ("zero-samples", good_top.replace("samples = 3", "samples = 0"), "samples"),
+        ("huge-tend-rk4", good_top.replace("[solve]\n", "[solve]\nmethod = \"rk4\"\n").replace("t_end = 10.0", "t_end = 1e9"), "steps"),
+        ("unknown-key", good_top.replace("ratio = 0.4", "ratio = 0.4\nspin = 3"), "spin"),
+        ("unknown-table", format!("{good_top}\n[extra]\na = 1\n"), "extra"),
+        ("bad-method", good_top.replace("[solve]\n", "[solve]\nmethod = \"euler\"\n"), "method"),
+        ("dup-key", good_top.replace("ratio = 0.4", "ratio = 0.4\nratio = 0.5"), "duplicate key"),
+        ("bad-times", good_top.replace("t_end = 10.0\nsamples = 3", "times = [3.0, 1.0]"), "times"),
+        ("both-times", good_top.replace("t_end = 10.0", "t_end = 10.0\ntimes = [1.0]"), "times"),
+        ("shell-neg-delay", "[scene]\nname = \"s\"\nkind = \"shell\"\ndescription = \"d\"\n\n[shell]\ntau0 = 1e-3\ndelay = -0.03\n\n[solve]\ntimes = [1.0]\n".into(), "delay"),
+        ("shell-zero-tau", "[scene]\nname = \"s\"\nkind = \"shell\"\ndescription = \"d\"\n\n[shell]\ntau0 = 0.0\ndelay = 0.03\n\n[solve]\ntimes = [1.0]\n".into(), "tau0"),
+    ];
+    for (name, body, fragment) in broken {
+        let path = scene_file(dir, name, &body);
+        cases.push(Case {
+            args: vec!["run".into(), path],
+            code: 2,
+            fragment: fragment.into(),
+            full: false,
+        });
+    }
+    // 8. Edge values that are valid: exit 0, finite output.
+    let edges: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec![
+                "simulate",
+                "--model",
+                "reduced",
+                "--ratio",
+                "2",
+                "--t-end",
+                "10",
+                "--samples",
+                "3",
+            ],
+            "reduced",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "truncated",
+                "--ratio",
+                "1e-6",
+                "--t-end",
+                "10",
+                "--samples",
+                "3",
+            ],
+            "truncated",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "reduced",
+                "--omega",
+                "0,0,0",
+                "--t-end",
+                "10",
+                "--samples",
+                "3",
+            ],
+            "reduced",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "reduced",
+                "--omega",
+                "1e-300,0,1e-300",
+                "--t-end",
+                "10",
+                "--samples",
+                "3",
+            ],
+            "reduced",
+        ),
+        (
+            vec![
+                "simulate", "--model", "reduced", "--times", "0", "--format", "json",
+            ],
+            "samples",
+        ),
+        (
+            vec![
+                "simulate", "--model", "reduced", "--times", "0,0,0", "--format", "csv",
+            ],
+            "omega1",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "reduced",
+                "--euler",
+                "0,0,0",
+                "--t-end",
+                "10",
+                "--samples",
+                "2",
+            ],
+            "reduced",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "reduced",
+                "--euler",
+                "0,3.141592653589793,0",
+                "--t-end",
+                "10",
+                "--samples",
+                "2",
+            ],
+            "reduced",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "general",
+                "--inertia",
+                "1e300,1e300,1e300",
+                "--dipole",
+                "1,0,0",
+                "--t-end",
+                "10",
+                "--samples",
+                "2",
+            ],
+            "general",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "full",
+                "--t-end",
+                "10",
+                "--samples",
+                "3",
+                "--format",
+                "json",
+            ],
+            "physical",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "full",
+                "--method",
+                "forward",
+                "--times",
+                "0,1,2,5,10",
+            ],
+            "forward",
+        ),
+        (
+            vec![
+                "simulate",
+                "--model",
+                "reduced",
+                "--rtol",
+                "1e-14",
+                "--t-end",
+                "10",
+                "--samples",
+                "2",
+                "--method",
+                "dop853",
+            ],
+            "dop853",
+        ),
+        (
+            vec![
+                "balance",
+                "--dipole",
+                "precessing",
+                "--times",
+                "0",
+                "--cone",
+                "0",
+            ],
+            "precessing",
+        ),
+        (
+            vec![
+                "balance",
+                "--dipole",
+                "precessing",
+                "--times",
+                "0",
+                "--cone",
+                "3.141592653589793",
+            ],
+            "precessing",
+        ),
+        (
+            vec![
+                "balance",
+                "--dipole",
+                "precessing",
+                "--times",
+                "0",
+                "--rate",
+                "-1",
+            ],
+            "precessing",
+        ),
+        (
+            vec![
+                "balance",
+                "--dipole",
+                "precessing",
+                "--times",
+                "0",
+                "--rate",
+                "1e50",
+                "--format",
+                "json",
+            ],
+            "precessing",
+        ),
+        (
+            vec![
+                "orbit",
+                "--potential",
+                "harmonic",
+                "--tau0",
+                "1e-12",
+                "--times",
+                "1",
+                "--force",
+                "al",
+            ],
+            "harmonic",
+        ),
+        (
+            vec![
+                "orbit",
+                "--potential",
+                "coulomb",
+                "--tau0",
+                "1e-6",
+                "--eccentricity",
+                "0.99",
+                "--times",
+                "1",
+            ],
+            "coulomb",
+        ),
+        (vec!["plot", "--width", "16", "--height", "2"], "plot"),
+        (vec!["plot", "--log-time", "--t-end", "1e6"], "plot"),
+        (vec!["scenes"], "figure-1"),
+        (vec!["run", "figure-2", "--format", "json"], "figure-2"),
+        (vec!["learn", "--list"], "Section 4.2"),
+        (vec!["--version"], "spintop"),
+    ];
+    for (args, fragment) in edges {
+        cases.push(case(&args, 0, fragment));
+    }
+    cases
+}
+
+#[test]
+fn the_bad_input_corpus_holds_the_command_line_contract() {
+    let dir = std::env::temp_dir().join(format!("spintop-corpus-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let cases = corpus(&dir);
+    assert!(cases.len() >= 250, "the corpus has {} cases", cases.len());
+    // Two workers per core at most: the cases are small processes.
+    let workers = thread::available_parallelism()
+        .map_or(2, |n| n.get())
+        .clamp(2, 8);
+    let chunks: Vec<Vec<Case>> = (0..workers)
+        .map(|w| cases.iter().skip(w).step_by(workers).cloned().collect())
+        .collect();
+    let handles: Vec<_> = chunks
+        .into_iter()
+        .map(|chunk| {
+            thread::spawn(move || {
+                chunk
+                    .iter()
+                    .filter_map(|c| check(c).map(|p| format!("spintop {}: {p}", c.args.join(" "))))
+                    .collect::<Vec<_>>()
+            })
+        })
+        .collect();
+    let failures: Vec<String> = handles
+        .into_iter()
+        .flat_map(|h| h.join().expect("a worker"))
+        .collect();
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(
+        failures.is_empty(),
+        "{} of {} cases break the contract:\n{}",
+        failures.len(),
+        cases.len(),
+        failures.join("\n")
+    );
+}
