@@ -45,7 +45,11 @@ pub const EXIT_NUMERICAL: u8 = 3;
     about = "The polarized spinning top of Duviryak's paper: the truncated and the reduced \
              radiation-reaction models, runnable and tested.",
     after_help = "Units: time in tau = 2d^2/(3 I1 c^3), rates in 1/tau, I1 = 1 (symmetric models); \
-                  kappa = 2/(3c^3) = 1 (general model)."
+                  kappa = 2/(3c^3) = 1 (general model).\n\n\
+                  Exit codes: 0 success; 1 the output could not be written; 2 bad input (a flag, a value, \
+                  a file, or a run refused before it starts because it would cost too much); 3 a numerical \
+                  failure (runaway, stiffness, step underflow, a non-finite result), reported with its time; \
+                  128+N the live view or `learn` was stopped by signal N (the terminal is restored)."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -55,6 +59,15 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Integrate or evaluate one model and print samples (table, CSV or JSON).
+    #[command(after_help = "Examples:\n  \
+        spintop simulate --model reduced --t-end 1000 --samples 11\n  \
+        spintop simulate --model truncated --omega 0,0.1,0.2 --times 0,10,100 --format json\n  \
+        spintop simulate --model general --inertia 1,1.5,0.8 --dipole 0.2,0,1 --t-end 100\n  \
+        spintop simulate --model full --method forward --times 0,1,2,5,10\n\n\
+        Ranges: 0 < --ratio <= 2; each --omega component at most 1e100 (1/tau); --inertia positive \
+        and a rigid body (each at most the sum of the other two); --dipole not zero; times >= 0 and \
+        non-decreasing; 1e-14 <= --rtol < 1; --step > 0. A run over 1e7 steps is refused before it \
+        starts, with the estimate and a cheaper way.")]
     Simulate(simulate::SimulateArgs),
     /// Section 2: the two balance laws (2.1), (2.2) and the Schott term (2.4) for a dipole trajectory.
     Balance(balance::BalanceArgs),
@@ -283,8 +296,14 @@ pub(crate) fn num(x: Real) -> String {
 /// `x` with `digits` decimals when it is 0 or 1e-3 ≤ |x| < `upper`, else in
 /// exponent notation with `exp_digits` decimals in the mantissa.
 pub(crate) fn fixed_or_exp(x: Real, digits: usize, exp_digits: usize, upper: Real) -> String {
+    // A value that rounds to zero in the fixed form is printed as 0, not -0.
+    let x = if x == 0.0 { 0.0 } else { x };
     if x == 0.0 || (1e-3..upper).contains(&x.abs()) {
-        format!("{x:.digits$}")
+        let fixed = format!("{x:.digits$}");
+        if fixed.starts_with('-') && fixed[1..].chars().all(|c| c == '0' || c == '.') {
+            return fixed[1..].to_string();
+        }
+        fixed
     } else {
         format!("{x:.exp_digits$e}")
     }
@@ -297,7 +316,14 @@ pub(crate) fn write_aligned<S: std::fmt::Display>(
     width: usize,
 ) -> io::Result<()> {
     for c in cells {
-        write!(out, "{c:>width$}")?;
+        // A cell as wide as its column still gets a space before it, so that
+        // columns never run together.
+        let c = c.to_string();
+        if c.chars().count() >= width {
+            write!(out, " {c}")?;
+        } else {
+            write!(out, "{c:>width$}")?;
+        }
     }
     writeln!(out)
 }

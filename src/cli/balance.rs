@@ -399,30 +399,31 @@ pub fn write_output(
 }
 
 fn describe(p: &BalanceParameters) -> String {
+    use crate::present::fmt_param as fp;
     let mut parts = Vec::new();
     if let Some(x) = p.cone {
-        parts.push(format!("cone = {x}"));
+        parts.push(format!("cone = {}", fp(x)));
     }
     if let Some(x) = p.rate {
-        parts.push(format!("rate = {x}"));
+        parts.push(format!("rate = {}", fp(x)));
     }
     if let Some(x) = p.b {
-        parts.push(format!("b = {x}"));
+        parts.push(format!("b = {}", fp(x)));
     }
     if let Some(x) = p.eps {
-        parts.push(format!("eps = {x}"));
+        parts.push(format!("eps = {}", fp(x)));
     }
     if let Some([q1, q2]) = p.charges {
-        parts.push(format!("charges = ({q1}, {q2})"));
+        parts.push(format!("charges = ({}, {})", fp(q1), fp(q2)));
     }
     if let Some([m1, m2]) = p.masses {
-        parts.push(format!("masses = ({m1}, {m2})"));
+        parts.push(format!("masses = ({}, {})", fp(m1), fp(m2)));
     }
     if let Some(x) = p.length {
-        parts.push(format!("length = {x}"));
+        parts.push(format!("length = {}", fp(x)));
     }
     if let Some(x) = p.dipole_amplitude {
-        parts.push(format!("|d| = {x}"));
+        parts.push(format!("|d| = {}", fp(x)));
     }
     parts.join(", ")
 }

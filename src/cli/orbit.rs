@@ -302,7 +302,12 @@ pub fn write_output(out: &mut impl Write, output: &OrbitOutput, format: Format) 
             writeln!(
                 out,
                 "# spintop orbit: {} potential, force {} ({}); tau0 = {}, r0 = {}, e = {}, m = k = 1",
-                output.potential, output.force, output.equations, p.tau0, p.r0, p.eccentricity
+                output.potential,
+                output.force,
+                output.equations,
+                crate::present::fmt_param(p.tau0),
+                crate::present::fmt_param(p.r0),
+                crate::present::fmt_param(p.eccentricity)
             )?;
             writeln!(
                 out,

@@ -179,8 +179,8 @@ pub fn write_output(out: &mut impl Write, output: &ShellOutput, format: Format) 
             writeln!(
                 out,
                 "# spintop shell (Eqs. (A.1)-(A.3)): tau0 = {}, delay = {}, m0 = {}, m_em = {}, m = k = 1",
-                output.tau0,
-                output.delay,
+                crate::present::fmt_param(output.tau0),
+                crate::present::fmt_param(output.delay),
                 num(output.m0),
                 num(output.m_em)
             )?;

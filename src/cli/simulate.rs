@@ -44,6 +44,17 @@ enum MethodArg {
     Forward,
 }
 
+fn method_name(m: MethodChoice) -> &'static str {
+    match m {
+        MethodChoice::Auto => "auto",
+        MethodChoice::Exact => "exact",
+        MethodChoice::Rk4 => "rk4",
+        MethodChoice::Dopri5 => "dopri5",
+        MethodChoice::Dop853 => "dop853",
+        MethodChoice::Forward => "forward",
+    }
+}
+
 /// The raw arguments of `simulate`, before validation.
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
@@ -149,6 +160,28 @@ impl SimulateArgs {
             MethodArg::Dop853 => MethodChoice::Dop853,
             MethodArg::Forward => MethodChoice::Forward,
         };
+        // Each model takes only the methods that mean something for it; the
+        // others are refused by name rather than silently replaced.
+        match (&model, method) {
+            (Model::Full(_), MethodChoice::Auto | MethodChoice::Forward) => {}
+            (Model::Full(_), other) => {
+                return Err(bad(format!(
+                    "--model full takes --method auto (its physical solution, by DOP853 shooting backward in time) or forward (the runaway), not {}",
+                    method_name(other)
+                )));
+            }
+            (_, MethodChoice::Forward) => {
+                return Err(bad(
+                    "--method forward is for --model full only (it shows the runaway of (3.4))",
+                ));
+            }
+            (Model::General(_), MethodChoice::Exact) => {
+                return Err(bad(
+                    "the general model (3.3) has no closed form; use --method auto (DOP853), dop853, dopri5 or rk4",
+                ));
+            }
+            _ => {}
+        }
         if self.step.is_some() && method != MethodChoice::Rk4 {
             return Err(bad("--step sets the fixed step of --method rk4 only"));
         }
@@ -369,19 +402,28 @@ pub fn write_output(
             Ok(())
         }
         Format::Table => {
+            use crate::present::fmt_param as fp;
             let p = &output.parameters;
             let params = match (p.ratio, p.dipole) {
-                (Some(ratio), _) => format!("I3/I1 = {ratio}, tau = 1"),
+                (Some(ratio), _) => format!("I3/I1 = {}, tau = 1", fp(ratio)),
                 (None, Some(d)) => format!(
                     "I = ({}, {}, {}), d = ({}, {}, {}), kappa = 1",
-                    p.inertia[0], p.inertia[1], p.inertia[2], d[0], d[1], d[2]
+                    fp(p.inertia[0]),
+                    fp(p.inertia[1]),
+                    fp(p.inertia[2]),
+                    fp(d[0]),
+                    fp(d[1]),
+                    fp(d[2])
                 ),
                 (None, None) => String::new(),
             };
             writeln!(
                 out,
                 "# spintop simulate: {} model; {params}; omega0 = ({}, {}, {})",
-                output.model, p.omega0[0], p.omega0[1], p.omega0[2]
+                output.model,
+                fp(p.omega0[0]),
+                fp(p.omega0[1]),
+                fp(p.omega0[2])
             )?;
             writeln!(
                 out,

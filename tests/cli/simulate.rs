@@ -280,7 +280,10 @@ fn simulate_reports_a_numerical_failure_with_its_time() {
     assert!(stderr.contains("non-finite at t = "), "{stderr}");
     // The advice fits RK4 on a model with a closed form: a smaller step, an
     // adaptive method, or the closed form; never an option that is refused.
-    assert!(stderr.contains("smaller --step") && stderr.contains("--method exact"), "{stderr}");
+    assert!(
+        stderr.contains("smaller --step") && stderr.contains("--method exact"),
+        "{stderr}"
+    );
     assert!(!String::from_utf8_lossy(&out.stdout).contains("NaN"));
 }
 
@@ -317,5 +320,26 @@ fn help_lists_the_commands() {
     let help = String::from_utf8_lossy(&out.stdout);
     for command in ["simulate", "tui", "plot"] {
         assert!(help.contains(command), "{command}: {help}");
+    }
+}
+
+/// Every example that `spintop simulate --help` prints runs and succeeds.
+#[test]
+fn every_example_in_simulate_help_runs() {
+    let help = String::from_utf8_lossy(&spintop(&["simulate", "--help"]).stdout).into_owned();
+    let examples: Vec<&str> = help
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with("spintop simulate "))
+        .collect();
+    assert!(examples.len() >= 3, "{help}");
+    for example in examples {
+        let args: Vec<&str> = example.split_whitespace().skip(1).collect();
+        let out = spintop(&args);
+        assert!(
+            out.status.success(),
+            "{example}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
     }
 }
