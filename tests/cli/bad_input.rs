@@ -743,6 +743,16 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
             full: false,
         });
     }
+    // A model refuses the methods it would otherwise ignore.
+    for method in ["exact", "dop853", "dopri5", "rk4"] {
+        cases.push(case(
+            &[
+                "simulate", "--model", "full", "--t-end", "1", "--method", method,
+            ],
+            2,
+            "--model full takes",
+        ));
+    }
     // 4. Costs checked before running: refused up front with the estimate.
     for args in [
         vec![
