@@ -91,11 +91,16 @@ impl TuiArgs {
 /// refused.
 pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, String), CliError> {
     let Body::Top(top) = &scene.body else {
+        // A catalogue scene is run by its name, which works from any folder;
+        // its repository path would not.
+        let runnable = match crate::scene::catalogue::find(&scene.name) {
+            Some(entry) if entry.path() == scene.file => scene.name.clone(),
+            _ => scene.file.clone(),
+        };
         return Err(bad(format!(
-            "{}: the live view opens top scenes, and this one is kind = \"{}\"; use `spintop run {}`",
+            "{}: the live view opens top scenes, and this one is kind = \"{}\"; use `spintop run {runnable}`",
             scene.file,
             scene.kind().name(),
-            scene.file
         )));
     };
     let warp = warp.unwrap_or(WARPS[crate::tui::app::DEFAULT_WARP]);

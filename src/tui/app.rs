@@ -218,6 +218,9 @@ fn check_omega0(omega0: [Real; 3]) -> Result<InitialState, String> {
         .map_err(|e| e.to_string())
 }
 
+/// The most characters the Ω₀ edit field takes (a double needs at most 24).
+pub const EDIT_LIMIT: usize = 32;
+
 /// What `?` shows and what an Ω₀ edit holds.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Mode {
@@ -604,8 +607,14 @@ impl App {
     }
 
     /// Advance every model by `n` model steps of [`TICK`].
+    /// Once every model has stopped (a numerical failure), the clock stops
+    /// with them: the header's t is the time they stopped at.
     pub fn advance_ticks(&mut self, n: u64) {
         for _ in 0..n {
+            if self.columns.iter().all(|c| c.failure().is_some()) {
+                self.backlog = 0;
+                break;
+            }
             self.ticks += 1;
             let t = self.time();
             for column in &mut self.columns {
@@ -772,11 +781,16 @@ impl App {
                         buffer.clear();
                         *pristine = false;
                     }
-                    if buffer.len() < 32 {
+                    if buffer.len() < EDIT_LIMIT {
                         buffer.push(c);
+                        let hint = edit_hint(*component);
+                        self.inform(hint);
+                    } else {
+                        // Said, not silently dropped: a number needs far fewer.
+                        self.refuse(format!(
+                            "the field holds {EDIT_LIMIT} characters; Backspace edits, Enter applies"
+                        ));
                     }
-                    let hint = edit_hint(*component);
-                    self.inform(hint);
                 }
             }
             Command::Backspace => {

@@ -190,7 +190,14 @@ where
                 break;
             }
             if let Event::Key(key) = event::read()? {
-                if let Some(command) = command_for(key, app.mode()) {
+                // On the "please enlarge" screen nothing is visible, so only
+                // quit is taken; other keys would change the models unseen.
+                let small = terminal
+                    .size()
+                    .is_ok_and(|s| s.width < view::MIN_WIDTH || s.height < view::MIN_HEIGHT);
+                if let Some(command) = command_for(key, app.mode())
+                    && (!small || command == Command::Quit)
+                {
                     app.apply(command);
                 }
                 if app.should_quit() {

@@ -292,6 +292,7 @@ pub struct Learn {
     message: Option<(String, bool)>,
     visited: Vec<bool>,
     quit: bool,
+    too_small: bool,
 }
 
 /// The keys, for the footer and the help.
@@ -348,6 +349,7 @@ impl Learn {
             message: None,
             visited,
             quit: false,
+            too_small: false,
         };
         learn.load(current)?;
         Ok(learn)
@@ -493,6 +495,13 @@ impl Learn {
             self.quit = true;
             return;
         }
+        // On the "please enlarge" screen only quit is taken.
+        if self.too_small {
+            if matches!(key.code, KeyCode::Char('q') | KeyCode::Esc) {
+                self.quit = true;
+            }
+            return;
+        }
         match self.mode {
             Mode::Help => {
                 if matches!(key.code, KeyCode::Char('q')) {
@@ -554,7 +563,8 @@ impl Learn {
     /// Draws the screen.
     pub fn draw(&mut self, frame: &mut Frame) {
         let area = frame.area();
-        if area.width < 40 || area.height < 10 {
+        self.too_small = area.width < 40 || area.height < 10;
+        if self.too_small {
             let p = Paragraph::new(vec![
                 Line::from(Span::styled("Please enlarge the terminal", theme::error())),
                 Line::from(format!(

@@ -255,7 +255,14 @@ pub(crate) fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
     let [chart_area, pictures, numbers_area] = Layout::vertical([
         Constraint::Fill(1),
         Constraint::Fill(1),
-        Constraint::Length(if roomy { 6 } else { 5 }),
+        // A stopped model's advice gets up to four lines.
+        Constraint::Length(if column.failure().is_some() {
+            9
+        } else if roomy {
+            6
+        } else {
+            5
+        }),
     ])
     .areas(inner);
     let series = OmegaSeries::new(column, app.view().log_time);

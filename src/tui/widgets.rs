@@ -453,7 +453,8 @@ pub fn numbers(
     (
         Paragraph::new(left),
         Paragraph::new(right),
-        Paragraph::new(last),
+        // A failure's advice is shown whole, wrapped, never cut at the edge.
+        Paragraph::new(last).wrap(ratatui::widgets::Wrap { trim: true }),
     )
 }
 

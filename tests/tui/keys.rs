@@ -530,3 +530,61 @@ fn sec3_general_top_with_a_tiny_dipole_keeps_energy_and_angular_momentum() {
     let s = app.columns()[0].current();
     assert!((s.omega_vec() - start.omega_vec()).norm() > 0.01);
 }
+
+/// The Ω₀ edit field says when it is full instead of dropping keys silently.
+#[test]
+fn the_edit_field_says_when_it_is_full() {
+    let mut app = App::new(Settings::default()).unwrap();
+    app.apply(Command::StartEdit);
+    for _ in 0..spintop::tui::app::EDIT_LIMIT + 5 {
+        app.apply(Command::Input('1'));
+    }
+    let message = app.message().expect("a message").text.clone();
+    assert!(message.contains("holds 32 characters"), "{message}");
+    let Mode::Edit { buffer, .. } = app.mode() else {
+        panic!("still editing")
+    };
+    assert_eq!(buffer.len(), spintop::tui::app::EDIT_LIMIT);
+}
+
+/// RK4 (h = 0.01τ) far past its stability limit stops both models; then the
+/// clock stops with them, at the time they stopped, and every word of the
+/// advice is on the screen (wrapped, not cut at the panel's edge).
+#[test]
+fn stopped_models_stop_the_clock_and_show_their_whole_advice() {
+    // τk² = 0.4²·(2000)²·… ≫ 2.8/h: RK4 blows up within a few steps.
+    let settings = Settings::new(0.4, [0.0, 1000.0, 2000.0], Method::Rk4, 10.0).unwrap();
+    let mut app = App::new(settings).unwrap();
+    app.advance_ticks(200);
+    assert!(
+        app.columns().iter().all(|c| c.failure().is_some()),
+        "both models stopped"
+    );
+    let stopped_at = app.time();
+    assert!(
+        stopped_at < 200.0 * TICK,
+        "the clock stopped at {stopped_at}"
+    );
+    app.advance_ticks(500);
+    assert_eq!(
+        app.time(),
+        stopped_at,
+        "the clock stays where the models stopped"
+    );
+
+    let why = app.columns()[0].failure().unwrap().to_string();
+    let mut terminal = ratatui::Terminal::new(ratatui::backend::TestBackend::new(120, 40)).unwrap();
+    terminal
+        .draw(|f| spintop::tui::view::draw(f, &app))
+        .unwrap();
+    let screen: String = terminal.backend().to_string().replace(['│', '"'], " ");
+    let words: Vec<&str> = screen.split_whitespace().collect();
+    for word in why.split_whitespace() {
+        assert!(
+            words
+                .iter()
+                .any(|w| w.contains(word.trim_matches(|c: char| !c.is_alphanumeric()))),
+            "`{word}` of `{why}` is not on the screen:\n{screen}"
+        );
+    }
+}

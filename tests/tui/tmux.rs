@@ -446,3 +446,27 @@ fn term_dumb_is_refused_like_a_missing_terminal() {
         );
     }
 }
+
+/// On the "please enlarge" screen nothing is visible, so keys other than quit
+/// are ignored: a space pressed there must not pause the models unseen.
+#[test]
+fn keys_are_ignored_while_the_screen_is_too_small() {
+    let Some(tmux) = launch("small", "") else {
+        return;
+    };
+    let long = Duration::from_secs(20);
+    tmux.wait_for("the view", long, |s| s.contains("reduced"));
+    tmux.ok(&["resize-window", "-t", "spintop", "-x", "40", "-y", "10"]);
+    tmux.wait_for("the enlarge message", long, |s| s.contains("enlarge"));
+    tmux.keys("Space");
+    tmux.keys("r");
+    sleep(Duration::from_millis(300));
+    tmux.ok(&["resize-window", "-t", "spintop", "-x", "120", "-y", "40"]);
+    let screen = tmux.wait_for("the view again", long, |s| s.contains("reduced"));
+    assert!(
+        !screen.contains("paused"),
+        "a key on the enlarge screen was applied:\n{screen}"
+    );
+    tmux.keys("q");
+    assert_eq!(exit_status(&tmux, long), "0");
+}
