@@ -63,7 +63,7 @@ enum Command {
         spintop simulate --model reduced --t-end 1000 --samples 11\n  \
         spintop simulate --model truncated --omega 0,0.1,0.2 --times 0,10,100 --format json\n  \
         spintop simulate --model general --inertia 1,1.5,0.8 --dipole 0.2,0,1 --t-end 100\n  \
-        spintop simulate --model full --method forward --times 0,1,2,5,10\n\n\
+        spintop simulate --model full --method forward --times 0,1,2,5,10   (runs away at t = 3: exit 3)\n\n\
         Ranges: 0 < --ratio <= 2; each --omega component at most 1e100 (1/tau); --inertia positive \
         and a rigid body (each at most the sum of the other two); --dipole not zero; times >= 0 and \
         non-decreasing; 1e-14 <= --rtol < 1; --step > 0. A run over 1e7 steps is refused before it \

@@ -399,6 +399,15 @@ pub fn write_output(
                 let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
                 writeln!(out, "{}", cells.join(","))?;
             }
+            if let Some(r) = &output.runaway {
+                writeln!(
+                    out,
+                    "# stopped: runaway at t = {}, growth rate {:.4}; {} later sample(s) omitted",
+                    crate::math::fmt_time(r.t),
+                    r.growth_rate,
+                    output.samples_omitted.unwrap_or(0)
+                )?;
+            }
             Ok(())
         }
         Format::Table => {
@@ -498,13 +507,19 @@ pub(crate) fn execute(
         &output,
         "use smaller rates or moments (in units of 1/tau and I1)",
     )?;
-    if let Some(r) = &output.runaway {
-        writeln!(
-            err,
-            "spintop: runaway at t = {:.3}, growing at rate {:.4} (about 1/tau); {}",
-            r.t, r.growth_rate, r.advice
-        )?;
-    }
+    let _ = err;
+    // The samples before a runaway are written (CSV and JSON stay whole and
+    // parseable); the run still failed to give what was asked: exit 3.
     write_output(out, &output, config.format)?;
+    if let Some(r) = &output.runaway {
+        return Err(CliError::Stopped(format!(
+            "runaway at t = {:.3}, growing at rate {:.4} (about 1/tau): {} of {} samples omitted; {}",
+            r.t,
+            r.growth_rate,
+            output.samples_omitted.unwrap_or(0),
+            config.times.len(),
+            r.advice
+        )));
+    }
     Ok(())
 }

@@ -295,9 +295,15 @@ fn simulate_full_forward_reports_the_runaway() {
         "simulate", "--model", "full", "--method", "forward", "--times", "0,1,2,50", "--format",
         "json",
     ]);
-    assert!(out.status.success());
+    // The samples before the runaway are written whole; the run failed to
+    // give the last one, so it exits 3 with one line saying why.
+    assert_eq!(out.status.code(), Some(3));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("runaway at t = "), "{stderr}");
+    assert!(
+        stderr.contains("runaway at t = ") && stderr.contains("1 of 4 samples omitted"),
+        "{stderr}"
+    );
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
     let v: Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["method"], "forward");
     let rate = v["runaway"]["growth_rate"].as_f64().unwrap();
@@ -334,12 +340,17 @@ fn every_example_in_simulate_help_runs() {
         .collect();
     assert!(examples.len() >= 3, "{help}");
     for example in examples {
-        let args: Vec<&str> = example.split_whitespace().skip(1).collect();
+        // The command is what precedes a parenthesised note.
+        let command = example.split("  (").next().unwrap_or(example);
+        let args: Vec<&str> = command.split_whitespace().skip(1).collect();
         let out = spintop(&args);
-        assert!(
-            out.status.success(),
-            "{example}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        // The forward example is there to show the runaway: exit 3, said so.
+        if command.contains("--method forward") {
+            assert_eq!(out.status.code(), Some(3), "{example}: {stderr}");
+            assert!(stderr.contains("runaway at t = "), "{example}: {stderr}");
+        } else {
+            assert!(out.status.success(), "{example}: {stderr}");
+        }
     }
 }
