@@ -195,3 +195,15 @@ mod fmt_time_tests {
         assert_eq!(fmt_time(1e-9), "1.0000e-9");
     }
 }
+
+/// A value for a message: as written between 10⁻⁴ and 10⁷ (`0.4`, `250`),
+/// in exponent form outside (`1e300`, `1.5e-8`), and `0` for zero.
+pub fn fmt_value(x: Real) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if (1e-4..1e7).contains(&x.abs()) || !x.is_finite() {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}

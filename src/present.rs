@@ -142,11 +142,5 @@ pub fn fmt_count(n: f64) -> String {
 /// (`0.4`, `0.001`, `250`), in exponent form outside 10⁻⁴…10⁷ (`1e300`,
 /// `1.5e-8`) instead of hundreds of digits, and never `-0`.
 pub fn fmt_param(x: f64) -> String {
-    if x == 0.0 {
-        "0".into()
-    } else if (1e-4..1e7).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
+    crate::math::fmt_value(x)
 }

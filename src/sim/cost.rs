@@ -77,7 +77,7 @@ pub fn estimate(
         }),
         (_, MethodChoice::Rk4) => e(
             t_last / options.step,
-            format!("RK4 with step {}", options.step),
+            format!("RK4 with step {}", crate::math::fmt_value(options.step)),
         ),
         (Model::Full(top), MethodChoice::Forward) => {
             // A forward run stops at its runaway, a few tau in; its table is

@@ -97,11 +97,29 @@ fn run(c: &Case) -> Result<(i32, String, String), String> {
 }
 
 /// What is wrong with a case's result, if anything.
+///
+/// With `SPINTOP_CORPUS_DUMP=FILE`, every case's command, exit code and
+/// message are appended to FILE, for reading them all as a user would.
 fn check(c: &Case) -> Option<String> {
     let (code, stdout, stderr) = match run(c) {
         Ok(r) => r,
         Err(e) => return Some(e),
     };
+    if let Some(path) = std::env::var_os("SPINTOP_CORPUS_DUMP") {
+        use std::io::Write;
+        if let Ok(mut f) = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(path)
+        {
+            let _ = writeln!(
+                f,
+                "spintop {}\n  -> {code}: {}",
+                c.args.join(" "),
+                stderr.trim()
+            );
+        }
+    }
     let mut problems = Vec::new();
     if code != c.code {
         problems.push(format!("exit {code}, expected {}", c.code));
