@@ -710,6 +710,8 @@ impl Parser {
                     .collect()
             }
             "underbrace" | "overbrace" | "boxed" | "underline" | "phantom_skip" => self.argument(),
+            // The book's own macros (book/macros.txt).
+            "ret" => lower("ret"),
             "tag" => format!("    ({})", self.argument_raw()),
             "label" => {
                 let _ = self.argument_raw();
