@@ -21,6 +21,7 @@ use std::process::ExitCode;
 
 pub mod balance;
 pub mod bench;
+pub mod course;
 pub mod figure;
 pub mod learn;
 pub mod orbit;
@@ -91,6 +92,8 @@ enum Command {
     Figure(figure::FigureArgs),
     /// Study in the terminal: the book's chapters, each beside its live scene.
     Learn(learn::LearnArgs),
+    /// The course: every assignment with its state, the progress and what to do next.
+    Course(course::CourseArgs),
 }
 
 /// Output format.
@@ -495,6 +498,7 @@ where
         Some(Command::Bench(args)) => bench::execute(args, stdout),
         Some(Command::Figure(args)) => figure::execute(args, stdout),
         Some(Command::Learn(args)) => learn::execute(args, stdout),
+        Some(Command::Course(args)) => course::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,

@@ -23,6 +23,7 @@
 #![warn(missing_docs)]
 
 pub mod cli;
+pub mod course;
 pub mod figure;
 #[doc(hidden)]
 pub mod grading;

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 const SHELLS: &[&str] = &["cli", "tui"];
 
 /// What the shells share, below all of them and above the core.
-const SHARED: &[&str] = &["present"];
+const SHARED: &[&str] = &["present", "course"];
 
 /// The only places one shell may reach another: (file, the shell it launches).
 const LAUNCHERS: &[(&str, &str)] = &[("src/cli/tui.rs", "tui"), ("src/cli/learn.rs", "tui")];
