@@ -249,21 +249,25 @@ fn report(output: &str, test: &str) -> String {
 
 /// Grades the course in the repository at `repo`: runs
 /// `cargo test -p spintop-lessons --no-fail-fast` (no backtraces, no colour)
-/// and reads its output. An error is a reason cargo could not be run at all.
-pub fn grade(repo: &Path) -> Result<Status, String> {
+/// and reads its output; with `solutions`, the instructor's reference
+/// solutions are graded instead of the student's files. An error is a reason
+/// cargo could not be run at all.
+pub fn grade(repo: &Path, solutions: bool) -> Result<Status, String> {
+    let mut args = vec![
+        "test",
+        "-p",
+        "spintop-lessons",
+        "--no-fail-fast",
+        "--color",
+        "never",
+    ];
+    if solutions {
+        args.extend(["--features", "solutions"]);
+    }
+    args.extend(["--", "--color", "never"]);
     let out = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
         .current_dir(repo)
-        .args([
-            "test",
-            "-p",
-            "spintop-lessons",
-            "--no-fail-fast",
-            "--color",
-            "never",
-            "--",
-            "--color",
-            "never",
-        ])
+        .args(&args)
         .env("RUST_BACKTRACE", "0")
         .env_remove("CARGO_TARGET_DIR")
         .output()

@@ -16,6 +16,10 @@ pub struct CourseArgs {
     /// e.g. torque_rate, or its equation, e.g. 2.2).
     #[arg(long, value_name = "NAME")]
     assignment: Option<String>,
+    /// Instructor: grade the reference solutions (lessons/src/solutions/)
+    /// instead of the student's files; every assignment must pass.
+    #[arg(long)]
+    solutions: bool,
 }
 
 fn repository() -> Result<PathBuf, CliError> {
@@ -59,7 +63,12 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
     if std::io::stderr().is_terminal() {
         eprint!("grading (cargo test -p spintop-lessons)…\r");
     }
-    let status = course::grade(&repo).map_err(bad)?;
+    if args.solutions && !repo.join("lessons/src/solutions").is_dir() {
+        return Err(bad(
+            "--solutions: lessons/src/solutions/ is not here (a student's copy has none)",
+        ));
+    }
+    let status = course::grade(&repo, args.solutions).map_err(bad)?;
     if std::io::stderr().is_terminal() {
         eprint!("{}\r", " ".repeat(48));
     }
