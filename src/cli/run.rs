@@ -298,8 +298,11 @@ fn run_top(
             }
             if let Some(r) = &output.runaway {
                 warnings.push(format!(
-                    "runaway at t = {:.3}, growing at rate {:.4} (about 1/tau); {}",
-                    r.t, r.growth_rate, r.advice
+                    "runaway at t = {:.3}, growing at rate {:.4}/tau (an e-folding time of {:.3} tau); {}",
+                    r.t,
+                    r.growth_rate,
+                    1.0 / r.growth_rate,
+                    r.advice
                 ));
             }
             TopRun::Full(output)

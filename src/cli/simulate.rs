@@ -513,9 +513,10 @@ pub(crate) fn execute(
     write_output(out, &output, config.format)?;
     if let Some(r) = &output.runaway {
         return Err(CliError::Stopped(format!(
-            "runaway at t = {:.3}, growing at rate {:.4} (about 1/tau): {} of {} samples omitted; {}",
+            "runaway at t = {:.3}, growing at rate {:.4}/tau (an e-folding time of {:.3} tau): {} of {} samples omitted; {}",
             r.t,
             r.growth_rate,
+            1.0 / r.growth_rate,
             output.samples_omitted.unwrap_or(0),
             config.times.len(),
             r.advice

@@ -256,8 +256,10 @@ impl std::fmt::Display for Runaway {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "runaway detected at t = {:.3}: the state leaves the physical solution at rate {:.4} (about 1/tau); integrate backward or use the reduced model",
-            self.t, self.growth_rate
+            "runaway detected at t = {:.3}: the state leaves the physical solution at rate {:.4}/tau (an e-folding time of {:.3} tau); integrate backward or use the reduced model",
+            self.t,
+            self.growth_rate,
+            1.0 / self.growth_rate
         )
     }
 }
