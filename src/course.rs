@@ -280,6 +280,152 @@ pub fn grade(repo: &Path, solutions: bool) -> Result<Status, String> {
     Ok(parse(&text))
 }
 
+/// The newest modification time of the student's files (`lessons/src/*.rs`).
+pub fn sources_stamp(repo: &Path) -> Option<std::time::SystemTime> {
+    std::fs::read_dir(repo.join("lessons").join("src"))
+        .ok()?
+        .filter_map(Result::ok)
+        .filter(|e| e.path().extension().is_some_and(|x| x == "rs"))
+        .filter_map(|e| e.metadata().ok()?.modified().ok())
+        .max()
+}
+
+/// What a [`Watch`] reports.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Report {
+    /// A grading run started (a file was saved, or the watch began).
+    Grading,
+    /// A grading run ended.
+    Graded(Status),
+    /// Cargo could not be run.
+    Failed(String),
+}
+
+/// Grades the course in the background, once at the start and again each
+/// time a file under `lessons/src` is saved (polled every half second). The
+/// grading runs stop with the watch: dropping it ends the thread and kills a
+/// cargo still running.
+pub struct Watch {
+    reports: std::sync::mpsc::Receiver<Report>,
+    stop: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Watch {
+    /// Starts watching the course in `repo`.
+    pub fn start(repo: &Path) -> Self {
+        use std::sync::atomic::Ordering;
+        let (tx, reports) = std::sync::mpsc::channel();
+        let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let stop_thread = std::sync::Arc::clone(&stop);
+        let repo = repo.to_path_buf();
+        let thread = std::thread::spawn(move || {
+            let mut graded_stamp = None;
+            while !stop_thread.load(Ordering::Relaxed) {
+                let stamp = sources_stamp(&repo);
+                if graded_stamp.is_none() || stamp != graded_stamp.flatten() {
+                    graded_stamp = Some(stamp);
+                    if tx.send(Report::Grading).is_err() {
+                        return;
+                    }
+                    let report = match grade_cancellable(&repo, &stop_thread) {
+                        Ok(Some(status)) => Report::Graded(status),
+                        Ok(None) => return,
+                        Err(e) => Report::Failed(e),
+                    };
+                    if tx.send(report).is_err() {
+                        return;
+                    }
+                }
+                std::thread::sleep(std::time::Duration::from_millis(500));
+            }
+        });
+        Watch {
+            reports,
+            stop,
+            thread: Some(thread),
+        }
+    }
+
+    /// The reports since the last call, oldest first.
+    pub fn poll(&self) -> Vec<Report> {
+        self.reports.try_iter().collect()
+    }
+}
+
+impl Drop for Watch {
+    fn drop(&mut self) {
+        self.stop.store(true, std::sync::atomic::Ordering::Relaxed);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+/// [`grade`] as a child process that is killed when `stop` is set; `None`
+/// when it was.
+fn grade_cancellable(
+    repo: &Path,
+    stop: &std::sync::atomic::AtomicBool,
+) -> Result<Option<Status>, String> {
+    use std::io::Read;
+    use std::process::Stdio;
+    let mut child = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
+        .current_dir(repo)
+        .args([
+            "test",
+            "-p",
+            "spintop-lessons",
+            "--no-fail-fast",
+            "--color",
+            "never",
+            "--",
+            "--color",
+            "never",
+        ])
+        .env("RUST_BACKTRACE", "0")
+        .env_remove("CARGO_TARGET_DIR")
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot run cargo: {e}"))?;
+    let mut out = child.stdout.take();
+    let mut err = child.stderr.take();
+    let t_out = std::thread::spawn(move || {
+        let mut s = String::new();
+        if let Some(o) = out.as_mut() {
+            let _ = o.read_to_string(&mut s);
+        }
+        s
+    });
+    let t_err = std::thread::spawn(move || {
+        let mut s = String::new();
+        if let Some(e) = err.as_mut() {
+            let _ = e.read_to_string(&mut s);
+        }
+        s
+    });
+    loop {
+        if stop.load(std::sync::atomic::Ordering::Relaxed) {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Ok(None);
+        }
+        match child.try_wait() {
+            Ok(Some(_)) => break,
+            Ok(None) => std::thread::sleep(std::time::Duration::from_millis(50)),
+            Err(e) => return Err(e.to_string()),
+        }
+    }
+    let text = format!(
+        "{}\n{}",
+        t_out.join().unwrap_or_default(),
+        t_err.join().unwrap_or_default()
+    );
+    Ok(Some(parse(&text)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -26,6 +26,10 @@ pub struct LearnArgs {
     /// Forget the progress (the chapters opened) and exit.
     #[arg(long)]
     reset: bool,
+    /// Do not grade the course in the background (by default the assignments
+    /// are graded at the start and again whenever a file in lessons/src is saved).
+    #[arg(long)]
+    no_grading: bool,
 }
 
 fn repository() -> PathBuf {
@@ -115,6 +119,9 @@ pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliEr
             "{e}; `spintop learn --list` prints the course as text"
         ))
     })?;
+    if !args.no_grading && repo.join("lessons").join("Cargo.toml").is_file() {
+        session.watch_course(&repo);
+    }
     let signal = {
         let _restore = Restore;
         let mut terminal = ratatui::try_init()?;

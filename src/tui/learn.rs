@@ -273,6 +273,8 @@ pub enum Mode {
     Contents(usize),
     /// The help overlay.
     Help,
+    /// The course: every assignment with its state.
+    Course,
 }
 
 /// The state of `spintop learn`.
@@ -293,15 +295,22 @@ pub struct Learn {
     visited: Vec<bool>,
     quit: bool,
     too_small: bool,
+    /// The course's grader, watching the student's files, if started.
+    watch: Option<crate::course::Watch>,
+    /// The last grading, and whether one is running.
+    course: Option<crate::course::Status>,
+    grading: bool,
+    course_error: Option<String>,
 }
 
 /// The keys, for the footer and the help.
-const KEYS: [(&str, &str); 8] = [
+const KEYS: [(&str, &str); 9] = [
     ("?", "help"),
     ("q", "quit"),
     ("↑↓ PgUp PgDn", "scroll"),
     ("← →", "chapter"),
     ("c", "contents"),
+    ("a", "assignments"),
     ("x", "try the next experiment"),
     ("space", "pause scene"),
     ("Tab", "scene full screen"),
@@ -350,6 +359,10 @@ impl Learn {
             visited,
             quit: false,
             too_small: false,
+            watch: None,
+            course: None,
+            grading: false,
+            course_error: None,
         };
         learn.load(current)?;
         Ok(learn)
@@ -484,9 +497,41 @@ impl Learn {
         }
     }
 
-    /// Steps the scene by wall-clock time.
+    /// Steps the scene by wall-clock time, and takes the course grader's news.
     pub fn advance(&mut self, elapsed: Duration) {
         self.scene.advance_wall(elapsed);
+        let reports = self.watch.as_ref().map(|w| w.poll()).unwrap_or_default();
+        for report in reports {
+            self.course_report(report);
+        }
+    }
+
+    /// Starts grading the course in `repo` in the background, again on every
+    /// save of a file under `lessons/src`.
+    pub fn watch_course(&mut self, repo: &Path) {
+        self.watch = Some(crate::course::Watch::start(repo));
+    }
+
+    /// Takes one report of the course grader.
+    pub fn course_report(&mut self, report: crate::course::Report) {
+        use crate::course::Report;
+        match report {
+            Report::Grading => self.grading = true,
+            Report::Graded(status) => {
+                self.grading = false;
+                self.course_error = None;
+                self.course = Some(status);
+            }
+            Report::Failed(e) => {
+                self.grading = false;
+                self.course_error = Some(e);
+            }
+        }
+    }
+
+    /// The last grading of the course, if any.
+    pub fn course(&self) -> Option<&crate::course::Status> {
+        self.course.as_ref()
     }
 
     /// Applies one key.
@@ -503,7 +548,7 @@ impl Learn {
             return;
         }
         match self.mode {
-            Mode::Help => {
+            Mode::Help | Mode::Course => {
                 if matches!(key.code, KeyCode::Char('q')) {
                     self.quit = true;
                 }
@@ -530,6 +575,7 @@ impl Learn {
                 KeyCode::Char('q') => self.quit = true,
                 KeyCode::Char('?') => self.mode = Mode::Help,
                 KeyCode::Char('c') => self.mode = Mode::Contents(self.current),
+                KeyCode::Char('a') => self.mode = Mode::Course,
                 KeyCode::Down | KeyCode::Char('j') => {
                     self.scroll = (self.scroll + 1).min(self.max_scroll())
                 }
@@ -598,6 +644,7 @@ impl Learn {
         self.draw_footer(frame, footer, side_by_side);
         match self.mode {
             Mode::Help => self.draw_help(frame, area),
+            Mode::Course => self.draw_course(frame, area),
             Mode::Contents(sel) => self.draw_contents(frame, area, sel),
             _ => {}
         }
@@ -606,6 +653,17 @@ impl Learn {
     fn draw_header(&self, frame: &mut Frame, area: Rect) {
         let chapter = &self.chapters[self.current];
         let seen = self.visited.iter().filter(|v| **v).count();
+        let course = match (&self.course, self.grading, &self.course_error) {
+            (_, _, Some(_)) => " │ course: cannot grade".to_string(),
+            (Some(s), true, _) => format!(
+                " │ course {} of {} ✓ (grading…)",
+                s.passing(),
+                s.states.len()
+            ),
+            (None, true, _) => " │ course: grading…".to_string(),
+            (Some(s), false, _) => format!(" │ course {} of {} ✓ (a)", s.passing(), s.states.len()),
+            (None, false, None) => String::new(),
+        };
         let line = Line::from(vec![
             Span::styled(" spintop learn ", theme::status(false)),
             Span::styled(format!(" {} ", chapter.title), theme::title()),
@@ -619,6 +677,7 @@ impl Learn {
                 ),
                 theme::label(),
             ),
+            Span::styled(course, theme::key()),
         ]);
         frame.render_widget(Paragraph::new(line), area);
     }
@@ -737,6 +796,79 @@ impl Learn {
                 Block::bordered()
                     .border_type(BorderType::Rounded)
                     .title(" help "),
+            ),
+            popup,
+        );
+    }
+
+    fn draw_course(&self, frame: &mut Frame, area: Rect) {
+        use crate::course::State;
+        let mut lines = Vec::new();
+        match (&self.course, &self.course_error) {
+            (_, Some(e)) => lines.push(Line::from(Span::styled(e.clone(), theme::error()))),
+            (None, None) => lines.push(Line::from(if self.grading {
+                "grading (cargo test -p spintop-lessons)…"
+            } else {
+                "not graded: run spintop learn from the repository"
+            })),
+            (Some(status), None) => {
+                lines.push(Line::from(Span::styled(
+                    format!(
+                        "{} of {} passing{}",
+                        status.passing(),
+                        status.states.len(),
+                        if self.grading { "  (grading…)" } else { "" }
+                    ),
+                    theme::title(),
+                )));
+                for (a, s) in &status.states {
+                    let (mark, style) = match s {
+                        State::Passing => ("✓", theme::info()),
+                        State::Failing(_) | State::DoesNotCompile(_) => ("✗", theme::error()),
+                        _ => ("·", theme::label()),
+                    };
+                    lines.push(Line::from(vec![
+                        Span::styled(format!(" {mark} "), style),
+                        Span::raw(format!(
+                            "{:<14} {:<24} {:<24} ",
+                            a.equation, a.function, a.file
+                        )),
+                        Span::styled(s.word(), style),
+                    ]));
+                }
+                if let Some((a, s)) = status.next() {
+                    lines.push(Line::from(""));
+                    lines.push(Line::from(Span::styled(
+                        format!("next: {} {} ({})", a.equation, a.function, a.chapter),
+                        theme::title(),
+                    )));
+                    match s {
+                        State::Failing(report) => {
+                            for l in report.lines().take(8) {
+                                lines.push(Line::from(format!("  {l}")));
+                            }
+                        }
+                        State::DoesNotCompile(e) => lines.push(Line::from(format!("  {e}"))),
+                        _ => lines.push(Line::from(format!(
+                            "  edit {}: its todo!() is still there; saving re-grades",
+                            a.file
+                        ))),
+                    }
+                }
+            }
+        }
+        lines.push(Line::from(""));
+        lines.push(Line::from(Span::styled(
+            "saving a file under lessons/src re-grades; any key closes",
+            theme::label(),
+        )));
+        let popup = centered(area, 100, lines.len() as u16 + 2);
+        frame.render_widget(Clear, popup);
+        frame.render_widget(
+            Paragraph::new(lines).block(
+                Block::bordered()
+                    .border_type(BorderType::Rounded)
+                    .title(" course "),
             ),
             popup,
         );

@@ -234,3 +234,34 @@ fn section_4_2_at_80x24_and_160x48() {
         insta::assert_snapshot!(format!("learn_section_4_2_{w}x{h}"), shown);
     }
 }
+
+/// The course grader's reports reach the screen: the header counts the
+/// passing assignments, and `a` lists every assignment with its state and the
+/// next one's report. (The reports here are what `course::parse` makes of a
+/// harness output; `spintop learn` gets them from a background grader.)
+#[test]
+fn the_course_panel_shows_the_graders_verdicts() {
+    use spintop::course::{self, Report};
+    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    learn.course_report(Report::Grading);
+    assert!(draw(&mut learn, 160, 48).contains("course: grading…"));
+    let output = "test eq_2_1_larmor_rate ... ok\ntest eq_2_2_torque_rate ... FAILED\n\n\
+                  ---- eq_2_2_torque_rate stdout ----\n\ntorque_rate, Eq. (2.2): wrong answer\n  hint: the sign\n\n\
+                  failures:\n";
+    learn.course_report(Report::Graded(course::parse(output)));
+    let shown = draw(&mut learn, 160, 48);
+    assert!(shown.contains("course 1 of 11 ✓"), "{shown}");
+    learn.key(key(KeyCode::Char('a')));
+    let shown = draw(&mut learn, 160, 48);
+    for text in [
+        "1 of 11 passing",
+        "larmor_rate",
+        "passing",
+        "failing",
+        "not graded",
+        "next: (2.2) torque_rate",
+        "hint: the sign",
+    ] {
+        assert!(shown.contains(text), "{text} in\n{shown}");
+    }
+}

@@ -320,7 +320,7 @@ fn spintop_learn_shows_a_chapter_beside_its_scene_and_runs_its_experiments() {
     let progress = std::env::temp_dir().join(format!("spintop-learn-{}.json", std::process::id()));
     let _ = std::fs::remove_file(&progress);
     let env = format!("SPINTOP_LEARN_PROGRESS='{}'", progress.display());
-    let Some(tmux) = launch_with("learn", &env, "learn --chapter 4.2") else {
+    let Some(tmux) = launch_with("learn", &env, "learn --chapter 4.2 --no-grading") else {
         return;
     };
     let long = Duration::from_secs(20);
@@ -391,7 +391,10 @@ fn program_pid(tmux: &Tmux, program: &str, limit: Duration) -> String {
 #[test]
 fn a_signal_restores_the_terminal() {
     for (signal, number) in [("TERM", 15), ("INT", 2), ("HUP", 1), ("QUIT", 3)] {
-        for (args, ready) in [("", "reduced"), ("learn --chapter 4.1", "Section 4.1")] {
+        for (args, ready) in [
+            ("", "reduced"),
+            ("learn --chapter 4.1 --no-grading", "Section 4.1"),
+        ] {
             let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
             let Some(tmux) = launch_with(&format!("sig{number}"), env, args) else {
                 return;
@@ -433,7 +436,7 @@ fn a_signal_restores_the_terminal() {
 /// TERM, both views refuse with exit code 2 instead of drawing escape codes.
 #[test]
 fn term_dumb_is_refused_like_a_missing_terminal() {
-    for args in ["", "learn"] {
+    for args in ["", "learn --no-grading"] {
         let Some(tmux) = launch_with("dumb", "TERM=dumb", args) else {
             return;
         };

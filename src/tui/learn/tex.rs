@@ -663,7 +663,9 @@ impl Parser {
             "frac" | "dfrac" | "tfrac" | "cfrac" => {
                 let num = self.argument();
                 let den = self.argument();
-                format!("{}/{}", wrap(&num), wrap(&den))
+                // A denominator of more than one symbol is bracketed: 2/(3c³),
+                // never 2/3c³, which reads as (2/3)c³.
+                format!("{}/{}", wrap(&num), wrap_denominator(&den))
             }
             "sqrt" => {
                 let mut index = String::new();
@@ -835,6 +837,20 @@ fn wrap(s: &str) -> String {
     }
 }
 
+fn wrap_denominator(s: &str) -> String {
+    let t = s.trim();
+    let symbols = t
+        .chars()
+        .filter(|c| !is_combining(*c) && !superscript_char(*c) && !subscript_char(*c))
+        .count();
+    let number = t.chars().all(|c| c.is_ascii_digit() || c == '.');
+    if symbols <= 1 || number || (t.starts_with('(') && t.ends_with(')') && balanced_outer(t)) {
+        t.to_string()
+    } else {
+        format!("({t})")
+    }
+}
+
 fn balanced_outer(t: &str) -> bool {
     let mut depth = 0i32;
     let n = t.chars().count();
@@ -969,6 +985,12 @@ mod tests {
     #[test]
     fn fractions_and_roots_are_bracketed_only_when_needed() {
         assert_eq!(u(r"\frac{1}{\tau}"), "1/τ");
+        assert_eq!(u(r"\frac{2}{3c^3}"), "2/(3c³)");
+        assert_eq!(u(r"\frac{2t}{\sigma}"), "2t/σ");
+        assert_eq!(
+            u(r"\frac{I_1^2}{I_3^2\,\Omega_3^2\,\tau}"),
+            "I₁²/(I₃² Ω₃² τ)"
+        );
         assert_eq!(u(r"\frac{a+b}{2}"), "(a + b)/2");
         assert_eq!(u(r"\sqrt{1 - \varepsilon^2}"), "√(1 − ε²)");
         assert_eq!(u(r"-\frac{a}{b}"), "−a/b");
