@@ -24,8 +24,53 @@ pub const HANDLED: [(i32, &str); 4] = [
 /// The handlers, registered while this lives.
 pub struct Signals {
     received: Arc<AtomicUsize>,
+    /// Set when the session ends the normal way (this value is dropped).
+    finished: Arc<std::sync::atomic::AtomicBool>,
     #[cfg(unix)]
     ids: Vec<signal_hook::SigId>,
+}
+
+/// How long the draw loop has to end by itself after a signal before the
+/// watchdog restores the terminal and exits for it.
+pub const GRACE: std::time::Duration = std::time::Duration::from_millis(1500);
+
+/// The watchdog: once a signal has arrived, the loop normally ends within a
+/// frame. If it does not (seen when the terminal itself has gone away: the
+/// event reader then spins on end-of-file and never returns), the terminal is
+/// restored here and the process exits with 128 + the signal's number.
+///
+/// The terminal can also vanish with no signal to this process (a shell
+/// between it and the terminal takes the hang-up): on Linux the process then
+/// loses its controlling terminal, which `/proc/self/stat` shows, and the
+/// watchdog treats that as SIGHUP.
+fn watchdog(received: Arc<AtomicUsize>, finished: Arc<std::sync::atomic::AtomicBool>) {
+    std::thread::spawn(move || {
+        let had_terminal = controlling_terminal().is_some_and(|t| t != 0);
+        loop {
+            if finished.load(Ordering::Relaxed) {
+                return;
+            }
+            #[cfg(unix)]
+            if had_terminal && controlling_terminal() == Some(0) {
+                let _ = received.compare_exchange(
+                    0,
+                    signal_hook::consts::SIGHUP as usize,
+                    Ordering::Relaxed,
+                    Ordering::Relaxed,
+                );
+            }
+            let signal = received.load(Ordering::Relaxed);
+            if signal != 0 {
+                std::thread::sleep(GRACE);
+                if finished.load(Ordering::Relaxed) {
+                    return;
+                }
+                restore_from_another_thread();
+                std::process::exit(128 + i32::try_from(signal).unwrap_or(0));
+            }
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
+    });
 }
 
 impl Signals {
@@ -42,10 +87,19 @@ impl Signals {
                     signal as usize,
                 )?);
             }
-            Ok(Signals { received, ids })
+            let finished = Arc::new(std::sync::atomic::AtomicBool::new(false));
+            watchdog(Arc::clone(&received), Arc::clone(&finished));
+            Ok(Signals {
+                received,
+                finished,
+                ids,
+            })
         }
         #[cfg(not(unix))]
-        Ok(Signals { received })
+        Ok(Signals {
+            received,
+            finished: Arc::new(std::sync::atomic::AtomicBool::new(false)),
+        })
     }
 
     /// The signal received so far, if any.
@@ -59,11 +113,35 @@ impl Signals {
 
 impl Drop for Signals {
     fn drop(&mut self) {
+        self.finished.store(true, Ordering::Relaxed);
         #[cfg(unix)]
         for id in self.ids.drain(..) {
             signal_hook::low_level::unregister(id);
         }
     }
+}
+
+/// Restores the terminal without touching `stdout`, whose lock the main
+/// thread may hold for the whole session: raw mode is switched off on the
+/// terminal device, and the escape codes that leave the alternate screen and
+/// show the cursor go to `/dev/tty` (when there is still one).
+fn restore_from_another_thread() {
+    let _ = crossterm::terminal::disable_raw_mode();
+    #[cfg(unix)]
+    if let Ok(mut tty) = std::fs::OpenOptions::new().write(true).open("/dev/tty") {
+        use std::io::Write;
+        let _ = tty.write_all(b"\x1b[?1049l\x1b[?25h");
+        let _ = tty.flush();
+    }
+}
+
+/// The controlling terminal's device number (`tty_nr`, field 7 of
+/// `/proc/self/stat`; 0 when there is none), where the platform has it.
+fn controlling_terminal() -> Option<u64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The command name (field 2) is in parentheses and may hold spaces.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    rest.split_whitespace().nth(4)?.parse().ok()
 }
 
 /// `crossterm::event::poll`, with a poll cut short by a signal (EINTR) read

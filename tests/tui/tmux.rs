@@ -473,3 +473,33 @@ fn keys_are_ignored_while_the_screen_is_too_small() {
     tmux.keys("q");
     assert_eq!(exit_status(&tmux, long), "0");
 }
+
+/// When the terminal itself goes away (the tmux server is killed, as when an
+/// ssh connection drops), the views end: nothing is left spinning on a dead
+/// terminal. (The hang-up signal arrives, and the event reader would spin on
+/// end-of-file for ever; the signal's watchdog ends the process.)
+#[test]
+fn the_views_end_when_their_terminal_goes_away() {
+    for args in ["", "learn --chapter 3 --no-grading"] {
+        let Some(tmux) = launch_with("gone", "SPINTOP_LEARN_PROGRESS=/dev/null", args) else {
+            return;
+        };
+        let long = Duration::from_secs(20);
+        tmux.wait_for("the view", long, |s| {
+            s.contains("reduced") || s.contains("Section 3")
+        });
+        let pid = program_pid(&tmux, "spintop", long);
+        let _ = tmux.run(&["kill-server"]);
+        let start = Instant::now();
+        while std::path::Path::new(&format!("/proc/{pid}")).exists()
+            && !std::fs::read_to_string(format!("/proc/{pid}/stat"))
+                .is_ok_and(|s| s.contains(") Z "))
+        {
+            assert!(
+                start.elapsed() < Duration::from_secs(10),
+                "`spintop {args}` (pid {pid}) still runs 10 s after its terminal went away"
+            );
+            sleep(Duration::from_millis(100));
+        }
+    }
+}
