@@ -5,13 +5,16 @@
 
 use super::{CliError, bad};
 use crate::course::{self, State};
-use clap::Args;
+use clap::{Args, Subcommand};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 
 /// The raw arguments of `course`.
 #[derive(Debug, Default, Args)]
+#[command(args_conflicts_with_subcommands = true)]
 pub struct CourseArgs {
+    #[command(subcommand)]
+    action: Option<CourseAction>,
     /// Show the grader's whole report for one assignment (its function name,
     /// e.g. torque_rate, or its equation, e.g. 2.2).
     #[arg(long, value_name = "NAME")]
@@ -20,18 +23,49 @@ pub struct CourseArgs {
     /// instead of the student's files; every assignment must pass.
     #[arg(long)]
     solutions: bool,
+    /// The course to grade: a lessons crate (default: the repository's
+    /// lessons/; a student's copy made by `spintop course export` also works).
+    #[arg(long, value_name = "DIR")]
+    course: Option<PathBuf>,
 }
 
-fn repository() -> Result<PathBuf, CliError> {
-    let repo = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    if repo.join("lessons").join("Cargo.toml").is_file() {
-        Ok(repo)
-    } else {
-        Err(bad(format!(
-            "spintop course grades the assignments in the repository, and {} is missing; run it from a clone of spintop",
-            repo.join("lessons").display()
-        )))
-    }
+/// What `course` can do besides printing the status.
+#[derive(Debug, Subcommand)]
+enum CourseAction {
+    /// Re-grade on every save of a file of the course and print the verdict
+    /// and the progress (Ctrl-C stops)
+    Watch {
+        /// The course to watch (default: the repository's lessons/)
+        #[arg(long, value_name = "DIR")]
+        course: Option<PathBuf>,
+    },
+    /// Instructor: write a self-contained student's copy of the course to a
+    /// new folder (stubs, graders, the assignments page, a README; never the
+    /// reference solutions)
+    Export {
+        /// The folder to create (it must not exist yet, or be empty)
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
+}
+
+/// The lessons crate to grade: `--course DIR`, or the repository's.
+pub(crate) fn lessons(chosen: Option<&PathBuf>) -> Result<PathBuf, CliError> {
+    let dir = match chosen {
+        Some(dir) => dir.clone(),
+        None => {
+            let dir = course::lessons_dir(std::path::Path::new(env!("CARGO_MANIFEST_DIR")));
+            if !dir.join("Cargo.toml").is_file() {
+                return Err(bad(format!(
+                    "spintop course grades the assignments in the repository, and {} is missing; run it from a clone of spintop, or name a course with --course DIR",
+                    dir.display()
+                )));
+            }
+            dir
+        }
+    };
+    course::check_lessons_dir(&dir).map_err(|e| bad(format!("--course: {e}")))?;
+    Ok(dir)
 }
 
 fn mark(state: &State) -> &'static str {
@@ -44,6 +78,11 @@ fn mark(state: &State) -> &'static str {
 
 /// Runs `spintop course`.
 pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliError> {
+    match args.action {
+        Some(CourseAction::Export { out: dir }) => return export(&dir, out),
+        Some(CourseAction::Watch { course }) => return watch(course.as_ref(), out),
+        None => {}
+    }
     let wanted = args
         .assignment
         .as_deref()
@@ -59,16 +98,26 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
             names.join(", ")
         )));
     }
-    let repo = repository()?;
+    let dir = lessons(args.course.as_ref())?;
+    if args.solutions && !dir.join("src/solutions").is_dir() {
+        return Err(bad(format!(
+            "--solutions: {} is not here (a student's copy has none)",
+            dir.join("src/solutions").display()
+        )));
+    }
     if std::io::stderr().is_terminal() {
-        eprint!("grading (cargo test -p spintop-lessons)…\r");
+        eprint!("grading (cargo test on {})…\r", dir.display());
     }
-    if args.solutions && !repo.join("lessons/src/solutions").is_dir() {
-        return Err(bad(
-            "--solutions: lessons/src/solutions/ is not here (a student's copy has none)",
-        ));
-    }
-    let status = course::grade(&repo, args.solutions).map_err(bad)?;
+    let status = course::grade(&dir, args.solutions).map_err(bad)?;
+    // In the repository the files are under lessons/; in an export, at its top.
+    let own = args.course.is_none();
+    let file = |a: &course::Assignment| {
+        if own {
+            a.file.to_string()
+        } else {
+            a.file.trim_start_matches("lessons/").to_string()
+        }
+    };
     if std::io::stderr().is_terminal() {
         eprint!("{}\r", " ".repeat(48));
     }
@@ -82,7 +131,7 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
             a.equation,
             a.chapter,
             a.function,
-            a.file,
+            file(a),
             s.word()
         )?;
     }
@@ -104,7 +153,10 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
             writeln!(
                 out,
                 "{label}: {} {} in {} ({})",
-                a.equation, a.function, a.file, a.chapter
+                a.equation,
+                a.function,
+                file(a),
+                a.chapter
             )?;
             match s {
                 State::NotStarted => writeln!(
@@ -125,12 +177,89 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
                     writeln!(out, "  its grader did not report; run it alone to see why")?
                 }
             }
+            let package = if own { " -p spintop-lessons" } else { "" };
             writeln!(
                 out,
-                "  grade it alone: cargo test -p spintop-lessons --test {} {}",
+                "  grade it alone: cargo test{package} --test {} {}",
                 a.binary, a.test
             )?;
         }
     }
     Ok(())
+}
+
+/// `spintop course export --out DIR`.
+fn export(dir: &std::path::Path, out: &mut impl Write) -> Result<(), CliError> {
+    let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let written = course::export(repo, dir).map_err(|e| bad(format!("course export: {e}")))?;
+    writeln!(
+        out,
+        "spintop course export: wrote {} files to {} (stubs, graders, the assignments page; no solutions)",
+        written.files.len(),
+        dir.display()
+    )?;
+    writeln!(
+        out,
+        "  hand it out; a student runs `cargo test` in it, or `spintop course --course {}`",
+        dir.display()
+    )?;
+    Ok(())
+}
+
+/// One line for a changed verdict.
+fn verdict_line(a: &course::Assignment, s: &State) -> String {
+    format!("{} {} {} {}", mark(s), a.equation, a.function, s.word())
+}
+
+/// `spintop course watch`: grades once, then again on every save, printing
+/// the assignments whose verdict changed and the progress line.
+fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError> {
+    let dir = lessons(chosen)?;
+    writeln!(
+        out,
+        "spintop course watch: grading {} now and on every save under {} (Ctrl-C stops)",
+        dir.display(),
+        dir.join("src").display()
+    )?;
+    out.flush()?;
+    let watch = course::Watch::start(&dir);
+    let mut last: Option<course::Status> = None;
+    loop {
+        for report in watch.poll() {
+            match report {
+                course::Report::Grading => {
+                    if last.is_some() {
+                        writeln!(out, "grading…")?;
+                    }
+                }
+                course::Report::Failed(e) => writeln!(out, "spintop course watch: {e}")?,
+                course::Report::Graded(status) => {
+                    for (i, (a, s)) in status.states.iter().enumerate() {
+                        let changed = last.as_ref().is_none_or(|l| l.states[i].1 != *s);
+                        if changed && (last.is_some() || *s != State::NotStarted) {
+                            writeln!(out, "  {}", verdict_line(a, s))?;
+                            if let State::Failing(report) | State::DoesNotCompile(report) = s {
+                                for line in report.lines().take(6) {
+                                    writeln!(out, "      {line}")?;
+                                }
+                            }
+                        }
+                    }
+                    let next = status
+                        .next()
+                        .map(|(a, _)| format!("; next: {} {}", a.equation, a.function))
+                        .unwrap_or_default();
+                    writeln!(
+                        out,
+                        "{} of {} passing{next}",
+                        status.passing(),
+                        status.states.len()
+                    )?;
+                    last = Some(status);
+                }
+            }
+            out.flush()?;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
 }

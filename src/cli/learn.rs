@@ -30,6 +30,11 @@ pub struct LearnArgs {
     /// are graded at the start and again whenever a file in lessons/src is saved).
     #[arg(long)]
     no_grading: bool,
+    /// The course to grade beside the book: a lessons crate (default: the
+    /// repository's lessons/; a student's copy made by `spintop course export`
+    /// also works).
+    #[arg(long, value_name = "DIR", conflicts_with = "no_grading")]
+    course: Option<PathBuf>,
 }
 
 fn repository() -> PathBuf {
@@ -93,6 +98,17 @@ pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliEr
         return Ok(());
     }
     let book = book_dir(&repo)?;
+    // The course to grade beside the book, checked before the screen changes.
+    let course = if !args.no_grading
+        && (args.course.is_some()
+            || crate::course::lessons_dir(&repo)
+                .join("Cargo.toml")
+                .is_file())
+    {
+        Some(super::course::lessons(args.course.as_ref())?)
+    } else {
+        None
+    };
     let progress = read_progress(&progress_path);
     let start = args.chapter.clone().or(if args.list {
         None
@@ -119,8 +135,8 @@ pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliEr
             "{e}; `spintop learn --list` prints the course as text"
         ))
     })?;
-    if !args.no_grading && repo.join("lessons").join("Cargo.toml").is_file() {
-        session.watch_course(&repo);
+    if let Some(dir) = course {
+        session.watch_course(&dir);
     }
     let signal = {
         let _restore = Restore;

@@ -506,10 +506,10 @@ impl Learn {
         }
     }
 
-    /// Starts grading the course in `repo` in the background, again on every
-    /// save of a file under `lessons/src`.
-    pub fn watch_course(&mut self, repo: &Path) {
-        self.watch = Some(crate::course::Watch::start(repo));
+    /// Starts grading the lessons crate in `dir` in the background, again on
+    /// every save of a file under its `src/`.
+    pub fn watch_course(&mut self, dir: &Path) {
+        self.watch = Some(crate::course::Watch::start(dir));
     }
 
     /// Takes one report of the course grader.
@@ -859,7 +859,7 @@ impl Learn {
         }
         lines.push(Line::from(""));
         lines.push(Line::from(Span::styled(
-            "saving a file under lessons/src re-grades; any key closes",
+            "saving a file under lessons/src re-grades it; any key closes",
             theme::label(),
         )));
         let popup = centered(area, 100, lines.len() as u16 + 2);

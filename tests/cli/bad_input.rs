@@ -735,6 +735,22 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         ),
         (with(&["learn"], &["--chapter", "9.9"]), "no such chapter"),
         (with(&["learn"], &[]), "terminal"),
+        (with(&["learn"], &["--course", "/tmp"]), "is not a course"),
+        (
+            with(&["learn"], &["--course", "/tmp", "--no-grading"]),
+            "cannot be used with",
+        ),
+        (with(&["course"], &["--course", "/tmp"]), "is not a course"),
+        (
+            with(&["course"], &["--course", "/nonexistent-course"]),
+            "nonexistent-course",
+        ),
+        (
+            with(&["course", "watch"], &["--course", "/tmp"]),
+            "is not a course",
+        ),
+        (with(&["course", "export"], &["--out", "/tmp"]), "not empty"),
+        (with(&["course", "export"], &[]), "--out"),
         (with(&["nosuch-command"], &[]), "unrecognized subcommand"),
         (
             with(&["simulate"], &["--model", "reduced", "--t_end", "5"]),
