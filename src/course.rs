@@ -14,6 +14,11 @@
 use std::path::Path;
 use std::process::Command;
 
+/// The ladder of hints of an assignment: where to look, the idea, and last
+/// the formula. A grader's failure never prints the formula; only the third
+/// rung (`spintop course hint NAME`, a third time) does.
+pub type Hints = [&'static str; 3];
+
 /// One assignment: the grader's test, its place in the book and the file and
 /// function the student fills in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -30,98 +35,294 @@ pub struct Assignment {
     pub file: &'static str,
     /// The function's name.
     pub function: &'static str,
+    /// The hint ladder.
+    pub hints: Hints,
 }
 
-/// The course, in the order the book teaches it.
-pub const COURSE: [Assignment; 11] = [
-    Assignment {
-        binary: "ch2",
-        test: "eq_2_1_larmor_rate",
-        equation: "(2.1)",
-        chapter: "Section 2",
-        file: "lessons/src/ch2.rs",
-        function: "larmor_rate",
-    },
-    Assignment {
-        binary: "ch2",
-        test: "eq_2_2_torque_rate",
-        equation: "(2.2)",
-        chapter: "Section 2",
-        file: "lessons/src/ch2.rs",
-        function: "torque_rate",
-    },
-    Assignment {
-        binary: "ch2",
-        test: "eq_2_4_schott_angular_momentum",
-        equation: "(2.4)",
-        chapter: "Section 2",
-        file: "lessons/src/ch2.rs",
-        function: "schott_angular_momentum",
-    },
-    Assignment {
-        binary: "ch2",
-        test: "eq_2_3_axial_schott_rate",
-        equation: "(2.3)-(2.4)",
-        chapter: "Section 2",
-        file: "lessons/src/ch2.rs",
-        function: "axial_schott_rate",
-    },
-    Assignment {
-        binary: "ch3",
-        test: "eq_3_3_truncated_ale_rhs",
-        equation: "(3.3)",
-        chapter: "Section 3",
-        file: "lessons/src/ch3.rs",
-        function: "truncated_ale_rhs",
-    },
-    Assignment {
-        binary: "numerics",
-        test: "eq_3_5_euler_from_rotation",
-        equation: "(3.5)",
-        chapter: "Section 3",
-        file: "lessons/src/numerics.rs",
-        function: "euler_from_rotation",
-    },
-    Assignment {
-        binary: "ch4",
-        test: "eq_4_11_precession_tilt",
-        equation: "(4.11)",
-        chapter: "Section 4.1",
-        file: "lessons/src/ch4.rs",
-        function: "precession_tilt",
-    },
-    Assignment {
-        binary: "ch4",
-        test: "eq_4_15_eq_4_16_reduced_closed_form",
-        equation: "(4.15)-(4.16)",
-        chapter: "Section 4.2",
-        file: "lessons/src/ch4.rs",
-        function: "reduced_closed_form",
-    },
-    Assignment {
-        binary: "numerics",
-        test: "rk4_step",
-        equation: "RK4",
-        chapter: "Numerical methods",
-        file: "lessons/src/numerics.rs",
-        function: "rk4_step",
-    },
-    Assignment {
-        binary: "numerics",
-        test: "dp5_step",
-        equation: "DP5",
-        chapter: "Numerical methods",
-        file: "lessons/src/numerics.rs",
-        function: "dp5_step",
-    },
-    Assignment {
-        binary: "appendix",
-        test: "eq_a_1_shell_acceleration",
-        equation: "(A.1)",
-        chapter: "Appendix",
-        file: "lessons/src/appendix.rs",
-        function: "shell_acceleration",
-    },
+macro_rules! assignment {
+    ($binary:literal, $test:literal, $equation:literal, $chapter:literal, $function:literal, [$h1:literal, $h2:literal, $h3:literal $(,)?]) => {
+        Assignment {
+            binary: $binary,
+            test: $test,
+            equation: $equation,
+            chapter: $chapter,
+            file: concat!("lessons/src/", $binary, ".rs"),
+            function: $function,
+            hints: [$h1, $h2, $h3],
+        }
+    };
+}
+
+/// How many assignments the course has.
+pub const COURSE_LEN: usize = 22;
+
+/// The course, in the order the book teaches it, easy to hard within each
+/// chapter.
+pub const COURSE: [Assignment; COURSE_LEN] = [
+    assignment!(
+        "ch2",
+        "eq_2_1_larmor_rate",
+        "(2.1)",
+        "Section 2",
+        "larmor_rate",
+        [
+            "Read 'Section 2: two laws for the loss of angular momentum', the first law, Eq. (2.1). Units: kappa = 2/(3c^3) = 1.",
+            "The Larmor-like law uses only the dipole's first and second derivatives, d' and d''. A cross product of two vectors; mind its order and the overall sign.",
+            "dL/dt = -d' x d''   (in Rust: -jet[1].cross(&jet[2]))",
+        ]
+    ),
+    assignment!(
+        "ch2",
+        "eq_2_4_schott_angular_momentum",
+        "(2.4)",
+        "Section 2",
+        "schott_angular_momentum",
+        [
+            "Read 'Section 2', the Schott term, Eq. (2.4).",
+            "L_S is an angular momentum, not a rate: one cross product of the dipole with one of its derivatives. Its time derivative must be the difference of the two laws.",
+            "L_S = d x d''   (in Rust: jet[0].cross(&jet[2]))",
+        ]
+    ),
+    assignment!(
+        "ch2",
+        "eq_2_2_torque_rate",
+        "(2.2)",
+        "Section 2",
+        "torque_rate",
+        [
+            "Read 'Section 2', the second law, Eq. (2.2): the radiation-reaction torque.",
+            "The torque is the dipole crossed with the radiation-reaction field, which is proportional to the third derivative of the dipole.",
+            "dL/dt = d x d'''   (in Rust: jet[0].cross(&jet[3]))",
+        ]
+    ),
+    assignment!(
+        "ch2",
+        "eq_2_3_schott_rate",
+        "(2.3)",
+        "Section 2",
+        "schott_rate",
+        [
+            "Read 'Section 2', Eq. (2.3): the two laws differ by a total derivative.",
+            "Differentiate L_S of (2.4) with the product rule: both factors change in time, and each term keeps the order of the cross product.",
+            "dL_S/dt = d' x d'' + d x d'''",
+        ]
+    ),
+    assignment!(
+        "ch2",
+        "eq_2_3_axial_schott_rate",
+        "(2.3)-(2.4)",
+        "Section 2",
+        "axial_schott_rate",
+        [
+            "Read 'Section 2', the axial projection of the difference of the two laws (Eqs. (2.3)-(2.4)).",
+            "Project dL_S/dt on the unit vector along d. One of its two terms is perpendicular to d and drops out.",
+            "n . dL_S/dt = d . (d' x d'') / |d|",
+        ]
+    ),
+    assignment!(
+        "ch2",
+        "precessing_dipole_jet",
+        "Sec. 2 cone",
+        "Section 2",
+        "precessing_dipole_jet",
+        [
+            "Read 'Section 2', the example of a dipole that precesses uniformly on a cone about z.",
+            "Write d(t) on the cone of half-angle theta turning at rate omega, then differentiate three times: each derivative of cos(omega t) or sin(omega t) brings a factor omega and a quarter turn.",
+            "d = (sin th cos wt, sin th sin wt, cos th); d' = w sin th (-sin wt, cos wt, 0); d'' = -w^2 sin th (cos wt, sin wt, 0); d''' = w^3 sin th (sin wt, -cos wt, 0)",
+        ]
+    ),
+    assignment!(
+        "ch3",
+        "eq_3_3_truncated_ale_rhs",
+        "(3.3)",
+        "Section 3",
+        "truncated_ale_rhs",
+        [
+            "Read 'Section 3: equations of motion', the truncated ALE (3.3) of a general top, and its derivation from (2.1).",
+            "The angular acceleration appears on both sides: move its terms to the left, which gives a 3x3 linear system (the inertia plus a rank-one matrix) to solve. With a zero dipole it must reduce to Euler's equations.",
+            "(I + d (d x W)^T) W' = -W x I W - |d x W|^2 W   (W = Omega; solve the 3x3 system, e.g. with .lu().solve())",
+        ]
+    ),
+    assignment!(
+        "ch3",
+        "eq_3_3_energy_rate",
+        "(3.3) energy",
+        "Section 3",
+        "energy_rate",
+        [
+            "Read 'Section 3', the truncated ALE (3.3); the kinetic energy of a top is half the rate dotted into the angular momentum.",
+            "Differentiate the kinetic energy in time and use your truncated_ale_rhs for the angular acceleration (you may call your own functions in crate::ch3).",
+            "dE/dt = W . (I W'), with W' from (3.3)",
+        ]
+    ),
+    assignment!(
+        "numerics",
+        "eq_3_5_euler_from_rotation",
+        "(3.5)",
+        "Section 3",
+        "euler_from_rotation",
+        [
+            "Read 'Section 3', the Euler angles of (3.5): z-x-z, theta in [0, pi]; and 'Where methods fail', the pole.",
+            "Read theta from the third column and row with a two-argument arctangent (an inverse cosine loses digits near the poles); on a pole only phi + psi (or phi - psi) is defined, so fix psi = 0 there.",
+            "theta = atan2(sqrt(O13^2 + O23^2), O33); phi = atan2(O13, -O23); psi = atan2(O31, O32); on a pole psi = 0 and phi from the first column",
+        ]
+    ),
+    assignment!(
+        "ch4",
+        "eq_4_6_truncated_omega_perp",
+        "(4.5)-(4.6)",
+        "Section 4.1",
+        "truncated_omega_perp",
+        [
+            "Read 'Section 4.1: the truncated top', Eqs. (4.5)-(4.6).",
+            "The perpendicular rate obeys a closed equation of its own, with a loss cubic in the rate: separate the variables and integrate from 0 to t.",
+            "Omega_perp(t) = Omega_perp0 / sqrt(1 + 2 tau Omega_perp0^2 t)",
+        ]
+    ),
+    assignment!(
+        "ch4",
+        "eq_4_7_truncated_closed_form",
+        "(4.7)",
+        "Section 4.1",
+        "truncated_closed_form",
+        [
+            "Read 'Section 4.1', Eq. (4.7), with the slowed clock of (4.9).",
+            "Every component falls by the same factor R(t); Omega_perp also turns in the body, at a rate that falls with R, so its phase is the spin rate times a new time variable.",
+            "R = sqrt(1 + 2 tau Wp0^2 t), theta = 2t/(1 + R), a = (1 - ratio) W30 theta; W1 = (W10 cos a + W20 sin a)/R, W2 = (W20 cos a - W10 sin a)/R, W3 = W30/R",
+        ]
+    ),
+    assignment!(
+        "ch4",
+        "eq_4_6_truncated_time_to_factor",
+        "(4.6) inv.",
+        "Section 4.1",
+        "truncated_time_to_factor",
+        [
+            "Read 'Section 4.1', Eq. (4.6): every rate falls as 1/R(t).",
+            "Set the slowing factor R(t) equal to 1/p and solve for t; R is a square root, so square first.",
+            "t = (1/p^2 - 1) / (2 tau Omega_perp0^2)",
+        ]
+    ),
+    assignment!(
+        "ch4",
+        "eq_4_11_precession_tilt",
+        "(4.11)",
+        "Section 4.1",
+        "precession_tilt",
+        [
+            "Read 'Section 4.1', the regular precession (4.10)-(4.11), and the Errata page on (4.11).",
+            "The angle is between the symmetry axis and the angular momentum L, not the rotation rate: each component of L carries its own moment of inertia.",
+            "tan(theta) = I1 Omega_perp0 / (I3 Omega_30), i.e. theta = atan2(Omega_perp0, ratio * Omega_30)",
+        ]
+    ),
+    assignment!(
+        "ch4",
+        "eq_4_12_reduced_ale_rhs",
+        "(4.12)-(4.14)",
+        "Section 4.2",
+        "reduced_ale_rhs",
+        [
+            "Read 'Section 4.2: the reduced top', Eqs. (4.12)-(4.14).",
+            "The free precession terms are those of the truncated model; the damping of Omega_perp gains the square of the axial angular momentum over I1, and the spin is not damped at all.",
+            "W1' = Wt3 W2 - tau (Wp^2 + ratio^2 W3^2) W1; W2' = -Wt3 W1 - tau (Wp^2 + ratio^2 W3^2) W2; W3' = 0; Wt3 = (1 - ratio) W3",
+        ]
+    ),
+    assignment!(
+        "ch4",
+        "eq_4_16_reduced_decay_time",
+        "(4.16) sigma",
+        "Section 4.2",
+        "reduced_decay_time",
+        [
+            "Read 'Section 4.2', the late-time decay time sigma of Eq. (4.16).",
+            "At late times Omega_perp is small and only the axial part of the damping is left: a linear decay whose rate is tau times the square of the axial angular momentum over I1.",
+            "sigma = I1^2 / (I3^2 Omega_3^2 tau) = 1 / (ratio^2 Omega_3^2 tau)",
+        ]
+    ),
+    assignment!(
+        "ch4",
+        "eq_4_15_eq_4_16_reduced_closed_form",
+        "(4.15)-(4.16)",
+        "Section 4.2",
+        "reduced_closed_form",
+        [
+            "Read 'Section 4.2', Eqs. (4.15)-(4.16); the paper sets Omega_10 = 0, you must not.",
+            "Omega_3 is constant; Omega_perp turns at the constant rate (1 - ratio) Omega_3 and its size obeys an equation that becomes linear in w = 1/Omega_perp^2.",
+            "Phi = sqrt((b - 1)/(b e^(2t/sigma) - 1)), b = 1 + (ratio W3)^2 / Wp0^2; W1 = Phi (W10 cos a + W20 sin a), W2 = Phi (W20 cos a - W10 sin a), a = (1 - ratio) W3 t",
+        ]
+    ),
+    assignment!(
+        "appendix",
+        "eq_a_1_shell_masses",
+        "(A.1) masses",
+        "Appendix",
+        "shell_masses",
+        [
+            "Read 'Appendix: the charge as a small shell', the masses of (A.1). Units: the whole mass m = 1.",
+            "The field's share of the mass is the radiation time over the delay (light crossing the shell); the bare mass is the rest of m = 1.",
+            "m_em = tau0 / delta, m0 = 1 - m_em",
+        ]
+    ),
+    assignment!(
+        "appendix",
+        "eq_a_1_shell_acceleration",
+        "(A.1)",
+        "Appendix",
+        "shell_acceleration",
+        [
+            "Read 'Appendix', the delay equation (A.1) and the method of steps.",
+            "Only the bare mass multiplies the acceleration now; the field's mass acts with the acceleration one delay earlier. Solve for the acceleration now.",
+            "Z''(t) = (-Z(t) - m_em Z''(t - delta)) / m0",
+        ]
+    ),
+    assignment!(
+        "appendix",
+        "eq_a_1_characteristic_root",
+        "(A.1) root",
+        "Appendix",
+        "characteristic_root",
+        [
+            "Read 'Appendix', the characteristic function of (A.1) with Z proportional to e^(st).",
+            "Put Z = e^(st) into (A.1) to get an equation P(s) = 0; without radiation its root is s = i. Polish it with Newton's method, which needs the derivative P'(s).",
+            "P(s) = s^2 (m0 + m_em e^(-s delta)) + 1, P'(s) = 2s (m0 + m_em e^(-s delta)) - s^2 m_em delta e^(-s delta); iterate s -= P/P' from s = i",
+        ]
+    ),
+    assignment!(
+        "numerics",
+        "rk4_step",
+        "RK4",
+        "Numerical methods",
+        "rk4_step",
+        [
+            "Read 'Numerical methods', the classical Runge-Kutta method.",
+            "Four evaluations of f: at the start, twice at the midpoint (each from the previous slope), once at the end; then a weighted mean of the four slopes.",
+            "k1 = f(t, y), k2 = f(t + h/2, y + h k1/2), k3 = f(t + h/2, y + h k2/2), k4 = f(t + h, y + h k3); y + h (k1 + 2 k2 + 2 k3 + k4)/6",
+        ]
+    ),
+    assignment!(
+        "numerics",
+        "dp5_step",
+        "DP5",
+        "Numerical methods",
+        "dp5_step",
+        [
+            "Read 'Numerical methods', the Dormand-Prince 5(4) pair (Hairer, Norsett & Wanner I, Table II.5.2).",
+            "Seven stages with the Dormand-Prince tableau; the step is the fifth-order combination; the last stage is f at the new point, which the fourth-order estimate uses.",
+            "y5 = y + h sum b_i k_i; error estimate y5 - y4_hat = h sum (b_i - b_hat_i) k_i, with k7 = f(t + h, y5)",
+        ]
+    ),
+    assignment!(
+        "numerics",
+        "reduced_rk4_converges_at_order_4",
+        "(4.12) RK4",
+        "Numerical methods",
+        "reduced_rk4",
+        [
+            "Read 'Numerical methods' and 'Where methods fail': the order of a method, and Section 4.2 for the model.",
+            "Use your rk4_step and your reduced_ale_rhs: take `steps` equal steps that end exactly at t_end. Halving the step must cut the error 16 times.",
+            "h = t_end/steps; y = omega0; repeat steps times: y = rk4_step(&|_, y| reduced_ale_rhs(ratio, tau, y), t, &y, h), t += h",
+        ]
+    ),
 ];
 
 /// Where an assignment stands.
@@ -264,6 +465,158 @@ pub fn check_lessons_dir(dir: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// The course's small state file: hint rungs used and first-passed times.
+#[derive(Debug, Default, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Progress {
+    /// Hint rungs used so far, by assignment (function name).
+    #[serde(default)]
+    pub hints: std::collections::BTreeMap<String, u8>,
+    /// When each assignment first passed (seconds since the Unix epoch).
+    #[serde(default)]
+    pub first_passed: std::collections::BTreeMap<String, u64>,
+}
+
+/// Where the course in `dir` keeps its [`Progress`]: the repository's
+/// `target/spintop-course.json` for its own lessons/, the course's own
+/// `target/` for a student's copy. Never anywhere else.
+pub fn progress_path(dir: &Path) -> std::path::PathBuf {
+    let parent = dir.parent().filter(|p| {
+        dir.file_name().is_some_and(|n| n == "lessons") && p.join("Cargo.toml").is_file()
+    });
+    parent
+        .unwrap_or(dir)
+        .join("target")
+        .join("spintop-course.json")
+}
+
+/// The course's [`Progress`]; a missing or unreadable file is a fresh start.
+pub fn load_progress(dir: &Path) -> Progress {
+    std::fs::read(progress_path(dir))
+        .ok()
+        .filter(|b| b.len() < 1 << 20)
+        .and_then(|b| serde_json::from_slice(&b).ok())
+        .unwrap_or_default()
+}
+
+/// Writes the course's [`Progress`].
+pub fn save_progress(dir: &Path, progress: &Progress) -> Result<(), String> {
+    let path = progress_path(dir);
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+    }
+    let text = serde_json::to_string_pretty(progress).map_err(|e| e.to_string())?;
+    std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// The assignment called `name` (its function name, its test's name, or its
+/// equation as printed, with or without brackets).
+pub fn find(name: &str) -> Option<&'static Assignment> {
+    let bare = name.trim().trim_start_matches('(').trim_end_matches(')');
+    COURSE.iter().find(|a| {
+        a.function == bare || a.test == bare || a.equation.trim_matches(['(', ')']) == bare
+    })
+}
+
+/// One rung of the hint ladder.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Hint {
+    /// The assignment.
+    pub assignment: &'static Assignment,
+    /// The rung, 1 to 3.
+    pub rung: usize,
+    /// Its text.
+    pub text: &'static str,
+}
+
+impl Hint {
+    /// Whether this is the last rung (the formula).
+    pub fn is_last(&self) -> bool {
+        self.rung == self.assignment.hints.len()
+    }
+}
+
+/// The hint a student has reached for `a`: `progress`'s rung count plus one
+/// (one rung per request, staying on the last), recorded in `progress`.
+pub fn next_hint(progress: &mut Progress, a: &'static Assignment) -> Hint {
+    let used = progress.hints.entry(a.function.to_string()).or_insert(0);
+    let rung = (*used as usize + 1).min(a.hints.len());
+    *used = rung as u8;
+    Hint {
+        assignment: a,
+        rung,
+        text: a.hints[rung - 1],
+    }
+}
+
+/// Records the first time each assignment of `status` passed (`now` in
+/// seconds since the Unix epoch); true when something new was recorded.
+pub fn record_passes(progress: &mut Progress, status: &Status, now: u64) -> bool {
+    let mut changed = false;
+    for (a, s) in &status.states {
+        if *s == State::Passing && !progress.first_passed.contains_key(a.function) {
+            progress.first_passed.insert(a.function.to_string(), now);
+            changed = true;
+        }
+    }
+    changed
+}
+
+/// The sources an assignment of `module` is built from, as `(file, text)`:
+/// the lessons crate's `src/*.rs` (lib.rs, helpers, the module itself) but
+/// not the other assignment modules, and the instructor's
+/// `src/solutions/MODULE.rs` when the module hands over to it.
+pub fn assignment_sources(manifest_dir: &str, module: &str) -> Vec<(String, String)> {
+    let src = std::path::Path::new(manifest_dir).join("src");
+    let mut out = Vec::new();
+    let mut entries: Vec<_> = std::fs::read_dir(&src)
+        .into_iter()
+        .flatten()
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "rs"))
+        .collect();
+    entries.sort();
+    for path in entries {
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+        if crate::grading::ASSIGNMENT_MODULES.contains(&stem) && stem != module {
+            continue;
+        }
+        if let Ok(text) = std::fs::read_to_string(&path) {
+            let own = stem == module && text.contains(&format!("solutions::{module}"));
+            out.push((format!("src/{stem}.rs"), text));
+            if own {
+                let solution = src.join("solutions").join(format!("{module}.rs"));
+                if let Ok(text) = std::fs::read_to_string(&solution) {
+                    out.push((format!("src/solutions/{module}.rs"), text));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Panic with a readable report unless the assignment passed its grader and
+/// its sources take no shortcut (see [`crate::grading::no_shortcut`]); for the graders'
+/// `#[test]`s, through the [`graded!`](crate::graded) macro.
+pub fn assert_graded(manifest_dir: &str, module: &str, grade: crate::grading::Grade) {
+    let sources = assignment_sources(manifest_dir, module);
+    let borrowed: Vec<(&str, &str)> = sources
+        .iter()
+        .map(|(f, t)| (f.as_str(), t.as_str()))
+        .collect();
+    crate::grading::assert_passes(crate::grading::without_shortcut(grade, &borrowed));
+}
+
+/// `graded!("ch2", grading::larmor_rate(ch2::larmor_rate))`: the grader's
+/// verdict on the calling crate's module `ch2`, shortcuts rejected (see
+/// [`crate::course::assert_graded`]).
+#[macro_export]
+macro_rules! graded {
+    ($module:literal, $grade:expr) => {
+        $crate::course::assert_graded(env!("CARGO_MANIFEST_DIR"), $module, $grade)
+    };
+}
+
 /// The cargo command that grades the lessons crate in `dir`: the graders of
 /// the given test binaries, or all of them when `binaries` is empty; with
 /// `solutions`, the instructor's reference solutions.
@@ -291,7 +644,11 @@ fn grade_command(dir: &Path, solutions: bool, binaries: &[&str]) -> Command {
 /// graded instead of the student's files. An error is a reason cargo could
 /// not be run at all.
 pub fn grade(dir: &Path, solutions: bool) -> Result<Status, String> {
-    let out = grade_command(dir, solutions, &[])
+    grade_with(grade_command(dir, solutions, &[]))
+}
+
+fn grade_with(mut command: Command) -> Result<Status, String> {
+    let out = command
         .output()
         .map_err(|e| format!("cannot run cargo: {e}"))?;
     let text = format!(
@@ -553,6 +910,36 @@ pub fn strip_solutions(source: &str) -> String {
     text
 }
 
+/// Grades a student's copy of the course (`submission`, a folder made by
+/// [`export`]) with the instructor's graders: a fresh export of `repo` in
+/// `scratch` (emptied first) receives the student's `src/*.rs`, so that what
+/// is graded is the student's code against the repository's tests, whatever
+/// the copy's own tests say. Builds share `target` (spintop is compiled once).
+pub fn grade_submission(
+    repo: &Path,
+    submission: &Path,
+    scratch: &Path,
+    target: &Path,
+) -> Result<Status, String> {
+    check_lessons_dir(submission)?;
+    if scratch.exists() {
+        std::fs::remove_dir_all(scratch).map_err(|e| format!("{}: {e}", scratch.display()))?;
+    }
+    export(repo, scratch)?;
+    let src = submission.join("src");
+    let entries = std::fs::read_dir(&src).map_err(|e| format!("{}: {e}", src.display()))?;
+    for entry in entries.filter_map(Result::ok) {
+        let path = entry.path();
+        if path.is_file() && path.extension().is_some_and(|x| x == "rs") {
+            let to = scratch.join("src").join(entry.file_name());
+            std::fs::copy(&path, &to).map_err(|e| format!("{}: {e}", path.display()))?;
+        }
+    }
+    let mut command = grade_command(scratch, false, &[]);
+    command.env("CARGO_TARGET_DIR", target);
+    grade_with(command)
+}
+
 /// What [`export`] wrote.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Export {
@@ -729,7 +1116,11 @@ test result: FAILED. 2 passed; 2 failed; 0 ignored; 0 measured; 0 filtered out
         assert!(!report.contains("thread '"), "{report}");
         assert_eq!(state("eq_3_3_truncated_ale_rhs"), State::Unknown);
         assert_eq!(status.passing(), 2);
-        assert_eq!(status.next().unwrap().0.test, "eq_2_2_torque_rate");
+        // Course order: (2.1), then (2.4), which fails.
+        assert_eq!(
+            status.next().unwrap().0.test,
+            "eq_2_4_schott_angular_momentum"
+        );
     }
 
     #[test]
@@ -863,5 +1254,49 @@ test result: FAILED. 2 passed; 2 failed; 0 ignored; 0 measured; 0 filtered out
             strip_solutions(text),
             "use a;\npub fn f() {\n    todo!()\n}\n"
         );
+    }
+
+    #[test]
+    fn the_hint_ladder_climbs_one_rung_per_request_and_stays_on_the_formula() {
+        let a = find("2.2").unwrap();
+        assert_eq!(a.function, "torque_rate");
+        assert_eq!(find("(2.2)"), Some(a));
+        assert_eq!(find("eq_2_2_torque_rate"), Some(a));
+        assert_eq!(find("nope"), None);
+        let mut p = Progress::default();
+        let rungs: Vec<usize> = (0..4).map(|_| next_hint(&mut p, a).rung).collect();
+        assert_eq!(rungs, [1, 2, 3, 3]);
+        let last = next_hint(&mut p, a);
+        assert!(last.is_last() && last.text == a.hints[2]);
+        assert_eq!(p.hints["torque_rate"], 3);
+        // Another assignment starts at the bottom.
+        assert_eq!(next_hint(&mut p, find("larmor_rate").unwrap()).rung, 1);
+    }
+
+    #[test]
+    fn the_progress_lives_inside_the_project_and_survives_a_round_trip() {
+        let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+        assert_eq!(
+            progress_path(&lessons_dir(repo)),
+            repo.join("target/spintop-course.json")
+        );
+        let dir = std::env::temp_dir().join(format!("spintop-progress-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        assert_eq!(progress_path(&dir), dir.join("target/spintop-course.json"));
+        assert_eq!(load_progress(&dir), Progress::default());
+        let mut p = Progress::default();
+        next_hint(&mut p, &COURSE[0]);
+        let mut status = parse("");
+        status.states[1].1 = State::Passing;
+        assert!(record_passes(&mut p, &status, 1234));
+        assert!(
+            !record_passes(&mut p, &status, 9999),
+            "the first pass is kept"
+        );
+        save_progress(&dir, &p).unwrap();
+        assert_eq!(load_progress(&dir), p);
+        assert_eq!(p.first_passed[COURSE[1].function], 1234);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -2,47 +2,48 @@
 //!
 //! Each grader takes a student's function, feeds it many random valid inputs
 //! from a fixed seed (so every run and every student sees the same cases),
-//! compares the answer with spintop's own implementation, and checks what
-//! physics demands of it. On the first failing input it stops and returns a
-//! [`Failed`] that names the input, the expected and the actual value, and the
-//! equation to read again. A stub that panics (`todo!()`) fails the same way.
+//! compares the answer with spintop's own implementation (or, where there is
+//! one, a closed form or an invariant), and stops at the first failing input
+//! with a [`Failed`]: the input, the expected and the actual value, and a
+//! **diagnosis** of what is wrong (a sign flip, a factor 2, the Larmor-like law
+//! handed in for the torque, right at t = 0 but drifting, …). A failure never
+//! prints the formula: that is the last rung of the hint ladder
+//! (`spintop course hint NAME`, see [`crate::course`]).
 //!
-//! | grader | equation | the student writes |
-//! |---|---|---|
-//! | [`larmor_rate`] | (2.1) | −ḋ × d̈ |
-//! | [`torque_rate`] | (2.2) | d × d⃛ |
-//! | [`schott_angular_momentum`] | (2.4) | d × d̈ |
-//! | [`axial_schott_rate`] | (2.3)–(2.4) | n · dL_S/dt |
-//! | [`truncated_ale_rhs`] | (3.3) | Ω̇ of a general top |
-//! | [`reduced_closed_form`] | (4.15)–(4.16) | Ω(t) for any Ω₀ |
-//! | [`precession_tilt`] | (4.11), corrected | the constant tilt θ |
-//! | [`rk4_step`] | – | one classical RK4 step |
-//! | [`dp5_step`] | – | one Dormand–Prince 5(4) step and its error estimate |
-//! | [`euler_from_rotation`] | (3.5) | Euler angles of a rotation, pole included |
-//! | [`shell_acceleration`] | (A.1) | the method-of-steps update Z'' |
+//! A student's file must not call the reference: [`no_shortcut`] reads the
+//! assignment file's source and rejects any path into spintop other than
+//! [`crate::math`] and [`crate::assignment`].
+//!
+//! The graders themselves, one per assignment, are in `grading/graders.rs`
+//! and are re-exported here.
 
-use crate::integrate::{dopri5::dopri5_step, rk4::rk4_step as reference_rk4_step};
-use crate::math::{Mat3, Real, State, Vec3};
-use crate::physics::balance::{self, Jet};
-use crate::physics::euler_angles::EulerAngles;
-use crate::physics::general_top::GeneralTop;
-use crate::physics::shell::{C, ShellModel};
-use crate::physics::symmetric_top::{self, SymmetricTop};
+use crate::math::{Real, State, Vec3};
+use crate::physics::shell::C;
 use std::cell::Cell;
 use std::fmt;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Once;
+
+mod graders;
+pub use graders::*;
+
+pub use crate::assignment::DynField;
 
 /// The seed of every grader's random cases.
 pub const SEED: u64 = 2026;
 /// Random cases per grader (plus its fixed special cases).
 pub const CASES: usize = 200;
 
+/// The words that start a shortcut's diagnosis.
+pub const NO_SHORTCUT: &str = "no shortcut";
+
 /// A passed assignment.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Passed {
     /// The assignment.
     pub assignment: &'static str,
+    /// The equation it implements.
+    pub equation: &'static str,
     /// How many inputs were checked.
     pub cases: usize,
 }
@@ -60,8 +61,8 @@ pub struct Failed {
     pub expected: String,
     /// What the student's function gave.
     pub actual: String,
-    /// What to look at.
-    pub hint: String,
+    /// What is wrong, in words (never the formula).
+    pub diagnosis: String,
 }
 
 impl fmt::Display for Failed {
@@ -71,10 +72,15 @@ impl fmt::Display for Failed {
             "{} ({}) is not right yet.",
             self.assignment, self.equation
         )?;
-        writeln!(f, "  input:    {}", self.input)?;
-        writeln!(f, "  expected: {}", self.expected)?;
-        writeln!(f, "  got:      {}", self.actual)?;
-        write!(f, "  hint:     {}", self.hint)
+        writeln!(f, "  input:     {}", self.input)?;
+        writeln!(f, "  expected:  {}", self.expected)?;
+        writeln!(f, "  got:       {}", self.actual)?;
+        writeln!(f, "  diagnosis: {}", self.diagnosis)?;
+        write!(
+            f,
+            "  stuck?     spintop course hint {} (one rung at a time)",
+            self.assignment
+        )
     }
 }
 
@@ -157,550 +163,420 @@ fn call<T>(f: impl FnOnce() -> T) -> Result<T, String> {
     })
 }
 
-/// The context of one grader, to build its [`Failed`].
-struct Assignment {
-    name: &'static str,
-    equation: &'static str,
-    hint: &'static str,
+/// The diagnosis of a panic: a stub, or a crash.
+fn panic_diagnosis(msg: &str) -> String {
+    if msg.starts_with("panicked: not yet implemented")
+        || msg.starts_with("panicked: not implemented")
+    {
+        "the stub is still a todo!(): fill it in.".to_string()
+    } else {
+        "your function panicked on a valid input: an unwrap, an index out of range, or an overflow?"
+            .to_string()
+    }
 }
 
-impl Assignment {
-    fn fail(&self, input: String, expected: String, actual: String) -> Box<Failed> {
-        let hint = if actual.starts_with("panicked: not yet implemented")
-            || actual.starts_with("panicked: not implemented")
-        {
-            format!("the stub is still a todo!(): fill it in. {}", self.hint)
-        } else {
-            self.hint.to_string()
-        };
+/// A value as a grader prints it and compares its parts.
+pub(crate) trait Answer {
+    /// Readable, for the report.
+    fn show(&self) -> String;
+    /// Its numbers, for the diagnosis.
+    fn parts(&self) -> Vec<Real>;
+}
+
+impl Answer for Real {
+    fn show(&self) -> String {
+        format!("{self:e}")
+    }
+    fn parts(&self) -> Vec<Real> {
+        vec![*self]
+    }
+}
+
+impl Answer for Vec3 {
+    fn show(&self) -> String {
+        format!("({:e}, {:e}, {:e})", self.x, self.y, self.z)
+    }
+    fn parts(&self) -> Vec<Real> {
+        self.as_slice().to_vec()
+    }
+}
+
+impl Answer for (State<3>, State<3>) {
+    fn show(&self) -> String {
+        format!("step {}, error estimate {}", self.0.show(), self.1.show())
+    }
+    fn parts(&self) -> Vec<Real> {
+        [self.0.parts(), self.1.parts()].concat()
+    }
+}
+
+impl Answer for (Real, Real) {
+    fn show(&self) -> String {
+        format!("({:e}, {:e})", self.0, self.1)
+    }
+    fn parts(&self) -> Vec<Real> {
+        vec![self.0, self.1]
+    }
+}
+
+impl Answer for [Vec3; 4] {
+    fn show(&self) -> String {
+        format!(
+            "d = {}, d' = {}, d'' = {}, d''' = {}",
+            self[0].show(),
+            self[1].show(),
+            self[2].show(),
+            self[3].show()
+        )
+    }
+    fn parts(&self) -> Vec<Real> {
+        self.iter().flat_map(|v| v.parts()).collect()
+    }
+}
+
+impl Answer for C {
+    fn show(&self) -> String {
+        format!("{:e} + {:e}i", self.re, self.im)
+    }
+    fn parts(&self) -> Vec<Real> {
+        vec![self.re, self.im]
+    }
+}
+
+/// What is wrong with `actual` against `expected`, from their numbers alone:
+/// not finite, zero, a sign flip, a simple factor, the right size in the wrong
+/// direction, or neither.
+pub fn shape_diagnosis(actual: &[Real], expected: &[Real]) -> String {
+    if actual.iter().any(|x| !x.is_finite()) {
+        return "your answer is not finite (NaN or infinity): a division by zero, or the square root of a negative number?".into();
+    }
+    if actual.len() != expected.len() {
+        return "your answer has the wrong number of components".into();
+    }
+    let dot = |a: &[Real], b: &[Real]| a.iter().zip(b).map(|(x, y)| x * y).sum::<Real>();
+    let ne = dot(expected, expected).sqrt();
+    let na = dot(actual, actual).sqrt();
+    if ne == 0.0 {
+        return "the answer here is zero and yours is not: a term that should cancel does not"
+            .into();
+    }
+    if na <= 1e-12 * (1.0 + ne) {
+        return "your answer is zero where it should not be: a term is missing, or a variable is never used".into();
+    }
+    let k = dot(actual, expected) / (ne * ne);
+    let residual = actual
+        .iter()
+        .zip(expected)
+        .map(|(a, e)| (a - k * e).powi(2))
+        .sum::<Real>()
+        .sqrt();
+    if residual <= 1e-8 * (na + ne) {
+        if (k + 1.0).abs() < 1e-6 {
+            return "a sign flip: your answer is exactly −1 times the right one".into();
+        }
+        for (f, name) in [
+            (2.0, "2"),
+            (0.5, "1/2"),
+            (-2.0, "−2"),
+            (-0.5, "−1/2"),
+            (4.0, "4"),
+            (0.25, "1/4"),
+            (3.0, "3"),
+            (1.0 / 3.0, "1/3"),
+        ] {
+            if (k / f - 1.0).abs() < 1e-6 {
+                return format!(
+                    "right up to a factor {name}: your answer is {name} times the right one"
+                );
+            }
+        }
+        return format!(
+            "right direction, wrong size: your answer is {k:.4} times the right one (a missing parameter, or one used twice?)"
+        );
+    }
+    if (na - ne).abs() <= 1e-8 * ne {
+        let angle = (dot(actual, expected) / (na * ne)).clamp(-1.0, 1.0).acos();
+        return format!(
+            "right size, wrong direction ({:.1}° off): two components swapped, or a rotation turning the wrong way?",
+            angle.to_degrees()
+        );
+    }
+    format!(
+        "wrong in size and direction (size {:.4} times the right one): check each term against the equation",
+        na / ne
+    )
+}
+
+/// A plausible wrong answer and what it means.
+pub(crate) struct Mistake<'a, I, T> {
+    pub(crate) diagnosis: &'static str,
+    pub(crate) answer: Box<dyn Fn(&I) -> T + 'a>,
+}
+
+pub(crate) fn mistake<'a, I, T>(
+    diagnosis: &'static str,
+    answer: impl Fn(&I) -> T + 'a,
+) -> Mistake<'a, I, T> {
+    Mistake {
+        diagnosis,
+        answer: Box::new(answer),
+    }
+}
+
+/// A comparison of two answers.
+pub(crate) type Close<'a, T> = Box<dyn Fn(&T, &T) -> bool + 'a>;
+
+/// A probe: given the failing input and a way to call the student's function
+/// on another input, a diagnosis (e.g. "right at t = 0 but drifting").
+pub(crate) type Probe<'a, I, T> = Box<dyn Fn(&I, &dyn Fn(&I) -> Option<T>) -> Option<String> + 'a>;
+
+/// One grader: its inputs, the reference, the tolerance, and what it knows
+/// of plausible wrong answers.
+pub(crate) struct Grader<'a, I, T> {
+    pub(crate) name: &'static str,
+    pub(crate) equation: &'static str,
+    pub(crate) inputs: Vec<I>,
+    pub(crate) reference: Box<dyn Fn(&I) -> T + 'a>,
+    pub(crate) close: Close<'a, T>,
+    pub(crate) mistakes: Vec<Mistake<'a, I, T>>,
+    pub(crate) probe: Option<Probe<'a, I, T>>,
+}
+
+impl<'a, I: fmt::Debug, T: Answer> Grader<'a, I, T> {
+    pub(crate) fn new(
+        name: &'static str,
+        equation: &'static str,
+        inputs: Vec<I>,
+        reference: impl Fn(&I) -> T + 'a,
+        close: impl Fn(&T, &T) -> bool + 'a,
+    ) -> Self {
+        Self {
+            name,
+            equation,
+            inputs,
+            reference: Box::new(reference),
+            close: Box::new(close),
+            mistakes: Vec::new(),
+            probe: None,
+        }
+    }
+
+    pub(crate) fn mistakes(mut self, mistakes: Vec<Mistake<'a, I, T>>) -> Self {
+        self.mistakes = mistakes;
+        self
+    }
+
+    pub(crate) fn probe(
+        mut self,
+        probe: impl Fn(&I, &dyn Fn(&I) -> Option<T>) -> Option<String> + 'a,
+    ) -> Self {
+        self.probe = Some(Box::new(probe));
+        self
+    }
+
+    pub(crate) fn fail(
+        &self,
+        input: String,
+        expected: String,
+        actual: String,
+        diagnosis: String,
+    ) -> Box<Failed> {
         Box::new(Failed {
             assignment: self.name,
             equation: self.equation,
             input,
             expected,
             actual,
-            hint,
+            diagnosis,
         })
     }
 
-    /// Compare the student's answer with the reference on every input.
-    fn compare<I: fmt::Debug, T: Show>(
-        &self,
-        inputs: &[I],
-        student: impl Fn(&I) -> T,
-        reference: impl Fn(&I) -> T,
-        close: impl Fn(&T, &T) -> bool,
-    ) -> Grade {
-        for input in inputs {
-            let expected = reference(input);
+    /// The diagnosis of a wrong `actual` at `input`.
+    fn diagnose(&self, input: &I, actual: &T, expected: &T, student: &dyn Fn(&I) -> T) -> String {
+        for m in &self.mistakes {
+            let wrong = (m.answer)(input);
+            if wrong.parts().iter().all(|x| x.is_finite()) && (self.close)(actual, &wrong) {
+                return m.diagnosis.to_string();
+            }
+        }
+        if let Some(probe) = &self.probe {
+            let again = |i: &I| call(|| student(i)).ok();
+            if let Some(d) = probe(input, &again) {
+                return d;
+            }
+        }
+        shape_diagnosis(&actual.parts(), &expected.parts())
+    }
+
+    /// Grade `student` on every input.
+    pub(crate) fn run(&self, student: impl Fn(&I) -> T) -> Grade {
+        for input in &self.inputs {
+            let expected = (self.reference)(input);
             match call(|| student(input)) {
-                Ok(actual) if close(&actual, &expected) => {}
+                Ok(actual) if (self.close)(&actual, &expected) => {}
                 Ok(actual) => {
-                    return Err(self.fail(format!("{input:?}"), expected.show(), actual.show()));
+                    let diagnosis = self.diagnose(input, &actual, &expected, &student);
+                    return Err(self.fail(
+                        format!("{input:?}"),
+                        expected.show(),
+                        actual.show(),
+                        diagnosis,
+                    ));
                 }
                 Err(msg) => {
-                    return Err(self.fail(format!("{input:?}"), expected.show(), msg));
+                    let diagnosis = panic_diagnosis(&msg);
+                    return Err(self.fail(format!("{input:?}"), expected.show(), msg, diagnosis));
                 }
             }
         }
-        Ok(Passed {
+        Ok(self.passed())
+    }
+
+    pub(crate) fn passed(&self) -> Passed {
+        Passed {
             assignment: self.name,
-            cases: inputs.len(),
-        })
+            equation: self.equation,
+            cases: self.inputs.len(),
+        }
     }
 }
 
-/// A value as a grader prints it: plain numbers, vectors as (x, y, z).
-trait Show {
-    fn show(&self) -> String;
+/// |a − b| ≤ tol·(1 + |b|) over all the numbers of two answers.
+pub(crate) fn close<T: Answer>(a: &T, b: &T, tol: Real) -> bool {
+    let (a, b) = (a.parts(), b.parts());
+    let diff: Real = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| (x - y).powi(2))
+        .sum::<Real>()
+        .sqrt();
+    let nb: Real = b.iter().map(|y| y * y).sum::<Real>().sqrt();
+    a.len() == b.len() && a.iter().all(|x| x.is_finite()) && diff <= tol * (1.0 + nb)
 }
 
-impl Show for Real {
-    fn show(&self) -> String {
-        format!("{self:e}")
+/// The modules of spintop an assignment file may name.
+pub const ALLOWED_MODULES: [&str; 2] = ["math", "assignment"];
+
+/// Check that an assignment file does not reach spintop's own answers.
+///
+/// `source` is the file's text; every path that starts with `spintop` must go
+/// on with `::math` or `::assignment` (so `use spintop as s`, `use
+/// spintop::{physics, …}`, `spintop::physics::…`, `spintop::sim::…`,
+/// `spintop::grading::…` are all rejected), and `include!`-like macros and
+/// `#[path]` (ways to compile spintop's own sources into the file) are
+/// rejected too. Comments are skipped. Returns the offending line.
+pub fn no_shortcut(source: &str) -> Result<(), String> {
+    let text = strip_comments(source);
+    for (number, line) in text.lines().enumerate() {
+        for banned in ["include!", "include_str!", "include_bytes!", "#[path"] {
+            if line.replace(' ', "").contains(banned) {
+                return Err(format!("line {}: {}", number + 1, line.trim()));
+            }
+        }
+        let bytes = line.as_bytes();
+        let mut from = 0;
+        while let Some(at) = line[from..].find("spintop") {
+            let start = from + at;
+            let end = start + "spintop".len();
+            from = end;
+            let ident = |b: u8| b.is_ascii_alphanumeric() || b == b'_';
+            if (start > 0 && ident(bytes[start - 1])) || (end < bytes.len() && ident(bytes[end])) {
+                continue; // part of another name, e.g. spintop_lessons
+            }
+            let rest: String = line[end..].chars().filter(|c| !c.is_whitespace()).collect();
+            let ok = rest.strip_prefix("::").is_some_and(|after| {
+                ALLOWED_MODULES.iter().any(|m| {
+                    after.strip_prefix(m).is_some_and(|tail| {
+                        !tail.starts_with(|c: char| c.is_alphanumeric() || c == '_')
+                    })
+                })
+            });
+            if !ok {
+                return Err(format!("line {}: {}", number + 1, line.trim()));
+            }
+        }
     }
+    Ok(())
 }
 
-impl Show for Vec3 {
-    fn show(&self) -> String {
-        format!("({:e}, {:e}, {:e})", self.x, self.y, self.z)
-    }
-}
-
-impl Show for (State<3>, State<3>) {
-    fn show(&self) -> String {
-        format!(
-            "step ({:e}, {:e}, {:e}), error estimate ({:e}, {:e}, {:e})",
-            self.0[0], self.0[1], self.0[2], self.1[0], self.1[1], self.1[2]
-        )
-    }
-}
-
-impl Show for C {
-    fn show(&self) -> String {
-        format!("{:e} + {:e}i", self.re, self.im)
-    }
-}
-
-/// |a − b| ≤ tol·(1 + |b|), componentwise through the norm.
-fn close_vec(a: &Vec3, b: &Vec3, tol: Real) -> bool {
-    a.iter().all(|x| x.is_finite()) && (a - b).norm() <= tol * (1.0 + b.norm())
-}
-
-fn close_real(a: Real, b: Real, tol: Real) -> bool {
-    a.is_finite() && (a - b).abs() <= tol * (1.0 + b.abs())
-}
-
-/// A readable jet for reports.
-#[derive(Clone, Copy)]
-struct JetInput(Jet);
-
-impl fmt::Debug for JetInput {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let [d, d1, d2, d3] = self.0;
-        write!(
-            f,
-            "d = {:?}, d' = {:?}, d'' = {:?}, d''' = {:?}",
-            d.as_slice(),
-            d1.as_slice(),
-            d2.as_slice(),
-            d3.as_slice()
-        )
-    }
-}
-
-fn jets() -> Vec<JetInput> {
-    let mut rng = Rng::new(SEED);
-    let mut out: Vec<JetInput> = (0..CASES)
-        .map(|_| JetInput([rng.vec3(2.0), rng.vec3(2.0), rng.vec3(2.0), rng.vec3(2.0)]))
-        .collect();
-    // A precessing dipole, the Section 2 example, at a few times.
-    if let Ok(p) = balance::PrecessingDipole::new(0.7, 1.3) {
-        use balance::DipoleTrajectory;
-        out.extend([0.0, 0.4, 2.0].map(|t| JetInput(p.jet(t))));
+/// The source without `//` and `/* */` comments (line breaks kept).
+fn strip_comments(source: &str) -> String {
+    let mut out = String::with_capacity(source.len());
+    let mut chars = source.chars().peekable();
+    let mut in_block = 0usize;
+    let mut in_string = false;
+    while let Some(c) = chars.next() {
+        if in_block > 0 {
+            if c == '*' && chars.peek() == Some(&'/') {
+                chars.next();
+                in_block -= 1;
+            } else if c == '/' && chars.peek() == Some(&'*') {
+                chars.next();
+                in_block += 1;
+            } else if c == '\n' {
+                out.push('\n');
+            }
+            continue;
+        }
+        if in_string {
+            out.push(c);
+            if c == '\\' {
+                if let Some(n) = chars.next() {
+                    out.push(n);
+                }
+            } else if c == '"' {
+                in_string = false;
+            }
+            continue;
+        }
+        match c {
+            '"' => {
+                in_string = true;
+                out.push(c);
+            }
+            '/' if chars.peek() == Some(&'/') => {
+                for n in chars.by_ref() {
+                    if n == '\n' {
+                        out.push('\n');
+                        break;
+                    }
+                }
+            }
+            '/' if chars.peek() == Some(&'*') => {
+                chars.next();
+                in_block = 1;
+            }
+            _ => out.push(c),
+        }
     }
     out
 }
 
-/// Grade the Larmor-like loss rate.
-///
-/// Paper: Eq. (2.1).
-pub fn larmor_rate(student: impl Fn(&Jet) -> Vec3) -> Grade {
-    Assignment {
-        name: "larmor_rate",
-        equation: "Eq. (2.1)",
-        hint: "(2.1) with kappa = 1 is dL/dt = -d' x d''. Check the sign and the order of the cross product.",
-    }
-    .compare(
-        &jets(),
-        |j| student(&j.0),
-        |j| balance::larmor_rate(&j.0),
-        |a, b| close_vec(a, b, 1e-12),
-    )
-}
-
-/// Grade the Abraham–Lorentz torque.
-///
-/// Paper: Eq. (2.2).
-pub fn torque_rate(student: impl Fn(&Jet) -> Vec3) -> Grade {
-    Assignment {
-        name: "torque_rate",
-        equation: "Eq. (2.2)",
-        hint: "(2.2) with kappa = 1 is dL/dt = d x d'''. If you got -d' x d'', that is the Larmor-like law (2.1): the Schott term (2.3) is missing.",
-    }
-    .compare(
-        &jets(),
-        |j| student(&j.0),
-        |j| balance::torque_rate(&j.0),
-        |a, b| close_vec(a, b, 1e-12),
-    )
-}
-
-/// Grade the Schott angular momentum.
-///
-/// Paper: Eq. (2.4).
-pub fn schott_angular_momentum(student: impl Fn(&Jet) -> Vec3) -> Grade {
-    Assignment {
-        name: "schott_angular_momentum",
-        equation: "Eq. (2.4)",
-        hint: "(2.4) with kappa = 1 is L_S = d x d'', the time derivative of d x d'.",
-    }
-    .compare(
-        &jets(),
-        |j| student(&j.0),
-        |j| balance::schott_angular_momentum(&j.0),
-        |a, b| close_vec(a, b, 1e-12),
-    )
-}
-
-/// Grade the axial projection n·dL_S/dt, n = d/|d|.
-///
-/// Paper: Eq. (2.3), Eq. (2.4).
-pub fn axial_schott_rate(student: impl Fn(&Jet) -> Real) -> Grade {
-    Assignment {
-        name: "axial_schott_rate",
-        equation: "Eqs. (2.3)-(2.4)",
-        hint: "dL_S/dt = d' x d'' + d x d''' (differentiate (2.4)); project on the unit vector n = d/|d| (divide by |d|). The d x d''' part has no axial component.",
-    }
-    .compare(
-        &jets(),
-        |j| student(&j.0),
-        |j| balance::axial(&j.0[0], &balance::schott_rate(&j.0)),
-        |a, b| close_real(*a, *b, 1e-12),
-    )
-}
-
-/// A general top and a rate, for (3.3).
-#[derive(Clone, Copy)]
-struct TopInput {
-    inertia: Vec3,
-    dipole: Vec3,
-    omega: Vec3,
-}
-
-impl fmt::Debug for TopInput {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "inertia = {:?}, dipole = {:?}, omega = {:?}",
-            self.inertia.as_slice(),
-            self.dipole.as_slice(),
-            self.omega.as_slice()
-        )
-    }
-}
-
-/// Grade the body-frame right-hand side of the truncated ALE of a general top.
-///
-/// Paper: Eq. (3.3).
-pub fn truncated_ale_rhs(student: impl Fn(Vec3, Vec3, Vec3) -> Vec3) -> Grade {
-    let mut rng = Rng::new(SEED);
-    let mut inputs = Vec::new();
-    while inputs.len() < CASES {
-        let inertia = Vec3::new(
-            rng.uniform(0.3, 2.0),
-            rng.uniform(0.3, 2.0),
-            rng.uniform(0.3, 2.0),
-        );
-        // Small dipoles keep I + d(d x Omega)^T far from singular; every tenth
-        // case is nearly free (Euler's equations).
-        let dipole = if inputs.len() % 10 == 0 {
-            rng.vec3(1e-6)
-        } else {
-            rng.vec3(0.6)
-        };
-        let input = TopInput {
-            inertia,
-            dipole,
-            omega: rng.vec3(1.0),
-        };
-        if GeneralTop::new(inertia, dipole).is_ok() {
-            inputs.push(input);
-        }
-    }
-    Assignment {
-        name: "truncated_ale_rhs",
-        equation: "Eq. (3.3)",
-        hint: "(3.3): I Omega' + Omega x I Omega = -{ |d x Omega|^2 Omega + (d.(Omega x Omega')) d }. Omega' is on both sides: solve the 3x3 linear system. With d = 0 it must reduce to Euler's equations; check that I1, I2, I3 multiply the right components.",
-    }
-    .compare(
-        &inputs,
-        |x| student(x.inertia, x.dipole, x.omega),
-        |x| match GeneralTop::new(x.inertia, x.dipole) {
-            Ok(top) => top.truncated_ale_rhs(&x.omega),
-            Err(_) => Vec3::repeat(Real::NAN),
-        },
-        |a, b| close_vec(a, b, 1e-10),
-    )
-}
-
-/// A symmetric top, a start and a time, for (4.15)–(4.16).
-#[derive(Clone, Copy)]
-struct ReducedInput {
-    ratio: Real,
-    tau: Real,
-    omega0: Vec3,
-    t: Real,
-}
-
-impl fmt::Debug for ReducedInput {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "ratio = {}, tau = {}, omega0 = {:?}, t = {}",
-            self.ratio,
-            self.tau,
-            self.omega0.as_slice(),
-            self.t
-        )
-    }
-}
-
-/// Grade the reduced model's closed form, with Ω₁₀ ≠ 0.
-///
-/// Paper: Eq. (4.15), Eq. (4.16).
-pub fn reduced_closed_form(student: impl Fn(Real, Real, Vec3, Real) -> Vec3) -> Grade {
-    let mut rng = Rng::new(SEED);
-    let inputs: Vec<ReducedInput> = (0..CASES)
-        .map(|_| ReducedInput {
-            ratio: rng.uniform(0.1, 2.0),
-            tau: rng.uniform(0.2, 2.0),
-            omega0: rng.vec3(0.5),
-            t: rng.uniform(0.0, 40.0),
-        })
-        .collect();
-    Assignment {
-        name: "reduced_closed_form",
-        equation: "Eqs. (4.15)-(4.16)",
-        hint: "Omega_perp(t) = Phi(t) Omega_perp0 with Phi of (4.16), turning clockwise at (1 - I3/I1) Omega3 as in (4.15), and Omega3 constant. The paper sets Omega_10 = 0: keep both Omega_10 and Omega_20.",
-    }
-    .compare(
-        &inputs,
-        |x| student(x.ratio, x.tau, x.omega0, x.t),
-        |x| match SymmetricTop::new(x.ratio, x.tau) {
-            Ok(top) => symmetric_top::reduced_closed_form(&top, &x.omega0, x.t),
-            Err(_) => Vec3::repeat(Real::NAN),
-        },
-        |a, b| close_vec(a, b, 1e-10),
-    )
-}
-
-/// Grade the constant tilt between the symmetry axis and L.
-///
-/// Paper: Eq. (4.11) (corrected: erratum 4).
-pub fn precession_tilt(student: impl Fn(Real, Vec3) -> Real) -> Grade {
-    let mut rng = Rng::new(SEED);
-    let mut inputs: Vec<(Real, Vec3)> = (0..CASES)
-        .map(|_| {
-            let ratio = rng.uniform(0.1, 2.0);
-            let w = rng.vec3(0.5);
-            (ratio, Vec3::new(w.x, w.y, w.z.abs() + 0.05))
-        })
-        .collect();
-    inputs.push((0.4, Vec3::new(0.0, 0.1, 0.2)));
-    Assignment {
-        name: "precession_tilt",
-        equation: "Eq. (4.11), corrected",
-        hint: "The axis keeps a constant angle to L: tan(theta) = I1 Omega_perp0 / (I3 Omega_30). The printed arctan(Omega_20 / Omega~_30) is erratum 4 (see the Errata page).",
-    }
-    .compare(
-        &inputs,
-        |(ratio, w)| student(*ratio, *w),
-        |(ratio, w)| match SymmetricTop::new(*ratio, 1.0) {
-            Ok(top) => symmetric_top::precession_tilt(&top, w),
-            Err(_) => Real::NAN,
-        },
-        |a, b| close_real(*a, *b, 1e-12),
-    )
-}
-
-/// The test problems of the step graders: a non-autonomous linear system and
-/// the reduced ALE (4.12), as `(name, f)`.
-type Field = fn(Real, &State<3>) -> State<3>;
-
-fn fields() -> [(&'static str, Field); 2] {
-    fn linear(t: Real, y: &State<3>) -> State<3> {
-        State::<3>::new(
-            -0.5 * y[0] + 2.0 * y[1] + t.sin(),
-            -2.0 * y[0] - 0.5 * y[1],
-            -y[2] + t * t,
-        )
-    }
-    fn reduced(_t: Real, y: &State<3>) -> State<3> {
-        let top = SymmetricTop::figure();
-        symmetric_top::reduced_ale_rhs(&top, &Vec3::new(y[0], y[1], y[2]))
-    }
-    [("linear", linear), ("reduced ALE (4.12), tau = 1", reduced)]
-}
-
-#[derive(Clone, Copy)]
-struct StepInput {
-    field: usize,
-    t: Real,
-    y: State<3>,
-    h: Real,
-}
-
-impl fmt::Debug for StepInput {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "f = {}, t = {}, y = {:?}, h = {}",
-            fields()[self.field].0,
-            self.t,
-            self.y.as_slice(),
-            self.h
-        )
-    }
-}
-
-fn step_inputs() -> Vec<StepInput> {
-    let mut rng = Rng::new(SEED);
-    (0..CASES)
-        .map(|i| StepInput {
-            field: i % 2,
-            t: rng.uniform(-1.0, 3.0),
-            y: State::<3>::new(
-                rng.uniform(-1.0, 1.0),
-                rng.uniform(-1.0, 1.0),
-                rng.uniform(-1.0, 1.0),
-            ),
-            h: rng.uniform(0.01, 0.4),
-        })
-        .collect()
-}
-
-/// A right-hand side as the assignments take it.
-pub type DynField<'a> = &'a dyn Fn(Real, &State<3>) -> State<3>;
-
-/// Grade one classical RK4 step.
-pub fn rk4_step(student: impl Fn(DynField, Real, &State<3>, Real) -> State<3>) -> Grade {
-    Assignment {
-        name: "rk4_step",
-        equation: "classical RK4, Hairer-Norsett-Wanner I, Table II.1.2",
-        hint: "k1 = f(t, y), k2 = f(t + h/2, y + h k1/2), k3 = f(t + h/2, y + h k2/2), k4 = f(t + h, y + h k3); y_new = y + h (k1 + 2 k2 + 2 k3 + k4)/6.",
-    }
-    .compare(
-        &step_inputs(),
-        |x| student(&fields()[x.field].1, x.t, &x.y, x.h),
-        |x| reference_rk4_step(&fields()[x.field].1, x.t, &x.y, x.h),
-        |a, b| close_state(a, b, 1e-13),
-    )
-}
-
-fn close_state(a: &State<3>, b: &State<3>, tol: Real) -> bool {
-    a.iter().all(|x| x.is_finite()) && (a - b).norm() <= tol * (1.0 + b.norm())
-}
-
-/// Grade one Dormand–Prince 5(4) step: (y₅, y₅ − ŷ₄).
-pub fn dp5_step(
-    student: impl Fn(DynField, Real, &State<3>, Real) -> (State<3>, State<3>),
-) -> Grade {
-    Assignment {
-        name: "dp5_step",
-        equation: "Dormand-Prince 5(4), Hairer-Norsett-Wanner I, Table II.5.2",
-        hint: "Seven stages with the Dormand-Prince tableau; the step is the fifth-order b, the error estimate is y5 - y4_hat = h sum (b_i - b_hat_i) k_i, with k7 = f(t + h, y5).",
-    }
-    .compare(
-        &step_inputs(),
-        |x| student(&fields()[x.field].1, x.t, &x.y, x.h),
-        |x| dopri5_step(&fields()[x.field].1, x.t, &x.y, x.h),
-        |a, b| close_state(&a.0, &b.0, 1e-13) && (a.1 - b.1).norm() <= 1e-13 + 1e-9 * b.1.norm(),
-    )
-}
-
-#[derive(Clone, Copy)]
-struct RotationInput(Mat3);
-
-impl fmt::Debug for RotationInput {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let a = EulerAngles::from_rotation(&self.0);
-        write!(
-            f,
-            "the rotation with (phi, theta, psi) = ({}, {:e}, {})",
-            a.phi, a.theta, a.psi
-        )
-    }
-}
-
-/// Grade Euler angles from a rotation matrix, z-x-z, pole included.
-///
-/// Paper: Eq. (3.5) (its angle convention).
-pub fn euler_from_rotation(student: impl Fn(&Mat3) -> (Real, Real, Real)) -> Grade {
-    let mut rng = Rng::new(SEED);
-    let pi = std::f64::consts::PI;
-    let mut inputs: Vec<RotationInput> = (0..CASES)
-        .map(|_| {
-            let e = EulerAngles::new(
-                rng.uniform(-pi, pi),
-                rng.uniform(0.0, pi),
-                rng.uniform(-pi, pi),
-            );
-            RotationInput(e.to_rotation())
-        })
-        .collect();
-    for theta in [0.0, pi, 1e-9, 1e-13, pi - 1e-9] {
-        let e = EulerAngles::new(rng.uniform(-pi, pi), theta, rng.uniform(-pi, pi));
-        inputs.push(RotationInput(e.to_rotation()));
-    }
-    let a = Assignment {
-        name: "euler_from_rotation",
-        equation: "Eq. (3.5), z-x-z angles",
-        hint: "theta = atan2(sqrt(O13^2 + O23^2), O33) (acos loses digits near the poles); phi = atan2(O13, -O23), psi = atan2(O31, O32); on a pole only phi + psi (or phi - psi) is defined: set psi = 0 and read phi from the first column.",
+/// `grade`, unless one of the assignment's `sources` (`(file, text)`) takes a
+/// shortcut through spintop's own implementation: then a failure whose
+/// diagnosis starts with [`NO_SHORTCUT`].
+pub fn without_shortcut(grade: Grade, sources: &[(&str, &str)]) -> Grade {
+    let (assignment, equation) = match &grade {
+        Ok(p) => (p.assignment, p.equation),
+        Err(f) => (f.assignment, f.equation),
     };
-    for input in &inputs {
-        let m = input.0;
-        match call(|| student(&m)) {
-            Ok((phi, theta, psi)) => {
-                let finite = phi.is_finite() && theta.is_finite() && psi.is_finite();
-                let rebuilt = EulerAngles::new(phi, theta, psi).to_rotation();
-                let err = (rebuilt - m).norm();
-                if !finite || !(0.0..=pi).contains(&theta) || err > 1e-12 {
-                    return Err(a.fail(
-                        format!("{input:?}"),
-                        "finite angles, theta in [0, pi], rebuilding the matrix to 1e-12".into(),
-                        format!("({phi}, {theta:e}, {psi}), rebuilding it to {err:.1e}"),
-                    ));
-                }
-            }
-            Err(msg) => {
-                return Err(a.fail(format!("{input:?}"), "three angles".into(), msg));
-            }
+    for (file, text) in sources {
+        if let Err(line) = no_shortcut(text) {
+            return Err(Box::new(Failed {
+                assignment,
+                equation,
+                input: format!("the source of {file}"),
+                expected: "paths into spintop only through spintop::math and spintop::assignment"
+                    .into(),
+                actual: line,
+                diagnosis: format!(
+                    "{NO_SHORTCUT}: this file reaches into spintop itself, where the reference answers live. Write the physics yourself; vectors come from spintop::math, the argument types from spintop::assignment (lessons/README.md says why)."
+                ),
+            }));
         }
     }
-    Ok(Passed {
-        assignment: a.name,
-        cases: inputs.len(),
-    })
+    grade
 }
 
-#[derive(Clone, Copy)]
-struct ShellInput {
-    tau0: Real,
-    delta: Real,
-    z: C,
-    z_ddot_ret: C,
-}
-
-impl fmt::Debug for ShellInput {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "tau0 = {}, delta = {}, Z = {}, Z''(t - delta) = {}",
-            self.tau0, self.delta, self.z, self.z_ddot_ret
-        )
-    }
-}
-
-/// Grade the method-of-steps update of the shell model: Z''(t) from Z(t) and
-/// the retarded Z''(t − δ).
-///
-/// Paper: Eq. (A.1).
-pub fn shell_acceleration(student: impl Fn(Real, Real, C, C) -> C) -> Grade {
-    let mut rng = Rng::new(SEED);
-    let inputs: Vec<ShellInput> = (0..CASES)
-        .map(|_| {
-            let tau0 = rng.uniform(1e-3, 0.05);
-            ShellInput {
-                tau0,
-                delta: rng.uniform(2.5 * tau0, 1.0),
-                z: C::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)),
-                z_ddot_ret: C::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)),
-            }
-        })
-        .collect();
-    Assignment {
-        name: "shell_acceleration",
-        equation: "Eq. (A.1)",
-        hint: "(A.1) with m = k = 1: m0 Z''(t) + Z(t) = -m_em Z''(t - delta), where m_em = tau0/delta and m0 = 1 - m_em. Solve for Z''(t).",
-    }
-    .compare(
-        &inputs,
-        |x| student(x.tau0, x.delta, x.z, x.z_ddot_ret),
-        |x| match ShellModel::new(x.tau0, x.delta) {
-            Ok(m) => m.acceleration(x.z, x.z_ddot_ret),
-            Err(_) => C::new(Real::NAN, Real::NAN),
-        },
-        |a, b| a.re.is_finite() && a.im.is_finite() && (a - b).norm() <= 1e-12 * (1.0 + b.norm()),
-    )
-}
+/// The lessons crate's modules that hold assignments.
+pub const ASSIGNMENT_MODULES: [&str; 5] = ["ch2", "ch3", "ch4", "numerics", "appendix"];

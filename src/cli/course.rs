@@ -27,6 +27,19 @@ pub struct CourseArgs {
     /// lessons/; a student's copy made by `spintop course export` also works).
     #[arg(long, value_name = "DIR")]
     course: Option<PathBuf>,
+    /// The status as text (default) or as JSON, for an instructor's scripts.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+}
+
+/// How `spintop course` prints the status.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Format {
+    /// One line per assignment, for people.
+    #[default]
+    Text,
+    /// One JSON document, for scripts.
+    Json,
 }
 
 /// What `course` can do besides printing the status.
@@ -46,6 +59,25 @@ enum CourseAction {
         /// The folder to create (it must not exist yet, or be empty)
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
+    },
+    /// The next rung of an assignment's hint ladder: where to look, then the
+    /// idea, then the formula (one rung per call)
+    Hint {
+        /// The assignment: its function name (e.g. torque_rate) or equation (e.g. 2.2)
+        name: String,
+        /// The course whose progress keeps the rungs (default: the repository's lessons/)
+        #[arg(long, value_name = "DIR")]
+        course: Option<PathBuf>,
+    },
+    /// Instructor: grade students' copies with the repository's graders and
+    /// write a CSV (student, assignment, equation, state, hint rungs used)
+    Grade {
+        /// The students' copies (folders made by `course export`), one per student
+        #[arg(required = true, value_name = "DIR")]
+        copies: Vec<PathBuf>,
+        /// Write the CSV here instead of to standard output
+        #[arg(long, value_name = "FILE")]
+        out: Option<PathBuf>,
     },
 }
 
@@ -81,6 +113,10 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
     match args.action {
         Some(CourseAction::Export { out: dir }) => return export(&dir, out),
         Some(CourseAction::Watch { course }) => return watch(course.as_ref(), out),
+        Some(CourseAction::Hint { name, course }) => return hint(&name, course.as_ref(), out),
+        Some(CourseAction::Grade { copies, out: csv }) => {
+            return grade_copies(&copies, csv.as_ref(), out);
+        }
         None => {}
     }
     let wanted = args
@@ -109,6 +145,20 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
         eprint!("grading (cargo test on {})…\r", dir.display());
     }
     let status = course::grade(&dir, args.solutions).map_err(bad)?;
+    let mut progress = course::load_progress(&dir);
+    if !args.solutions && course::record_passes(&mut progress, &status, now()) {
+        // The progress is a convenience: a read-only checkout still grades.
+        let _ = course::save_progress(&dir, &progress);
+    }
+    if args.format == Format::Json {
+        let json = status_json(&status, &progress);
+        writeln!(
+            out,
+            "{}",
+            serde_json::to_string_pretty(&json).unwrap_or_default()
+        )?;
+        return Ok(());
+    }
     // In the repository the files are under lessons/; in an export, at its top.
     let own = args.course.is_none();
     let file = |a: &course::Assignment| {
@@ -183,6 +233,13 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
                 "  grade it alone: cargo test{package} --test {} {}",
                 a.binary, a.test
             )?;
+            if !matches!(s, State::Passing | State::Failing(_)) {
+                writeln!(
+                    out,
+                    "  stuck? spintop course hint {} (where to look, then the idea, then the formula)",
+                    a.function
+                )?;
+            }
         }
     }
     Ok(())
@@ -234,6 +291,10 @@ fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError>
                 }
                 course::Report::Failed(e) => writeln!(out, "spintop course watch: {e}")?,
                 course::Report::Graded(status) => {
+                    let mut progress = course::load_progress(&dir);
+                    if course::record_passes(&mut progress, &status, now()) {
+                        let _ = course::save_progress(&dir, &progress);
+                    }
                     for (i, (a, s)) in status.states.iter().enumerate() {
                         let changed = last.as_ref().is_none_or(|l| l.states[i].1 != *s);
                         if changed && (last.is_some() || *s != State::NotStarted) {
@@ -262,4 +323,154 @@ fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError>
         }
         std::thread::sleep(std::time::Duration::from_millis(100));
     }
+}
+
+fn now() -> u64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0)
+}
+
+/// The status as one JSON value.
+fn status_json(status: &course::Status, progress: &course::Progress) -> serde_json::Value {
+    let assignments: Vec<serde_json::Value> = status
+        .states
+        .iter()
+        .map(|(a, s)| {
+            let report = match s {
+                State::Failing(r) | State::DoesNotCompile(r) => Some(r.clone()),
+                _ => None,
+            };
+            serde_json::json!({
+                "function": a.function,
+                "equation": a.equation,
+                "chapter": a.chapter,
+                "file": a.file,
+                "test": format!("{}::{}", a.binary, a.test),
+                "state": s.word(),
+                "report": report,
+                "hint_rungs_used": progress.hints.get(a.function).copied().unwrap_or(0),
+                "first_passed_unix": progress.first_passed.get(a.function),
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "passing": status.passing(),
+        "total": status.states.len(),
+        "next": status.next().map(|(a, _)| a.function),
+        "assignments": assignments,
+    })
+}
+
+/// `spintop course hint NAME`: the next rung of the ladder.
+fn hint(name: &str, chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError> {
+    let Some(a) = course::find(name) else {
+        let names: Vec<&str> = course::COURSE.iter().map(|a| a.function).collect();
+        return Err(bad(format!(
+            "course hint {name}: no such assignment; one of {}",
+            names.join(", ")
+        )));
+    };
+    let dir = lessons(chosen)?;
+    let mut progress = course::load_progress(&dir);
+    let h = course::next_hint(&mut progress, a);
+    course::save_progress(&dir, &progress).map_err(|e| bad(format!("course hint: {e}")))?;
+    let n = a.hints.len();
+    let label = ["where to look", "the idea", "the formula"][(h.rung - 1).min(2)];
+    writeln!(
+        out,
+        "{} {} - hint {} of {n} ({label}):",
+        a.equation, a.function, h.rung
+    )?;
+    writeln!(out, "  {}", h.text)?;
+    if h.is_last() {
+        writeln!(out, "  (that was the last rung)")?;
+    } else {
+        writeln!(
+            out,
+            "  (run `spintop course hint {}` again for the next rung)",
+            a.function
+        )?;
+    }
+    Ok(())
+}
+
+/// A CSV field, quoted when it needs to be.
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// `spintop course grade DIR...`: each copy graded with the repository's
+/// graders, one CSV row per student and assignment.
+fn grade_copies(
+    copies: &[PathBuf],
+    csv: Option<&PathBuf>,
+    out: &mut impl Write,
+) -> Result<(), CliError> {
+    let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    if !course::lessons_dir(repo).join("Cargo.toml").is_file() {
+        return Err(bad(
+            "spintop course grade needs the repository's graders (lessons/); run it from a clone of spintop",
+        ));
+    }
+    for dir in copies {
+        course::check_lessons_dir(dir).map_err(|e| bad(format!("course grade: {e}")))?;
+    }
+    let work = repo.join("target").join("course-grade");
+    // The repository's own build folder: spintop is already compiled there.
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| repo.join("target"));
+    let mut rows = vec!["student,assignment,equation,state,hint_rungs_used".to_string()];
+    for (i, dir) in copies.iter().enumerate() {
+        let student = dir
+            .canonicalize()
+            .ok()
+            .and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+            .unwrap_or_else(|| dir.display().to_string());
+        if std::io::stderr().is_terminal() {
+            eprint!("grading {student} ({} of {})…\r", i + 1, copies.len());
+        }
+        let status = course::grade_submission(repo, dir, &work.join("copy"), &target)
+            .map_err(|e| bad(format!("course grade {}: {e}", dir.display())))?;
+        let progress = course::load_progress(dir);
+        for (a, s) in &status.states {
+            rows.push(
+                [
+                    csv_field(&student),
+                    a.function.to_string(),
+                    csv_field(a.equation),
+                    s.word().to_string(),
+                    progress
+                        .hints
+                        .get(a.function)
+                        .copied()
+                        .unwrap_or(0)
+                        .to_string(),
+                ]
+                .join(","),
+            );
+        }
+    }
+    let text = rows.join("\n") + "\n";
+    match csv {
+        Some(path) => {
+            std::fs::write(path, &text)
+                .map_err(|e| bad(format!("course grade --out {}: {e}", path.display())))?;
+            writeln!(
+                out,
+                "spintop course grade: {} students, {} rows written to {}",
+                copies.len(),
+                rows.len() - 1,
+                path.display()
+            )?;
+        }
+        None => write!(out, "{text}")?,
+    }
+    Ok(())
 }

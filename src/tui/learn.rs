@@ -24,7 +24,7 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, BorderType, Clear, List, ListItem, ListState, Paragraph};
+use ratatui::widgets::{Block, BorderType, Clear, List, ListItem, ListState, Paragraph, Wrap};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -301,16 +301,23 @@ pub struct Learn {
     course: Option<crate::course::Status>,
     grading: bool,
     course_error: Option<String>,
+    /// The lessons crate being graded (where the hint rungs are kept).
+    course_dir: Option<PathBuf>,
+    /// The last hint rung shown (`h`).
+    hint: Option<crate::course::Hint>,
+    /// The hint rungs used, when there is no course folder to keep them in.
+    hints_used: crate::course::Progress,
 }
 
 /// The keys, for the footer and the help.
-const KEYS: [(&str, &str); 9] = [
+const KEYS: [(&str, &str); 10] = [
     ("?", "help"),
     ("q", "quit"),
     ("↑↓ PgUp PgDn", "scroll"),
     ("← →", "chapter"),
     ("c", "contents"),
     ("a", "assignments"),
+    ("h", "hint"),
     ("x", "try the next experiment"),
     ("space", "pause scene"),
     ("Tab", "scene full screen"),
@@ -363,6 +370,9 @@ impl Learn {
             course: None,
             grading: false,
             course_error: None,
+            course_dir: None,
+            hint: None,
+            hints_used: Default::default(),
         };
         learn.load(current)?;
         Ok(learn)
@@ -510,6 +520,52 @@ impl Learn {
     /// every save of a file under its `src/`.
     pub fn watch_course(&mut self, dir: &Path) {
         self.watch = Some(crate::course::Watch::start(dir));
+        self.course_dir = Some(dir.to_path_buf());
+    }
+
+    /// The assignment a hint is for: the first of this chapter's assignments
+    /// that does not pass yet, else the course's next one.
+    pub fn hint_target(&self) -> Option<&'static crate::course::Assignment> {
+        use crate::course::{COURSE, State};
+        let title = &self.chapters[self.current].title;
+        let passing = |a: &crate::course::Assignment| {
+            self.course.as_ref().is_some_and(|s| {
+                s.states
+                    .iter()
+                    .any(|(b, st)| b.function == a.function && *st == State::Passing)
+            })
+        };
+        COURSE
+            .iter()
+            .find(|a| title.starts_with(a.chapter) && !passing(a))
+            .or_else(|| COURSE.iter().find(|a| !passing(a)))
+    }
+
+    /// The next hint rung (`h`): for [`Self::hint_target`], kept in the
+    /// course's progress file when the course is being graded.
+    pub fn next_hint(&mut self) {
+        use crate::course;
+        let Some(a) = self.hint_target() else {
+            self.hint = None;
+            return;
+        };
+        let mut progress = match self.course_dir.as_deref() {
+            Some(dir) => course::load_progress(dir),
+            None => self.hints_used.clone(),
+        };
+        self.hint = Some(course::next_hint(&mut progress, a));
+        self.hints_used = progress.clone();
+        if let Some(dir) = &self.course_dir
+            && let Err(e) = course::save_progress(dir, &progress)
+        {
+            self.message = Some((format!("cannot keep the hint: {e}"), true));
+        }
+        self.mode = Mode::Course;
+    }
+
+    /// The hint on screen, if any.
+    pub fn hint(&self) -> Option<&crate::course::Hint> {
+        self.hint.as_ref()
     }
 
     /// Takes one report of the course grader.
@@ -520,6 +576,16 @@ impl Learn {
             Report::Graded(status) => {
                 self.grading = false;
                 self.course_error = None;
+                if let Some(dir) = &self.course_dir {
+                    let mut progress = crate::course::load_progress(dir);
+                    let now = std::time::SystemTime::now()
+                        .duration_since(std::time::UNIX_EPOCH)
+                        .map(|d| d.as_secs())
+                        .unwrap_or(0);
+                    if crate::course::record_passes(&mut progress, &status, now) {
+                        let _ = crate::course::save_progress(dir, &progress);
+                    }
+                }
                 self.course = Some(status);
             }
             Report::Failed(e) => {
@@ -548,6 +614,7 @@ impl Learn {
             return;
         }
         match self.mode {
+            Mode::Course if key.code == KeyCode::Char('h') => self.next_hint(),
             Mode::Help | Mode::Course => {
                 if matches!(key.code, KeyCode::Char('q')) {
                     self.quit = true;
@@ -576,6 +643,7 @@ impl Learn {
                 KeyCode::Char('?') => self.mode = Mode::Help,
                 KeyCode::Char('c') => self.mode = Mode::Contents(self.current),
                 KeyCode::Char('a') => self.mode = Mode::Course,
+                KeyCode::Char('h') => self.next_hint(),
                 KeyCode::Down | KeyCode::Char('j') => {
                     self.scroll = (self.scroll + 1).min(self.max_scroll())
                 }
@@ -654,18 +722,25 @@ impl Learn {
         let chapter = &self.chapters[self.current];
         let seen = self.visited.iter().filter(|v| **v).count();
         let course = match (&self.course, self.grading, &self.course_error) {
-            (_, _, Some(_)) => " │ course: cannot grade".to_string(),
+            (_, _, Some(_)) => " course: cannot grade ".to_string(),
             (Some(s), true, _) => format!(
-                " │ course {} of {} ✓ (grading…)",
+                " course {} of {} {} grading… ",
                 s.passing(),
-                s.states.len()
+                s.states.len(),
+                progress_bar(s.passing(), s.states.len(), 10)
             ),
-            (None, true, _) => " │ course: grading…".to_string(),
-            (Some(s), false, _) => format!(" │ course {} of {} ✓ (a)", s.passing(), s.states.len()),
+            (None, true, _) => " course: grading… ".to_string(),
+            (Some(s), false, _) => format!(
+                " course {} of {} {} (a) ",
+                s.passing(),
+                s.states.len(),
+                progress_bar(s.passing(), s.states.len(), 10)
+            ),
             (None, false, None) => String::new(),
         };
         let line = Line::from(vec![
             Span::styled(" spintop learn ", theme::status(false)),
+            Span::styled(course, theme::key()),
             Span::styled(format!(" {} ", chapter.title), theme::title()),
             Span::styled(
                 format!(
@@ -677,7 +752,6 @@ impl Learn {
                 ),
                 theme::label(),
             ),
-            Span::styled(course, theme::key()),
         ]);
         frame.render_widget(Paragraph::new(line), area);
     }
@@ -814,14 +888,31 @@ impl Learn {
             (Some(status), None) => {
                 lines.push(Line::from(Span::styled(
                     format!(
-                        "{} of {} passing{}",
+                        "{} {} of {} passing{}",
+                        progress_bar(status.passing(), status.states.len(), 22),
                         status.passing(),
                         status.states.len(),
                         if self.grading { "  (grading…)" } else { "" }
                     ),
                     theme::title(),
                 )));
-                for (a, s) in &status.states {
+                // This chapter's assignments; the whole course where it has none.
+                let title = &self.chapters[self.current].title;
+                let mine: Vec<_> = status
+                    .states
+                    .iter()
+                    .filter(|(a, _)| title.starts_with(a.chapter))
+                    .collect();
+                let shown = if mine.is_empty() {
+                    status.states.iter().collect()
+                } else {
+                    lines.push(Line::from(Span::styled(
+                        format!("this chapter ({}):", mine.len()),
+                        theme::label(),
+                    )));
+                    mine
+                };
+                for (a, s) in shown {
                     let (mark, style) = match s {
                         State::Passing => ("✓", theme::info()),
                         State::Failing(_) | State::DoesNotCompile(_) => ("✗", theme::error()),
@@ -836,7 +927,10 @@ impl Learn {
                         Span::styled(s.word(), style),
                     ]));
                 }
-                if let Some((a, s)) = status.next() {
+                let target = self.hint_target();
+                if let Some((a, s)) = target
+                    .and_then(|t| status.states.iter().find(|(a, _)| a.function == t.function))
+                {
                     lines.push(Line::from(""));
                     lines.push(Line::from(Span::styled(
                         format!("next: {} {} ({})", a.equation, a.function, a.chapter),
@@ -857,15 +951,35 @@ impl Learn {
                 }
             }
         }
+        if let Some(h) = &self.hint
+            && self
+                .hint_target()
+                .is_some_and(|t| t.function == h.assignment.function)
+        {
+            let label = ["where to look", "the idea", "the formula"][(h.rung - 1).min(2)];
+            lines.push(Line::from(Span::styled(
+                format!(
+                    "hint {} of {} ({label}) for {}:",
+                    h.rung,
+                    h.assignment.hints.len(),
+                    h.assignment.function
+                ),
+                theme::title(),
+            )));
+            lines.push(Line::from(format!("  {}", h.text)));
+        }
         lines.push(Line::from(""));
         lines.push(Line::from(Span::styled(
-            "saving a file under lessons/src re-grades it; any key closes",
+            "saving a file under lessons/src re-grades it; h: a hint (one rung per press); any other key closes",
             theme::label(),
         )));
-        let popup = centered(area, 100, lines.len() as u16 + 2);
+        // Rows once wrapped to the popup's inner width.
+        let inner = usize::from(area.width.min(100).saturating_sub(2)).max(1);
+        let rows: usize = lines.iter().map(|l| l.width().max(1).div_ceil(inner)).sum();
+        let popup = centered(area, 100, rows as u16 + 2);
         frame.render_widget(Clear, popup);
         frame.render_widget(
-            Paragraph::new(lines).block(
+            Paragraph::new(lines).wrap(Wrap { trim: false }).block(
                 Block::bordered()
                     .border_type(BorderType::Rounded)
                     .title(" course "),
@@ -950,6 +1064,12 @@ fn centered(area: Rect, width: u16, height: u16) -> Rect {
         width: w,
         height: h,
     }
+}
+
+/// A progress bar of `width` cells for `k` of `n`: ▰ done, ▱ to do.
+pub fn progress_bar(k: usize, n: usize, width: usize) -> String {
+    let done = (k * width + n / 2).checked_div(n).unwrap_or(0).min(width);
+    format!("{}{}", "▰".repeat(done), "▱".repeat(width - done))
 }
 
 /// The progress file's content: the chapters opened so far and the last one.

@@ -10,14 +10,14 @@ The check:
 1. `spintop course export` writes a student's copy of the course to a
    temporary folder (the repository's own lessons are never touched);
 2. `spintop learn --chapter 2 --course COPY` runs in a private tmux server
-   (`tmux -L`, its own socket) and must show "course 0 of 11";
+   (`tmux -L`, its own socket) and must show "course 0 of 22";
 3. the instructor's solution of one assignment (larmor_rate, Eq. (2.1)) is
    written into the copy's src/ch2.rs, as a student saving the file would,
-   and the header must turn to "course 1 of 11" without a restart; the
+   and the header must turn to "course 1 of 22" without a restart; the
    course panel (`a`) must mark larmor_rate passing; `q` must exit 0;
 4. `spintop course watch --course COPY` (a plain process) must print
-   "1 of 11 passing", then, after a second solution is saved (torque_rate,
-   Eq. (2.2)), "2 of 11 passing".
+   "1 of 22 passing", then, after a second solution is saved (torque_rate,
+   Eq. (2.2)), "2 of 22 passing".
 
 The time from the write to the verdict on screen is printed for each save. It
 is measured, never asserted (a test must not fail because the machine is busy);
@@ -116,13 +116,13 @@ def check(copy: pathlib.Path, env: dict[str, str]) -> list[float]:
     try:
         envs = " ".join(f"{k}='{v}'" for k, v in env.items() if k in ("CARGO_TARGET_DIR", "SPINTOP_LEARN_PROGRESS"))
         tmux.start(f"env {envs} '{binary()}' learn --chapter 2 --course '{copy}'; echo $? > '{status}'")
-        screen = tmux.wait("the chapter and course 0 of 11", lambda s: "course 0 of 11" in s, 300)
+        screen = tmux.wait("the chapter and course 0 of 22", lambda s: "course 0 of 22" in s, 300)
         assert "Section 2" in screen, screen
         write_function(ch2, "larmor_rate", solution("ch2", "larmor_rate"))
         saved = time.monotonic()
-        tmux.wait("course 1 of 11 after saving larmor_rate", lambda s: "course 1 of 11" in s, 120)
+        tmux.wait("course 1 of 22 after saving larmor_rate", lambda s: "course 1 of 22" in s, 120)
         latencies.append(time.monotonic() - saved)
-        print(f"learn: saved larmor_rate; 'course 1 of 11' on screen {latencies[-1]:.2f} s later")
+        print(f"learn: saved larmor_rate; 'course 1 of 22' on screen {latencies[-1]:.2f} s later")
         tmux.keys("a")
         panel = tmux.wait("the course panel", lambda s: "larmor_rate" in s and "passing" in s, 10)
         line = next(l for l in panel.splitlines() if "larmor_rate" in l)
@@ -156,13 +156,13 @@ def check(copy: pathlib.Path, env: dict[str, str]) -> list[float]:
                     return
             raise SystemExit(f"learn_watch: course watch never said {pattern!r}; it said:\n" + "\n".join(seen))
 
-        wait_line("1 of 11 passing", 300)
+        wait_line("1 of 22 passing", 300)
         write_function(ch2, "torque_rate", solution("ch2", "torque_rate"))
         saved = time.monotonic()
-        wait_line("2 of 11 passing", 120)
+        wait_line("2 of 22 passing", 120)
         latencies.append(time.monotonic() - saved)
         assert any("✓ (2.2) torque_rate passing" in l for l in seen), seen
-        print(f"course watch: saved torque_rate; '2 of 11 passing' printed {latencies[-1]:.2f} s later")
+        print(f"course watch: saved torque_rate; '2 of 22 passing' printed {latencies[-1]:.2f} s later")
     finally:
         watch.kill()
         watch.wait()
@@ -188,9 +188,9 @@ def bench(copy: pathlib.Path, env: dict[str, str], rounds: int) -> None:
                 if pattern in line:
                     return
 
-        until("0 of 11 passing")
+        until("0 of 22 passing")
         for k in range(rounds):
-            for text, verdict in ((answer, "1 of 11 passing"), (stub, "0 of 11 passing")):
+            for text, verdict in ((answer, "1 of 22 passing"), (stub, "0 of 22 passing")):
                 time.sleep(1.0)  # a distinct modification time, and the student's pause
                 write_function(ch2, "larmor_rate", text)
                 saved = time.monotonic()

@@ -245,16 +245,16 @@ fn the_course_panel_shows_the_graders_verdicts() {
     let mut learn = Learn::open(&book(), Some("2")).unwrap();
     learn.course_report(Report::Grading);
     assert!(draw(&mut learn, 160, 48).contains("course: grading…"));
-    let output = "test eq_2_1_larmor_rate ... ok\ntest eq_2_2_torque_rate ... FAILED\n\n\
+    let output = "test eq_2_1_larmor_rate ... ok\ntest eq_2_4_schott_angular_momentum ... ok\ntest eq_2_2_torque_rate ... FAILED\n\n\
                   ---- eq_2_2_torque_rate stdout ----\n\ntorque_rate, Eq. (2.2): wrong answer\n  hint: the sign\n\n\
                   failures:\n";
     learn.course_report(Report::Graded(course::parse(output)));
     let shown = draw(&mut learn, 160, 48);
-    assert!(shown.contains("course 1 of 11 ✓"), "{shown}");
+    assert!(shown.contains("course 2 of 22 ▰▱▱▱▱▱▱▱▱▱"), "{shown}");
     learn.key(key(KeyCode::Char('a')));
     let shown = draw(&mut learn, 160, 48);
     for text in [
-        "1 of 11 passing",
+        "2 of 22 passing",
         "larmor_rate",
         "passing",
         "failing",
@@ -264,4 +264,42 @@ fn the_course_panel_shows_the_graders_verdicts() {
     ] {
         assert!(shown.contains(text), "{text} in\n{shown}");
     }
+}
+
+/// `h` climbs the hint ladder of the chapter's first assignment that does not
+/// pass yet, one rung per press, and shows the formula only on the third.
+#[test]
+fn h_climbs_the_hint_ladder_of_the_chapters_next_assignment() {
+    use spintop::course::{self, Report};
+    let mut learn = Learn::open(&book(), Some("4.2")).unwrap();
+    let output = "test eq_4_12_reduced_ale_rhs ... ok\n";
+    learn.course_report(Report::Graded(course::parse(output)));
+    let target = learn.hint_target().unwrap();
+    assert_eq!(
+        target.function, "reduced_decay_time",
+        "the first of Section 4.2 not passing"
+    );
+    let formula = target.hints[2];
+    for rung in 1..=3 {
+        learn.key(key(KeyCode::Char('h')));
+        assert_eq!(learn.hint().unwrap().rung, rung);
+        let shown = draw(&mut learn, 160, 48);
+        assert!(shown.contains(&format!("hint {rung} of 3")), "{shown}");
+        assert_eq!(shown.contains("sigma = I1^2"), rung == 3, "{shown}");
+        assert!(formula.starts_with("sigma = I1^2"));
+    }
+    // Another press stays on the last rung; any other key closes the panel.
+    learn.key(key(KeyCode::Char('h')));
+    assert_eq!(learn.hint().unwrap().rung, 3);
+    learn.key(key(KeyCode::Char('j')));
+    assert!(!draw(&mut learn, 160, 48).contains("hint 3 of 3"));
+}
+
+#[test]
+fn the_progress_bar_fills_in_proportion() {
+    use spintop::tui::learn::progress_bar;
+    assert_eq!(progress_bar(0, 22, 10), "▱▱▱▱▱▱▱▱▱▱");
+    assert_eq!(progress_bar(11, 22, 10), "▰▰▰▰▰▱▱▱▱▱");
+    assert_eq!(progress_bar(22, 22, 10), "▰▰▰▰▰▰▰▰▰▰");
+    assert_eq!(progress_bar(1, 22, 22), format!("▰{}", "▱".repeat(21)));
 }

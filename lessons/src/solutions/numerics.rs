@@ -1,5 +1,4 @@
-use spintop::grading::DynField;
-use spintop::math::{Mat3, State};
+use spintop::assignment::{DynField, Mat3, State, Vec3};
 
 /// Classical RK4.
 pub fn rk4_step(f: DynField, t: f64, y: &State<3>, h: f64) -> State<3> {
@@ -63,4 +62,15 @@ pub fn euler_from_rotation(m: &Mat3) -> (f64, f64, f64) {
         theta,
         m[(2, 0)].atan2(m[(2, 1)]),
     )
+}
+
+/// `steps` RK4 steps of (4.12)-(4.14), with this crate's own step and rate.
+pub fn reduced_rk4(ratio: f64, tau: f64, omega0: Vec3, t_end: f64, steps: usize) -> Vec3 {
+    let h = t_end / steps as f64;
+    let rhs = |_t: f64, y: &State<3>| crate::ch4::reduced_ale_rhs(ratio, tau, *y);
+    let mut y = omega0;
+    for i in 0..steps {
+        y = rk4_step(&rhs, i as f64 * h, &y, h);
+    }
+    y
 }

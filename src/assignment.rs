@@ -1,0 +1,14 @@
+//! The types an assignment's signature uses, and nothing that computes physics.
+//!
+//! A file of the `spintop-lessons` crate may import from `spintop` only this
+//! module and [`crate::math`] (vectors and matrices): the graders reject a file
+//! that reaches into `spintop::physics`, `spintop::sim`, `spintop::integrate`
+//! or any other module, where the reference answers live (see
+//! [`crate::grading::no_shortcut`] and `lessons/README.md`).
+
+pub use crate::math::{Mat3, Real, State, Vec3};
+pub use crate::physics::balance::Jet;
+pub use crate::physics::shell::C;
+
+/// A right-hand side `f(t, y)` as the step assignments take it.
+pub type DynField<'a> = &'a dyn Fn(Real, &State<3>) -> State<3>;
