@@ -751,6 +751,19 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         ),
         (with(&["course", "export"], &["--out", "/tmp"]), "not empty"),
         (with(&["course", "export"], &[]), "--out"),
+        (with(&["course", "hint"], &["nosuch"]), "no such assignment"),
+        (with(&["course", "hint"], &[]), "<NAME>"),
+        (
+            with(&["course", "hint"], &["2.1", "--course", "/tmp"]),
+            "is not a course",
+        ),
+        (with(&["course", "grade"], &[]), "<DIR>"),
+        (with(&["course", "grade"], &["/tmp"]), "is not a course"),
+        (
+            with(&["course", "grade"], &["/nonexistent-copy"]),
+            "nonexistent-copy",
+        ),
+        (with(&["course"], &["--format", "xml"]), "possible values"),
         (with(&["nosuch-command"], &[]), "unrecognized subcommand"),
         (
             with(&["simulate"], &["--model", "reduced", "--t_end", "5"]),

@@ -32,6 +32,7 @@ is about.
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import pathlib
 import re
@@ -127,6 +128,16 @@ def check(copy: pathlib.Path, env: dict[str, str]) -> list[float]:
         panel = tmux.wait("the course panel", lambda s: "larmor_rate" in s and "passing" in s, 10)
         line = next(l for l in panel.splitlines() if "larmor_rate" in l)
         assert "✓" in line, panel
+        assert "▰" in panel, panel  # the progress bar, 1 of 22
+        # h: the hint ladder of the chapter's next assignment, one rung per press;
+        # the rungs are kept in the copy's own target/spintop-course.json.
+        tmux.keys("h")
+        tmux.wait("hint 1 of 3", lambda s: "hint 1 of 3 (where to look) for schott_angular_momentum" in s, 10)
+        tmux.keys("h")
+        tmux.wait("hint 2 of 3", lambda s: "hint 2 of 3 (the idea)" in s, 10)
+        kept = json.loads((copy / "target" / "spintop-course.json").read_text())
+        assert kept["hints"] == {"schott_angular_momentum": 2}, kept
+        assert "larmor_rate" in kept["first_passed"], kept
         tmux.keys("Escape")
         tmux.keys("q")
         start = time.monotonic()
