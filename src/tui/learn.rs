@@ -307,7 +307,17 @@ pub struct Learn {
     hint: Option<crate::course::Hint>,
     /// The hint rungs used, when there is no course folder to keep them in.
     hints_used: crate::course::Progress,
+    /// The student's function of time being sampled (see [`Self::start_probe`]).
+    probe_rx: Option<std::sync::mpsc::Receiver<ProbeReport>>,
+    /// The student's function of time, sampled, to draw against the reference.
+    yours: Option<ProbeReport>,
 }
+
+/// A probe's request and what it found.
+pub type ProbeReport = (
+    crate::course::ProbeSpec,
+    Result<crate::course::Probed, String>,
+);
 
 /// The keys, for the footer and the help.
 const KEYS: [(&str, &str); 10] = [
@@ -373,6 +383,8 @@ impl Learn {
             course_dir: None,
             hint: None,
             hints_used: Default::default(),
+            probe_rx: None,
+            yours: None,
         };
         learn.load(current)?;
         Ok(learn)
@@ -463,6 +475,37 @@ impl Learn {
             Ok(()) => self.message = None,
             Err(e) => self.message = Some((e, true)),
         }
+        self.start_probe();
+    }
+
+    /// Samples the student's function of time of this chapter, if it has one
+    /// that the student has started (passing or failing), in the background;
+    /// the scene then draws it against the reference.
+    pub fn start_probe(&mut self) {
+        use crate::course::{ProbeSpec, State};
+        let (Some(dir), Some(status)) = (&self.course_dir, &self.course) else {
+            return;
+        };
+        let Some(spec) = ProbeSpec::for_chapter(&self.chapters[self.current].title) else {
+            return;
+        };
+        let started = status.states.iter().any(|(a, st)| {
+            a.function == spec.function && matches!(st, State::Passing | State::Failing(_))
+        });
+        if !started {
+            return;
+        }
+        let (tx, rx) = std::sync::mpsc::channel();
+        let dir = dir.clone();
+        std::thread::spawn(move || {
+            let _ = tx.send((spec, crate::course::probe(&dir, &spec)));
+        });
+        self.probe_rx = Some(rx);
+    }
+
+    /// Takes a probe's report (from the background, or from a test).
+    pub fn probe_report(&mut self, report: ProbeReport) {
+        self.yours = Some(report);
     }
 
     fn max_scroll(&self) -> usize {
@@ -513,6 +556,10 @@ impl Learn {
         let reports = self.watch.as_ref().map(|w| w.poll()).unwrap_or_default();
         for report in reports {
             self.course_report(report);
+        }
+        if let Some(report) = self.probe_rx.as_ref().and_then(|rx| rx.try_recv().ok()) {
+            self.probe_rx = None;
+            self.probe_report(report);
         }
     }
 
@@ -587,6 +634,7 @@ impl Learn {
                     }
                 }
                 self.course = Some(status);
+                self.start_probe();
             }
             Report::Failed(e) => {
                 self.grading = false;
@@ -810,6 +858,15 @@ impl Learn {
             .copied()
             .filter(|c| *c < self.scene.columns().len())
             .collect();
+        // The student's function of time, when there is one, below the scene.
+        let rest = if self.yours().is_some() && rest.height >= 20 {
+            let [scene, yours] =
+                Layout::vertical([Constraint::Fill(2), Constraint::Fill(1)]).areas(rest);
+            self.draw_yours(frame, yours);
+            scene
+        } else {
+            rest
+        };
         // Two columns stacked need height; otherwise the first alone.
         let shown = if rest.height >= 44 || (rest.width >= 160 && columns.len() > 1) {
             columns.len()
@@ -824,6 +881,109 @@ impl Learn {
         for (part, c) in parts.iter().zip(columns.iter()) {
             view::draw_column(frame, *part, &self.scene, *c);
         }
+    }
+
+    /// The student's function of time of this chapter against the reference,
+    /// when it has been sampled.
+    fn yours(
+        &self,
+    ) -> Option<(
+        &crate::course::ProbeSpec,
+        &Result<crate::course::Probed, String>,
+    )> {
+        let (spec, probed) = self.yours.as_ref()?;
+        let here = crate::course::ProbeSpec::for_chapter(&self.chapters[self.current].title)?;
+        (*spec == here).then_some((spec, probed))
+    }
+
+    fn draw_yours(&self, frame: &mut Frame, area: Rect) {
+        use crate::course::Probed;
+        use ratatui::widgets::{Axis, Chart, Dataset, GraphType};
+        let Some((spec, probed)) = self.yours() else {
+            return;
+        };
+        let samples = match probed {
+            Ok(Probed::Samples(s)) => s,
+            Ok(Probed::Panicked(m)) => {
+                let line = format!(" yours: {} panics: {m}", spec.function);
+                frame.render_widget(Paragraph::new(Span::styled(line, theme::error())), area);
+                return;
+            }
+            Err(e) => {
+                let line = format!(" yours: {} could not be sampled: {e}", spec.function);
+                frame.render_widget(Paragraph::new(Span::styled(line, theme::error())), area);
+                return;
+            }
+        };
+        let reference: Vec<(f64, [f64; 3])> = samples
+            .iter()
+            .map(|(t, _)| (*t, reference_omega(spec, *t)))
+            .collect();
+        let worst = samples
+            .iter()
+            .zip(&reference)
+            .map(|((_, a), (_, b))| (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max))
+            .fold(
+                0.0,
+                |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
+            );
+        let scale = spec.omega0.iter().fold(0.0f64, |m, w| m.max(w.abs()));
+        let agrees = worst <= 1e-9 * scale.max(1e-300);
+        let curve = |data: &[(f64, [f64; 3])], i: usize| -> Vec<(f64, f64)> {
+            data.iter().map(|(t, w)| (*t, w[i])).collect()
+        };
+        let series = [
+            (curve(&reference, 0), theme::frame()),
+            (curve(&reference, 1), theme::frame()),
+            (curve(samples, 0), Style::new().fg(theme::OMEGA[0])),
+            (curve(samples, 1), Style::new().fg(theme::OMEGA[1])),
+        ];
+        let datasets = series
+            .iter()
+            .map(|(data, style)| {
+                Dataset::default()
+                    .marker(ratatui::symbols::Marker::Braille)
+                    .graph_type(GraphType::Line)
+                    .style(*style)
+                    .data(data)
+            })
+            .collect();
+        let equation = if spec.function == "truncated_closed_form" {
+            "(4.7)"
+        } else {
+            "(4.15)-(4.16)"
+        };
+        let verdict = if agrees {
+            Span::styled(format!("agrees ✓ ({worst:.0e})"), theme::info())
+        } else {
+            Span::styled(format!("off by {worst:.1e} ✗"), theme::error())
+        };
+        let title = Line::from(vec![
+            Span::styled(format!(" yours: {} ", spec.function), theme::title()),
+            Span::styled("━Ω₁ ", Style::new().fg(theme::OMEGA[0])),
+            Span::styled("━Ω₂ ", Style::new().fg(theme::OMEGA[1])),
+            Span::styled(format!("vs {equation} grey │ "), theme::label()),
+            verdict,
+        ]);
+        // Ω₁ and Ω₂ are drawn: they stay within Ω⊥₀.
+        let perp = spec.omega0[0].hypot(spec.omega0[1]);
+        let y = crate::present::nice_ceiling(if perp > 0.0 { perp } else { scale } * 1.05);
+        let chart = Chart::new(datasets)
+            .block(Block::new().title(title))
+            .legend_position(None)
+            .x_axis(
+                Axis::default()
+                    .style(theme::frame())
+                    .bounds([0.0, spec.t_end])
+                    .labels(["0".to_string(), format!("{:.0} t/τ", spec.t_end)]),
+            )
+            .y_axis(
+                Axis::default()
+                    .style(theme::frame())
+                    .bounds([-y, y])
+                    .labels([format!("{}", -y), "0".into(), format!("{y}")]),
+            );
+        frame.render_widget(chart, area);
     }
 
     fn draw_footer(&self, frame: &mut Frame, area: Rect, side_by_side: bool) {
@@ -1064,6 +1224,22 @@ fn centered(area: Rect, width: u16, height: u16) -> Rect {
         width: w,
         height: h,
     }
+}
+
+/// Ω(t) of the probe's model by spintop's own closed form, the reference
+/// the student's function is drawn against.
+fn reference_omega(spec: &crate::course::ProbeSpec, t: f64) -> [f64; 3] {
+    use crate::physics::symmetric_top::{self as sym, SymmetricTop};
+    let Ok(top) = SymmetricTop::new(spec.ratio, spec.tau) else {
+        return [f64::NAN; 3];
+    };
+    let w0 = crate::math::Vec3::from(spec.omega0);
+    let w = if spec.function == "truncated_closed_form" {
+        sym::truncated_closed_form(&top, &w0, t)
+    } else {
+        sym::reduced_closed_form(&top, &w0, t)
+    };
+    [w.x, w.y, w.z]
 }
 
 /// A progress bar of `width` cells for `k` of `n`: ▰ done, ▱ to do.

@@ -303,3 +303,45 @@ fn the_progress_bar_fills_in_proportion() {
     assert_eq!(progress_bar(22, 22, 10), "▰▰▰▰▰▰▰▰▰▰");
     assert_eq!(progress_bar(1, 22, 22), format!("▰{}", "▱".repeat(21)));
 }
+
+/// The student's Ω(t) (sampled by the probe) is drawn under the scene
+/// against the closed form, with the largest difference: a precession turning
+/// the wrong way is seen, and the reference itself agrees.
+#[test]
+fn the_students_function_of_time_is_drawn_against_the_reference() {
+    use spintop::course::{ProbeSpec, Probed};
+    use spintop::math::Vec3;
+    use spintop::physics::symmetric_top::{self as sym, SymmetricTop};
+    let mut learn = Learn::open(&book(), Some("4.2")).unwrap();
+    let spec = ProbeSpec::for_chapter("Section 4.2").unwrap();
+    let top = SymmetricTop::new(spec.ratio, spec.tau).unwrap();
+    let w0 = Vec3::from(spec.omega0);
+    let sample = |flip: bool| {
+        (0..=spec.samples)
+            .map(|i| {
+                let t = spec.t_end * i as f64 / spec.samples as f64;
+                let w = if flip {
+                    // The precession turning the wrong way: mirror Ω₂.
+                    let m = sym::reduced_closed_form(&top, &Vec3::new(w0.x, -w0.y, w0.z), t);
+                    [m.x, -m.y, m.z]
+                } else {
+                    let m = sym::reduced_closed_form(&top, &w0, t);
+                    [m.x, m.y, m.z]
+                };
+                (t, w)
+            })
+            .collect::<Vec<_>>()
+    };
+    learn.probe_report((spec, Ok(Probed::Samples(sample(true)))));
+    let shown = draw(&mut learn, 160, 48);
+    assert!(shown.contains("yours: reduced_closed_form"), "{shown}");
+    assert!(shown.contains("off by ") && shown.contains("✗"), "{shown}");
+    learn.probe_report((spec, Ok(Probed::Samples(sample(false)))));
+    let shown = draw(&mut learn, 160, 48);
+    assert!(shown.contains("agrees ✓"), "{shown}");
+    // A stub says so instead of a chart; another chapter shows nothing.
+    learn.probe_report((spec, Ok(Probed::Panicked("not yet implemented".into()))));
+    assert!(draw(&mut learn, 160, 48).contains("reduced_closed_form panics: not yet implemented"));
+    learn.key(key(KeyCode::Left));
+    assert!(!draw(&mut learn, 160, 48).contains("yours:"));
+}
