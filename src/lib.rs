@@ -70,6 +70,20 @@ pub mod book {
     pub struct Assignments;
     #[doc = include_str!("../book/src/speed-accuracy.md")]
     pub struct SpeedAccuracy;
+    #[doc = include_str!("../book/src/solutions-section-2.md")]
+    pub struct SolutionsSection2;
+    #[doc = include_str!("../book/src/solutions-section-3.md")]
+    pub struct SolutionsSection3;
+    #[doc = include_str!("../book/src/solutions-section-4-1.md")]
+    pub struct SolutionsSection4_1;
+    #[doc = include_str!("../book/src/solutions-section-4-2.md")]
+    pub struct SolutionsSection4_2;
+    #[doc = include_str!("../book/src/solutions-section-5.md")]
+    pub struct SolutionsSection5;
+    #[doc = include_str!("../book/src/solutions-appendix.md")]
+    pub struct SolutionsAppendix;
+    #[doc = include_str!("../book/src/glossary.md")]
+    pub struct Glossary;
     #[doc = include_str!("../book/src/errata.md")]
     pub struct Errata;
     #[doc = include_str!("../book/src/symbols.md")]
