@@ -447,3 +447,86 @@ fn book_stale_check_reports_changed_output() {
     fs::remove_file(&path).unwrap();
     assert!(report.contains("line 2"), "{report}");
 }
+
+/// The paper's equation numbers in `text`: (2.1), (4.12), (A.3), …
+fn equation_numbers(text: &str) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for (i, _) in text.match_indices('(') {
+        let rest = &text[i + 1..];
+        let Some(end) = rest.find(')') else { continue };
+        let inner = &rest[..end];
+        let ok = inner.len() <= 5
+            && inner.split_once('.').is_some_and(|(a, b)| {
+                matches!(a, "2" | "3" | "4" | "A")
+                    && !b.is_empty()
+                    && b.chars().all(|c| c.is_ascii_digit())
+            });
+        if ok {
+            out.insert(inner.to_string());
+        }
+    }
+    out
+}
+
+/// The numbers a display block tags, ranges such as (4.2)–(4.4) included.
+fn typeset_numbers(block: &str) -> BTreeSet<String> {
+    let mut out = equation_numbers(block);
+    for (i, _) in block.match_indices(")–(") {
+        let before = &block[..i];
+        let after = &block[i + ")–(".len()..];
+        let (Some(open), Some(close)) = (before.rfind('('), after.find(')')) else {
+            continue;
+        };
+        let (from, to) = (&before[open + 1..], &after[..close]);
+        if let (Some((p, a)), Some((q, b))) = (from.split_once('.'), to.split_once('.'))
+            && p == q
+            && let (Ok(a), Ok(b)) = (a.parse::<u32>(), b.parse::<u32>())
+        {
+            for n in a..=b {
+                out.insert(format!("{p}.{n}"));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn book_every_cited_equation_is_typeset() {
+    let mut cited = BTreeSet::new();
+    let mut typeset = BTreeSet::new();
+    for chapter in summary_chapters() {
+        let text = fs::read_to_string(book_src().join(&chapter)).unwrap();
+        cited.extend(equation_numbers(&text));
+        for (k, block) in text.split("$$").enumerate() {
+            if k % 2 == 1 {
+                typeset.extend(typeset_numbers(block));
+            }
+        }
+    }
+    let missing: Vec<&String> = cited.difference(&typeset).collect();
+    assert!(
+        missing.is_empty(),
+        "cited but never typeset as display math: {missing:?}"
+    );
+    // The paper's equations, all of them.
+    for n in (1..=9)
+        .map(|n| format!("2.{n}"))
+        .chain((1..=5).map(|n| format!("3.{n}")))
+    {
+        assert!(typeset.contains(&n), "({n}) is not typeset");
+    }
+    for n in (1..=18).map(|n| format!("4.{n}")) {
+        assert!(typeset.contains(&n), "({n}) is not typeset");
+    }
+    for n in 1..=3 {
+        assert!(
+            typeset.contains(&format!("A.{n}")),
+            "(A.{n}) is not typeset"
+        );
+    }
+    // The check can fail: a block's tags are read, ranges included.
+    assert_eq!(
+        typeset_numbers(r"\dot x \qquad\text{(4.2)–(4.4)}"),
+        ["4.2", "4.3", "4.4"].map(String::from).into()
+    );
+}

@@ -641,7 +641,21 @@ impl Parser {
             return with_accent(&arg, mark);
         }
         if let Some(s) = symbol(name) {
-            return s.to_string();
+            // A named function before its argument gets TeX's thin space,
+            // written as a space: sin α, not sinα; sin(α) and sin² stay tight.
+            let named = s.chars().all(|c| c.is_ascii_alphabetic()) && s.len() > 1;
+            let tight = matches!(
+                self.peek(),
+                None | Some(Token::Char('(' | '^' | '_' | ')' | ',' | '.' | ' '))
+                    | Some(Token::Sup)
+                    | Some(Token::Sub)
+                    | Some(Token::Space)
+            );
+            return if named && !tight {
+                format!("{s} ")
+            } else {
+                s.to_string()
+            };
         }
         if is_plain_font(name) {
             return self.argument();
@@ -950,6 +964,14 @@ mod tests {
             c.unknown
         );
         c.text
+    }
+
+    #[test]
+    fn a_named_function_is_spaced_from_its_argument_as_in_tex() {
+        assert_eq!(u(r"\sin\alpha"), "sin α");
+        assert_eq!(u(r"\sin\tilde\Omega_3 t"), "sin Ω̃₃t");
+        assert_eq!(u(r"\sin(\alpha)"), "sin(α)");
+        assert_eq!(u(r"\cos^2\theta"), "cos²θ");
     }
 
     #[test]
