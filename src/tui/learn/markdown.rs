@@ -438,6 +438,21 @@ impl Renderer {
             self.flush();
             self.blank();
         }
+        // A collapsible block's <summary> becomes a line of its own, ▸ first
+        // (the terminal shows the block open).
+        if let Some(start) = h.find("<summary>")
+            && let Some(end) = h[start..].find("</summary>")
+        {
+            let text = h[start + "<summary>".len()..start + end].trim();
+            self.flush();
+            self.blank();
+            self.pieces = vec![Piece {
+                text: format!("▸ {text}"),
+                style: style::heading(4),
+            }];
+            self.flush();
+            self.blank();
+        }
         // Other HTML (comments, <br>, anchors) has no terminal form.
     }
 
@@ -747,6 +762,21 @@ pub fn plain(lines: &[Line]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_collapsible_block_shows_its_summary_and_its_body() {
+        let r = render(
+            "<details>\n<summary>Derivation of (3.3)</summary>\n\nThe body, $\\dot x$.\n\n</details>\n",
+            80,
+        );
+        let text = plain(&r.lines);
+        assert!(text.contains("▸ Derivation of (3.3)"), "{text}");
+        assert!(text.contains("The body, x\u{307}."), "{text}");
+        assert!(
+            !text.contains("<summary>") && !text.contains("details>"),
+            "{text}"
+        );
+    }
 
     #[test]
     fn headings_lists_and_emphasis_lose_their_markup() {
