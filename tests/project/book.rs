@@ -530,3 +530,33 @@ fn book_every_cited_equation_is_typeset() {
         ["4.2", "4.3", "4.4"].map(String::from).into()
     );
 }
+
+/// The diagrams of the book: each exists, is an SVG with a title, and is
+/// shown by a chapter.
+#[test]
+fn book_diagrams_exist_and_are_shown() {
+    let mut text = String::new();
+    for chapter in summary_chapters() {
+        text.push_str(&fs::read_to_string(book_src().join(&chapter)).unwrap());
+    }
+    for name in [
+        "top-axes-dipole",
+        "euler-angles",
+        "precession-cone",
+        "shell-model",
+        "slow-manifold",
+    ] {
+        let path = book_src().join(format!("figures/{name}.svg"));
+        let svg =
+            fs::read_to_string(&path).unwrap_or_else(|_| panic!("{} is missing", path.display()));
+        assert!(svg.starts_with("<svg") && svg.contains("<title>"), "{name}");
+        assert!(
+            !svg.contains("http://") || svg.matches("http://").count() == 1,
+            "{name}: only the SVG namespace"
+        );
+        assert!(
+            text.contains(&format!("(figures/{name}.svg)")),
+            "{name}.svg is not shown in any chapter"
+        );
+    }
+}
