@@ -59,6 +59,13 @@ def main() -> int:
         return 1
     problems: list[str] = []
     total_math = 0
+    # The built book references nothing outside itself: no remote script,
+    # stylesheet, font or image (links to cite a source are fine).
+    remote = re.compile(r"""<(?:script|link|img|iframe)[^>]*(?:src|href)=["']https?://|url\(\s*["']?https?://""")
+    for path in sorted(BOOK.rglob("*")):
+        if path.suffix in (".html", ".css", ".js") and path.is_file():
+            for m in remote.finditer(path.read_text(errors="replace")):
+                problems.append(f"{path.relative_to(BOOK)}: a remote reference: {m.group(0)[:80]}")
     with chromium(width=1100, height=1400) as page:
         # Offline: any request that is not a file on disk is refused.
         page.route(re.compile(r"^(?!file:).*"), lambda route: route.abort())
