@@ -21,6 +21,7 @@ use std::process::ExitCode;
 
 pub mod balance;
 pub mod bench;
+pub mod book;
 pub mod course;
 pub mod figure;
 pub mod learn;
@@ -94,6 +95,8 @@ enum Command {
     Learn(learn::LearnArgs),
     /// The course: every assignment with its state, the progress and what to do next.
     Course(course::CourseArgs),
+    /// Serve the book on 127.0.0.1, where ▶ runs each snippet against this spintop.
+    Book(book::BookArgs),
 }
 
 /// Output format.
@@ -499,6 +502,7 @@ where
         Some(Command::Figure(args)) => figure::execute(args, stdout),
         Some(Command::Learn(args)) => learn::execute(args, stdout),
         Some(Command::Course(args)) => course::execute(args, stdout),
+        Some(Command::Book(args)) => book::execute(args, stdout),
     };
     match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,

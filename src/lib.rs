@@ -34,6 +34,7 @@ pub mod physics;
 pub mod plot;
 pub mod present;
 pub mod scene;
+pub mod server;
 pub mod sim;
 pub mod stability;
 pub mod tui;

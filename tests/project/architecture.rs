@@ -11,13 +11,17 @@
 use std::path::{Path, PathBuf};
 
 /// The shells: front ends that drive the core. Each stands beside the others.
-const SHELLS: &[&str] = &["cli", "tui"];
+const SHELLS: &[&str] = &["cli", "tui", "server"];
 
 /// What the shells share, below all of them and above the core.
 const SHARED: &[&str] = &["present", "course"];
 
 /// The only places one shell may reach another: (file, the shell it launches).
-const LAUNCHERS: &[(&str, &str)] = &[("src/cli/tui.rs", "tui"), ("src/cli/learn.rs", "tui")];
+const LAUNCHERS: &[(&str, &str)] = &[
+    ("src/cli/tui.rs", "tui"),
+    ("src/cli/learn.rs", "tui"),
+    ("src/cli/book.rs", "server"),
+];
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum Layer {

@@ -1,0 +1,72 @@
+// spintop: ▶ runs a snippet through `spintop book`, the local server that
+// compiles it against this spintop. mdBook's own button and output block
+// (.play-button, .result) are kept; only where the code goes changes. The
+// server writes a token into the pages it serves (window.spintopBook); a page
+// without it (a static host, file://) gets a one-line explanation instead.
+'use strict';
+
+(function () {
+    // The snippet whose ▶ was pressed last: its .result shows the progress
+    // of a long (cold) run, which outlives mdBook's 6 s request.
+    var current = null;
+    document.addEventListener('click', function (e) {
+        var button = e.target.closest && e.target.closest('.play-button');
+        if (button) {
+            current = button.closest('pre.playground');
+        }
+    }, true);
+
+    function show(text) {
+        var block = current && current.querySelector('.result');
+        if (block) {
+            block.innerText = text;
+            block.classList.remove('result-no-output');
+        }
+    }
+
+    function poll(token, started) {
+        setTimeout(function () {
+            fetch('/evaluate/status', { headers: { 'X-Spintop-Token': token } })
+                .then(function (r) { return r.json(); })
+                .then(function (s) {
+                    if (s.done) {
+                        show(s.result && s.result.trim() !== '' ? s.result : 'No output');
+                    } else {
+                        var secs = Math.round((Date.now() - started) / 1000);
+                        show('compiling… ' + secs + ' s: ' + (s.progress || '') +
+                            '\n(the first run builds spintop for the book; later runs take a second or two)');
+                        poll(token, started);
+                    }
+                })
+                .catch(function (err) { show('spintop book: ' + err.message); });
+        }, 1000);
+    }
+
+    if (window.spintopBook && window.spintopBook.token) {
+        var token = window.spintopBook.token;
+        window.spintopRun = function (options) {
+            var started = Date.now();
+            return fetch('/evaluate.json', {
+                method: 'POST',
+                headers: { 'Content-Type': 'application/json', 'X-Spintop-Token': token },
+                body: options.body,
+            }).then(function (response) {
+                if (response.status === 202) {
+                    poll(token, started);
+                }
+                return response;
+            });
+        };
+    }
+
+    // mdBook shows ▶ once it has the playground's crate list; make sure it
+    // is shown on every snippet that is not `no_run`.
+    Array.from(document.querySelectorAll('pre.playground')).forEach(function (pre) {
+        var code = pre.querySelector('code');
+        var button = pre.querySelector('.play-button');
+        if (button && code && !code.classList.contains('no_run')) {
+            button.classList.remove('hidden');
+            button.hidden = false;
+        }
+    });
+})();
