@@ -764,6 +764,8 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
             "nonexistent-copy",
         ),
         (with(&["course"], &["--format", "xml"]), "possible values"),
+        (with(&["book"], &["--port", "99999"]), "--port"),
+        (with(&["book"], &["--port", "x"]), "--port"),
         (with(&["nosuch-command"], &[]), "unrecognized subcommand"),
         (
             with(&["simulate"], &["--model", "reduced", "--t_end", "5"]),
