@@ -1059,10 +1059,26 @@ pub struct Export {
 
 /// The student's copy's manifest: the lessons package on its own (its own
 /// workspace), depending on spintop at `spintop` (an absolute path).
-fn export_manifest(spintop: &Path) -> String {
+///
+/// NOTE: the package is named after the copy's folder (spintop-lessons-HASH;
+/// the library keeps the name `spintop_lessons`). Cargo keys its build
+/// artifacts on a path package's name, version and place in its own workspace,
+/// not on where the workspace is, so two copies named alike that share a build
+/// folder (`CARGO_TARGET_DIR`, as `course grade` and the tests do) would reuse
+/// each other's test programs when one copy's sources look unchanged: one
+/// student graded with another's code.
+fn export_manifest(spintop: &Path, out: &Path) -> String {
+    let key = out
+        .canonicalize()
+        .unwrap_or_else(|_| out.to_path_buf())
+        .to_string_lossy()
+        .bytes()
+        .fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+        });
     format!(
         r#"[package]
-name = "spintop-lessons"
+name = "spintop-lessons-{key:08x}"
 version = "0.1.0"
 edition = "2024"
 publish = false
@@ -1072,11 +1088,13 @@ description = "Course assignments on Duviryak's polarized spinning top, graded b
 [workspace]
 
 [lib]
+name = "spintop_lessons"
 path = "src/lib.rs"
 
 [dependencies]
 spintop = {{ path = {path:?} }}
 "#,
+        key = key & 0xffff_ffff,
         path = spintop.display().to_string()
     )
 }
@@ -1123,8 +1141,9 @@ pub fn export(repo: &Path, out: &Path) -> Result<Export, String> {
     let spintop = repo
         .canonicalize()
         .map_err(|e| format!("{}: {e}", repo.display()))?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let mut files: Vec<(std::path::PathBuf, String)> = vec![
-        ("Cargo.toml".into(), export_manifest(&spintop)),
+        ("Cargo.toml".into(), export_manifest(&spintop, out)),
         ("README.md".into(), EXPORT_README.to_string()),
         (".gitignore".into(), "/target\n".to_string()),
     ];
@@ -1447,5 +1466,24 @@ test result: FAILED. 2 passed; 2 failed; 0 ignored; 0 measured; 0 filtered out
             matches!(probed, Probed::Panicked(ref m) if m.contains("not yet implemented")),
             "{probed:?}"
         );
+    }
+
+    #[test]
+    fn two_copies_never_share_a_package_name() {
+        // Cargo would otherwise reuse one copy's test programs for the other
+        // when they share a build folder (see export_manifest).
+        let spintop = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let a = export_manifest(spintop, Path::new("/tmp/course/alice"));
+        let b = export_manifest(spintop, Path::new("/tmp/course/bob"));
+        let name = |m: &str| {
+            m.lines()
+                .find(|l| l.starts_with("name = \"spintop-lessons"))
+                .unwrap()
+                .to_string()
+        };
+        assert_ne!(name(&a), name(&b));
+        for m in [&a, &b] {
+            assert!(m.contains("[lib]\nname = \"spintop_lessons\""), "{m}");
+        }
     }
 }
