@@ -82,6 +82,14 @@ def main() -> int:
                 "main math", "els => els.map(e => { const r = e.getBoundingClientRect(); return [r.width, r.height]; })"
             )
             total_math += len(sizes)
+            if sizes:
+                # The book's math font (accents above their letters, not in them).
+                loaded = page.evaluate(
+                    "document.fonts.ready.then(() => Array.from(document.fonts)"
+                    ".some(f => f.family.replace(/\"/g, '') === 'SpintopMath' && f.status === 'loaded'))"
+                )
+                if not loaded:
+                    problems.append(f"{path.name}: the math font SpintopMath did not load")
             flat = [s for s in sizes if s[0] < 2 or s[1] < 2]
             if flat:
                 problems.append(f"{path.name}: {len(flat)} of {len(sizes)} <math> elements have no size on screen")
