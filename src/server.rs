@@ -128,15 +128,25 @@ impl Server {
         &self.token
     }
 
-    /// Answers requests until `stop` is set (checked every 100 ms).
+    /// Answers requests until `stop` is set (a watcher checks it every
+    /// 100 ms and wakes the blocking `recv`).
     pub fn serve(&self, stop: &AtomicBool) {
-        while !stop.load(Ordering::Relaxed) {
-            match self.http.recv_timeout(Duration::from_millis(100)) {
-                Ok(Some(request)) => self.handle(request),
-                Ok(None) => {}
-                Err(_) => std::thread::sleep(Duration::from_millis(50)),
+        let done = AtomicBool::new(false);
+        std::thread::scope(|scope| {
+            scope.spawn(|| {
+                while !stop.load(Ordering::Relaxed) && !done.load(Ordering::Relaxed) {
+                    std::thread::sleep(Duration::from_millis(100));
+                }
+                self.http.unblock();
+            });
+            while !stop.load(Ordering::Relaxed) {
+                match self.http.recv() {
+                    Ok(request) => self.handle(request),
+                    Err(_) => break,
+                }
             }
-        }
+            done.store(true, Ordering::Relaxed);
+        });
     }
 
     fn handle(&self, mut request: tiny_http::Request) {
