@@ -13,6 +13,7 @@ It starts `spintop book` on a free port and, in headless Chromium:
 3. edits a snippet in its editor (a printed number), runs it, edits the
    number again and sees the output change;
 4. runs a snippet that loops forever and sees the time-limit message;
+5. opens the static build (file://) and sees ▶ explain how to run a snippet;
 
 then sends every runnable snippet of every page to the server, as ▶ would,
 and requires each to pass: the same snippets `cargo test` runs as doctests
@@ -122,7 +123,17 @@ def main() -> int:
             shown = wait_result(page, pre, "the time-limit message", lambda t: "time limit" in t, 180)
             print(f"book_server: endless loop: {shown!r}")
             page.screenshot(path=str(shots / "section-4-2-time-limit.png"))
-            # 5. Every snippet of every page, as ▶ sends it.
+            # 5. The same page without the server (file://, `mdbook build book`):
+            # ▶ says how to run the snippet instead of calling the public playground.
+            static = ROOT / "book" / "book" / "section-4-2.html"
+            if static.exists():
+                page.goto(static.as_uri())
+                page.locator("pre.playground >> visible=true").first.wait_for(timeout=20000)
+                pre = [p for p in page.query_selector_all("pre.playground") if p.is_visible()][0]
+                press(pre)
+                shown = wait_result(page, pre, "the static page's explanation", lambda t: "spintop book" in t, 20)
+                print(f"book_server: without the server, ▶ says: {shown!r}")
+            # 6. Every snippet of every page, as ▶ sends it.
             pages = sorted(p.name for p in (ROOT / "target" / "spintop-book" / "site").glob("*.html")
                            if p.name not in ("print.html", "404.html", "toc.html", "index.html"))
             snippets: list[tuple[str, str]] = []
