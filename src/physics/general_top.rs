@@ -79,6 +79,38 @@ impl GeneralTop {
         i_inv_b - i_inv_d * (w.dot(&i_inv_b) / denom)
     }
     // ANCHOR_END: general_truncated_ale
+
+    // ANCHOR: general_reduced_ale
+    /// The reduced ALE of any top: (3.4) with the Schott term kept and its
+    /// runaways removed, as Section 4.2 does for the symmetric top.
+    ///
+    /// Paper: Eq. (3.4), reduced (the general form of Eq. (4.12)–(4.14)).
+    ///
+    /// ```text
+    /// I Ω̇ + Ω × IΩ = d × { d × (Ω²Ω − Ω̈₀) + (d·Ω̇₀) Ω + 2 (d·Ω) Ω̇₀ }
+    /// Ω̇₀ = −I⁻¹(Ω × IΩ),   Ω̈₀ = −I⁻¹(Ω̇₀ × IΩ + Ω × IΩ̇₀)
+    /// ```
+    ///
+    /// Ω̇ and Ω̈ in the small right-hand side are those of the free Euler
+    /// motion (the Landau–Lifshitz reduction), so the error is O(τ²) against
+    /// the physical solution of (3.4) and no runaway is left. For I₁ = I₂ and
+    /// d along e₃ it is (4.12)–(4.14) with τ = d²/I₁ (tested).
+    pub fn reduced_ale_rhs(&self, omega: &Vec3) -> Vec3 {
+        let i = &self.inertia;
+        let d = &self.dipole;
+        let free = |w: &Vec3| -(w.cross(&i.component_mul(w))).component_div(i);
+        let w_dot = free(omega);
+        let w_ddot = -(w_dot.cross(&i.component_mul(omega))
+            + omega.cross(&i.component_mul(&w_dot)))
+        .component_div(i);
+        let small = d.cross(
+            &(d.cross(&(omega.norm_squared() * omega - w_ddot))
+                + d.dot(&w_dot) * omega
+                + 2.0 * d.dot(omega) * w_dot),
+        );
+        w_dot + small.component_div(i)
+    }
+    // ANCHOR_END: general_reduced_ale
 }
 
 impl BodyDynamics for GeneralTop {
