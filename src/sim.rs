@@ -44,6 +44,9 @@ pub enum Model {
     Reduced(SymmetricTop),
     /// Any top under the truncated ALE (3.3), κ = 1 units.
     General(GeneralTop),
+    /// Any top under the reduced ALE: (3.4) with the free motion's rates in
+    /// its small terms, κ = 1 units.
+    GeneralReduced(GeneralTop),
     /// The symmetric top under the full ALE (3.4), Schott term and Ω̈ kept: its
     /// physical (non-runaway) solution, or a forward run that shows the runaway.
     Full(SymmetricTop),
@@ -56,6 +59,7 @@ impl Model {
             Model::Truncated(_) => "truncated",
             Model::Reduced(_) => "reduced",
             Model::General(_) => "general",
+            Model::GeneralReduced(_) => "general-reduced",
             Model::Full(_) => "full",
         }
     }
@@ -66,6 +70,7 @@ impl Model {
             Model::Truncated(_) => "Eqs. (4.2)-(4.4)",
             Model::Reduced(_) => "Eqs. (4.12)-(4.14)",
             Model::General(_) => "Eq. (3.3)",
+            Model::GeneralReduced(_) => "Eq. (3.4), reduced",
             Model::Full(_) => "Eq. (3.4)",
         }
     }
@@ -79,7 +84,7 @@ impl Model {
     pub fn inertia(&self) -> Vec3 {
         match self {
             Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => top.inertia(),
-            Model::General(top) => top.inertia(),
+            Model::General(top) | Model::GeneralReduced(top) => top.inertia(),
         }
     }
 
@@ -90,6 +95,7 @@ impl Model {
             Model::Truncated(top) => Some(FirstOrder::Truncated(top)),
             Model::Reduced(top) => Some(FirstOrder::Reduced(top)),
             Model::General(top) => Some(FirstOrder::General(top)),
+            Model::GeneralReduced(top) => Some(FirstOrder::GeneralReduced(top)),
             Model::Full(_) => None,
         }
     }
@@ -101,13 +107,14 @@ enum FirstOrder {
     Truncated(SymmetricTop),
     Reduced(SymmetricTop),
     General(GeneralTop),
+    GeneralReduced(GeneralTop),
 }
 
 impl BodyDynamics for FirstOrder {
     fn inertia(&self) -> Vec3 {
         match self {
             FirstOrder::Truncated(top) | FirstOrder::Reduced(top) => top.inertia(),
-            FirstOrder::General(top) => top.inertia(),
+            FirstOrder::General(top) | FirstOrder::GeneralReduced(top) => top.inertia(),
         }
     }
 
@@ -116,6 +123,7 @@ impl BodyDynamics for FirstOrder {
             FirstOrder::Truncated(top) => truncated_ale_rhs(top, omega),
             FirstOrder::Reduced(top) => reduced_ale_rhs(top, omega),
             FirstOrder::General(top) => top.truncated_ale_rhs(omega),
+            FirstOrder::GeneralReduced(top) => top.reduced_ale_rhs(omega),
         }
     }
 }
@@ -680,7 +688,7 @@ impl Simulation {
             (MethodChoice::Auto | MethodChoice::Exact, Some(FirstOrder::Reduced(top))) => {
                 Engine::ReducedOrientation(top, orientation_only()?)
             }
-            (MethodChoice::Exact, Some(FirstOrder::General(_))) => {
+            (MethodChoice::Exact, Some(FirstOrder::General(_) | FirstOrder::GeneralReduced(_))) => {
                 return Err(SimError::NoClosedForm(model.name()));
             }
             (MethodChoice::Auto | MethodChoice::Dop853, Some(d)) => {

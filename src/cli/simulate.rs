@@ -20,7 +20,7 @@ use std::io::{self, Write};
 enum ModelArg {
     /// Eqs. (4.2)-(4.4): the symmetric top without the Schott term.
     Truncated,
-    /// Eqs. (4.12)-(4.14): the symmetric top with the Schott term, reduced.
+    /// Eqs. (4.12)-(4.14): the symmetric top with the Schott term, reduced; with --inertia and --dipole, (3.4) reduced the same way for any top
     Reduced,
     /// Eq. (3.3): any top, given --inertia and --dipole.
     General,
@@ -133,6 +133,23 @@ impl SimulateArgs {
         };
         let model = match self.model {
             ModelArg::Truncated => Model::Truncated(symmetric(self.ratio)?),
+            // With --inertia and --dipole: the reduced ALE of any top.
+            ModelArg::Reduced if self.inertia.is_some() || self.dipole.is_some() => {
+                if self.ratio.is_some() {
+                    return Err(bad(
+                        "--ratio belongs to the symmetric top; the reduced model of a general top takes --inertia and --dipole",
+                    ));
+                }
+                let (Some(inertia), Some(dipole)) = (self.inertia, self.dipole) else {
+                    return Err(bad(
+                        "--model reduced for a general top needs both --inertia I1,I2,I3 and --dipole D1,D2,D3",
+                    ));
+                };
+                Model::GeneralReduced(
+                    GeneralTop::new(Vec3::from(inertia), Vec3::from(dipole))
+                        .map_err(SimError::from)?,
+                )
+            }
             ModelArg::Reduced => Model::Reduced(symmetric(self.ratio)?),
             ModelArg::Full => Model::Full(symmetric(self.ratio)?),
             ModelArg::General => {
@@ -178,6 +195,11 @@ impl SimulateArgs {
             (Model::General(_), MethodChoice::Exact) => {
                 return Err(bad(
                     "the general model (3.3) has no closed form; use --method auto (DOP853), dop853, dopri5 or rk4",
+                ));
+            }
+            (Model::GeneralReduced(_), MethodChoice::Exact) => {
+                return Err(bad(
+                    "the reduced model of a general top has no closed form; use --method auto (DOP853), dop853, dopri5 or rk4",
                 ));
             }
             _ => {}
@@ -341,7 +363,7 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, CliError> {
         Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
             (Some(top.ratio()), Some(top.tau()), None)
         }
-        Model::General(top) => (None, None, Some(top.dipole().into())),
+        Model::General(top) | Model::GeneralReduced(top) => (None, None, Some(top.dipole().into())),
     };
     let integrated = !matches!(method, MethodUsed::Exact);
     let rk4 = config.method == MethodChoice::Rk4;

@@ -113,6 +113,12 @@ pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, St
     };
     let mut note = format!("scene {}", scene.name);
     let settings = match top.model {
+        Model::GeneralReduced(_) => {
+            return Err(bad(format!(
+                "scene {}: the live view shows a general top under (3.3) only; run the reduced general model with spintop run or simulate",
+                scene.name
+            )));
+        }
         Model::General(general) => {
             let method = integrated(Method::Dop853);
             note.push_str(&format!(

@@ -114,7 +114,7 @@ fn label(model: &Model, method: MethodChoice) -> &'static str {
         (_, MethodChoice::Dop853) => "dop853",
         (Model::Truncated(_), _) => "exact",
         (Model::Reduced(_), _) => "exact+dop853",
-        (Model::General(_), _) => "dop853",
+        (Model::General(_) | Model::GeneralReduced(_), _) => "dop853",
     }
 }
 

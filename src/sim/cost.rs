@@ -27,7 +27,7 @@ pub fn turning_angle(model: &Model, omega0: &Vec3, t: Real) -> Real {
             omega0.norm() * truncated_clock(top, omega_perp(omega0), t).vartheta
         }
         Model::Reduced(_) | Model::Full(_) => omega0.norm() * t,
-        Model::General(top) => {
+        Model::General(top) | Model::GeneralReduced(top) => {
             let inertia = top.inertia();
             (2.0 * energy(&inertia, omega0) / inertia.min()).sqrt() * t
         }

@@ -428,7 +428,7 @@ impl Column {
         let exact = match self.sim.model() {
             Model::Truncated(top) => truncated_closed_form(top, &self.omega0, s.t),
             Model::Reduced(top) => reduced_closed_form(top, &self.omega0, s.t),
-            Model::General(_) | Model::Full(_) => return None,
+            Model::General(_) | Model::GeneralReduced(_) | Model::Full(_) => return None,
         };
         Some((s.omega_vec() - exact).norm())
     }

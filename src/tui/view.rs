@@ -229,6 +229,11 @@ pub(crate) fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
     let (name, equations, gist) = match column.sim().model() {
         Model::Truncated(_) => ("truncated", "(4.2)–(4.4)", "no Schott term"),
         Model::Reduced(_) => ("reduced", "(4.12)–(4.14)", "Schott term kept"),
+        Model::GeneralReduced(_) => (
+            "general top, reduced",
+            "(3.4) reduced",
+            "Schott term kept, runaways removed, integrated",
+        ),
         // The view builds no other model than these and the general top.
         Model::General(_) | Model::Full(_) => (
             "general top",

@@ -249,7 +249,8 @@ impl Problem {
             Model::Truncated(top) => Some(OmegaRhs::Truncated(top)),
             Model::Reduced(top) => Some(OmegaRhs::Reduced(top)),
             Model::General(top) => Some(OmegaRhs::General(top)),
-            Model::Full(_) => None,
+            // Not a work-precision problem (yet): no peer measures it.
+            Model::GeneralReduced(_) | Model::Full(_) => None,
         }
     }
 

@@ -765,6 +765,41 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         ),
         (with(&["course"], &["--format", "xml"]), "possible values"),
         (with(&["book"], &["--port", "99999"]), "--port"),
+        (
+            with(
+                &["simulate", "--model", "reduced", "--times", "1"],
+                &["--inertia", "1,1,0.4"],
+            ),
+            "--dipole",
+        ),
+        (
+            with(
+                &["simulate", "--model", "reduced", "--times", "1"],
+                &[
+                    "--inertia",
+                    "1,1,0.4",
+                    "--dipole",
+                    "0,0,1",
+                    "--ratio",
+                    "0.4",
+                ],
+            ),
+            "--ratio",
+        ),
+        (
+            with(
+                &["simulate", "--model", "reduced", "--times", "1"],
+                &[
+                    "--inertia",
+                    "1,1,0.4",
+                    "--dipole",
+                    "0,0,1",
+                    "--method",
+                    "exact",
+                ],
+            ),
+            "no closed form",
+        ),
         (with(&["book"], &["--port", "x"]), "--port"),
         (with(&["nosuch-command"], &[]), "unrecognized subcommand"),
         (
