@@ -465,6 +465,19 @@ pub fn check_lessons_dir(dir: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// The `.rs` files directly in `dir`, sorted (none if it cannot be read).
+fn rust_files(dir: &Path) -> Vec<std::path::PathBuf> {
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "rs"))
+        .collect();
+    files.sort();
+    files
+}
+
 /// The course's small state file: hint rungs used and first-passed times.
 #[derive(Debug, Default, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Progress {
@@ -529,6 +542,11 @@ pub struct Hint {
 }
 
 impl Hint {
+    /// What the rung gives: where to look, the idea, or the formula.
+    pub fn label(&self) -> &'static str {
+        ["where to look", "the idea", "the formula"][(self.rung.max(1) - 1).min(2)]
+    }
+
     /// Whether this is the last rung (the formula).
     pub fn is_last(&self) -> bool {
         self.rung == self.assignment.hints.len()
@@ -545,6 +563,19 @@ pub fn next_hint(progress: &mut Progress, a: &'static Assignment) -> Hint {
         assignment: a,
         rung,
         text: a.hints[rung - 1],
+    }
+}
+
+/// [`record_passes`] at the present time, kept in the course's progress file
+/// (a read-only course still grades: a failed write is not an error).
+pub fn record_passes_now(dir: &Path, status: &Status) {
+    let now = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    let mut progress = load_progress(dir);
+    if record_passes(&mut progress, status, now) {
+        let _ = save_progress(dir, &progress);
     }
 }
 
@@ -568,17 +599,10 @@ pub fn record_passes(progress: &mut Progress, status: &Status, now: u64) -> bool
 pub fn assignment_sources(manifest_dir: &str, module: &str) -> Vec<(String, String)> {
     let src = std::path::Path::new(manifest_dir).join("src");
     let mut out = Vec::new();
-    let mut entries: Vec<_> = std::fs::read_dir(&src)
-        .into_iter()
-        .flatten()
-        .filter_map(Result::ok)
-        .map(|e| e.path())
-        .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "rs"))
-        .collect();
-    entries.sort();
-    for path in entries {
+    for path in rust_files(&src) {
         let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
-        if crate::grading::ASSIGNMENT_MODULES.contains(&stem) && stem != module {
+        // Another chapter's assignments are that chapter's business.
+        if stem != module && COURSE.iter().any(|a| a.binary == stem) {
             continue;
         }
         if let Ok(text) = std::fs::read_to_string(&path) {
@@ -772,14 +796,11 @@ fn grade_with(mut command: Command) -> Result<Status, String> {
 /// The modification time of each of the student's files (`src/*.rs` of the
 /// lessons crate in `dir`), by file name.
 pub fn sources_stamps(dir: &Path) -> std::collections::BTreeMap<String, std::time::SystemTime> {
-    std::fs::read_dir(dir.join("src"))
+    rust_files(&dir.join("src"))
         .into_iter()
-        .flatten()
-        .filter_map(Result::ok)
-        .filter(|e| e.path().extension().is_some_and(|x| x == "rs"))
-        .filter_map(|e| {
-            let time = e.metadata().ok()?.modified().ok()?;
-            Some((e.file_name().to_string_lossy().into_owned(), time))
+        .filter_map(|p| {
+            let time = std::fs::metadata(&p).ok()?.modified().ok()?;
+            Some((p.file_name()?.to_string_lossy().into_owned(), time))
         })
         .collect()
 }
@@ -1036,14 +1057,11 @@ pub fn grade_submission(
         std::fs::remove_dir_all(scratch).map_err(|e| format!("{}: {e}", scratch.display()))?;
     }
     export(repo, scratch)?;
-    let src = submission.join("src");
-    let entries = std::fs::read_dir(&src).map_err(|e| format!("{}: {e}", src.display()))?;
-    for entry in entries.filter_map(Result::ok) {
-        let path = entry.path();
-        if path.is_file() && path.extension().is_some_and(|x| x == "rs") {
-            let to = scratch.join("src").join(entry.file_name());
-            std::fs::copy(&path, &to).map_err(|e| format!("{}: {e}", path.display()))?;
-        }
+    for path in rust_files(&submission.join("src")) {
+        let to = scratch
+            .join("src")
+            .join(path.file_name().unwrap_or_default());
+        std::fs::copy(&path, &to).map_err(|e| format!("{}: {e}", path.display()))?;
     }
     let mut command = grade_command(scratch, false, &[]);
     command.env("CARGO_TARGET_DIR", target);
@@ -1068,14 +1086,11 @@ pub struct Export {
 /// each other's test programs when one copy's sources look unchanged: one
 /// student graded with another's code.
 fn export_manifest(spintop: &Path, out: &Path) -> String {
-    let key = out
-        .canonicalize()
-        .unwrap_or_else(|_| out.to_path_buf())
-        .to_string_lossy()
-        .bytes()
-        .fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-            (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-        });
+    let key = crate::present::stable_key(
+        &out.canonicalize()
+            .unwrap_or_else(|_| out.to_path_buf())
+            .to_string_lossy(),
+    );
     format!(
         r#"[package]
 name = "spintop-lessons-{key:08x}"
@@ -1094,7 +1109,6 @@ path = "src/lib.rs"
 [dependencies]
 spintop = {{ path = {path:?} }}
 "#,
-        key = key & 0xffff_ffff,
         path = spintop.display().to_string()
     )
 }
@@ -1148,14 +1162,7 @@ pub fn export(repo: &Path, out: &Path) -> Result<Export, String> {
         (".gitignore".into(), "/target\n".to_string()),
     ];
     for (from, to, strip) in [("src", "src", true), ("tests", "tests", false)] {
-        let mut entries: Vec<_> = std::fs::read_dir(lessons.join(from))
-            .map_err(|e| format!("{}: {e}", lessons.join(from).display()))?
-            .filter_map(Result::ok)
-            .map(|e| e.path())
-            .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "rs"))
-            .collect();
-        entries.sort();
-        for path in entries {
+        for path in rust_files(&lessons.join(from)) {
             let text =
                 std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
             let text = if strip { strip_solutions(&text) } else { text };

@@ -577,6 +577,3 @@ pub fn without_shortcut(grade: Grade, sources: &[(&str, &str)]) -> Grade {
     }
     grade
 }
-
-/// The lessons crate's modules that hold assignments.
-pub const ASSIGNMENT_MODULES: [&str; 5] = ["ch2", "ch3", "ch4", "numerics", "appendix"];

@@ -144,3 +144,14 @@ pub fn fmt_count(n: f64) -> String {
 pub fn fmt_param(x: f64) -> String {
     crate::math::fmt_value(x)
 }
+
+/// A short key that is the same for the same text on every run and machine
+/// (FNV-1a, 32 bits): names derived from a folder's path, so that two folders
+/// never share a name (the scratch program of `spintop book`, the package of
+/// an exported course).
+pub fn stable_key(text: &str) -> u32 {
+    let h = text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    });
+    (h & 0xffff_ffff) as u32
+}

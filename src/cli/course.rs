@@ -145,11 +145,10 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
         eprint!("grading (cargo test on {})…\r", dir.display());
     }
     let status = course::grade(&dir, args.solutions).map_err(bad)?;
-    let mut progress = course::load_progress(&dir);
-    if !args.solutions && course::record_passes(&mut progress, &status, now()) {
-        // The progress is a convenience: a read-only checkout still grades.
-        let _ = course::save_progress(&dir, &progress);
+    if !args.solutions {
+        course::record_passes_now(&dir, &status);
     }
+    let progress = course::load_progress(&dir);
     if args.format == Format::Json {
         let json = status_json(&status, &progress);
         writeln!(
@@ -291,10 +290,7 @@ fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError>
                 }
                 course::Report::Failed(e) => writeln!(out, "spintop course watch: {e}")?,
                 course::Report::Graded(status) => {
-                    let mut progress = course::load_progress(&dir);
-                    if course::record_passes(&mut progress, &status, now()) {
-                        let _ = course::save_progress(&dir, &progress);
-                    }
+                    course::record_passes_now(&dir, &status);
                     for (i, (a, s)) in status.states.iter().enumerate() {
                         let changed = last.as_ref().is_none_or(|l| l.states[i].1 != *s);
                         if changed && (last.is_some() || *s != State::NotStarted) {
@@ -323,13 +319,6 @@ fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError>
         }
         std::thread::sleep(std::time::Duration::from_millis(100));
     }
-}
-
-fn now() -> u64 {
-    std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_secs())
-        .unwrap_or(0)
 }
 
 /// The status as one JSON value.
@@ -377,7 +366,7 @@ fn hint(name: &str, chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<()
     let h = course::next_hint(&mut progress, a);
     course::save_progress(&dir, &progress).map_err(|e| bad(format!("course hint: {e}")))?;
     let n = a.hints.len();
-    let label = ["where to look", "the idea", "the formula"][(h.rung - 1).min(2)];
+    let label = h.label();
     writeln!(
         out,
         "{} {} - hint {} of {n} ({label}):",

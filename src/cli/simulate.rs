@@ -131,43 +131,29 @@ impl SimulateArgs {
             }
             Ok(SymmetricTop::new(ratio.unwrap_or(0.4), 1.0).map_err(SimError::from)?)
         };
+        // Any top: --inertia and --dipole, never --ratio.
+        let general = |what: &str| -> Result<GeneralTop, CliError> {
+            if self.ratio.is_some() {
+                return Err(bad(format!(
+                    "--ratio belongs to the symmetric models; {what} takes --inertia and --dipole"
+                )));
+            }
+            let (Some(inertia), Some(dipole)) = (self.inertia, self.dipole) else {
+                return Err(bad(format!(
+                    "{what} needs --inertia I1,I2,I3 and --dipole D1,D2,D3"
+                )));
+            };
+            Ok(GeneralTop::new(Vec3::from(inertia), Vec3::from(dipole)).map_err(SimError::from)?)
+        };
         let model = match self.model {
             ModelArg::Truncated => Model::Truncated(symmetric(self.ratio)?),
             // With --inertia and --dipole: the reduced ALE of any top.
             ModelArg::Reduced if self.inertia.is_some() || self.dipole.is_some() => {
-                if self.ratio.is_some() {
-                    return Err(bad(
-                        "--ratio belongs to the symmetric top; the reduced model of a general top takes --inertia and --dipole",
-                    ));
-                }
-                let (Some(inertia), Some(dipole)) = (self.inertia, self.dipole) else {
-                    return Err(bad(
-                        "--model reduced for a general top needs both --inertia I1,I2,I3 and --dipole D1,D2,D3",
-                    ));
-                };
-                Model::GeneralReduced(
-                    GeneralTop::new(Vec3::from(inertia), Vec3::from(dipole))
-                        .map_err(SimError::from)?,
-                )
+                Model::GeneralReduced(general("--model reduced for a general top")?)
             }
             ModelArg::Reduced => Model::Reduced(symmetric(self.ratio)?),
             ModelArg::Full => Model::Full(symmetric(self.ratio)?),
-            ModelArg::General => {
-                if self.ratio.is_some() {
-                    return Err(bad(
-                        "--ratio belongs to the symmetric models; --model general takes --inertia and --dipole",
-                    ));
-                }
-                let (Some(inertia), Some(dipole)) = (self.inertia, self.dipole) else {
-                    return Err(bad(
-                        "--model general needs --inertia I1,I2,I3 and --dipole D1,D2,D3",
-                    ));
-                };
-                Model::General(
-                    GeneralTop::new(Vec3::from(inertia), Vec3::from(dipole))
-                        .map_err(SimError::from)?,
-                )
-            }
+            ModelArg::General => Model::General(general("--model general")?),
         };
         let method = match self.method {
             MethodArg::Auto => MethodChoice::Auto,

@@ -1188,7 +1188,10 @@ fn shell_inputs(delta_max: Real) -> Vec<ShellInput> {
 ///
 /// Paper: Eq. (A.1).
 pub fn shell_masses(student: impl Fn(Real, Real) -> (Real, Real)) -> Grade {
-    let reference = |x: &ShellInput| (1.0 - x.tau0 / x.delta, x.tau0 / x.delta);
+    let reference = |x: &ShellInput| match ShellModel::new(x.tau0, x.delta) {
+        Ok(m) => (m.m0(), m.m_em()),
+        Err(_) => (Real::NAN, Real::NAN),
+    };
     Grader::new(
         "shell_masses",
         "Eq. (A.1), the masses",

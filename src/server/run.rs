@@ -171,12 +171,10 @@ impl Runner {
     /// The snippet program's name: one per scratch folder, so that two
     /// servers sharing a build folder never run each other's program.
     fn binary_name(&self) -> String {
-        // FNV-1a of the scratch path.
-        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-        for b in self.scratch.to_string_lossy().bytes() {
-            h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-        }
-        format!("spintop-snippet-{:08x}", h & 0xffff_ffff)
+        format!(
+            "spintop-snippet-{:08x}",
+            crate::present::stable_key(&self.scratch.to_string_lossy())
+        )
     }
 
     /// The scratch project's manifest.

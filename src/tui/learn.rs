@@ -624,14 +624,7 @@ impl Learn {
                 self.grading = false;
                 self.course_error = None;
                 if let Some(dir) = &self.course_dir {
-                    let mut progress = crate::course::load_progress(dir);
-                    let now = std::time::SystemTime::now()
-                        .duration_since(std::time::UNIX_EPOCH)
-                        .map(|d| d.as_secs())
-                        .unwrap_or(0);
-                    if crate::course::record_passes(&mut progress, &status, now) {
-                        let _ = crate::course::save_progress(dir, &progress);
-                    }
+                    crate::course::record_passes_now(dir, &status);
                 }
                 self.course = Some(status);
                 self.start_probe();
@@ -1116,7 +1109,7 @@ impl Learn {
                 .hint_target()
                 .is_some_and(|t| t.function == h.assignment.function)
         {
-            let label = ["where to look", "the idea", "the formula"][(h.rung - 1).min(2)];
+            let label = h.label();
             lines.push(Line::from(Span::styled(
                 format!(
                     "hint {} of {} ({label}) for {}:",
