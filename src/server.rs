@@ -141,7 +141,12 @@ impl Server {
             });
             while !stop.load(Ordering::Relaxed) {
                 match self.http.recv() {
-                    Ok(request) => self.handle(request),
+                    // Each request on its own thread: a response that blocks
+                    // (a browser not yet reading a large file on one of its
+                    // connections) must not hold up the page's other requests.
+                    Ok(request) => {
+                        scope.spawn(|| self.handle(request));
+                    }
                     Err(_) => break,
                 }
             }
