@@ -25,16 +25,19 @@ pub enum Method {
     Dopri5,
     /// DOP853, adaptive.
     Dop853,
+    /// Radau IIA 5, implicit and L-stable, adaptive.
+    Radau5,
 }
 
 impl Method {
-    /// The next method of the cycle: closed form, RK4, DP5, DOP853.
+    /// The next method of the cycle: closed form, RK4, DP5, DOP853, Radau IIA 5.
     pub fn next(self) -> Self {
         match self {
             Method::ClosedForm => Method::Rk4,
             Method::Rk4 => Method::Dopri5,
             Method::Dopri5 => Method::Dop853,
-            Method::Dop853 => Method::ClosedForm,
+            Method::Dop853 => Method::Radau5,
+            Method::Radau5 => Method::ClosedForm,
         }
     }
 
@@ -45,6 +48,7 @@ impl Method {
             Method::Rk4 => "RK4",
             Method::Dopri5 => "DP5",
             Method::Dop853 => "DOP853",
+            Method::Radau5 => "Radau5",
         }
     }
 
@@ -55,6 +59,7 @@ impl Method {
             Method::Rk4 => MethodChoice::Rk4,
             Method::Dopri5 => MethodChoice::Dopri5,
             Method::Dop853 => MethodChoice::Dop853,
+            Method::Radau5 => MethodChoice::Radau5,
         }
     }
 }

@@ -343,7 +343,9 @@ pub struct StabilityScene {
 /// The model names of `[top] model`.
 pub const MODELS: [&str; 4] = ["truncated", "reduced", "general", "full"];
 /// The method names of `[solve] method`.
-pub const METHODS: [&str; 6] = ["auto", "exact", "rk4", "dopri5", "dop853", "forward"];
+pub const METHODS: [&str; 7] = [
+    "auto", "exact", "rk4", "dopri5", "dop853", "radau5", "forward",
+];
 /// The shapes of `[units] shape`.
 pub const SHAPES: [&str; 2] = ["sphere", "cylinder"];
 
@@ -1075,19 +1077,20 @@ fn top_scene(
         2 => MethodChoice::Rk4,
         3 => MethodChoice::Dopri5,
         4 => MethodChoice::Dop853,
+        5 => MethodChoice::Radau5,
         _ => MethodChoice::Forward,
     };
     let method_span = method_key.as_ref().map_or(own.clone(), |(_, s)| s.clone());
     let method_name = METHODS[method_key.as_ref().map_or(0, |(m, _)| *m)];
     match (&model, method) {
         (Model::General(_), MethodChoice::Exact) => {
-            return Err(ctx.at(&method_span, "[solve] method = \"exact\": the general model has no closed form; expected auto, rk4, dopri5 or dop853"));
+            return Err(ctx.at(&method_span, "[solve] method = \"exact\": the general model has no closed form; expected auto, rk4, dopri5, dop853 or radau5"));
         }
-        (Model::Full(_), MethodChoice::Rk4 | MethodChoice::Dopri5) => {
+        (Model::Full(_), MethodChoice::Rk4 | MethodChoice::Dopri5 | MethodChoice::Radau5) => {
             return Err(ctx.at(&method_span, format!("[solve] method = \"{method_name}\" does not apply to model = \"full\"; expected auto (its physical solution) or forward (the runaway)")));
         }
         (Model::Truncated(_) | Model::Reduced(_) | Model::General(_), MethodChoice::Forward) => {
-            return Err(ctx.at(&method_span, "[solve] method = \"forward\" belongs to model = \"full\"; expected auto, exact, rk4, dopri5 or dop853"));
+            return Err(ctx.at(&method_span, "[solve] method = \"forward\" belongs to model = \"full\"; expected auto, exact, rk4, dopri5, dop853 or radau5"));
         }
         _ => {}
     }

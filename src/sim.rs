@@ -17,7 +17,9 @@
 //! before it grows large, so O is only ever changed by multiplying rotations and
 //! stays orthonormal to rounding.
 
-use crate::integrate::{AdaptiveOptions, Dop853, Dopri5, IntegrateError, Rhs, Rk4, Stats, Stepper};
+use crate::integrate::{
+    AdaptiveOptions, Dop853, Dopri5, IntegrateError, Radau5, Rhs, Rk4, Stats, Stepper,
+};
 use crate::math::{Mat3, Quat, Real, State, Vec3, all_finite, dexpinv_right, exp_so3, rot_z};
 use crate::physics::ParamError;
 use crate::physics::euler_angles::{EulerAngles, euler_rates};
@@ -142,6 +144,9 @@ pub enum MethodChoice {
     Dopri5,
     /// DOP853 on Ω and the orientation together.
     Dop853,
+    /// Radau IIA of order 5 (implicit, L-stable) on Ω and the orientation
+    /// together: for a stiff top (τΩ not small).
+    Radau5,
     /// Full ALE only: integrate (3.4) forward, which runs away.
     Forward,
 }
@@ -262,6 +267,8 @@ pub enum Integrator {
     Dopri5,
     /// DOP853.
     Dop853,
+    /// Radau IIA 5.
+    Radau5,
 }
 
 impl MethodUsed {
@@ -273,6 +280,7 @@ impl MethodUsed {
             MethodUsed::Integrated(Integrator::Rk4) => "rk4",
             MethodUsed::Integrated(Integrator::Dopri5) => "dopri5",
             MethodUsed::Integrated(Integrator::Dop853) => "dop853",
+            MethodUsed::Integrated(Integrator::Radau5) => "radau5",
             MethodUsed::Physical => "physical",
             MethodUsed::Forward => "forward",
         }
@@ -293,6 +301,9 @@ impl MethodUsed {
             }
             MethodUsed::Integrated(Integrator::Dop853) => {
                 "omega and orientation integrated together by DOP853 (orientation on SO(3))"
+            }
+            MethodUsed::Integrated(Integrator::Radau5) => {
+                "omega and orientation integrated together by Radau IIA 5, implicit (orientation on SO(3))"
             }
             MethodUsed::Physical => {
                 "the physical solution of (3.4): DOP853 backward from final data on the slow manifold, shooting on the final amplitude; orientation by DOP853 on SO(3)"
@@ -399,6 +410,7 @@ enum AnyStepper<const N: usize> {
     Rk4(Rk4<N>),
     Dopri5(Dopri5<N>),
     Dop853(Dop853<N>),
+    Radau5(Radau5<N>),
 }
 
 impl<const N: usize> AnyStepper<N> {
@@ -430,6 +442,7 @@ impl<const N: usize> AnyStepper<N> {
             Integrator::Rk4 => AnyStepper::Rk4(Rk4::new(0.0, y0, options.step)?),
             Integrator::Dopri5 => AnyStepper::Dopri5(Dopri5::new(0.0, y0, adaptive()?)?),
             Integrator::Dop853 => AnyStepper::Dop853(Dop853::new(0.0, y0, adaptive()?)?),
+            Integrator::Radau5 => AnyStepper::Radau5(Radau5::new(0.0, y0, adaptive()?)?),
         })
     }
 }
@@ -441,6 +454,7 @@ impl<const N: usize> AnyStepper<N> {
             AnyStepper::Rk4(_) => {}
             AnyStepper::Dopri5(s) => s.set_h_max(h_max),
             AnyStepper::Dop853(s) => s.set_h_max(h_max),
+            AnyStepper::Radau5(s) => s.set_h_max(h_max),
         }
     }
 }
@@ -451,6 +465,7 @@ macro_rules! dispatch {
             AnyStepper::Rk4($s) => $body,
             AnyStepper::Dopri5($s) => $body,
             AnyStepper::Dop853($s) => $body,
+            AnyStepper::Radau5($s) => $body,
         }
     };
 }
@@ -553,8 +568,15 @@ impl<const N: usize> OnGroup<N> {
         t: Real,
         horizon: Real,
     ) -> Result<(State<N>, Mat3), IntegrateError> {
+        // NOTE: Radau5's continuous extension is only of order 3 and not
+        // error-controlled, so it steps exactly onto every output time.
+        let stop = if matches!(self.stepper, AnyStepper::Radau5(_)) {
+            t
+        } else {
+            horizon
+        };
         while self.stepper.t() < t {
-            self.step(rhs, omega, horizon)?;
+            self.step(rhs, omega, stop)?;
         }
         let y = if t == self.stepper.t() {
             *self.stepper.y()
@@ -673,7 +695,7 @@ impl Simulation {
                             orientation_only()?,
                         )
                     }
-                    MethodChoice::Rk4 | MethodChoice::Dopri5 => {
+                    MethodChoice::Rk4 | MethodChoice::Dopri5 | MethodChoice::Radau5 => {
                         return Err(SimError::MethodNotForModel(model.name()));
                     }
                 }
@@ -696,6 +718,7 @@ impl Simulation {
             }
             (MethodChoice::Rk4, Some(d)) => on_group(Integrator::Rk4, d)?,
             (MethodChoice::Dopri5, Some(d)) => on_group(Integrator::Dopri5, d)?,
+            (MethodChoice::Radau5, Some(d)) => on_group(Integrator::Radau5, d)?,
             // ANCHOR_END: auto_choice
         };
         let current = Sample::new(0.0, &model.inertia(), &initial.rotation, &initial.omega);

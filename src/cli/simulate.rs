@@ -40,6 +40,8 @@ enum MethodArg {
     Dopri5,
     /// DOP853, adaptive (--rtol).
     Dop853,
+    /// Radau IIA 5, implicit and L-stable, adaptive (--rtol): for stiff tops.
+    Radau5,
     /// Full model only: integrate (3.4) forward and watch it run away.
     Forward,
 }
@@ -51,6 +53,7 @@ fn method_name(m: MethodChoice) -> &'static str {
         MethodChoice::Rk4 => "rk4",
         MethodChoice::Dopri5 => "dopri5",
         MethodChoice::Dop853 => "dop853",
+        MethodChoice::Radau5 => "radau5",
         MethodChoice::Forward => "forward",
     }
 }
@@ -161,6 +164,7 @@ impl SimulateArgs {
             MethodArg::Rk4 => MethodChoice::Rk4,
             MethodArg::Dopri5 => MethodChoice::Dopri5,
             MethodArg::Dop853 => MethodChoice::Dop853,
+            MethodArg::Radau5 => MethodChoice::Radau5,
             MethodArg::Forward => MethodChoice::Forward,
         };
         // Each model takes only the methods that mean something for it; the
@@ -180,12 +184,12 @@ impl SimulateArgs {
             }
             (Model::General(_), MethodChoice::Exact) => {
                 return Err(bad(
-                    "the general model (3.3) has no closed form; use --method auto (DOP853), dop853, dopri5 or rk4",
+                    "the general model (3.3) has no closed form; use --method auto (DOP853), dop853, dopri5, radau5 or rk4",
                 ));
             }
             (Model::GeneralReduced(_), MethodChoice::Exact) => {
                 return Err(bad(
-                    "the reduced model of a general top has no closed form; use --method auto (DOP853), dop853, dopri5 or rk4",
+                    "the reduced model of a general top has no closed form; use --method auto (DOP853), dop853, dopri5, radau5 or rk4",
                 ));
             }
             _ => {}

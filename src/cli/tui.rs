@@ -25,6 +25,8 @@ pub(crate) enum ViewMethod {
     Dopri5,
     /// DOP853, adaptive.
     Dop853,
+    /// Radau IIA 5, implicit and L-stable, adaptive.
+    Radau5,
 }
 
 impl From<ViewMethod> for Method {
@@ -34,6 +36,7 @@ impl From<ViewMethod> for Method {
             ViewMethod::Rk4 => Method::Rk4,
             ViewMethod::Dopri5 => Method::Dopri5,
             ViewMethod::Dop853 => Method::Dop853,
+            ViewMethod::Radau5 => Method::Radau5,
         }
     }
 }
@@ -109,6 +112,7 @@ pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, St
         MethodChoice::Rk4 => Method::Rk4,
         MethodChoice::Dopri5 => Method::Dopri5,
         MethodChoice::Dop853 => Method::Dop853,
+        MethodChoice::Radau5 => Method::Radau5,
         MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => closed,
     };
     let mut note = format!("scene {}", scene.name);

@@ -411,6 +411,17 @@ impl<const N: usize> Radau5<N> {
         Self::build(t0, y0, Mode::Fixed { h }, DEFAULT_MAX_STEPS)
     }
 
+    /// Change the largest step magnitude from the next step on (adaptive mode;
+    /// the SO(3) driver caps the rotation per step this way). A NaN or
+    /// non-positive value is ignored, as is a fixed-step stepper.
+    pub fn set_h_max(&mut self, h_max: Real) {
+        if let Mode::Adaptive { opts, .. } = &mut self.mode
+            && h_max > 0.0
+        {
+            opts.h_max = h_max;
+        }
+    }
+
     /// Replace the step budget (adaptive: accepted plus rejected attempts;
     /// fixed: accepted steps; over the life of the stepper).
     pub fn with_max_steps(mut self, n: u64) -> Self {

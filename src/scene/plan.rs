@@ -112,6 +112,7 @@ fn label(model: &Model, method: MethodChoice) -> &'static str {
         (_, MethodChoice::Rk4) => "rk4",
         (_, MethodChoice::Dopri5) => "dopri5",
         (_, MethodChoice::Dop853) => "dop853",
+        (_, MethodChoice::Radau5) => "radau5",
         (Model::Truncated(_), _) => "exact",
         (Model::Reduced(_), _) => "exact+dop853",
         (Model::General(_) | Model::GeneralReduced(_), _) => "dop853",
@@ -270,7 +271,10 @@ pub(super) fn plan_top(
                 warnings,
             }
         }
-        (_, MethodChoice::Dopri5 | MethodChoice::Dop853 | MethodChoice::Auto) => {
+        (
+            _,
+            MethodChoice::Dopri5 | MethodChoice::Dop853 | MethodChoice::Radau5 | MethodChoice::Auto,
+        ) => {
             let steps = angle;
             let name = label(model, method);
             if steps > MAX_STEPS {

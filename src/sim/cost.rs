@@ -134,6 +134,7 @@ pub fn estimate(
             _,
             MethodChoice::Dopri5
             | MethodChoice::Dop853
+            | MethodChoice::Radau5
             | MethodChoice::Auto
             | MethodChoice::Exact
             | MethodChoice::Forward,
@@ -151,6 +152,7 @@ fn choice_name(choice: MethodChoice, model: &Model) -> &'static str {
     match choice {
         MethodChoice::Dopri5 => "DP5",
         MethodChoice::Dop853 => "DOP853",
+        MethodChoice::Radau5 => "Radau IIA 5",
         _ if matches!(model, Model::General(_)) => "DOP853 on the general top (3.3)",
         _ => "the integration",
     }

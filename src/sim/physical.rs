@@ -22,8 +22,10 @@
 //! | `f` | f(u) | ż/z on the slow manifold (complex) | 1/τ |
 //! | `sigma_phys` | σ_phys | exact late-time decay time of \|z\| | τ |
 
+pub mod general;
+
 use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Stats, Stepper};
-use crate::math::{Real, State};
+use crate::math::{Real, State, Vec3};
 use crate::physics::full_ale::symmetric_full_ale_rhs;
 use crate::physics::symmetric_top::SymmetricTop;
 use nalgebra::Complex;
@@ -139,7 +141,7 @@ fn backward(
 /// monotonically with a); the result is then rotated so that z(0) = Ω₁₀ + iΩ₂₀.
 pub fn physical_solution(
     top: &SymmetricTop,
-    omega0: &crate::math::Vec3,
+    omega0: &Vec3,
     times: &[Real],
     rtol: Real,
 ) -> Result<PhysicalSolution, PhysicalError> {
@@ -296,44 +298,64 @@ pub fn integrate_forward(
         return Err(PhysicalError::BadInput("the full ALE needs tau > 0"));
     }
     let rhs = |_t: Real, y: &State<4>| symmetric_full_ale_rhs(top, omega3, y);
-    let opts = AdaptiveOptions::new(rtol, 1e-300)?;
-    let mut stepper = Dop853::new(0.0, y0, opts)?;
     let distance = |y: &State<4>| {
         let z = Complex::new(y[0], y[1]);
         let v = Complex::new(y[2], y[3]);
-        (v - slow_manifold_rate(top, omega3, z.norm_sqr()) * z).norm()
+        (
+            (v - slow_manifold_rate(top, omega3, z.norm_sqr()) * z).norm(),
+            z.norm(),
+        )
     };
+    let (trace, runaway, stats) = forward_with_monitor(&rhs, y0, tau, t_end, rtol, distance)?;
+    Ok(ForwardRun {
+        trace,
+        runaway,
+        stats,
+    })
+}
+
+/// What a forward run traced: (time, state) every τ/4, the runaway if the
+/// monitor stopped it, and the work done.
+pub(crate) type Traced<const N: usize> = (Vec<(Real, State<N>)>, Option<Runaway>, Stats);
+
+/// The runaway monitor of [`integrate_forward`], for any full-ALE system:
+/// `distance(y)` gives the distance of `y` from the slow manifold and the size
+/// of the slow amplitude it is compared with (5% of size/τ).
+pub(crate) fn forward_with_monitor<const N: usize>(
+    rhs: &impl crate::integrate::Rhs<N>,
+    y0: State<N>,
+    tau: Real,
+    t_end: Real,
+    rtol: Real,
+    distance: impl Fn(&State<N>) -> (Real, Real),
+) -> Result<Traced<N>, PhysicalError> {
+    let opts = AdaptiveOptions::new(rtol, 1e-300)?;
+    let mut stepper = Dop853::new(0.0, y0, opts)?;
     let dt = 0.25 * tau;
     let window = 8; // 2τ
     let mut trace = vec![(0.0, y0)];
-    let mut log_dist = vec![distance(&y0).max(1e-300).ln()];
+    let mut log_dist = vec![distance(&y0).0.max(1e-300).ln()];
     let mut t = 0.0;
     while t < t_end {
         t = (t + dt).min(t_end);
-        let y = crate::integrate::solve(&mut stepper, &rhs, &[t])?[0];
+        let y = crate::integrate::solve(&mut stepper, rhs, &[t])?[0];
         trace.push((t, y));
-        let d = distance(&y).max(1e-300);
+        let (d, size) = distance(&y);
+        let d = d.max(1e-300);
         log_dist.push(d.ln());
         let n = log_dist.len();
-        if n > window && d > 0.05 * y[0].hypot(y[1]) / tau {
+        if n > window && d > 0.05 * size / tau {
             let rate = least_squares_slope(&log_dist[n - 1 - window..], dt);
             if rate > 0.5 / tau {
-                return Ok(ForwardRun {
-                    trace,
-                    runaway: Some(Runaway {
-                        t,
-                        growth_rate: rate,
-                    }),
-                    stats: stepper.stats(),
-                });
+                let runaway = Runaway {
+                    t,
+                    growth_rate: rate,
+                };
+                return Ok((trace, Some(runaway), stepper.stats()));
             }
         }
     }
-    Ok(ForwardRun {
-        trace,
-        runaway: None,
-        stats: stepper.stats(),
-    })
+    Ok((trace, None, stepper.stats()))
 }
 
 /// Slope of equally spaced samples `ys` (spacing `dt`) by least squares.
@@ -341,35 +363,58 @@ fn least_squares_slope(ys: &[Real], dt: Real) -> Real {
     crate::math::least_squares_slope(ys.iter().enumerate().map(|(i, &y)| (i as Real * dt, y)))
 }
 
-/// Ω(t) of the full ALE sampled on a uniform grid, with z and ż at every node,
-/// read back by cubic Hermite interpolation. It drives the orientation of the
-/// full model (the orientation has no influence on Ω).
+/// Ω(t) of the full ALE sampled on a uniform grid, with Ω and Ω̇ at every
+/// node, read back by cubic Hermite interpolation. It drives the orientation
+/// of the full model (the orientation has no influence on Ω).
 #[derive(Clone, Debug, PartialEq)]
 pub struct OmegaTable {
     step: Real,
-    omega3: Real,
-    z: Vec<Complex<Real>>,
-    z_dot: Vec<Complex<Real>>,
+    omega: Vec<Vec3>,
+    omega_dot: Vec<Vec3>,
 }
 
 impl OmegaTable {
+    /// A table of Ω and Ω̇ at t = 0, step, 2·step, … (equal, non-empty lengths).
+    pub(crate) fn new(step: Real, omega: Vec<Vec3>, omega_dot: Vec<Vec3>) -> Self {
+        debug_assert!(!omega.is_empty() && omega.len() == omega_dot.len());
+        Self {
+            step,
+            omega,
+            omega_dot,
+        }
+    }
+
+    /// The symmetric top's table: z and ż at the nodes, Ω₃ constant.
+    fn symmetric(
+        step: Real,
+        omega3: Real,
+        z: impl Iterator<Item = Complex<Real>>,
+        z_dot: impl Iterator<Item = Complex<Real>>,
+    ) -> Self {
+        Self::new(
+            step,
+            z.map(|z| Vec3::new(z.re, z.im, omega3)).collect(),
+            z_dot.map(|v| Vec3::new(v.re, v.im, 0.0)).collect(),
+        )
+    }
+
     /// The last time covered.
     pub fn t_end(&self) -> Real {
-        self.step * (self.z.len().saturating_sub(1)) as Real
+        self.step * (self.omega.len().saturating_sub(1)) as Real
     }
 
     /// Ω at time `t` in [0, t_end()] (clamped to that range).
     ///
-    /// NOTE: cubic Hermite with the exact ż at both nodes: the error is
-    /// h⁴|z⁗|/384 ≈ (hΩ)⁴|z|/384, below 1e-9 relative for the grid spacing
+    /// NOTE: cubic Hermite with the exact Ω̇ at both nodes: the error is
+    /// h⁴|Ω⁗|/384 ≈ (hΩ)⁴|Ω|/384, below 1e-9 relative for the grid spacing
     /// chosen by the constructors (hΩ ≤ 0.05).
-    pub fn omega_at(&self, t: Real) -> crate::math::Vec3 {
-        let last = self.z.len() - 1;
-        let x = (t / self.step).clamp(0.0, last as Real);
-        let i = (x.floor() as usize).min(last.saturating_sub(1));
+    pub fn omega_at(&self, t: Real) -> Vec3 {
+        let last = self.omega.len() - 1;
         if last == 0 {
-            return crate::math::Vec3::new(self.z[0].re, self.z[0].im, self.omega3);
+            return self.omega[0];
         }
+        let x = (t / self.step).clamp(0.0, last as Real);
+        let i = (x.floor() as usize).min(last - 1);
         let s = x - i as Real;
         let h = self.step;
         let (h00, h10, h01, h11) = (
@@ -378,16 +423,15 @@ impl OmegaTable {
             s * s * (3.0 - 2.0 * s),
             s * s * (s - 1.0),
         );
-        let z = self.z[i] * h00
-            + self.z_dot[i] * (h10 * h)
-            + self.z[i + 1] * h01
-            + self.z_dot[i + 1] * (h11 * h);
-        crate::math::Vec3::new(z.re, z.im, self.omega3)
+        self.omega[i] * h00
+            + self.omega_dot[i] * (h10 * h)
+            + self.omega[i + 1] * h01
+            + self.omega_dot[i + 1] * (h11 * h)
     }
 }
 
 /// Grid spacing for an [`OmegaTable`]: a quarter τ, and at most 0.05/|Ω₀|.
-fn table_step(top: &SymmetricTop, omega0: &crate::math::Vec3) -> Real {
+fn table_step(top: &SymmetricTop, omega0: &Vec3) -> Real {
     let rate = omega0.norm().max(top.omega3_tilde(omega0.z).abs());
     let step = 0.25 * top.tau();
     if rate > 0.0 {
@@ -397,7 +441,7 @@ fn table_step(top: &SymmetricTop, omega0: &crate::math::Vec3) -> Real {
     }
 }
 
-fn grid(step: Real, t_end: Real) -> Vec<Real> {
+pub(crate) fn grid(step: Real, t_end: Real) -> Vec<Real> {
     let n = (t_end / step).ceil().max(1.0) as usize;
     (0..=n).map(|i| i as Real * step).collect()
 }
@@ -405,18 +449,18 @@ fn grid(step: Real, t_end: Real) -> Vec<Real> {
 /// The physical solution of (3.4) through Ω₀ as a table on [0, t_end].
 pub fn physical_table(
     top: &SymmetricTop,
-    omega0: &crate::math::Vec3,
+    omega0: &Vec3,
     t_end: Real,
     rtol: Real,
 ) -> Result<(OmegaTable, PhysicalSolution), PhysicalError> {
     let step = table_step(top, omega0);
     let sol = physical_solution(top, omega0, &grid(step, t_end), rtol)?;
-    let table = OmegaTable {
+    let table = OmegaTable::symmetric(
         step,
-        omega3: omega0.z,
-        z: sol.z.clone(),
-        z_dot: sol.z_dot.clone(),
-    };
+        omega0.z,
+        sol.z.iter().copied(),
+        sol.z_dot.iter().copied(),
+    );
     Ok((table, sol))
 }
 
@@ -424,7 +468,7 @@ pub fn physical_table(
 /// natural but wrong guess, as a table up to t_end or up to the runaway.
 pub fn forward_table(
     top: &SymmetricTop,
-    omega0: &crate::math::Vec3,
+    omega0: &Vec3,
     t_end: Real,
     rtol: Real,
 ) -> Result<(OmegaTable, ForwardRun), PhysicalError> {
@@ -432,19 +476,11 @@ pub fn forward_table(
     let y0 = State::<4>::new(omega0.x, omega0.y, slope.x, slope.y);
     let run = integrate_forward(top, omega0.z, y0, t_end, rtol)?;
     let step = 0.25 * top.tau();
-    let table = OmegaTable {
+    let table = OmegaTable::symmetric(
         step,
-        omega3: omega0.z,
-        z: run
-            .trace
-            .iter()
-            .map(|(_, y)| Complex::new(y[0], y[1]))
-            .collect(),
-        z_dot: run
-            .trace
-            .iter()
-            .map(|(_, y)| Complex::new(y[2], y[3]))
-            .collect(),
-    };
+        omega0.z,
+        run.trace.iter().map(|(_, y)| Complex::new(y[0], y[1])),
+        run.trace.iter().map(|(_, y)| Complex::new(y[2], y[3])),
+    );
     Ok((table, run))
 }

@@ -159,6 +159,40 @@ fn simulate_rk4_agrees_with_the_closed_form_through_the_cli() {
     }
 }
 
+/// `--method radau5` (Radau IIA 5, implicit) on the reduced model agrees with
+/// the closed form (4.15)-(4.16) for Omega, and with the closed form's
+/// orientation integrated by DOP853, through the CLI.
+#[test]
+fn eq_4_15_radau5_through_the_cli_agrees_with_the_closed_form() {
+    let exact = json(&["--model", "reduced", "--times", "10,50,100"]);
+    let radau = json(&[
+        "--model",
+        "reduced",
+        "--method",
+        "radau5",
+        "--rtol",
+        "1e-10",
+        "--times",
+        "10,50,100",
+    ]);
+    assert_eq!(radau["method"], "radau5");
+    for k in 0..3 {
+        let a = vec_of(&exact["samples"][k]["omega"], 3);
+        let b = vec_of(&radau["samples"][k]["omega"], 3);
+        for i in 0..3 {
+            // RADAU5's tolerance map: its error is a few hundred times rtol.
+            assert!((a[i] - b[i]).abs() < 1e-7, "t #{k}: {a:?} vs {b:?}");
+        }
+        for row in 0..3 {
+            let a = vec_of(&exact["samples"][k]["rotation"][row], 3);
+            let b = vec_of(&radau["samples"][k]["rotation"][row], 3);
+            for i in 0..3 {
+                assert!((a[i] - b[i]).abs() < 1e-6, "t #{k}: {a:?} vs {b:?}");
+            }
+        }
+    }
+}
+
 #[test]
 fn simulate_default_times_and_table_and_csv() {
     let out = spintop(&["simulate", "--model", "reduced"]);

@@ -10,6 +10,7 @@ mod closed_forms;
 mod euler_angles;
 mod figures;
 mod full_ale;
+mod general_full;
 mod general_reduced;
 mod shell_model;
 mod symmetric_top;

@@ -1,0 +1,396 @@
+//! The physical (non-runaway) solution of the full ALE (3.4) for any top, and
+//! its forward integration with the runaway monitor.
+//!
+//! The state of (3.4) is (Ω, W = Ω̇) (see
+//! [`general_full_ale_rhs`]): six numbers tied by one first-order constraint,
+//! so five free ones. Three of them, Ω, are slow; the two components of W
+//! across the dipole carry the fast modes that grow forward like e^{t/τ_f},
+//! τ_f of the order of [`fast_time`]. The physical solution is the one on the
+//! three-dimensional slow manifold W = g(Ω).
+//!
+//! As for the symmetric top, integrating backward turns the runaway into decay:
+//! from final data near the manifold (W from the reduced model, O(τ²) off it)
+//! the backward flow lands on the physical solution, with the error of the
+//! final data damped by e^{−40} after a margin of 40 τ_f. Matching a given
+//! Ω(t₀) is a shoot on the three numbers Ω(T), solved by Newton's method with a
+//! finite-difference Jacobian (the chord variant: one Jacobian per segment).
+//! Unlike the symmetric top there is no rotation symmetry left to fix the phase
+//! for free, so the shoot is three-dimensional.
+//!
+//! The horizon is covered in segments of 40 τ_f: each segment starts from Ω at
+//! the end of the one before and shoots over its own length plus the margin.
+//! A long shot would make the map Ω(T) → Ω(t₀) badly conditioned (the decay
+//! of the slow amplitude compounds), a short one keeps Newton's first guess
+//! (the reduced model run forward) within O(τ²) of the answer.
+//!
+//! | code name | symbol | meaning | units |
+//! |---|---|---|---|
+//! | `omega`, `w` | Ω, W = Ω̇ | body rate and its rate | κ = 1 units |
+//! | `tau_f` | τ_f = \|d\|²/min Iᵢ | fast time of (3.4) | time |
+
+use super::{OmegaTable, PhysicalError, Runaway, forward_with_monitor, grid};
+use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Stats, Stepper};
+use crate::math::{Real, State, Vec3};
+use crate::physics::full_ale::general_full_ale_rhs;
+use crate::physics::general_top::GeneralTop;
+use nalgebra::Matrix3;
+
+/// Margin and segment length of the shoot, in units of [`fast_time`].
+const MARGIN: Real = 40.0;
+
+/// The fast time of (3.4) for a general top, τ_f = |d|²/min Iᵢ.
+///
+/// Paper: Eq. (3.4) (the scale of its Ω̈ term).
+///
+/// The runaway modes grow like e^{λt} with λ ≈ I_⊥/|d|², I_⊥ a moment across
+/// the dipole, so 1/λ ≤ τ_f: τ_f is the slowest a runaway can be, which is
+/// what a margin must outlast. For a symmetric top with d on its axis it is
+/// τ = d²/I₁.
+pub fn fast_time(top: &GeneralTop) -> Real {
+    top.dipole().norm_squared() / top.inertia().min()
+}
+
+/// The physical solution of (3.4) of a general top at the requested times.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GeneralPhysicalSolution {
+    /// The times.
+    pub times: Vec<Real>,
+    /// Ω at each time.
+    pub omega: Vec<Vec3>,
+    /// Ω̇ at each time (on the slow manifold).
+    pub omega_dot: Vec<Vec3>,
+    /// Work of all backward integrations.
+    pub stats: Stats,
+    /// Number of backward integrations (shots).
+    pub shots: u32,
+    /// Number of segments the horizon was cut into.
+    pub segments: u32,
+}
+
+fn pack(omega: &Vec3, w: &Vec3) -> State<6> {
+    let mut y = State::<6>::zeros();
+    y.fixed_rows_mut::<3>(0).copy_from(omega);
+    y.fixed_rows_mut::<3>(3).copy_from(w);
+    y
+}
+
+fn omega_of(y: &State<6>) -> Vec3 {
+    y.fixed_rows::<3>(0).into_owned()
+}
+
+fn w_of(y: &State<6>) -> Vec3 {
+    y.fixed_rows::<3>(3).into_owned()
+}
+
+/// (Ω, W) with W from the reduced model: O(τ²) off the slow manifold, and on
+/// the constraint d·(IW + Ω × IΩ) = 0 exactly (the reduced correction is
+/// across d).
+pub fn near_manifold(top: &GeneralTop, omega: &Vec3) -> State<6> {
+    pack(omega, &top.reduced_ale_rhs(omega))
+}
+
+/// Integrate (3.4) backward from Ω(T) = `a` near the manifold to the times
+/// `desc` (descending, ≤ T), stepping exactly onto each.
+///
+/// NOTE: as for the symmetric top, between step ends the interpolant still
+/// carries a trace of the damped fast modes; the step ends are clean.
+fn backward(
+    top: &GeneralTop,
+    t_final: Real,
+    a: &Vec3,
+    desc: &[Real],
+    rtol: Real,
+) -> Result<(Vec<State<6>>, Stats), IntegrateError> {
+    let rhs = |_t: Real, y: &State<6>| general_full_ale_rhs(top, y);
+    let opts = AdaptiveOptions::new(rtol, rtol * 1e-6 * a.norm().max(1e-300))?;
+    let mut stepper = Dop853::new(t_final, near_manifold(top, a), opts)?;
+    let mut out = Vec::with_capacity(desc.len());
+    for &t in desc {
+        while stepper.t() > t {
+            stepper.step(&rhs, t)?;
+        }
+        out.push(*stepper.y());
+    }
+    Ok((out, stepper.stats()))
+}
+
+/// The reduced model run forward from `omega` over `span`: Newton's first
+/// guess for Ω at the end of a shot.
+fn reduced_guess(
+    top: &GeneralTop,
+    omega: &Vec3,
+    span: Real,
+    rtol: Real,
+) -> Result<Vec3, IntegrateError> {
+    let rhs = |_t: Real, y: &State<3>| top.reduced_ale_rhs(y);
+    let opts = AdaptiveOptions::new(rtol, rtol * 1e-6 * omega.norm().max(1e-300))?;
+    let mut stepper = Dop853::new(0.0, *omega, opts)?;
+    while stepper.t() < span {
+        stepper.step(&rhs, span)?;
+    }
+    Ok(*stepper.y())
+}
+
+/// Counts the work of the shots.
+struct Shooter<'a> {
+    top: &'a GeneralTop,
+    rtol: Real,
+    stats: Stats,
+    shots: u32,
+}
+
+impl Shooter<'_> {
+    /// Ω(0) of the backward run from Ω(span) = a, or `None` when that run blew
+    /// up (too large a final amplitude grows without bound backward).
+    fn shoot(&mut self, span: Real, a: &Vec3) -> Result<Option<Vec3>, PhysicalError> {
+        self.shots += 1;
+        match backward(self.top, span, a, &[0.0], self.rtol) {
+            Ok((out, s)) => {
+                self.stats += s;
+                Ok(Some(omega_of(&out[0])))
+            }
+            Err(IntegrateError::NonFinite { .. } | IntegrateError::StepSizeUnderflow { .. }) => {
+                Ok(None)
+            }
+            Err(e) => Err(e.into()),
+        }
+    }
+
+    /// Ω(span) whose backward run reaches `start` at 0, by chord Newton.
+    fn solve(&mut self, start: &Vec3, span: Real) -> Result<Vec3, PhysicalError> {
+        let scale = start.norm();
+        let tol = 0.1 * self.rtol * scale;
+        let mut a = reduced_guess(self.top, start, span, self.rtol)?;
+        let residual = |s: &mut Self, a: &Vec3| -> Result<Option<Vec3>, PhysicalError> {
+            Ok(s.shoot(span, a)?.map(|w| w - start))
+        };
+        let mut r = residual(self, &a)?.ok_or(PhysicalError::NoConvergence(
+            "the reduced model's guess blew up backward",
+        ))?;
+        let mut jacobian: Option<Matrix3<Real>> = None;
+        let mut best = r.norm();
+        for _ in 0..40 {
+            if r.norm() <= tol {
+                return Ok(a);
+            }
+            let j = match jacobian {
+                Some(j) => j,
+                None => {
+                    let h = 1e-6 * a.norm().max(1e-300);
+                    let mut m = Matrix3::zeros();
+                    for k in 0..3 {
+                        let mut ak = a;
+                        ak[k] += h;
+                        let rk = residual(self, &ak)?.ok_or(PhysicalError::NoConvergence(
+                            "a shot of the Jacobian blew up backward",
+                        ))?;
+                        m.set_column(k, &((rk - r) / h));
+                    }
+                    jacobian = Some(m);
+                    m
+                }
+            };
+            let delta = j
+                .lu()
+                .solve(&(-r))
+                .ok_or(PhysicalError::NoConvergence("a singular Jacobian"))?;
+            // Damped: halve the step while the shot blows up or gets worse.
+            let mut lambda = 1.0;
+            let mut next = None;
+            for _ in 0..30 {
+                let trial = a + delta * lambda;
+                if let Some(rt) = residual(self, &trial)?
+                    && rt.norm() < r.norm()
+                {
+                    next = Some((trial, rt));
+                    break;
+                }
+                lambda *= 0.5;
+            }
+            match next {
+                Some((trial, rt)) => {
+                    // A slow contraction means the chord Jacobian is stale.
+                    if rt.norm() > 0.25 * r.norm() {
+                        jacobian = None;
+                    }
+                    a = trial;
+                    r = rt;
+                    best = best.min(r.norm());
+                }
+                None if jacobian.is_some() && lambda < 1e-8 => {
+                    // No descent along the chord step: at the level of the
+                    // integrator's own noise, accept; else refresh once more.
+                    if best <= 100.0 * self.rtol * scale {
+                        return Ok(a);
+                    }
+                    jacobian = None;
+                }
+                None => return Err(PhysicalError::NoConvergence("no descent")),
+            }
+        }
+        if best <= 100.0 * self.rtol * scale {
+            Ok(a)
+        } else {
+            Err(PhysicalError::NoConvergence(
+                "Newton's method on the final rate",
+            ))
+        }
+    }
+}
+
+/// The physical solution of (3.4) through Ω₀ for any top, at `times` (finite,
+/// ≥ 0, ascending).
+///
+/// Paper: Eq. (3.4) (its physical solution; not in the paper).
+///
+/// Ω̇ is returned with Ω: on the slow manifold it is the state's W, the rate
+/// the manifold itself assigns, not a difference of outputs.
+pub fn general_physical_solution(
+    top: &GeneralTop,
+    omega0: &Vec3,
+    times: &[Real],
+    rtol: Real,
+) -> Result<GeneralPhysicalSolution, PhysicalError> {
+    if times.iter().any(|t| !t.is_finite() || *t < 0.0) || times.windows(2).any(|w| w[1] < w[0]) {
+        return Err(PhysicalError::BadInput(
+            "times must be finite, >= 0 and ascending",
+        ));
+    }
+    if !(rtol > 0.0 && rtol < 1.0) {
+        return Err(PhysicalError::BadInput("rtol must lie in (0, 1)"));
+    }
+    let mut sol = GeneralPhysicalSolution {
+        times: times.to_vec(),
+        omega: Vec::with_capacity(times.len()),
+        omega_dot: Vec::with_capacity(times.len()),
+        stats: Stats::default(),
+        shots: 0,
+        segments: 0,
+    };
+    if *omega0 == Vec3::zeros() {
+        // A top at rest stays at rest: Ω ≡ 0 is the physical solution.
+        sol.omega = vec![Vec3::zeros(); times.len()];
+        sol.omega_dot = vec![Vec3::zeros(); times.len()];
+        return Ok(sol);
+    }
+    let tau_f = fast_time(top);
+    let margin = MARGIN * tau_f;
+    let t_last = times.last().copied().unwrap_or(0.0);
+    let mut shooter = Shooter {
+        top,
+        rtol,
+        stats: Stats::default(),
+        shots: 0,
+    };
+    let mut start = *omega0;
+    let mut t0 = 0.0;
+    let mut next = 0; // the first time not yet output
+    loop {
+        let t1 = (t0 + margin).min(t_last);
+        let span = (t1 - t0) + margin;
+        let a = shooter.solve(&start, span)?;
+        // Output the times in [t0, t1] (each once), and t1 to start the next.
+        let mut desc: Vec<Real> = vec![t1 - t0];
+        let first = next;
+        while next < times.len() && times[next] <= t1 {
+            next += 1;
+        }
+        desc.extend(times[first..next].iter().rev().map(|t| t - t0));
+        desc.push(0.0);
+        let (out, s) = backward(top, span, &a, &desc, rtol)?;
+        shooter.stats += s;
+        shooter.shots += 1;
+        sol.segments += 1;
+        // out[1..=n] are the requested times, descending.
+        for y in out[1..out.len() - 1].iter().rev() {
+            sol.omega.push(omega_of(y));
+            sol.omega_dot.push(w_of(y));
+        }
+        start = omega_of(&out[0]);
+        t0 = t1;
+        if next >= times.len() || t1 >= t_last {
+            break;
+        }
+    }
+    sol.stats = shooter.stats;
+    sol.shots = shooter.shots;
+    Ok(sol)
+}
+
+/// What a forward integration of a general top's (3.4) produced.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GeneralForwardRun {
+    /// Times and (Ω, W) reached, every τ_f/4.
+    pub trace: Vec<(Real, State<6>)>,
+    /// The runaway, if the monitor stopped the run.
+    pub runaway: Option<Runaway>,
+    /// Work done.
+    pub stats: Stats,
+}
+
+/// Integrate (3.4) of a general top forward from (Ω, W) = `y0` with DOP853 and
+/// stop at the runaway: the distance |W − F_red(Ω)| from the reduced model's
+/// rate passes 5% of |Ω|/τ_f while growing faster than 1/(2τ_f) (as
+/// [`super::integrate_forward`] does for the symmetric top).
+pub fn general_integrate_forward(
+    top: &GeneralTop,
+    y0: State<6>,
+    t_end: Real,
+    rtol: Real,
+) -> Result<GeneralForwardRun, PhysicalError> {
+    let rhs = |_t: Real, y: &State<6>| general_full_ale_rhs(top, y);
+    let distance = |y: &State<6>| {
+        let omega = omega_of(y);
+        ((w_of(y) - top.reduced_ale_rhs(&omega)).norm(), omega.norm())
+    };
+    let (trace, runaway, stats) =
+        forward_with_monitor(&rhs, y0, fast_time(top), t_end, rtol, distance)?;
+    Ok(GeneralForwardRun {
+        trace,
+        runaway,
+        stats,
+    })
+}
+
+/// Grid spacing of a general top's table: τ_f/4, and at most 0.05/|Ω₀|.
+fn table_step(top: &GeneralTop, omega0: &Vec3) -> Real {
+    let step = 0.25 * fast_time(top);
+    let rate = omega0.norm();
+    if rate > 0.0 {
+        step.min(0.05 / rate)
+    } else {
+        step
+    }
+}
+
+/// The physical solution of a general top's (3.4) through Ω₀ as a table on
+/// [0, t_end].
+pub fn general_physical_table(
+    top: &GeneralTop,
+    omega0: &Vec3,
+    t_end: Real,
+    rtol: Real,
+) -> Result<(OmegaTable, GeneralPhysicalSolution), PhysicalError> {
+    let step = table_step(top, omega0);
+    let sol = general_physical_solution(top, omega0, &grid(step, t_end), rtol)?;
+    let table = OmegaTable::new(step, sol.omega.clone(), sol.omega_dot.clone());
+    Ok((table, sol))
+}
+
+/// (3.4) of a general top integrated forward from Ω₀ with the reduced model's
+/// rate as Ω̇(0), the natural but wrong guess, as a table up to t_end or up to
+/// the runaway.
+pub fn general_forward_table(
+    top: &GeneralTop,
+    omega0: &Vec3,
+    t_end: Real,
+    rtol: Real,
+) -> Result<(OmegaTable, GeneralForwardRun), PhysicalError> {
+    let run = general_integrate_forward(top, near_manifold(top, omega0), t_end, rtol)?;
+    let table = OmegaTable::new(
+        0.25 * fast_time(top),
+        run.trace.iter().map(|(_, y)| omega_of(y)).collect(),
+        run.trace.iter().map(|(_, y)| w_of(y)).collect(),
+    );
+    Ok((table, run))
+}
