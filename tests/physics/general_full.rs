@@ -28,7 +28,7 @@ fn grid(t_end: Real, h: Real) -> Vec<Real> {
 /// Composite Simpson's rule of equally spaced vectors (an even number of panels).
 fn simpson(values: &[Vec3], h: Real) -> Vec3 {
     let n = values.len() - 1;
-    assert!(n % 2 == 0);
+    assert!(n.is_multiple_of(2));
     let mut sum = values[0] + values[n];
     for (i, v) in values.iter().enumerate().take(n).skip(1) {
         sum += v * if i % 2 == 1 { 4.0 } else { 2.0 };
@@ -98,7 +98,7 @@ fn eq_3_4_general_physical_solution_for_i1_eq_i2_is_the_symmetric_one() {
         let times = [0.0, 1.0, 10.0, 50.0, 100.0];
         let g = general_physical_solution(&general, &omega0, &times, 1e-12).unwrap();
         let s = physical_solution(&symmetric, &omega0, &times, 1e-12).unwrap();
-        for k in 0..times.len() {
+        for (k, t) in times.iter().enumerate() {
             let z = s.z[k];
             let expected = Vec3::new(z.re, z.im, omega0.z);
             let err = (g.omega[k] - expected).norm();
@@ -108,17 +108,12 @@ fn eq_3_4_general_physical_solution_for_i1_eq_i2_is_the_symmetric_one() {
             );
             assert!(
                 err < 1e-9,
-                "tau = {tau}, t = {}: {:?} vs {expected:?} ({err:e})",
-                times[k],
+                "tau = {tau}, t = {t}: {:?} vs {expected:?} ({err:e})",
                 g.omega[k]
             );
             let v = s.z_dot[k];
             let err = (g.omega_dot[k] - Vec3::new(v.re, v.im, 0.0)).norm();
-            assert!(
-                err < 1e-9,
-                "tau = {tau}, t = {}: rate off by {err:e}",
-                times[k]
-            );
+            assert!(err < 1e-9, "tau = {tau}, t = {t}: rate off by {err:e}");
         }
     }
 }
