@@ -37,6 +37,8 @@ pub mod orbit;
 pub mod physical;
 pub mod shell;
 
+use physical::general;
+
 /// Which equation of motion the top follows.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Model {
@@ -52,6 +54,9 @@ pub enum Model {
     /// The symmetric top under the full ALE (3.4), Schott term and Ω̈ kept: its
     /// physical (non-runaway) solution, or a forward run that shows the runaway.
     Full(SymmetricTop),
+    /// Any top under the full ALE (3.4), κ = 1 units: its physical solution,
+    /// or a forward run that shows the runaway.
+    GeneralFull(GeneralTop),
 }
 
 impl Model {
@@ -63,6 +68,7 @@ impl Model {
             Model::General(_) => "general",
             Model::GeneralReduced(_) => "general-reduced",
             Model::Full(_) => "full",
+            Model::GeneralFull(_) => "general-full",
         }
     }
 
@@ -73,7 +79,7 @@ impl Model {
             Model::Reduced(_) => "Eqs. (4.12)-(4.14)",
             Model::General(_) => "Eq. (3.3)",
             Model::GeneralReduced(_) => "Eq. (3.4), reduced",
-            Model::Full(_) => "Eq. (3.4)",
+            Model::Full(_) | Model::GeneralFull(_) => "Eq. (3.4)",
         }
     }
 
@@ -86,8 +92,15 @@ impl Model {
     pub fn inertia(&self) -> Vec3 {
         match self {
             Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => top.inertia(),
-            Model::General(top) | Model::GeneralReduced(top) => top.inertia(),
+            Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
+                top.inertia()
+            }
         }
+    }
+
+    /// True for the full ALE (3.4), of either top.
+    pub fn is_full(&self) -> bool {
+        matches!(self, Model::Full(_) | Model::GeneralFull(_))
     }
 
     /// The model as Ω̇ = F(Ω), for the models that have that form (not the full
@@ -98,7 +111,7 @@ impl Model {
             Model::Reduced(top) => Some(FirstOrder::Reduced(top)),
             Model::General(top) => Some(FirstOrder::General(top)),
             Model::GeneralReduced(top) => Some(FirstOrder::GeneralReduced(top)),
-            Model::Full(_) => None,
+            Model::Full(_) | Model::GeneralFull(_) => None,
         }
     }
 }
@@ -306,7 +319,7 @@ impl MethodUsed {
                 "omega and orientation integrated together by Radau IIA 5, implicit (orientation on SO(3))"
             }
             MethodUsed::Physical => {
-                "the physical solution of (3.4): DOP853 backward from final data on the slow manifold, shooting on the final amplitude; orientation by DOP853 on SO(3)"
+                "the physical solution of (3.4): DOP853 backward from final data near the slow manifold, shooting on the final rate; orientation by DOP853 on SO(3)"
             }
             MethodUsed::Forward => {
                 "(3.4) integrated forward by DOP853 from the reduced model's slope, with a runaway monitor; orientation by DOP853 on SO(3)"
@@ -668,30 +681,50 @@ impl Simulation {
         };
         let engine = match (choice, model.first_order()) {
             (_, None) => {
-                let Model::Full(top) = model else {
-                    return Err(SimError::NoClosedForm(model.name()));
-                };
                 if horizon == Real::MAX {
                     return Err(SimError::NeedsHorizon(model.name()));
                 }
+                let (omega0, rtol) = (&initial.omega, options.rtol);
                 match choice {
                     MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Dop853 => {
-                        let (table, sol) =
-                            physical::physical_table(&top, &initial.omega, horizon, options.rtol)?;
+                        let (table, stats) = match model {
+                            Model::GeneralFull(top) => {
+                                let (table, sol) =
+                                    general::general_physical_table(&top, omega0, horizon, rtol)?;
+                                (table, sol.stats)
+                            }
+                            Model::Full(top) => {
+                                let (table, sol) =
+                                    physical::physical_table(&top, omega0, horizon, rtol)?;
+                                (table, sol.stats)
+                            }
+                            _ => return Err(SimError::NoClosedForm(model.name())),
+                        };
                         Engine::Table(
                             Box::new(table),
                             TableKind::Physical,
-                            sol.stats,
+                            stats,
                             orientation_only()?,
                         )
                     }
                     MethodChoice::Forward => {
-                        let (table, run) =
-                            physical::forward_table(&top, &initial.omega, horizon, options.rtol)?;
+                        let (table, runaway, stats) = match model {
+                            Model::GeneralFull(top) => {
+                                let (table, run) =
+                                    general::general_forward_table(&top, omega0, horizon, rtol)?;
+                                (table, run.runaway, run.stats)
+                            }
+                            Model::Full(top) => {
+                                let (table, run) =
+                                    physical::forward_table(&top, omega0, horizon, rtol)?;
+                                (table, run.runaway, run.stats)
+                            }
+                            _ => return Err(SimError::NoClosedForm(model.name())),
+                        };
                         Engine::Table(
                             Box::new(table),
-                            TableKind::Forward(run.runaway),
-                            run.stats,
+                            TableKind::Forward(runaway),
+                            stats,
                             orientation_only()?,
                         )
                     }

@@ -298,9 +298,10 @@ fn run_top(
             }
             if let Some(r) = &output.runaway {
                 warnings.push(format!(
-                    "runaway at t = {:.3}, growing at rate {:.4}/tau (an e-folding time of {:.3} tau); {}",
+                    "runaway at t = {:.3}, growing at rate {:.4} per {} (an e-folding time of {:.3}); {}",
                     r.t,
                     r.growth_rate,
+                    r.unit,
                     1.0 / r.growth_rate,
                     r.advice
                 ));

@@ -155,6 +155,10 @@ impl SimulateArgs {
                 Model::GeneralReduced(general("--model reduced for a general top")?)
             }
             ModelArg::Reduced => Model::Reduced(symmetric(self.ratio)?),
+            // With --inertia and --dipole: the full ALE of any top.
+            ModelArg::Full if self.inertia.is_some() || self.dipole.is_some() => {
+                Model::GeneralFull(general("--model full for a general top")?)
+            }
             ModelArg::Full => Model::Full(symmetric(self.ratio)?),
             ModelArg::General => Model::General(general("--model general")?),
         };
@@ -170,8 +174,11 @@ impl SimulateArgs {
         // Each model takes only the methods that mean something for it; the
         // others are refused by name rather than silently replaced.
         match (&model, method) {
-            (Model::Full(_), MethodChoice::Auto | MethodChoice::Forward) => {}
-            (Model::Full(_), other) => {
+            (
+                Model::Full(_) | Model::GeneralFull(_),
+                MethodChoice::Auto | MethodChoice::Forward,
+            ) => {}
+            (Model::Full(_) | Model::GeneralFull(_), other) => {
                 return Err(bad(format!(
                     "--model full takes --method auto (its physical solution, by DOP853 shooting backward in time) or forward (the runaway), not {}",
                     method_name(other)
@@ -289,6 +296,10 @@ pub struct RunawayReport {
     pub growth_rate: Real,
     /// What to do instead.
     pub advice: &'static str,
+    /// The unit of time: "tau" for the symmetric top, the kappa = 1 unit for
+    /// a general one.
+    #[serde(skip)]
+    pub unit: &'static str,
 }
 
 /// The inputs, echoed in the JSON output.
@@ -341,6 +352,11 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, CliError> {
                     t: r.t,
                     growth_rate: r.growth_rate,
                     advice: "integrate backward or use the reduced model (--model full --method auto gives the physical solution)",
+                    unit: if matches!(config.model, Model::GeneralFull(_)) {
+                        "time unit (kappa = 1)"
+                    } else {
+                        "tau"
+                    },
                 });
                 break;
             }
@@ -353,7 +369,9 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, CliError> {
         Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
             (Some(top.ratio()), Some(top.tau()), None)
         }
-        Model::General(top) | Model::GeneralReduced(top) => (None, None, Some(top.dipole().into())),
+        Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
+            (None, None, Some(top.dipole().into()))
+        }
     };
     let integrated = !matches!(method, MethodUsed::Exact);
     let rk4 = config.method == MethodChoice::Rk4;
@@ -525,9 +543,10 @@ pub(crate) fn execute(
     write_output(out, &output, config.format)?;
     if let Some(r) = &output.runaway {
         return Err(CliError::Stopped(format!(
-            "runaway at t = {:.3}, growing at rate {:.4}/tau (an e-folding time of {:.3} tau): {} of {} samples omitted; {}",
+            "runaway at t = {:.3}, growing at rate {:.4} per {} (an e-folding time of {:.3}): {} of {} samples omitted; {}",
             r.t,
             r.growth_rate,
+            r.unit,
             1.0 / r.growth_rate,
             output.samples_omitted.unwrap_or(0),
             config.times.len(),

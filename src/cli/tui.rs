@@ -117,7 +117,7 @@ pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, St
     };
     let mut note = format!("scene {}", scene.name);
     let settings = match top.model {
-        Model::GeneralReduced(_) => {
+        Model::GeneralReduced(_) | Model::GeneralFull(_) => {
             return Err(bad(format!(
                 "scene {}: the live view shows a general top under (3.3) only; run the reduced general model with spintop run or simulate",
                 scene.name

@@ -107,8 +107,8 @@ pub use crate::sim::cost::turning_angle;
 /// The label the simulation will report for a method on a model.
 fn label(model: &Model, method: MethodChoice) -> &'static str {
     match (model, method) {
-        (Model::Full(_), MethodChoice::Forward) => "forward",
-        (Model::Full(_), _) => "physical",
+        (Model::Full(_) | Model::GeneralFull(_), MethodChoice::Forward) => "forward",
+        (Model::Full(_) | Model::GeneralFull(_), _) => "physical",
         (_, MethodChoice::Rk4) => "rk4",
         (_, MethodChoice::Dopri5) => "dopri5",
         (_, MethodChoice::Dop853) => "dop853",

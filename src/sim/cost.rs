@@ -27,7 +27,7 @@ pub fn turning_angle(model: &Model, omega0: &Vec3, t: Real) -> Real {
             omega0.norm() * truncated_clock(top, omega_perp(omega0), t).vartheta
         }
         Model::Reduced(_) | Model::Full(_) => omega0.norm() * t,
-        Model::General(top) | Model::GeneralReduced(top) => {
+        Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
             let inertia = top.inertia();
             (2.0 * energy(&inertia, omega0) / inertia.min()).sqrt() * t
         }
@@ -90,6 +90,21 @@ pub fn estimate(
                 x.steps = x.steps.max(t_last / (0.25 * top.tau()));
                 x
             })
+        }
+        (Model::GeneralFull(top), choice) => {
+            // Each 40 tau_f segment costs about ten backward shots over twice
+            // its length, each step at most tau_f/4 (the fast modes' scale).
+            let tau_f = crate::sim::physical::general::fast_time(top);
+            let table = (angle / FULL_TURN_PER_STEP).max(t_last / (0.25 * tau_f));
+            let (steps, what) = if choice == MethodChoice::Forward {
+                (table, "the full ALE (3.4) of a general top forward")
+            } else {
+                (
+                    20.0 * table,
+                    "the full ALE (3.4)'s physical solution for a general top (about twenty backward passes, steps <= tau_f/4)",
+                )
+            };
+            e(steps, what.into())
         }
         (Model::Full(top), _) => e(
             (angle / FULL_TURN_PER_STEP).max(t_last / (0.25 * top.tau())),

@@ -300,7 +300,7 @@ pub struct Column {
 impl Column {
     fn new(model: Model, method: Method, omega0: [Real; 3]) -> Result<Self, String> {
         // The full ALE needs its horizon in advance; the view is open-ended.
-        if matches!(model, Model::Full(_)) {
+        if model.is_full() {
             return Err("the live view does not run the full ALE (3.4)".into());
         }
         let inertia = model.inertia();
@@ -428,7 +428,10 @@ impl Column {
         let exact = match self.sim.model() {
             Model::Truncated(top) => truncated_closed_form(top, &self.omega0, s.t),
             Model::Reduced(top) => reduced_closed_form(top, &self.omega0, s.t),
-            Model::General(_) | Model::GeneralReduced(_) | Model::Full(_) => return None,
+            Model::General(_)
+            | Model::GeneralReduced(_)
+            | Model::Full(_)
+            | Model::GeneralFull(_) => return None,
         };
         Some((s.omega_vec() - exact).norm())
     }

@@ -234,6 +234,11 @@ pub(crate) fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
             "(3.4) reduced",
             "Schott term kept, runaways removed, integrated",
         ),
+        Model::GeneralFull(_) => (
+            "general top, physical",
+            "(3.4)",
+            "Schott term and the second derivative kept: the non-runaway solution",
+        ),
         // The view builds no other model than these and the general top.
         Model::General(_) | Model::Full(_) => (
             "general top",

@@ -250,7 +250,7 @@ impl Problem {
             Model::Reduced(top) => Some(OmegaRhs::Reduced(top)),
             Model::General(top) => Some(OmegaRhs::General(top)),
             // Not a work-precision problem (yet): no peer measures it.
-            Model::GeneralReduced(_) | Model::Full(_) => None,
+            Model::GeneralReduced(_) | Model::Full(_) | Model::GeneralFull(_) => None,
         }
     }
 

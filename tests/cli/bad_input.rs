@@ -800,6 +800,88 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
             ),
             "no closed form",
         ),
+        (
+            with(
+                &[
+                    "simulate",
+                    "--model",
+                    "full",
+                    "--times",
+                    "1",
+                    "--dipole",
+                    "1,0.5,0.2",
+                ],
+                &["--inertia", "1,1,3"],
+            ),
+            "not a rigid body",
+        ),
+        (
+            with(
+                &[
+                    "simulate",
+                    "--model",
+                    "full",
+                    "--times",
+                    "1",
+                    "--inertia",
+                    "1,2,2.5",
+                ],
+                &["--dipole", "0,0,0"],
+            ),
+            "dipole",
+        ),
+        (
+            with(
+                &[
+                    "simulate",
+                    "--model",
+                    "full",
+                    "--times",
+                    "1",
+                    "--inertia",
+                    "1,2,2.5",
+                ],
+                &["--dipole", "nan,0,1"],
+            ),
+            "--dipole",
+        ),
+        (
+            with(
+                &[
+                    "simulate",
+                    "--model",
+                    "reduced",
+                    "--times",
+                    "1",
+                    "--dipole",
+                    "1,0.5,0.2",
+                ],
+                &["--inertia", "1,1,3"],
+            ),
+            "not a rigid body",
+        ),
+        (
+            with(
+                &[
+                    "simulate",
+                    "--model",
+                    "full",
+                    "--times",
+                    "1",
+                    "--inertia",
+                    "1,2,2.5",
+                ],
+                &["--dipole", "1,0.5,0.2", "--method", "dopri5"],
+            ),
+            "--model full takes --method auto",
+        ),
+        (
+            with(
+                &["simulate", "--model", "full", "--times", "1"],
+                &["--inertia", "1,2,2.5"],
+            ),
+            "--dipole",
+        ),
         (with(&["book"], &["--port", "x"]), "--port"),
         (with(&["nosuch-command"], &[]), "unrecognized subcommand"),
         (

@@ -193,6 +193,67 @@ fn eq_4_15_radau5_through_the_cli_agrees_with_the_closed_form() {
     }
 }
 
+/// `--model full --inertia --dipole`: the physical solution of (3.4) for any
+/// top. For a symmetric top with its dipole on the axis it is the symmetric
+/// physical solution (a separate shoot); for an asymmetric one `--method
+/// forward` runs away and says when, in the kappa = 1 unit of time.
+#[test]
+fn eq_3_4_full_general_top_through_the_cli() {
+    let times = ["--times", "0,10,50,100"];
+    let symmetric = json(&[&["--model", "full", "--rtol", "1e-12"][..], &times[..]].concat());
+    let general = json(
+        &[
+            &[
+                "--model",
+                "full",
+                "--inertia",
+                "1,1,0.4",
+                "--dipole",
+                "0,0,1",
+                "--rtol",
+                "1e-12",
+            ][..],
+            &times[..],
+        ]
+        .concat(),
+    );
+    assert_eq!(general["model"], "general-full");
+    assert_eq!(general["method"], "physical");
+    for k in 0..4 {
+        let a = vec_of(&symmetric["samples"][k]["omega"], 3);
+        let b = vec_of(&general["samples"][k]["omega"], 3);
+        for i in 0..3 {
+            assert!((a[i] - b[i]).abs() < 1e-9, "t #{k}: {a:?} vs {b:?}");
+        }
+    }
+    let asymmetric = [
+        "--model",
+        "full",
+        "--inertia",
+        "1,2,2.5",
+        "--dipole",
+        "0.3,0.15,0.06",
+        "--omega",
+        "0.3,-0.2,0.1",
+    ];
+    let out = spintop(
+        &[
+            &["simulate"][..],
+            &asymmetric[..],
+            &["--method", "forward", "--times", "0,1,100"],
+        ]
+        .concat(),
+    );
+    assert_eq!(out.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("runaway at t = ") && stderr.contains("per time unit (kappa = 1)"),
+        "{stderr}"
+    );
+    let physical = json(&[&asymmetric[..], &["--times", "0,1,100"]].concat());
+    assert_eq!(physical["samples"].as_array().unwrap().len(), 3);
+}
+
 #[test]
 fn simulate_default_times_and_table_and_csv() {
     let out = spintop(&["simulate", "--model", "reduced"]);
