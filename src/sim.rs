@@ -623,9 +623,41 @@ enum TableKind {
     Forward(Option<physical::Runaway>),
 }
 
+/// The physical solution of a full model's (3.4) through Ω₀ on [0, span] as a
+/// table, and the work it took.
+fn physical_table(
+    model: &Model,
+    omega0: &Vec3,
+    span: Real,
+    rtol: Real,
+) -> Result<(physical::OmegaTable, Stats), SimError> {
+    Ok(match model {
+        Model::GeneralFull(top) => {
+            let (table, sol) = general::general_physical_table(top, omega0, span, rtol)?;
+            (table, sol.stats)
+        }
+        Model::Full(top) => {
+            let (table, sol) = physical::physical_table(top, omega0, span, rtol)?;
+            (table, sol.stats)
+        }
+        _ => return Err(SimError::NoClosedForm(model.name())),
+    })
+}
+
+/// How far ahead an open-ended full model tabulates its physical solution at a
+/// time: 50 fast times (τ, or τ_f = |d|²/min Iᵢ for a general top).
+fn physical_chunk_length(model: &Model) -> Real {
+    match model {
+        Model::GeneralFull(top) => 50.0 * general::fast_time(top),
+        Model::Full(top) => 50.0 * top.tau(),
+        _ => Real::MAX,
+    }
+}
+
 /// A top, a method and the current time.
 #[derive(Clone, Debug)]
 pub struct Simulation {
+    options: MethodOptions,
     model: Model,
     initial: InitialState,
     engine: Engine,
@@ -681,31 +713,26 @@ impl Simulation {
         };
         let engine = match (choice, model.first_order()) {
             (_, None) => {
-                if horizon == Real::MAX {
-                    return Err(SimError::NeedsHorizon(model.name()));
-                }
                 let (omega0, rtol) = (&initial.omega, options.rtol);
                 match choice {
                     MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Dop853 => {
-                        let (table, stats) = match model {
-                            Model::GeneralFull(top) => {
-                                let (table, sol) =
-                                    general::general_physical_table(&top, omega0, horizon, rtol)?;
-                                (table, sol.stats)
-                            }
-                            Model::Full(top) => {
-                                let (table, sol) =
-                                    physical::physical_table(&top, omega0, horizon, rtol)?;
-                                (table, sol.stats)
-                            }
-                            _ => return Err(SimError::NoClosedForm(model.name())),
+                        // Open-ended (the live view): one chunk now, the next
+                        // when the view gets there (see `advance_to`).
+                        let span = if horizon == Real::MAX {
+                            physical_chunk_length(&model)
+                        } else {
+                            horizon
                         };
+                        let (table, stats) = physical_table(&model, omega0, span, rtol)?;
                         Engine::Table(
                             Box::new(table),
                             TableKind::Physical,
                             stats,
                             orientation_only()?,
                         )
+                    }
+                    MethodChoice::Forward if horizon == Real::MAX => {
+                        return Err(SimError::NeedsHorizon(model.name()));
                     }
                     MethodChoice::Forward => {
                         let (table, runaway, stats) = match model {
@@ -756,6 +783,7 @@ impl Simulation {
         };
         let current = Sample::new(0.0, &model.inertia(), &initial.rotation, &initial.omega);
         Ok(Self {
+            options,
             model,
             initial,
             engine,
@@ -842,15 +870,30 @@ impl Simulation {
                 let (y, rotation) = g.advance(&CoupledRhs(*dynamics), &omega, t, self.horizon)?;
                 (y.fixed_rows::<3>(0).into_owned(), rotation)
             }
-            Engine::Table(table, kind, _, g) => {
+            Engine::Table(table, kind, built, g) => {
                 if let TableKind::Forward(Some(runaway)) = kind
                     && t > runaway.t
                 {
                     return Err(SimError::Runaway(*runaway));
                 }
+                let open = self.horizon == Real::MAX;
+                // Open-ended: carry the orientation to the end of the chunk,
+                // then tabulate the next one from the state there.
+                while open && t > table.t_end() {
+                    let end = table.t_end();
+                    let rhs = OrientationRhs(|t| table.omega_at(t));
+                    let omega = |t: Real, _: &State<3>| table.omega_at(t);
+                    g.advance(&rhs, &omega, end, end)?;
+                    let span = physical_chunk_length(&self.model);
+                    let (next, stats) =
+                        physical_table(&self.model, &table.omega_at(end), span, self.options.rtol)?;
+                    **table = next.starting_at(end);
+                    *built += stats;
+                }
+                let stop = if open { table.t_end() } else { self.horizon };
                 let rhs = OrientationRhs(|t| table.omega_at(t));
                 let omega = |t: Real, _: &State<3>| table.omega_at(t);
-                let (_, rotation) = g.advance(&rhs, &omega, t, self.horizon)?;
+                let (_, rotation) = g.advance(&rhs, &omega, t, stop)?;
                 (table.omega_at(t), rotation)
             }
         };

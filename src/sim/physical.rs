@@ -368,6 +368,8 @@ fn least_squares_slope(ys: &[Real], dt: Real) -> Real {
 /// of the full model (the orientation has no influence on Ω).
 #[derive(Clone, Debug, PartialEq)]
 pub struct OmegaTable {
+    /// The time of the first node.
+    origin: Real,
     step: Real,
     omega: Vec<Vec3>,
     omega_dot: Vec<Vec3>,
@@ -378,10 +380,18 @@ impl OmegaTable {
     pub(crate) fn new(step: Real, omega: Vec<Vec3>, omega_dot: Vec<Vec3>) -> Self {
         debug_assert!(!omega.is_empty() && omega.len() == omega_dot.len());
         Self {
+            origin: 0.0,
             step,
             omega,
             omega_dot,
         }
+    }
+
+    /// The same table starting at `origin` instead of 0 (Ω(t) is autonomous:
+    /// a table built from the state at `origin` continues the motion there).
+    pub(crate) fn starting_at(mut self, origin: Real) -> Self {
+        self.origin = origin;
+        self
     }
 
     /// The symmetric top's table: z and ż at the nodes, Ω₃ constant.
@@ -400,10 +410,10 @@ impl OmegaTable {
 
     /// The last time covered.
     pub fn t_end(&self) -> Real {
-        self.step * (self.omega.len().saturating_sub(1)) as Real
+        self.origin + self.step * (self.omega.len().saturating_sub(1)) as Real
     }
 
-    /// Ω at time `t` in [0, t_end()] (clamped to that range).
+    /// Ω at time `t` in [origin, t_end()] (clamped to that range).
     ///
     /// NOTE: cubic Hermite with the exact Ω̇ at both nodes: the error is
     /// h⁴|Ω⁗|/384 ≈ (hΩ)⁴|Ω|/384, below 1e-9 relative for the grid spacing
@@ -413,7 +423,7 @@ impl OmegaTable {
         if last == 0 {
             return self.omega[0];
         }
-        let x = (t / self.step).clamp(0.0, last as Real);
+        let x = ((t - self.origin) / self.step).clamp(0.0, last as Real);
         let i = (x.floor() as usize).min(last - 1);
         let s = x - i as Real;
         let h = self.step;
