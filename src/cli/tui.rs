@@ -117,16 +117,10 @@ pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, St
     };
     let mut note = format!("scene {}", scene.name);
     let settings = match top.model {
-        Model::GeneralReduced(_) | Model::GeneralFull(_) => {
-            return Err(bad(format!(
-                "scene {}: the live view shows a general top under (3.3) only; run the reduced general model with spintop run or simulate",
-                scene.name
-            )));
-        }
-        Model::General(general) => {
+        Model::General(general) | Model::GeneralReduced(general) | Model::GeneralFull(general) => {
             let method = integrated(Method::Dop853);
             note.push_str(&format!(
-                ": the general top (3.3), integrated by {}",
+                ": a general top under (3.3), the reduced ALE and the physical solution of (3.4) side by side, the first two integrated by {}; time in u, the unit where κ = 1",
                 method.name()
             ));
             Settings::general(general, omega0, method, warp).map_err(bad)?

@@ -78,6 +78,12 @@ pub const TRAIL_POINTS: usize = 3000;
 /// [`Column::scale`] for the hodograph, in radians for the axis).
 pub const TRAIL_SPACING: Real = 0.01;
 
+/// Below this τ_f|Ω₀| the live view's physical column runs the reduced model:
+/// the two differ by about (τ_f|Ω₀|)² = 1e-4 relative there, a fraction of a
+/// character cell of the charts, while the backward shoot's work per unit of
+/// time grows like 1/τ_f.
+pub const STAND_IN_BELOW: Real = 1e-2;
+
 /// How much wall-clock lag is kept as a backlog; anything older is dropped.
 ///
 /// NOTE: when the machine cannot keep up (a very high warp with RK4), an
@@ -103,8 +109,8 @@ pub enum Top {
     /// A symmetric top: its truncated (4.2)–(4.4) and reduced (4.12)–(4.14)
     /// models side by side, each with its closed form.
     Symmetric(SymmetricTop),
-    /// Any top under the truncated ALE (3.3): one column, integrated (there
-    /// is no closed form).
+    /// Any top: the truncated ALE (3.3), the reduced ALE and the physical
+    /// solution of the full ALE (3.4), side by side (no closed forms).
     General(GeneralTop),
 }
 
@@ -113,7 +119,20 @@ impl Top {
     fn models(&self) -> Vec<Model> {
         match *self {
             Top::Symmetric(top) => vec![Model::Truncated(top), Model::Reduced(top)],
-            Top::General(top) => vec![Model::General(top)],
+            Top::General(top) => vec![
+                Model::General(top),
+                Model::GeneralReduced(top),
+                Model::GeneralFull(top),
+            ],
+        }
+    }
+
+    /// The unit of time: τ for the symmetric top (Section 4's unit), "u" for
+    /// a general one, whose numbers are in units where κ = 2/(3c³) = 1.
+    pub fn time_unit(&self) -> &'static str {
+        match self {
+            Top::Symmetric(_) => "τ",
+            Top::General(_) => "u",
         }
     }
 }
@@ -295,25 +314,42 @@ pub struct Column {
     omega_trail: VecDeque<[Real; 3]>,
     axis_trail: VecDeque<[Real; 3]>,
     failure: Option<String>,
+    /// Why this column runs a lighter model than its title's (the physical
+    /// solution of a top whose τ_f|Ω₀| is so small that it is the reduced
+    /// model to the view's resolution).
+    stand_in: Option<String>,
 }
 
 impl Column {
     fn new(model: Model, method: Method, omega0: [Real; 3]) -> Result<Self, String> {
-        // The full ALE needs its horizon in advance; the view is open-ended.
-        if model.is_full() {
-            return Err("the live view does not run the full ALE (3.4)".into());
+        // Model no more than the view can show: the physical solution of a
+        // general top differs from its reduced model by O((τ_f|Ω|)²)
+        // relative, and costs work in proportion to 1/τ_f per unit of time.
+        let mut stand_in = None;
+        let mut model = model;
+        if let Model::GeneralFull(top) = model {
+            let small = crate::sim::physical::general::fast_time(&top) * Vec3::from(omega0).norm();
+            if small < STAND_IN_BELOW {
+                stand_in = Some(format!(
+                    "τ_f|Ω₀| = {}: the physical solution is the reduced model to about {}, so the reduced model stands in",
+                    crate::present::fmt_num(small),
+                    crate::present::fmt_num(small * small)
+                ));
+                model = Model::GeneralReduced(top);
+            }
         }
+        // The full ALE's physical solution has one method (backward
+        // shooting, tabulated ahead chunk by chunk); `m` changes the others.
+        let choice = if model.is_full() {
+            crate::sim::MethodChoice::Auto
+        } else {
+            method.choice()
+        };
         let inertia = model.inertia();
         let initial = InitialState::new(Vec3::from(omega0), lab_frame(&inertia, omega0))
             .map_err(|e| e.to_string())?;
-        let sim = Simulation::new(
-            model,
-            method.choice(),
-            MethodOptions::default(),
-            initial,
-            None,
-        )
-        .map_err(|e| e.to_string())?;
+        let sim = Simulation::new(model, choice, MethodOptions::default(), initial, None)
+            .map_err(|e| e.to_string())?;
         let start = *sim.current();
         let mut column = Self {
             scale: plot_scale(&model, omega0),
@@ -326,6 +362,7 @@ impl Column {
             omega_trail: VecDeque::with_capacity(TRAIL_POINTS),
             axis_trail: VecDeque::with_capacity(TRAIL_POINTS),
             failure: None,
+            stand_in,
         };
         column.recent.push_back(Point::from(&start));
         column.omega_trail.push_back(start.omega);
@@ -383,6 +420,15 @@ impl Column {
         &self.start
     }
 
+    /// The unit of time of this model's numbers: τ for the symmetric top,
+    /// "u" (κ = 1 units) for a general one.
+    pub fn time_unit(&self) -> &'static str {
+        match self.sim.model() {
+            Model::Truncated(_) | Model::Reduced(_) | Model::Full(_) => "τ",
+            Model::General(_) | Model::GeneralReduced(_) | Model::GeneralFull(_) => "u",
+        }
+    }
+
     /// `truncated`, `reduced` or `general`.
     pub fn name(&self) -> &'static str {
         self.sim.model().name()
@@ -407,6 +453,11 @@ impl Column {
     /// top) in the lab frame, oldest first.
     pub fn axis_trail(&self) -> &VecDeque<[Real; 3]> {
         &self.axis_trail
+    }
+
+    /// Why this column runs a lighter model than asked (see [`STAND_IN_BELOW`]).
+    pub fn stand_in(&self) -> Option<&str> {
+        self.stand_in.as_deref()
     }
 
     /// Why this model stopped, if it did.
@@ -453,7 +504,7 @@ impl Column {
 pub fn plot_scale(model: &Model, omega0: [Real; 3]) -> Real {
     let w = Vec3::from(omega0);
     let s = match model {
-        Model::General(top) => {
+        Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
             let e0 = energy(&top.inertia(), &w);
             (2.0 * e0 / top.inertia().min()).sqrt()
         }
@@ -533,8 +584,8 @@ impl App {
         &self.settings
     }
 
-    /// The columns: truncated (0) and reduced (1) for a symmetric top, the
-    /// one general column for a general top.
+    /// The columns: truncated (0) and reduced (1) for a symmetric top;
+    /// truncated (3.3), reduced and physical (3.4) for a general top.
     pub fn columns(&self) -> &[Column] {
         &self.columns
     }
@@ -542,7 +593,7 @@ impl App {
     /// "both models" or "the model": what a restart restarts.
     fn restarted(&self) -> &'static str {
         if self.settings.is_general() {
-            "the model restarted"
+            "all three models restarted"
         } else {
             "both models restarted"
         }
@@ -689,7 +740,10 @@ impl App {
                 self.paused = !self.paused;
                 self.backlog = 0;
                 if self.paused {
-                    self.inform(format!("paused: . or → steps Δt = {TICK}τ, space resumes"));
+                    let u = self.settings.top().time_unit();
+                    self.inform(format!(
+                        "paused: . or → steps Δt = {TICK}{u}, space resumes"
+                    ));
                 }
             }
             Command::Step => {

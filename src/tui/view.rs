@@ -9,9 +9,10 @@
 //! └ footer: the keys ──────────────┴─────────────────────────────────┘
 //! ```
 //!
-//! A general (asymmetric) top has one model, the truncated ALE (3.3), and
-//! its column takes the whole width; the header shows I and d instead of
-//! I₃/I₁, and the I₃/I₁ keys leave the footer.
+//! A general (asymmetric) top has three columns: the truncated ALE (3.3), the
+//! reduced ALE and the physical solution of the full ALE (3.4); the header
+//! shows I and d instead of I₃/I₁, time is in the κ = 1 unit "u" instead of
+//! τ, and the I₃/I₁ keys leave the footer.
 
 use super::app::{App, Mode, SUBSCRIPTS, TICK, Top, fmt_exact};
 use super::theme;
@@ -90,6 +91,7 @@ fn sep() -> Span<'static> {
 
 fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
     let settings = app.settings();
+    let u = settings.top().time_unit();
     let status = if app.paused() {
         " paused "
     } else {
@@ -99,19 +101,19 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
         Span::styled(" spintop ", theme::title()),
         sep(),
         Span::styled("t = ", theme::label()),
-        Span::styled(format!("{:.2}τ", app.time()), theme::value()),
+        Span::styled(format!("{:.2}{u}", app.time()), theme::value()),
         Span::raw("  "),
         Span::styled(status, theme::status(app.paused())),
         sep(),
         Span::styled("warp ", theme::label()),
-        Span::styled(format!("{} τ/s", settings.warp()), theme::value()),
+        Span::styled(format!("{} {u}/s", settings.warp()), theme::value()),
         sep(),
         Span::styled("step Δt ", theme::label()),
-        Span::styled(format!("{TICK}τ"), theme::value()),
+        Span::styled(format!("{TICK}{u}"), theme::value()),
         sep(),
         Span::styled(
             if settings.is_general() {
-                "units: κ = 2/(3c³) = 1"
+                "units: κ = 2/(3c³) = 1, time u"
             } else {
                 "units: τ, 1/τ, I₁ = 1"
             },
@@ -151,16 +153,16 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
         second.push(Span::styled(text, style));
     }
     second.extend([
-        Span::styled(")/τ", theme::label()),
+        Span::styled(format!(")/{u}"), theme::label()),
         sep(),
         Span::styled("method ", theme::label()),
         Span::styled(settings.method().name(), theme::value()),
         sep(),
         Span::styled(
             if app.view().log_time {
-                "log-time view"
+                "log-time view".to_string()
             } else {
-                "last 200τ"
+                format!("last 200{u}")
             },
             theme::label(),
         ),
@@ -178,7 +180,7 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
             format!(
                 " {} Ω{}₀ selected (↑/↓, Enter edits). ? help",
                 if settings.is_general() {
-                    "General top: the truncated ALE (3.3) for any top, integrated (no closed form)."
+                    "Left: no Schott term, (3.3). Middle: Schott term kept, reduced. Right: (3.4)'s physical solution."
                 } else {
                     "Left: no Schott term, loss law (2.1). Right: Schott term kept, torque (2.2)."
                 },
@@ -230,21 +232,13 @@ pub(crate) fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
         Model::Truncated(_) => ("truncated", "(4.2)–(4.4)", "no Schott term"),
         Model::Reduced(_) => ("reduced", "(4.12)–(4.14)", "Schott term kept"),
         Model::GeneralReduced(_) => (
-            "general top, reduced",
+            "reduced",
             "(3.4) reduced",
-            "Schott term kept, runaways removed, integrated",
+            "Schott term kept, runaways removed",
         ),
-        Model::GeneralFull(_) => (
-            "general top, physical",
-            "(3.4)",
-            "Schott term and the second derivative kept: the non-runaway solution",
-        ),
+        Model::GeneralFull(_) => ("physical", "(3.4)", "its non-runaway solution, Ω̈ kept"),
         // The view builds no other model than these and the general top.
-        Model::General(_) | Model::Full(_) => (
-            "general top",
-            "(3.3)",
-            "truncated ALE for any top, integrated: no closed form",
-        ),
+        Model::General(_) | Model::Full(_) => ("truncated", "(3.3)", "no Schott term"),
     };
     let mut title = vec![
         Span::styled(format!(" {name} "), theme::title()),
@@ -252,6 +246,9 @@ pub(crate) fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize) {
     ];
     if column.failure().is_some() {
         title.push(Span::styled("stopped ", theme::error()));
+    }
+    if column.stand_in().is_some() {
+        title.push(Span::styled("= reduced here ", theme::info()));
     }
     let block = Block::bordered()
         .border_type(BorderType::Rounded)
@@ -343,20 +340,28 @@ const HELP_KEYS: [(&str, &str); 11] = [
         "Enter",
         "edit it: type, ↑/↓ ±0.01, Enter applies, Esc cancels",
     ),
-    ("m", "method: closed form, RK4, DP5, DOP853"),
+    ("m", "method: closed form, RK4, DP5, DOP853, Radau5"),
     ("l", "log-time charts (the whole run) or the last 200τ"),
     ("?", "this help; any key closes it"),
     ("q Esc ^C", "quit"),
 ];
 
 /// What the help says instead for a general top.
-const GENERAL_HELP_KEYS: [(&str, &str); 3] = [
-    ("r", "restart the model at t = 0"),
+const GENERAL_HELP_KEYS: [(&str, &str); 5] = [
+    (
+        "+ / -",
+        "time warp (u per wall-clock second; u: the time unit where κ = 1)",
+    ),
+    ("l", "log-time charts (the whole run) or the last 200u"),
+    ("r", "restart all three models at t = 0"),
     (
         "[ / ]",
         "off: I₃/I₁ is for symmetric tops; I is set in the scene",
     ),
-    ("m", "method: RK4, DP5, DOP853 ((3.3) has no closed form)"),
+    (
+        "m",
+        "method of (3.3) and the reduced model: RK4, DP5, DOP853, Radau5 (no closed forms; the physical column always shoots backward)",
+    ),
 ];
 
 fn draw_help(frame: &mut Frame, area: Rect, general: bool) {

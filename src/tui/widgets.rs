@@ -28,6 +28,8 @@ pub struct OmegaSeries {
     pub y_bounds: [f64; 2],
     /// The x axis is log₁₀ t.
     pub log_time: bool,
+    /// The unit of time (τ, or u for a general top in κ = 1 units).
+    pub unit: &'static str,
 }
 
 impl OmegaSeries {
@@ -79,6 +81,7 @@ impl OmegaSeries {
             x_bounds,
             y_bounds: [-y, y],
             log_time,
+            unit: column.time_unit(),
         }
     }
 
@@ -99,7 +102,8 @@ impl OmegaSeries {
                     .data(data)
             })
             .collect();
-        let mut title = vec![Span::styled("Ω(t) [1/τ]: ", theme::title())];
+        let u = self.unit;
+        let mut title = vec![Span::styled(format!("Ω(t) [1/{u}]: "), theme::title())];
         for (name, color) in names.iter().zip(theme::OMEGA) {
             title.push(Span::styled(format!("━{name} "), Style::new().fg(color)));
         }
@@ -116,7 +120,7 @@ impl OmegaSeries {
             )
         } else {
             (
-                "t/τ",
+                if u == "τ" { "t/τ" } else { "t/u" },
                 vec![
                     format!("{lo:.0}"),
                     format!("{:.0}", 0.5 * (lo + hi)),
@@ -365,6 +369,7 @@ pub fn numbers(
 ) -> (Paragraph<'static>, Paragraph<'static>, Paragraph<'static>) {
     let s = column.current();
     let sim = column.sim();
+    let u = column.time_unit();
     // Labels on the left are short, on the right long ("RHS evals").
     let (left_width, width) = if wide { (6, 10) } else { (6, 7) };
     let pair_in = |label: &str, value: String, width: usize| {
@@ -379,8 +384,8 @@ pub fn numbers(
     let l_abs = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
     let (phi_dot, psi_dot) = match s.euler_rates {
         Some([phi_dot, _, psi_dot]) => (
-            format!("{}/τ", fmt_num(phi_dot)),
-            format!("{}/τ", fmt_num(psi_dot)),
+            format!("{}/{u}", fmt_num(phi_dot)),
+            format!("{}/{u}", fmt_num(psi_dot)),
         ),
         // (4.8) divides by sin θ: on the pole only φ̇ + ψ̇ is defined.
         None => ("— (pole)".into(), "— (pole)".into()),
@@ -391,7 +396,7 @@ pub fn numbers(
         format!("{} rad", fmt_num(s.tilt))
     };
     let left = vec![
-        left_pair("t", format!("{:.2} τ", s.t)),
+        left_pair("t", format!("{:.2} {u}", s.t)),
         left_pair("E", fmt_num(s.energy)),
         left_pair("|L|", fmt_num(l_abs)),
         left_pair("tilt", tilt),
@@ -411,8 +416,8 @@ pub fn numbers(
         Some(_) if app.settings().method() == Method::ClosedForm => {
             if wide { "0 (closed form)" } else { "0 (exact)" }.to_string()
         }
-        Some(e) if wide => format!("|ΔΩ| = {}/τ", fmt_num(e)),
-        Some(e) => format!("{}/τ", fmt_num(e)),
+        Some(e) if wide => format!("|ΔΩ| = {}/{u}", fmt_num(e)),
+        Some(e) => format!("{}/{u}", fmt_num(e)),
     };
     let right = vec![
         pair("ψ̇", psi_dot),
@@ -420,7 +425,7 @@ pub fn numbers(
         pair(
             "step",
             if step > 0.0 {
-                format!("{} τ", fmt_num(step))
+                format!("{} {u}", fmt_num(step))
             } else {
                 "none".into()
             },
@@ -439,7 +444,7 @@ pub fn numbers(
                 Span::styled(padded("Ω", left_width), theme::label()),
                 Span::styled(
                     format!(
-                        "({}, {}, {})/τ   Ω⊥ {}/τ",
+                        "({}, {}, {})/{u}   Ω⊥ {}/{u}",
                         fmt_num(o1),
                         fmt_num(o2),
                         fmt_num(o3),

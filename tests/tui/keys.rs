@@ -276,7 +276,7 @@ fn an_omega0_edit_is_applied_refused_or_cancelled() {
 }
 
 #[test]
-fn method_cycles_closed_form_rk4_dp5_dop853() {
+fn method_cycles_closed_form_rk4_dp5_dop853_radau5() {
     let mut app = app();
     let labels = |app: &App| {
         [
@@ -290,6 +290,7 @@ fn method_cycles_closed_form_rk4_dp5_dop853() {
         (Method::Rk4, ["rk4", "rk4"]),
         (Method::Dopri5, ["dopri5", "dopri5"]),
         (Method::Dop853, ["dop853", "dop853"]),
+        (Method::Radau5, ["radau5", "radau5"]),
         (Method::ClosedForm, ["exact", "exact+dop853"]),
     ];
     for (method, label) in expected {
@@ -376,7 +377,7 @@ fn general_app() -> App {
     let (settings, note) =
         spintop::cli::tui::scene_settings(&scene, None).expect("the live view opens it");
     assert!(
-        note.starts_with("scene asymmetric-top: the general top (3.3)"),
+        note.starts_with("scene asymmetric-top: a general top under (3.3), the reduced ALE and the physical solution of (3.4)"),
         "{note}"
     );
     App::new(settings)
@@ -394,15 +395,23 @@ fn sec3_a_general_top_scene_opens_one_column_of_eq_3_3_with_lab_z_along_l0() {
         Method::Dop853,
         "auto: nothing closed"
     );
-    let [column] = app.columns() else {
-        panic!("one column, got {}", app.columns().len())
+    // Three models of the same top side by side: (3.3), the reduced ALE and
+    // the physical solution of (3.4), all in the κ = 1 unit of time.
+    let [truncated, reduced, physical] = app.columns() else {
+        panic!("three columns, got {}", app.columns().len())
     };
-    assert_eq!(column.name(), "general");
-    assert!(matches!(column.sim().model(), Model::General(_)));
-    assert_eq!(column.closed_form_error(), None);
-    // L₀ = IΩ₀ points up the lab z axis, whatever Euler angles the scene gave.
-    let l = Vec3::from(column.current().l_lab);
-    assert!(l.x.abs() < 1e-15 && l.y.abs() < 1e-15 && l.z > 0.0, "{l}");
+    assert_eq!(truncated.name(), "general");
+    assert!(matches!(truncated.sim().model(), Model::General(_)));
+    assert!(matches!(reduced.sim().model(), Model::GeneralReduced(_)));
+    assert!(matches!(physical.sim().model(), Model::GeneralFull(_)));
+    assert_eq!(physical.sim().method().label(), "physical");
+    for column in app.columns() {
+        assert_eq!(column.closed_form_error(), None);
+        assert_eq!(column.time_unit(), "u");
+        // L₀ = IΩ₀ points up the lab z axis, whatever Euler angles the scene gave.
+        let l = Vec3::from(column.current().l_lab);
+        assert!(l.x.abs() < 1e-15 && l.y.abs() < 1e-15 && l.z > 0.0, "{l}");
+    }
     let message = app.message().expect("the scene is named");
     assert!(message.text.contains("asymmetric-top") && !message.is_error);
 }
@@ -426,24 +435,32 @@ fn general_top_refuses_the_ratio_keys_and_keeps_running() {
 }
 
 #[test]
-fn general_top_method_cycles_rk4_dp5_dop853_and_never_the_closed_form() {
+fn general_top_method_cycles_rk4_dp5_dop853_radau5_and_never_the_closed_form() {
     let mut app = general_app();
     assert_eq!(app.columns()[0].sim().method().label(), "dop853");
     let expected = [
+        (Method::Radau5, "radau5"),
         (Method::Rk4, "rk4"),
         (Method::Dopri5, "dopri5"),
         (Method::Dop853, "dop853"),
-        (Method::Rk4, "rk4"),
+        (Method::Radau5, "radau5"),
     ];
     for (method, label) in expected {
         app.advance_ticks(3);
         app.apply(Command::CycleMethod);
         assert_eq!(app.settings().method(), method);
-        assert_eq!(app.columns().len(), 1);
+        assert_eq!(app.columns().len(), 3);
+        // (3.3) and the reduced model take the method; the physical column
+        // keeps its backward shoot.
         assert_eq!(app.columns()[0].sim().method().label(), label);
+        assert_eq!(app.columns()[1].sim().method().label(), label);
+        assert_eq!(app.columns()[2].sim().method().label(), "physical");
         assert_eq!(app.ticks(), 0);
         let message = app.message().expect("the change is confirmed");
-        assert!(message.text.contains("the model restarted"), "{message:?}");
+        assert!(
+            message.text.contains("all three models restarted"),
+            "{message:?}"
+        );
     }
     // Nor can it be built with the closed form.
     let top = GeneralTop::new(Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2, 0.0, 1.0)).unwrap();
@@ -473,7 +490,7 @@ fn general_top_pause_step_warp_reset_edit_view_help_and_quit_work() {
     assert_eq!(app.ticks(), 0);
     assert!(
         app.message()
-            .is_some_and(|m| m.text == "the model restarted at t = 0")
+            .is_some_and(|m| m.text == "all three models restarted at t = 0")
     );
 
     // Ω₀ is edited as for the symmetric top; the top stays the same.

@@ -4,7 +4,7 @@
 //! Δt; `q` must end it with exit status 0 and leave the alternate screen.
 //! Opened on a catalogue scene (`spintop tui NAME`), it must start from the
 //! scene's I₃/I₁ and Ω₀ and name the scene; opened on the asymmetric top it
-//! must show the one column of the general top (3.3) with all its panels,
+//! must show its three models side by side with all their panels, in u,
 //! refuse the I₃/I₁ keys, and still quit cleanly.
 //!
 //! In CI (`CI=true`) tmux is required and its absence fails the test; on a
@@ -94,8 +94,9 @@ fn tmux_available() -> bool {
 
 /// The model time in the header, `t = 12.30τ`.
 fn header_time(screen: &str) -> Option<f64> {
+    // The clock reads in τ (symmetric top) or u (a general top, κ = 1).
     let rest = &screen[screen.find("t = ")? + 4..];
-    rest[..rest.find('τ')?].trim().parse().ok()
+    rest[..rest.find(['τ', 'u'])?].trim().parse().ok()
 }
 
 fn braille(screen: &str) -> usize {
@@ -113,6 +114,11 @@ fn launch(tag: &str, args: &str) -> Option<Tmux> {
 
 /// [`launch`] with environment variables (`NAME='value' …`) for the binary.
 fn launch_with(tag: &str, env: &str, args: &str) -> Option<Tmux> {
+    launch_sized(tag, env, args, (120, 40))
+}
+
+/// [`launch_with`] in a terminal of `size` (columns, rows).
+fn launch_sized(tag: &str, env: &str, args: &str, size: (u16, u16)) -> Option<Tmux> {
     if !tmux_available() {
         if std::env::var("CI").is_ok_and(|v| !matches!(v.as_str(), "" | "0" | "false")) {
             panic!("CI is set but tmux is missing: .ci/run installs it with apt-get");
@@ -142,9 +148,9 @@ fn launch_with(tag: &str, env: &str, args: &str) -> Option<Tmux> {
         "-s",
         "spintop",
         "-x",
-        "120",
+        &size.0.to_string(),
         "-y",
-        "40",
+        &size.1.to_string(),
         "sleep 600",
     ]);
     tmux.socket_path = Some(tmux.format("#{socket_path}"));
@@ -260,38 +266,49 @@ fn exit_status(tmux: &Tmux, limit: Duration) -> String {
     }
 }
 
-/// `spintop tui asymmetric-top` opens the general top (3.3) in one column:
-/// its I and d in the header, the Ω(t) chart, the hodograph, the top in
-/// space and the numbers with no closed-form error; `]` is refused with a
-/// reason while the clock keeps running; `q` ends it with exit status 0 and
-/// the terminal restored.
+/// `spintop tui asymmetric-top` opens the general top with its three models
+/// side by side: the truncated ALE (3.3), the reduced ALE and the physical
+/// solution of (3.4); its I and d in the header, time in u (the κ = 1 unit,
+/// never τ), each column with the Ω(t) chart, the hodograph, the top in
+/// space and the numbers; `]` is refused with a reason while the clock keeps
+/// running; `q` ends it with exit status 0 and the terminal restored.
 #[test]
 fn the_live_view_opens_the_asymmetric_top_scene() {
-    let Some(tmux) = launch("general", "tui asymmetric-top") else {
+    let Some(tmux) = launch_sized("general", "", "tui asymmetric-top", (300, 45)) else {
         return;
     };
     let long = Duration::from_secs(20);
     let screen = tmux.wait_for("the general top and a moving clock", long, |s| {
-        s.contains("scene asymmetric-top: the general top (3.3)")
+        s.contains("scene asymmetric-top: a general top under (3.3)")
             && header_time(s).is_some_and(|t| t > 0.0)
-            && braille(s) > 100
+            && braille(s) > 300
     });
     assert_eq!(tmux.format("#{alternate_on}"), "1");
     for text in [
-        "general top (3.3)",
+        "truncated (3.3)",
+        "reduced (3.4) reduced",
+        "physical (3.4)",
         "I = (1, 1.5, 0.8)",
         "d = (0.2, 0, 1)",
-        "Ω₀ = (0.1, 0.05, 0.2)/τ",
+        "Ω₀ = (0.1, 0.05, 0.2)/u",
         "method DOP853",
-        "Ω(t) [1/τ]",
+        "Ω(t) [1/u]",
         "hodograph of Ω",
         "the top in space",
         "— (no closed form)",
         "E/E₀",
+        "physical",
     ] {
         assert!(screen.contains(text), "{text} on\n{screen}");
     }
-    assert!(!screen.contains("truncated (4.2)"), "one column:\n{screen}");
+    assert!(!screen.contains('τ'), "time in u, not tau:\n{screen}");
+    // Three columns, each with its own chart and numbers.
+    assert_eq!(screen.matches("Ω(t) [1/u]").count(), 3, "{screen}");
+    assert_eq!(screen.matches("E/E₀").count(), 3, "{screen}");
+    assert!(
+        !screen.contains("truncated (4.2)"),
+        "no symmetric column:\n{screen}"
+    );
 
     tmux.keys("]");
     let screen = tmux.wait_for("the refusal of ]", long, |s| s.contains("change I₃/I₁"));
@@ -299,7 +316,7 @@ fn the_live_view_opens_the_asymmetric_top_scene() {
     let screen = tmux.wait_for("the clock to go on", long, |s| {
         header_time(s).is_some_and(|t| t > t1)
     });
-    assert!(screen.contains("general top (3.3)"), "{screen}");
+    assert!(screen.contains("physical (3.4)"), "{screen}");
 
     tmux.keys("q");
     assert_eq!(exit_status(&tmux, long), "0", "exit status");
@@ -308,7 +325,7 @@ fn the_live_view_opens_the_asymmetric_top_scene() {
         "0",
         "the terminal must be restored (alternate screen left)"
     );
-    assert!(!tmux.capture().contains("general top (3.3)"));
+    assert!(!tmux.capture().contains("physical (3.4)"));
 }
 
 /// `spintop learn --chapter 4.2` in a real terminal: the chapter's text beside

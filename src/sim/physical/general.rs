@@ -11,17 +11,19 @@
 //! As for the symmetric top, integrating backward turns the runaway into decay:
 //! from final data near the manifold (W from the reduced model, O(τ²) off it)
 //! the backward flow lands on the physical solution, with the error of the
-//! final data damped by e^{−40} after a margin of 40 τ_f. Matching a given
+//! final data damped by e^{−36} after the margin. Matching a given
 //! Ω(t₀) is a shoot on the three numbers Ω(T), solved by Newton's method with a
 //! finite-difference Jacobian (the chord variant: one Jacobian per segment).
 //! Unlike the symmetric top there is no rotation symmetry left to fix the phase
 //! for free, so the shoot is three-dimensional.
 //!
-//! The horizon is covered in segments of 40 τ_f: each segment starts from Ω at
-//! the end of the one before and shoots over its own length plus the margin.
-//! A long shot would make the map Ω(T) → Ω(t₀) badly conditioned (the decay
-//! of the slow amplitude compounds), a short one keeps Newton's first guess
-//! (the reduced model run forward) within O(τ²) of the answer.
+//! The horizon is covered in segments: each starts from Ω at the end of the
+//! one before and shoots over its own length plus the margin. The margin is
+//! 36 e-foldings of the slowest runaway, and the whole shot at most three
+//! e-foldings of the slow decay (both rates from the linearisation at the
+//! segment's start): a longer shot makes the map Ω(T) → Ω(t₀) badly
+//! conditioned (the slow decay compounds backward) and Newton's first guess
+//! (the reduced model run forward) blows up backward.
 //!
 //! | code name | symbol | meaning | units |
 //! |---|---|---|---|
@@ -35,8 +37,43 @@ use crate::physics::full_ale::general_full_ale_rhs;
 use crate::physics::general_top::GeneralTop;
 use nalgebra::Matrix3;
 
-/// Margin and segment length of the shoot, in units of [`fast_time`].
-const MARGIN: Real = 40.0;
+/// The margin beyond each segment, in e-foldings of the slowest runaway: the
+/// error of the final data is damped by e^{−36} ≈ 2e-16 before any output.
+const MARGIN_E_FOLDINGS: Real = 36.0;
+
+/// The most e-foldings of the slow decay one shot may span: backward, the slow
+/// amplitude grows like e^{λ_slow t}, and the shoot's map from Ω(T) to Ω(t₀)
+/// with it; beyond a few e-foldings Newton's first guess blows up backward.
+const SLOW_E_FOLDINGS: Real = 3.0;
+
+/// The rates of (3.4) linearised at Ω (with W from the reduced model): the
+/// slowest runaway (the smallest positive real part of the runaway pair) and
+/// the fastest decay or growth of the rest.
+fn rates(top: &GeneralTop, omega: &Vec3) -> (Real, Real) {
+    let y0 = near_manifold(top, omega);
+    let h = 1e-7 * y0.amax().max(1e-300);
+    let mut jac = nalgebra::SMatrix::<Real, 6, 6>::zeros();
+    for j in 0..6 {
+        let mut e = State::<6>::zeros();
+        e[j] = h;
+        let col = (general_full_ale_rhs(top, &(y0 + e)) - general_full_ale_rhs(top, &(y0 - e)))
+            / (2.0 * h);
+        jac.set_column(j, &col);
+    }
+    let eig = jac.complex_eigenvalues();
+    let top_rate = eig.iter().map(|l| l.re).fold(Real::NEG_INFINITY, Real::max);
+    let fast = eig
+        .iter()
+        .map(|l| l.re)
+        .filter(|re| *re > 0.5 * top_rate)
+        .fold(Real::INFINITY, Real::min);
+    let slow = eig
+        .iter()
+        .map(|l| l.re)
+        .filter(|re| *re <= 0.5 * top_rate)
+        .fold(0.0, |m: Real, re| m.max(re.abs()));
+    (fast, slow)
+}
 
 /// The fast time of (3.4) for a general top, τ_f = |d|²/min Iᵢ.
 ///
@@ -273,8 +310,6 @@ pub fn general_physical_solution(
         sol.omega_dot = vec![Vec3::zeros(); times.len()];
         return Ok(sol);
     }
-    let tau_f = fast_time(top);
-    let margin = MARGIN * tau_f;
     let t_last = times.last().copied().unwrap_or(0.0);
     let mut shooter = Shooter {
         top,
@@ -286,9 +321,34 @@ pub fn general_physical_solution(
     let mut t0 = 0.0;
     let mut next = 0; // the first time not yet output
     loop {
-        let t1 = (t0 + margin).min(t_last);
-        let span = (t1 - t0) + margin;
-        let a = shooter.solve(&start, span)?;
+        // The margin outlasts the slowest runaway; the segment keeps the shot
+        // within a few e-foldings of the slow decay (shorter still if the
+        // shoot fails: halved up to five times).
+        let (fast, slow) = rates(top, &start);
+        if !(fast.is_finite() && fast > 0.0) {
+            return Err(PhysicalError::NoConvergence(
+                "(3.4) has no runaway mode here to separate from the slow motion",
+            ));
+        }
+        let margin = MARGIN_E_FOLDINGS / fast;
+        let mut length = if slow > 0.0 {
+            (SLOW_E_FOLDINGS / slow - margin).clamp(0.25 * margin, margin)
+        } else {
+            margin
+        };
+        let mut tries = 0;
+        let (t1, span, a) = loop {
+            let t1 = (t0 + length).min(t_last);
+            let span = (t1 - t0) + margin;
+            match shooter.solve(&start, span) {
+                Ok(a) => break (t1, span, a),
+                Err(PhysicalError::NoConvergence(_)) if tries < 5 && t1 > t0 => {
+                    tries += 1;
+                    length *= 0.5;
+                }
+                Err(e) => return Err(e),
+            }
+        };
         // Output the times in [t0, t1] (each once), and t1 to start the next.
         let mut desc: Vec<Real> = vec![t1 - t0];
         let first = next;
