@@ -61,6 +61,8 @@ pub mod book {
     pub struct Section5;
     #[doc = include_str!("../book/src/appendix.md")]
     pub struct Appendix;
+    #[doc = include_str!("../book/src/asymmetric-top.md")]
+    pub struct AsymmetricTop;
     #[doc = include_str!("../book/src/numerical-methods.md")]
     pub struct NumericalMethods;
     #[doc = include_str!("../book/src/where-methods-fail.md")]

@@ -108,6 +108,20 @@ impl Chapter {
                     Err(_) => both,
                 }
             }
+            "asymmetric-top.md" => {
+                // The chapter's top: three models side by side.
+                let top = GeneralTop::new(Vec3::new(1.0, 2.0, 2.5), Vec3::new(1.0, 0.5, 0.2)).ok();
+                match top
+                    .and_then(|t| Settings::general(t, [0.3, -0.2, 0.1], Method::Dop853, 10.0).ok())
+                {
+                    Some(settings) => Scene {
+                        settings,
+                        columns: vec![0, 1, 2],
+                        about: "I = (1, 2, 2.5), d = (1, 0.5, 0.2): (3.3), reduced and physical (3.4), in u",
+                    },
+                    None => both,
+                }
+            }
             _ => both,
         }
     }
@@ -118,8 +132,8 @@ impl Chapter {
 pub struct Scene {
     /// The live view's settings.
     pub settings: Settings,
-    /// The live view's columns to draw (0 truncated, 1 reduced; 0 alone for a
-    /// general top).
+    /// The live view's columns to draw (0 truncated, 1 reduced; for a general
+    /// top 0 truncated (3.3), 1 reduced, 2 physical (3.4)).
     pub columns: Vec<usize>,
     /// One line about it, for the header.
     pub about: &'static str,

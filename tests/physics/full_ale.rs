@@ -234,8 +234,26 @@ fn eq_3_4_full_model_simulation_follows_the_physical_solution() {
         assert_eq!(s.omega[2], omega0.z, "(3.4) keeps Omega_3 for this top");
         assert!(spintop::math::orthonormality_error(&s.rotation_matrix()) < 1e-12);
     }
-    // Open-ended runs and the wrong methods are refused.
-    assert!(Simulation::new(Model::Full(top), MethodChoice::Auto, options, initial, None).is_err());
+    // Open-ended, the physical solution is tabulated chunk by chunk (the live
+    // view); a forward run needs its horizon; the wrong methods are refused.
+    let mut open =
+        Simulation::new(Model::Full(top), MethodChoice::Auto, options, initial, None).unwrap();
+    let far = *open.advance_to(250.0).unwrap();
+    let z = direct.z[3];
+    assert!(
+        ((far.omega[0] - z.re).powi(2) + (far.omega[1] - z.im).powi(2)).sqrt()
+            < 1e-9 * omega0.norm()
+    );
+    assert!(
+        Simulation::new(
+            Model::Full(top),
+            MethodChoice::Forward,
+            options,
+            initial,
+            None
+        )
+        .is_err()
+    );
     assert!(
         Simulation::new(
             Model::Full(top),

@@ -18,6 +18,8 @@ use std::path::{Path, PathBuf};
 
 #[path = "../../lessons/appendix_shell.rs"]
 mod appendix;
+#[path = "../../lessons/asymmetric_top.rs"]
+mod asymmetric;
 #[path = "../../lessons/ch2_balance_laws.rs"]
 mod ch2;
 #[path = "../../lessons/ch3_equations_of_motion.rs"]
@@ -45,6 +47,7 @@ const LESSONS: &[(&str, Lesson)] = &[
     ("real_particles", particles::run),
     ("speed_accuracy", speed::run),
     ("figures", figures::run),
+    ("asymmetric_top", asymmetric::run),
 ];
 
 fn root() -> PathBuf {
