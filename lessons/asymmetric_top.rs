@@ -15,6 +15,7 @@ use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::general_top::GeneralTop;
 use spintop::physics::rigid_body::energy;
 use spintop::physics::symmetric_top::{SymmetricTop, reduced_ale_rhs};
+use spintop::plot::panels::{Panel, panels_svg};
 use spintop::plot::{Series, chart};
 use spintop::sim::physical::general::{fast_time, general_physical_solution};
 use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
@@ -207,6 +208,50 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         )?;
     }
     Ok(())
+}
+
+/// The book's figure `figures/asymmetric-energy.svg`: the energy of the
+/// chapter's top under (3.3) over t = 0..40, and its power on t = 9..16,
+/// where it crosses zero.
+#[allow(dead_code)]
+pub fn energy_figure() -> String {
+    let top = chapter_top(1.0);
+    let i = top.inertia();
+    let omega0 = Vec3::new(0.3, -0.2, 0.1);
+    let times: Vec<Real> = (0..=4000).map(|k| k as Real * 0.01).collect();
+    let path = omega_at(Model::General(top), omega0, &times);
+    let energy_curve = times
+        .iter()
+        .zip(&path)
+        .step_by(10)
+        .map(|(&t, w)| (t, energy(&i, w)))
+        .collect();
+    let power = times
+        .iter()
+        .zip(&path)
+        .filter(|(t, _)| (9.0..=16.0).contains(*t))
+        .map(|(&t, w)| (t, w.dot(&i.component_mul(&top.truncated_ale_rhs(w)))))
+        .collect();
+    panels_svg(
+        "The truncated ALE (3.3), I = (1, 2, 2.5), d = (1, 0.5, 0.2), \u{3a9}\u{2080} = (0.3, -0.2, 0.1), \u{3ba} = 1",
+        &[
+            Panel {
+                caption: "(a) energy E(t): falling on the whole".into(),
+                x_label: "t [u]".into(),
+                y_label: "E".into(),
+                curves: vec![("E".into(), energy_curve)],
+            },
+            Panel {
+                caption: "(b) its power dE/dt: positive from t = 10.8 to 14.1".into(),
+                x_label: "t [u]".into(),
+                y_label: "dE/dt".into(),
+                curves: vec![
+                    ("dE/dt".into(), power),
+                    ("0".into(), vec![(9.0, 0.0), (16.0, 0.0)]),
+                ],
+            },
+        ],
+    )
 }
 
 #[allow(dead_code)]

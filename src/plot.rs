@@ -7,6 +7,7 @@
 use std::fmt::Write as _;
 
 pub mod figure;
+pub mod panels;
 use textplots::{Chart, LabelBuilder, LabelFormat, Plot, Shape};
 
 /// One curve: a label and its points (x, y).

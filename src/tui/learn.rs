@@ -799,11 +799,12 @@ impl Learn {
             Span::styled(format!(" {} ", chapter.title), theme::title()),
             Span::styled(
                 format!(
-                    "│ chapter {} of {} │ {} opened │ scene t = {:.1}τ",
+                    "│ chapter {} of {} │ {} opened │ scene t = {:.1}{}",
                     self.current + 1,
                     self.chapters.len(),
                     seen,
-                    self.scene.time()
+                    self.scene.time(),
+                    self.scene.settings().top().time_unit()
                 ),
                 theme::label(),
             ),
@@ -1216,7 +1217,7 @@ fn scene_parameters(settings: &Settings) -> Vec<Span<'static>> {
     ));
     spans.push(Span::styled("  warp ", theme::label()));
     spans.push(Span::styled(
-        format!("{} τ/s", settings.warp()),
+        format!("{} {}/s", settings.warp(), settings.top().time_unit()),
         theme::value(),
     ));
     spans

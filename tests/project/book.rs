@@ -273,6 +273,28 @@ fn book_figures_are_what_spintop_figure_draws_now() {
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
 
+/// The asymmetric-top chapter's figure is what its lesson draws now
+/// (`asymmetric_top::energy_figure`), and the chapter embeds it.
+#[test]
+fn book_asymmetric_energy_figure_is_what_the_lesson_draws_now() {
+    let fresh = asymmetric::energy_figure();
+    let name = "figures/asymmetric-energy.svg";
+    let shown = book_src().join(name);
+    if std::env::var_os("UPDATE_BOOK").is_some() {
+        fs::write(&shown, &fresh).unwrap();
+    }
+    assert!(
+        fs::read_to_string(&shown).unwrap_or_default() == fresh,
+        "the book's {name} is not what the asymmetric_top lesson draws now; run UPDATE_BOOK=1 cargo test --test project"
+    );
+    let chapter = fs::read_to_string(book_src().join("asymmetric-top.md")).unwrap();
+    assert!(
+        chapter.contains(&format!("]({name})")),
+        "the chapter embeds {name}"
+    );
+    assert!(fresh.contains("dE/dt") && fresh.starts_with("<svg"));
+}
+
 /// The modules whose header tables make up the book's symbol table, in the
 /// paper's order, with the chapter that uses them.
 const SYMBOL_MODULES: &[(&str, &str, &str, &str)] = &[
