@@ -1,20 +1,23 @@
 #!/usr/bin/env python3
-"""SciPy's solve_ivp on spintop's work-precision problems, written in the CSV
-columns of `spintop bench --out` so that `spintop bench --join` can put the two
-side by side.
+"""SciPy's solve_ivp and odeint, and SUNDIALS' CVODE (scikit-sundae), on
+spintop's work-precision problems, written in the CSV columns of `spintop bench
+--out` so that `spintop bench --join` can put them side by side.
 
 What a student who does not use spintop would write: the body rate equations
 Omega' = F(Omega) of the truncated (4.2)-(4.4), reduced (4.12)-(4.14) and
 general truncated (3.3) models as plain Python functions, handed to
 `scipy.integrate.solve_ivp` with `t_eval` at t = 1, 2, ..., 200 (tau units),
-for RK45, DOP853, Radau and LSODA over a ladder of tolerances. The start, the
+for RK45, DOP853, Radau and LSODA over a ladder of tolerances; the same with
+`scipy.integrate.odeint` (LSODA with its loop in Fortran, method `odeint`) and,
+where scikit-sundae installs, with CVODE's Adams and BDF methods (`cvode-adams`,
+`cvode-bdf`; compiled C, called back into Python for the right-hand side). The start, the
 parameters, the absolute tolerance (1e-6 * rtol * |Omega0|) and the reference
 (benches/reference/*.csv, mpmath at 40 digits) are spintop's, so the errors are
 measured the same way: the largest relative error of Omega over the 200 points.
 The full ALE (3.4) is not run: its physical solution needs a backward shoot
 that solve_ivp does not offer.
 
-    pip install scipy numpy
+    pip install scipy numpy scikit-sundae     # scikit-sundae is optional
     python3 benches/scipy_work_precision.py --out scipy.csv            # a few minutes
     python3 benches/scipy_work_precision.py --quick --out scipy.csv    # about a minute
     cargo run --release -- bench --out spintop.csv
@@ -36,7 +39,12 @@ import sys
 import time
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from scipy.integrate import odeint, solve_ivp
+
+try:
+    from sksundae.cvode import CVODE
+except ImportError:  # CVODE is optional: its rows are then skipped
+    CVODE = None
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 COLUMNS = [
@@ -76,7 +84,7 @@ def general(t, w):
 
 
 MODELS = {"truncated": truncated, "reduced": reduced, "general": general}
-METHODS = ["RK45", "DOP853", "Radau", "LSODA"]
+METHODS = ["RK45", "DOP853", "Radau", "LSODA", "odeint", "cvode-adams", "cvode-bdf"]
 STAGES = {"RK45": 6, "DOP853": 12}
 
 
@@ -99,9 +107,31 @@ def omega_error(ref, got):
     return float(np.max(np.linalg.norm(got - ref, axis=1) / np.linalg.norm(ref, axis=1)))
 
 
+class Solution:
+    """What every method returns: Omega at TIMES (rows), evaluations, steps."""
+
+    def __init__(self, success, message, y=None, nfev=None, steps=None):
+        self.success, self.message, self.y, self.nfev, self.steps = success, message, y, nfev, steps
+
+
 def solve(f, method, rtol, t_eval=TIMES):
     atol = max(1e-6 * rtol * math.sqrt(sum(x * x for x in OMEGA0)), 1e-300)
-    return solve_ivp(f, (0.0, TIMES[-1]), OMEGA0, method=method, t_eval=t_eval, rtol=rtol, atol=atol)
+    if method == "odeint":
+        ts = [0.0] + (t_eval or [TIMES[-1]])
+        y, info = odeint(f, OMEGA0, ts, rtol=rtol, atol=atol, tfirst=True, full_output=True,
+                         mxstep=10**7)
+        ok = info["message"].startswith("Integration successful")
+        return Solution(ok, info["message"], y[1:], int(info["nfe"][-1]), int(info["nst"][-1]))
+    if method.startswith("cvode-"):
+        def rhs(t, y, yp):
+            yp[:] = f(t, y)
+        kind = "Adams" if method == "cvode-adams" else "BDF"
+        solver = CVODE(rhs, rtol=rtol, atol=atol, method=kind, max_num_steps=10**7)
+        ts = np.array([0.0] + (t_eval or [TIMES[-1]]))
+        sol = solver.solve(ts, np.array(OMEGA0))
+        return Solution(bool(sol.success), sol.message, np.array(sol.y)[1:], int(sol.nfev), None)
+    sol = solve_ivp(f, (0.0, TIMES[-1]), OMEGA0, method=method, t_eval=t_eval, rtol=rtol, atol=atol)
+    return Solution(sol.success, sol.message, sol.y.T, sol.nfev, len(sol.t) - 1)
 
 
 def measure(model, method, rtol, repeats):
@@ -109,18 +139,22 @@ def measure(model, method, rtol, repeats):
     row = dict.fromkeys(COLUMNS, "")
     row.update(source="scipy", model=model, method=method, target="omega", knob="rtol",
                value=repr(rtol), repeats="0", status="ok")
+    if method.startswith("cvode-") and CVODE is None:
+        row["status"] = "skipped: scikit-sundae is not installed"
+        return row
     try:
         sol = solve(f, method, rtol)
         if not sol.success:
-            row["status"] = sol.message.replace(",", ";")
+            row["status"] = str(sol.message).replace(",", ";")
             return row
-        row["omega_error"] = repr(omega_error(reference(model), sol.y.T))
+        row["omega_error"] = repr(omega_error(reference(model), sol.y))
         row["rhs_evals"] = str(sol.nfev)
         plain = solve(f, method, rtol, t_eval=None)
-        row["steps"] = str(len(plain.t) - 1)
+        if plain.steps is not None:
+            row["steps"] = str(plain.steps)
         if method in STAGES:
             attempts = (plain.nfev - 2) // STAGES[method]
-            row["rejected"] = str(max(attempts - (len(plain.t) - 1), 0))
+            row["rejected"] = str(max(attempts - plain.steps, 0))
         samples = []
         for _ in range(repeats):
             start = time.perf_counter()

@@ -61,18 +61,46 @@ fn rates(top: &GeneralTop, omega: &Vec3) -> (Real, Real) {
         jac.set_column(j, &col);
     }
     let eig = jac.complex_eigenvalues();
-    let top_rate = eig.iter().map(|l| l.re).fold(Real::NEG_INFINITY, Real::max);
+    // The runaway pair is told from the rest by the rates it has at rest,
+    // which need not be close to each other (an elongated top).
+    let threshold = 0.5 * runaway_rates_at_rest(top)[0];
     let fast = eig
         .iter()
         .map(|l| l.re)
-        .filter(|re| *re > 0.5 * top_rate)
+        .filter(|re| *re > threshold)
         .fold(Real::INFINITY, Real::min);
     let slow = eig
         .iter()
         .map(|l| l.re)
-        .filter(|re| *re <= 0.5 * top_rate)
+        .filter(|re| *re <= threshold)
         .fold(0.0, |m: Real, re| m.max(re.abs()));
     (fast, slow)
+}
+
+/// The runaway rates of (3.4) linearised about rest (Ω = 0), smaller first:
+/// the eigenvalues of [(P I⁻¹ P) restricted to the plane ⊥ d]⁻¹ / |d|² (the
+/// physics notes; κ = 1), P the projector across d.
+///
+/// Paper: Eq. (3.4) (its runaway modes; not in the paper).
+pub fn runaway_rates_at_rest(top: &GeneralTop) -> [Real; 2] {
+    let (i, d) = (top.inertia(), top.dipole());
+    let n = d.normalize();
+    // Any unit vector across d, then the one across both.
+    let helper = if n.x.abs() < 0.9 {
+        Vec3::x()
+    } else {
+        Vec3::y()
+    };
+    let e1 = n.cross(&helper).normalize();
+    let e2 = n.cross(&e1);
+    let m = |a: &Vec3, b: &Vec3| a.component_div(&i).dot(b);
+    // The 2×2 matrix of P I⁻¹ P on (e1, e2); its inverse's eigenvalues are
+    // the reciprocals of its own.
+    let (a, b, c) = (m(&e1, &e1), m(&e1, &e2), m(&e2, &e2));
+    let mean = 0.5 * (a + c);
+    let spread = (0.25 * (a - c) * (a - c) + b * b).sqrt();
+    let d2 = d.norm_squared();
+    [1.0 / ((mean + spread) * d2), 1.0 / ((mean - spread) * d2)]
 }
 
 /// The fast time of (3.4) for a general top, τ_f = |d|²/min Iᵢ.
@@ -453,4 +481,62 @@ pub fn general_forward_table(
         run.trace.iter().map(|(_, y)| w_of(y)).collect(),
     );
     Ok((table, run))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Matrix2, Matrix3x2};
+
+    /// The physics notes give the runaway rates of (3.4) for any top: the
+    /// eigenvalues of [(P I⁻¹ P) restricted to the plane ⊥ d]⁻¹ / |d|² (κ = 1).
+    /// Built here with nalgebra's symmetric eigensolver on an explicit basis,
+    /// they must equal `runaway_rates_at_rest`, the two largest real parts of
+    /// the Jacobian of (3.4) near rest (finite differences, complex eigenvalues),
+    /// and `rates`' choice of the slower; `fast_time` bounds the slower's time.
+    #[test]
+    fn eq_3_4_runaway_rates_are_the_notes_eigenvalues() {
+        for (i, d) in [
+            (Vec3::new(1.0, 2.0, 2.5), Vec3::new(1.0, 0.5, 0.2)),
+            (Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2, 0.0, 1.0)),
+            (Vec3::new(1.0, 1.0, 0.4), Vec3::new(0.0, 0.0, 1.0)),
+            // An elongated top: its two runaway rates differ fivefold.
+            (Vec3::new(1.0, 5.0, 5.5), Vec3::new(0.3, 1.0, 0.6)),
+        ] {
+            let top = GeneralTop::new(i, d).unwrap();
+            let n = d.normalize();
+            let e1 = n
+                .cross(&Vec3::z())
+                .try_normalize(1e-9)
+                .unwrap_or_else(|| n.cross(&Vec3::x()).normalize());
+            let e2 = n.cross(&e1);
+            let basis = Matrix3x2::from_columns(&[e1, e2]);
+            let i_inv = nalgebra::Matrix3::from_diagonal(&i.map(|x| 1.0 / x));
+            let restricted: Matrix2<Real> = basis.transpose() * i_inv * basis;
+            let mut notes: Vec<Real> = restricted
+                .try_inverse()
+                .unwrap()
+                .symmetric_eigenvalues()
+                .iter()
+                .map(|l| l / d.norm_squared())
+                .collect();
+            notes.sort_by(Real::total_cmp);
+            let ours = runaway_rates_at_rest(&top);
+            for k in 0..2 {
+                assert!(
+                    (ours[k] - notes[k]).abs() < 1e-12 * notes[k],
+                    "{ours:?} vs {notes:?}"
+                );
+            }
+            let (fast, _) = rates(&top, &(Vec3::new(1.0, -0.5, 0.3) * 1e-4));
+            assert!(
+                (fast - notes[0]).abs() < 1e-5 * notes[0],
+                "{fast} vs the notes' {notes:?}"
+            );
+            assert!(
+                1.0 / notes[0] <= fast_time(&top) * (1.0 + 1e-12),
+                "tau_f bounds the runaway time"
+            );
+        }
+    }
 }
