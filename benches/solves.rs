@@ -7,9 +7,16 @@
 //! ```
 //!
 //! Each solve is exactly a row of `spintop bench` (the same
-//! `spintop::workprecision` entry), timed by criterion instead.
+//! `spintop::workprecision` entry), timed by criterion instead. Beside the
+//! DOP853 rows, "bare Dop853" runs the stepper itself with a plain closure on
+//! the same problem, options and output times: the product path should cost
+//! what the stepper costs (issue goal: within 5 %).
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use spintop::integrate::{self, AdaptiveOptions, Dop853};
+use spintop::math::{Real, State};
+use spintop::physics::symmetric_top::reduced_ale_rhs;
+use spintop::sim::Model;
 use spintop::workprecision::{Method, Problem, ProblemKind, Solver, Spintop, Target};
 use std::hint::black_box;
 use std::time::Duration;
@@ -31,6 +38,32 @@ fn solves(c: &mut Criterion) {
                             .expect("a solve")
                     })
                 });
+            }
+        }
+        for rtol in [1e-8, 1e-12] {
+            let y0 = problem.initial().omega;
+            let opts = AdaptiveOptions::new(rtol, problem.atol(rtol)).expect("valid tolerances");
+            let times = problem.times();
+            match *problem.model() {
+                Model::Reduced(top) => {
+                    g.bench_function(format!("bare Dop853 closure rtol {rtol:e}"), |b| {
+                        b.iter(|| {
+                            let mut s = Dop853::new(0.0, black_box(y0), opts).expect("a start");
+                            let f = |_t: Real, w: &State<3>| reduced_ale_rhs(&top, w);
+                            integrate::solve(&mut s, &f, times).expect("a solve")
+                        })
+                    });
+                }
+                Model::General(top) => {
+                    g.bench_function(format!("bare Dop853 closure rtol {rtol:e}"), |b| {
+                        b.iter(|| {
+                            let mut s = Dop853::new(0.0, black_box(y0), opts).expect("a start");
+                            let f = |_t: Real, w: &State<3>| top.truncated_ale_rhs(w);
+                            integrate::solve(&mut s, &f, times).expect("a solve")
+                        })
+                    });
+                }
+                _ => {}
             }
         }
         let closed = Spintop {

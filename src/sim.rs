@@ -510,16 +510,17 @@ impl<const N: usize> Stepper<N> for AnyStepper<N> {
     }
 }
 
-/// Ω and σ together: `d(Ω, σ)/dt = (F(Ω), J_r⁻¹(σ) Ω)`.
-struct CoupledRhs(FirstOrder);
+/// Ω and σ together: `d(Ω, σ)/dt = (F(Ω), J_r⁻¹(σ) Ω)`, generic in F so that
+/// the step loop is monomorphic in the model (chosen once per advance, see
+/// [`Simulation::advance_to`]).
+struct CoupledRhs<F: Fn(&Vec3) -> Vec3>(F);
 
-impl Rhs<6> for CoupledRhs {
+impl<F: Fn(&Vec3) -> Vec3> Rhs<6> for CoupledRhs<F> {
     fn eval(&self, _t: Real, y: &State<6>) -> State<6> {
         let omega = y.fixed_rows::<3>(0).into_owned();
         let sigma = y.fixed_rows::<3>(3).into_owned();
         let mut out = State::<6>::zeros();
-        out.fixed_rows_mut::<3>(0)
-            .copy_from(&self.0.omega_dot(&omega));
+        out.fixed_rows_mut::<3>(0).copy_from(&(self.0)(&omega));
         out.fixed_rows_mut::<3>(3)
             .copy_from(&dexpinv_right(&sigma, &omega));
         out
@@ -867,7 +868,26 @@ impl Simulation {
             }
             Engine::Coupled(_, dynamics, g) => {
                 let omega = |_: Real, y: &State<6>| y.fixed_rows::<3>(0).into_owned();
-                let (y, rotation) = g.advance(&CoupledRhs(*dynamics), &omega, t, self.horizon)?;
+                let h = self.horizon;
+                // The model is matched here, once per advance, never per evaluation.
+                let (y, rotation) = match *dynamics {
+                    FirstOrder::Truncated(top) => {
+                        let f = move |w: &Vec3| truncated_ale_rhs(&top, w);
+                        g.advance(&CoupledRhs(f), &omega, t, h)?
+                    }
+                    FirstOrder::Reduced(top) => {
+                        let f = move |w: &Vec3| reduced_ale_rhs(&top, w);
+                        g.advance(&CoupledRhs(f), &omega, t, h)?
+                    }
+                    FirstOrder::General(top) => {
+                        let f = move |w: &Vec3| top.truncated_ale_rhs(w);
+                        g.advance(&CoupledRhs(f), &omega, t, h)?
+                    }
+                    FirstOrder::GeneralReduced(top) => {
+                        let f = move |w: &Vec3| top.reduced_ale_rhs(w);
+                        g.advance(&CoupledRhs(f), &omega, t, h)?
+                    }
+                };
                 (y.fixed_rows::<3>(0).into_owned(), rotation)
             }
             Engine::Table(table, kind, built, g) => {

@@ -17,13 +17,14 @@
 //! orientation together through [`crate::sim::Simulation`], with the cost of
 //! the orientation and of the observables of each sample.
 
-use super::problem::{Problem, ProblemKind};
+use super::problem::{OmegaRhs, Problem, ProblemKind};
 use super::{KnobKind, Solution, Solver, Target};
 use crate::integrate::{
     self, AdaptiveOptions, Composition, Dop853, Dopri5, IntegrateError, Radau5, ReducedFlow, Rhs,
     Rk4, Splitting, Stepper,
 };
-use crate::math::{Real, Vec3};
+use crate::math::{Real, State, Vec3};
+use crate::physics::symmetric_top::{reduced_ale_rhs, truncated_ale_rhs};
 use crate::sim::physical::physical_solution;
 use crate::sim::{MethodChoice, MethodOptions, Model, Simulation};
 
@@ -308,16 +309,40 @@ fn solve_omega(
         .omega_rhs()
         .ok_or_else(|| not_applicable(method, problem))?;
     let knob = knob_value(method, knob)?;
+    // NOTE: the model is chosen here, once per solve: each arm hands the
+    // stepper a right-hand side of its own type, so the step loop is
+    // monomorphic in it and no evaluation matches on the model.
+    match rhs {
+        OmegaRhs::Truncated(top) => {
+            let f = move |_t: Real, w: &State<3>| truncated_ale_rhs(&top, w);
+            integrate_omega(method, problem, knob, y0, times, &f)
+        }
+        OmegaRhs::Reduced(top) => {
+            let f = move |_t: Real, w: &State<3>| reduced_ale_rhs(&top, w);
+            integrate_omega(method, problem, knob, y0, times, &f)
+        }
+        OmegaRhs::General(top) => {
+            let f = move |_t: Real, w: &State<3>| top.truncated_ale_rhs(w);
+            integrate_omega(method, problem, knob, y0, times, &f)
+        }
+    }
+}
+
+/// Ω alone by one of the integrators, with the right-hand side `rhs`.
+fn integrate_omega<R: Rhs<3>>(
+    method: Method,
+    problem: &Problem,
+    knob: Real,
+    y0: Vec3,
+    times: &[Real],
+    rhs: &R,
+) -> Result<Solution, RunError> {
     Ok(match method {
-        Method::Rk4 => run_stepper(Rk4::new(0.0, y0, knob)?, &rhs, times)?,
-        Method::Dopri5 => {
-            run_stepper(Dopri5::new(0.0, y0, adaptive(problem, knob)?)?, &rhs, times)?
-        }
-        Method::Dop853 => {
-            run_stepper(Dop853::new(0.0, y0, adaptive(problem, knob)?)?, &rhs, times)?
-        }
+        Method::Rk4 => run_stepper(Rk4::new(0.0, y0, knob)?, rhs, times)?,
+        Method::Dopri5 => run_stepper(Dopri5::new(0.0, y0, adaptive(problem, knob)?)?, rhs, times)?,
+        Method::Dop853 => run_stepper(Dop853::new(0.0, y0, adaptive(problem, knob)?)?, rhs, times)?,
         Method::Radau5 => {
-            run_stepper_onto(Radau5::new(0.0, y0, adaptive(problem, knob)?)?, &rhs, times)?
+            run_stepper_onto(Radau5::new(0.0, y0, adaptive(problem, knob)?)?, rhs, times)?
         }
         Method::ClosedForm
         | Method::ClosedFormDop853
