@@ -200,6 +200,9 @@ impl From<SimError> for CliError {
             SimError::Physical(e @ crate::sim::physical::PhysicalError::NoConvergence(_)) => {
                 CliError::Stopped(format!("{e}; try a looser --rtol or a shorter --t-end"))
             }
+            SimError::Physical(e @ crate::sim::physical::PhysicalError::NotSeparated { .. }) => {
+                CliError::Stopped(e.to_string())
+            }
             SimError::MethodNotForModel(model) => CliError::BadInput(format!(
                 "this method does not apply to the {model} model: --method forward is for --model full, which takes auto or forward"
             )),

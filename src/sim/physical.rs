@@ -81,6 +81,19 @@ pub enum PhysicalError {
     /// Bad request.
     #[error("{0}")]
     BadInput(&'static str),
+    /// The runaway and the slow motion are not separated: no slow manifold
+    /// to shoot onto (a general top spun so fast that τ_f|Ω| is of order 1).
+    #[error(
+        "(3.4) has no slow manifold to find here at t = {t:.4}: the slow motion decays at {slow:.3} per time unit, too close to the runaway's {fast:.3} (the physical solution needs the first well below the second); use a smaller --omega or --dipole, or --model reduced"
+    )]
+    NotSeparated {
+        /// When.
+        t: Real,
+        /// The fastest decay of the slow modes.
+        slow: Real,
+        /// The slowest runaway rate.
+        fast: Real,
+    },
 }
 
 /// The physical solution of (3.4) sampled at the requested times.

@@ -252,6 +252,29 @@ fn eq_3_4_full_general_top_through_the_cli() {
     );
     let physical = json(&[&asymmetric[..], &["--times", "0,1,100"]].concat());
     assert_eq!(physical["samples"].as_array().unwrap().len(), 3);
+    // Spun so fast that the slow motion decays nearly as fast as the runaway
+    // grows (tau_f |Omega0| ~ 8): there is no slow manifold to shoot onto.
+    // One line, exit 3, at once (it used to run into the step budget).
+    let out = spintop(&[
+        "simulate",
+        "--model",
+        "full",
+        "--inertia",
+        "1,2,2.5",
+        "--dipole",
+        "1,0.5,0.2",
+        "--omega",
+        "5,3,1",
+        "--t-end",
+        "10",
+    ]);
+    assert_eq!(out.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("no slow manifold") && stderr.contains("--model reduced"),
+        "{stderr}"
+    );
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
 }
 
 #[test]
