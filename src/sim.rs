@@ -23,11 +23,11 @@ use crate::integrate::{
 use crate::math::{Mat3, Quat, Real, State, Vec3, all_finite, dexpinv_right, exp_so3, rot_z};
 use crate::physics::ParamError;
 use crate::physics::euler_angles::{EulerAngles, euler_rates};
-use crate::physics::general_top::GeneralTop;
+use crate::physics::general_top::{self, GeneralTop};
 use crate::physics::rigid_body::{BodyDynamics, Observables};
 use crate::physics::symmetric_top::{
-    SymmetricTop, reduced_ale_rhs, reduced_closed_form, reduced_corotating_rate, truncated_ale_rhs,
-    truncated_closed_form, truncated_orientation,
+    self, SymmetricTop, reduced_closed_form, reduced_corotating_rate, truncated_closed_form,
+    truncated_orientation,
 };
 use serde::Serialize;
 use thiserror::Error;
@@ -98,6 +98,16 @@ impl Model {
         }
     }
 
+    /// The unit of time of the model's numbers: τ for the symmetric top
+    /// (Section 4's unit, I₁ = 1), "u" for a general top, whose numbers are in
+    /// units where κ = 2/(3c³) = 1.
+    pub fn time_unit(&self) -> &'static str {
+        match self {
+            Model::Truncated(_) | Model::Reduced(_) | Model::Full(_) => "τ",
+            Model::General(_) | Model::GeneralReduced(_) | Model::GeneralFull(_) => "u",
+        }
+    }
+
     /// True for the full ALE (3.4), of either top.
     pub fn is_full(&self) -> bool {
         matches!(self, Model::Full(_) | Model::GeneralFull(_))
@@ -123,24 +133,6 @@ enum FirstOrder {
     Reduced(SymmetricTop),
     General(GeneralTop),
     GeneralReduced(GeneralTop),
-}
-
-impl BodyDynamics for FirstOrder {
-    fn inertia(&self) -> Vec3 {
-        match self {
-            FirstOrder::Truncated(top) | FirstOrder::Reduced(top) => top.inertia(),
-            FirstOrder::General(top) | FirstOrder::GeneralReduced(top) => top.inertia(),
-        }
-    }
-
-    fn omega_dot(&self, omega: &Vec3) -> Vec3 {
-        match self {
-            FirstOrder::Truncated(top) => truncated_ale_rhs(top, omega),
-            FirstOrder::Reduced(top) => reduced_ale_rhs(top, omega),
-            FirstOrder::General(top) => top.truncated_ale_rhs(omega),
-            FirstOrder::GeneralReduced(top) => top.reduced_ale_rhs(omega),
-        }
-    }
 }
 
 /// The method asked for.
@@ -510,17 +502,18 @@ impl<const N: usize> Stepper<N> for AnyStepper<N> {
     }
 }
 
-/// Ω and σ together: `d(Ω, σ)/dt = (F(Ω), J_r⁻¹(σ) Ω)`, generic in F so that
-/// the step loop is monomorphic in the model (chosen once per advance, see
-/// [`Simulation::advance_to`]).
-struct CoupledRhs<F: Fn(&Vec3) -> Vec3>(F);
+/// Ω and σ together: `d(Ω, σ)/dt = (F(Ω), J_r⁻¹(σ) Ω)`, generic in the
+/// dynamics so that the step loop is monomorphic in the model (chosen once
+/// per advance, see [`Simulation::advance_to`]).
+struct CoupledRhs<D: BodyDynamics>(D);
 
-impl<F: Fn(&Vec3) -> Vec3> Rhs<6> for CoupledRhs<F> {
+impl<D: BodyDynamics> Rhs<6> for CoupledRhs<D> {
     fn eval(&self, _t: Real, y: &State<6>) -> State<6> {
         let omega = y.fixed_rows::<3>(0).into_owned();
         let sigma = y.fixed_rows::<3>(3).into_owned();
         let mut out = State::<6>::zeros();
-        out.fixed_rows_mut::<3>(0).copy_from(&(self.0)(&omega));
+        out.fixed_rows_mut::<3>(0)
+            .copy_from(&self.0.omega_dot(&omega));
         out.fixed_rows_mut::<3>(3)
             .copy_from(&dexpinv_right(&sigma, &omega));
         out
@@ -872,20 +865,14 @@ impl Simulation {
                 // The model is matched here, once per advance, never per evaluation.
                 let (y, rotation) = match *dynamics {
                     FirstOrder::Truncated(top) => {
-                        let f = move |w: &Vec3| truncated_ale_rhs(&top, w);
-                        g.advance(&CoupledRhs(f), &omega, t, h)?
+                        g.advance(&CoupledRhs(symmetric_top::Truncated(top)), &omega, t, h)?
                     }
                     FirstOrder::Reduced(top) => {
-                        let f = move |w: &Vec3| reduced_ale_rhs(&top, w);
-                        g.advance(&CoupledRhs(f), &omega, t, h)?
+                        g.advance(&CoupledRhs(symmetric_top::Reduced(top)), &omega, t, h)?
                     }
-                    FirstOrder::General(top) => {
-                        let f = move |w: &Vec3| top.truncated_ale_rhs(w);
-                        g.advance(&CoupledRhs(f), &omega, t, h)?
-                    }
+                    FirstOrder::General(top) => g.advance(&CoupledRhs(top), &omega, t, h)?,
                     FirstOrder::GeneralReduced(top) => {
-                        let f = move |w: &Vec3| top.reduced_ale_rhs(w);
-                        g.advance(&CoupledRhs(f), &omega, t, h)?
+                        g.advance(&CoupledRhs(general_top::Reduced(top)), &omega, t, h)?
                     }
                 };
                 (y.fixed_rows::<3>(0).into_owned(), rotation)

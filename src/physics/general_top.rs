@@ -123,6 +123,22 @@ impl BodyDynamics for GeneralTop {
     }
 }
 
+/// The reduced ALE of a general top as `Ω̇ = F(Ω)` (the top itself is (3.3)).
+///
+/// Paper: Eq. (3.4), reduced (see [`GeneralTop::reduced_ale_rhs`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reduced(pub GeneralTop);
+
+impl BodyDynamics for Reduced {
+    fn inertia(&self) -> Vec3 {
+        self.0.inertia
+    }
+
+    fn omega_dot(&self, omega: &Vec3) -> Vec3 {
+        self.0.reduced_ale_rhs(omega)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

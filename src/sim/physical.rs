@@ -279,11 +279,12 @@ impl std::fmt::Display for Runaway {
     }
 }
 
-/// What a forward integration of (3.4) produced before it stopped.
+/// What a forward integration of (3.4) produced before it stopped: for the
+/// symmetric top the state is (z, ż) (N = 4), for a general top (Ω, Ω̇) (N = 6).
 #[derive(Clone, Debug, PartialEq)]
-pub struct ForwardRun {
-    /// Times and (z, ż) reached, one entry per monitoring interval.
-    pub trace: Vec<(Real, State<4>)>,
+pub struct ForwardRun<const N: usize = 4> {
+    /// Times and states reached, one entry per monitoring interval.
+    pub trace: Vec<(Real, State<N>)>,
     /// The runaway, if the monitor stopped the run.
     pub runaway: Option<Runaway>,
     /// Work done.
@@ -319,17 +320,8 @@ pub fn integrate_forward(
             z.norm(),
         )
     };
-    let (trace, runaway, stats) = forward_with_monitor(&rhs, y0, tau, t_end, rtol, distance)?;
-    Ok(ForwardRun {
-        trace,
-        runaway,
-        stats,
-    })
+    forward_with_monitor(&rhs, y0, tau, t_end, rtol, distance)
 }
-
-/// What a forward run traced: (time, state) every τ/4, the runaway if the
-/// monitor stopped it, and the work done.
-pub(crate) type Traced<const N: usize> = (Vec<(Real, State<N>)>, Option<Runaway>, Stats);
 
 /// The runaway monitor of [`integrate_forward`], for any full-ALE system:
 /// `distance(y)` gives the distance of `y` from the slow manifold and the size
@@ -341,7 +333,7 @@ pub(crate) fn forward_with_monitor<const N: usize>(
     t_end: Real,
     rtol: Real,
     distance: impl Fn(&State<N>) -> (Real, Real),
-) -> Result<Traced<N>, PhysicalError> {
+) -> Result<ForwardRun<N>, PhysicalError> {
     let opts = AdaptiveOptions::new(rtol, 1e-300)?;
     let mut stepper = Dop853::new(0.0, y0, opts)?;
     let dt = 0.25 * tau;
@@ -364,11 +356,19 @@ pub(crate) fn forward_with_monitor<const N: usize>(
                     t,
                     growth_rate: rate,
                 };
-                return Ok((trace, Some(runaway), stepper.stats()));
+                return Ok(ForwardRun {
+                    trace,
+                    runaway: Some(runaway),
+                    stats: stepper.stats(),
+                });
             }
         }
     }
-    Ok((trace, None, stepper.stats()))
+    Ok(ForwardRun {
+        trace,
+        runaway: None,
+        stats: stepper.stats(),
+    })
 }
 
 /// Slope of equally spaced samples `ys` (spacing `dt`) by least squares.
@@ -453,10 +453,10 @@ impl OmegaTable {
     }
 }
 
-/// Grid spacing for an [`OmegaTable`]: a quarter τ, and at most 0.05/|Ω₀|.
-fn table_step(top: &SymmetricTop, omega0: &Vec3) -> Real {
-    let rate = omega0.norm().max(top.omega3_tilde(omega0.z).abs());
-    let step = 0.25 * top.tau();
+/// Grid spacing for an [`OmegaTable`]: a quarter of the fast time `fast`
+/// (τ, or τ_f for a general top), and at most 0.05/`rate` (hΩ ≤ 0.05).
+pub(crate) fn table_step(fast: Real, rate: Real) -> Real {
+    let step = 0.25 * fast;
     if rate > 0.0 {
         step.min(0.05 / rate)
     } else {
@@ -476,7 +476,8 @@ pub fn physical_table(
     t_end: Real,
     rtol: Real,
 ) -> Result<(OmegaTable, PhysicalSolution), PhysicalError> {
-    let step = table_step(top, omega0);
+    let rate = omega0.norm().max(top.omega3_tilde(omega0.z).abs());
+    let step = table_step(top.tau(), rate);
     let sol = physical_solution(top, omega0, &grid(step, t_end), rtol)?;
     let table = OmegaTable::symmetric(
         step,

@@ -130,10 +130,7 @@ impl Top {
     /// The unit of time: τ for the symmetric top (Section 4's unit), "u" for
     /// a general one, whose numbers are in units where κ = 2/(3c³) = 1.
     pub fn time_unit(&self) -> &'static str {
-        match self {
-            Top::Symmetric(_) => "τ",
-            Top::General(_) => "u",
-        }
+        self.models()[0].time_unit()
     }
 }
 
@@ -423,10 +420,7 @@ impl Column {
     /// The unit of time of this model's numbers: τ for the symmetric top,
     /// "u" (κ = 1 units) for a general one.
     pub fn time_unit(&self) -> &'static str {
-        match self.sim.model() {
-            Model::Truncated(_) | Model::Reduced(_) | Model::Full(_) => "τ",
-            Model::General(_) | Model::GeneralReduced(_) | Model::GeneralFull(_) => "u",
-        }
+        self.sim.model().time_unit()
     }
 
     /// `truncated`, `reduced` or `general`.

@@ -30,7 +30,7 @@
 //! | `omega`, `w` | Ω, W = Ω̇ | body rate and its rate | κ = 1 units |
 //! | `tau_f` | τ_f = \|d\|²/min Iᵢ | fast time of (3.4) | time |
 
-use super::{OmegaTable, PhysicalError, Runaway, forward_with_monitor, grid};
+use super::{ForwardRun, OmegaTable, PhysicalError, forward_with_monitor, grid, table_step};
 use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Stats, Stepper};
 use crate::math::{Real, State, Vec3};
 use crate::physics::full_ale::general_full_ale_rhs;
@@ -415,21 +415,16 @@ pub fn general_physical_solution(
     Ok(sol)
 }
 
-/// What a forward integration of a general top's (3.4) produced.
-#[derive(Clone, Debug, PartialEq)]
-pub struct GeneralForwardRun {
-    /// Times and (Ω, W) reached, every τ_f/4.
-    pub trace: Vec<(Real, State<6>)>,
-    /// The runaway, if the monitor stopped the run.
-    pub runaway: Option<Runaway>,
-    /// Work done.
-    pub stats: Stats,
-}
+/// What a forward integration of a general top's (3.4) produced: times and
+/// (Ω, W) every τ_f/4, the runaway if the monitor stopped the run, the work.
+pub type GeneralForwardRun = ForwardRun<6>;
 
 /// Integrate (3.4) of a general top forward from (Ω, W) = `y0` with DOP853 and
 /// stop at the runaway: the distance |W − F_red(Ω)| from the reduced model's
 /// rate passes 5% of |Ω|/τ_f while growing faster than 1/(2τ_f) (as
 /// [`super::integrate_forward`] does for the symmetric top).
+///
+/// Paper: Eq. (3.4) (integrated forward, it runs away).
 pub fn general_integrate_forward(
     top: &GeneralTop,
     y0: State<6>,
@@ -441,24 +436,7 @@ pub fn general_integrate_forward(
         let omega = omega_of(y);
         ((w_of(y) - top.reduced_ale_rhs(&omega)).norm(), omega.norm())
     };
-    let (trace, runaway, stats) =
-        forward_with_monitor(&rhs, y0, fast_time(top), t_end, rtol, distance)?;
-    Ok(GeneralForwardRun {
-        trace,
-        runaway,
-        stats,
-    })
-}
-
-/// Grid spacing of a general top's table: τ_f/4, and at most 0.05/|Ω₀|.
-fn table_step(top: &GeneralTop, omega0: &Vec3) -> Real {
-    let step = 0.25 * fast_time(top);
-    let rate = omega0.norm();
-    if rate > 0.0 {
-        step.min(0.05 / rate)
-    } else {
-        step
-    }
+    forward_with_monitor(&rhs, y0, fast_time(top), t_end, rtol, distance)
 }
 
 /// The physical solution of a general top's (3.4) through Ω₀ as a table on
@@ -469,7 +447,7 @@ pub fn general_physical_table(
     t_end: Real,
     rtol: Real,
 ) -> Result<(OmegaTable, GeneralPhysicalSolution), PhysicalError> {
-    let step = table_step(top, omega0);
+    let step = table_step(fast_time(top), omega0.norm());
     let sol = general_physical_solution(top, omega0, &grid(step, t_end), rtol)?;
     let table = OmegaTable::new(step, sol.omega.clone(), sol.omega_dot.clone());
     Ok((table, sol))
