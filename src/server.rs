@@ -1,9 +1,10 @@
 //! `spintop book`'s server: the built book over HTTP on loopback, and ▶ for
 //! its snippets, compiled against the local spintop and run here.
 //!
-//! A shell beside the CLI and the TUI (the CLI only launches it). The HTTP is
-//! `tiny_http`'s; what is written here is the policy, because it runs code on
-//! the reader's machine:
+//! A shell beside the CLI and the TUI (the CLI only launches it). Requests
+//! are parsed by `httparse`; each connection has a thread of its own
+//! (`http.rs` says why no pooled server crate). What is written here is the
+//! policy, because it runs code on the reader's machine:
 //!
 //! - it listens on 127.0.0.1 only;
 //! - a random token, made at start-up and written only into the pages it
@@ -23,13 +24,15 @@
 //! `"pending": true`, and the page polls `/evaluate/status` for its progress
 //! and, in the end, its result (mdBook's own request times out after 6 s).
 
+mod http;
 mod run;
 
 pub use run::{Limits, Outcome, OutcomeKind, Runner, default_runner};
 
 use std::io::Read;
+use std::net::{TcpListener, TcpStream};
 use std::path::{Component, Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
@@ -65,13 +68,30 @@ struct Job {
     last: Option<Outcome>,
 }
 
+/// The most connections served at once; one more is answered 503 and
+/// closed (a browser opens six per page).
+const MAX_CONNECTIONS: usize = 64;
+
 /// A running server.
 pub struct Server {
-    http: Arc<tiny_http::Server>,
+    listener: TcpListener,
+    inner: Arc<Inner>,
+}
+
+/// What every connection's thread shares.
+struct Inner {
     port: u16,
     token: String,
     config: Config,
     job: Arc<Mutex<Job>>,
+    open: AtomicUsize,
+}
+
+/// An answer: status, content type, body.
+struct Reply {
+    code: u16,
+    content_type: &'static str,
+    body: Vec<u8>,
 }
 
 /// A token nobody can guess: 128 bits from the system's random source.
@@ -94,160 +114,160 @@ fn new_token() -> String {
 impl Server {
     /// Binds 127.0.0.1:`config.port`.
     pub fn bind(config: Config) -> Result<Self, ServerError> {
-        let http =
-            tiny_http::Server::http(("127.0.0.1", config.port)).map_err(|e| ServerError::Bind {
-                port: config.port,
-                reason: e.to_string(),
-            })?;
-        let port = http
-            .server_addr()
-            .to_ip()
+        let bind_error = |e: std::io::Error| ServerError::Bind {
+            port: config.port,
+            reason: e.to_string(),
+        };
+        let listener = TcpListener::bind(("127.0.0.1", config.port)).map_err(bind_error)?;
+        listener.set_nonblocking(true).map_err(bind_error)?;
+        let port = listener
+            .local_addr()
             .map(|a| a.port())
             .unwrap_or(config.port);
         Ok(Self {
-            http: Arc::new(http),
-            port,
-            token: new_token(),
-            config,
-            job: Arc::default(),
+            listener,
+            inner: Arc::new(Inner {
+                port,
+                token: new_token(),
+                config,
+                job: Arc::default(),
+                open: AtomicUsize::new(0),
+            }),
         })
     }
 
     /// The port it listens on.
     pub fn port(&self) -> u16 {
-        self.port
+        self.inner.port
     }
 
     /// The book's address.
     pub fn url(&self) -> String {
-        format!("http://127.0.0.1:{}/", self.port)
+        format!("http://127.0.0.1:{}/", self.inner.port)
     }
 
     /// The token (for tests, which play the page's part).
     pub fn token(&self) -> &str {
-        &self.token
+        &self.inner.token
     }
 
-    /// Answers requests until `stop` is set (a watcher checks it every
-    /// 100 ms and wakes the blocking `recv`).
+    /// Accepts connections until `stop` is set (checked every 20 ms); each
+    /// connection is served on a thread of its own, so that one a browser
+    /// keeps open never holds up another.
     pub fn serve(&self, stop: &AtomicBool) {
-        let done = AtomicBool::new(false);
-        std::thread::scope(|scope| {
-            scope.spawn(|| {
-                while !stop.load(Ordering::Relaxed) && !done.load(Ordering::Relaxed) {
-                    std::thread::sleep(Duration::from_millis(100));
-                }
-                self.http.unblock();
-            });
-            while !stop.load(Ordering::Relaxed) {
-                match self.http.recv() {
-                    // Each request on its own thread: a response that blocks
-                    // (a browser not yet reading a large file on one of its
-                    // connections) must not hold up the page's other requests.
-                    Ok(request) => {
-                        scope.spawn(|| self.handle(request));
+        while !stop.load(Ordering::Relaxed) {
+            match self.listener.accept() {
+                Ok((stream, _)) => {
+                    if self.inner.open.load(Ordering::Relaxed) >= MAX_CONNECTIONS {
+                        if let Ok(mut c) = http::Connection::new(stream) {
+                            let _ = c.respond(503, &[], b"too many connections", false, false);
+                        }
+                        continue;
                     }
-                    Err(_) => break,
+                    let inner = Arc::clone(&self.inner);
+                    inner.open.fetch_add(1, Ordering::Relaxed);
+                    std::thread::spawn(move || {
+                        inner.connection(stream);
+                        inner.open.fetch_sub(1, Ordering::Relaxed);
+                    });
                 }
+                // Nothing waiting (the listener does not block), or a
+                // transient failure such as too many open files.
+                Err(_) => std::thread::sleep(Duration::from_millis(20)),
             }
-            done.store(true, Ordering::Relaxed);
-        });
+        }
+    }
+}
+
+impl Inner {
+    /// Serves one connection's requests in order until it closes.
+    fn connection(&self, stream: TcpStream) {
+        let Ok(mut conn) = http::Connection::new(stream) else {
+            return;
+        };
+        let limit = self.config.runner.limits.request_bytes;
+        loop {
+            let (reply, keep_alive, head_only) = match conn.next_request(limit) {
+                Ok(request) => {
+                    let reply = self.handle(&request);
+                    (reply, request.keep_alive, request.method == "HEAD")
+                }
+                Err(http::ReadError::Closed) => return,
+                Err(http::ReadError::Malformed(why)) => (reason(400, &why), false, false),
+            };
+            let headers = [
+                ("Content-Type", reply.content_type),
+                ("Cache-Control", "no-store"),
+            ];
+            let sent = conn.respond(reply.code, &headers, &reply.body, keep_alive, head_only);
+            if sent.is_err() || !keep_alive {
+                return;
+            }
+        }
     }
 
-    fn handle(&self, mut request: tiny_http::Request) {
-        let header = |name: &'static str| -> Option<String> {
-            request
-                .headers()
-                .iter()
-                .find(|h| h.field.equiv(name))
-                .map(|h| h.value.as_str().to_string())
-        };
-        let host = header("Host").unwrap_or_default();
+    fn handle(&self, request: &http::Request) -> Reply {
+        let host = request.header("Host").unwrap_or_default();
         let allowed_hosts = [
             format!("127.0.0.1:{}", self.port),
             format!("localhost:{}", self.port),
         ];
-        if !allowed_hosts.contains(&host) {
-            return reply(
-                request,
-                403,
-                &format!("refused: Host {host:?} is not this server"),
-            );
+        if !allowed_hosts.iter().any(|h| h == host) {
+            return reason(403, &format!("refused: Host {host:?} is not this server"));
         }
-        if let Some(origin) = header("Origin") {
+        if let Some(origin) = request.header("Origin") {
             let own = allowed_hosts
                 .iter()
                 .any(|h| origin == format!("http://{h}"));
             if !own {
-                return reply(
-                    request,
-                    403,
-                    &format!("refused: Origin {origin:?} is not this book"),
-                );
+                return reason(403, &format!("refused: Origin {origin:?} is not this book"));
             }
         }
-        let url = request.url().to_string();
-        let path = url.split('?').next().unwrap_or("/").to_string();
-        let method = request.method().clone();
-        match path.as_str() {
+        let path = request.url.split('?').next().unwrap_or("/");
+        let method = request.method.as_str();
+        match path {
             "/evaluate.json" | "/evaluate/status" => {
-                if header("X-Spintop-Token").as_deref() != Some(self.token.as_str()) {
-                    return reply(
-                        request,
+                if request.header("X-Spintop-Token") != Some(self.token.as_str()) {
+                    return reason(
                         403,
                         "refused: no valid token (runs are accepted only from this book's own pages)",
                     );
                 }
                 if path == "/evaluate/status" {
-                    if method != tiny_http::Method::Get {
-                        return reply(request, 405, "use GET for /evaluate/status");
+                    if method != "GET" {
+                        return reason(405, "use GET for /evaluate/status");
                     }
-                    return self.status(request);
+                    return self.status();
                 }
-                if method != tiny_http::Method::Post {
-                    return reply(request, 405, "use POST for /evaluate.json");
+                if method != "POST" {
+                    return reason(405, "use POST for /evaluate.json");
                 }
                 let limit = self.config.runner.limits.request_bytes;
-                if request.body_length().is_some_and(|n| n > limit) {
-                    return reply(
-                        request,
+                match &request.body {
+                    http::Body::Read(body) => self.evaluate(body),
+                    http::Body::TooLong => reason(
                         413,
                         &format!("the snippet is larger than {} KiB", limit / 1024),
-                    );
+                    ),
+                    http::Body::Chunked => reason(411, "send the snippet with a Content-Length"),
                 }
-                let mut body = Vec::new();
-                let read = request
-                    .as_reader()
-                    .take(limit as u64 + 1)
-                    .read_to_end(&mut body);
-                if read.is_err() {
-                    return reply(request, 400, "the request body could not be read");
-                }
-                if body.len() > limit {
-                    return reply(
-                        request,
-                        413,
-                        &format!("the snippet is larger than {} KiB", limit / 1024),
-                    );
-                }
-                self.evaluate(request, &body)
             }
             _ => {
-                if method != tiny_http::Method::Get && method != tiny_http::Method::Head {
-                    return reply(request, 405, "the book is read with GET");
+                if method != "GET" && method != "HEAD" {
+                    return reason(405, "the book is read with GET");
                 }
-                self.file(request, &path)
+                self.file(path)
             }
         }
     }
 
     /// A file of the built book; HTML pages receive the token.
-    fn file(&self, request: tiny_http::Request, path: &str) {
+    fn file(&self, path: &str) -> Reply {
         let Some(file) = site_file(&self.config.site, path) else {
-            return reply(request, 404, &format!("no such page: {path}"));
+            return reason(404, &format!("no such page: {path}"));
         };
         let Ok(mut bytes) = std::fs::read(&file) else {
-            return reply(request, 404, &format!("no such page: {path}"));
+            return reason(404, &format!("no such page: {path}"));
         };
         let ext = file.extension().and_then(|e| e.to_str()).unwrap_or("");
         if ext == "html" {
@@ -262,14 +282,15 @@ impl Server {
             }
             .into_bytes();
         }
-        let response = tiny_http::Response::from_data(bytes)
-            .with_header(header("Content-Type", content_type(ext)))
-            .with_header(header("Cache-Control", "no-store"));
-        let _ = request.respond(response);
+        Reply {
+            code: 200,
+            content_type: content_type(ext),
+            body: bytes,
+        }
     }
 
     /// `/evaluate.json`: start a run, answer within [`Limits::answer_within`].
-    fn evaluate(&self, request: tiny_http::Request, body: &[u8]) {
+    fn evaluate(&self, body: &[u8]) -> Reply {
         #[derive(serde::Deserialize)]
         struct Params {
             code: String,
@@ -278,15 +299,12 @@ impl Server {
         }
         let params: Params = match serde_json::from_slice(body) {
             Ok(p) => p,
-            Err(e) => {
-                return reply(request, 400, &format!("malformed request: {e}"));
-            }
+            Err(e) => return reason(400, &format!("malformed request: {e}")),
         };
         {
             let mut job = lock(&self.job);
             if job.running {
-                return reply_json(
-                    request,
+                return json(
                     429,
                     serde_json::json!({
                         "result": "busy: another snippet is running; press ▶ again when it has finished",
@@ -305,8 +323,9 @@ impl Server {
         let edition = params.edition.unwrap_or_else(|| "2024".into());
         let answer_within = runner.limits.answer_within;
         let (done_tx, done_rx) = std::sync::mpsc::channel();
-        // The run in one thread, the answer in another: the server's loop is
-        // free at once, so that a second request is told "busy", not queued.
+        // The run on a thread of its own: this connection answers within
+        // `answer_within` (202 and "pending" if the run goes on), and other
+        // connections meanwhile are told "busy", not queued.
         std::thread::spawn(move || {
             let progress_job = Arc::clone(&job);
             let outcome = runner.run(&params.code, &edition, &mut |line: &str| {
@@ -318,21 +337,20 @@ impl Server {
             drop(j);
             let _ = done_tx.send(outcome);
         });
-        std::thread::spawn(move || match done_rx.recv_timeout(answer_within) {
-            Ok(outcome) => reply_json(request, 200, outcome_json(&outcome)),
-            Err(_) => reply_json(
-                request,
+        match done_rx.recv_timeout(answer_within) {
+            Ok(outcome) => json(200, outcome_json(&outcome)),
+            Err(_) => json(
                 202,
                 serde_json::json!({
                     "result": "compiling… (the first run builds spintop for the book: a minute or two on a small machine; later runs take a second or two)",
                     "pending": true,
                 }),
             ),
-        });
+        }
     }
 
     /// `/evaluate/status`: the run's progress, or its outcome once done.
-    fn status(&self, request: tiny_http::Request) {
+    fn status(&self) -> Reply {
         let job = lock(&self.job);
         let value = match (&job.running, &job.last) {
             (true, _) => serde_json::json!({ "done": false, "progress": job.progress }),
@@ -344,7 +362,7 @@ impl Server {
             (false, None) => serde_json::json!({ "done": true, "result": "" }),
         };
         drop(job);
-        reply_json(request, 200, value)
+        json(200, value)
     }
 }
 
@@ -414,27 +432,17 @@ fn content_type(ext: &str) -> &'static str {
     }
 }
 
-fn header(name: &str, value: &str) -> tiny_http::Header {
-    // Both are ASCII constants or ASCII content types: this cannot fail.
-    tiny_http::Header::from_bytes(name.as_bytes(), value.as_bytes())
-        .unwrap_or_else(|_| tiny_http::Header::from_bytes(&b"X-Spintop"[..], &b"?"[..]).unwrap())
-}
-
 /// A one-line reason, as JSON in the playground's shape (the page shows it).
-fn reply(request: tiny_http::Request, code: u16, reason: &str) {
-    reply_json(
-        request,
-        code,
-        serde_json::json!({ "result": reason, "error": reason }),
-    )
+fn reason(code: u16, why: &str) -> Reply {
+    json(code, serde_json::json!({ "result": why, "error": why }))
 }
 
-fn reply_json(request: tiny_http::Request, code: u16, value: serde_json::Value) {
-    let response = tiny_http::Response::from_string(value.to_string())
-        .with_status_code(code)
-        .with_header(header("Content-Type", "application/json"))
-        .with_header(header("Cache-Control", "no-store"));
-    let _ = request.respond(response);
+fn json(code: u16, value: serde_json::Value) -> Reply {
+    Reply {
+        code,
+        content_type: "application/json",
+        body: value.to_string().into_bytes(),
+    }
 }
 
 /// A minimal HTTP/1.1 client for the server's own checks (`spintop book

@@ -334,3 +334,75 @@ fn a_long_run_answers_pending_and_its_status_follows_it() {
     assert_eq!(last["done"], true, "{last}");
     assert_eq!(last["result"].as_str().unwrap().trim(), "done at last");
 }
+
+/// One response read off a kept-alive connection: status and body (by its
+/// Content-Length), or `None` if it does not come within 10 s.
+fn read_response(stream: &mut std::net::TcpStream) -> Option<(u16, String)> {
+    use std::io::Read;
+    stream
+        .set_read_timeout(Some(Duration::from_secs(10)))
+        .unwrap();
+    let mut raw = Vec::new();
+    let mut byte = [0u8; 1];
+    while !raw.ends_with(b"\r\n\r\n") {
+        if stream.read(&mut byte).ok()? == 0 {
+            return None;
+        }
+        raw.push(byte[0]);
+    }
+    let head = String::from_utf8_lossy(&raw).into_owned();
+    let code = head.split_whitespace().nth(1)?.parse().ok()?;
+    let length: usize = head
+        .lines()
+        .find_map(|l| l.strip_prefix("Content-Length: "))?
+        .trim()
+        .parse()
+        .ok()?;
+    let mut body = vec![0; length];
+    stream.read_exact(&mut body).ok()?;
+    Some((code, String::from_utf8_lossy(&body).into_owned()))
+}
+
+/// A browser opens several connections at once for a page and keeps them
+/// open, some without sending anything yet. Every connection must be
+/// answered while the others stay open: a server that serves connections
+/// one after another, or from a pool that can queue one behind kept-alive
+/// ones (as `tiny_http`'s did, which hung the first page of `spintop book`
+/// in Chromium about one load in three), fails here or in the browser test.
+#[test]
+fn connections_a_browser_keeps_open_never_hold_up_another() {
+    use std::io::Write;
+    let s = start("keepalive", limits());
+    let port = s.port;
+    // Twelve connections at the same instant, each asking twice and then
+    // held open until all have their answers (or have waited 10 s in vain).
+    let start_line = Arc::new(std::sync::Barrier::new(12));
+    let finish_line = Arc::new(std::sync::Barrier::new(12));
+    let clients: Vec<_> = (0..12)
+        .map(|_| {
+            let (start_line, finish_line) = (Arc::clone(&start_line), Arc::clone(&finish_line));
+            std::thread::spawn(move || {
+                start_line.wait();
+                let mut c = std::net::TcpStream::connect(("127.0.0.1", port)).unwrap();
+                let get = format!("GET /css/book.css HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n\r\n");
+                let mut answers = Vec::new();
+                for _ in 0..2 {
+                    c.write_all(get.as_bytes()).unwrap();
+                    answers.push(read_response(&mut c));
+                }
+                finish_line.wait();
+                answers
+            })
+        })
+        .collect();
+    // Eight idle connections beside them, as Chromium's preconnects.
+    let idle: Vec<_> = (0..8)
+        .map(|_| std::net::TcpStream::connect(("127.0.0.1", port)).unwrap())
+        .collect();
+    for client in clients {
+        for answer in client.join().unwrap() {
+            assert_eq!(answer, Some((200, "body {}".to_string())));
+        }
+    }
+    drop(idle);
+}

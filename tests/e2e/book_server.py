@@ -90,10 +90,7 @@ def main() -> int:
     try:
         with chromium(width=1200, height=1000) as page:
             # 1. Section 4.2 through the server.
-            # NOTE: the first load starts a fresh Chromium profile; on a
-            # loaded 2-core machine that alone has taken over 30 s (the
-            # default), so it gets 2 minutes. Later loads keep the default.
-            page.goto(url + "section-4-2.html", timeout=120000)
+            page.goto(url + "section-4-2.html")
             page.locator("pre.playground >> visible=true").first.wait_for(timeout=20000)
             page.screenshot(path=str(shots / "section-4-2.png"))
             token = page.evaluate("window.spintopBook && window.spintopBook.token")
