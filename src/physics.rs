@@ -22,6 +22,7 @@ use thiserror::Error;
 pub mod balance;
 pub mod central;
 pub mod euler_angles;
+pub mod free_top;
 pub mod full_ale;
 pub mod general_top;
 pub mod particle;

@@ -35,6 +35,7 @@ use thiserror::Error;
 pub mod cost;
 pub mod orbit;
 pub mod physical;
+pub mod secular;
 pub mod shell;
 
 use physical::general;
