@@ -125,7 +125,7 @@ impl Polhode {
             m: 0.0,
             fixed: Some(fixed),
         };
-        if !(span > 0.0) || upper <= 1e-14 * span {
+        if span.is_nan() || span <= 0.0 || upper <= 1e-14 * span {
             return degenerate(fixed_on(c));
         }
         if lower <= 1e-14 * span {
