@@ -1,7 +1,9 @@
 //! Scenes answered whole, one criterion benchmark each: the nanoparticle
 //! scenes, whose τΩ ~ 1e-26 and 1e-18 would need ~1e20 steps to integrate and
-//! are answered from the closed forms (goal: under 100 ms), and Figure 2 for
-//! comparison (the reduced orientation is integrated there).
+//! are answered from the closed forms (goal: under 100 ms), the asymmetric
+//! real particles (a molecule, a nanoellipsoid; 10¹⁷ and 10²⁶ rad), answered by
+//! the secular model (same goal), and Figure 2 for comparison (the reduced
+//! orientation is integrated there).
 //!
 //! ```sh
 //! cargo bench --bench scenes
@@ -16,6 +18,8 @@ fn scenes(c: &mut Criterion) {
     for name in [
         "nanoparticle-1e3-debye",
         "nanoparticle-1e7-debye",
+        "formaldehyde-molecule",
+        "nanoellipsoid-tumbling",
         "figure-2",
     ] {
         let scene = load(name).expect("a catalogue scene");

@@ -24,7 +24,9 @@ use crate::physics::balance::{Dumbbell, PlanarLoop, PrecessingDipole};
 use crate::physics::central::{ChargeInField, Potential};
 use crate::physics::euler_angles::{EulerAngles, frame_with_z_along};
 use crate::physics::general_top::GeneralTop;
-use crate::physics::particle::{DEBYE_ESU_CM, Particle, SECONDS_PER_YEAR, Shape};
+use crate::physics::particle::{
+    DEBYE_ESU_CM, Particle, RigidParticle, RigidShape, SECONDS_PER_YEAR, Shape,
+};
 use crate::physics::rigid_body::angular_momentum_body;
 use crate::physics::shell::ShellModel;
 use crate::physics::symmetric_top::SymmetricTop;
@@ -201,8 +203,11 @@ pub struct TopScene {
     pub frame: Frame,
     /// Output times, in τ (κ = 1 units for the general top).
     pub times: Vec<Real>,
-    /// The real particle, when `[units]` is given.
+    /// The real particle, when `[units]` gives a sphere or a cylinder.
     pub units: Option<RealUnits>,
+    /// The asymmetric real particle, when `[units]` gives an ellipsoid or a
+    /// molecule.
+    pub general_units: Option<GeneralUnits>,
     /// Whether the orientation is computed.
     pub orientation: Orientation,
 }
@@ -267,6 +272,30 @@ impl RealUnits {
     /// How many τ make one output time unit.
     pub fn tau_per_unit(&self) -> Real {
         self.time_unit.seconds() / self.tau_seconds()
+    }
+}
+
+/// The `[units]` of an asymmetric real particle (an ellipsoid or a
+/// molecule): the particle, its body-frame rates and how to show times.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GeneralUnits {
+    /// The particle.
+    pub particle: RigidParticle,
+    /// Body-frame rates Ω₀/2π, turns per second.
+    pub omega_hz: [Real; 3],
+    /// The unit of `[solve]` times and of the output.
+    pub time_unit: TimeUnit,
+}
+
+impl GeneralUnits {
+    /// τ_f = κ|D|²/min I in seconds, the time unit of its κ = 1 top.
+    pub fn fast_time_seconds(&self) -> Real {
+        self.particle.fast_time_seconds()
+    }
+
+    /// How many τ_f make one output time unit.
+    pub fn u_per_unit(&self) -> Real {
+        self.time_unit.seconds() / self.fast_time_seconds()
     }
 }
 
@@ -341,13 +370,15 @@ pub struct StabilityScene {
 }
 
 /// The model names of `[top] model`.
-pub const MODELS: [&str; 4] = ["truncated", "reduced", "general", "full"];
+pub const MODELS: [&str; 5] = ["truncated", "reduced", "general", "full", "auto"];
 /// The method names of `[solve] method`.
 pub const METHODS: [&str; 7] = [
     "auto", "exact", "rk4", "dopri5", "dop853", "radau5", "forward",
 ];
 /// The shapes of `[units] shape`.
-pub const SHAPES: [&str; 2] = ["sphere", "cylinder"];
+pub const SHAPES: [&str; 4] = ["sphere", "cylinder", "ellipsoid", "molecule"];
+/// The shapes of `[units]` that make an asymmetric top.
+pub const GENERAL_SHAPES: [&str; 2] = ["ellipsoid", "molecule"];
 
 /// A value that was given, with the byte range it came from.
 type At<T> = Option<(T, Range<usize>)>;
@@ -911,14 +942,60 @@ fn top_scene(
                 &format!("one of {}", MODELS.join(", ")),
             )
         })?;
-    let symmetric = model_index != 2;
+    let auto_model = model_index == 4;
+    let general_shape = units
+        .as_ref()
+        .and_then(|(u, _)| u.shape.as_ref())
+        .is_some_and(|s| GENERAL_SHAPES.contains(&s.get_ref().as_str()));
+    let general =
+        model_index == 2 || raw.inertia.is_some() || raw.dipole.is_some() || general_shape;
+    let mut general_units = None;
     let units = match units {
+        Some((u, span)) if general => {
+            if model_index == 3 {
+                return Err(ctx.at(
+                    &model_span,
+                    "[top] model = \"full\" cannot take [units]: a real particle turns 10^15 times or more before its radiation shows, and the physical solution steps every turn; expected auto, truncated or reduced",
+                ));
+            }
+            let why = "follows from [units]; remove it";
+            not_here(
+                ctx,
+                &raw.inertia,
+                "top",
+                "inertia",
+                &format!("{why} (the particle's moments)"),
+            )?;
+            not_here(
+                ctx,
+                &raw.dipole,
+                "top",
+                "dipole",
+                &format!("{why} (dipole_vector_debye)"),
+            )?;
+            not_here(
+                ctx,
+                &raw.omega,
+                "top",
+                "omega",
+                &format!("{why} (omega_hz)"),
+            )?;
+            not_here(
+                ctx,
+                &raw.ratio,
+                "top",
+                "ratio",
+                "belongs to the symmetric models",
+            )?;
+            general_units = Some(rigid_units(ctx, u, &span)?);
+            None
+        }
         Some((u, span)) => {
-            if !(model_index == 0 || model_index == 1) {
+            if !(model_index == 0 || model_index == 1 || auto_model) {
                 return Err(ctx.at(
                     &model_span,
                     format!(
-                        "[top] model = \"{}\" cannot take [units]; expected truncated or reduced (the closed-form models of a real sphere or cylinder)",
+                        "[top] model = \"{}\" cannot take [units]; expected auto, truncated or reduced (the closed-form models of a real sphere or cylinder)",
                         MODELS[model_index]
                     ),
                 ));
@@ -957,8 +1034,10 @@ fn top_scene(
         &raw.dipole,
         "three numbers, the body-frame dipole",
     )?;
-    let model = if symmetric {
-        let general_only = "belongs to model = \"general\"; the symmetric models take ratio";
+    // The three models of this top, lightest first: the truncated ALE, the
+    // reduced ALE, the physical solution of (3.4).
+    let tiers: [Model; 3] = if !general {
+        let general_only = "belongs to an asymmetric top (model = \"general\", or inertia and dipole with any model); the symmetric models take ratio";
         not_here(ctx, &raw.inertia, "top", "inertia", general_only)?;
         not_here(ctx, &raw.dipole, "top", "dipole", general_only)?;
         let r = match (&units, &ratio) {
@@ -970,52 +1049,63 @@ fn top_scene(
             let span = ratio.as_ref().map(|(_, s)| s);
             param(ctx, e, &[("I3/I1", span)], own, "top")
         })?;
-        match model_index {
-            0 => Model::Truncated(top),
-            1 => Model::Reduced(top),
-            _ => Model::Full(top),
-        }
+        [Model::Truncated(top), Model::Reduced(top), Model::Full(top)]
     } else {
         not_here(
             ctx,
             &raw.ratio,
             "top",
             "ratio",
-            "belongs to the symmetric models; model = \"general\" takes inertia and dipole",
+            "belongs to the symmetric models; an asymmetric top takes inertia and dipole",
         )?;
-        let (i, i_span) = inertia.clone().ok_or_else(|| {
-            missing(
-                ctx,
-                own,
-                "top",
-                "inertia",
-                "inertia = [I1, I2, I3] for model = \"general\"",
-            )
-        })?;
-        let (d, d_span) = dipole.clone().ok_or_else(|| {
-            missing(
-                ctx,
-                own,
-                "top",
-                "dipole",
-                "dipole = [d1, d2, d3] for model = \"general\"",
-            )
-        })?;
-        let top = GeneralTop::new(Vec3::from(i), Vec3::from(d)).map_err(|e| {
-            param(
-                ctx,
-                e,
-                &[
-                    ("inertia", Some(&i_span)),
-                    ("I", Some(&i_span)),
-                    ("dipole", Some(&d_span)),
-                    ("d", Some(&d_span)),
-                ],
-                own,
-                "top",
-            )
-        })?;
-        Model::General(top)
+        let top = match &general_units {
+            Some(g) => g.particle.top(),
+            None => {
+                let (i, i_span) = inertia.clone().ok_or_else(|| {
+                    missing(
+                        ctx,
+                        own,
+                        "top",
+                        "inertia",
+                        "inertia = [I1, I2, I3] for an asymmetric top",
+                    )
+                })?;
+                let (d, d_span) = dipole.clone().ok_or_else(|| {
+                    missing(
+                        ctx,
+                        own,
+                        "top",
+                        "dipole",
+                        "dipole = [d1, d2, d3] for an asymmetric top",
+                    )
+                })?;
+                GeneralTop::new(Vec3::from(i), Vec3::from(d)).map_err(|e| {
+                    param(
+                        ctx,
+                        e,
+                        &[
+                            ("inertia", Some(&i_span)),
+                            ("I", Some(&i_span)),
+                            ("dipole", Some(&d_span)),
+                            ("d", Some(&d_span)),
+                        ],
+                        own,
+                        "top",
+                    )
+                })?
+            }
+        };
+        [
+            Model::General(top),
+            Model::GeneralReduced(top),
+            Model::GeneralFull(top),
+        ]
+    };
+    let asked_tier = match model_index {
+        0 | 2 => Some(0),
+        1 => Some(1),
+        3 => Some(2),
+        _ => None,
     };
 
     // Ω₀: given, or from the particle's spin.
@@ -1026,18 +1116,20 @@ fn top_scene(
         &raw.omega,
         "three body-frame rates in 1/tau",
     )?;
-    let omega0 = match (&units, &omega_key) {
-        (Some(u), _) => u
+    let omega0 = match (&units, &general_units, &omega_key) {
+        (Some(u), _, _) => u
             .particle
             .omega0_per_tau(u.spin_hz, u.spin_tilt_deg.to_radians()),
-        (None, Some((w, span))) => {
+        (None, Some(g), _) => g.particle.omega0(g.omega_hz),
+        (None, None, Some((w, span))) => {
             if w.iter().any(|x| x.abs() > MAX_RATE) {
                 return Err(ctx.at(span, "[top] omega is out of range; expected each component at most 1e100 in units of 1/tau"));
             }
             Vec3::from(*w)
         }
-        (None, None) => Vec3::new(0.0, 0.1, 0.2),
+        (None, None, None) => Vec3::new(0.0, 0.1, 0.2),
     };
+    let inertia_of_top = tiers[0].inertia();
 
     // O(0): Euler angles, or the paper's frame.
     let euler_key = finite_array(
@@ -1057,7 +1149,7 @@ fn top_scene(
     let (euler, frame) = match (&euler_key, &frame_key) {
         (Some((e, _)), _) => (EulerAngles::new(e[0], e[1], e[2]), Frame::Euler),
         (None, Some(_)) => (
-            frame_with_z_along(&angular_momentum_body(&model.inertia(), &omega0)),
+            frame_with_z_along(&angular_momentum_body(&inertia_of_top, &omega0)),
             Frame::Paper,
         ),
         (None, None) => (EulerAngles::new(0.0, 0.0, 0.0), Frame::Euler),
@@ -1082,17 +1174,31 @@ fn top_scene(
     };
     let method_span = method_key.as_ref().map_or(own.clone(), |(_, s)| s.clone());
     let method_name = METHODS[method_key.as_ref().map_or(0, |(m, _)| *m)];
-    match (&model, method) {
-        (Model::General(_), MethodChoice::Exact) => {
-            return Err(ctx.at(&method_span, "[solve] method = \"exact\": the general model has no closed form; expected auto, rk4, dopri5, dop853 or radau5"));
+    if auto_model && method != MethodChoice::Auto {
+        return Err(ctx.at(&method_span, format!("[solve] method = \"{method_name}\": model = \"auto\" chooses the model and its method together; remove method, or name the model in [top]")));
+    }
+    if let Some(tier) = asked_tier {
+        match (&tiers[tier], method) {
+            (Model::General(_) | Model::GeneralReduced(_), MethodChoice::Exact) => {
+                return Err(ctx.at(&method_span, "[solve] method = \"exact\": the asymmetric top has no closed form; expected auto, rk4, dopri5, dop853 or radau5"));
+            }
+            (
+                Model::Full(_) | Model::GeneralFull(_),
+                MethodChoice::Rk4 | MethodChoice::Dopri5 | MethodChoice::Radau5,
+            ) => {
+                return Err(ctx.at(&method_span, format!("[solve] method = \"{method_name}\" does not apply to model = \"full\"; expected auto (its physical solution) or forward (the runaway)")));
+            }
+            (
+                Model::Truncated(_)
+                | Model::Reduced(_)
+                | Model::General(_)
+                | Model::GeneralReduced(_),
+                MethodChoice::Forward,
+            ) => {
+                return Err(ctx.at(&method_span, "[solve] method = \"forward\" belongs to model = \"full\"; expected auto, exact, rk4, dopri5, dop853 or radau5"));
+            }
+            _ => {}
         }
-        (Model::Full(_), MethodChoice::Rk4 | MethodChoice::Dopri5 | MethodChoice::Radau5) => {
-            return Err(ctx.at(&method_span, format!("[solve] method = \"{method_name}\" does not apply to model = \"full\"; expected auto (its physical solution) or forward (the runaway)")));
-        }
-        (Model::Truncated(_) | Model::Reduced(_) | Model::General(_), MethodChoice::Forward) => {
-            return Err(ctx.at(&method_span, "[solve] method = \"forward\" belongs to model = \"full\"; expected auto, exact, rk4, dopri5, dop853 or radau5"));
-        }
-        _ => {}
     }
     let mut options = MethodOptions::default();
     if let Some(s) = s {
@@ -1123,11 +1229,22 @@ fn top_scene(
             options.step = step;
         }
     }
-    let scale = units.as_ref().map_or(1.0, RealUnits::tau_per_unit);
+    let scale = match (&units, &general_units) {
+        (Some(u), _) => u.tau_per_unit(),
+        (None, Some(g)) => g.u_per_unit(),
+        (None, None) => 1.0,
+    };
     let (times, times_span) =
         solve_times(ctx, solve.clone(), own, Some((100.0, 11)), false, scale)?;
     let t_last = times.last().copied().unwrap_or(0.0);
-    let plan = plan::plan_top(&model, method, &options, &initial, t_last).map_err(|r| {
+    let (model, model_choice) = match asked_tier {
+        Some(tier) => (tiers[tier], None),
+        None => {
+            let choice = plan::choose_model(&tiers, &omega0, t_last, options.rtol);
+            (tiers[choice.tier], Some(choice.reason))
+        }
+    };
+    let mut plan = plan::plan_top(&model, method, &options, &initial, t_last).map_err(|r| {
         let span = match r.at {
             plan::Blame::Method => method_span.clone(),
             plan::Blame::Times => times_span
@@ -1136,6 +1253,9 @@ fn top_scene(
         };
         ctx.at(&span, r.message)
     })?;
+    if let Some(why) = model_choice {
+        plan.chosen.reason = format!("{why}; {}", plan.chosen.reason);
+    }
     Ok(Built {
         body: Body::Top(Box::new(TopScene {
             model,
@@ -1146,6 +1266,7 @@ fn top_scene(
             frame,
             times,
             units,
+            general_units,
             orientation: plan.orientation,
         })),
         chosen: plan.chosen,
@@ -1203,18 +1324,26 @@ fn real_units(ctx: &Ctx, u: &RawUnits, header: &Range<usize>) -> Result<RealUnit
         "an angle in (0, 90) degrees",
     )?
     .map_or(1.0, |(x, _)| x);
-    let time_unit = choice(ctx, s, "time_unit", &u.time_unit, &TIME_UNITS)?.map_or(
-        TimeUnit::Second,
-        |(i, _)| {
-            [
-                TimeUnit::Second,
-                TimeUnit::Minute,
-                TimeUnit::Hour,
-                TimeUnit::Day,
-                TimeUnit::Year,
-            ][i]
-        },
-    );
+    let time_unit = time_unit(ctx, u)?;
+    let asymmetric_only = "belongs to shape = \"ellipsoid\" or \"molecule\"";
+    not_here(ctx, &u.moments_amu_a2, s, "moments_amu_a2", asymmetric_only)?;
+    not_here(ctx, &u.semi_axes_nm, s, "semi_axes_nm", asymmetric_only)?;
+    not_here(
+        ctx,
+        &u.dipole_vector_debye,
+        s,
+        "dipole_vector_debye",
+        &format!(
+            "{asymmetric_only}; a sphere's or cylinder's dipole lies on its axis: dipole_debye"
+        ),
+    )?;
+    not_here(
+        ctx,
+        &u.omega_hz,
+        s,
+        "omega_hz",
+        &format!("{asymmetric_only}; a sphere or cylinder gives spin_hz and spin_tilt_deg"),
+    )?;
     // NOTE: nm → cm is 1e-7, kg/m³ → g/cm³ is 1e-3: the particle works in Gaussian units.
     let particle = Particle::new(
         shape,
@@ -1234,6 +1363,166 @@ fn real_units(ctx: &Ctx, u: &RawUnits, header: &Range<usize>) -> Result<RealUnit
         spin_tilt_deg,
         upright_deg,
         time_unit,
+    })
+}
+
+/// The time unit of `[units] time_unit` (seconds by default).
+fn time_unit(ctx: &Ctx, u: &RawUnits) -> Result<TimeUnit, SceneError> {
+    Ok(
+        choice(ctx, "units", "time_unit", &u.time_unit, &TIME_UNITS)?.map_or(
+            TimeUnit::Second,
+            |(i, _)| {
+                [
+                    TimeUnit::Second,
+                    TimeUnit::Minute,
+                    TimeUnit::Hour,
+                    TimeUnit::Day,
+                    TimeUnit::Year,
+                ][i]
+            },
+        ),
+    )
+}
+
+/// `[units]` of an ellipsoid or a molecule.
+fn rigid_units(ctx: &Ctx, u: &RawUnits, header: &Range<usize>) -> Result<GeneralUnits, SceneError> {
+    let s = "units";
+    let (shape, _) = choice(ctx, s, "shape", &u.shape, &SHAPES)?
+        .ok_or_else(|| missing(ctx, header, s, "shape", "ellipsoid or molecule"))?;
+    if !GENERAL_SHAPES.contains(&SHAPES[shape]) {
+        return Err(ctx.at(header, format!("[units] shape = \"{}\" is a symmetric top with its dipole on the axis; an asymmetric top (inertia and dipole, or model = \"general\") takes shape = \"ellipsoid\" or \"molecule\"", SHAPES[shape])));
+    }
+    let symmetric_only = "belongs to shape = \"sphere\" or \"cylinder\"";
+    not_here(
+        ctx,
+        &u.radius_nm,
+        s,
+        "radius_nm",
+        &format!("{symmetric_only}; an ellipsoid has semi_axes_nm, a molecule moments_amu_a2"),
+    )?;
+    not_here(ctx, &u.length_nm, s, "length_nm", symmetric_only)?;
+    not_here(
+        ctx,
+        &u.dipole_debye,
+        s,
+        "dipole_debye",
+        &format!(
+            "{symmetric_only}, whose dipole lies on the axis; give dipole_vector_debye = [D1, D2, D3]"
+        ),
+    )?;
+    not_here(
+        ctx,
+        &u.spin_hz,
+        s,
+        "spin_hz",
+        &format!("{symmetric_only}; give omega_hz = [f1, f2, f3], the body-frame rates"),
+    )?;
+    not_here(
+        ctx,
+        &u.spin_tilt_deg,
+        s,
+        "spin_tilt_deg",
+        &format!("{symmetric_only}; give omega_hz = [f1, f2, f3]"),
+    )?;
+    not_here(ctx, &u.upright_deg, s, "upright_deg", symmetric_only)?;
+    let three = |key: &str, v: &Key<[Real; 3]>, what: &str| -> Result<[Real; 3], SceneError> {
+        finite_array(ctx, s, key, v, what)?
+            .map(|(x, _)| x)
+            .ok_or_else(|| missing(ctx, header, s, key, what))
+    };
+    let shape = if SHAPES[shape] == "ellipsoid" {
+        not_here(
+            ctx,
+            &u.moments_amu_a2,
+            s,
+            "moments_amu_a2",
+            "belongs to shape = \"molecule\"; an ellipsoid's moments follow from semi_axes_nm and density_kg_m3",
+        )?;
+        let density = num_in(
+            ctx,
+            s,
+            "density_kg_m3",
+            &u.density_kg_m3,
+            |x| x > 0.0,
+            "a positive density in kg/m^3",
+        )?
+        .map(|(x, _)| x)
+        .ok_or_else(|| {
+            missing(
+                ctx,
+                header,
+                s,
+                "density_kg_m3",
+                "a positive density in kg/m^3",
+            )
+        })?;
+        RigidShape::Ellipsoid {
+            semi_axes_nm: three(
+                "semi_axes_nm",
+                &u.semi_axes_nm,
+                "three positive semi-axes in nm, along the body axes",
+            )?,
+            density_kg_m3: density,
+        }
+    } else {
+        not_here(
+            ctx,
+            &u.semi_axes_nm,
+            s,
+            "semi_axes_nm",
+            "belongs to shape = \"ellipsoid\"; a molecule gives moments_amu_a2",
+        )?;
+        not_here(
+            ctx,
+            &u.density_kg_m3,
+            s,
+            "density_kg_m3",
+            "belongs to shape = \"ellipsoid\"; a molecule gives moments_amu_a2",
+        )?;
+        let m = three(
+            "moments_amu_a2",
+            &u.moments_amu_a2,
+            "three principal moments in amu A^2",
+        )?;
+        let total: Real = m.iter().sum();
+        for (k, &mk) in m.iter().enumerate() {
+            let others = total - mk;
+            if mk > others * (1.0 + 1e-12) {
+                let span = u
+                    .moments_amu_a2
+                    .as_ref()
+                    .map_or(header.clone(), |v| v.span());
+                return Err(ctx.at(&span, format!("[units] moments_amu_a2: I{} = {} exceeds the sum of the other two, {}, by {:.3e} amu A^2, which no rigid body does; measured moments carry the inertia defect of vibration, so give the rigid ones (I_C = I_A + I_B for a planar molecule)", k + 1, mk, others, mk - others)));
+            }
+        }
+        RigidShape::Molecule { moments_amu_a2: m }
+    };
+    let dipole = three(
+        "dipole_vector_debye",
+        &u.dipole_vector_debye,
+        "three numbers, the body-frame dipole in debye",
+    )?;
+    let omega_hz = three(
+        "omega_hz",
+        &u.omega_hz,
+        "three body-frame rates in turns per second",
+    )?;
+    if omega_hz.iter().any(|x| x.abs() > 1e30) {
+        return Err(ctx.at(
+            header,
+            "[units] omega_hz is out of range; expected each rate at most 1e30 Hz",
+        ));
+    }
+    let particle =
+        RigidParticle::new(shape, dipole).map_err(|e| ctx.at(header, format!("[units] {e}")))?;
+    let tau_f = particle.fast_time_seconds();
+    if !(tau_f > 0.0 && tau_f.is_finite()) {
+        return Err(ctx.at(header, format!("[units] give tau_f = {tau_f:e} s, which a double cannot hold; expected sizes and a dipole of laboratory scale")));
+    }
+    Ok(GeneralUnits {
+        particle,
+        omega_hz,
+        time_unit: time_unit(ctx, u)?,
     })
 }
 

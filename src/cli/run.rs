@@ -13,13 +13,14 @@ use super::simulate::{Parameters, SimulateConfig, SimulateOutput, simulate};
 use super::{CliError, Format, bad, fixed_or_exp, num, write_aligned};
 use crate::integrate::Stats;
 use crate::math::{Real, Vec3};
-use crate::physics::particle::{DEBYE_ESU_CM, Milestones, SPEED_OF_LIGHT_CM_S};
+use crate::physics::particle::{DEBYE_ESU_CM, Milestones, RigidShape, SPEED_OF_LIGHT_CM_S};
 use crate::scene::{
-    BalanceDipole, Body, Chosen, Kind, OmegaSample, Orientation, RealUnits, Scene, TopScene,
-    catalogue, omega_samples, pole_warning,
+    BalanceDipole, Body, Chosen, GeneralUnits, Kind, OmegaSample, Orientation, RealUnits, Scene,
+    TopScene, catalogue, omega_samples, pole_warning,
 };
 use crate::sim::Model;
 use crate::sim::orbit::Force;
+use crate::sim::secular::{Law, SecularSample, secular};
 use crate::sim::shell::default_steps_per_delay;
 use crate::stability::Row;
 use clap::Args;
@@ -217,6 +218,38 @@ pub struct OmegaOnlyOutput {
     pub orientation_skipped: String,
 }
 
+/// An asymmetric top answered by the secular model: E and |L| only.
+#[derive(Debug, Serialize)]
+pub struct SecularOutput {
+    /// `general` or `general-reduced`.
+    pub model: &'static str,
+    /// `secular`.
+    pub method: &'static str,
+    /// One sentence on what was computed how.
+    pub method_detail: &'static str,
+    /// The inputs.
+    pub parameters: Parameters,
+    /// Work of the slow integration (each evaluation is one period average).
+    pub stats: Stats,
+    /// The most quadrature points one period average took.
+    pub max_quadrature_points: usize,
+    /// One entry per output time.
+    pub samples: Vec<SecularRow>,
+    /// Why the orientation is not given.
+    pub orientation_skipped: String,
+}
+
+/// One time of a secular run.
+#[derive(Debug, Serialize)]
+pub struct SecularRow {
+    /// The model's state.
+    #[serde(flatten)]
+    pub sample: SecularSample,
+    /// Time in the scene's output unit, when it has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub t_unit: Option<Real>,
+}
+
 /// What a top scene produced.
 #[derive(Debug, Serialize)]
 #[serde(untagged)]
@@ -225,6 +258,58 @@ pub enum TopRun {
     Full(SimulateOutput),
     /// Ω only.
     OmegaOnly(OmegaOnlyOutput),
+    /// E and |L| only, from the secular model.
+    Secular(SecularOutput),
+}
+
+/// An asymmetric real particle's inputs and its conversion to κ = 1 units.
+#[derive(Clone, Debug, Serialize)]
+pub struct RigidReport {
+    /// What it is made of, as given.
+    pub shape: RigidShape,
+    /// Principal moments, kg·m².
+    pub inertia_kg_m2: [Real; 3],
+    /// Body-frame dipole, debye.
+    pub dipole_debye: [Real; 3],
+    /// Body-frame rates, Hz.
+    pub omega_hz: [Real; 3],
+    /// τ_f = κ|D|²/min I, seconds: the time unit u of its κ = 1 top.
+    pub fast_time_s: Real,
+    /// The conversion, written out with the numbers.
+    pub conversion: String,
+    /// τ_f|Ω₀|, the share of spin the radiation takes per radian.
+    pub share_per_radian: Real,
+    /// The output time unit.
+    pub time_unit: &'static str,
+    /// Seconds per output time unit.
+    pub seconds_per_unit: Real,
+    /// u per output time unit.
+    pub u_per_unit: Real,
+}
+
+/// The report of an ellipsoid or molecule `[units]` scene.
+pub fn rigid_report(units: &GeneralUnits) -> RigidReport {
+    let p = &units.particle;
+    let tau_f = p.fast_time_seconds();
+    let i = p.inertia_g_cm2();
+    let d = p.dipole_esu_cm();
+    let omega0 = p.omega0(units.omega_hz);
+    RigidReport {
+        shape: p.shape(),
+        inertia_kg_m2: (i * 1e-7).into(),
+        dipole_debye: (d / DEBYE_ESU_CM).into(),
+        omega_hz: units.omega_hz,
+        fast_time_s: tau_f,
+        conversion: format!(
+            "tau_f = 2 |D|^2/(3 c^3 min I) = 2 ({:.4e} statC cm)^2 / (3 x ({SPEED_OF_LIGHT_CM_S:.6e} cm/s)^3 x {:.4e} g cm^2) = {tau_f:.4e} s (Gaussian units)",
+            d.norm(),
+            i.min()
+        ),
+        share_per_radian: omega0.norm(),
+        time_unit: units.time_unit.name(),
+        seconds_per_unit: units.time_unit.seconds(),
+        u_per_unit: units.u_per_unit(),
+    }
 }
 
 /// A top scene's answer.
@@ -233,9 +318,12 @@ pub struct TopAnswer {
     /// The samples.
     #[serde(flatten)]
     pub run: TopRun,
-    /// The real particle, when the scene has `[units]`.
+    /// The real particle, when the scene has `[units]` of a sphere or cylinder.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub units: Option<PhysicalReport>,
+    /// The real particle, when the scene has `[units]` of an ellipsoid or a molecule.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rigid_units: Option<RigidReport>,
 }
 
 /// A stability scene's answer, the `stability --format json` contract.
@@ -281,6 +369,7 @@ fn run_top(
     warnings: &mut Vec<String>,
 ) -> Result<TopAnswer, CliError> {
     let units = top.units.as_ref().map(physical_report);
+    let rigid_units = top.general_units.as_ref().map(rigid_report);
     let run = match &top.orientation {
         Orientation::Computed => {
             let config = SimulateConfig {
@@ -307,6 +396,56 @@ fn run_top(
                 ));
             }
             TopRun::Full(output)
+        }
+        Orientation::Skipped(why)
+            if matches!(top.model, Model::General(_) | Model::GeneralReduced(_)) =>
+        {
+            let (Model::General(g) | Model::GeneralReduced(g)) = top.model else {
+                unreachable!("matched above")
+            };
+            let law = if matches!(top.model, Model::General(_)) {
+                Law::Truncated
+            } else {
+                Law::Reduced
+            };
+            let run = secular(&g, law, &top.initial.omega, &top.times, top.options.rtol)
+                .map_err(|e| {
+                    CliError::Stopped(format!(
+                        "{}: the secular model stopped: {e}; it follows the slow drift of a weakly radiating top, so try fewer decay times or a larger rtol",
+                        scene.file
+                    ))
+                })?;
+            let u_per_unit = top.general_units.as_ref().map(GeneralUnits::u_per_unit);
+            TopRun::Secular(SecularOutput {
+                model: top.model.name(),
+                method: "secular",
+                method_detail: if law == Law::Truncated {
+                    "E and |L| drift at their rates under (3.3) averaged over the free motion (closed form, Jacobi's elliptic functions); the orientation is not computed (see orientation_skipped)"
+                } else {
+                    "E and |L| drift at their rates under the reduced (3.4) averaged over the free motion (closed form, Jacobi's elliptic functions); the orientation is not computed (see orientation_skipped)"
+                },
+                parameters: Parameters {
+                    ratio: None,
+                    tau: None,
+                    inertia: g.inertia().into(),
+                    dipole: Some(g.dipole().into()),
+                    omega0: top.initial.omega.into(),
+                    euler0: top.euler0,
+                    rtol: Some(top.options.rtol),
+                    step: None,
+                },
+                stats: run.stats,
+                max_quadrature_points: run.max_points,
+                samples: run
+                    .samples
+                    .into_iter()
+                    .map(|sample| SecularRow {
+                        t_unit: u_per_unit.map(|k| sample.t / k),
+                        sample,
+                    })
+                    .collect(),
+                orientation_skipped: why.clone(),
+            })
         }
         Orientation::Skipped(why) => {
             let tau_per_unit = top.units.as_ref().map(RealUnits::tau_per_unit);
@@ -345,7 +484,11 @@ fn run_top(
             })
         }
     };
-    Ok(TopAnswer { run, units })
+    Ok(TopAnswer {
+        run,
+        units,
+        rigid_units,
+    })
 }
 
 /// Run a validated scene.
@@ -666,6 +809,117 @@ fn write_omega_only(
     }
 }
 
+fn write_rigid(out: &mut impl Write, p: &RigidReport) -> io::Result<()> {
+    let v = |x: [Real; 3]| format!("({}, {}, {})", sig(x[0]), sig(x[1]), sig(x[2]));
+    let what = match p.shape {
+        RigidShape::Molecule { moments_amu_a2 } => {
+            format!(
+                "molecule with principal moments {} amu A^2",
+                v(moments_amu_a2)
+            )
+        }
+        RigidShape::Ellipsoid {
+            semi_axes_nm,
+            density_kg_m3,
+        } => format!(
+            "ellipsoid with semi-axes {} nm, density {} kg/m^3",
+            v(semi_axes_nm),
+            short(density_kg_m3)
+        ),
+    };
+    writeln!(
+        out,
+        "# particle: {what}: I = {} kg m^2; dipole {} D in the body frame",
+        v(p.inertia_kg_m2),
+        v(p.dipole_debye)
+    )?;
+    writeln!(out, "# {}", p.conversion)?;
+    writeln!(
+        out,
+        "# rates {} Hz in the body frame: tau_f |Omega0| = {}; 1 {} = {} s = {} u (u = tau_f, the unit where kappa = 1)",
+        v(p.omega_hz),
+        sig(p.share_per_radian),
+        p.time_unit,
+        short(p.seconds_per_unit),
+        sig(p.u_per_unit)
+    )
+}
+
+fn write_secular(
+    out: &mut impl Write,
+    o: &SecularOutput,
+    units: Option<&RigidReport>,
+    format: Format,
+) -> io::Result<()> {
+    let e0 = o.samples.first().map_or(1.0, |r| r.sample.energy);
+    let l0 = o.samples.first().map_or(1.0, |r| r.sample.l_norm);
+    let ratio = |x: Real, x0: Real| if x0 > 0.0 { x / x0 } else { 0.0 };
+    match format {
+        Format::Json => unreachable!("JSON is written whole"),
+        Format::Csv => {
+            let unit_col = units.map_or(String::new(), |u| format!("t_{},", u.time_unit));
+            writeln!(out, "t,{unit_col}energy,l_norm,axis,period")?;
+            for r in &o.samples {
+                let s = &r.sample;
+                let mut row = vec![s.t];
+                row.extend(r.t_unit);
+                row.extend([s.energy, s.l_norm, s.axis as Real, s.period]);
+                let cells: Vec<String> = row.iter().map(|x| csv_cell(*x)).collect();
+                writeln!(out, "{}", cells.join(","))?;
+            }
+            Ok(())
+        }
+        Format::Table => {
+            writeln!(
+                out,
+                "# {} model; method: {} ({})",
+                o.model, o.method, o.method_detail
+            )?;
+            writeln!(
+                out,
+                "# work: {} slow steps, {} period averages of at most {} points each",
+                o.stats.steps, o.stats.rhs_evals, o.max_quadrature_points
+            )?;
+            writeln!(out, "# orientation skipped: {}", o.orientation_skipped)?;
+            let (time_head, period_head, per) = match units {
+                Some(u) => (
+                    format!("t [{}]", u.time_unit),
+                    "period [s]".to_string(),
+                    u.fast_time_s,
+                ),
+                None => ("t".to_string(), "period".to_string(), 1.0),
+            };
+            write_aligned(
+                out,
+                [
+                    time_head,
+                    "E/E0".into(),
+                    "|L|/|L0|".into(),
+                    "round axis".into(),
+                    period_head,
+                ],
+                15,
+            )?;
+            for r in &o.samples {
+                let s = &r.sample;
+                let row = [
+                    cell(r.t_unit.unwrap_or(s.t)),
+                    cell(ratio(s.energy, e0)),
+                    cell(ratio(s.l_norm, l0)),
+                    s.axis.to_string(),
+                    if s.period.is_finite() {
+                        cell(s.period * per)
+                    } else {
+                        "none".to_string()
+                    },
+                ];
+                write_aligned(out, row, 15)?;
+            }
+            Ok(())
+        }
+    }
+}
+
 /// Write a report in the requested format.
 pub fn write_report(out: &mut impl Write, report: &Report, format: Format) -> io::Result<()> {
     if format == Format::Json {
@@ -695,9 +949,15 @@ pub fn write_report(out: &mut impl Write, report: &Report, format: Format) -> io
             {
                 write_physical(out, u)?;
             }
+            if format == Format::Table
+                && let Some(u) = &top.rigid_units
+            {
+                write_rigid(out, u)?;
+            }
             match &top.run {
                 TopRun::Full(o) => super::simulate::write_output(out, o, format),
                 TopRun::OmegaOnly(o) => write_omega_only(out, o, top.units.as_ref(), format),
+                TopRun::Secular(o) => write_secular(out, o, top.rigid_units.as_ref(), format),
             }
         }
         Answer::Balance(o) => super::balance::write_output(out, o, format),

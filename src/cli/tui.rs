@@ -119,10 +119,18 @@ pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, St
     let settings = match top.model {
         Model::General(general) | Model::GeneralReduced(general) | Model::GeneralFull(general) => {
             let method = integrated(Method::Dop853);
-            note.push_str(&format!(
-                ": a general top under (3.3), the reduced ALE and the physical solution of (3.4) side by side, the first two integrated by {}; time in u, the unit where κ = 1",
-                method.name()
-            ));
+            if let Some(g) = &top.general_units {
+                note.push_str(&format!(
+                    ": a real particle, τ_f = {:.2e} s, far too slow to watch in these units; `spintop run {}` gives its secular drift",
+                    g.fast_time_seconds(),
+                    scene.name
+                ));
+            } else {
+                note.push_str(&format!(
+                    ": a general top under (3.3), the reduced ALE and the physical solution of (3.4) side by side, the first two integrated by {}; time in u, the unit where κ = 1",
+                    method.name()
+                ));
+            }
             Settings::general(general, omega0, method, warp).map_err(bad)?
         }
         Model::Truncated(t) | Model::Reduced(t) | Model::Full(t) => {

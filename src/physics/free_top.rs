@@ -226,25 +226,27 @@ impl Polhode {
         let period = 4.0 * complete_k(self.m);
         let mut n = 16usize;
         let mut sum = [0.0; N];
+        // The largest |f| met: the mean may be far smaller than the values it
+        // averages (a drift that nearly cancels round the period), and is
+        // then known only to the rounding of those values.
+        let mut scale: Real = 0.0;
+        let sample = |s: Real, sum: &mut [Real; N], scale: &mut Real| {
+            let v = f(&self.omega_at_argument(s));
+            *scale = v.iter().fold(*scale, |a, x| a.max(x.abs()));
+            add(sum, &v);
+        };
         for j in 0..n {
-            add(
-                &mut sum,
-                &f(&self.omega_at_argument(period * j as Real / n as Real)),
-            );
+            sample(period * j as Real / n as Real, &mut sum, &mut scale);
         }
         let mut mean = sum.map(|x| x / n as Real);
         while n < 1 << 14 {
             // The new points sit halfway between the old ones.
             for j in 0..n {
                 let s = period * (2 * j + 1) as Real / (2 * n) as Real;
-                add(&mut sum, &f(&self.omega_at_argument(s)));
+                sample(s, &mut sum, &mut scale);
             }
             n *= 2;
             let next = sum.map(|x| x / n as Real);
-            let scale = next
-                .iter()
-                .chain(&mean)
-                .fold(0.0, |a: Real, x| a.max(x.abs()));
             let change = next
                 .iter()
                 .zip(&mean)

@@ -96,6 +96,34 @@ impl GeneralTop {
     /// the physical solution of (3.4) and no runaway is left. For I₁ = I₂ and
     /// d along e₃ it is (4.12)–(4.14) with τ = d²/I₁ (tested).
     pub fn reduced_ale_rhs(&self, omega: &Vec3) -> Vec3 {
+        let (w_dot, torque) = self.reduced_parts(omega);
+        w_dot + torque.component_div(&self.inertia)
+    }
+    // ANCHOR_END: general_reduced_ale
+
+    /// The radiation torque of the reduced ALE at Ω: the right-hand side of
+    /// [`GeneralTop::reduced_ale_rhs`] beyond Euler's free terms, computed on
+    /// its own (adding the free terms and taking them away again would lose
+    /// it to rounding when it is 10⁻¹⁵ of them, as for a real molecule).
+    ///
+    /// Paper: Eq. (3.4), reduced.
+    pub fn reduced_torque(&self, omega: &Vec3) -> Vec3 {
+        self.reduced_parts(omega).1
+    }
+
+    /// The radiation torque of the truncated ALE (3.3) at Ω,
+    /// −{|d × Ω|² Ω + (d·(Ω × Ω̇)) d} with Ω̇ of (3.3), computed on its own
+    /// (see [`GeneralTop::reduced_torque`]).
+    ///
+    /// Paper: Eq. (3.3).
+    pub fn truncated_torque(&self, omega: &Vec3) -> Vec3 {
+        let w = self.dipole.cross(omega);
+        let omega_dot = self.truncated_ale_rhs(omega);
+        -(w.norm_squared() * omega + w.dot(&omega_dot) * self.dipole)
+    }
+
+    /// Ω̇₀ of the free motion and the reduced ALE's torque.
+    fn reduced_parts(&self, omega: &Vec3) -> (Vec3, Vec3) {
         let i = &self.inertia;
         let d = &self.dipole;
         let free = |w: &Vec3| -(w.cross(&i.component_mul(w))).component_div(i);
@@ -108,9 +136,8 @@ impl GeneralTop {
                 + d.dot(&w_dot) * omega
                 + 2.0 * d.dot(omega) * w_dot),
         );
-        w_dot + small.component_div(i)
+        (w_dot, small)
     }
-    // ANCHOR_END: general_reduced_ale
 }
 
 impl BodyDynamics for GeneralTop {

@@ -19,6 +19,7 @@
 //! (so I₃/I₁ = 1); a cylinder has I₃ = Ma²/2 and I₁ = M(3a² + h²)/12, so
 //! I₃/I₁ = 6a²/(3a² + h²), which lies in (0, 2) as a rigid body's must.
 
+use super::general_top::GeneralTop;
 use super::symmetric_top::{
     SymmetricTop, precession_tilt, reduced_time_to_factor, truncated_time_to_factor,
 };
@@ -200,6 +201,125 @@ impl Particle {
     pub fn omega0_per_tau(&self, spin_hz: Real, tilt: Real) -> Vec3 {
         let w = 2.0 * std::f64::consts::PI * spin_hz * self.tau_seconds();
         Vec3::new(0.0, w * tilt.sin(), w * tilt.cos())
+    }
+}
+
+/// One atomic mass unit times one square ångström, in g·cm² (CODATA 2018:
+/// 1 u = 1.660 539 066 60 × 10⁻²⁴ g, 1 Å = 10⁻⁸ cm).
+pub const AMU_A2_G_CM2: Real = 1.660_539_066_60e-40;
+
+/// κ = 2/(3c³) in s³/cm³, the constant of (2.1) in Gaussian units.
+pub fn kappa_gaussian() -> Real {
+    2.0 / (3.0 * SPEED_OF_LIGHT_CM_S.powi(3))
+}
+
+/// What an asymmetric real particle is made of.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RigidShape {
+    /// A molecule, given by its principal moments (amu·Å², as spectroscopy
+    /// tables list them).
+    Molecule {
+        /// I_A, I_B, I_C in amu·Å², in the body axes 1, 2, 3.
+        moments_amu_a2: [Real; 3],
+    },
+    /// A homogeneous ellipsoid with semi-axes a₁, a₂, a₃ along the body axes:
+    /// I₁ = M(a₂² + a₃²)/5 and cyclically, M = (4/3)π a₁a₂a₃ ρ.
+    Ellipsoid {
+        /// a₁, a₂, a₃ in nm.
+        semi_axes_nm: [Real; 3],
+        /// ρ in kg/m³.
+        density_kg_m3: Real,
+    },
+}
+
+/// An asymmetric rigid particle with a permanent dipole anywhere in the body,
+/// in Gaussian units, and the κ = 1 units of the general top it becomes.
+///
+/// The general ALE (3.3) is I Ω̇ + Ω × IΩ = κ × (terms quadratic in D, cubic
+/// in Ω). Measuring moments in I_min, the dipole in |D| and time in
+/// τ_f = κ|D|²/I_min (the fast time) turns it into the κ = 1 form with
+/// min I = 1 and |d| = 1, so that τ_f = 1 there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RigidParticle {
+    shape: RigidShape,
+    inertia_g_cm2: Vec3,
+    dipole_esu_cm: Vec3,
+}
+
+impl RigidParticle {
+    /// Validate the shape (positive sizes, moments that a rigid body can
+    /// have) and a non-zero dipole (`dipole_debye`, body frame).
+    pub fn new(shape: RigidShape, dipole_debye: [Real; 3]) -> Result<Self, ParamError> {
+        let inertia = match shape {
+            RigidShape::Molecule { moments_amu_a2 } => {
+                for (name, m) in ["I_A", "I_B", "I_C"].into_iter().zip(moments_amu_a2) {
+                    positive(name, m)?;
+                }
+                Vec3::from(moments_amu_a2) * AMU_A2_G_CM2
+            }
+            RigidShape::Ellipsoid {
+                semi_axes_nm,
+                density_kg_m3,
+            } => {
+                for (name, a) in ["a1", "a2", "a3"].into_iter().zip(semi_axes_nm) {
+                    positive(name, a)?;
+                }
+                positive("density", density_kg_m3)?;
+                let [a1, a2, a3] = semi_axes_nm.map(|a| a * 1e-7);
+                let mass = 4.0 / 3.0 * std::f64::consts::PI * a1 * a2 * a3 * density_kg_m3 * 1e-3;
+                Vec3::new(a2 * a2 + a3 * a3, a3 * a3 + a1 * a1, a1 * a1 + a2 * a2) * (mass / 5.0)
+            }
+        };
+        // The moments must be a rigid body's (triangle inequalities), checked
+        // in the same relative form as the general top's.
+        super::check_principal_moments(&(inertia / inertia.max()))?;
+        for (name, d) in ["D1", "D2", "D3"].into_iter().zip(dipole_debye) {
+            finite(name, d)?;
+        }
+        let dipole = Vec3::from(dipole_debye) * DEBYE_ESU_CM;
+        if dipole == Vec3::zeros() {
+            return Err(ParamError::ZeroDipole);
+        }
+        Ok(Self {
+            shape,
+            inertia_g_cm2: inertia,
+            dipole_esu_cm: dipole,
+        })
+    }
+
+    /// What it is made of.
+    pub fn shape(&self) -> RigidShape {
+        self.shape
+    }
+
+    /// Principal moments, g·cm².
+    pub fn inertia_g_cm2(&self) -> Vec3 {
+        self.inertia_g_cm2
+    }
+
+    /// The body-frame dipole, statC·cm.
+    pub fn dipole_esu_cm(&self) -> Vec3 {
+        self.dipole_esu_cm
+    }
+
+    /// τ_f = κ|D|²/min I in seconds: the time unit of its κ = 1 top.
+    pub fn fast_time_seconds(&self) -> Real {
+        kappa_gaussian() * self.dipole_esu_cm.norm_squared() / self.inertia_g_cm2.min()
+    }
+
+    /// The general top in κ = 1 units: moments over min I, dipole over |D|.
+    pub fn top(&self) -> GeneralTop {
+        GeneralTop::new(
+            self.inertia_g_cm2 / self.inertia_g_cm2.min(),
+            self.dipole_esu_cm / self.dipole_esu_cm.norm(),
+        )
+        .expect("moments checked in new, dipole non-zero")
+    }
+
+    /// Ω₀ in the top's units from body-frame rates in turns per second.
+    pub fn omega0(&self, omega_hz: [Real; 3]) -> Vec3 {
+        Vec3::from(omega_hz) * (2.0 * std::f64::consts::PI * self.fast_time_seconds())
     }
 }
 

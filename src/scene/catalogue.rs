@@ -60,6 +60,8 @@ catalogue![
     "nanoparticle-1e3-debye",
     "nanoparticle-1e7-debye",
     "nanorod-cylinder",
+    "formaldehyde-molecule",
+    "nanoellipsoid-tumbling",
 ];
 
 /// The catalogue entry called `name`.

@@ -126,4 +126,12 @@ pub(super) struct RawUnits {
     pub spin_tilt_deg: Key<Real>,
     pub upright_deg: Key<Real>,
     pub time_unit: Key<String>,
+    #[serde(default, deserialize_with = "exact")]
+    pub moments_amu_a2: Key<[Real; 3]>,
+    #[serde(default, deserialize_with = "exact")]
+    pub semi_axes_nm: Key<[Real; 3]>,
+    #[serde(default, deserialize_with = "exact")]
+    pub dipole_vector_debye: Key<[Real; 3]>,
+    #[serde(default, deserialize_with = "exact")]
+    pub omega_hz: Key<[Real; 3]>,
 }

@@ -123,6 +123,98 @@ fn reduced_tau_k(top: &SymmetricTop, omega0: &Vec3) -> Real {
     top.tau() * (top.ratio() * omega0.z).abs()
 }
 
+/// What `model = "auto"` chose: 0 truncated, 1 reduced, 2 physical.
+pub(super) struct ModelChoice {
+    pub tier: usize,
+    pub reason: String,
+}
+
+/// The radiation's share per radian of turning: τ|Ω₀| for the symmetric
+/// top (τ = 1 in its units), τ_f|Ω₀| with τ_f = |d|²/min I for any other.
+pub fn radiation_share(model: &Model, omega0: &Vec3) -> Real {
+    let time = match model {
+        Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => top.tau(),
+        Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
+            crate::sim::physical::general::fast_time(top)
+        }
+    };
+    time * omega0.norm()
+}
+
+/// How far each model may stray from the physical solution of (3.4) over
+/// `turns` radians, relative to |Ω|, for radiation share `eps`:
+///
+/// - the truncated ALE (3.3) drops the Schott term, which changes the loss
+///   law at its own order (the two laws even end in different states), so
+///   its error grows like the loss itself, ε per radian: ε·turns;
+/// - the reduced ALE is right through first order; its precession rate is
+///   off at O(ε²) (physics notes), so its phase drifts by ε²·turns;
+///
+/// both capped at 1 (the answer is then qualitatively off). They are
+/// estimates, not strict bounds: against the physical solution of an
+/// asymmetric top (tests/physics/general_full.rs) the errors stay below
+/// twice them, and within a factor 30 of them; a top spinning about its
+/// dipole loses nothing under either law.
+pub fn model_errors(eps: Real, turns: Real, strong: bool) -> [Real; 2] {
+    let truncated = (eps * turns).min(1.0);
+    let reduced = if strong {
+        1.0
+    } else {
+        (eps * eps * turns).min(1.0)
+    };
+    [truncated, reduced]
+}
+
+/// `model = "auto"`: the lightest of the truncated ALE, the reduced ALE and
+/// the physical solution of (3.4) whose error over the scene's span stays
+/// within the scene's tolerance `tol`.
+pub(super) fn choose_model(
+    tiers: &[Model; 3],
+    omega0: &Vec3,
+    t_last: Real,
+    tol: Real,
+) -> ModelChoice {
+    let eps = radiation_share(&tiers[0], omega0);
+    let turns = turning_angle(&tiers[1], omega0, t_last);
+    let strong = match &tiers[1] {
+        Model::Reduced(top) => reduced_tau_k(top, omega0) >= STRONG_SPIN,
+        _ => eps >= STRONG_SPIN,
+    };
+    let [err_t, err_r] = model_errors(eps, turns, strong);
+    let symbol = if tiers[0].has_closed_form() {
+        "tau"
+    } else {
+        "tau_f"
+    };
+    let tier = if err_t <= tol {
+        0
+    } else if err_r <= tol {
+        1
+    } else {
+        2
+    };
+    let name = [
+        "the truncated ALE (3.3)",
+        "the reduced ALE",
+        "the physical solution of (3.4)",
+    ][tier];
+    let strong_note = if strong {
+        " (qualitatively off at this spin)"
+    } else {
+        ""
+    };
+    ModelChoice {
+        tier,
+        reason: format!(
+            "model = \"auto\": the body turns {turns:.1e} rad and loses a share {symbol}|Omega0| = {eps:.1e} of its spin per radian; over that the truncated ALE (3.3), which drops the Schott term, may be off by {err_t:.1e}, the reduced ALE by {err_r:.1e}{strong_note} (its precession rate is off at second order); the lightest within rtol = {tol:.0e} is {name}, so it answers"
+        ),
+    }
+}
+
+/// Above this share of spin lost per radian, the secular model is not
+/// offered (first-order averaging is good to about that share).
+pub const SECULAR_MAX_SHARE: Real = 1e-6;
+
 /// Choose how to answer a top scene, refuse what no method can do, and warn
 /// where the model is asked for more than it gives.
 pub(super) fn plan_top(
@@ -241,7 +333,7 @@ pub(super) fn plan_top(
                 warnings,
             }
         }
-        (Model::Full(_), _) => {
+        (Model::Full(_) | Model::GeneralFull(_), _) => {
             let steps = angle / FULL_TURN_PER_STEP;
             if steps > MAX_STEPS {
                 let at = if method == MethodChoice::Auto {
@@ -277,6 +369,30 @@ pub(super) fn plan_top(
         ) => {
             let steps = angle;
             let name = label(model, method);
+            let eps = radiation_share(model, &omega0);
+            let averagable = matches!(model, Model::General(_) | Model::GeneralReduced(_))
+                && method == MethodChoice::Auto
+                && eps <= SECULAR_MAX_SHARE.min(options.rtol);
+            if steps > MAX_STEPS && averagable {
+                let why = format!(
+                    "the secular model follows E and |L| only: the phase round the polhode and the orientation after {angle:.1e} rad are beyond what a double resolves"
+                );
+                return Ok(TopPlan {
+                    chosen: Chosen::new(
+                        "secular",
+                        format!(
+                            "{angle:.1e} rad are too many turns to step ({MAX_STEPS:.0e} allowed) and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853), good to about {eps:.1e}",
+                            if matches!(model, Model::General(_)) {
+                                "(3.3)"
+                            } else {
+                                "the reduced (3.4)"
+                            }
+                        ),
+                    ),
+                    orientation: Orientation::Skipped(why),
+                    warnings,
+                });
+            }
             if steps > MAX_STEPS {
                 let at = if method == MethodChoice::Auto {
                     Blame::Times
@@ -284,7 +400,10 @@ pub(super) fn plan_top(
                     Blame::Method
                 };
                 let what = if method == MethodChoice::Auto {
-                    "the asymmetric top (3.3), which has no closed form,".to_string()
+                    format!(
+                        "the asymmetric top ({}), which has no closed form,",
+                        model.equations()
+                    )
                 } else {
                     format!("method = \"{name}\" (at most 1 rad of turning per step)")
                 };
@@ -294,7 +413,10 @@ pub(super) fn plan_top(
                 });
             }
             let reason = if method == MethodChoice::Auto {
-                "the asymmetric top (3.3) has no closed form: omega and the orientation are integrated together by DOP853 (orientation on SO(3))".to_string()
+                format!(
+                    "the asymmetric top ({}) has no closed form: omega and the orientation are integrated together by DOP853 (orientation on SO(3))",
+                    model.equations()
+                )
             } else {
                 asked(name)
             };

@@ -70,14 +70,13 @@ pub struct SecularRun {
 /// more is outside what the model is for (it is then reported, not run on).
 pub const MAX_SLOW_STEPS: u64 = 20_000;
 
-/// The radiation torque of `law` at Ω: T = IΩ̇ + Ω × IΩ.
+/// The radiation torque of `law` at Ω, computed on its own (never as
+/// IΩ̇ + Ω × IΩ, which rounding would swamp for a real particle).
 fn torque(top: &GeneralTop, law: Law, omega: &Vec3) -> Vec3 {
-    let i = top.inertia();
-    let omega_dot = match law {
-        Law::Truncated => top.truncated_ale_rhs(omega),
-        Law::Reduced => top.reduced_ale_rhs(omega),
-    };
-    i.component_mul(&omega_dot) + omega.cross(&i.component_mul(omega))
+    match law {
+        Law::Truncated => top.truncated_torque(omega),
+        Law::Reduced => top.reduced_torque(omega),
+    }
 }
 
 /// The secular model from Ω(0) = `omega0`, sampled at `times` (increasing,
@@ -131,6 +130,14 @@ pub fn secular(
     };
     let mut options = AdaptiveOptions::new(rtol, rtol * 1e-3)?;
     options.max_steps = MAX_SLOW_STEPS;
+    // The first step: a thousandth of the time the invariants take to change
+    // by their own size (the integrator's guess starts far too small when
+    // that time is 10³⁰ of the model's units).
+    let f0 = rhs(0.0, &State::<2>::new(1.0, 1.0));
+    let rate = f0.amax();
+    if rate > 0.0 && rate.is_finite() {
+        options.h_init = Some(1e-3 / rate);
+    }
     let mut stepper = Dop853::new(0.0, State::<2>::new(1.0, 1.0), options)?;
     let ys = solve(&mut stepper, &rhs, times)?;
     use crate::integrate::Stepper;

@@ -39,6 +39,8 @@ impl Drop for Scratch {
 const HEAD: &str = "[scene]\nname = \"x\"\nkind = \"top\"\ndescription = \"d\"\n\n";
 const SPHERE: &str = "[units]\nshape = \"sphere\"\nradius_nm = 50.0\ndensity_kg_m3 = 2200.0\ndipole_debye = 1e3\nspin_hz = 1e9\n";
 
+const MOLECULE: &str = "[units]\nshape = \"molecule\"\nmoments_amu_a2 = [1.7923, 13.014, 14.8063]\ndipole_vector_debye = [2.33, 0.0, 0.0]\nomega_hz = [1.9e12, 7.0e11, 6.5e11]\n";
+
 /// Malformed scene files: (file name, text, line of the fault, words the message must hold).
 fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
     vec![
@@ -53,7 +55,14 @@ fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
         ("bad-time-unit.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n{SPHERE}time_unit = \"fortnight\"\n"), 15, "expected one of s, min, h, d, yr"),
         ("negative-radius.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n{}", SPHERE.replace("50.0", "-50.0")), 11, "expected a positive radius"),
         ("units-with-ratio.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\nratio = 0.4\n\n{SPHERE}"), 8, "ratio follows from [units]"),
-        ("units-general.toml", format!("{HEAD}[top]\nmodel = \"general\"\ninertia = [1.0, 1.0, 1.0]\ndipole = [0.0, 0.0, 1.0]\n\n{SPHERE}"), 7, "cannot take [units]"),
+        ("units-general.toml", format!("{HEAD}[top]\nmodel = \"general\"\ninertia = [1.0, 1.0, 1.0]\ndipole = [0.0, 0.0, 1.0]\n\n{SPHERE}"), 8, "inertia follows from [units]"),
+        ("units-sphere-general.toml", format!("{HEAD}[top]\nmodel = \"general\"\n\n{SPHERE}"), 9, "shape = \"sphere\" is a symmetric top"),
+        ("measured-moments.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n{MOLECULE}").replace("14.8063", "14.863"), 11, "inertia defect"),
+        ("molecule-scalar-dipole.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n{MOLECULE}dipole_debye = 2.0\n"), 14, "give dipole_vector_debye"),
+        ("molecule-zero-dipole.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n{MOLECULE}").replace("[2.33, 0.0, 0.0]", "[0.0, 0.0, 0.0]"), 9, "dipole"),
+        ("ellipsoid-no-density.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n[units]\nshape = \"ellipsoid\"\nsemi_axes_nm = [150.0, 60.0, 40.0]\ndipole_vector_debye = [0.0, 3e4, 4e4]\nomega_hz = [2e8, 5e8, 1e9]\n"), 9, "density_kg_m3"),
+        ("molecule-full.toml", format!("{HEAD}[top]\nmodel = \"full\"\n\n{MOLECULE}"), 7, "cannot take [units]"),
+        ("auto-with-method.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n[solve]\nmethod = \"dop853\"\n"), 10, "model = \"auto\" chooses the model and its method together"),
         ("times-decreasing.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 5.0, 2.0]\n"), 10, "2 comes after 5"),
         ("times-and-t-end.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 1.0]\nt_end = 5.0\n"), 11, "either times"),
         ("zero-samples.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\nt_end = 5.0\nsamples = 0\n"), 11, "expected 1 to 1000000"),

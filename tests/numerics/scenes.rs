@@ -8,7 +8,9 @@
 //! integrator; the nanoparticle scenes are answered with no step at all.
 
 use approx::assert_relative_eq;
-use spintop::cli::run::{Answer, OmegaOnlyOutput, PhysicalReport, Report, TopRun, answer};
+use spintop::cli::run::{
+    Answer, OmegaOnlyOutput, PhysicalReport, Report, RigidReport, SecularOutput, TopRun, answer,
+};
 use spintop::cli::simulate::SimulateOutput;
 use spintop::math::{Mat3, Vec3};
 use spintop::physics::central::{ChargeInField, Potential, eq_2_9_rate};
@@ -35,7 +37,7 @@ fn full(r: &Report) -> &SimulateOutput {
     match &r.answer {
         Answer::Top(t) => match &t.run {
             TopRun::Full(o) => o,
-            TopRun::OmegaOnly(_) => panic!("{}: the orientation was skipped", r.scene.name),
+            _ => panic!("{}: the orientation was skipped", r.scene.name),
         },
         _ => panic!("{} is not a top scene", r.scene.name),
     }
@@ -47,6 +49,19 @@ fn omega_only(r: &Report) -> (&OmegaOnlyOutput, &PhysicalReport) {
             (TopRun::OmegaOnly(o), Some(u)) => (o, u),
             _ => panic!(
                 "{}: expected body-frame samples of a real particle",
+                r.scene.name
+            ),
+        },
+        _ => panic!("{} is not a top scene", r.scene.name),
+    }
+}
+
+fn secular_run(r: &Report) -> (&SecularOutput, &RigidReport) {
+    match &r.answer {
+        Answer::Top(t) => match (&t.run, &t.rigid_units) {
+            (TopRun::Secular(o), Some(u)) => (o, u),
+            _ => panic!(
+                "{}: expected the secular model of an asymmetric real particle",
                 r.scene.name
             ),
         },
@@ -94,7 +109,7 @@ fn catalogue_matches_lessons_scenes_and_every_scene_has_a_check() {
 }
 
 /// The scenes checked below, one test each.
-const CHECKED: [&str; 22] = [
+const CHECKED: [&str; 24] = [
     "figure-1",
     "figure-2",
     "erratum-1-instant-loss",
@@ -117,6 +132,8 @@ const CHECKED: [&str; 22] = [
     "nanoparticle-1e3-debye",
     "nanoparticle-1e7-debye",
     "nanorod-cylinder",
+    "formaldehyde-molecule",
+    "nanoellipsoid-tumbling",
 ];
 
 /// The method `chosen` reports is the method the output says it used.
@@ -128,6 +145,7 @@ fn chosen_method_is_the_method_the_output_reports() {
             Answer::Top(t) => match &t.run {
                 TopRun::Full(o) => Some(o.method.to_string()),
                 TopRun::OmegaOnly(o) => Some(o.method.to_string()),
+                TopRun::Secular(o) => Some(o.method.to_string()),
             },
             Answer::Orbit(o) => Some(o.method.to_string()),
             _ => None,
@@ -763,4 +781,107 @@ fn scene_reference_page_lists_every_key_and_every_scene() {
             entry.name
         );
     }
+}
+
+/// Gaussian κ|D|²/min I, written out here from the constants (c exact,
+/// 1 D = 1e-18 statC cm, 1 amu A^2 = 1.66053906660e-40 g cm^2, CODATA 2018).
+fn fast_time_s(inertia_g_cm2: Vec3, dipole_debye: Vec3) -> f64 {
+    let c = 2.997_924_58e10_f64;
+    2.0 * (dipole_debye * 1e-18).norm_squared() / (3.0 * c.powi(3) * inertia_g_cm2.min())
+}
+
+/// Formaldehyde: the moments convert from amu A^2, τ_f from Gaussian
+/// units; `auto` refuses (3.3) (its error over 10¹⁷ rad is of order 1) and
+/// takes the reduced ALE by the secular model; the loss at the start is
+/// Larmor's power averaged over the free motion (both laws lose energy at
+/// that rate on average; computed here by DOP853 on Euler's equations, in
+/// SI), and the spin drains towards rotation about the dipole's axis.
+#[test]
+fn formaldehyde_molecule_auto_picks_the_reduced_ale_and_loses_larmor_power() {
+    use spintop::integrate::{AdaptiveOptions, Dop853, solve};
+    use spintop::math::State;
+    let r = run("formaldehyde-molecule");
+    assert_eq!(r.chosen.method, "secular");
+    assert!(
+        r.chosen
+            .reason
+            .contains("the lightest within rtol = 1e-10 is the reduced ALE"),
+        "{}",
+        r.chosen.reason
+    );
+    let (o, u) = secular_run(&r);
+    assert_eq!(o.model, "general-reduced");
+    let moments = Vec3::new(1.7923, 13.014, 14.8063) * 1.660_539_066_60e-40;
+    for k in 0..3 {
+        assert_relative_eq!(u.inertia_kg_m2[k], moments[k] * 1e-7, max_relative = 1e-14);
+    }
+    let tau_f = fast_time_s(moments, Vec3::new(2.33, 0.0, 0.0));
+    assert_relative_eq!(u.fast_time_s, tau_f, max_relative = 1e-13);
+    // Larmor: P = (2/3c³)|d̈|², d̈ = Ω̇ × D + Ω × (Ω × D) in the body frame,
+    // averaged over 200 periods of the free motion (Gaussian units).
+    let omega0 = Vec3::new(1.9e12, 7.0e11, 6.5e11) * (2.0 * PI);
+    let d = Vec3::new(2.33e-18, 0.0, 0.0);
+    let i = moments;
+    let free = |w: &Vec3| -(w.cross(&i.component_mul(w))).component_div(&i);
+    let period = o.samples[0].sample.period * tau_f;
+    let n = 400_000;
+    let t_end = 200.0 * period;
+    let times: Vec<f64> = (0..=n).map(|k| t_end * k as f64 / n as f64).collect();
+    let rhs = |_t: f64, y: &State<3>| -> State<3> { free(&Vec3::new(y[0], y[1], y[2])) };
+    let mut s = Dop853::new(0.0, omega0, AdaptiveOptions::new(1e-12, 1.0).unwrap()).unwrap();
+    let ys = solve(&mut s, &rhs, &times).unwrap();
+    let c = 2.997_924_58e10_f64;
+    let mut power = 0.0;
+    for (k, y) in ys.iter().enumerate() {
+        let w = Vec3::new(y[0], y[1], y[2]);
+        let dd = free(&w).cross(&d) + w.cross(&w.cross(&d));
+        let weight = if k == 0 || k == n { 0.5 } else { 1.0 };
+        power += weight * 2.0 / (3.0 * c.powi(3)) * dd.norm_squared() / n as f64;
+    }
+    // The secular model's loss over a short first step, in erg/s.
+    let e0 = 0.5 * omega0.dot(&i.component_mul(&omega0));
+    let top = spintop::physics::general_top::GeneralTop::new(i / i.min(), d / d.norm()).unwrap();
+    let w0 = omega0 * tau_f;
+    let h = 1e-4 / (tau_f * power / e0); // 1e-4 of the loss time, in u
+    let short = spintop::sim::secular::secular(
+        &top,
+        spintop::sim::secular::Law::Reduced,
+        &w0,
+        &[0.0, h],
+        1e-12,
+    )
+    .unwrap();
+    let loss = (1.0 - short.samples[1].energy / short.samples[0].energy) * e0 / (h * tau_f);
+    assert_relative_eq!(loss, power, max_relative = 1e-3);
+    // It drains, and the polhode circles the dipole's (smallest) axis.
+    let last = o.samples.last().unwrap();
+    assert!(last.sample.energy < 0.3 * o.samples[0].sample.energy);
+    assert!(o.samples.iter().all(|s| s.sample.axis == 1));
+}
+
+/// The ellipsoid: the moments of a homogeneous ellipsoid, τ_f, `auto`'s
+/// choice of the reduced ALE, and the drain of E and |L|, with |L| falling
+/// more slowly than √E would if it kept its polhode (the top settles
+/// towards rotation about its axis of largest moment, axis 3).
+#[test]
+fn nanoellipsoid_moments_follow_from_its_shape_and_it_drains() {
+    let r = run("nanoellipsoid-tumbling");
+    assert_eq!(r.chosen.method, "secular");
+    let (o, u) = secular_run(&r);
+    assert_eq!(o.model, "general-reduced");
+    let (a1, a2, a3) = (1.5e-5, 6e-6, 4e-6); // cm
+    let mass = 4.0 / 3.0 * PI * a1 * a2 * a3 * 2.2;
+    let i = Vec3::new(a2 * a2 + a3 * a3, a3 * a3 + a1 * a1, a1 * a1 + a2 * a2) * (mass / 5.0);
+    for k in 0..3 {
+        assert_relative_eq!(u.inertia_kg_m2[k], i[k] * 1e-7, max_relative = 1e-14);
+    }
+    assert_relative_eq!(
+        u.fast_time_s,
+        fast_time_s(i, Vec3::new(0.0, 3e4, 4e4)),
+        max_relative = 1e-13
+    );
+    let e: Vec<f64> = o.samples.iter().map(|s| s.sample.energy).collect();
+    assert!(e.windows(2).all(|w| w[1] < w[0]), "{e:?}");
+    assert!(e.last().unwrap() / e[0] < 0.05);
+    assert_eq!(o.samples.last().unwrap().sample.axis, 3);
 }
