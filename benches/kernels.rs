@@ -15,8 +15,8 @@ use spintop::math::{Mat3, State, Vec3};
 use spintop::physics::full_ale::{general_full_ale_rhs, symmetric_full_ale_rhs};
 use spintop::physics::general_top::GeneralTop;
 use spintop::physics::symmetric_top::{
-    SymmetricTop, reduced_ale_rhs, reduced_closed_form, truncated_ale_rhs, truncated_closed_form,
-    truncated_orientation,
+    SymmetricTop, reduced_ale_rhs, reduced_closed_form, reduced_closed_form_many,
+    truncated_ale_rhs, truncated_closed_form, truncated_orientation,
 };
 use spintop::workprecision::problem::{GENERAL_DIPOLE, GENERAL_INERTIA, OMEGA0, RATIO};
 use std::hint::black_box;
@@ -116,6 +116,21 @@ fn closed_form(c: &mut Criterion) {
                 black_box(100.0),
             )
         })
+    });
+    g.finish();
+    // 200 evenly spaced times on T = 200: per point, divide by 200.
+    let times: Vec<f64> = (0..200).map(|j| 200.0 * j as f64 / 199.0).collect();
+    let mut g = c.benchmark_group("closed form, 200 even points");
+    g.bench_function("reduced Ω one by one", |b| {
+        b.iter(|| {
+            black_box(&times)
+                .iter()
+                .map(|&t| reduced_closed_form(&top, &omega0, t))
+                .collect::<Vec<_>>()
+        })
+    });
+    g.bench_function("reduced Ω by recurrence", |b| {
+        b.iter(|| reduced_closed_form_many(black_box(&top), black_box(&omega0), black_box(&times)))
     });
     g.finish();
 }

@@ -13,9 +13,9 @@
 //! what the stepper costs (issue goal: within 5 %).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use spintop::integrate::{self, AdaptiveOptions, Dop853};
+use spintop::integrate::{self, AdaptiveOptions, Composition, Dop853, ReducedFlow, Splitting};
 use spintop::math::{Real, State};
-use spintop::physics::symmetric_top::reduced_ale_rhs;
+use spintop::physics::symmetric_top::{reduced_ale_rhs, reduced_closed_form_many};
 use spintop::sim::Model;
 use spintop::workprecision::{Method, Problem, ProblemKind, Solver, Spintop, Target};
 use std::hint::black_box;
@@ -79,11 +79,56 @@ fn solves(c: &mut Criterion) {
     }
 }
 
+/// Cost against the horizon T (10 … 10⁶) with 200 evenly spaced outputs on
+/// the reduced problem: the closed form (its recurrence), the Lie–Trotter
+/// splitting of rotation and damping (exact flows) with step 0.5, and DOP853
+/// at rtol 1e-10. `benches/results/horizon-*.csv` holds the medians, and the
+/// book's speed chapter charts them (`workprecision::report::horizon_figure`).
+fn horizon(c: &mut Criterion) {
+    let problem = Problem::new(ProblemKind::Reduced).expect("the reduced problem");
+    let Model::Reduced(top) = *problem.model() else {
+        unreachable!("the reduced problem")
+    };
+    let y0 = problem.initial().omega;
+    let rtol = 1e-10;
+    let opts = AdaptiveOptions::new(rtol, problem.atol(rtol)).expect("valid tolerances");
+    let mut g = c.benchmark_group("cost vs horizon");
+    g.sample_size(10);
+    for t_end in [1e1, 1e2, 1e3, 1e4, 1e5, 1e6] {
+        let times: Vec<Real> = (0..200).map(|j| t_end * j as Real / 199.0).collect();
+        g.bench_function(format!("closed form T={t_end:e}"), |b| {
+            b.iter(|| reduced_closed_form_many(&top, &y0, black_box(&times)))
+        });
+        g.bench_function(format!("splitting h=0.5 T={t_end:e}"), |b| {
+            b.iter(|| {
+                let mut split =
+                    Splitting::new(ReducedFlow(top), Composition::LieTrotter, 0.0, y0, 0.5)
+                        .expect("a splitting");
+                black_box(&times)
+                    .iter()
+                    .map(|&t| {
+                        split.advance_to(t).expect("a step");
+                        *split.state()
+                    })
+                    .collect::<Vec<_>>()
+            })
+        });
+        g.bench_function(format!("dop853 rtol 1e-10 T={t_end:e}"), |b| {
+            b.iter(|| {
+                let mut s = Dop853::new(0.0, black_box(y0), opts).expect("a start");
+                let f = |_t: Real, w: &State<3>| reduced_ale_rhs(&top, w);
+                integrate::solve(&mut s, &f, &times).expect("a solve")
+            })
+        });
+    }
+    g.finish();
+}
+
 criterion_group! {
     name = solve;
     config = Criterion::default()
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
-    targets = solves
+    targets = solves, horizon
 }
 criterion_main!(solve);

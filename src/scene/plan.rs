@@ -19,7 +19,8 @@ use crate::physics::central::Potential;
 use crate::physics::rigid_body::{angular_momentum_body, energy, omega_perp, tilt};
 use crate::physics::shell::ShellModel;
 use crate::physics::symmetric_top::{
-    SymmetricTop, reduced_closed_form, truncated_clock, truncated_closed_form,
+    SymmetricTop, reduced_closed_form, reduced_closed_form_many, truncated_clock,
+    truncated_closed_form,
 };
 use crate::sim::orbit::{Force, OrbitConfig};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample};
@@ -470,20 +471,22 @@ pub fn omega_samples(
         _ => return None,
     };
     let inertia = top.inertia();
+    let omegas: Vec<Vec3> = match model {
+        Model::Reduced(_) => reduced_closed_form_many(&top, omega0, times),
+        _ => times.iter().map(|&t| closed(&top, omega0, t)).collect(),
+    };
     Some(
         times
             .iter()
-            .map(|&t| {
-                let omega = closed(&top, omega0, t);
-                OmegaSample {
-                    t,
-                    t_unit: tau_per_unit.map(|k| t / k),
-                    omega: omega.into(),
-                    omega_perp: omega_perp(&omega),
-                    energy: energy(&inertia, &omega),
-                    l_body: angular_momentum_body(&inertia, &omega).into(),
-                    tilt: tilt(&inertia, &omega),
-                }
+            .zip(omegas)
+            .map(|(&t, omega)| OmegaSample {
+                t,
+                t_unit: tau_per_unit.map(|k| t / k),
+                omega: omega.into(),
+                omega_perp: omega_perp(&omega),
+                energy: energy(&inertia, &omega),
+                l_body: angular_momentum_body(&inertia, &omega).into(),
+                tilt: tilt(&inertia, &omega),
             })
             .collect(),
     )

@@ -497,3 +497,40 @@ pub fn join_table(rows: &[Row]) -> String {
     }
     out
 }
+
+/// The book's cost-against-horizon chart from the medians of `cargo bench
+/// --bench solves -- "cost vs horizon"`, as CSV rows `method,t_end,median_us`
+/// (lines starting with `#` are comments): log₁₀ of the time against log₁₀ T,
+/// one curve per method. `None` if a row does not parse.
+pub fn horizon_figure(csv: &str) -> Option<String> {
+    let mut curves: Vec<(String, Vec<(Real, Real)>)> = Vec::new();
+    for line in csv.lines().skip(1) {
+        if line.trim().is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let mut cells = line.split(',');
+        let method = cells.next()?.trim().to_string();
+        let t_end: Real = cells.next()?.trim().parse().ok()?;
+        let micros: Real = cells.next()?.trim().parse().ok()?;
+        if !(t_end > 0.0 && micros > 0.0) {
+            return None;
+        }
+        let point = (t_end.log10(), micros.log10());
+        match curves.iter_mut().find(|(m, _)| *m == method) {
+            Some((_, points)) => points.push(point),
+            None => curves.push((method, vec![point])),
+        }
+    }
+    if curves.is_empty() {
+        return None;
+    }
+    Some(crate::plot::panels::panels_svg(
+        "The reduced model, 200 evenly spaced outputs on [0, T]: time of one solve",
+        &[crate::plot::panels::Panel {
+            caption: "log10 of the median time in microseconds against log10 T".into(),
+            x_label: "log10 T [tau]".into(),
+            y_label: "log10 time [us]".into(),
+            curves,
+        }],
+    ))
+}

@@ -585,3 +585,55 @@ fn book_diagrams_exist_and_are_shown() {
         );
     }
 }
+
+/// The speed chapter's cost-against-horizon chart is drawn by code from the
+/// committed benchmark medians (benches/results/horizon-2026-11-25.csv).
+#[test]
+fn book_cost_horizon_figure_is_drawn_from_the_committed_medians() {
+    let csv = fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("benches/results/horizon-2026-11-25.csv"),
+    )
+    .unwrap();
+    let fresh = spintop::workprecision::report::horizon_figure(&csv).expect("the medians parse");
+    let name = "figures/cost-horizon.svg";
+    let shown = book_src().join(name);
+    if std::env::var_os("UPDATE_BOOK").is_some() {
+        fs::write(&shown, &fresh).unwrap();
+    }
+    assert!(
+        fs::read_to_string(&shown).unwrap_or_default() == fresh,
+        "the book's {name} is not what horizon_figure draws from the CSV; run UPDATE_BOOK=1 cargo test --test project"
+    );
+    let chapter = fs::read_to_string(book_src().join("speed-accuracy.md")).unwrap();
+    assert!(
+        chapter.contains(&format!("]({name})")),
+        "the chapter embeds {name}"
+    );
+    // The closed form's cost does not grow with T; DOP853's does.
+    let rows: Vec<(String, f64, f64)> = csv
+        .lines()
+        .skip(1)
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| {
+            let c: Vec<&str> = l.split(',').collect();
+            (
+                c[0].to_string(),
+                c[1].parse().unwrap(),
+                c[2].parse().unwrap(),
+            )
+        })
+        .collect();
+    let of = |m: &str| -> Vec<f64> {
+        rows.iter()
+            .filter(|r| r.0.starts_with(m))
+            .map(|r| r.2)
+            .collect()
+    };
+    let (closed, dop) = (of("closed form"), of("DOP853"));
+    assert!(
+        closed.iter().cloned().fold(0.0, f64::max)
+            < 1.5 * closed.iter().cloned().fold(f64::INFINITY, f64::min)
+    );
+    assert!(dop.last().unwrap() > &(100.0 * dop[0]));
+}
