@@ -2,7 +2,7 @@
 //! evaluation per model, one step per method, one closed-form evaluation.
 //!
 //! ```sh
-//! cargo bench --bench kernels
+//! cargo bench -p spintop-benches --bench kernels
 //! ```
 //!
 //! The states are those of the work-precision problems (Ω₀ = (0, 0.1, 0.2),

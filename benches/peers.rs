@@ -3,8 +3,8 @@
 //! references, by the same code (`spintop::workprecision`), in the same process.
 //!
 //! ```sh
-//! cargo bench --bench peers -- --out peers.csv            # about a minute
-//! cargo bench --bench peers -- --quick --out peers.csv    # a few seconds
+//! cargo bench -p spintop-benches --bench peers -- --out peers.csv            # about a minute
+//! cargo bench -p spintop-benches --bench peers -- --quick --out peers.csv    # a few seconds
 //! cargo run --release -- bench --join peers.csv scipy.csv
 //! ```
 //!

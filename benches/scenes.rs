@@ -6,7 +6,7 @@
 //! orientation is integrated there).
 //!
 //! ```sh
-//! cargo bench --bench scenes
+//! cargo bench -p spintop-benches --bench scenes
 //! ```
 
 use criterion::{Criterion, criterion_group, criterion_main};

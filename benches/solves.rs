@@ -3,7 +3,7 @@
 //! 1e-8 and 1e-12, and by the closed forms.
 //!
 //! ```sh
-//! cargo bench --bench solves
+//! cargo bench -p spintop-benches --bench solves
 //! ```
 //!
 //! Each solve is exactly a row of `spintop bench` (the same

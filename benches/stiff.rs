@@ -3,7 +3,7 @@
 //! decompositions, steps, rejections, right-hand-side evaluations), its error
 //! against a reference run at rtol 1e-13, and the median wall time of a solve.
 //!
-//! `cargo bench --bench stiff` prints one line per problem and tolerance.
+//! `cargo bench -p spintop-benches --bench stiff` prints one line per problem and tolerance.
 //! The problems (Hairer & Wanner, *Solving ODEs II*, Sec. IV.10), each with
 //! its exact Jacobian: Van der Pol y₁' = y₂, y₂' = μ(1 − y₁²)y₂ − y₁,
 //! y(0) = (2, 0), t ∈ [0, 3000] (a relaxation period is (3 − 2 ln 2)μ ≈ 1614);

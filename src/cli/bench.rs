@@ -2,7 +2,7 @@
 //! the clock, the charts and the files that the pure core leaves out.
 //!
 //! `spintop bench --join A.csv B.csv …` reads runs written by `--out`, by the
-//! peers bench (`cargo bench --bench peers`) or by SciPy's script
+//! peers bench (`cargo bench -p spintop-benches --bench peers`) or by SciPy's script
 //! (`benches/scipy_work_precision.py`) and prints each method's cost at
 //! matched error, side by side.
 

@@ -31,7 +31,7 @@
 //! The tolerances are those of [`AdaptiveOptions`], transformed as RADAU5 does
 //! (`rtol' = 0.1·rtol^(2/3)`, `atol' = rtol'·atol/rtol`) because the estimate
 //! is of order 3 while the method is of order 5. The global error then
-//! depends on the problem: `cargo bench --bench stiff` measures the end-point
+//! depends on the problem: `cargo bench -p spintop-benches --bench stiff` measures the end-point
 //! error of Van der Pol (μ = 1000, t = 3000) at 0.7–60 × rtol (growing as rtol
 //! shrinks), and of Robertson (t = 10¹¹) at 0.04–0.08 × rtol.
 //!

@@ -498,8 +498,8 @@ pub fn join_table(rows: &[Row]) -> String {
     out
 }
 
-/// The book's cost-against-horizon chart from the medians of `cargo bench
-/// --bench solves -- "cost vs horizon"`, as CSV rows `method,t_end,median_us`
+/// The book's cost-against-horizon chart from the medians of `cargo bench -p
+/// spintop-benches --bench solves -- "cost vs horizon"`, as CSV rows `method,t_end,median_us`
 /// (lines starting with `#` are comments): log₁₀ of the time against log₁₀ T,
 /// one curve per method. `None` if a row does not parse.
 pub fn horizon_figure(csv: &str) -> Option<String> {
