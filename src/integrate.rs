@@ -37,6 +37,7 @@ use thiserror::Error;
 
 pub mod dop853;
 pub mod dopri5;
+pub(crate) mod explicit;
 pub mod radau5;
 pub mod rk4;
 pub mod splitting;
@@ -249,6 +250,104 @@ pub(crate) fn check_t_stop(t_stop: Real) -> Result<(), IntegrateError> {
         )))
     }
 }
+
+/// A stepper starts only from a finite time and state.
+pub(crate) fn check_start(t0: Real, finite_state: bool) -> Result<(), IntegrateError> {
+    if t0.is_finite() && finite_state {
+        Ok(())
+    } else {
+        Err(IntegrateError::InvalidOption(
+            "the initial time and state must be finite".into(),
+        ))
+    }
+}
+
+/// The checks before every attempt of an adaptive method: the step budget
+/// (accepted plus rejected attempts) and a step magnitude `h` the time axis
+/// can still resolve at `t` (`dir` is the direction of integration).
+pub(crate) fn attempt_allowed(
+    stats: &Stats,
+    max_steps: u64,
+    t: Real,
+    h: Real,
+    dir: Real,
+) -> Result<(), IntegrateError> {
+    if stats.steps + stats.rejected >= max_steps {
+        return Err(IntegrateError::TooManySteps { t, max_steps });
+    }
+    if h.is_nan() || h < dopri5::underflow_limit(t) {
+        return Err(IntegrateError::StepSizeUnderflow { t, h: dir * h });
+    }
+    Ok(())
+}
+
+/// The step budget of a fixed-step method: `steps` taken of `max_steps`.
+pub(crate) fn fixed_step_allowed(
+    steps: u64,
+    max_steps: u64,
+    t: Real,
+) -> Result<(), IntegrateError> {
+    if steps >= max_steps {
+        Err(IntegrateError::TooManySteps { t, max_steps })
+    } else {
+        Ok(())
+    }
+}
+
+/// The start of an adaptive step: `f(t, y)` (from the last step when known,
+/// else evaluated and counted) and the step magnitude to try first, from the
+/// last step's controller or, the first time, Hairer's guess for a method of
+/// order `order` (one more evaluation, counted).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn start_step<const N: usize, R: Rhs<N>>(
+    rhs: &R,
+    t: Real,
+    y: &State<N>,
+    f: &mut Option<State<N>>,
+    stats: &mut Stats,
+    h_next: Option<Real>,
+    dir: Real,
+    order: i32,
+    opts: &AdaptiveOptions,
+) -> Result<(State<N>, Real), IntegrateError> {
+    let f0 = first_stage(rhs, t, y, f, stats)?;
+    let h = match h_next {
+        Some(h) => h,
+        None => {
+            stats.rhs_evals += 1;
+            dopri5::hinit(rhs, t, y, &f0, dir, order, opts)
+        }
+    };
+    Ok((f0, h))
+}
+
+/// The five [`Stepper`] getters of a stepper whose position lives in the
+/// fields `t`, `y`, `t_prev`, `h_last` and `stats`, of itself
+/// (`stepper_getters!()`) or of one of its fields (`stepper_getters!(core)`).
+macro_rules! stepper_getters {
+    ($($at:ident)?) => {
+        fn t(&self) -> Real {
+            self$(.$at)?.t
+        }
+
+        fn y(&self) -> &State<N> {
+            &self$(.$at)?.y
+        }
+
+        fn t_prev(&self) -> Real {
+            self$(.$at)?.t_prev
+        }
+
+        fn last_step(&self) -> Real {
+            self$(.$at)?.h_last
+        }
+
+        fn stats(&self) -> Stats {
+            self$(.$at)?.stats
+        }
+    };
+}
+pub(crate) use stepper_getters;
 
 /// The first stage `f(t, y)`: the cached one (FSAL, or the end slope of the
 /// last step) when there is one, else evaluated, counted and cached. A

@@ -1353,10 +1353,7 @@ fn real_units(ctx: &Ctx, u: &RawUnits, header: &Range<usize>) -> Result<RealUnit
         debye * DEBYE_ESU_CM,
     )
     .map_err(|e| ctx.at(header, format!("[units] {e}")))?;
-    let tau = particle.tau_seconds();
-    if !(tau > 0.0 && tau.is_finite()) {
-        return Err(ctx.at(header, format!("[units] give tau = {tau:e} s, which a double cannot hold; expected sizes and a dipole of laboratory scale")));
-    }
+    time_scale_fits(ctx, header, "tau", particle.tau_seconds())?;
     Ok(RealUnits {
         particle,
         spin_hz,
@@ -1364,6 +1361,20 @@ fn real_units(ctx: &Ctx, u: &RawUnits, header: &Range<usize>) -> Result<RealUnit
         upright_deg,
         time_unit,
     })
+}
+
+/// A particle's time scale in seconds must be a positive, finite double.
+fn time_scale_fits(
+    ctx: &Ctx,
+    header: &Range<usize>,
+    name: &str,
+    seconds: Real,
+) -> Result<(), SceneError> {
+    if seconds > 0.0 && seconds.is_finite() {
+        Ok(())
+    } else {
+        Err(ctx.at(header, format!("[units] give {name} = {seconds:e} s, which a double cannot hold; expected sizes and a dipole of laboratory scale")))
+    }
 }
 
 /// The time unit of `[units] time_unit` (seconds by default).
@@ -1515,10 +1526,7 @@ fn rigid_units(ctx: &Ctx, u: &RawUnits, header: &Range<usize>) -> Result<General
     }
     let particle =
         RigidParticle::new(shape, dipole).map_err(|e| ctx.at(header, format!("[units] {e}")))?;
-    let tau_f = particle.fast_time_seconds();
-    if !(tau_f > 0.0 && tau_f.is_finite()) {
-        return Err(ctx.at(header, format!("[units] give tau_f = {tau_f:e} s, which a double cannot hold; expected sizes and a dipole of laboratory scale")));
-    }
+    time_scale_fits(ctx, header, "tau_f", particle.fast_time_seconds())?;
     Ok(GeneralUnits {
         particle,
         omega_hz,

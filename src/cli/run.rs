@@ -733,17 +733,12 @@ fn write_omega_only(
                 row.extend([s.omega_perp, s.energy]);
                 row.extend(s.l_body);
                 row.push(s.tilt);
-                let cells: Vec<String> = row.iter().map(|x| csv_cell(*x)).collect();
-                writeln!(out, "{}", cells.join(","))?;
+                write_csv_row(out, &row)?;
             }
             Ok(())
         }
         Format::Table => {
-            writeln!(
-                out,
-                "# {} model; method: {} ({})",
-                o.model, o.method, o.method_detail
-            )?;
+            write_method_line(out, o.model, o.method, o.method_detail)?;
             writeln!(
                 out,
                 "# work: {} rhs evaluations, {} steps",
@@ -809,6 +804,22 @@ fn write_omega_only(
     }
 }
 
+/// One CSV line of numbers, lossless.
+fn write_csv_row(out: &mut impl Write, row: &[Real]) -> io::Result<()> {
+    let cells: Vec<String> = row.iter().map(|x| csv_cell(*x)).collect();
+    writeln!(out, "{}", cells.join(","))
+}
+
+/// The table's `# MODEL model; method: …` line.
+fn write_method_line(
+    out: &mut impl Write,
+    model: &str,
+    method: &str,
+    detail: &str,
+) -> io::Result<()> {
+    writeln!(out, "# {model} model; method: {method} ({detail})")
+}
+
 fn write_rigid(out: &mut impl Write, p: &RigidReport) -> io::Result<()> {
     let v = |x: [Real; 3]| format!("({}, {}, {})", sig(x[0]), sig(x[1]), sig(x[2]));
     let what = match p.shape {
@@ -864,17 +875,12 @@ fn write_secular(
                 let mut row = vec![s.t];
                 row.extend(r.t_unit);
                 row.extend([s.energy, s.l_norm, s.axis as Real, s.period]);
-                let cells: Vec<String> = row.iter().map(|x| csv_cell(*x)).collect();
-                writeln!(out, "{}", cells.join(","))?;
+                write_csv_row(out, &row)?;
             }
             Ok(())
         }
         Format::Table => {
-            writeln!(
-                out,
-                "# {} model; method: {} ({})",
-                o.model, o.method, o.method_detail
-            )?;
+            write_method_line(out, o.model, o.method, o.method_detail)?;
             writeln!(
                 out,
                 "# work: {} slow steps, {} period averages of at most {} points each",

@@ -22,13 +22,9 @@
 // compiler rounds each to the nearest f64.
 #![allow(clippy::excessive_precision)]
 
-use crate::integrate::dopri5::{
-    NONFINITE_CUT, clip_step, error_scale, hinit, underflow_limit, validate_options,
-};
-use crate::integrate::{
-    AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper, check_t_stop, first_stage,
-};
-use crate::math::{Real, State, all_finite};
+use crate::integrate::explicit::{Core, EmbeddedPair, core_accessors};
+use crate::integrate::{AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper, stepper_getters};
+use crate::math::{Real, State};
 
 /// Stages of one step.
 const STAGES: usize = 12;
@@ -336,24 +332,52 @@ fn error_norm<const N: usize>(e5: &State<N>, e3: &State<N>, h: Real, scale: &Sta
 /// DOP853: order 8 with the 5/3 combined error estimate and order-7 dense output.
 #[derive(Clone, Debug)]
 pub struct Dop853<const N: usize> {
-    t: Real,
-    y: State<N>,
-    t_prev: Real,
-    y_prev: State<N>,
-    /// Signed size of the last accepted step (0 before the first step / after reset).
-    h_last: Real,
-    /// Stages of the last accepted step; `k[12] = f(t, y)`; `k[13..16]` are
-    /// filled lazily for dense output.
+    /// Position, memory and statistics (the shared step loop's).
+    core: Core<N>,
+    /// The stages of the last accepted step, and the 3 extra ones of its dense output.
     k: [State<N>; STAGES_EXT],
-    /// The 7 interpolation coefficients of the last step, once computed.
     cont: [State<N>; 7],
     dense_ready: bool,
-    /// `f(t, y)` when known (FSAL).
-    f: Option<State<N>>,
-    /// Magnitude of the next step to try (None: guess it with `hinit`).
-    h_next: Option<Real>,
-    opts: AdaptiveOptions,
-    stats: Stats,
+}
+
+/// The pair as the shared step loop sees it.
+struct Pair;
+
+impl<const N: usize> EmbeddedPair<N> for Pair {
+    type Stages = [State<N>; STAGES_EXT];
+    const HINIT_ORDER: i32 = 8;
+    const EVALS: u64 = 12;
+    const SAFETY: Real = SAFETY;
+    const FAC_MIN: Real = FAC_MIN;
+    const FAC_MAX: Real = FAC_MAX;
+    const EXPO: Real = EXPO;
+    const BETA: Real = 0.0;
+
+    #[inline(always)]
+    fn attempt<R: Rhs<N>>(
+        rhs: &R,
+        t: Real,
+        y: &State<N>,
+        f0: &State<N>,
+        h: Real,
+        t_new: Real,
+    ) -> (State<N>, Self::Stages) {
+        let mut k = [State::<N>::zeros(); STAGES_EXT];
+        k[0] = *f0;
+        let y_new = attempt(rhs, t, y, h, t_new, &mut k);
+        (y_new, k)
+    }
+
+    #[inline(always)]
+    fn error_norm(k: &Self::Stages, h: Real, scale: &State<N>) -> Real {
+        let (e5, e3) = raw_errors(k);
+        error_norm(&e5, &e3, h, scale)
+    }
+
+    #[inline(always)]
+    fn fsal(k: &Self::Stages) -> State<N> {
+        k[STAGES]
+    }
 }
 
 impl<const N: usize> Dop853<N> {
@@ -362,47 +386,15 @@ impl<const N: usize> Dop853<N> {
     /// Returns [`IntegrateError::InvalidOption`] for a non-finite `t0`/`y0` or an
     /// invalid option.
     pub fn new(t0: Real, y0: State<N>, opts: AdaptiveOptions) -> Result<Self, IntegrateError> {
-        validate_options(&opts)?;
-        if !t0.is_finite() || !all_finite(&y0) {
-            return Err(IntegrateError::InvalidOption(
-                "the initial time and state must be finite".into(),
-            ));
-        }
         Ok(Self {
-            t: t0,
-            y: y0,
-            t_prev: t0,
-            y_prev: y0,
-            h_last: 0.0,
+            core: Core::new(t0, y0, opts)?,
             k: [State::zeros(); STAGES_EXT],
             cont: [State::zeros(); 7],
             dense_ready: false,
-            f: None,
-            h_next: opts.h_init,
-            opts,
-            stats: Stats::default(),
         })
     }
 
-    /// The options the stepper runs with.
-    pub fn options(&self) -> &AdaptiveOptions {
-        &self.opts
-    }
-
-    /// Magnitude of the next step to try (`None` until it has been chosen).
-    pub fn next_step_size(&self) -> Option<Real> {
-        self.h_next
-    }
-
-    /// Change the largest step magnitude from the next step on, for a driver
-    /// that knows how a scale of its problem changes along the solution (the
-    /// SO(3) driver caps the rotation per step this way). A NaN or non-positive
-    /// value is ignored.
-    pub fn set_h_max(&mut self, h_max: Real) {
-        if h_max > 0.0 {
-            self.opts.h_max = h_max;
-        }
-    }
+    core_accessors!();
 
     /// One raw DOP853 step of signed size `h` from `(t, y)`: returns the order-8
     /// solution and the per-component error estimate the controller uses,
@@ -424,17 +416,18 @@ impl<const N: usize> Dop853<N> {
     /// Compute the 3 extra stages and the interpolation coefficients of the last
     /// step (3 evaluations).
     fn prepare_dense<R: Rhs<N>>(&mut self, rhs: &R) {
-        let h = self.h_last;
+        let c = &mut self.core;
+        let h = c.h_last;
         // NOTE: unrolled by stage, as in `attempt`.
         macro_rules! stage {
             ($($s:literal)*) => {$(
                 let dy = combine(&A[$s], &self.k[..], $s);
-                self.k[$s] = rhs.eval(self.t_prev + C[$s] * h, &(self.y_prev + dy * h));
+                self.k[$s] = rhs.eval(c.t_prev + C[$s] * h, &(c.y_prev + dy * h));
             )*};
         }
         stage!(13 14 15);
-        self.stats.rhs_evals += 3;
-        let dy = self.y - self.y_prev;
+        c.stats.rhs_evals += 3;
+        let dy = c.y - c.y_prev;
         let f_old = self.k[0];
         let f_new = self.k[STAGES];
         let bspl = f_old * h - dy;
@@ -452,106 +445,19 @@ impl<const N: usize> Dop853<N> {
 }
 
 impl<const N: usize> Stepper<N> for Dop853<N> {
-    fn t(&self) -> Real {
-        self.t
-    }
-
-    fn y(&self) -> &State<N> {
-        &self.y
-    }
-
-    fn t_prev(&self) -> Real {
-        self.t_prev
-    }
-
-    fn last_step(&self) -> Real {
-        self.h_last
-    }
-
-    fn stats(&self) -> Stats {
-        self.stats
-    }
+    stepper_getters!(core);
 
     fn step<R: Rhs<N>>(&mut self, rhs: &R, t_stop: Real) -> Result<(), IntegrateError> {
-        check_t_stop(t_stop)?;
-        if t_stop == self.t {
-            return Ok(());
+        if let Some(k) = self.core.step::<Pair, R>(rhs, t_stop)? {
+            self.k = k;
+            self.dense_ready = false;
         }
-        let dir = (t_stop - self.t).signum();
-        let f0 = first_stage(rhs, self.t, &self.y, &mut self.f, &mut self.stats)?;
-        let mut h = match self.h_next {
-            Some(h) => h,
-            None => {
-                self.stats.rhs_evals += 1;
-                hinit(rhs, self.t, &self.y, &f0, dir, 8, &self.opts)
-            }
-        }
-        .min(self.opts.h_max);
-        let mut k = [State::<N>::zeros(); STAGES_EXT];
-        k[0] = f0;
-        let mut rejected_here = false;
-        loop {
-            if self.stats.steps + self.stats.rejected >= self.opts.max_steps {
-                self.h_next = Some(h);
-                return Err(IntegrateError::TooManySteps {
-                    t: self.t,
-                    max_steps: self.opts.max_steps,
-                });
-            }
-            if h.is_nan() || h < underflow_limit(self.t) {
-                self.h_next = Some(h);
-                return Err(IntegrateError::StepSizeUnderflow {
-                    t: self.t,
-                    h: dir * h,
-                });
-            }
-            let (hs, t_new, clipped) = clip_step(self.t, t_stop, h);
-            let y_new = attempt(rhs, self.t, &self.y, hs, t_new, &mut k);
-            self.stats.rhs_evals += 12;
-            let (e5, e3) = raw_errors(&k);
-            let scale = error_scale(&self.opts, &self.y, &y_new);
-            let err = error_norm(&e5, &e3, hs, &scale);
-            if !(err.is_finite() && all_finite(&y_new) && all_finite(&k[STAGES])) {
-                // NOTE: an overflowing attempt says nothing about the error's
-                // size, only that the step was far too long: cut hard and retry.
-                self.stats.rejected += 1;
-                rejected_here = true;
-                h = hs.abs() * NONFINITE_CUT;
-                continue;
-            }
-            let fac11 = err.powf(EXPO);
-            if err <= 1.0 {
-                let fac = (fac11 / SAFETY).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
-                let mut h_new = hs.abs() / fac;
-                if rejected_here {
-                    h_new = h_new.min(hs.abs());
-                }
-                if clipped && !rejected_here {
-                    // NOTE: a step shortened only to land on t_stop says nothing
-                    // against the step the controller proposed before it.
-                    h_new = h_new.max(h);
-                }
-                self.h_next = Some(h_new.min(self.opts.h_max));
-                self.t_prev = self.t;
-                self.y_prev = self.y;
-                self.h_last = hs;
-                self.t = t_new;
-                self.y = y_new;
-                self.f = Some(k[STAGES]);
-                self.k = k;
-                self.dense_ready = false;
-                self.stats.steps += 1;
-                return Ok(());
-            }
-            self.stats.rejected += 1;
-            rejected_here = true;
-            h = hs.abs() / (1.0 / FAC_MIN).min(fac11 / SAFETY);
-        }
+        Ok(())
     }
 
     fn dense<R: Rhs<N>>(&mut self, rhs: &R, t: Real) -> State<N> {
-        if self.h_last == 0.0 || t == self.t {
-            return self.y;
+        if self.core.h_last == 0.0 || t == self.core.t {
+            return self.core.y;
         }
         // NOTE: the 3 extra stages cost 3 evaluations per step; most steps of a
         // run with sparse output never need them, so they are computed the first
@@ -559,7 +465,7 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         if !self.dense_ready {
             self.prepare_dense(rhs);
         }
-        let s = (t - self.t_prev) / self.h_last;
+        let s = (t - self.core.t_prev) / self.core.h_last;
         let s1 = 1.0 - s;
         let c = &self.cont;
         let inner = c[5] + c[6] * s;
@@ -568,15 +474,11 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         let inner = c[2] + inner * s1;
         let inner = c[1] + inner * s;
         let inner = c[0] + inner * s1;
-        self.y_prev + inner * s
+        self.core.y_prev + inner * s
     }
 
     fn reset(&mut self, y: State<N>) {
-        self.y = y;
-        self.f = None;
-        self.t_prev = self.t;
-        self.y_prev = y;
-        self.h_last = 0.0;
+        self.core.reset(y);
         self.dense_ready = false;
     }
 }

@@ -19,10 +19,9 @@
 //! (Hairer's `hinit`, `AdaptiveOptions::h_init == None`), else 0. The step budget
 //! `max_steps` counts accepted plus rejected attempts.
 
-use crate::integrate::{
-    AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper, check_t_stop, first_stage,
-};
-use crate::math::{Real, State, all_finite};
+use crate::integrate::explicit::{Core, EmbeddedPair, core_accessors};
+use crate::integrate::{AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper, stepper_getters};
+use crate::math::{Real, State};
 
 // Butcher tableau of Dormand–Prince 5(4) (Hairer, Nørsett & Wanner, Table II.5.2).
 const C2: Real = 1.0 / 5.0;
@@ -79,25 +78,51 @@ pub(crate) const NONFINITE_CUT: Real = 0.2;
 /// Dormand–Prince 5(4) with PI step-size control and order-4 dense output.
 #[derive(Clone, Debug)]
 pub struct Dopri5<const N: usize> {
-    t: Real,
-    y: State<N>,
-    t_prev: Real,
-    y_prev: State<N>,
-    /// Signed size of the last accepted step (0 before the first step / after reset).
-    h_last: Real,
+    /// Position, memory and statistics (the shared step loop's).
+    core: Core<N>,
     /// Stages k1…k7 of the last accepted step (k7 = f(t, y)).
     k: [State<N>; 7],
-    /// `f(t, y)` when known (FSAL).
-    f: Option<State<N>>,
-    /// Magnitude of the next step to try (None: guess it with `hinit`).
-    h_next: Option<Real>,
-    /// Error norm of the previous accepted step (the "I" memory of the PI controller).
-    facold: Real,
-    opts: AdaptiveOptions,
-    stats: Stats,
+}
+
+/// The pair as the shared step loop sees it.
+struct Pair;
+
+impl<const N: usize> EmbeddedPair<N> for Pair {
+    type Stages = Attempt<N>;
+    const HINIT_ORDER: i32 = 5;
+    const EVALS: u64 = 6;
+    const SAFETY: Real = SAFETY;
+    const FAC_MIN: Real = FAC_MIN;
+    const FAC_MAX: Real = FAC_MAX;
+    const EXPO: Real = EXPO1;
+    const BETA: Real = BETA;
+
+    #[inline(always)]
+    fn attempt<R: Rhs<N>>(
+        rhs: &R,
+        t: Real,
+        y: &State<N>,
+        f0: &State<N>,
+        h: Real,
+        t_new: Real,
+    ) -> (State<N>, Attempt<N>) {
+        let a = attempt(rhs, t, y, f0, h, t_new);
+        (a.y_new, a)
+    }
+
+    #[inline(always)]
+    fn error_norm(stages: &Attempt<N>, _h: Real, scale: &State<N>) -> Real {
+        rms_scaled(&stages.err, scale)
+    }
+
+    #[inline(always)]
+    fn fsal(stages: &Attempt<N>) -> State<N> {
+        stages.k[6]
+    }
 }
 
 /// The stages of one attempt.
+#[derive(Clone, Copy)]
 struct Attempt<const N: usize> {
     k: [State<N>; 7],
     y_new: State<N>,
@@ -263,46 +288,13 @@ impl<const N: usize> Dopri5<N> {
     /// invalid option (options are re-checked here because the struct's fields
     /// are public).
     pub fn new(t0: Real, y0: State<N>, opts: AdaptiveOptions) -> Result<Self, IntegrateError> {
-        validate_options(&opts)?;
-        if !t0.is_finite() || !all_finite(&y0) {
-            return Err(IntegrateError::InvalidOption(
-                "the initial time and state must be finite".into(),
-            ));
-        }
         Ok(Self {
-            t: t0,
-            y: y0,
-            t_prev: t0,
-            y_prev: y0,
-            h_last: 0.0,
+            core: Core::new(t0, y0, opts)?,
             k: [State::zeros(); 7],
-            f: None,
-            h_next: opts.h_init,
-            facold: 1e-4,
-            opts,
-            stats: Stats::default(),
         })
     }
 
-    /// The options the stepper runs with.
-    pub fn options(&self) -> &AdaptiveOptions {
-        &self.opts
-    }
-
-    /// Magnitude of the next step to try (`None` until it has been chosen).
-    pub fn next_step_size(&self) -> Option<Real> {
-        self.h_next
-    }
-
-    /// Change the largest step magnitude from the next step on, for a driver
-    /// that knows how a scale of its problem changes along the solution (the
-    /// SO(3) driver caps the rotation per step this way). A NaN or non-positive
-    /// value is ignored.
-    pub fn set_h_max(&mut self, h_max: Real) {
-        if h_max > 0.0 {
-            self.opts.h_max = h_max;
-        }
-    }
+    core_accessors!();
 
     /// One raw Dormand–Prince step of signed size `h` from `(t, y)`: returns the
     /// order-5 solution and the error-estimate vector `y5 − y4`. Seven
@@ -315,127 +307,32 @@ impl<const N: usize> Dopri5<N> {
 }
 
 impl<const N: usize> Stepper<N> for Dopri5<N> {
-    fn t(&self) -> Real {
-        self.t
-    }
-
-    fn y(&self) -> &State<N> {
-        &self.y
-    }
-
-    fn t_prev(&self) -> Real {
-        self.t_prev
-    }
-
-    fn last_step(&self) -> Real {
-        self.h_last
-    }
-
-    fn stats(&self) -> Stats {
-        self.stats
-    }
+    stepper_getters!(core);
 
     fn step<R: Rhs<N>>(&mut self, rhs: &R, t_stop: Real) -> Result<(), IntegrateError> {
-        check_t_stop(t_stop)?;
-        if t_stop == self.t {
-            return Ok(());
+        if let Some(a) = self.core.step::<Pair, R>(rhs, t_stop)? {
+            self.k = a.k;
         }
-        let dir = (t_stop - self.t).signum();
-        let f0 = first_stage(rhs, self.t, &self.y, &mut self.f, &mut self.stats)?;
-        let mut h = match self.h_next {
-            Some(h) => h,
-            None => {
-                self.stats.rhs_evals += 1;
-                hinit(rhs, self.t, &self.y, &f0, dir, 5, &self.opts)
-            }
-        }
-        .min(self.opts.h_max);
-        let mut rejected_here = false;
-        loop {
-            if self.stats.steps + self.stats.rejected >= self.opts.max_steps {
-                self.h_next = Some(h);
-                return Err(IntegrateError::TooManySteps {
-                    t: self.t,
-                    max_steps: self.opts.max_steps,
-                });
-            }
-            if h.is_nan() || h < underflow_limit(self.t) {
-                self.h_next = Some(h);
-                return Err(IntegrateError::StepSizeUnderflow {
-                    t: self.t,
-                    h: dir * h,
-                });
-            }
-            let (hs, t_new, clipped) = clip_step(self.t, t_stop, h);
-            let a = attempt(rhs, self.t, &self.y, &f0, hs, t_new);
-            self.stats.rhs_evals += 6;
-            let scale = error_scale(&self.opts, &self.y, &a.y_new);
-            let err = rms_scaled(&a.err, &scale);
-            let finite = err.is_finite() && all_finite(&a.y_new) && all_finite(&a.k[6]);
-            if !finite {
-                // NOTE: an overflowing attempt says nothing about the error's
-                // size, only that the step was far too long: cut hard and retry.
-                self.stats.rejected += 1;
-                rejected_here = true;
-                h = hs.abs() * NONFINITE_CUT;
-                continue;
-            }
-            // ANCHOR: pi_controller
-            let fac11 = err.powf(EXPO1);
-            if err <= 1.0 {
-                // NOTE: PI control (Gustafsson; HNW I, Sec. IV.2 and DOPRI5):
-                // dividing by facold^β damps the oscillation of the step size that
-                // the plain I controller shows near the stability boundary.
-                let fac = fac11 / self.facold.powf(BETA);
-                let fac = (fac / SAFETY).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
-                let mut h_new = hs.abs() / fac;
-                // ANCHOR_END: pi_controller
-                if rejected_here {
-                    h_new = h_new.min(hs.abs());
-                }
-                if clipped && !rejected_here {
-                    // NOTE: a step shortened only to land on t_stop says nothing
-                    // against the step the controller proposed before it.
-                    h_new = h_new.max(h);
-                }
-                self.facold = err.max(1e-4);
-                self.h_next = Some(h_new.min(self.opts.h_max));
-                self.t_prev = self.t;
-                self.y_prev = self.y;
-                self.h_last = hs;
-                self.t = t_new;
-                self.y = a.y_new;
-                self.k = a.k;
-                self.f = Some(a.k[6]);
-                self.stats.steps += 1;
-                return Ok(());
-            }
-            self.stats.rejected += 1;
-            rejected_here = true;
-            h = hs.abs() / (1.0 / FAC_MIN).min(fac11 / SAFETY);
-        }
+        Ok(())
     }
 
     fn dense<R: Rhs<N>>(&mut self, _rhs: &R, t: Real) -> State<N> {
-        if self.h_last == 0.0 || t == self.t {
-            return self.y;
+        let c = &self.core;
+        if c.h_last == 0.0 || t == c.t {
+            return c.y;
         }
-        let h = self.h_last;
+        let h = c.h_last;
         let k = &self.k;
-        let theta = (t - self.t_prev) / h;
+        let theta = (t - c.t_prev) / h;
         let theta1 = 1.0 - theta;
-        let ydiff = self.y - self.y_prev;
+        let ydiff = c.y - c.y_prev;
         let bspl = k[0] * h - ydiff;
         let r4 = ydiff - k[6] * h - bspl;
         let r5 = (k[0] * D1 + k[2] * D3 + k[3] * D4 + k[4] * D5 + k[5] * D6 + k[6] * D7) * h;
-        self.y_prev + (ydiff + (bspl + (r4 + r5 * theta1) * theta) * theta1) * theta
+        c.y_prev + (ydiff + (bspl + (r4 + r5 * theta1) * theta) * theta1) * theta
     }
 
     fn reset(&mut self, y: State<N>) {
-        self.y = y;
-        self.f = None;
-        self.t_prev = self.t;
-        self.y_prev = y;
-        self.h_last = 0.0;
+        self.core.reset(y);
     }
 }

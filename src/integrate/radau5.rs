@@ -73,12 +73,10 @@
 //! iteration that fails is reported as [`IntegrateError::NoConvergence`]
 //! (there is no smaller step to fall back to).
 
-use crate::integrate::dopri5::{
-    NONFINITE_CUT, clip_step, hinit, rms_scaled, underflow_limit, validate_options,
-};
+use crate::integrate::dopri5::{NONFINITE_CUT, clip_step, rms_scaled, validate_options};
 use crate::integrate::{
-    AdaptiveOptions, DEFAULT_MAX_STEPS, IntegrateError, Rhs, Stats, Stepper, check_t_stop,
-    first_stage,
+    AdaptiveOptions, DEFAULT_MAX_STEPS, IntegrateError, Rhs, Stats, Stepper, attempt_allowed,
+    check_start, check_t_stop, start_step, stepper_getters,
 };
 use crate::math::{Real, State, all_finite};
 use nalgebra::{Complex, ComplexField, SMatrix, SVector};
@@ -353,11 +351,7 @@ fn error_scale<const N: usize>(atol: Real, rtol: Real, y: &State<N>, y_new: &Sta
 
 impl<const N: usize> Radau5<N> {
     fn build(t0: Real, y0: State<N>, mode: Mode, max_steps: u64) -> Result<Self, IntegrateError> {
-        if !t0.is_finite() || !all_finite(&y0) {
-            return Err(IntegrateError::InvalidOption(
-                "the initial time and state must be finite".into(),
-            ));
-        }
+        check_start(t0, all_finite(&y0))?;
         let h_next = match mode {
             Mode::Adaptive { opts, .. } => opts.h_init,
             Mode::Fixed { h } => Some(h),
@@ -689,15 +683,18 @@ impl<const N: usize> Radau5<N> {
         fnewt: Real,
     ) -> Result<(), IntegrateError> {
         let dir = (t_stop - self.t).signum();
-        let f0 = first_stage(rhs, self.t, &self.y, &mut self.f, &mut self.stats)?;
-        let mut h = match self.h_next {
-            Some(h) => h,
-            None => {
-                self.stats.rhs_evals += 1;
-                hinit(rhs, self.t, &self.y, &f0, dir, 5, &opts)
-            }
-        }
-        .min(opts.h_max);
+        let (f0, h) = start_step(
+            rhs,
+            self.t,
+            &self.y,
+            &mut self.f,
+            &mut self.stats,
+            self.h_next,
+            dir,
+            5,
+            &opts,
+        )?;
+        let mut h = h.min(opts.h_max);
         let settings = NewtonSettings {
             scale: newton_scale(atol, rtol, &self.y),
             fnewt,
@@ -706,19 +703,9 @@ impl<const N: usize> Radau5<N> {
         };
         let mut rejected_here = false;
         loop {
-            if self.stats.steps + self.stats.rejected >= self.max_steps {
+            if let Err(e) = attempt_allowed(&self.stats, self.max_steps, self.t, h, dir) {
                 self.h_next = Some(h);
-                return Err(IntegrateError::TooManySteps {
-                    t: self.t,
-                    max_steps: self.max_steps,
-                });
-            }
-            if h.is_nan() || h < underflow_limit(self.t) {
-                self.h_next = Some(h);
-                return Err(IntegrateError::StepSizeUnderflow {
-                    t: self.t,
-                    h: dir * h,
-                });
+                return Err(e);
             }
             let (hs, t_new, clipped) = clip_step(self.t, t_stop, h);
             self.ensure_jacobian(rhs)?;
@@ -833,25 +820,7 @@ impl<const N: usize> Radau5<N> {
 }
 
 impl<const N: usize> Stepper<N> for Radau5<N> {
-    fn t(&self) -> Real {
-        self.t
-    }
-
-    fn y(&self) -> &State<N> {
-        &self.y
-    }
-
-    fn t_prev(&self) -> Real {
-        self.t_prev
-    }
-
-    fn last_step(&self) -> Real {
-        self.h_last
-    }
-
-    fn stats(&self) -> Stats {
-        self.stats
-    }
+    stepper_getters!();
 
     fn step<R: Rhs<N>>(&mut self, rhs: &R, t_stop: Real) -> Result<(), IntegrateError> {
         check_t_stop(t_stop)?;

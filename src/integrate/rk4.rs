@@ -22,7 +22,10 @@
 //! [`IntegrateError::NonFinite`] at the time of the last finite state, which is
 //! kept; the stepper never holds a non-finite state.
 
-use crate::integrate::{DEFAULT_MAX_STEPS, IntegrateError, Rhs, Stats, Stepper, check_t_stop};
+use crate::integrate::{
+    DEFAULT_MAX_STEPS, IntegrateError, Rhs, Stats, Stepper, check_start, check_t_stop,
+    fixed_step_allowed, stepper_getters,
+};
 use crate::math::{Real, State, all_finite};
 
 /// Classical RK4 with a fixed step size, stepping forward or backward.
@@ -81,11 +84,7 @@ impl<const N: usize> Rk4<N> {
                 "the RK4 step size must be finite and > 0, got {h}"
             )));
         }
-        if !t0.is_finite() || !all_finite(&y0) {
-            return Err(IntegrateError::InvalidOption(
-                "the initial time and state must be finite".into(),
-            ));
-        }
+        check_start(t0, all_finite(&y0))?;
         Ok(Self {
             t: t0,
             y: y0,
@@ -134,37 +133,14 @@ impl<const N: usize> Rk4<N> {
 }
 
 impl<const N: usize> Stepper<N> for Rk4<N> {
-    fn t(&self) -> Real {
-        self.t
-    }
-
-    fn y(&self) -> &State<N> {
-        &self.y
-    }
-
-    fn t_prev(&self) -> Real {
-        self.t_prev
-    }
-
-    fn last_step(&self) -> Real {
-        self.h_last
-    }
-
-    fn stats(&self) -> Stats {
-        self.stats
-    }
+    stepper_getters!();
 
     fn step<R: Rhs<N>>(&mut self, rhs: &R, t_stop: Real) -> Result<(), IntegrateError> {
         check_t_stop(t_stop)?;
         if t_stop == self.t {
             return Ok(());
         }
-        if self.stats.steps >= self.max_steps {
-            return Err(IntegrateError::TooManySteps {
-                t: self.t,
-                max_steps: self.max_steps,
-            });
-        }
+        fixed_step_allowed(self.stats.steps, self.max_steps, self.t)?;
         let remaining = t_stop - self.t;
         // NOTE: the last step is stretched by up to a relative 1e-9 (plus a few
         // ulps of t) rather than leaving a rounding-sized sliver of a step for

@@ -42,7 +42,9 @@
 //! [`IntegrateError::NonFinite`] at the time of the last finite state, which is
 //! kept; the stepper never holds a non-finite state.
 
-use crate::integrate::{DEFAULT_MAX_STEPS, IntegrateError, Stats, check_t_stop};
+use crate::integrate::{
+    DEFAULT_MAX_STEPS, IntegrateError, Stats, check_start, check_t_stop, fixed_step_allowed,
+};
 use crate::math::{Mat3, Real, Vec3, all_finite};
 use crate::physics::ParamError;
 use crate::physics::rigid_body::BodyDynamics;
@@ -180,11 +182,7 @@ impl<P: SplitFlow> Splitting<P> {
                 "the splitting step size must be finite and > 0, got {h}"
             )));
         }
-        if !t0.is_finite() || !problem.is_finite(&state0) {
-            return Err(IntegrateError::InvalidOption(
-                "the initial time and state must be finite".into(),
-            ));
-        }
+        check_start(t0, problem.is_finite(&state0))?;
         if problem.parts() == 0 {
             return Err(IntegrateError::InvalidOption(
                 "a split problem needs at least one part".into(),
@@ -265,12 +263,7 @@ impl<P: SplitFlow> Splitting<P> {
         if t_stop == self.t {
             return Ok(());
         }
-        if self.stats.steps >= self.max_steps {
-            return Err(IntegrateError::TooManySteps {
-                t: self.t,
-                max_steps: self.max_steps,
-            });
-        }
+        fixed_step_allowed(self.stats.steps, self.max_steps, self.t)?;
         let remaining = t_stop - self.t;
         let h_signed = self.h.copysign(remaining);
         if h_signed != self.anchor_h {
