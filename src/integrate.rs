@@ -18,6 +18,13 @@
 //! | [`Splitting`] ([`Composition::Strang`]) | 2, symmetric | fixed step | none |
 //! | [`Splitting`] ([`Composition::Yoshida4`]) | 4, symmetric | fixed step | none |
 //!
+//! The two explicit pairs share one adaptive step loop (`explicit.rs`: the
+//! first stage, the starting step, the step budget, the error test, the
+//! controller, rejection and the statistics); each keeps only its stages,
+//! error norm, controller constants and dense output. Radau IIA 5 and RK4
+//! use the same small checks (`attempt_allowed`, `start_step`,
+//! `fixed_step_allowed`) and getters (`stepper_getters!`).
+//!
 //! All of them step forward or backward: the direction is the sign of
 //! `t_stop − t`. The explicit methods use only [`Rhs::eval`]; [`Radau5`] also
 //! calls [`Rhs::jacobian`] (analytic when the right-hand side provides it, else
