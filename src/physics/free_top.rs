@@ -75,8 +75,6 @@ const M_MAX: Real = 1.0 - 1e-12;
 /// One free polhode, ready to be sampled over its period.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Polhode {
-    /// Body axes sorted by moment: `axes[0]` is a (smallest), `axes[2]` c.
-    axes: [usize; 3],
     /// Amplitudes of the cn, sn and dn components, and the axes they sit on.
     amp: [Real; 3],
     on: [usize; 3],
@@ -118,7 +116,6 @@ impl Polhode {
         let upper = two_e * ic - l2; // ≥ 0
         let lower = l2 - two_e * ia; // ≥ 0
         let degenerate = |fixed| Self {
-            axes,
             amp: [0.0; 3],
             on: [a, b, c],
             lambda: 0.0,
@@ -132,44 +129,30 @@ impl Polhode {
             return degenerate(fixed_on(a));
         }
         let (upper, lower) = (upper.max(0.0), lower.max(0.0));
-        if l2 >= two_e * ib {
-            // Round the c axis.
-            let m = ((ib - ia) * upper / ((ic - ib) * lower)).min(M_MAX);
-            Self {
-                axes,
-                amp: [
-                    (upper / (ia * (ic - ia))).sqrt(),
-                    if ic > ib {
-                        (upper / (ib * (ic - ib))).sqrt()
-                    } else {
-                        0.0
-                    },
-                    (lower / (ic * (ic - ia))).sqrt(),
-                ],
-                on: [a, b, c],
-                lambda: ((ic - ib) * lower / (ia * ib * ic)).sqrt(),
-                m,
-                fixed: None,
-            }
+        // Round the axis q, from the axis p at the other end: q = c when
+        // L² ≥ 2E I_b, else the same formulas with a and c exchanged. With
+        // dq = 2E I_q − L² and dp = L² − 2E I_p (both of the sign of
+        // I_q − I_p), every ratio below is positive.
+        let (p, q, dp, dq) = if l2 >= two_e * ib {
+            (a, c, lower, upper)
         } else {
-            // Round the a axis: a and c exchanged.
-            let m = ((ic - ib) * lower / ((ib - ia) * upper)).min(M_MAX);
-            Self {
-                axes,
-                amp: [
-                    (lower / (ic * (ic - ia))).sqrt(),
-                    if ib > ia {
-                        (lower / (ib * (ib - ia))).sqrt()
-                    } else {
-                        0.0
-                    },
-                    (upper / (ia * (ic - ia))).sqrt(),
-                ],
-                on: [c, b, a],
-                lambda: ((ib - ia) * upper / (ia * ib * ic)).sqrt(),
-                m,
-                fixed: None,
-            }
+            (c, a, -upper, -lower)
+        };
+        let (ip, iq) = (inertia[p], inertia[q]);
+        Self {
+            amp: [
+                (dq / (ip * (iq - ip))).sqrt(),
+                if iq != ib {
+                    (dq / (ib * (iq - ib))).sqrt()
+                } else {
+                    0.0
+                },
+                (dp / (iq * (iq - ip))).sqrt(),
+            ],
+            on: [p, b, q],
+            lambda: ((iq - ib) * dp / (ia * ib * ic)).sqrt(),
+            m: ((ib - ip) * dq / ((iq - ib) * dp)).min(M_MAX),
+            fixed: None,
         }
     }
 
@@ -257,11 +240,6 @@ impl Polhode {
             }
         }
         (mean, n)
-    }
-
-    /// The axes sorted by moment (a, b, c).
-    pub fn sorted_axes(&self) -> [usize; 3] {
-        self.axes
     }
 }
 

@@ -277,4 +277,33 @@ mod tests {
             epsilon = 1e-15
         );
     }
+
+    /// The torques on their own are the right-hand sides' radiation parts:
+    /// I Ω̇ + Ω × IΩ equals them at an ordinary scale (where nothing cancels),
+    /// and at a real molecule's scale (τ_f|Ω| ~ 1e-15), where that difference
+    /// would be rounding, they still scale exactly as |d|²: the torque of a
+    /// dipole 1e-8 times smaller is 1e-16 times the torque.
+    #[test]
+    fn eq_3_3_and_reduced_eq_3_4_torques_are_the_radiation_part_of_the_rhs() {
+        let i = Vec3::new(1.0, 1.5, 2.0);
+        let omega = Vec3::new(0.5, -0.3, 0.8);
+        let top = GeneralTop::new(i, Vec3::new(0.3, 0.2, 1.0)).unwrap();
+        let euler = omega.cross(&i.component_mul(&omega));
+        let from_rhs = |w_dot: Vec3| i.component_mul(&w_dot) + euler;
+        let t3 = top.truncated_torque(&omega);
+        let r4 = top.reduced_torque(&omega);
+        assert!((t3 - from_rhs(top.truncated_ale_rhs(&omega))).norm() < 1e-14);
+        assert!((r4 - from_rhs(top.reduced_ale_rhs(&omega))).norm() < 1e-14);
+        let tiny = GeneralTop::new(i, Vec3::new(0.3, 0.2, 1.0) * 1e-8).unwrap();
+        assert_relative_eq!(
+            tiny.reduced_torque(&omega),
+            r4 * 1e-16,
+            max_relative = 1e-12
+        );
+        assert_relative_eq!(
+            tiny.truncated_torque(&omega),
+            t3 * 1e-16,
+            max_relative = 1e-7
+        );
+    }
 }
