@@ -91,9 +91,9 @@ pub struct BenchArgs {
     /// Height of each chart, in lines (4 to 100).
     #[arg(long, default_value_t = 18, allow_hyphen_values = true)]
     height: u32,
-    /// Instead of a sweep: join CSV files of earlier runs and print each method's time at matched error 1e-8 and 1e-12, with ratios.
+    /// Instead of a sweep: join CSV files of earlier runs, chart every source's methods for one problem (--chart), and print each method's time at matched error 1e-8 and 1e-12, with ratios.
     #[arg(long, value_name = "CSV", num_args = 1..,
-          conflicts_with_all = ["quick", "chart", "repeats", "out"])]
+          conflicts_with_all = ["quick", "repeats", "out"])]
     join: Option<Vec<PathBuf>>,
 }
 
@@ -115,16 +115,31 @@ struct BenchConfig {
     height: u32,
 }
 
+/// A validated join.
+struct JoinConfig {
+    files: Vec<PathBuf>,
+    /// The problem charted; `None`: reduced if the files have it, else the first.
+    chart: Option<ProblemKind>,
+    width: u32,
+    height: u32,
+}
+
 /// What `bench` was asked to do.
 enum Job {
     Sweep(BenchConfig),
-    Join(Vec<PathBuf>),
+    Join(JoinConfig),
 }
 
 impl BenchArgs {
     fn validate(self) -> Result<Job, CliError> {
+        check_chart_size(self.width, self.height)?;
         if let Some(files) = self.join {
-            return Ok(Job::Join(files));
+            return Ok(Job::Join(JoinConfig {
+                files,
+                chart: self.chart.map(ChartModel::kind),
+                width: self.width,
+                height: self.height,
+            }));
         }
         let kinds = match self.model.kind() {
             Some(k) => vec![k],
@@ -170,18 +185,6 @@ impl BenchArgs {
                 Some((path, format))
             }
         };
-        if !(16..=250).contains(&self.width) {
-            return Err(bad(format!(
-                "--width must be 16 to 250 characters, got {}",
-                self.width
-            )));
-        }
-        if !(4..=100).contains(&self.height) {
-            return Err(bad(format!(
-                "--height must be 4 to 100 lines, got {}",
-                self.height
-            )));
-        }
         Ok(Job::Sweep(BenchConfig {
             kinds,
             chart,
@@ -192,6 +195,21 @@ impl BenchArgs {
             height: self.height,
         }))
     }
+}
+
+/// The charts' size, in characters and lines.
+fn check_chart_size(width: u32, height: u32) -> Result<(), CliError> {
+    if !(16..=250).contains(&width) {
+        return Err(bad(format!(
+            "--width must be 16 to 250 characters, got {width}"
+        )));
+    }
+    if !(4..=100).contains(&height) {
+        return Err(bad(format!(
+            "--height must be 4 to 100 lines, got {height}"
+        )));
+    }
+    Ok(())
 }
 
 /// The wall clock, for the sweep.
@@ -208,7 +226,7 @@ impl Stopwatch for WallClock {
 /// Validate, run and print `bench`.
 pub(crate) fn execute(args: BenchArgs, out: &mut impl Write) -> Result<(), CliError> {
     match args.validate()? {
-        Job::Join(files) => join(&files, out),
+        Job::Join(config) => join(&config, out),
         Job::Sweep(config) => sweep(&config, out),
     }
 }
@@ -318,7 +336,8 @@ fn summary(rows: &[Row]) -> Vec<String> {
     lines
 }
 
-fn join(files: &[PathBuf], out: &mut impl Write) -> Result<(), CliError> {
+fn join(config: &JoinConfig, out: &mut impl Write) -> Result<(), CliError> {
+    let files = &config.files;
     let mut rows = Vec::new();
     for path in files {
         rows.extend(read_rows(path)?);
@@ -333,6 +352,28 @@ fn join(files: &[PathBuf], out: &mut impl Write) -> Result<(), CliError> {
             .collect::<Vec<_>>()
             .join(", ")
     )?;
+    let has = |name: &str| rows.iter().any(|r| r.model == name);
+    let model = match config.chart {
+        Some(kind) if has(kind.name()) => Some(kind.name().to_string()),
+        Some(kind) => {
+            return Err(bad(format!(
+                "--chart {}: the files hold no row of that problem",
+                kind.name()
+            )));
+        }
+        None if has(ProblemKind::Reduced.name()) => Some(ProblemKind::Reduced.name().to_string()),
+        None => rows.first().map(|r| r.model.clone()),
+    };
+    if let Some(model) = model {
+        for axis in [CostAxis::Time, CostAxis::Evals] {
+            if let Some(text) =
+                report::chart(&rows, &model, axis, 2 * config.width, 4 * config.height)
+            {
+                writeln!(out)?;
+                write!(out, "{text}")?;
+            }
+        }
+    }
     write!(out, "{}", report::join_table(&rows))?;
     Ok(())
 }

@@ -264,13 +264,25 @@ pub fn marker(source: &str, method: &str) -> char {
         ("spintop", "rotation-damping") => 'X',
         ("ode_solvers", "Dopri5") => 'd',
         ("ode_solvers", "Dop853") => 'D',
+        ("ode_solvers", "Dop853 (t<200)") => 'x',
+        ("differential-equations", "dop853") => 'e',
+        ("differential-equations", "rkv988e") => 'V',
+        ("diffsol", "tsit45") => 'T',
         ("scipy", "RK45") => 'r',
         ("scipy", "DOP853") => 's',
         ("scipy", "Radau") => 'R',
         ("scipy", "LSODA") => 'L',
-        _ => method.chars().next().unwrap_or('?'),
+        ("scipy", "odeint") => 'O',
+        ("scipy", "cvode-adams") => 'A',
+        ("scipy", "cvode-bdf") => 'B',
+        // Another source's method: its source's initial (a clash within
+        // one chart is resolved by `curves`).
+        _ => source.chars().next().unwrap_or('?'),
     }
 }
+
+/// Markers for curves whose own marker another curve of the chart already has.
+const MARKER_POOL: &str = "abfghjkmnpqtuvwyzEFGHJKMNQUWZ0123679*#@%&";
 
 /// The Ω rows of one problem as one curve per (source, method), in cost order.
 fn curves(rows: &[Row], model: &str, target: Target, axis: CostAxis) -> Vec<Marked> {
@@ -297,6 +309,7 @@ fn curves(rows: &[Row], model: &str, target: Target, axis: CostAxis) -> Vec<Mark
             .or_default()
             .push((cost, err.max(ERROR_FLOOR)));
     }
+    let mut used: Vec<char> = Vec::new();
     order
         .into_iter()
         .filter_map(|key| {
@@ -307,9 +320,18 @@ fn curves(rows: &[Row], model: &str, target: Target, axis: CostAxis) -> Vec<Mark
             } else {
                 format!("{} {}", key.0, key.1)
             };
+            // Two curves of one chart never share a marker.
+            let mut mark = marker(&key.0, &key.1);
+            if used.contains(&mark) {
+                mark = MARKER_POOL
+                    .chars()
+                    .find(|c| !used.contains(c))
+                    .unwrap_or('?');
+            }
+            used.push(mark);
             Some(Marked {
                 label,
-                marker: marker(&key.0, &key.1),
+                marker: mark,
                 points,
             })
         })

@@ -69,6 +69,69 @@ fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
             && stdout.contains("best integrator at 1e-12: spintop rotation-damping"),
         "{stdout}"
     );
+
+    // Joined with a peer's file, the chart draws the peer's curve beside
+    // spintop's: here a copy of the DOP853 rows under another source's name,
+    // twice as slow.
+    let mut peer: Vec<_> = rows
+        .iter()
+        .filter(|r| r.method == "dop853" && r.target == spintop::workprecision::Target::Omega)
+        .cloned()
+        .collect();
+    assert!(!peer.is_empty());
+    for r in &mut peer {
+        r.source = "elsewhere".into();
+        r.time_s = r.time_s.map(|t| 2.0 * t);
+    }
+    let peer_csv = scratch("elsewhere.csv");
+    std::fs::write(&peer_csv, report::to_csv(&peer)).unwrap();
+    let out = spintop(&[
+        "bench",
+        "--join",
+        csv.to_str().unwrap(),
+        peer_csv.to_str().unwrap(),
+        "--width",
+        "50",
+    ]);
+    let stdout = text(&out.stdout);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        stdout.contains("reduced model, T = 200: max relative error of Ω against time")
+            && stdout.contains("error of Ω against RHS evaluations"),
+        "{stdout}"
+    );
+    let legend = stdout
+        .lines()
+        .find(|l| l.contains("8 dop853"))
+        .expect("a legend");
+    assert!(legend.contains("e elsewhere dop853"), "{legend}");
+    // The peer's marker is drawn on the time chart (the first chart).
+    let time_chart: String = stdout
+        .split("against RHS evaluations")
+        .next()
+        .unwrap()
+        .lines()
+        .skip_while(|l| !l.contains("8 dop853"))
+        .skip(1)
+        .collect();
+    assert!(
+        time_chart.contains('e') && time_chart.contains('8'),
+        "{stdout}"
+    );
+    assert!(stdout.contains("elsewhere    dop853"), "{stdout}");
+
+    // A problem the files do not hold cannot be charted.
+    let out = spintop(&[
+        "bench",
+        "--join",
+        csv.to_str().unwrap(),
+        "--chart",
+        "general",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = text(&out.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("--chart general"), "{err}");
 }
 
 #[test]

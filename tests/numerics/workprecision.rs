@@ -324,6 +324,58 @@ fn the_join_reports_time_ratios_at_matched_error() {
     );
 }
 
+#[test]
+fn every_curve_of_a_joined_chart_has_its_own_marker() {
+    let row = |source: &str, method: &str, err: Real, time: Real| Row {
+        source: source.into(),
+        model: "reduced".into(),
+        method: method.into(),
+        target: Target::Omega,
+        knob: KnobKind::Rtol,
+        value: Some(1e-6),
+        omega_error: Some(err),
+        orientation_error: None,
+        rhs_evals: Some(100),
+        steps: Some(1),
+        rejected: Some(0),
+        time_s: Some(time),
+        repeats: 3,
+        status: "ok".into(),
+    };
+    // Two unknown sources with one initial, and a known peer's marker ('D').
+    let rows = vec![
+        row("spintop", "dop853", 1e-6, 1e-5),
+        row("alpha", "m", 1e-7, 2e-5),
+        row("another", "m", 1e-8, 3e-5),
+        row("ode_solvers", "Dop853", 1e-9, 4e-5),
+    ];
+    let text = report::chart(&rows, "reduced", report::CostAxis::Time, 60, 20).unwrap();
+    let legend = text.lines().nth(1).unwrap();
+    assert!(
+        legend.contains("8 dop853")
+            && legend.contains("a alpha m")
+            && legend.contains("D ode_solvers Dop853"),
+        "{legend}"
+    );
+    // "another m" gets a marker of its own, and each marker is drawn once.
+    let marks: Vec<char> = legend
+        .split(", ")
+        .map(|item| item.trim().chars().next().unwrap())
+        .collect();
+    assert_eq!(marks.len(), 4, "{legend}");
+    let mut unique = marks.clone();
+    unique.sort_unstable();
+    unique.dedup();
+    assert_eq!(unique.len(), 4, "{legend}");
+    for m in marks {
+        assert_eq!(
+            text.lines().skip(2).filter(|l| l.contains(m)).count(),
+            1,
+            "{m}\n{text}"
+        );
+    }
+}
+
 /// The cost of every spintop method on the reduced, general and full
 /// problems, at the quick plan's knobs. A change in any count (a method that takes more
 /// steps or evaluations for the same answer) fails here; review it with
