@@ -372,7 +372,7 @@ fn wrong_answer(peer: &Peer, problem: &Problem) -> Option<String> {
         Err(e) => Some(format!("failed at rtol {CHECK_RTOL:.0e}: {e}")),
         Ok(s) => {
             let error = omega_error(&problem.reference().omega, &s.omega);
-            (!(error <= CHECK_LIMIT)).then(|| {
+            (error.is_nan() || error > CHECK_LIMIT).then(|| {
                 format!(
                     "at rtol {CHECK_RTOL:.0e} its largest relative error of Ω is {} (the check accepts up to {CHECK_LIMIT:.0e})",
                     report::sci(Some(error))
