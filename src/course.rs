@@ -1107,7 +1107,8 @@ name = "spintop_lessons"
 path = "src/lib.rs"
 
 [dependencies]
-spintop = {{ path = {path:?} }}
+# The core only: grading does not compile the terminal UI, the plots or the command line.
+spintop = {{ path = {path:?}, default-features = false }}
 "#,
         path = spintop.display().to_string()
     )
@@ -1380,7 +1381,11 @@ test result: FAILED. 2 passed; 2 failed; 0 ignored; 0 measured; 0 filtered out
             }
         }
         let manifest = std::fs::read_to_string(out.join("Cargo.toml")).unwrap();
-        assert!(manifest.contains("[workspace]") && manifest.contains("spintop = { path"));
+        assert!(
+            manifest.contains("[workspace]")
+                && manifest.contains("spintop = { path")
+                && manifest.contains("default-features = false")
+        );
         // A second export into the same folder is refused, nothing overwritten.
         assert!(export(root, &out).unwrap_err().contains("not empty"));
         std::fs::remove_dir_all(&out).unwrap();

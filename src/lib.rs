@@ -23,27 +23,34 @@
 #![warn(missing_docs)]
 
 pub mod assignment;
+#[cfg(feature = "app")]
 pub mod cli;
 pub mod course;
+#[cfg(feature = "app")]
 pub mod figure;
 #[doc(hidden)]
 pub mod grading;
 pub mod integrate;
 pub mod math;
 pub mod physics;
+#[cfg(feature = "app")]
 pub mod plot;
 pub mod present;
+#[cfg(feature = "app")]
 pub mod scene;
+#[cfg(feature = "app")]
 pub mod server;
 pub mod sim;
 pub mod stability;
+#[cfg(feature = "app")]
 pub mod tui;
+#[cfg(feature = "app")]
 pub mod workprecision;
 
 /// The book's chapters (`book/src`). `cargo test` compiles and runs every Rust
 /// block in them as a doctest; `tests/project/book.rs` checks that every chapter in
 /// `SUMMARY.md` is listed here.
-#[cfg(doctest)]
+#[cfg(all(doctest, feature = "app"))]
 pub mod book {
     #[doc = include_str!("../book/src/preface.md")]
     pub struct Preface;
