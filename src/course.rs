@@ -731,31 +731,15 @@ pub fn parse_probe(output: &str) -> Result<Probed, String> {
     Ok(Probed::Samples(samples))
 }
 
-/// `cargo test` on the lessons crate in `dir`.
-///
-/// NOTE: the lessons depend on spintop's core only (no feature "app"), so a
-/// student's first grading compiles about half of what `cargo test` on
-/// spintop does. spintop's own unit tests grade with spintop's default
-/// features instead: the unit their `cargo test` has just built, so a cold
-/// `cargo test` does not compile the crate a second time. What is graded, and
-/// how, does not depend on the feature.
-fn cargo_test(dir: &Path) -> Command {
+/// Runs the probe of `spec` on the lessons crate in `dir` (a cargo child
+/// process; about a second once built).
+pub fn probe(dir: &Path, spec: &ProbeSpec) -> Result<Probed, String> {
     let mut cmd = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
     cmd.current_dir(dir)
         .arg("test")
         .arg("--manifest-path")
-        .arg(dir.join("Cargo.toml"));
-    if cfg!(test) {
-        cmd.args(["--features", "spintop/default"]);
-    }
-    cmd
-}
-
-/// Runs the probe of `spec` on the lessons crate in `dir` (a cargo child
-/// process; about a second once built).
-pub fn probe(dir: &Path, spec: &ProbeSpec) -> Result<Probed, String> {
-    let mut cmd = cargo_test(dir);
-    cmd.args(["--quiet", "--color", "never", "--test", "probe"])
+        .arg(dir.join("Cargo.toml"))
+        .args(["--quiet", "--color", "never", "--test", "probe"])
         .args(["--", "--ignored", "--nocapture", "--exact", "probe"])
         .env("SPINTOP_PROBE", spec.request())
         .env("RUST_BACKTRACE", "0");
@@ -771,8 +755,12 @@ pub fn probe(dir: &Path, spec: &ProbeSpec) -> Result<Probed, String> {
 /// the given test binaries, or all of them when `binaries` is empty; with
 /// `solutions`, the instructor's reference solutions.
 fn grade_command(dir: &Path, solutions: bool, binaries: &[&str]) -> Command {
-    let mut cmd = cargo_test(dir);
-    cmd.args(["--no-fail-fast", "--color", "never"]);
+    let mut cmd = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
+    cmd.current_dir(dir)
+        .arg("test")
+        .arg("--manifest-path")
+        .arg(dir.join("Cargo.toml"))
+        .args(["--no-fail-fast", "--color", "never"]);
     if solutions {
         cmd.args(["--features", "solutions"]);
     }
