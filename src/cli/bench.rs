@@ -342,16 +342,6 @@ fn join(config: &JoinConfig, out: &mut impl Write) -> Result<(), CliError> {
     for path in files {
         rows.extend(read_rows(path)?);
     }
-    writeln!(
-        out,
-        "# spintop bench --join: {} rows from {}",
-        rows.len(),
-        files
-            .iter()
-            .map(|p| p.display().to_string())
-            .collect::<Vec<_>>()
-            .join(", ")
-    )?;
     let has = |name: &str| rows.iter().any(|r| r.model == name);
     let model = match config.chart {
         Some(kind) if has(kind.name()) => Some(kind.name().to_string()),
@@ -364,6 +354,16 @@ fn join(config: &JoinConfig, out: &mut impl Write) -> Result<(), CliError> {
         None if has(ProblemKind::Reduced.name()) => Some(ProblemKind::Reduced.name().to_string()),
         None => rows.first().map(|r| r.model.clone()),
     };
+    writeln!(
+        out,
+        "# spintop bench --join: {} rows from {}",
+        rows.len(),
+        files
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    )?;
     if let Some(model) = model {
         for axis in [CostAxis::Time, CostAxis::Evals] {
             if let Some(text) =

@@ -132,6 +132,7 @@ fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
     let err = text(&out.stderr);
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("--chart general"), "{err}");
+    assert!(out.stdout.is_empty(), "{}", text(&out.stdout));
 }
 
 #[test]
