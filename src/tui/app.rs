@@ -935,6 +935,19 @@ pub fn fmt_exact(x: Real) -> String {
     }
 }
 
+/// A parameter as the header shows it: exactly as typed when that is short
+/// (`0.1`, `1.5`, `1e-3`), else to four significant digits (a real
+/// particle's I₁ = 4.634615384615384 reads `4.635`), so the header fits 80
+/// columns. The edit field still starts from [`fmt_exact`].
+pub fn fmt_param(x: Real) -> String {
+    let exact = fmt_exact(x);
+    if exact.chars().count() <= 8 {
+        exact
+    } else {
+        crate::present::fmt_num(x)
+    }
+}
+
 /// Subscript digits for Ω₁, Ω₂, Ω₃.
 pub const SUBSCRIPTS: [char; 3] = ['₁', '₂', '₃'];
 
@@ -948,6 +961,26 @@ fn edit_hint(component: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn header_parameters_are_exact_when_short_and_four_digits_when_long() {
+        for (x, shown) in [
+            (0.1, "0.1"),
+            (1.5, "1.5"),
+            (1e-3, "0.001"),
+            (0.4, "0.4"),
+            (4.634615384615384, "4.635"),
+            (0.216_346_153_846_153_85, "0.2163"),
+            (1.0 / 3.0, "0.3333"),
+            (6.02e23, "6.02e23"),
+            (1.234_567_891e-7, "1.235e-7"),
+        ] {
+            assert_eq!(fmt_param(x), shown, "{x}");
+            // A long value shown short still parses to within 5e-4 of itself.
+            let back: Real = fmt_param(x).parse().unwrap();
+            assert!((back - x).abs() <= 5e-4 * x.abs(), "{x}");
+        }
+    }
     use approx::assert_relative_eq;
 
     #[test]

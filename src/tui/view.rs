@@ -14,7 +14,7 @@
 //! shows I and d instead of I₃/I₁, time is in the κ = 1 unit "u" instead of
 //! τ, and the I₃/I₁ keys leave the footer.
 
-use super::app::{App, Mode, SUBSCRIPTS, TICK, Top, fmt_exact};
+use super::app::{App, Mode, SUBSCRIPTS, TICK, Top, fmt_param};
 use super::theme;
 use super::widgets::{OmegaSeries, drift, hodograph, numbers, top_in_space};
 use crate::sim::Model;
@@ -123,7 +123,7 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
     let mut second = match settings.top() {
         Top::Symmetric(top) => vec![
             Span::styled(" I₃/I₁ = ", theme::label()),
-            Span::styled(fmt_exact(top.ratio()), theme::value()),
+            Span::styled(fmt_param(top.ratio()), theme::value()),
         ],
         Top::General(top) => vec![
             Span::styled(" I = ", theme::label()),
@@ -143,7 +143,7 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
             Mode::Edit {
                 component, buffer, ..
             } if *component == i => format!("{buffer}▏"),
-            _ => fmt_exact(*w),
+            _ => fmt_param(*w),
         };
         let style = if i == app.view().selected {
             theme::selected()
@@ -218,9 +218,9 @@ fn fit(mut spans: Vec<Span<'static>>, width: u16) -> Line<'static> {
 fn fmt_triple(v: [crate::math::Real; 3]) -> String {
     format!(
         "({}, {}, {})",
-        fmt_exact(v[0]),
-        fmt_exact(v[1]),
-        fmt_exact(v[2])
+        fmt_param(v[0]),
+        fmt_param(v[1]),
+        fmt_param(v[2])
     )
 }
 
