@@ -138,10 +138,6 @@ impl<F: Fn(&Vec3) -> Vec3> ODE<f64, [f64; 3]> for DeSystem<F> {
     }
 }
 
-fn count(n: usize) -> u64 {
-    n as u64
-}
-
 impl WithRhs for Call<'_> {
     type Out = Result<Run, String>;
     fn run<F: Fn(&Vec3) -> Vec3>(self, f: F) -> Self::Out {
@@ -173,9 +169,9 @@ impl WithRhs for Call<'_> {
                     times,
                     omega: ys.iter().map(|y| Vec3::new(y[0], y[1], y[2])).collect(),
                     stats: Stats {
-                        rhs_evals: count(stats.num_eval as usize),
-                        steps: count(stats.accepted_steps as usize),
-                        rejected: count(stats.rejected_steps as usize),
+                        rhs_evals: stats.num_eval as u64,
+                        steps: stats.accepted_steps as u64,
+                        rejected: stats.rejected_steps as u64,
                     },
                 })
             }
@@ -198,9 +194,9 @@ impl WithRhs for Call<'_> {
                         .collect(),
                     times: solution.t,
                     stats: Stats {
-                        rhs_evals: count(solution.evals.function),
-                        steps: count(solution.steps.accepted),
-                        rejected: count(solution.steps.rejected),
+                        rhs_evals: solution.evals.function as u64,
+                        steps: solution.steps.accepted as u64,
+                        rejected: solution.steps.rejected as u64,
                     },
                 })
             }
@@ -234,9 +230,9 @@ impl WithRhs for Call<'_> {
                         .map(|j| Vec3::new(ys[(0, j)], ys[(1, j)], ys[(2, j)]))
                         .collect(),
                     stats: Stats {
-                        rhs_evals: count(evals),
-                        steps: count(stats.number_of_steps),
-                        rejected: count(stats.number_of_error_test_failures),
+                        rhs_evals: evals as u64,
+                        steps: stats.number_of_steps as u64,
+                        rejected: stats.number_of_error_test_failures as u64,
                     },
                 })
             }

@@ -285,9 +285,10 @@ fn cost_at_interpolates_in_log_log_and_never_extrapolates() {
     assert!(c > 10.0 && c < 20.0, "{c}");
 }
 
-#[test]
-fn the_join_reports_time_ratios_at_matched_error() {
-    let row = |source: &str, method: &str, err: Real, time: Real| Row {
+/// A successful Ω row of the reduced problem with the given error and time
+/// (one evaluation per nanosecond), as a joined CSV file would hold it.
+fn row(source: &str, method: &str, err: Real, time: Real) -> Row {
+    Row {
         source: source.into(),
         model: "reduced".into(),
         method: method.into(),
@@ -302,7 +303,11 @@ fn the_join_reports_time_ratios_at_matched_error() {
         time_s: Some(time),
         repeats: 3,
         status: "ok".into(),
-    };
+    }
+}
+
+#[test]
+fn the_join_reports_time_ratios_at_matched_error() {
     // spintop reaches 1e-8 at 10 µs and 1e-12 at 100 µs; scipy 300x slower.
     let rows = vec![
         row("spintop", "dop853", 1e-6, 1e-6),
@@ -326,22 +331,6 @@ fn the_join_reports_time_ratios_at_matched_error() {
 
 #[test]
 fn every_curve_of_a_joined_chart_has_its_own_marker() {
-    let row = |source: &str, method: &str, err: Real, time: Real| Row {
-        source: source.into(),
-        model: "reduced".into(),
-        method: method.into(),
-        target: Target::Omega,
-        knob: KnobKind::Rtol,
-        value: Some(1e-6),
-        omega_error: Some(err),
-        orientation_error: None,
-        rhs_evals: Some(100),
-        steps: Some(1),
-        rejected: Some(0),
-        time_s: Some(time),
-        repeats: 3,
-        status: "ok".into(),
-    };
     // Two unknown sources with one initial, and a known peer's marker ('D').
     let rows = vec![
         row("spintop", "dop853", 1e-6, 1e-5),
