@@ -14,6 +14,8 @@
 //! - [`figure`]: the paper's Figures 1 and 2 as point sets (pure).
 //! - [`workprecision`]: error against cost for every method on the paper's problems (pure;
 //!   the clock is injected).
+//! - [`output`]: what `simulate`, `balance`, `orbit` and `shell` answer: the request, the
+//!   computation, the JSON contract and its table and CSV forms (the scene engine prints the same).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line; the figures as text and SVG.
 //! - [`present`]: what the shells show the same way (method names, frames, number parsing
 //!   and axis formatting), below all of them.
@@ -32,6 +34,8 @@ pub mod figure;
 pub mod grading;
 pub mod integrate;
 pub mod math;
+#[cfg(feature = "app")]
+pub mod output;
 pub mod physics;
 #[cfg(feature = "app")]
 pub mod plot;

@@ -25,6 +25,8 @@ use crate::physics::rigid_body::energy;
 use crate::physics::symmetric_top::{SymmetricTop, reduced_closed_form, truncated_closed_form};
 use crate::present::parse_number;
 pub use crate::present::{Method, lab_frame, paper_frame};
+use crate::scene::Scene;
+use crate::scene::live::live_scene;
 use crate::sim::{InitialState, MethodOptions, Model, Sample, Simulation};
 use std::collections::VecDeque;
 use std::time::Duration;
@@ -178,6 +180,22 @@ impl Settings {
             );
         }
         Self::validated(Top::General(top), omega0, method, warp)
+    }
+
+    /// The settings a top scene opens with (see [`crate::scene::live`]), at
+    /// `warp` τ/s (the default when `None`), and the line the view opens with.
+    pub fn for_scene(scene: &Scene, warp: Option<Real>) -> Result<(Self, String), String> {
+        let live = live_scene(scene)?;
+        let warp = warp.unwrap_or(WARPS[DEFAULT_WARP]);
+        let settings = match live.model {
+            Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
+                Self::general(top, live.omega0, live.method, warp)?
+            }
+            Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
+                Self::new(top.ratio(), live.omega0, live.method, warp)?
+            }
+        };
+        Ok((settings, live.note))
     }
 
     fn validated(top: Top, omega0: [Real; 3], method: Method, warp: Real) -> Result<Self, String> {

@@ -252,11 +252,10 @@ fn every_kind_keeps_its_commands_json_keys() {
 fn tui_opens_every_top_scene() {
     for entry in CATALOGUE {
         let scene = entry.scene().unwrap();
-        let got = spintop::cli::tui::scene_settings(&scene, None);
+        let got = spintop::tui::app::Settings::for_scene(&scene, None);
         match &scene.body {
             Body::Top(top) => {
-                let (settings, note) =
-                    got.unwrap_or_else(|e| panic!("{}: {}", entry.name, e.message()));
+                let (settings, note) = got.unwrap_or_else(|e| panic!("{}: {e}", entry.name));
                 assert_eq!(settings.omega0(), <[f64; 3]>::from(top.initial.omega));
                 assert!(note.starts_with(&format!("scene {}", entry.name)));
                 let general = top.model.name().starts_with("general");

@@ -8,14 +8,14 @@
 //! integrator; the nanoparticle scenes are answered with no step at all.
 
 use approx::assert_relative_eq;
-use spintop::cli::run::{
-    Answer, OmegaOnlyOutput, PhysicalReport, Report, RigidReport, SecularOutput, TopRun, answer,
-};
-use spintop::cli::simulate::SimulateOutput;
 use spintop::math::{Mat3, Vec3};
+use spintop::output::simulate::SimulateOutput;
 use spintop::physics::central::{ChargeInField, Potential, eq_2_9_rate};
 use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::general_top::GeneralTop;
+use spintop::scene::answer::{
+    Answer, OmegaOnlyOutput, PhysicalReport, Report, RigidReport, SecularOutput, TopRun, answer,
+};
 use spintop::scene::catalogue::{CATALOGUE, find};
 use spintop::scene::{Body, Scene, parse};
 use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
@@ -30,7 +30,7 @@ fn scene(name: &str) -> Scene {
 }
 
 fn run(name: &str) -> Report {
-    answer(&scene(name)).unwrap_or_else(|e| panic!("{name}: {}", e.message()))
+    answer(&scene(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn full(r: &Report) -> &SimulateOutput {

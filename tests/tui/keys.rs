@@ -375,7 +375,7 @@ fn general_app() -> App {
         .scene()
         .expect("the scene parses");
     let (settings, note) =
-        spintop::cli::tui::scene_settings(&scene, None).expect("the live view opens it");
+        spintop::tui::app::Settings::for_scene(&scene, None).expect("the live view opens it");
     assert!(
         note.starts_with("scene asymmetric-top: a general top under (3.3), the reduced ALE and the physical solution of (3.4)"),
         "{note}"

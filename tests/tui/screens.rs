@@ -159,7 +159,7 @@ fn asymmetric_scene() -> Scene {
 
 /// The catalogue's asymmetric top as `spintop tui asymmetric-top` opens it.
 fn general_app() -> App {
-    let (settings, note) = spintop::cli::tui::scene_settings(&asymmetric_scene(), None)
+    let (settings, note) = spintop::tui::app::Settings::for_scene(&asymmetric_scene(), None)
         .expect("the live view opens it");
     App::new(settings)
         .expect("valid settings")

@@ -1,0 +1,181 @@
+//! What each question of the command line answers, below every shell: the
+//! validated request, the computation, the JSON contract and its table and
+//! CSV forms, for `simulate`, `balance`, `orbit` and `shell`.
+//!
+//! The scene engine ([`crate::scene::answer`]) answers a scene file with the
+//! same computations and prints the same contracts; the command line only
+//! turns arguments into the requests here. A run that cannot be answered is a
+//! [`Failure`]: bad input, or a run that stopped, each one line that carries
+//! the time and what to try.
+
+use crate::integrate::IntegrateError;
+use crate::math::Real;
+use crate::sim::{MethodChoice, Model, SimError};
+use std::io::{self, Write};
+use thiserror::Error;
+
+pub mod balance;
+pub mod orbit;
+pub mod shell;
+pub mod simulate;
+
+/// Output format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// Aligned columns for reading.
+    Table,
+    /// Comma-separated values with a header row, full precision.
+    Csv,
+    /// One JSON object (the documented contract).
+    Json,
+}
+
+/// Why a question got no answer, in one line.
+#[derive(Clone, Debug, Error, PartialEq, Eq)]
+pub enum Failure {
+    /// Malformed or unphysical input, or a run refused before it starts.
+    #[error("{0}")]
+    BadInput(String),
+    /// A run stopped for a numerical or modelling reason; the message carries
+    /// the time and what to try.
+    #[error("{0}")]
+    Stopped(String),
+}
+
+impl From<SimError> for Failure {
+    fn from(e: SimError) -> Self {
+        match e {
+            SimError::Integrate(IntegrateError::InvalidOption(msg)) => Failure::BadInput(msg),
+            SimError::Integrate(e) => numerical(&e),
+            SimError::NonFiniteSample(t) => numerical(&IntegrateError::NonFinite { t }),
+            SimError::Physical(crate::sim::physical::PhysicalError::Integrate(e)) => numerical(&e),
+            SimError::Physical(e @ crate::sim::physical::PhysicalError::NoConvergence(_)) => {
+                Failure::Stopped(format!("{e}; try a looser --rtol or a shorter --t-end"))
+            }
+            SimError::Physical(e @ crate::sim::physical::PhysicalError::NotSeparated { .. }) => {
+                Failure::Stopped(e.to_string())
+            }
+            SimError::MethodNotForModel(model) => Failure::BadInput(format!(
+                "this method does not apply to the {model} model: --method forward is for --model full, which takes auto or forward"
+            )),
+            SimError::NoClosedForm(model) => Failure::BadInput(format!(
+                "the {model} model has no closed form; use --method auto or dop853"
+            )),
+            other => Failure::BadInput(other.to_string()),
+        }
+    }
+}
+
+/// An integrator's failure with general advice.
+fn numerical(e: &IntegrateError) -> Failure {
+    Failure::Stopped(format!("{e}; {}", advice(e)))
+}
+
+/// What to try after a numerical failure.
+fn advice(e: &IntegrateError) -> &'static str {
+    match e {
+        IntegrateError::NonFinite { .. } => {
+            "the step is too large for this problem: try a smaller --step, or an adaptive method (--method dop853)"
+        }
+        IntegrateError::StepSizeUnderflow { .. } => {
+            "the problem is too stiff or singular here: try --method exact where a closed form exists, a looser --rtol, or a smaller --omega"
+        }
+        IntegrateError::TooManySteps { .. } => {
+            "the run needs too many steps: shorten --t-end, loosen --rtol, enlarge --step, or use --method exact"
+        }
+        IntegrateError::NoConvergence { .. } => {
+            "the implicit method's Newton iteration failed: try a smaller --step or an adaptive method"
+        }
+        IntegrateError::InvalidOption(_) => "check the method options",
+    }
+}
+
+/// A simulation's failure, with advice that applies to the model and the
+/// method in use: it names only options that exist for them and are not
+/// already chosen (no "--method exact" for a model without a closed form or a
+/// run already exact, no "--step" for an adaptive method).
+pub fn sim_failure(e: SimError, model: &Model, choice: MethodChoice) -> Failure {
+    use crate::sim::MethodChoice as M;
+    let integrate = match &e {
+        SimError::Integrate(ie) if !matches!(ie, IntegrateError::InvalidOption(_)) => ie.clone(),
+        SimError::NonFiniteSample(t) => IntegrateError::NonFinite { t: *t },
+        SimError::Physical(crate::sim::physical::PhysicalError::Integrate(ie)) => ie.clone(),
+        _ => return Failure::from(e),
+    };
+    let closed = model.has_closed_form();
+    let full = matches!(model, Model::Full(_));
+    let exact = if closed && matches!(choice, M::Rk4 | M::Dopri5 | M::Dop853) {
+        ", or --method exact (the closed forms take no steps)"
+    } else {
+        ""
+    };
+    let advice: String = match (&integrate, choice) {
+        (IntegrateError::NonFinite { .. }, M::Rk4) => {
+            format!("RK4's fixed step is too large for these rates (its stability limit is about 2.8 over the largest decay rate): use a smaller --step, or an adaptive method (--method dop853){exact}")
+        }
+        (IntegrateError::NonFinite { .. }, _) if full => {
+            "the full ALE's solution left the range of a double: use smaller --omega or a shorter --t-end, or compare --model reduced".into()
+        }
+        (IntegrateError::NonFinite { .. }, _) => {
+            format!("the rates overflow a double: use a smaller --omega (in units of 1/tau){exact}")
+        }
+        (IntegrateError::StepSizeUnderflow { .. }, _) => {
+            if closed && choice != M::Exact && choice != M::Auto {
+                "the problem is stiff or singular here: --method exact takes no steps; else use a smaller --omega".into()
+            } else {
+                "the problem is stiff or singular here: use a smaller --omega or a looser --rtol".into()
+            }
+        }
+        (IntegrateError::TooManySteps { .. }, M::Rk4) => {
+            format!("use a larger --step (if RK4 stays stable) or a shorter --t-end{exact}")
+        }
+        (IntegrateError::TooManySteps { .. }, _) => {
+            format!("use a looser --rtol or a shorter --t-end{exact}")
+        }
+        (IntegrateError::NoConvergence { .. }, _) => {
+            "the implicit method's Newton iteration failed: use an adaptive method or a smaller --omega".into()
+        }
+        (IntegrateError::InvalidOption(_), _) => "check the method options".into(),
+    };
+    Failure::Stopped(format!("{integrate}; {advice}"))
+}
+
+/// Format a number for the table: fixed where that reads well, else exponent.
+pub fn num(x: Real) -> String {
+    fixed_or_exp(x, 7, 6, 1e6)
+}
+
+/// `x` with `digits` decimals when it is 0 or 1e-3 ≤ |x| < `upper`, else in
+/// exponent notation with `exp_digits` decimals in the mantissa.
+pub fn fixed_or_exp(x: Real, digits: usize, exp_digits: usize, upper: Real) -> String {
+    // A value that rounds to zero in the fixed form is printed as 0, not -0.
+    let x = if x == 0.0 { 0.0 } else { x };
+    if x == 0.0 || (1e-3..upper).contains(&x.abs()) {
+        let fixed = format!("{x:.digits$}");
+        if fixed.starts_with('-') && fixed[1..].chars().all(|c| c == '0' || c == '.') {
+            return fixed[1..].to_string();
+        }
+        fixed
+    } else {
+        format!("{x:.exp_digits$e}")
+    }
+}
+
+/// One row of an aligned table: every cell right-aligned in `width` columns.
+pub fn write_aligned<S: std::fmt::Display>(
+    out: &mut (impl Write + ?Sized),
+    cells: impl IntoIterator<Item = S>,
+    width: usize,
+) -> io::Result<()> {
+    for c in cells {
+        // A cell as wide as its column still gets a space before it, so that
+        // columns never run together.
+        let c = c.to_string();
+        if c.chars().count() >= width {
+            write!(out, " {c}")?;
+        } else {
+            write!(out, "{c:>width$}")?;
+        }
+    }
+    writeln!(out)
+}

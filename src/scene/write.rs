@@ -1,0 +1,396 @@
+//! A scene's answer written as `spintop run` prints it: the JSON object
+//! whole, or the matching command's table and CSV with the scene's header,
+//! its choice and warnings, and a real particle's report in comment lines.
+
+use super::answer::{
+    Answer, OmegaOnlyOutput, PhysicalReport, Report, RigidReport, SecularOutput, Span, TopRun,
+};
+use crate::math::{Real, Vec3};
+use crate::output::{Format, balance, fixed_or_exp, num, orbit, shell, simulate, write_aligned};
+use crate::physics::particle::RigidShape;
+use std::io::{self, Write};
+
+/// A number with four significant digits, in whichever notation reads better.
+fn sig(x: Real) -> String {
+    fixed_or_exp(x, 4, 4, 1e5)
+}
+
+/// A CSV cell, lossless: plain digits for ordinary sizes, exponent notation
+/// for the tiny rates and huge times of real particles (both round-trip).
+fn csv_cell(x: Real) -> String {
+    let a = x.abs();
+    if x == 0.0 || (1e-4..1e15).contains(&a) {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A table cell with six significant digits, never wider than 14 characters.
+fn cell(x: Real) -> String {
+    fixed_or_exp(x, 6, 6, 1e5)
+}
+
+/// A number as given: up to six significant digits, trailing zeros dropped.
+fn short(x: Real) -> String {
+    let a = x.abs();
+    if x == 0.0 || (1e-3..1e6).contains(&a) {
+        let s = format!(
+            "{:.*}",
+            (5 - a.log10().floor().max(-3.0) as i32).max(0) as usize,
+            x
+        );
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        let s = format!("{x:.5e}");
+        let (m, e) = s.split_once('e').expect("exponent notation");
+        let m = if m.contains('.') {
+            m.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            m
+        };
+        format!("{m}e{e}")
+    }
+}
+
+/// "after T unit (T s, T tau)", or "never".
+fn when(what: &str, span: &Option<Span>, unit: &str) -> String {
+    match span {
+        Some(s) => format!(
+            "{what} after {} {unit} ({} s, {} tau)",
+            sig(s.unit),
+            sig(s.seconds),
+            sig(s.tau)
+        ),
+        None => format!("never {what}"),
+    }
+}
+
+fn write_physical(out: &mut impl Write, p: &PhysicalReport) -> io::Result<()> {
+    let size = match p.length_nm {
+        Some(l) => format!("radius {} nm, length {} nm", short(p.radius_nm), short(l)),
+        None => format!("radius {} nm", short(p.radius_nm)),
+    };
+    writeln!(
+        out,
+        "# particle: {} of {size}, density {} kg/m^3: mass {} kg, I1 = {} kg m^2, I3/I1 = {}",
+        p.shape,
+        short(p.density_kg_m3),
+        sig(p.mass_kg),
+        sig(p.i1_kg_m2),
+        sig(p.ratio)
+    )?;
+    writeln!(
+        out,
+        "# dipole {} D along the axis; {}",
+        short(p.dipole_debye),
+        p.conversion
+    )?;
+    writeln!(
+        out,
+        "# spin {} Hz at {} deg from the axis: tau |Omega0| = {}; 1 {} = {} s = {} tau",
+        short(p.spin_hz),
+        short(p.spin_tilt_deg),
+        sig(p.tau_omega),
+        p.time_unit,
+        short(p.seconds_per_unit),
+        sig(p.tau_per_unit)
+    )?;
+    let m = &p.milestones;
+    let u = p.time_unit;
+    writeln!(
+        out,
+        "# truncated model: |Omega| {}; the tilt stays {} deg, so it never stands upright",
+        when("halves", &m.truncated_half_spin, u),
+        sig(m.truncated_tilt_deg)
+    )?;
+    writeln!(
+        out,
+        "# reduced model: |Omega| {}; the spin about the axis stays {} Hz",
+        when("halves", &m.reduced_half_spin, u),
+        sig(m.reduced_final_spin_hz)
+    )?;
+    let decay = match &m.reduced_tilt_decay {
+        Some(s) => format!("e-folds in {} {u}", sig(s.unit)),
+        None => "never decays".to_string(),
+    };
+    writeln!(
+        out,
+        "# reduced model: the tilt {decay}, and {}",
+        when(
+            &format!("falls below {} deg", short(m.upright_deg)),
+            &m.reduced_upright,
+            u
+        )
+    )
+}
+
+fn write_omega_only(
+    out: &mut impl Write,
+    o: &OmegaOnlyOutput,
+    units: Option<&PhysicalReport>,
+    format: Format,
+) -> io::Result<()> {
+    match format {
+        Format::Json => unreachable!("JSON is written whole"),
+        Format::Csv => {
+            let unit_col = units.map_or(String::new(), |u| format!("t_{},", u.time_unit));
+            writeln!(
+                out,
+                "t,{unit_col}omega1,omega2,omega3,omega_perp,energy,l1,l2,l3,tilt"
+            )?;
+            for s in &o.samples {
+                let mut row = vec![s.t];
+                row.extend(s.t_unit);
+                row.extend(s.omega);
+                row.extend([s.omega_perp, s.energy]);
+                row.extend(s.l_body);
+                row.push(s.tilt);
+                write_csv_row(out, &row)?;
+            }
+            Ok(())
+        }
+        Format::Table => {
+            write_method_line(out, o.model, o.method, o.method_detail)?;
+            writeln!(
+                out,
+                "# work: {} rhs evaluations, {} steps",
+                o.stats.rhs_evals, o.stats.steps
+            )?;
+            writeln!(out, "# orientation skipped: {}", o.orientation_skipped)?;
+            match units {
+                Some(u) => {
+                    let hz = |w: Real| w / u.tau_s / (2.0 * std::f64::consts::PI);
+                    let e0 = o.samples.first().map_or(1.0, |s| s.energy);
+                    let head = [
+                        format!("t [{}]", u.time_unit),
+                        "f [Hz]".into(),
+                        "f_perp [Hz]".into(),
+                        "f3 [Hz]".into(),
+                        "tilt [deg]".into(),
+                        "E/E0".into(),
+                    ];
+                    write_aligned(out, head, 15)?;
+                    for s in &o.samples {
+                        let w = Vec3::from(s.omega);
+                        let row = [
+                            s.t_unit.unwrap_or(s.t),
+                            hz(w.norm()),
+                            hz(s.omega_perp),
+                            hz(w.z),
+                            s.tilt.to_degrees(),
+                            if e0 > 0.0 { s.energy / e0 } else { 0.0 },
+                        ];
+                        write_aligned(out, row.iter().map(|x| cell(*x)), 15)?;
+                    }
+                }
+                None => {
+                    let head = [
+                        "t",
+                        "omega1",
+                        "omega2",
+                        "omega3",
+                        "omega_perp",
+                        "energy",
+                        "|L|",
+                        "tilt",
+                    ];
+                    write_aligned(out, head, 14)?;
+                    for s in &o.samples {
+                        let l = Vec3::from(s.l_body).norm();
+                        let row = [
+                            s.t,
+                            s.omega[0],
+                            s.omega[1],
+                            s.omega[2],
+                            s.omega_perp,
+                            s.energy,
+                            l,
+                            s.tilt,
+                        ];
+                        write_aligned(out, row.iter().map(|x| num(*x)), 14)?;
+                    }
+                }
+            }
+            Ok(())
+        }
+    }
+}
+
+/// One CSV line of numbers, lossless.
+fn write_csv_row(out: &mut impl Write, row: &[Real]) -> io::Result<()> {
+    let cells: Vec<String> = row.iter().map(|x| csv_cell(*x)).collect();
+    writeln!(out, "{}", cells.join(","))
+}
+
+/// The table's `# MODEL model; method: …` line.
+fn write_method_line(
+    out: &mut impl Write,
+    model: &str,
+    method: &str,
+    detail: &str,
+) -> io::Result<()> {
+    writeln!(out, "# {model} model; method: {method} ({detail})")
+}
+
+fn write_rigid(out: &mut impl Write, p: &RigidReport) -> io::Result<()> {
+    let v = |x: [Real; 3]| format!("({}, {}, {})", sig(x[0]), sig(x[1]), sig(x[2]));
+    let what = match p.shape {
+        RigidShape::Molecule { moments_amu_a2 } => {
+            format!(
+                "molecule with principal moments {} amu A^2",
+                v(moments_amu_a2)
+            )
+        }
+        RigidShape::Ellipsoid {
+            semi_axes_nm,
+            density_kg_m3,
+        } => format!(
+            "ellipsoid with semi-axes {} nm, density {} kg/m^3",
+            v(semi_axes_nm),
+            short(density_kg_m3)
+        ),
+    };
+    writeln!(
+        out,
+        "# particle: {what}: I = {} kg m^2; dipole {} D in the body frame",
+        v(p.inertia_kg_m2),
+        v(p.dipole_debye)
+    )?;
+    writeln!(out, "# {}", p.conversion)?;
+    writeln!(
+        out,
+        "# rates {} Hz in the body frame: tau_f |Omega0| = {}; 1 {} = {} s = {} u (u = tau_f, the unit where kappa = 1)",
+        v(p.omega_hz),
+        sig(p.share_per_radian),
+        p.time_unit,
+        short(p.seconds_per_unit),
+        sig(p.u_per_unit)
+    )
+}
+
+fn write_secular(
+    out: &mut impl Write,
+    o: &SecularOutput,
+    units: Option<&RigidReport>,
+    format: Format,
+) -> io::Result<()> {
+    let e0 = o.samples.first().map_or(1.0, |r| r.sample.energy);
+    let l0 = o.samples.first().map_or(1.0, |r| r.sample.l_norm);
+    let ratio = |x: Real, x0: Real| if x0 > 0.0 { x / x0 } else { 0.0 };
+    match format {
+        Format::Json => unreachable!("JSON is written whole"),
+        Format::Csv => {
+            let unit_col = units.map_or(String::new(), |u| format!("t_{},", u.time_unit));
+            writeln!(out, "t,{unit_col}energy,l_norm,axis,period")?;
+            for r in &o.samples {
+                let s = &r.sample;
+                let mut row = vec![s.t];
+                row.extend(r.t_unit);
+                row.extend([s.energy, s.l_norm, s.axis as Real, s.period]);
+                write_csv_row(out, &row)?;
+            }
+            Ok(())
+        }
+        Format::Table => {
+            write_method_line(out, o.model, o.method, o.method_detail)?;
+            writeln!(
+                out,
+                "# work: {} slow steps, {} period averages of at most {} points each",
+                o.stats.steps, o.stats.rhs_evals, o.max_quadrature_points
+            )?;
+            writeln!(out, "# orientation skipped: {}", o.orientation_skipped)?;
+            let (time_head, period_head, per) = match units {
+                Some(u) => (
+                    format!("t [{}]", u.time_unit),
+                    "period [s]".to_string(),
+                    u.fast_time_s,
+                ),
+                None => ("t".to_string(), "period".to_string(), 1.0),
+            };
+            write_aligned(
+                out,
+                [
+                    time_head,
+                    "E/E0".into(),
+                    "|L|/|L0|".into(),
+                    "round axis".into(),
+                    period_head,
+                ],
+                15,
+            )?;
+            for r in &o.samples {
+                let s = &r.sample;
+                let row = [
+                    cell(r.t_unit.unwrap_or(s.t)),
+                    cell(ratio(s.energy, e0)),
+                    cell(ratio(s.l_norm, l0)),
+                    s.axis.to_string(),
+                    if s.period.is_finite() {
+                        cell(s.period * per)
+                    } else {
+                        "none".to_string()
+                    },
+                ];
+                write_aligned(out, row, 15)?;
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Write a report in the requested format.
+pub fn write_report(out: &mut impl Write, report: &Report, format: Format) -> io::Result<()> {
+    if format == Format::Json {
+        serde_json::to_writer(&mut *out, report)?;
+        return writeln!(out);
+    }
+    if format == Format::Table {
+        let s = &report.scene;
+        writeln!(
+            out,
+            "# scene {} ({}, kind {}): {}",
+            s.name, s.file, s.kind, s.description
+        )?;
+        writeln!(
+            out,
+            "# chosen: {}: {}",
+            report.chosen.method, report.chosen.reason
+        )?;
+        for w in &report.warnings {
+            writeln!(out, "# warning: {w}")?;
+        }
+    }
+    match &report.answer {
+        Answer::Top(top) => {
+            if format == Format::Table
+                && let Some(u) = &top.units
+            {
+                write_physical(out, u)?;
+            }
+            if format == Format::Table
+                && let Some(u) = &top.rigid_units
+            {
+                write_rigid(out, u)?;
+            }
+            match &top.run {
+                TopRun::Full(o) => simulate::write_output(out, o, format),
+                TopRun::OmegaOnly(o) => write_omega_only(out, o, top.units.as_ref(), format),
+                TopRun::Secular(o) => write_secular(out, o, top.rigid_units.as_ref(), format),
+            }
+        }
+        Answer::Balance(o) => balance::write_output(out, o, format),
+        Answer::Orbit(o) => orbit::write_output(out, o, format),
+        Answer::Shell(o) => shell::write_output(out, o, format),
+        Answer::Stability(a) => {
+            for row in &a.rows {
+                write!(out, "{row}")?;
+            }
+            Ok(())
+        }
+    }
+}
