@@ -31,7 +31,7 @@ fn solves(c: &mut Criterion) {
                 target: Target::Omega,
             };
             for rtol in [1e-8, 1e-12] {
-                g.bench_function(format!("{} rtol {rtol:e}", method.name()), |b| {
+                g.bench_function(format!("{} rtol {rtol:e}", entry.method()), |b| {
                     b.iter(|| {
                         entry
                             .solve(black_box(&problem), Some(rtol))

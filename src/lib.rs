@@ -17,7 +17,7 @@
 //! - [`output`]: what `simulate`, `balance`, `orbit` and `shell` answer: the request, the
 //!   computation, the JSON contract and its table and CSV forms (the scene engine prints the same).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line; the figures as text and SVG.
-//! - [`present`]: what the shells show the same way (method names, frames, number parsing
+//! - [`present`]: what the shells show the same way (the lab frame, number parsing
 //!   and axis formatting), below all of them.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
 //! - [`tui`]: the live terminal view, another thin shell over [`sim`].

@@ -55,12 +55,6 @@ impl From<SimError> for Failure {
             SimError::Physical(e @ crate::sim::physical::PhysicalError::NotSeparated { .. }) => {
                 Failure::Stopped(e.to_string())
             }
-            SimError::MethodNotForModel(model) => Failure::BadInput(format!(
-                "this method does not apply to the {model} model: --method forward is for --model full, which takes auto or forward"
-            )),
-            SimError::NoClosedForm(model) => Failure::BadInput(format!(
-                "the {model} model has no closed form; use --method auto or dop853"
-            )),
             other => Failure::BadInput(other.to_string()),
         }
     }

@@ -1,6 +1,5 @@
-//! What every shell shows the same way: the methods offered by the live
-//! views, the lab frame they draw in, and how numbers are read from the user
-//! and written on axes.
+//! What every shell shows the same way: the lab frame the live views draw
+//! in, and how numbers are read from the user and written on axes.
 //!
 //! The shells (the command line, the live view, the book server, the course)
 //! stand side by side above the core and never import each other; what two
@@ -11,58 +10,6 @@ use crate::math::{Real, Vec3};
 use crate::physics::euler_angles::{EulerAngles, frame_with_z_along};
 use crate::physics::rigid_body::angular_momentum_body;
 use crate::physics::symmetric_top::SymmetricTop;
-use crate::sim::MethodChoice;
-
-/// The numerical method the view runs both models with, cycled by `m`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Method {
-    /// The closed forms (for the reduced model Ω only; its orientation is
-    /// integrated by DOP853).
-    ClosedForm,
-    /// Fixed-step classical RK4 (step 0.01τ).
-    Rk4,
-    /// Dormand–Prince 5(4), adaptive.
-    Dopri5,
-    /// DOP853, adaptive.
-    Dop853,
-    /// Radau IIA 5, implicit and L-stable, adaptive.
-    Radau5,
-}
-
-impl Method {
-    /// The next method of the cycle: closed form, RK4, DP5, DOP853, Radau IIA 5.
-    pub fn next(self) -> Self {
-        match self {
-            Method::ClosedForm => Method::Rk4,
-            Method::Rk4 => Method::Dopri5,
-            Method::Dopri5 => Method::Dop853,
-            Method::Dop853 => Method::Radau5,
-            Method::Radau5 => Method::ClosedForm,
-        }
-    }
-
-    /// The name shown in the header.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::ClosedForm => "closed form",
-            Method::Rk4 => "RK4",
-            Method::Dopri5 => "DP5",
-            Method::Dop853 => "DOP853",
-            Method::Radau5 => "Radau5",
-        }
-    }
-
-    /// The simulation's method choice.
-    pub fn choice(self) -> MethodChoice {
-        match self {
-            Method::ClosedForm => MethodChoice::Exact,
-            Method::Rk4 => MethodChoice::Rk4,
-            Method::Dopri5 => MethodChoice::Dopri5,
-            Method::Dop853 => MethodChoice::Dop853,
-            Method::Radau5 => MethodChoice::Radau5,
-        }
-    }
-}
 
 /// The initial orientation that puts the lab z axis along L₀, as in the
 /// paper's particular solution (4.11) and its figures: then θ is the tilt

@@ -5,12 +5,11 @@
 //! in Braille dots, with the same parameters, initial orientation (lab z along
 //! L₀) and y ranges as the live view.
 
-use super::tui::ViewMethod;
 use super::{CliError, bad, parse_number, parse_vec3};
 use crate::math::{Real, Vec3};
 use crate::physics::symmetric_top::SymmetricTop;
-use crate::present::{Method, fmt_axis, nice_ceiling, paper_frame};
-use crate::sim::{InitialState, MethodOptions, Model, Sample, SimError, Simulation};
+use crate::present::{fmt_axis, nice_ceiling, paper_frame};
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
 use clap::{Args, ValueEnum};
 use std::io::Write;
 use textplots::{AxisBuilder, Chart, LabelBuilder, LabelFormat, LineStyle, Plot, Shape};
@@ -46,7 +45,7 @@ pub struct PlotArgs {
     log_time: bool,
     /// Numerical method.
     #[arg(long, value_enum, default_value = "exact")]
-    method: ViewMethod,
+    method: MethodChoice,
     /// Width of each chart, in characters (16 to 500).
     #[arg(long, default_value_t = 60, allow_hyphen_values = true)]
     width: u32,
@@ -61,7 +60,7 @@ struct PlotConfig {
     top: SymmetricTop,
     models: Vec<Model>,
     omega0: [Real; 3],
-    method: Method,
+    method: MethodChoice,
     times: Vec<Real>,
     log_time: bool,
     width: u32,
@@ -97,6 +96,11 @@ impl PlotArgs {
             PlotModel::Reduced => vec![Model::Reduced(top)],
             PlotModel::Both => vec![Model::Truncated(top), Model::Reduced(top)],
         };
+        for model in &models {
+            model
+                .check_method(self.method)
+                .map_err(|e| bad(format!("--method {}: {e}", self.method.name())))?;
+        }
         // NOTE: two samples per Braille dot column, so lines join smoothly.
         let n = 4 * self.width as usize;
         let times = (0..=n)
@@ -113,7 +117,7 @@ impl PlotArgs {
             top,
             models,
             omega0: self.omega,
-            method: self.method.into(),
+            method: self.method,
             times,
             log_time: self.log_time,
             width: self.width,
@@ -136,7 +140,7 @@ fn samples(
         InitialState::new(Vec3::from(config.omega0), paper_frame(top, config.omega0))?;
     initial.rotation = paper_frame(top, config.omega0).to_rotation();
     let horizon = config.times.last().copied();
-    let choice = config.method.choice();
+    let choice = config.method;
     let failure = |e| super::sim_failure(e, &model, choice);
     let mut sim = Simulation::new(model, choice, MethodOptions::default(), initial, horizon)
         .map_err(failure)?;

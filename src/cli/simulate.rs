@@ -25,36 +25,6 @@ enum ModelArg {
     Full,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum MethodArg {
-    /// Closed forms where they exist, DOP853 for the rest.
-    Auto,
-    /// Closed forms only.
-    Exact,
-    /// Fixed-step classical RK4 (--step).
-    Rk4,
-    /// Dormand-Prince 5(4), adaptive (--rtol).
-    Dopri5,
-    /// DOP853, adaptive (--rtol).
-    Dop853,
-    /// Radau IIA 5, implicit and L-stable, adaptive (--rtol): for stiff tops.
-    Radau5,
-    /// Full model only: integrate (3.4) forward and watch it run away.
-    Forward,
-}
-
-fn method_name(m: MethodChoice) -> &'static str {
-    match m {
-        MethodChoice::Auto => "auto",
-        MethodChoice::Exact => "exact",
-        MethodChoice::Rk4 => "rk4",
-        MethodChoice::Dopri5 => "dopri5",
-        MethodChoice::Dop853 => "dop853",
-        MethodChoice::Radau5 => "radau5",
-        MethodChoice::Forward => "forward",
-    }
-}
-
 /// The raw arguments of `simulate`, before validation.
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
@@ -89,7 +59,7 @@ pub struct SimulateArgs {
     samples: Option<usize>,
     /// Numerical method.
     #[arg(long, value_enum, default_value = "auto")]
-    method: MethodArg,
+    method: MethodChoice,
     /// Relative tolerance of the adaptive methods [default: 1e-10]
     #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     rtol: Option<Real>,
@@ -140,72 +110,14 @@ impl SimulateArgs {
             ModelArg::Full => Model::Full(symmetric(self.ratio)?),
             ModelArg::General => Model::General(general("--model general")?),
         };
-        let method = match self.method {
-            MethodArg::Auto => MethodChoice::Auto,
-            MethodArg::Exact => MethodChoice::Exact,
-            MethodArg::Rk4 => MethodChoice::Rk4,
-            MethodArg::Dopri5 => MethodChoice::Dopri5,
-            MethodArg::Dop853 => MethodChoice::Dop853,
-            MethodArg::Radau5 => MethodChoice::Radau5,
-            MethodArg::Forward => MethodChoice::Forward,
-        };
         // Each model takes only the methods that mean something for it; the
         // others are refused by name rather than silently replaced.
-        match (&model, method) {
-            (
-                Model::Full(_) | Model::GeneralFull(_),
-                MethodChoice::Auto | MethodChoice::Forward,
-            ) => {}
-            (Model::Full(_) | Model::GeneralFull(_), other) => {
-                return Err(bad(format!(
-                    "--model full takes --method auto (its physical solution, by DOP853 shooting backward in time) or forward (the runaway), not {}",
-                    method_name(other)
-                )));
-            }
-            (_, MethodChoice::Forward) => {
-                return Err(bad(
-                    "--method forward is for --model full only (it shows the runaway of (3.4))",
-                ));
-            }
-            (Model::General(_), MethodChoice::Exact) => {
-                return Err(bad(
-                    "the general model (3.3) has no closed form; use --method auto (DOP853), dop853, dopri5, radau5 or rk4",
-                ));
-            }
-            (Model::GeneralReduced(_), MethodChoice::Exact) => {
-                return Err(bad(
-                    "the reduced model of a general top has no closed form; use --method auto (DOP853), dop853, dopri5, radau5 or rk4",
-                ));
-            }
-            _ => {}
-        }
-        if self.step.is_some() && method != MethodChoice::Rk4 {
-            return Err(bad("--step sets the fixed step of --method rk4 only"));
-        }
-        if self.rtol.is_some() && method == MethodChoice::Rk4 {
-            return Err(bad(
-                "--rtol applies to the adaptive methods; rk4 takes --step",
-            ));
-        }
-        let mut options = MethodOptions::default();
-        if let Some(rtol) = self.rtol {
-            if !(rtol > 0.0 && rtol < 1.0) {
-                return Err(bad(format!("--rtol must lie in (0, 1), got {rtol}")));
-            }
-            // NOTE: below ~1e-14 the tolerance asks for digits f64 does not have.
-            if rtol < 1e-14 {
-                return Err(bad(format!(
-                    "--rtol {rtol:e} is below what double precision can deliver; use 1e-14 or more"
-                )));
-            }
-            options.rtol = rtol;
-        }
-        if let Some(step) = self.step {
-            if step <= 0.0 {
-                return Err(bad(format!("--step must be positive, got {step}")));
-            }
-            options.step = step;
-        }
+        let method = self.method;
+        model
+            .check_method(method)
+            .map_err(|e| bad(format!("--method {}: {e}", method.name())))?;
+        let options = MethodOptions::for_choice(method, self.rtol, self.step)
+            .map_err(|e| bad(format!("--{e}")))?;
         let [phi, theta, psi] = self.euler;
         let initial = InitialState::new(Vec3::from(self.omega), EulerAngles::new(phi, theta, psi))?;
         let times = match self.times {

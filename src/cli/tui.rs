@@ -6,38 +6,12 @@
 
 use super::{CliError, bad, parse_number, parse_vec3};
 use crate::math::Real;
-use crate::tui::app::{App, Method, Settings, WARPS};
+use crate::sim::MethodChoice;
+use crate::tui::app::{App, Settings, WARPS};
 use crate::tui::event;
-use clap::{Args, ValueEnum};
+use clap::Args;
 use std::io::{self, IsTerminal, Write};
 use std::time::Duration;
-
-/// A method of the live view and of `plot`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub(crate) enum ViewMethod {
-    /// Closed forms (the reduced model's orientation by DOP853).
-    Exact,
-    /// Fixed-step classical RK4, step 0.01 tau.
-    Rk4,
-    /// Dormand-Prince 5(4), adaptive.
-    Dopri5,
-    /// DOP853, adaptive.
-    Dop853,
-    /// Radau IIA 5, implicit and L-stable, adaptive.
-    Radau5,
-}
-
-impl From<ViewMethod> for Method {
-    fn from(m: ViewMethod) -> Self {
-        match m {
-            ViewMethod::Exact => Method::ClosedForm,
-            ViewMethod::Rk4 => Method::Rk4,
-            ViewMethod::Dopri5 => Method::Dopri5,
-            ViewMethod::Dop853 => Method::Dop853,
-            ViewMethod::Radau5 => Method::Radau5,
-        }
-    }
-}
 
 /// The raw arguments of `tui`, before validation.
 #[derive(Debug, Default, Args)]
@@ -53,7 +27,7 @@ pub struct TuiArgs {
     omega: Option<[Real; 3]>,
     /// Numerical method of both models [default: exact]
     #[arg(long, value_enum)]
-    method: Option<ViewMethod>,
+    method: Option<MethodChoice>,
     /// Model time per wall-clock second, in tau: 0.5, 1, 2, 5, 10, 20, 50, 100,
     /// 200, 500 or 1000 [default: 10]
     #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
@@ -73,7 +47,7 @@ impl TuiArgs {
         Settings::new(
             self.ratio.unwrap_or(0.4),
             self.omega.unwrap_or([0.0, 0.1, 0.2]),
-            self.method.map_or(Method::ClosedForm, Method::from),
+            self.method.unwrap_or(MethodChoice::Exact),
             self.warp.unwrap_or(WARPS[crate::tui::app::DEFAULT_WARP]),
         )
         .map(|s| (s, None))

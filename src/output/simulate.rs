@@ -3,9 +3,7 @@
 
 use super::{Failure, Format, num, sim_failure, write_aligned};
 use crate::math::{Real, Vec3};
-use crate::sim::{
-    InitialState, MethodChoice, MethodOptions, MethodUsed, Model, Sample, SimError, Simulation,
-};
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
 use serde::Serialize;
 use std::io::{self, Write};
 
@@ -138,7 +136,7 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
             (None, None, Some(top.dipole().into()))
         }
     };
-    let integrated = !matches!(method, MethodUsed::Exact);
+    let integrated = method.is_integrated();
     let rk4 = config.method == MethodChoice::Rk4;
     Ok(SimulateOutput {
         model: config.model.name(),
@@ -151,8 +149,8 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
             dipole,
             omega0: config.initial.omega.into(),
             euler0: config.euler0,
-            rtol: (integrated && !rk4).then_some(config.options.rtol),
-            step: rk4.then_some(config.options.step),
+            rtol: (integrated && !rk4).then_some(config.options.rtol()),
+            step: rk4.then_some(config.options.step()),
         },
         stats: sim.stats(),
         samples,

@@ -370,7 +370,7 @@ fn run_top(
             } else {
                 Law::Reduced
             };
-            let run = secular(&g, law, &top.initial.omega, &top.times, top.options.rtol)
+            let run = secular(&g, law, &top.initial.omega, &top.times, top.options.rtol())
                 .map_err(|e| {
                     Failure::Stopped(format!(
                         "{}: the secular model stopped: {e}; it follows the slow drift of a weakly radiating top, so try fewer decay times or a larger rtol",
@@ -393,7 +393,7 @@ fn run_top(
                     dipole: Some(g.dipole().into()),
                     omega0: top.initial.omega.into(),
                     euler0: top.euler0,
-                    rtol: Some(top.options.rtol),
+                    rtol: Some(top.options.rtol()),
                     step: None,
                 },
                 stats: run.stats,

@@ -4,7 +4,6 @@
 
 use super::{Body, Scene, catalogue};
 use crate::math::Real;
-use crate::present::Method;
 use crate::sim::{MethodChoice, Model};
 
 /// A top scene as the live view opens it.
@@ -15,8 +14,9 @@ pub struct LiveScene {
     pub model: Model,
     /// Ω₀, body frame.
     pub omega0: [Real; 3],
-    /// The method of the integrated columns.
-    pub method: Method,
+    /// The method of the columns that take one (the full ALE's physical
+    /// solution has its own).
+    pub method: MethodChoice,
     /// The line the view opens with.
     pub note: String,
 }
@@ -43,17 +43,20 @@ pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
             scene.kind().name(),
         ));
     };
-    let integrated = |closed: Method| match top.method {
-        MethodChoice::Rk4 => Method::Rk4,
-        MethodChoice::Dopri5 => Method::Dopri5,
-        MethodChoice::Dop853 => Method::Dop853,
-        MethodChoice::Radau5 => Method::Radau5,
-        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => closed,
+    // The view names the method it runs: the closed forms where the model
+    // has them, else DOP853, for `auto` (and for `forward`, which is not a
+    // view: the full ALE's column always shows its physical solution).
+    let general = !top.model.has_closed_form() && !matches!(top.model, Model::Full(_));
+    let method = match top.method {
+        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward if general => {
+            MethodChoice::Dop853
+        }
+        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => MethodChoice::Exact,
+        other => other,
     };
     let mut note = format!("scene {}", scene.name);
-    let method = match top.model {
+    match top.model {
         Model::General(_) | Model::GeneralReduced(_) | Model::GeneralFull(_) => {
-            let method = integrated(Method::Dop853);
             if let Some(g) = &top.general_units {
                 note.push_str(&format!(
                     ": a real particle, τ_f = {:.2e} s, far too slow to watch in these units; `spintop run {}` gives its secular drift",
@@ -63,10 +66,9 @@ pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
             } else {
                 note.push_str(&format!(
                     ": a general top under (3.3), the reduced ALE and the physical solution of (3.4) side by side, the first two integrated by {}; time in u, the unit where κ = 1",
-                    method.name()
+                    method.title()
                 ));
             }
-            method
         }
         Model::Truncated(_) | Model::Reduced(_) | Model::Full(_) => {
             if let Some(u) = &top.units {
@@ -80,9 +82,8 @@ pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
             } else {
                 note.push_str(&format!(": {}", scene.summary()));
             }
-            integrated(Method::ClosedForm)
         }
-    };
+    }
     Ok(LiveScene {
         model: top.model,
         omega0: top.initial.omega.into(),

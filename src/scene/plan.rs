@@ -105,19 +105,12 @@ pub(super) struct TopPlan {
 
 pub use crate::sim::cost::turning_angle;
 
-/// The label the simulation will report for a method on a model.
+/// The label the simulation will report for a method on a model (the
+/// method a choice runs is [`Model::method`]'s to say; a refused choice,
+/// which the scene's validation has already turned away, is labelled by its
+/// name).
 fn label(model: &Model, method: MethodChoice) -> &'static str {
-    match (model, method) {
-        (Model::Full(_) | Model::GeneralFull(_), MethodChoice::Forward) => "forward",
-        (Model::Full(_) | Model::GeneralFull(_), _) => "physical",
-        (_, MethodChoice::Rk4) => "rk4",
-        (_, MethodChoice::Dopri5) => "dopri5",
-        (_, MethodChoice::Dop853) => "dop853",
-        (_, MethodChoice::Radau5) => "radau5",
-        (Model::Truncated(_), _) => "exact",
-        (Model::Reduced(_), _) => "exact+dop853",
-        (Model::General(_) | Model::GeneralReduced(_), _) => "dop853",
-    }
+    model.method(method).map_or(method.name(), |m| m.label())
 }
 
 fn reduced_tau_k(top: &SymmetricTop, omega0: &Vec3) -> Real {
@@ -318,7 +311,7 @@ pub(super) fn plan_top(
             symmetric_path(top, method == MethodChoice::Exact)
         }
         (_, MethodChoice::Rk4) => {
-            let steps = t_last / options.step;
+            let steps = t_last / options.step();
             if steps > MAX_STEPS {
                 return Err(Refusal {
                     at: Blame::Method,
@@ -356,7 +349,7 @@ pub(super) fn plan_top(
                     "physical",
                     "(3.4) has no closed form and runs away forward at a rate of about 1/tau: its physical solution by backward shooting (DOP853), the orientation driven by it".to_string(),
                 ),
-                other => ("physical", asked(if other == MethodChoice::Exact { "exact" } else { "dop853" })),
+                other => ("physical", asked(other.name())),
             };
             TopPlan {
                 chosen: Chosen::new(label, reason),
@@ -373,7 +366,7 @@ pub(super) fn plan_top(
             let eps = radiation_share(model, &omega0);
             let averagable = matches!(model, Model::General(_) | Model::GeneralReduced(_))
                 && method == MethodChoice::Auto
-                && eps <= SECULAR_MAX_SHARE.min(options.rtol);
+                && eps <= SECULAR_MAX_SHARE.min(options.rtol());
             if steps > MAX_STEPS && averagable {
                 let why = format!(
                     "the secular model follows E and |L| only: the phase round the polhode and the orientation after {angle:.1e} rad are beyond what a double resolves"
@@ -428,7 +421,18 @@ pub(super) fn plan_top(
             }
         }
         (_, MethodChoice::Exact | MethodChoice::Forward) => {
-            unreachable!("refused while validating [solve] method")
+            // Refused while validating [solve] method; said again here
+            // rather than assumed.
+            return Err(Refusal {
+                at: Blame::Method,
+                message: match model.check_method(method) {
+                    Err(e) => format!("[solve] method = \"{}\": {e}", method.name()),
+                    Ok(()) => format!(
+                        "[solve] method = \"{}\" cannot be planned here",
+                        method.name()
+                    ),
+                },
+            });
         }
     };
     Ok(plan)

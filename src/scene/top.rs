@@ -3,7 +3,7 @@
 //! (which model and method answer it, and why).
 
 use super::format::{RawSolve, RawTop, RawUnits};
-use super::keys::{Ctx, choice, finite_array, missing, not_here, num, num_in, param, solve_times};
+use super::keys::{Ctx, choice, finite_array, missing, not_here, num, param, solve_times};
 use super::units::{GENERAL_SHAPES, GeneralUnits, RealUnits, real_units, rigid_units};
 use super::{Body, Built, Orientation, SceneError, plan};
 use crate::math::{Real, Vec3};
@@ -51,10 +51,8 @@ pub struct TopScene {
 
 /// The model names of `[top] model`.
 pub const MODELS: [&str; 5] = ["truncated", "reduced", "general", "full", "auto"];
-/// The method names of `[solve] method`.
-pub const METHODS: [&str; 7] = [
-    "auto", "exact", "rk4", "dopri5", "dop853", "radau5", "forward",
-];
+/// The method names of `[solve] method` (see [`MethodChoice::NAMES`]).
+pub const METHODS: [&str; 7] = MethodChoice::NAMES;
 pub(super) fn top_scene(
     ctx: &Ctx,
     raw: &RawTop,
@@ -293,72 +291,49 @@ pub(super) fn top_scene(
         Some(s) => choice(ctx, "solve", "method", &s.method, &METHODS)?,
         None => None,
     };
-    let method = match method_key.as_ref().map_or(0, |(m, _)| *m) {
-        0 => MethodChoice::Auto,
-        1 => MethodChoice::Exact,
-        2 => MethodChoice::Rk4,
-        3 => MethodChoice::Dopri5,
-        4 => MethodChoice::Dop853,
-        5 => MethodChoice::Radau5,
-        _ => MethodChoice::Forward,
-    };
+    let method = MethodChoice::ALL[method_key.as_ref().map_or(0, |(m, _)| *m)];
     let method_span = method_key.as_ref().map_or(own.clone(), |(_, s)| s.clone());
-    let method_name = METHODS[method_key.as_ref().map_or(0, |(m, _)| *m)];
+    let method_name = method.name();
     if auto_model && method != MethodChoice::Auto {
         return Err(ctx.at(&method_span, format!("[solve] method = \"{method_name}\": model = \"auto\" chooses the model and its method together; remove method, or name the model in [top]")));
     }
     if let Some(tier) = asked_tier {
-        match (&tiers[tier], method) {
-            (Model::General(_) | Model::GeneralReduced(_), MethodChoice::Exact) => {
-                return Err(ctx.at(&method_span, "[solve] method = \"exact\": the asymmetric top has no closed form; expected auto, rk4, dopri5, dop853 or radau5"));
-            }
-            (
-                Model::Full(_) | Model::GeneralFull(_),
-                MethodChoice::Rk4 | MethodChoice::Dopri5 | MethodChoice::Radau5,
-            ) => {
-                return Err(ctx.at(&method_span, format!("[solve] method = \"{method_name}\" does not apply to model = \"full\"; expected auto (its physical solution) or forward (the runaway)")));
-            }
-            (
-                Model::Truncated(_)
-                | Model::Reduced(_)
-                | Model::General(_)
-                | Model::GeneralReduced(_),
-                MethodChoice::Forward,
-            ) => {
-                return Err(ctx.at(&method_span, "[solve] method = \"forward\" belongs to model = \"full\"; expected auto, exact, rk4, dopri5, dop853 or radau5"));
-            }
-            _ => {}
-        }
+        tiers[tier].check_method(method).map_err(|e| {
+            ctx.at(
+                &method_span,
+                format!("[solve] method = \"{method_name}\": {e}"),
+            )
+        })?;
     }
-    let mut options = MethodOptions::default();
-    if let Some(s) = s {
-        if let Some((rtol, span)) = num_in(
-            ctx,
-            "solve",
-            "rtol",
-            &s.rtol,
-            |r| (1e-14..1.0).contains(&r),
-            "a relative tolerance in [1e-14, 1)",
-        )? {
-            if method == MethodChoice::Rk4 {
-                return Err(ctx.at(&span, "[solve] rtol applies to the adaptive methods; expected step for method = \"rk4\""));
-            }
-            options.rtol = rtol;
-        }
-        if let Some((step, span)) = num_in(
-            ctx,
-            "solve",
-            "step",
-            &s.step,
-            |h| h > 0.0,
-            "a positive step in units of tau",
-        )? {
-            if method != MethodChoice::Rk4 {
-                return Err(ctx.at(&span, "[solve] step sets the fixed step of method = \"rk4\" only; expected rtol for the other methods"));
-            }
-            options.step = step;
-        }
-    }
+    let (rtol, step) = match s {
+        Some(s) => (
+            num(
+                ctx,
+                "solve",
+                "rtol",
+                &s.rtol,
+                "a relative tolerance in [1e-14, 1)",
+            )?,
+            num(
+                ctx,
+                "solve",
+                "step",
+                &s.step,
+                "a positive step in units of tau",
+            )?,
+        ),
+        None => (None, None),
+    };
+    let options = MethodOptions::for_choice(
+        method,
+        rtol.as_ref().map(|(x, _)| *x),
+        step.as_ref().map(|(x, _)| *x),
+    )
+    .map_err(|e| {
+        let at = if e.key() == "rtol" { &rtol } else { &step };
+        let span = at.as_ref().map_or(own, |(_, span)| span);
+        ctx.at(span, format!("[solve] {e}"))
+    })?;
     let scale = match (&units, &general_units) {
         (Some(u), _) => u.tau_per_unit(),
         (None, Some(g)) => g.u_per_unit(),
@@ -370,7 +345,7 @@ pub(super) fn top_scene(
     let (model, model_choice) = match asked_tier {
         Some(tier) => (tiers[tier], None),
         None => {
-            let choice = plan::choose_model(&tiers, &omega0, t_last, options.rtol);
+            let choice = plan::choose_model(&tiers, &omega0, t_last, options.rtol());
             (tiers[choice.tier], Some(choice.reason))
         }
     };

@@ -6,7 +6,7 @@
 //! scene planner uses the same [`turning_angle`] and [`FULL_TURN_PER_STEP`]
 //! to choose its method and word its refusals.
 
-use super::{MethodChoice, MethodOptions, Model};
+use super::{Method, MethodOptions, Model};
 use crate::math::{Real, Vec3};
 use crate::physics::rigid_body::{energy, omega_perp};
 use crate::physics::symmetric_top::truncated_clock;
@@ -45,11 +45,11 @@ pub struct Estimate {
     pub cheaper: &'static str,
 }
 
-/// The work of a run of `model` by `choice` from `omega0` to `t_last`;
+/// The work of a run of `model` by `method` from `omega0` to `t_last`;
 /// `None` when nothing is stepped (a closed form).
 pub fn estimate(
     model: &Model,
-    choice: MethodChoice,
+    method: Method,
     options: &MethodOptions,
     omega0: &Vec3,
     t_last: Real,
@@ -68,18 +68,18 @@ pub fn estimate(
             cheaper,
         })
     };
-    match (model, choice) {
-        (Model::Truncated(_), MethodChoice::Auto | MethodChoice::Exact) => None,
-        (Model::Reduced(_), MethodChoice::Auto | MethodChoice::Exact) => Some(Estimate {
+    match (model, method) {
+        (_, Method::ClosedForm) => None,
+        (_, Method::ClosedFormDop853) => Some(Estimate {
             steps: angle,
             what: "the reduced model's orientation (no closed form; at most 1 rad per step)".into(),
             cheaper: "ask for an earlier last time; a scene file (`spintop run`) answers Omega alone from the closed form at any time",
         }),
-        (_, MethodChoice::Rk4) => e(
-            t_last / options.step,
-            format!("RK4 with step {}", crate::math::fmt_value(options.step)),
+        (_, Method::Rk4) => e(
+            t_last / options.step(),
+            format!("RK4 with step {}", crate::math::fmt_value(options.step())),
         ),
-        (Model::Full(top), MethodChoice::Forward) => {
+        (Model::Full(top), Method::Forward) => {
             // A forward run stops at its runaway, a few tau in; its table is
             // still sized by the horizon.
             e(
@@ -91,12 +91,12 @@ pub fn estimate(
                 x
             })
         }
-        (Model::GeneralFull(top), choice) => {
+        (Model::GeneralFull(top), method) => {
             // Each 40 tau_f segment costs about ten backward shots over twice
             // its length, each step at most tau_f/4 (the fast modes' scale).
             let tau_f = crate::sim::physical::general::fast_time(top);
             let table = (angle / FULL_TURN_PER_STEP).max(t_last / (0.25 * tau_f));
-            let (steps, what) = if choice == MethodChoice::Forward {
+            let (steps, what) = if method == Method::Forward {
                 (table, "the full ALE (3.4) of a general top forward")
             } else {
                 (
@@ -111,7 +111,7 @@ pub fn estimate(
             "the full ALE (3.4)'s physical solution (a table with hOmega <= 0.05 and h <= tau/4)"
                 .into(),
         ),
-        (Model::Reduced(top), MethodChoice::Dopri5 | MethodChoice::Dop853) => {
+        (Model::Reduced(top), Method::Dopri5 | Method::Dop853) => {
             // The reduced model's damping rate never falls below tau k^2
             // (k = (I3/I1) Omega3 is constant), and an explicit method's step
             // cannot exceed its stability limit over that rate: about 3.3/λ
@@ -119,18 +119,14 @@ pub fn estimate(
             // measures 19378 DP5 steps at S = 1000, t = 10; this gives 19393).
             let k = top.ratio() * omega0.z;
             let rate = top.tau() * k * k;
-            let limit = if choice == MethodChoice::Dopri5 {
-                3.3
-            } else {
-                6.0
-            };
+            let limit = if method == Method::Dopri5 { 3.3 } else { 6.0 };
             let stiff = t_last * rate / limit;
             if stiff > angle {
                 Some(Estimate {
                     steps: stiff,
                     what: format!(
                         "{} on a stiff problem (the damping rate tau k^2 = {rate:.2e}/tau holds an explicit step below {:.1e} tau)",
-                        choice_name(choice, model),
+                        method_name(method, model),
                         limit / rate
                     ),
                     cheaper: "the closed forms (--method exact) take no steps at all",
@@ -140,35 +136,27 @@ pub fn estimate(
                     angle,
                     format!(
                         "{} (at most 1 rad of turning per step)",
-                        choice_name(choice, model)
+                        method_name(method, model)
                     ),
                 )
             }
         }
-        (
-            _,
-            MethodChoice::Dopri5
-            | MethodChoice::Dop853
-            | MethodChoice::Radau5
-            | MethodChoice::Auto
-            | MethodChoice::Exact
-            | MethodChoice::Forward,
-        ) => e(
+        (_, _) => e(
             angle,
             format!(
                 "{} (at most 1 rad of turning per step)",
-                choice_name(choice, model)
+                method_name(method, model)
             ),
         ),
     }
 }
 
-fn choice_name(choice: MethodChoice, model: &Model) -> &'static str {
-    match choice {
-        MethodChoice::Dopri5 => "DP5",
-        MethodChoice::Dop853 => "DOP853",
-        MethodChoice::Radau5 => "Radau IIA 5",
-        _ if matches!(model, Model::General(_)) => "DOP853 on the general top (3.3)",
+fn method_name(method: Method, model: &Model) -> &'static str {
+    match method {
+        Method::Dopri5 => "DP5",
+        Method::Dop853 if matches!(model, Model::General(_)) => "DOP853 on the general top (3.3)",
+        Method::Dop853 => "DOP853",
+        Method::Radau5 => "Radau IIA 5",
         _ => "the integration",
     }
 }
@@ -176,12 +164,12 @@ fn choice_name(choice: MethodChoice, model: &Model) -> &'static str {
 /// Refuses a run whose estimate exceeds [`MAX_STEPS`] (or is not finite).
 pub fn check(
     model: &Model,
-    choice: MethodChoice,
+    method: Method,
     options: &MethodOptions,
     omega0: &Vec3,
     t_last: Real,
 ) -> Result<(), TooCostly> {
-    match estimate(model, choice, options, omega0, t_last) {
+    match estimate(model, method, options, omega0, t_last) {
         Some(e) if e.steps.is_nan() || e.steps > MAX_STEPS => Err(TooCostly {
             estimate: e,
             t_last,
@@ -211,32 +199,26 @@ mod tests {
     #[test]
     fn rk4_costs_t_over_h_and_the_closed_form_nothing() {
         let top = SymmetricTop::figure();
-        let o = MethodOptions {
-            rtol: 1e-10,
-            step: 0.01,
-        };
+        let o = MethodOptions::default();
         let w = Vec3::new(0.0, 0.1, 0.2);
-        let e = estimate(&Model::Reduced(top), MethodChoice::Rk4, &o, &w, 100.0).unwrap();
+        let e = estimate(&Model::Reduced(top), Method::Rk4, &o, &w, 100.0).unwrap();
         assert_eq!(e.steps, 1e4);
-        assert!(estimate(&Model::Truncated(top), MethodChoice::Auto, &o, &w, 1e300).is_none());
-        assert!(check(&Model::Reduced(top), MethodChoice::Rk4, &o, &w, 1e6).is_err());
-        assert!(check(&Model::Reduced(top), MethodChoice::Rk4, &o, &w, 1e4).is_ok());
+        assert!(estimate(&Model::Truncated(top), Method::ClosedForm, &o, &w, 1e300).is_none());
+        assert!(check(&Model::Reduced(top), Method::Rk4, &o, &w, 1e6).is_err());
+        assert!(check(&Model::Reduced(top), Method::Rk4, &o, &w, 1e4).is_ok());
     }
 
     #[test]
     fn stiffness_of_the_reduced_model_bounds_an_explicit_methods_steps() {
         // Where methods fail, row 3: S = 1000, t = 10, DP5 took 19378 steps.
         let top = SymmetricTop::figure();
-        let o = MethodOptions {
-            rtol: 1e-10,
-            step: 0.01,
-        };
+        let o = MethodOptions::default();
         let w = Vec3::new(0.0, 100.0, 200.0);
-        let e = estimate(&Model::Reduced(top), MethodChoice::Dopri5, &o, &w, 10.0).unwrap();
+        let e = estimate(&Model::Reduced(top), Method::Dopri5, &o, &w, 10.0).unwrap();
         assert!((e.steps / 19378.0 - 1.0).abs() < 0.01, "{e:?}");
         assert!(e.what.contains("stiff"), "{e:?}");
         // A thousand times longer is refused up front, naming the stiffness.
-        let err = check(&Model::Reduced(top), MethodChoice::Dop853, &o, &w, 1e4).unwrap_err();
+        let err = check(&Model::Reduced(top), Method::Dop853, &o, &w, 1e4).unwrap_err();
         assert!(
             err.to_string().contains("stiff") && err.to_string().contains("--method exact"),
             "{err}"
@@ -246,28 +228,25 @@ mod tests {
     #[test]
     fn the_full_models_table_is_sized_before_it_is_allocated() {
         let top = SymmetricTop::figure();
-        let o = MethodOptions {
-            rtol: 1e-10,
-            step: 0.01,
-        };
+        let o = MethodOptions::default();
         let w = Vec3::new(0.0, 0.1, 0.2);
         // t = 1e8 tau: 4e8 points at h = tau/4, and |Omega0| t / 0.05 = 4.47e8
         // at h|Omega| = 0.05; the table takes the finer of the two.
-        let err = check(&Model::Full(top), MethodChoice::Auto, &o, &w, 1e8).unwrap_err();
+        let err = check(&Model::Full(top), Method::Physical, &o, &w, 1e8).unwrap_err();
         let expected = (w.norm() * 1e8 / 0.05).max(4e8);
         assert!((err.estimate.steps - expected).abs() < 1.0, "{err}");
         assert!(
             check(
                 &Model::Full(top),
-                MethodChoice::Auto,
+                Method::Physical,
                 &o,
                 &Vec3::new(0.0, 1e50, 1e50),
                 10.0
             )
             .is_err()
         );
-        assert!(check(&Model::Full(top), MethodChoice::Auto, &o, &w, 1e300).is_err());
-        assert!(check(&Model::Full(top), MethodChoice::Auto, &o, &w, 1000.0).is_ok());
-        assert!(check(&Model::Full(top), MethodChoice::Auto, &o, &w, Real::NAN).is_err());
+        assert!(check(&Model::Full(top), Method::Physical, &o, &w, 1e300).is_err());
+        assert!(check(&Model::Full(top), Method::Physical, &o, &w, 1000.0).is_ok());
+        assert!(check(&Model::Full(top), Method::Physical, &o, &w, Real::NAN).is_err());
     }
 }

@@ -22,12 +22,12 @@ use crate::math::{Real, Vec3};
 use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
 use crate::physics::rigid_body::energy;
-use crate::physics::symmetric_top::{SymmetricTop, reduced_closed_form, truncated_closed_form};
+use crate::physics::symmetric_top::SymmetricTop;
 use crate::present::parse_number;
-pub use crate::present::{Method, lab_frame, paper_frame};
+pub use crate::present::{lab_frame, paper_frame};
 use crate::scene::Scene;
 use crate::scene::live::live_scene;
-use crate::sim::{InitialState, MethodOptions, Model, Sample, Simulation};
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, Simulation};
 use std::collections::VecDeque;
 use std::time::Duration;
 
@@ -94,15 +94,23 @@ pub const STAND_IN_BELOW: Real = 1e-2;
 /// exactly [`TICK`].
 pub const MAX_LAG: Duration = Duration::from_millis(250);
 
-impl Method {
-    /// The next method of the cycle for `top`: a general top has no closed
-    /// form, so its cycle is RK4, DP5, DOP853.
-    pub fn next_for(self, top: &Top) -> Self {
-        match (self.next(), top) {
-            (Method::ClosedForm, Top::General(_)) => Method::Rk4,
-            (next, _) => next,
-        }
-    }
+/// The methods `m` cycles through: closed form, RK4, DP5, DOP853, Radau IIA 5.
+pub const METHOD_CYCLE: [MethodChoice; 5] = [
+    MethodChoice::Exact,
+    MethodChoice::Rk4,
+    MethodChoice::Dopri5,
+    MethodChoice::Dop853,
+    MethodChoice::Radau5,
+];
+
+/// The method after `method` in [`METHOD_CYCLE`] that `top` takes (a
+/// general top has no closed form, so its cycle skips it).
+pub fn next_method(method: MethodChoice, top: &Top) -> MethodChoice {
+    let at = METHOD_CYCLE.iter().position(|m| *m == method).unwrap_or(0);
+    (1..=METHOD_CYCLE.len())
+        .map(|k| METHOD_CYCLE[(at + k) % METHOD_CYCLE.len()])
+        .find(|m| top.check_method(*m).is_ok())
+        .unwrap_or(method)
 }
 
 /// The top the view shows, and so its layout.
@@ -129,6 +137,16 @@ impl Top {
         }
     }
 
+    /// Refuse a method the columns that take one do not take (the full ALE's
+    /// column always runs its physical solution), with the core's reason.
+    pub fn check_method(&self, method: MethodChoice) -> Result<(), String> {
+        self.models()
+            .iter()
+            .filter(|m| !m.is_full())
+            .try_for_each(|m| m.check_method(method))
+            .map_err(|e| e.to_string())
+    }
+
     /// The unit of time: τ for the symmetric top (Section 4's unit), "u" for
     /// a general one, whose numbers are in units where κ = 2/(3c³) = 1.
     pub fn time_unit(&self) -> &'static str {
@@ -141,7 +159,7 @@ impl Top {
 pub struct Settings {
     top: Top,
     omega0: [Real; 3],
-    method: Method,
+    method: MethodChoice,
     warp: usize,
 }
 
@@ -152,7 +170,7 @@ impl Default for Settings {
         Self {
             top: Top::Symmetric(SymmetricTop::figure()),
             omega0: [0.0, 0.1, 0.2],
-            method: Method::ClosedForm,
+            method: MethodChoice::Exact,
             warp: DEFAULT_WARP,
         }
     }
@@ -161,7 +179,12 @@ impl Default for Settings {
 impl Settings {
     /// Validate I₃/I₁, Ω₀ and the warp (one of [`WARPS`], in τ/s); the error
     /// is one line for the user.
-    pub fn new(ratio: Real, omega0: [Real; 3], method: Method, warp: Real) -> Result<Self, String> {
+    pub fn new(
+        ratio: Real,
+        omega0: [Real; 3],
+        method: MethodChoice,
+        warp: Real,
+    ) -> Result<Self, String> {
         let top = SymmetricTop::new(ratio, 1.0).map_err(|e| e.to_string())?;
         Self::validated(Top::Symmetric(top), omega0, method, warp)
     }
@@ -171,14 +194,9 @@ impl Settings {
     pub fn general(
         top: GeneralTop,
         omega0: [Real; 3],
-        method: Method,
+        method: MethodChoice,
         warp: Real,
     ) -> Result<Self, String> {
-        if method == Method::ClosedForm {
-            return Err(
-                "the general top (3.3) has no closed form: choose rk4, dopri5 or dop853".into(),
-            );
-        }
         Self::validated(Top::General(top), omega0, method, warp)
     }
 
@@ -198,7 +216,13 @@ impl Settings {
         Ok((settings, live.note))
     }
 
-    fn validated(top: Top, omega0: [Real; 3], method: Method, warp: Real) -> Result<Self, String> {
+    fn validated(
+        top: Top,
+        omega0: [Real; 3],
+        method: MethodChoice,
+        warp: Real,
+    ) -> Result<Self, String> {
+        top.check_method(method)?;
         check_omega0(omega0)?;
         let warp = WARPS.iter().position(|w| *w == warp).ok_or_else(|| {
             let list: Vec<String> = WARPS.iter().map(|w| w.to_string()).collect();
@@ -236,7 +260,7 @@ impl Settings {
     }
 
     /// The method.
-    pub fn method(&self) -> Method {
+    pub fn method(&self) -> MethodChoice {
         self.method
     }
 
@@ -336,7 +360,7 @@ pub struct Column {
 }
 
 impl Column {
-    fn new(model: Model, method: Method, omega0: [Real; 3]) -> Result<Self, String> {
+    fn new(model: Model, method: MethodChoice, omega0: [Real; 3]) -> Result<Self, String> {
         // Model no more than the view can show: the physical solution of a
         // general top differs from its reduced model by O((τ_f|Ω|)²)
         // relative, and costs work in proportion to 1/τ_f per unit of time.
@@ -356,9 +380,9 @@ impl Column {
         // The full ALE's physical solution has one method (backward
         // shooting, tabulated ahead chunk by chunk); `m` changes the others.
         let choice = if model.is_full() {
-            crate::sim::MethodChoice::Auto
+            MethodChoice::Auto
         } else {
-            method.choice()
+            method
         };
         let inertia = model.inertia();
         let initial = InitialState::new(Vec3::from(omega0), lab_frame(&inertia, omega0))
@@ -488,14 +512,7 @@ impl Column {
     /// has no closed form.
     pub fn closed_form_error(&self) -> Option<Real> {
         let s = self.sim.current();
-        let exact = match self.sim.model() {
-            Model::Truncated(top) => truncated_closed_form(top, &self.omega0, s.t),
-            Model::Reduced(top) => reduced_closed_form(top, &self.omega0, s.t),
-            Model::General(_)
-            | Model::GeneralReduced(_)
-            | Model::Full(_)
-            | Model::GeneralFull(_) => return None,
-        };
+        let exact = self.sim.model().closed_form(&self.omega0, s.t)?;
         Some((s.omega_vec() - exact).norm())
     }
 }
@@ -820,12 +837,12 @@ impl App {
                 self.change(candidate, format!("I₃/I₁ = {ratio}"));
             }
             Command::CycleMethod => {
-                let method = self.settings.method.next_for(&self.settings.top);
+                let method = next_method(self.settings.method, &self.settings.top);
                 let candidate = Ok(Settings {
                     method,
                     ..self.settings
                 });
-                self.change(candidate, format!("method {}", method.name()));
+                self.change(candidate, format!("method {}", method.title()));
             }
             Command::ToggleLogTime => self.view.log_time = !self.view.log_time,
             Command::SelectPrevious => self.view.selected = (self.view.selected + 2) % 3,

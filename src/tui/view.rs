@@ -156,7 +156,7 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
         Span::styled(format!(")/{u}"), theme::label()),
         sep(),
         Span::styled("method ", theme::label()),
-        Span::styled(settings.method().name(), theme::value()),
+        Span::styled(settings.method().title(), theme::value()),
         sep(),
         Span::styled(
             if app.view().log_time {

@@ -6,7 +6,7 @@
 //! drawing, not physics: the vectors themselves (Ω, O·e₃, L) come from the
 //! [`crate::sim::Sample`]s.
 
-use super::app::{App, Column, Method, Point, TICK, WINDOW};
+use super::app::{App, Column, Point, TICK, WINDOW};
 use super::theme;
 use crate::math::Real;
 pub use crate::present::{fmt_axis, fmt_num, nice_ceiling};
@@ -413,7 +413,7 @@ pub fn numbers(
             "— (none)"
         }
         .to_string(),
-        Some(_) if app.settings().method() == Method::ClosedForm => {
+        Some(_) if app.settings().method() == crate::sim::MethodChoice::Exact => {
             if wide { "0 (closed form)" } else { "0 (exact)" }.to_string()
         }
         Some(e) if wide => format!("|ΔΩ| = {}/{u}", fmt_num(e)),

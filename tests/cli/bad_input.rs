@@ -873,7 +873,7 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
                 ],
                 &["--dipole", "1,0.5,0.2", "--method", "dopri5"],
             ),
-            "--model full takes --method auto",
+            "model (3.4) takes method auto",
         ),
         (
             with(
@@ -881,6 +881,16 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
                 &["--inertia", "1,2,2.5"],
             ),
             "--dipole",
+        ),
+        // The live view and plot check a method against their models by the
+        // same rule as simulate (sim::Model::check_method).
+        (
+            with(&["plot"], &["--method", "forward"]),
+            "method forward is for the full model (3.4) only",
+        ),
+        (
+            with(&["tui"], &["--method", "forward"]),
+            "method forward is for the full model (3.4) only",
         ),
         (with(&["book"], &["--port", "x"]), "--port"),
         (with(&["nosuch-command"], &[]), "unrecognized subcommand"),
@@ -916,7 +926,7 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
                 "simulate", "--model", "full", "--t-end", "1", "--method", method,
             ],
             2,
-            "--model full takes",
+            "the full model (3.4) takes method auto",
         ));
     }
     // 4. Costs checked before running: refused up front with the estimate.

@@ -62,6 +62,10 @@ fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
         ("molecule-zero-dipole.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n{MOLECULE}").replace("[2.33, 0.0, 0.0]", "[0.0, 0.0, 0.0]"), 9, "dipole"),
         ("ellipsoid-no-density.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n[units]\nshape = \"ellipsoid\"\nsemi_axes_nm = [150.0, 60.0, 40.0]\ndipole_vector_debye = [0.0, 3e4, 4e4]\nomega_hz = [2e8, 5e8, 1e9]\n"), 9, "density_kg_m3"),
         ("molecule-full.toml", format!("{HEAD}[top]\nmodel = \"full\"\n\n{MOLECULE}"), 7, "cannot take [units]"),
+        // The one rule of sim::Model::check_method and MethodOptions::for_choice, as the command line applies it.
+        ("full-dop853.toml", format!("{HEAD}[top]\nmodel = \"full\"\n\n[solve]\nmethod = \"dop853\"\n"), 10, "[solve] method = \"dop853\": the full model (3.4) takes method auto"),
+        ("rtol-below-double.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nrtol = 1e-15\n"), 10, "[solve] rtol 1e-15 is below what double precision can deliver"),
+        ("step-not-rk4.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nmethod = \"dop853\"\nstep = 0.1\n"), 11, "[solve] step sets the fixed step of method rk4 only"),
         ("auto-with-method.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n[solve]\nmethod = \"dop853\"\n"), 10, "model = \"auto\" chooses the model and its method together"),
         ("times-decreasing.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 5.0, 2.0]\n"), 10, "2 comes after 5"),
         ("times-and-t-end.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 1.0]\nt_end = 5.0\n"), 11, "either times"),

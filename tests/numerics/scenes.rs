@@ -207,10 +207,9 @@ fn figure_2_eq_4_16_omega_perp_decays_and_the_axis_comes_up_to_l() {
         EulerAngles::new(0.0, 1.25_f64.atan(), 0.0),
     )
     .unwrap();
-    let options = MethodOptions {
-        rtol: 1e-12,
-        ..MethodOptions::default()
-    };
+    let options = MethodOptions::default()
+        .with_rtol(1e-12)
+        .expect("a valid tolerance");
     let mut other = Simulation::new(
         Model::Reduced(top),
         MethodChoice::Dop853,
@@ -322,10 +321,9 @@ fn asymmetric_top_eq_3_3_agrees_with_an_independent_rk4_run() {
     let top = GeneralTop::new(Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2, 0.0, 1.0)).unwrap();
     let initial =
         InitialState::new(Vec3::new(0.1, 0.05, 0.2), EulerAngles::new(0.2, 0.9, 0.1)).unwrap();
-    let options = MethodOptions {
-        step: 0.005,
-        ..MethodOptions::default()
-    };
+    let options = MethodOptions::default()
+        .with_step(0.005)
+        .expect("a valid step");
     let mut rk4 = Simulation::new(
         Model::General(top),
         MethodChoice::Rk4,

@@ -30,7 +30,7 @@ fn untimed(problem: &Problem, method: Method, target: Target, knob: Option<Real>
         row.ok(),
         "{} {}: {}",
         problem.name(),
-        method.name(),
+        row.method,
         row.status
     );
     row

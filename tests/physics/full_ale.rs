@@ -209,15 +209,12 @@ fn eq_3_4_forward_integration_runs_away_at_the_frozen_rate() {
 #[test]
 fn eq_3_4_full_model_simulation_follows_the_physical_solution() {
     use spintop::physics::euler_angles::EulerAngles;
-    use spintop::sim::{InitialState, MethodChoice, MethodOptions, MethodUsed, Model, Simulation};
+    use spintop::sim::{InitialState, Method, MethodChoice, MethodOptions, Model, Simulation};
     let (top, omega0) = figure();
     let times = [0.0, 3.3, 47.123, 250.0, 499.9];
     let direct = physical_solution(&top, &omega0, &times, 1e-12).unwrap();
     let initial = InitialState::new(omega0, EulerAngles::new(0.1, 0.5, 0.0)).unwrap();
-    let options = MethodOptions {
-        rtol: 1e-12,
-        step: 0.01,
-    };
+    let options = MethodOptions::new(1e-12, 0.01).expect("valid options");
     let mut sim = Simulation::new(
         Model::Full(top),
         MethodChoice::Auto,
@@ -226,7 +223,7 @@ fn eq_3_4_full_model_simulation_follows_the_physical_solution() {
         Some(500.0),
     )
     .unwrap();
-    assert_eq!(sim.method(), MethodUsed::Physical);
+    assert_eq!(sim.method(), Method::Physical);
     for (i, s) in sim.run(&times).unwrap().iter().enumerate() {
         let z = direct.z[i];
         let err = ((s.omega[0] - z.re).powi(2) + (s.omega[1] - z.im).powi(2)).sqrt();

@@ -218,10 +218,9 @@ fn eq_3_4_open_ended_physical_runs_continue_chunk_by_chunk() {
     use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
     let initial =
         InitialState::new(Vec3::new(0.3, -0.2, 0.1), EulerAngles::new(0.1, 0.4, 0.2)).unwrap();
-    let options = MethodOptions {
-        rtol: 1e-12,
-        ..MethodOptions::default()
-    };
+    let options = MethodOptions::default()
+        .with_rtol(1e-12)
+        .expect("a valid tolerance");
     let models = [
         Model::GeneralFull(asymmetric(0.3)),
         Model::Full(SymmetricTop::new(0.4, 0.05).unwrap()),

@@ -13,7 +13,7 @@ use spintop::physics::general_top::GeneralTop;
 use spintop::scene::{Body, Scene, catalogue};
 use spintop::sim::{MethodChoice, Simulation};
 use spintop::tui::Command;
-use spintop::tui::app::{App, Method, Settings};
+use spintop::tui::app::{App, Settings};
 use spintop::tui::view::{self, MIN_HEIGHT, MIN_WIDTH};
 use spintop::tui::widgets::fmt_num;
 
@@ -256,7 +256,7 @@ fn sec3_general_top_with_a_tiny_dipole_shows_constant_energy_and_momentum() {
     let top = GeneralTop::new(Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2e-6, 0.0, 1e-6)).unwrap();
     // NOTE: not the scene's Ω₀, whose E₀ = 0.022875 sits on a rounding
     // boundary of the four digits shown, where a drift of 1e-15 flips a digit.
-    let settings = Settings::general(top, [0.1, 0.06, 0.2], Method::Dop853, 10.0).unwrap();
+    let settings = Settings::general(top, [0.1, 0.06, 0.2], MethodChoice::Dop853, 10.0).unwrap();
     let mut app = App::new(settings).unwrap();
     // τ_f|Ω₀| is about 3e-13: the physical column's backward shoot would buy
     // nothing the screen can show, so the reduced model stands in, and says so.
