@@ -13,10 +13,11 @@
 //! what the stepper costs (issue goal: within 5 %).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use spintop::integrate::{self, AdaptiveOptions, Composition, Dop853, ReducedFlow, Splitting};
+use spintop::integrate::{self, AdaptiveOptions, Composition, Dop853, Splitting};
 use spintop::math::{Real, State};
 use spintop::physics::symmetric_top::{reduced_ale_rhs, reduced_closed_form_many};
 use spintop::sim::Model;
+use spintop::sim::split::ReducedFlow;
 use spintop::workprecision::{Method, Problem, ProblemKind, Solver, Spintop, Target};
 use std::hint::black_box;
 use std::time::Duration;

@@ -11,9 +11,9 @@
 //! | 3 | numerical failure: the run was stopped, with the time and what to try |
 
 use crate::math::Real;
+pub(crate) use crate::numbers::parse_number;
 use crate::output::Failure;
 pub use crate::output::Format;
-pub(crate) use crate::present::parse_number;
 use crate::sim::SimError;
 use clap::{Parser, Subcommand};
 use std::ffi::OsString;

@@ -1086,7 +1086,7 @@ pub struct Export {
 /// each other's test programs when one copy's sources look unchanged: one
 /// student graded with another's code.
 fn export_manifest(spintop: &Path, out: &Path) -> String {
-    let key = crate::present::stable_key(
+    let key = crate::numbers::stable_key(
         &out.canonicalize()
             .unwrap_or_else(|_| out.to_path_buf())
             .to_string_lossy(),

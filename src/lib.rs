@@ -6,6 +6,7 @@
 //! uses is cited in its doc comment as `Paper: Eq. (N.M).`
 //!
 //! - [`math`]: scalar, vector and rotation types; SO(3) helpers.
+//! - [`numbers`]: how numbers are written (messages, headers, tables, CSV, axes) and read.
 //! - [`physics`]: the paper, one module per concept (pure: no I/O, no clock).
 //! - [`integrate`]: RK4, Dormand–Prince 5(4), DOP853 and Radau IIA 5 over one small trait; Strang and Yoshida-4 splittings.
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
@@ -17,8 +18,6 @@
 //! - [`output`]: what `simulate`, `balance`, `orbit` and `shell` answer: the request, the
 //!   computation, the JSON contract and its table and CSV forms (the scene engine prints the same).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line; the figures as text and SVG.
-//! - [`present`]: what the shells show the same way (the lab frame, number parsing
-//!   and axis formatting), below all of them.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
 //! - [`tui`]: the live terminal view, another thin shell over [`sim`].
 #![forbid(unsafe_code)]
@@ -34,12 +33,12 @@ pub mod figure;
 pub mod grading;
 pub mod integrate;
 pub mod math;
+pub mod numbers;
 #[cfg(feature = "app")]
 pub mod output;
 pub mod physics;
 #[cfg(feature = "app")]
 pub mod plot;
-pub mod present;
 #[cfg(feature = "app")]
 pub mod scene;
 #[cfg(feature = "app")]

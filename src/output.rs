@@ -9,7 +9,6 @@
 //! the time and what to try.
 
 use crate::integrate::IntegrateError;
-use crate::math::Real;
 use crate::sim::{MethodChoice, Model, SimError};
 use std::io::{self, Write};
 use thiserror::Error;
@@ -132,27 +131,6 @@ pub fn sim_failure(e: SimError, model: &Model, choice: MethodChoice) -> Failure 
         (IntegrateError::InvalidOption(_), _) => "check the method options".into(),
     };
     Failure::Stopped(format!("{integrate}; {advice}"))
-}
-
-/// Format a number for the table: fixed where that reads well, else exponent.
-pub fn num(x: Real) -> String {
-    fixed_or_exp(x, 7, 6, 1e6)
-}
-
-/// `x` with `digits` decimals when it is 0 or 1e-3 ≤ |x| < `upper`, else in
-/// exponent notation with `exp_digits` decimals in the mantissa.
-pub fn fixed_or_exp(x: Real, digits: usize, exp_digits: usize, upper: Real) -> String {
-    // A value that rounds to zero in the fixed form is printed as 0, not -0.
-    let x = if x == 0.0 { 0.0 } else { x };
-    if x == 0.0 || (1e-3..upper).contains(&x.abs()) {
-        let fixed = format!("{x:.digits$}");
-        if fixed.starts_with('-') && fixed[1..].chars().all(|c| c == '0' || c == '.') {
-            return fixed[1..].to_string();
-        }
-        fixed
-    } else {
-        format!("{x:.exp_digits$e}")
-    }
 }
 
 /// One row of an aligned table: every cell right-aligned in `width` columns.

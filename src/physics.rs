@@ -44,11 +44,11 @@ pub enum ParamError {
     /// The symmetric top's I₃/I₁ lies outside (0, 2].
     #[error(
         "I3/I1 = {} is not a rigid body: the moments must be positive and obey I3 <= I1 + I2 = 2 I1, so 0 < I3/I1 <= 2",
-        crate::math::fmt_value(*.0)
+        crate::numbers::fmt_value(*.0)
     )]
     RatioOutOfRange(Real),
     /// A principal moment is not positive.
-    #[error("principal moment I{index} = {} must be positive", crate::math::fmt_value(*value))]
+    #[error("principal moment I{index} = {} must be positive", crate::numbers::fmt_value(*value))]
     MomentNotPositive {
         /// 1, 2 or 3.
         index: usize,
@@ -58,19 +58,19 @@ pub enum ParamError {
     /// The principal moments break a triangle inequality.
     #[error(
         "moments ({}, {}, {}) are not a rigid body: each must be at most the sum of the other two",
-        crate::math::fmt_value(*.0),
-        crate::math::fmt_value(*.1),
-        crate::math::fmt_value(*.2)
+        crate::numbers::fmt_value(*.0),
+        crate::numbers::fmt_value(*.1),
+        crate::numbers::fmt_value(*.2)
     )]
     TriangleInequality(Real, Real, Real),
     /// The dipole is zero, so there is no radiation and no model to study.
     #[error("the dipole must be non-zero (a top without a dipole does not radiate)")]
     ZeroDipole,
     /// τ is negative.
-    #[error("tau must be >= 0, got {}", crate::math::fmt_value(*.0))]
+    #[error("tau must be >= 0, got {}", crate::numbers::fmt_value(*.0))]
     NegativeTau(Real),
     /// A parameter lies outside its allowed range (Section 2's models).
-    #[error("{name} = {} is out of range: it must be {range}", crate::math::fmt_value(*value))]
+    #[error("{name} = {} is out of range: it must be {range}", crate::numbers::fmt_value(*value))]
     OutOfRange {
         /// Which input.
         name: &'static str,

@@ -37,6 +37,7 @@ pub mod orbit;
 pub mod physical;
 pub mod secular;
 pub mod shell;
+pub mod split;
 
 use physical::general;
 
@@ -568,7 +569,7 @@ pub enum SimError {
     OutOfRange(&'static str),
     /// A sample came out non-finite although the method reported no failure
     /// (a last guard: spintop never prints a NaN table).
-    #[error("the state became non-finite at t = {}", crate::math::fmt_time(*.0))]
+    #[error("the state became non-finite at t = {}", crate::numbers::fmt_time(*.0))]
     NonFiniteSample(Real),
     /// A requested time was negative, non-finite or earlier than the last one.
     #[error("output times must be finite, >= 0 and non-decreasing (got {0} after {1})")]

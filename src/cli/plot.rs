@@ -7,8 +7,9 @@
 
 use super::{CliError, bad, parse_number, parse_vec3};
 use crate::math::{Real, Vec3};
+use crate::numbers::{fmt_axis, nice_ceiling};
+use crate::physics::rigid_body::lab_frame;
 use crate::physics::symmetric_top::SymmetricTop;
-use crate::present::{fmt_axis, nice_ceiling, paper_frame};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
 use clap::{Args, ValueEnum};
 use std::io::Write;
@@ -74,7 +75,10 @@ const LOG_DECADES: Real = 4.0;
 impl PlotArgs {
     fn validate(self) -> Result<PlotConfig, CliError> {
         let top = SymmetricTop::new(self.ratio, 1.0).map_err(SimError::from)?;
-        InitialState::new(Vec3::from(self.omega), paper_frame(&top, self.omega))?;
+        InitialState::new(
+            Vec3::from(self.omega),
+            lab_frame(&top.inertia(), &Vec3::from(self.omega)),
+        )?;
         // parse_number has already refused NaN and infinities.
         if self.t_end <= 0.0 {
             return Err(bad(format!("--t-end must be > 0, got {}", self.t_end)));
@@ -136,9 +140,11 @@ fn samples(
     model: Model,
     top: &SymmetricTop,
 ) -> Result<(Vec<Sample>, &'static str), CliError> {
-    let mut initial =
-        InitialState::new(Vec3::from(config.omega0), paper_frame(top, config.omega0))?;
-    initial.rotation = paper_frame(top, config.omega0).to_rotation();
+    let mut initial = InitialState::new(
+        Vec3::from(config.omega0),
+        lab_frame(&top.inertia(), &Vec3::from(config.omega0)),
+    )?;
+    initial.rotation = lab_frame(&top.inertia(), &Vec3::from(config.omega0)).to_rotation();
     let horizon = config.times.last().copied();
     let choice = config.method;
     let failure = |e| super::sim_failure(e, &model, choice);

@@ -45,7 +45,7 @@ impl ShellArgs {
         if work > MAX_STEPS {
             return Err(bad(format!(
                 "the run needs {work:.1e} RK4 steps ({} per delay up to t = {t_last}), more than {MAX_STEPS:.0e}: {}",
-                crate::present::fmt_count(steps as Real),
+                crate::numbers::fmt_count(steps as Real),
                 if self.delay > t_last {
                     "the delay is longer than the run itself; choose a shorter --delay"
                 } else {

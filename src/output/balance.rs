@@ -1,8 +1,9 @@
 //! `balance`: the two balance laws of §2 for a built-in dipole trajectory,
 //! sampled at given times and averaged over a period.
 
-use super::{Format, num};
+use super::Format;
 use crate::math::{Real, Vec3};
+use crate::numbers::table;
 use crate::physics::balance::{
     Balance, DipoleTrajectory, Dumbbell, PlanarLoop, PrecessingDipole, balance_at, period_average,
 };
@@ -221,7 +222,7 @@ pub fn write_output(
                 "# spintop balance: {} dipole; {}; period T = {}",
                 output.dipole,
                 describe(&output.parameters),
-                num(output.period)
+                table(output.period)
             )?;
             writeln!(
                 out,
@@ -235,13 +236,13 @@ pub fn write_output(
              -> io::Result<()> {
                 writeln!(out, "{title}")?;
                 for ((name, v), a) in VECTORS.iter().zip(vs).zip(ax) {
-                    let axial = a.map_or(String::new(), |a| format!("   axial {:>14}", num(a)));
+                    let axial = a.map_or(String::new(), |a| format!("   axial {:>14}", table(a)));
                     writeln!(
                         out,
                         "  {name:<12}{:>14}{:>14}{:>14}{axial}",
-                        num(v[0]),
-                        num(v[1]),
-                        num(v[2])
+                        table(v[0]),
+                        table(v[1]),
+                        table(v[2])
                     )?;
                 }
                 Ok(())
@@ -249,7 +250,7 @@ pub fn write_output(
             for s in &output.samples {
                 block(
                     out,
-                    format!("t = {}", num(s.t)),
+                    format!("t = {}", table(s.t)),
                     [s.dipole, s.larmor, s.torque, s.schott, s.schott_rate],
                     [
                         None,
@@ -263,7 +264,7 @@ pub fn write_output(
             let a = &output.period_average;
             block(
                 out,
-                format!("average over one period (T = {})", num(output.period)),
+                format!("average over one period (T = {})", table(output.period)),
                 [a.dipole, a.larmor, a.torque, a.schott, a.schott_rate],
                 [
                     None,
@@ -278,7 +279,7 @@ pub fn write_output(
 }
 
 fn describe(p: &BalanceParameters) -> String {
-    use crate::present::fmt_param as fp;
+    use crate::numbers::fmt_param as fp;
     let mut parts = Vec::new();
     if let Some(x) = p.cone {
         parts.push(format!("cone = {}", fp(x)));

@@ -1,9 +1,10 @@
 //! `orbit`: one charge in a Coulomb or oscillator field under radiation
 //! reaction (§2, (2.5)–(2.9)), sampled at given times.
 
-use super::{Failure, Format, num, write_aligned};
+use super::{Failure, Format, write_aligned};
 use crate::integrate::Stats;
 use crate::math::Real;
+use crate::numbers::table;
 use crate::physics::central::{
     Potential, abraham_lorentz_oscillator_roots, landau_lifshitz_oscillator_root,
 };
@@ -114,7 +115,7 @@ pub fn orbit(request: &OrbitRequest) -> Result<OrbitOutput, Failure> {
     let run = run_orbit(config, &request.times).map_err(|e| match e {
         OrbitError::Collapsed { .. } => Failure::Stopped(format!(
             "{e}; the averaged collapse time is t_c = {}: ask for times before it, or a smaller --tau0",
-            num(collapse.unwrap_or(Real::INFINITY))
+            table(collapse.unwrap_or(Real::INFINITY))
         )),
         OrbitError::ShootingFailed { .. } => Failure::Stopped(format!(
             "{e}; try shorter --times, a smaller --tau0, or --force ll"
@@ -201,9 +202,9 @@ pub fn write_output(out: &mut impl Write, output: &OrbitOutput, format: Format) 
                 output.potential,
                 output.force,
                 output.equations,
-                crate::present::fmt_param(p.tau0),
-                crate::present::fmt_param(p.r0),
-                crate::present::fmt_param(p.eccentricity)
+                crate::numbers::fmt_param(p.tau0),
+                crate::numbers::fmt_param(p.r0),
+                crate::numbers::fmt_param(p.eccentricity)
             )?;
             writeln!(
                 out,
@@ -214,11 +215,11 @@ pub fn write_output(out: &mut impl Write, output: &OrbitOutput, format: Format) 
                 writeln!(
                     out,
                     "# roots: Abraham-Lorentz {} + {} i (runaway {}), Landau-Lifshitz {} + {} i",
-                    num(r.abraham_lorentz[0]),
-                    num(r.abraham_lorentz[1]),
-                    num(r.runaway),
-                    num(r.landau_lifshitz[0]),
-                    num(r.landau_lifshitz[1])
+                    table(r.abraham_lorentz[0]),
+                    table(r.abraham_lorentz[1]),
+                    table(r.runaway),
+                    table(r.landau_lifshitz[0]),
+                    table(r.landau_lifshitz[1])
                 )?;
             }
             if let Some(sh) = &output.shooting {
@@ -241,34 +242,34 @@ pub fn write_output(out: &mut impl Write, output: &OrbitOutput, format: Format) 
                     s.l,
                     s.energy,
                 ];
-                write_aligned(out, row.iter().map(|x| num(*x)), 14)?;
+                write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
             }
             if let Some(tc) = output.collapse_time {
                 writeln!(
                     out,
                     "# collapse time (orbit-averaged closed form): {}",
-                    num(tc)
+                    table(tc)
                 )?;
             }
             if let Some(crossings) = &output.first_crossing {
                 for c in crossings {
                     let measured = c.t.map_or("not reached within the run".to_string(), |t| {
-                        format!("first reached at t = {}", num(t))
+                        format!("first reached at t = {}", table(t))
                     });
                     let averaged = c.averaged.map_or(String::new(), |a| {
-                        format!(", averaged closed form {}", num(a))
+                        format!(", averaged closed form {}", table(a))
                     });
                     writeln!(out, "# r = {}: {measured}{averaged}", c.r)?;
                 }
             }
             if let Some(r) = &output.runaway {
-                let rate = r.growth_rate.map_or("unmeasured".to_string(), num);
+                let rate = r.growth_rate.map_or("unmeasured".to_string(), table);
                 writeln!(
                     out,
                     "# RUNAWAY at t = {}: |a - F(r)| passed {} |F(r0)|, growing at rate {rate} (predicted {}); {} later sample(s) omitted",
-                    num(r.t),
+                    table(r.t),
                     r.threshold,
-                    num(r.predicted_rate),
+                    table(r.predicted_rate),
                     output.samples_omitted.unwrap_or(0)
                 )?;
             }

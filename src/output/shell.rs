@@ -1,8 +1,9 @@
 //! `shell`: the charge as a small shell (Appendix, (A.1)–(A.3)), a neutral
 //! delay equation solved by the method of steps and sampled at given times.
 
-use super::{Failure, Format, num, write_aligned};
+use super::{Failure, Format, write_aligned};
 use crate::math::Real;
+use crate::numbers::table;
 use crate::physics::central::abraham_lorentz_oscillator_roots;
 use crate::physics::shell::ShellModel;
 use crate::sim::shell::{History, ShellError, ShellSample, run_shell};
@@ -61,24 +62,24 @@ pub fn instability_warning(model: &ShellModel, rate: Real) -> String {
     let why = if m0 < 0.0 {
         format!(
             "the bare mass m0 = {} is negative (delay < tau0): the Abraham-Lorentz runaway is back",
-            num(m0)
+            table(m0)
         )
     } else if m0 < m_em {
         format!(
             "m0 = {} < m_em = {} (delay < 2 tau0): the neutral chain of roots grows",
-            num(m0),
-            num(m_em)
+            table(m0),
+            table(m_em)
         )
     } else {
         format!(
             "m0 - m_em = {} is below delay^2/pi^2 = {}: the lowest chain root grows",
-            num(m0 - m_em),
-            num(model.stability_threshold())
+            table(m0 - m_em),
+            table(model.stability_threshold())
         )
     };
     format!(
         "spintop: warning: (A.1) is unstable here: {why}; the solution grows like exp({} t) (predicted growth rate)",
-        num(rate)
+        table(rate)
     )
 }
 
@@ -122,27 +123,27 @@ pub fn write_output(out: &mut impl Write, output: &ShellOutput, format: Format) 
             writeln!(
                 out,
                 "# spintop shell (Eqs. (A.1)-(A.3)): tau0 = {}, delay = {}, m0 = {}, m_em = {}, m = k = 1",
-                crate::present::fmt_param(output.tau0),
-                crate::present::fmt_param(output.delay),
-                num(output.m0),
-                num(output.m_em)
+                crate::numbers::fmt_param(output.tau0),
+                crate::numbers::fmt_param(output.delay),
+                table(output.m0),
+                table(output.m_em)
             )?;
             let growth = output
                 .growth_rate
-                .map_or(String::new(), |g| format!(", growth rate {}", num(g)));
+                .map_or(String::new(), |g| format!(", growth rate {}", table(g)));
             writeln!(
                 out,
                 "# regime: {}{growth}; chain rate ln(m_em/|m0|)/delay = {}",
                 output.regime,
-                num(output.chain_rate)
+                table(output.chain_rate)
             )?;
             writeln!(
                 out,
                 "# roots: near Abraham-Lorentz {} + {} i; Abraham-Lorentz {} + {} i; {} RK4 steps per delay",
-                num(output.root_near_al[0]),
-                num(output.root_near_al[1]),
-                num(output.root_al[0]),
-                num(output.root_al[1]),
+                table(output.root_near_al[0]),
+                table(output.root_near_al[1]),
+                table(output.root_al[0]),
+                table(output.root_al[1]),
                 output.steps_per_delay
             )?;
             let head = ["t", "x", "y", "L", "J", "L-J", "L_S", "|Z-Z_AL|", "L-L_AL"];
@@ -159,17 +160,17 @@ pub fn write_output(out: &mut impl Write, output: &ShellOutput, format: Format) 
                     mag(s.z_minus_z_al),
                     s.l - s.l_al,
                 ];
-                write_aligned(out, row.iter().map(|x| num(*x)), 14)?;
+                write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
             }
             if let Some(last) = output.samples.last() {
                 writeln!(
                     out,
                     "# at t = {}: J - J(0) = {}; exact flux integral {} (difference {:.1e}); paper's (A.2) {}",
-                    num(last.t),
-                    num(last.j_change),
-                    num(last.flux_exact),
+                    table(last.t),
+                    table(last.j_change),
+                    table(last.flux_exact),
                     last.j_change - last.flux_exact,
-                    num(last.flux_paper)
+                    table(last.flux_paper)
                 )?;
             }
             Ok(())
@@ -197,7 +198,7 @@ pub fn shell(request: &ShellRequest) -> Result<ShellOutput, Failure> {
     .map_err(|e| match e {
         ShellError::Overflow { .. } => Failure::Stopped(format!(
             "{e}: (A.1) is unstable here (growth rate {}); ask for earlier --times or a delay above 2 tau0",
-            growth_rate.map_or("unknown".to_string(), num)
+            growth_rate.map_or("unknown".to_string(), table)
         )),
         other => Failure::BadInput(other.to_string()),
     })?;

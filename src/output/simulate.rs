@@ -1,8 +1,9 @@
 //! `simulate`: one model of the top, sampled at given times, as a table, CSV
 //! or the JSON contract.
 
-use super::{Failure, Format, num, sim_failure, write_aligned};
+use super::{Failure, Format, sim_failure, write_aligned};
 use crate::math::{Real, Vec3};
+use crate::numbers::table;
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
 use serde::Serialize;
 use std::io::{self, Write};
@@ -196,7 +197,7 @@ pub fn write_output(
                 writeln!(
                     out,
                     "# stopped: runaway at t = {}, growth rate {:.4}; {} later sample(s) omitted",
-                    crate::math::fmt_time(r.t),
+                    crate::numbers::fmt_time(r.t),
                     r.growth_rate,
                     output.samples_omitted.unwrap_or(0)
                 )?;
@@ -204,7 +205,7 @@ pub fn write_output(
             Ok(())
         }
         Format::Table => {
-            use crate::present::fmt_param as fp;
+            use crate::numbers::fmt_param as fp;
             let p = &output.parameters;
             let params = match (p.ratio, p.dipole) {
                 (Some(ratio), _) => format!("I3/I1 = {}, tau = 1", fp(ratio)),
@@ -281,7 +282,7 @@ pub fn write_output(
                     s.euler[1],
                     s.euler[2],
                 ];
-                write_aligned(out, row.iter().map(|x| num(*x)), 14)?;
+                write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
             }
             Ok(())
         }

@@ -525,7 +525,7 @@ pub fn answer(scene: &Scene) -> Result<Report, Failure> {
                     scene.lines.times,
                     format!(
                         "[solve] the run needs {work:.1e} RK4 steps ({} per delay up to t = {t_last}), more than {SHELL_MAX_STEPS:.0e}; expected shorter times or a longer delay",
-                        crate::present::fmt_count(steps as Real)
+                        crate::numbers::fmt_count(steps as Real)
                     ),
                 ).to_string()));
             }

@@ -7,9 +7,9 @@ use super::keys::{Ctx, choice, finite_array, missing, not_here, num, param, solv
 use super::units::{GENERAL_SHAPES, GeneralUnits, RealUnits, real_units, rigid_units};
 use super::{Body, Built, Orientation, SceneError, plan};
 use crate::math::{Real, Vec3};
-use crate::physics::euler_angles::{EulerAngles, frame_with_z_along};
+use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
-use crate::physics::rigid_body::angular_momentum_body;
+use crate::physics::rigid_body::lab_frame;
 use crate::physics::symmetric_top::SymmetricTop;
 use crate::sim::{InitialState, MAX_RATE, MethodChoice, MethodOptions, Model};
 use std::ops::Range;
@@ -276,10 +276,7 @@ pub(super) fn top_scene(
     }
     let (euler, frame) = match (&euler_key, &frame_key) {
         (Some((e, _)), _) => (EulerAngles::new(e[0], e[1], e[2]), Frame::Euler),
-        (None, Some(_)) => (
-            frame_with_z_along(&angular_momentum_body(&inertia_of_top, &omega0)),
-            Frame::Paper,
-        ),
+        (None, Some(_)) => (lab_frame(&inertia_of_top, &omega0), Frame::Paper),
         (None, None) => (EulerAngles::new(0.0, 0.0, 0.0), Frame::Euler),
     };
     let initial =

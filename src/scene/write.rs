@@ -6,65 +6,19 @@ use super::answer::{
     Answer, OmegaOnlyOutput, PhysicalReport, Report, RigidReport, SecularOutput, Span, TopRun,
 };
 use crate::math::{Real, Vec3};
-use crate::output::{Format, balance, fixed_or_exp, num, orbit, shell, simulate, write_aligned};
+use crate::numbers::{cell, csv, short, significant, table};
+use crate::output::{Format, balance, orbit, shell, simulate, write_aligned};
 use crate::physics::particle::RigidShape;
 use std::io::{self, Write};
-
-/// A number with four significant digits, in whichever notation reads better.
-fn sig(x: Real) -> String {
-    fixed_or_exp(x, 4, 4, 1e5)
-}
-
-/// A CSV cell, lossless: plain digits for ordinary sizes, exponent notation
-/// for the tiny rates and huge times of real particles (both round-trip).
-fn csv_cell(x: Real) -> String {
-    let a = x.abs();
-    if x == 0.0 || (1e-4..1e15).contains(&a) {
-        x.to_string()
-    } else {
-        format!("{x:e}")
-    }
-}
-
-/// A table cell with six significant digits, never wider than 14 characters.
-fn cell(x: Real) -> String {
-    fixed_or_exp(x, 6, 6, 1e5)
-}
-
-/// A number as given: up to six significant digits, trailing zeros dropped.
-fn short(x: Real) -> String {
-    let a = x.abs();
-    if x == 0.0 || (1e-3..1e6).contains(&a) {
-        let s = format!(
-            "{:.*}",
-            (5 - a.log10().floor().max(-3.0) as i32).max(0) as usize,
-            x
-        );
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        }
-    } else {
-        let s = format!("{x:.5e}");
-        let (m, e) = s.split_once('e').expect("exponent notation");
-        let m = if m.contains('.') {
-            m.trim_end_matches('0').trim_end_matches('.')
-        } else {
-            m
-        };
-        format!("{m}e{e}")
-    }
-}
 
 /// "after T unit (T s, T tau)", or "never".
 fn when(what: &str, span: &Option<Span>, unit: &str) -> String {
     match span {
         Some(s) => format!(
             "{what} after {} {unit} ({} s, {} tau)",
-            sig(s.unit),
-            sig(s.seconds),
-            sig(s.tau)
+            significant(s.unit),
+            significant(s.seconds),
+            significant(s.tau)
         ),
         None => format!("never {what}"),
     }
@@ -80,9 +34,9 @@ fn write_physical(out: &mut impl Write, p: &PhysicalReport) -> io::Result<()> {
         "# particle: {} of {size}, density {} kg/m^3: mass {} kg, I1 = {} kg m^2, I3/I1 = {}",
         p.shape,
         short(p.density_kg_m3),
-        sig(p.mass_kg),
-        sig(p.i1_kg_m2),
-        sig(p.ratio)
+        significant(p.mass_kg),
+        significant(p.i1_kg_m2),
+        significant(p.ratio)
     )?;
     writeln!(
         out,
@@ -95,10 +49,10 @@ fn write_physical(out: &mut impl Write, p: &PhysicalReport) -> io::Result<()> {
         "# spin {} Hz at {} deg from the axis: tau |Omega0| = {}; 1 {} = {} s = {} tau",
         short(p.spin_hz),
         short(p.spin_tilt_deg),
-        sig(p.tau_omega),
+        significant(p.tau_omega),
         p.time_unit,
         short(p.seconds_per_unit),
-        sig(p.tau_per_unit)
+        significant(p.tau_per_unit)
     )?;
     let m = &p.milestones;
     let u = p.time_unit;
@@ -106,16 +60,16 @@ fn write_physical(out: &mut impl Write, p: &PhysicalReport) -> io::Result<()> {
         out,
         "# truncated model: |Omega| {}; the tilt stays {} deg, so it never stands upright",
         when("halves", &m.truncated_half_spin, u),
-        sig(m.truncated_tilt_deg)
+        significant(m.truncated_tilt_deg)
     )?;
     writeln!(
         out,
         "# reduced model: |Omega| {}; the spin about the axis stays {} Hz",
         when("halves", &m.reduced_half_spin, u),
-        sig(m.reduced_final_spin_hz)
+        significant(m.reduced_final_spin_hz)
     )?;
     let decay = match &m.reduced_tilt_decay {
-        Some(s) => format!("e-folds in {} {u}", sig(s.unit)),
+        Some(s) => format!("e-folds in {} {u}", significant(s.unit)),
         None => "never decays".to_string(),
     };
     writeln!(
@@ -212,7 +166,7 @@ fn write_omega_only(
                             l,
                             s.tilt,
                         ];
-                        write_aligned(out, row.iter().map(|x| num(*x)), 14)?;
+                        write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
                     }
                 }
             }
@@ -223,7 +177,7 @@ fn write_omega_only(
 
 /// One CSV line of numbers, lossless.
 fn write_csv_row(out: &mut impl Write, row: &[Real]) -> io::Result<()> {
-    let cells: Vec<String> = row.iter().map(|x| csv_cell(*x)).collect();
+    let cells: Vec<String> = row.iter().map(|x| csv(*x)).collect();
     writeln!(out, "{}", cells.join(","))
 }
 
@@ -238,7 +192,14 @@ fn write_method_line(
 }
 
 fn write_rigid(out: &mut impl Write, p: &RigidReport) -> io::Result<()> {
-    let v = |x: [Real; 3]| format!("({}, {}, {})", sig(x[0]), sig(x[1]), sig(x[2]));
+    let v = |x: [Real; 3]| {
+        format!(
+            "({}, {}, {})",
+            significant(x[0]),
+            significant(x[1]),
+            significant(x[2])
+        )
+    };
     let what = match p.shape {
         RigidShape::Molecule { moments_amu_a2 } => {
             format!(
@@ -266,10 +227,10 @@ fn write_rigid(out: &mut impl Write, p: &RigidReport) -> io::Result<()> {
         out,
         "# rates {} Hz in the body frame: tau_f |Omega0| = {}; 1 {} = {} s = {} u (u = tau_f, the unit where kappa = 1)",
         v(p.omega_hz),
-        sig(p.share_per_radian),
+        significant(p.share_per_radian),
         p.time_unit,
         short(p.seconds_per_unit),
-        sig(p.u_per_unit)
+        significant(p.u_per_unit)
     )
 }
 

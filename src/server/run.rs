@@ -173,7 +173,7 @@ impl Runner {
     fn binary_name(&self) -> String {
         format!(
             "spintop-snippet-{:08x}",
-            crate::present::stable_key(&self.scratch.to_string_lossy())
+            crate::numbers::stable_key(&self.scratch.to_string_lossy())
         )
     }
 

@@ -77,7 +77,10 @@ pub fn estimate(
         }),
         (_, Method::Rk4) => e(
             t_last / options.step(),
-            format!("RK4 with step {}", crate::math::fmt_value(options.step())),
+            format!(
+                "RK4 with step {}",
+                crate::numbers::fmt_value(options.step())
+            ),
         ),
         (Model::Full(top), Method::Forward) => {
             // A forward run stops at its runaway, a few tau in; its table is

@@ -20,10 +20,12 @@
 //! log t.
 
 use super::{Outcome, Row, RowError};
-use crate::integrate::splitting::{Composition, FreeRigidBody, RigidBodySplitting, RigidBodyState};
+use crate::integrate::splitting::Composition;
 use crate::integrate::{AdaptiveOptions, Dop853, Dopri5, Rhs, Rk4, Stats, Stepper};
 use crate::math::{Mat3, Real, State, Vec3, hat, rot_x, rot_z};
+use crate::physics::free_top::{FreeRigidBody, RigidBodyState};
 use crate::sim::Method;
+use crate::sim::split::RigidBodySplitting;
 
 /// The principal moments of the experiment.
 pub const INERTIA: [Real; 3] = [1.0, 2.0, 3.0];

@@ -17,8 +17,8 @@ use super::app::{App, Settings, WARPS};
 use super::theme;
 use super::view;
 use crate::math::{Real, Vec3};
+use crate::numbers::parse_number;
 use crate::physics::general_top::GeneralTop;
-use crate::present::parse_number;
 use crate::sim::MethodChoice;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use ratatui::Frame;
@@ -971,7 +971,7 @@ impl Learn {
         ]);
         // Ω₁ and Ω₂ are drawn: they stay within Ω⊥₀.
         let perp = spec.omega0[0].hypot(spec.omega0[1]);
-        let y = crate::present::nice_ceiling(if perp > 0.0 { perp } else { scale } * 1.05);
+        let y = crate::numbers::nice_ceiling(if perp > 0.0 { perp } else { scale } * 1.05);
         let chart = Chart::new(datasets)
             .block(Block::new().title(title))
             .legend_position(None)

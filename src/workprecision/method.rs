@@ -20,12 +20,13 @@
 use super::problem::{OmegaRhs, Problem, ProblemKind};
 use super::{KnobKind, Solution, Solver, Target};
 use crate::integrate::{
-    self, AdaptiveOptions, Composition, Dop853, Dopri5, IntegrateError, Radau5, ReducedFlow, Rhs,
-    Rk4, Splitting, Stepper,
+    self, AdaptiveOptions, Composition, Dop853, Dopri5, IntegrateError, Radau5, Rhs, Rk4,
+    Splitting, Stepper,
 };
 use crate::math::{Real, State, Vec3};
 use crate::physics::symmetric_top::{reduced_ale_rhs, reduced_closed_form_many, truncated_ale_rhs};
 use crate::sim::physical::physical_solution;
+use crate::sim::split::ReducedFlow;
 use crate::sim::{Method, MethodOptions, Model, Simulation};
 
 // ANCHOR: method_enum

@@ -9,6 +9,7 @@ mod central_field;
 mod closed_forms;
 mod euler_angles;
 mod figures;
+mod free_top;
 mod full_ale;
 mod general_full;
 mod general_reduced;
