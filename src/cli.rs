@@ -25,6 +25,7 @@ pub mod bench;
 pub mod book;
 pub mod course;
 pub mod figure;
+pub mod gate;
 pub mod learn;
 pub mod orbit;
 pub mod plot;
@@ -206,6 +207,14 @@ pub(crate) fn bad(msg: impl Into<String>) -> CliError {
 
 impl From<io::Error> for CliError {
     fn from(e: io::Error) -> Self {
+        // The gate's refusal of a non-finite number in prose is a numerical
+        // failure (exit 3), not a failed write.
+        if let Some(refusal) = e
+            .get_ref()
+            .filter(|inner| inner.is::<gate::NonFiniteText>())
+        {
+            return CliError::Stopped(refusal.to_string());
+        }
         CliError::Io(e)
     }
 }
@@ -251,57 +260,6 @@ pub(crate) fn read_text_file(
         )));
     }
     String::from_utf8(bytes).map_err(|_| bad(format!("{shown}: the {what} is not UTF-8 text")))
-}
-
-/// The path of the first number in `value` that is NaN or infinite
-/// (`samples[3].larmor[2]`), if any: every command checks its output with this
-/// before writing it, so no NaN, `inf` or JSON `null` is ever reported as a
-/// result.
-///
-/// NOTE: the output is walked as a `toml::Value`, which, unlike JSON, keeps
-/// NaN and infinities as numbers; `None` fields are simply absent there.
-pub(crate) fn first_non_finite<T: serde::Serialize>(value: &T) -> Option<String> {
-    fn walk(v: &toml::Value, path: &mut String) -> bool {
-        match v {
-            toml::Value::Float(x) => !x.is_finite(),
-            toml::Value::Array(items) => items.iter().enumerate().any(|(i, item)| {
-                let len = path.len();
-                path.push_str(&format!("[{i}]"));
-                let found = walk(item, path);
-                if !found {
-                    path.truncate(len);
-                }
-                found
-            }),
-            toml::Value::Table(table) => table.iter().any(|(k, item)| {
-                let len = path.len();
-                if !path.is_empty() {
-                    path.push('.');
-                }
-                path.push_str(k);
-                let found = walk(item, path);
-                if !found {
-                    path.truncate(len);
-                }
-                found
-            }),
-            _ => false,
-        }
-    }
-    let value = toml::Value::try_from(value).ok()?;
-    let mut path = String::new();
-    walk(&value, &mut path).then_some(path)
-}
-
-/// Refuses an output holding a NaN or an infinity: a numerical failure (exit
-/// 3) that names where, with `advice` for the command at hand.
-pub(crate) fn ensure_finite<T: serde::Serialize>(value: &T, advice: &str) -> Result<(), CliError> {
-    match first_non_finite(value) {
-        None => Ok(()),
-        Some(path) => Err(CliError::Stopped(format!(
-            "the result is not a finite number at {path}: the inputs are beyond what a double can carry through this computation; {advice}"
-        ))),
-    }
 }
 
 /// clap's report on one line: the error, the missing arguments, the possible
@@ -362,25 +320,28 @@ where
             return ExitCode::from(EXIT_BAD_INPUT);
         }
     };
+    // Every command writes its output through the gate, and only through it.
+    let mut gate = gate::Gate::new(stdout);
+    let out = &mut gate;
     let result = match cli.command {
         // No subcommand opens the live view, the program's main job.
-        None => tui::execute(tui::TuiArgs::default(), stdout),
-        Some(Command::Simulate(args)) => simulate::execute(args, stdout, stderr),
-        Some(Command::Balance(args)) => balance::execute(args, stdout),
-        Some(Command::Orbit(args)) => orbit::execute(args, stdout),
-        Some(Command::Shell(args)) => shell::execute(args, stdout, stderr),
-        Some(Command::Tui(args)) => tui::execute(args, stdout),
-        Some(Command::Plot(args)) => plot::execute(args, stdout),
-        Some(Command::Stability(args)) => stability::execute(args, stdout),
-        Some(Command::Run(args)) => run::execute(args, stdout, stderr),
-        Some(Command::Scenes(args)) => scenes::execute(args, stdout),
-        Some(Command::Bench(args)) => bench::execute(args, stdout),
-        Some(Command::Figure(args)) => figure::execute(args, stdout),
-        Some(Command::Learn(args)) => learn::execute(args, stdout),
-        Some(Command::Course(args)) => course::execute(args, stdout),
-        Some(Command::Book(args)) => book::execute(args, stdout),
+        None => tui::execute(tui::TuiArgs::default(), out),
+        Some(Command::Simulate(args)) => simulate::execute(args, out),
+        Some(Command::Balance(args)) => balance::execute(args, out),
+        Some(Command::Orbit(args)) => orbit::execute(args, out),
+        Some(Command::Shell(args)) => shell::execute(args, out, stderr),
+        Some(Command::Tui(args)) => tui::execute(args, out),
+        Some(Command::Plot(args)) => plot::execute(args, out),
+        Some(Command::Stability(args)) => stability::execute(args, out),
+        Some(Command::Run(args)) => run::execute(args, out, stderr),
+        Some(Command::Scenes(args)) => scenes::execute(args, out),
+        Some(Command::Bench(args)) => bench::execute(args, out),
+        Some(Command::Figure(args)) => figure::execute(args, out),
+        Some(Command::Learn(args)) => learn::execute(args, out),
+        Some(Command::Course(args)) => course::execute(args, out),
+        Some(Command::Book(args)) => book::execute(args, out),
     };
-    match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
+    match result.and_then(|()| gate.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,
         // A closed pipe (`spintop … | head`) is the reader's choice, not an error.
         Err(CliError::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,

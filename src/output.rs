@@ -10,10 +10,12 @@
 
 use crate::integrate::IntegrateError;
 use crate::sim::{MethodChoice, Model, SimError};
+use serde::Serialize;
 use std::io::{self, Write};
 use thiserror::Error;
 
 pub mod balance;
+pub mod check;
 pub mod orbit;
 pub mod shell;
 pub mod simulate;
@@ -27,6 +29,56 @@ pub enum Format {
     Csv,
     /// One JSON object (the documented contract).
     Json,
+}
+
+/// A run that stopped before it gave everything that was asked for.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Stop {
+    /// One line in the output itself: `# stopped: LINE` after a table or a
+    /// CSV file, `"stopped": "LINE"` in the JSON object.
+    pub line: String,
+    /// The one line the command line prints on stderr as it exits with code
+    /// 3: when, why, and what to try.
+    pub message: String,
+}
+
+/// What a command answers, as every format writes it: its `Serialize` form
+/// is the JSON contract (and what [`check::first_non_finite`] checks), its
+/// [`Output::write_text`] the table and the CSV.
+pub trait Output: Serialize {
+    /// The table or the CSV (JSON is written from the `Serialize` form).
+    fn write_text(&self, out: &mut dyn Write, format: Format) -> io::Result<()>;
+    /// Set when the run stopped before it gave all that was asked.
+    fn stopped(&self) -> Option<Stop> {
+        None
+    }
+    /// What to try when a number of the output came out NaN or infinite.
+    fn advice(&self) -> &'static str;
+}
+
+/// Write `value` in `format`, the one way every output is written: JSON
+/// whole, with `"stopped"` when the run stopped early, or the table or CSV
+/// followed by a `# stopped: …` line. It does not check the numbers: the
+/// command line's gate checks them with [`check::first_non_finite`] first.
+pub fn write<T: Output + ?Sized>(out: &mut dyn Write, value: &T, format: Format) -> io::Result<()> {
+    let stop = value.stopped();
+    match format {
+        Format::Json => {
+            let mut json = serde_json::to_value(value)?;
+            if let (Some(stop), Some(object)) = (&stop, json.as_object_mut()) {
+                object.insert("stopped".into(), stop.line.clone().into());
+            }
+            serde_json::to_writer(&mut *out, &json)?;
+            writeln!(out)
+        }
+        Format::Table | Format::Csv => {
+            value.write_text(out, format)?;
+            match &stop {
+                Some(stop) => writeln!(out, "# stopped: {}", stop.line),
+                None => Ok(()),
+            }
+        }
+    }
 }
 
 /// Why a question got no answer, in one line.

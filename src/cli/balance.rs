@@ -1,14 +1,12 @@
 //! `spintop balance`: the two balance laws of §2 for a built-in dipole
 //! trajectory, sampled at given times and averaged over a period.
 
+use super::gate::Gate;
 use super::{CliError, Format, TimeList, bad, parse_list, parse_number, parse_times};
 use crate::math::Real;
-use crate::output::balance::{
-    BalanceConfig, BalanceParameters, DipoleChoice, balance, write_output,
-};
+use crate::output::balance::{BalanceConfig, BalanceParameters, DipoleChoice, balance};
 use crate::physics::balance::{Dumbbell, PlanarLoop, PrecessingDipole};
 use clap::{Args, ValueEnum};
-use std::io::Write;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum DipoleArg {
@@ -131,13 +129,7 @@ impl BalanceArgs {
 }
 
 /// Validate, run and print `balance`.
-pub(crate) fn execute(args: BalanceArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: BalanceArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let config = args.validate()?;
-    let output = balance(&config);
-    super::ensure_finite(
-        &output,
-        "the torques grow like the third power of --rate (and of the loop's size): use a smaller --rate",
-    )?;
-    write_output(out, &output, config.format)?;
-    Ok(())
+    out.emit(&balance(&config), config.format)
 }

@@ -3,6 +3,7 @@
 //! sources are newer than the last build. The server is
 //! [`crate::server`]; this file only launches it.
 
+use super::gate::Gate;
 use super::{CliError, bad};
 use crate::server::{self, Config, Server, default_runner};
 use clap::Args;
@@ -87,7 +88,7 @@ fn build(repo: &Path, site: &Path, out: &mut impl Write) -> Result<(), CliError>
 }
 
 /// Runs `spintop book`.
-pub(crate) fn execute(args: BookArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let repo = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     if !repo.join("book/book.toml").is_file() || !repo.join("Cargo.toml").is_file() {
         return Err(bad(format!(

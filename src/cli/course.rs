@@ -3,6 +3,7 @@
 //! `cargo test -p spintop-lessons` (its build noise and backtraces hidden).
 //! The engine is [`crate::course`]; this file only prints it.
 
+use super::gate::Gate;
 use super::{CliError, bad};
 use crate::course::{self, State};
 use clap::{Args, Subcommand};
@@ -109,7 +110,7 @@ fn mark(state: &State) -> &'static str {
 }
 
 /// Runs `spintop course`.
-pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     match args.action {
         Some(CourseAction::Export { out: dir }) => return export(&dir, out),
         Some(CourseAction::Watch { course }) => return watch(course.as_ref(), out),

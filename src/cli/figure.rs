@@ -6,6 +6,7 @@
 //! cannot be written, is bad input: one line on stderr, exit code 2, and
 //! nothing on stdout.
 
+use super::gate::Gate;
 use super::{CliError, bad};
 use crate::figure::{Figure, FigureNumber};
 use crate::plot::figure::{ascii, svg};
@@ -29,7 +30,7 @@ pub struct FigureArgs {
 }
 
 /// Validate, compute, write the SVG (if asked), then print the text charts.
-pub(crate) fn execute(args: FigureArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: FigureArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let number = FigureNumber::parse(&args.number).map_err(|e| bad(e.to_string()))?;
     let figure = Figure::new(number).map_err(|e| bad(e.to_string()))?;
     // NOTE: the file is written before anything is printed, so a path that

@@ -1,13 +1,13 @@
 //! `spintop orbit`: one charge in a Coulomb or oscillator field under
 //! radiation reaction (§2, (2.5)–(2.9)), sampled at given times.
 
+use super::gate::Gate;
 use super::{CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times};
 use crate::math::Real;
-use crate::output::orbit::{MAX_BACKWARD_SPAN, OrbitRequest, orbit, write_output};
+use crate::output::orbit::{MAX_BACKWARD_SPAN, OrbitRequest, orbit};
 use crate::physics::central::{ChargeInField, Potential};
 use crate::sim::orbit::{Force, OrbitConfig};
 use clap::{Args, ValueEnum};
-use std::io::Write;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum PotentialArg {
@@ -110,13 +110,7 @@ impl OrbitArgs {
 }
 
 /// Validate, run and print `orbit`.
-pub(crate) fn execute(args: OrbitArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: OrbitArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let request = args.validate()?;
-    let output = orbit(&request)?;
-    super::ensure_finite(
-        &output,
-        "keep --tau0 and --r0 within a few decades of 1 (the radiation rate goes like tau0/r0^3)",
-    )?;
-    write_output(out, &output, request.format)?;
-    Ok(())
+    out.emit(&orbit(&request)?, request.format)
 }

@@ -5,6 +5,7 @@
 //! in Braille dots, with the same parameters, initial orientation (lab z along
 //! L₀) and y ranges as the live view.
 
+use super::gate::Gate;
 use super::{CliError, bad, parse_number, parse_vec3};
 use crate::math::{Real, Vec3};
 use crate::numbers::{fmt_axis, nice_ceiling};
@@ -235,7 +236,7 @@ fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError
 }
 
 /// Validate, run and print `plot`.
-pub(crate) fn execute(args: PlotArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: PlotArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let config = args.validate()?;
     write_plots(&config, out)
 }

@@ -6,9 +6,9 @@
 //! them; they are compiled into the binary, so the names work from any
 //! directory). A file on disk wins over a catalogue name.
 
+use super::gate::Gate;
 use super::{CliError, Format, bad};
 use crate::scene::answer::answer;
-use crate::scene::write::write_report;
 use crate::scene::{Kind, Scene, catalogue};
 use clap::Args;
 use std::io::Write;
@@ -51,7 +51,7 @@ pub fn load(arg: &str) -> Result<Scene, CliError> {
 /// Load, run and print a scene.
 pub(crate) fn execute(
     args: RunArgs,
-    out: &mut impl Write,
+    out: &mut Gate<'_>,
     err: &mut impl Write,
 ) -> Result<(), CliError> {
     let scene = load(&args.scene)?;
@@ -68,6 +68,5 @@ pub(crate) fn execute(
             writeln!(err, "spintop: warning: {w}")?;
         }
     }
-    write_report(out, &report, args.format)?;
-    Ok(())
+    out.emit(&report, args.format)
 }

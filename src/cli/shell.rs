@@ -2,9 +2,10 @@
 //! neutral delay equation solved by the method of steps and sampled at given
 //! times.
 
+use super::gate::Gate;
 use super::{CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times};
 use crate::math::Real;
-use crate::output::shell::{MAX_STEPS, ShellRequest, instability_warning, shell, write_output};
+use crate::output::shell::{MAX_STEPS, ShellRequest, instability_warning, shell};
 use crate::physics::shell::ShellModel;
 use crate::sim::shell::default_steps_per_delay;
 use clap::Args;
@@ -65,7 +66,7 @@ impl ShellArgs {
 /// Validate, warn when unstable, run and print `shell`.
 pub(crate) fn execute(
     args: ShellArgs,
-    out: &mut impl Write,
+    out: &mut Gate<'_>,
     err: &mut impl Write,
 ) -> Result<(), CliError> {
     let request = args.validate()?;
@@ -75,11 +76,5 @@ pub(crate) fn execute(
         writeln!(err, "{}", instability_warning(&model, rate))?;
         err.flush()?;
     }
-    let output = shell(&request)?;
-    super::ensure_finite(
-        &output,
-        "use a shell radius and times within a few decades of 1",
-    )?;
-    write_output(out, &output, request.format)?;
-    Ok(())
+    out.emit(&shell(&request)?, request.format)
 }

@@ -4,6 +4,7 @@
 //! terminal (pointing at the text commands instead), and always restores the
 //! terminal: on quit, on error, and on panic (`ratatui::init` installs a hook).
 
+use super::gate::Gate;
 use super::{CliError, bad, parse_number, parse_vec3};
 use crate::math::Real;
 use crate::sim::MethodChoice;
@@ -66,7 +67,7 @@ impl Drop for Restore {
 }
 
 /// Validate, check for a terminal, run the live view, restore the terminal.
-pub(crate) fn execute(args: TuiArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: TuiArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let (settings, note) = args.settings()?;
     let limit = match args.bench {
         Some(s) if !(s > 0.0 && s <= 3600.0) => {

@@ -1,7 +1,7 @@
 //! `balance`: the two balance laws of §2 for a built-in dipole trajectory,
 //! sampled at given times and averaged over a period.
 
-use super::Format;
+use super::{Format, Output};
 use crate::math::{Real, Vec3};
 use crate::numbers::table;
 use crate::physics::balance::{
@@ -181,100 +181,103 @@ pub fn balance(config: &BalanceConfig) -> BalanceOutput {
 
 const VECTORS: [&str; 5] = ["dipole", "larmor", "torque", "schott", "schott_rate"];
 
-/// Write the output in the requested format.
-pub fn write_output(
-    out: &mut impl Write,
-    output: &BalanceOutput,
-    format: Format,
-) -> io::Result<()> {
-    match format {
-        Format::Json => {
-            serde_json::to_writer(&mut *out, output)?;
-            writeln!(out)
-        }
-        Format::Csv => {
-            let mut head = vec!["t".to_string()];
-            for v in VECTORS {
-                head.extend(["x", "y", "z"].map(|c| format!("{v}_{c}")));
+impl Output for BalanceOutput {
+    /// The table or the CSV (JSON through [`super::write`]).
+    fn write_text(&self, out: &mut dyn Write, format: Format) -> io::Result<()> {
+        let output = self;
+        match format {
+            Format::Json => super::write(out, self, format),
+            Format::Csv => {
+                let mut head = vec!["t".to_string()];
+                for v in VECTORS {
+                    head.extend(["x", "y", "z"].map(|c| format!("{v}_{c}")));
+                }
+                head.extend(
+                    ["larmor_axial", "torque_axial", "schott_rate_axial"].map(String::from),
+                );
+                writeln!(out, "{}", head.join(","))?;
+                let row = |t: String, vs: [[Real; 3]; 5], ax: [Real; 3]| {
+                    let mut cells = vec![t];
+                    cells.extend(vs.iter().flatten().map(|x| x.to_string()));
+                    cells.extend(ax.iter().map(|x| x.to_string()));
+                    cells.join(",")
+                };
+                for s in &output.samples {
+                    let vs = [s.dipole, s.larmor, s.torque, s.schott, s.schott_rate];
+                    let ax = [s.larmor_axial, s.torque_axial, s.schott_rate_axial];
+                    writeln!(out, "{}", row(s.t.to_string(), vs, ax))?;
+                }
+                // NOTE: the period average is the last row, its t cell reads `average`.
+                let a = &output.period_average;
+                let vs = [a.dipole, a.larmor, a.torque, a.schott, a.schott_rate];
+                let ax = [a.larmor_axial, a.torque_axial, a.schott_rate_axial];
+                writeln!(out, "{}", row("average".into(), vs, ax))
             }
-            head.extend(["larmor_axial", "torque_axial", "schott_rate_axial"].map(String::from));
-            writeln!(out, "{}", head.join(","))?;
-            let row = |t: String, vs: [[Real; 3]; 5], ax: [Real; 3]| {
-                let mut cells = vec![t];
-                cells.extend(vs.iter().flatten().map(|x| x.to_string()));
-                cells.extend(ax.iter().map(|x| x.to_string()));
-                cells.join(",")
-            };
-            for s in &output.samples {
-                let vs = [s.dipole, s.larmor, s.torque, s.schott, s.schott_rate];
-                let ax = [s.larmor_axial, s.torque_axial, s.schott_rate_axial];
-                writeln!(out, "{}", row(s.t.to_string(), vs, ax))?;
-            }
-            // NOTE: the period average is the last row, its t cell reads `average`.
-            let a = &output.period_average;
-            let vs = [a.dipole, a.larmor, a.torque, a.schott, a.schott_rate];
-            let ax = [a.larmor_axial, a.torque_axial, a.schott_rate_axial];
-            writeln!(out, "{}", row("average".into(), vs, ax))
-        }
-        Format::Table => {
-            writeln!(
-                out,
-                "# spintop balance: {} dipole; {}; period T = {}",
-                output.dipole,
-                describe(&output.parameters),
-                table(output.period)
-            )?;
-            writeln!(
-                out,
-                "# (2.1) larmor = -d' x d'', (2.2) torque = d x d''', (2.4) schott = d x d''; \
-                 torque = larmor + schott_rate (2.3); axial = component along d; kappa = 1"
-            )?;
-            let block = |out: &mut dyn Write,
-                         title: String,
-                         vs: [[Real; 3]; 5],
-                         ax: [Option<Real>; 5]|
-             -> io::Result<()> {
-                writeln!(out, "{title}")?;
-                for ((name, v), a) in VECTORS.iter().zip(vs).zip(ax) {
-                    let axial = a.map_or(String::new(), |a| format!("   axial {:>14}", table(a)));
-                    writeln!(
+            Format::Table => {
+                writeln!(
+                    out,
+                    "# spintop balance: {} dipole; {}; period T = {}",
+                    output.dipole,
+                    describe(&output.parameters),
+                    table(output.period)
+                )?;
+                writeln!(
+                    out,
+                    "# (2.1) larmor = -d' x d'', (2.2) torque = d x d''', (2.4) schott = d x d''; \
+                     torque = larmor + schott_rate (2.3); axial = component along d; kappa = 1"
+                )?;
+                let block = |out: &mut dyn Write,
+                             title: String,
+                             vs: [[Real; 3]; 5],
+                             ax: [Option<Real>; 5]|
+                 -> io::Result<()> {
+                    writeln!(out, "{title}")?;
+                    for ((name, v), a) in VECTORS.iter().zip(vs).zip(ax) {
+                        let axial =
+                            a.map_or(String::new(), |a| format!("   axial {:>14}", table(a)));
+                        writeln!(
+                            out,
+                            "  {name:<12}{:>14}{:>14}{:>14}{axial}",
+                            table(v[0]),
+                            table(v[1]),
+                            table(v[2])
+                        )?;
+                    }
+                    Ok(())
+                };
+                for s in &output.samples {
+                    block(
                         out,
-                        "  {name:<12}{:>14}{:>14}{:>14}{axial}",
-                        table(v[0]),
-                        table(v[1]),
-                        table(v[2])
+                        format!("t = {}", table(s.t)),
+                        [s.dipole, s.larmor, s.torque, s.schott, s.schott_rate],
+                        [
+                            None,
+                            Some(s.larmor_axial),
+                            Some(s.torque_axial),
+                            None,
+                            Some(s.schott_rate_axial),
+                        ],
                     )?;
                 }
-                Ok(())
-            };
-            for s in &output.samples {
+                let a = &output.period_average;
                 block(
                     out,
-                    format!("t = {}", table(s.t)),
-                    [s.dipole, s.larmor, s.torque, s.schott, s.schott_rate],
+                    format!("average over one period (T = {})", table(output.period)),
+                    [a.dipole, a.larmor, a.torque, a.schott, a.schott_rate],
                     [
                         None,
-                        Some(s.larmor_axial),
-                        Some(s.torque_axial),
+                        Some(a.larmor_axial),
+                        Some(a.torque_axial),
                         None,
-                        Some(s.schott_rate_axial),
+                        Some(a.schott_rate_axial),
                     ],
-                )?;
+                )
             }
-            let a = &output.period_average;
-            block(
-                out,
-                format!("average over one period (T = {})", table(output.period)),
-                [a.dipole, a.larmor, a.torque, a.schott, a.schott_rate],
-                [
-                    None,
-                    Some(a.larmor_axial),
-                    Some(a.torque_axial),
-                    None,
-                    Some(a.schott_rate_axial),
-                ],
-            )
         }
+    }
+
+    fn advice(&self) -> &'static str {
+        "the torques grow like the third power of --rate (and of the loop's size): use a smaller --rate"
     }
 }
 

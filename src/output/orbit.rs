@@ -1,10 +1,10 @@
 //! `orbit`: one charge in a Coulomb or oscillator field under radiation
 //! reaction (§2, (2.5)–(2.9)), sampled at given times.
 
-use super::{Failure, Format, write_aligned};
+use super::{Failure, Format, Output, Stop, write_aligned};
 use crate::integrate::Stats;
 use crate::math::Real;
-use crate::numbers::table;
+use crate::numbers::{fmt_time, table};
 use crate::physics::central::{
     Potential, abraham_lorentz_oscillator_roots, landau_lifshitz_oscillator_root,
 };
@@ -169,111 +169,137 @@ pub fn orbit(request: &OrbitRequest) -> Result<OrbitOutput, Failure> {
     })
 }
 
-/// Write the output in the requested format.
-pub fn write_output(out: &mut impl Write, output: &OrbitOutput, format: Format) -> io::Result<()> {
-    match format {
-        Format::Json => {
-            serde_json::to_writer(&mut *out, output)?;
-            writeln!(out)
-        }
-        Format::Csv => {
-            writeln!(out, "t,x,y,vx,vy,r,l,energy")?;
-            for s in &output.samples {
-                let row = [
-                    s.t,
-                    s.position[0],
-                    s.position[1],
-                    s.velocity[0],
-                    s.velocity[1],
-                    s.r,
-                    s.l,
-                    s.energy,
-                ];
-                let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
-                writeln!(out, "{}", cells.join(","))?;
-            }
-            Ok(())
-        }
-        Format::Table => {
-            let p = &output.parameters;
-            writeln!(
-                out,
-                "# spintop orbit: {} potential, force {} ({}); tau0 = {}, r0 = {}, e = {}, m = k = 1",
-                output.potential,
-                output.force,
-                output.equations,
-                crate::numbers::fmt_param(p.tau0),
-                crate::numbers::fmt_param(p.r0),
-                crate::numbers::fmt_param(p.eccentricity)
-            )?;
-            writeln!(
-                out,
-                "# method: {}; work: {} rhs evaluations, {} steps, {} rejected",
-                output.method, output.stats.rhs_evals, output.stats.steps, output.stats.rejected
-            )?;
-            if let Some(r) = &output.roots {
-                writeln!(
-                    out,
-                    "# roots: Abraham-Lorentz {} + {} i (runaway {}), Landau-Lifshitz {} + {} i",
-                    table(r.abraham_lorentz[0]),
-                    table(r.abraham_lorentz[1]),
-                    table(r.runaway),
-                    table(r.landau_lifshitz[0]),
-                    table(r.landau_lifshitz[1])
-                )?;
-            }
-            if let Some(sh) = &output.shooting {
-                writeln!(
-                    out,
-                    "# backward shooting: {} iterations, mismatch {:.1e} at t = 0",
-                    sh.iterations, sh.mismatch
-                )?;
-            }
-            let head = ["t", "x", "y", "vx", "vy", "r", "L", "energy"];
-            write_aligned(out, head, 14)?;
-            for s in &output.samples {
-                let row = [
-                    s.t,
-                    s.position[0],
-                    s.position[1],
-                    s.velocity[0],
-                    s.velocity[1],
-                    s.r,
-                    s.l,
-                    s.energy,
-                ];
-                write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
-            }
-            if let Some(tc) = output.collapse_time {
-                writeln!(
-                    out,
-                    "# collapse time (orbit-averaged closed form): {}",
-                    table(tc)
-                )?;
-            }
-            if let Some(crossings) = &output.first_crossing {
-                for c in crossings {
-                    let measured = c.t.map_or("not reached within the run".to_string(), |t| {
-                        format!("first reached at t = {}", table(t))
-                    });
-                    let averaged = c.averaged.map_or(String::new(), |a| {
-                        format!(", averaged closed form {}", table(a))
-                    });
-                    writeln!(out, "# r = {}: {measured}{averaged}", c.r)?;
+impl Output for OrbitOutput {
+    /// The table or the CSV (JSON through [`super::write`]).
+    fn write_text(&self, out: &mut dyn Write, format: Format) -> io::Result<()> {
+        let output = self;
+        match format {
+            Format::Json => super::write(out, self, format),
+            Format::Csv => {
+                writeln!(out, "t,x,y,vx,vy,r,l,energy")?;
+                for s in &output.samples {
+                    let row = [
+                        s.t,
+                        s.position[0],
+                        s.position[1],
+                        s.velocity[0],
+                        s.velocity[1],
+                        s.r,
+                        s.l,
+                        s.energy,
+                    ];
+                    let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
+                    writeln!(out, "{}", cells.join(","))?;
                 }
+                Ok(())
             }
-            if let Some(r) = &output.runaway {
-                let rate = r.growth_rate.map_or("unmeasured".to_string(), table);
+            Format::Table => {
+                let p = &output.parameters;
                 writeln!(
                     out,
-                    "# RUNAWAY at t = {}: |a - F(r)| passed {} |F(r0)|, growing at rate {rate} (predicted {}); {} later sample(s) omitted",
-                    table(r.t),
-                    r.threshold,
-                    table(r.predicted_rate),
-                    output.samples_omitted.unwrap_or(0)
+                    "# spintop orbit: {} potential, force {} ({}); tau0 = {}, r0 = {}, e = {}, m = k = 1",
+                    output.potential,
+                    output.force,
+                    output.equations,
+                    crate::numbers::fmt_param(p.tau0),
+                    crate::numbers::fmt_param(p.r0),
+                    crate::numbers::fmt_param(p.eccentricity)
                 )?;
+                writeln!(
+                    out,
+                    "# method: {}; work: {} rhs evaluations, {} steps, {} rejected",
+                    output.method,
+                    output.stats.rhs_evals,
+                    output.stats.steps,
+                    output.stats.rejected
+                )?;
+                if let Some(r) = &output.roots {
+                    writeln!(
+                        out,
+                        "# roots: Abraham-Lorentz {} + {} i (runaway {}), Landau-Lifshitz {} + {} i",
+                        table(r.abraham_lorentz[0]),
+                        table(r.abraham_lorentz[1]),
+                        table(r.runaway),
+                        table(r.landau_lifshitz[0]),
+                        table(r.landau_lifshitz[1])
+                    )?;
+                }
+                if let Some(sh) = &output.shooting {
+                    writeln!(
+                        out,
+                        "# backward shooting: {} iterations, mismatch {:.1e} at t = 0",
+                        sh.iterations, sh.mismatch
+                    )?;
+                }
+                let head = ["t", "x", "y", "vx", "vy", "r", "L", "energy"];
+                write_aligned(out, head, 14)?;
+                for s in &output.samples {
+                    let row = [
+                        s.t,
+                        s.position[0],
+                        s.position[1],
+                        s.velocity[0],
+                        s.velocity[1],
+                        s.r,
+                        s.l,
+                        s.energy,
+                    ];
+                    write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
+                }
+                if let Some(tc) = output.collapse_time {
+                    writeln!(
+                        out,
+                        "# collapse time (orbit-averaged closed form): {}",
+                        table(tc)
+                    )?;
+                }
+                if let Some(crossings) = &output.first_crossing {
+                    for c in crossings {
+                        let measured = c.t.map_or("not reached within the run".to_string(), |t| {
+                            format!("first reached at t = {}", table(t))
+                        });
+                        let averaged = c.averaged.map_or(String::new(), |a| {
+                            format!(", averaged closed form {}", table(a))
+                        });
+                        writeln!(out, "# r = {}: {measured}{averaged}", c.r)?;
+                    }
+                }
+                if let Some(r) = &output.runaway {
+                    let rate = r.growth_rate.map_or("unmeasured".to_string(), table);
+                    writeln!(
+                        out,
+                        "# RUNAWAY at t = {}: |a - F(r)| passed {} |F(r0)|, growing at rate {rate} (predicted {}); {} later sample(s) omitted",
+                        table(r.t),
+                        r.threshold,
+                        table(r.predicted_rate),
+                        output.samples_omitted.unwrap_or(0)
+                    )?;
+                }
+                Ok(())
             }
-            Ok(())
         }
+    }
+
+    fn advice(&self) -> &'static str {
+        "keep --tau0 and --r0 within a few decades of 1 (the radiation rate goes like tau0/r0^3)"
+    }
+
+    fn stopped(&self) -> Option<Stop> {
+        let r = self.runaway.as_ref()?;
+        let omitted = self.samples_omitted.unwrap_or(0);
+        Some(Stop {
+            line: format!(
+                "runaway at t = {}: |a - F(r)| passed {} |F(r0)|; {omitted} later sample(s) omitted",
+                fmt_time(r.t),
+                r.threshold
+            ),
+            message: format!(
+                "runaway at t = {}: (2.5) integrated forward left the physical solution, growing at rate {} (predicted {}); {omitted} of {} samples omitted; use --force al (its physical solution) or --force ll",
+                fmt_time(r.t),
+                r.growth_rate.map_or("unmeasured".to_string(), table),
+                table(r.predicted_rate),
+                self.samples.len() + omitted
+            ),
+        })
     }
 }

@@ -1,7 +1,7 @@
 //! `shell`: the charge as a small shell (Appendix, (A.1)–(A.3)), a neutral
 //! delay equation solved by the method of steps and sampled at given times.
 
-use super::{Failure, Format, write_aligned};
+use super::{Failure, Format, Output, write_aligned};
 use crate::math::Real;
 use crate::numbers::table;
 use crate::physics::central::abraham_lorentz_oscillator_roots;
@@ -83,98 +83,102 @@ pub fn instability_warning(model: &ShellModel, rate: Real) -> String {
     )
 }
 
-/// Write the output in the requested format.
-pub fn write_output(out: &mut impl Write, output: &ShellOutput, format: Format) -> io::Result<()> {
-    let mag = |v: [Real; 2]| v[0].hypot(v[1]);
-    match format {
-        Format::Json => {
-            serde_json::to_writer(&mut *out, output)?;
-            writeln!(out)
-        }
-        Format::Csv => {
-            writeln!(
-                out,
-                "t,x,y,vx,vy,l,j,l_minus_j,l_schott,dx_al,dy_al,l_al,j_change,flux_exact,flux_paper"
-            )?;
-            for s in &output.samples {
-                let row = [
-                    s.t,
-                    s.z[0],
-                    s.z[1],
-                    s.z_dot[0],
-                    s.z_dot[1],
-                    s.l,
-                    s.j,
-                    s.l_minus_j,
-                    s.l_schott,
-                    s.z_minus_z_al[0],
-                    s.z_minus_z_al[1],
-                    s.l_al,
-                    s.j_change,
-                    s.flux_exact,
-                    s.flux_paper,
-                ];
-                let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
-                writeln!(out, "{}", cells.join(","))?;
-            }
-            Ok(())
-        }
-        Format::Table => {
-            writeln!(
-                out,
-                "# spintop shell (Eqs. (A.1)-(A.3)): tau0 = {}, delay = {}, m0 = {}, m_em = {}, m = k = 1",
-                crate::numbers::fmt_param(output.tau0),
-                crate::numbers::fmt_param(output.delay),
-                table(output.m0),
-                table(output.m_em)
-            )?;
-            let growth = output
-                .growth_rate
-                .map_or(String::new(), |g| format!(", growth rate {}", table(g)));
-            writeln!(
-                out,
-                "# regime: {}{growth}; chain rate ln(m_em/|m0|)/delay = {}",
-                output.regime,
-                table(output.chain_rate)
-            )?;
-            writeln!(
-                out,
-                "# roots: near Abraham-Lorentz {} + {} i; Abraham-Lorentz {} + {} i; {} RK4 steps per delay",
-                table(output.root_near_al[0]),
-                table(output.root_near_al[1]),
-                table(output.root_al[0]),
-                table(output.root_al[1]),
-                output.steps_per_delay
-            )?;
-            let head = ["t", "x", "y", "L", "J", "L-J", "L_S", "|Z-Z_AL|", "L-L_AL"];
-            write_aligned(out, head, 14)?;
-            for s in &output.samples {
-                let row = [
-                    s.t,
-                    s.z[0],
-                    s.z[1],
-                    s.l,
-                    s.j,
-                    s.l_minus_j,
-                    s.l_schott,
-                    mag(s.z_minus_z_al),
-                    s.l - s.l_al,
-                ];
-                write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
-            }
-            if let Some(last) = output.samples.last() {
+impl Output for ShellOutput {
+    /// The table or the CSV (JSON through [`super::write`]).
+    fn write_text(&self, out: &mut dyn Write, format: Format) -> io::Result<()> {
+        let output = self;
+        let mag = |v: [Real; 2]| v[0].hypot(v[1]);
+        match format {
+            Format::Json => super::write(out, self, format),
+            Format::Csv => {
                 writeln!(
                     out,
-                    "# at t = {}: J - J(0) = {}; exact flux integral {} (difference {:.1e}); paper's (A.2) {}",
-                    table(last.t),
-                    table(last.j_change),
-                    table(last.flux_exact),
-                    last.j_change - last.flux_exact,
-                    table(last.flux_paper)
+                    "t,x,y,vx,vy,l,j,l_minus_j,l_schott,dx_al,dy_al,l_al,j_change,flux_exact,flux_paper"
                 )?;
+                for s in &output.samples {
+                    let row = [
+                        s.t,
+                        s.z[0],
+                        s.z[1],
+                        s.z_dot[0],
+                        s.z_dot[1],
+                        s.l,
+                        s.j,
+                        s.l_minus_j,
+                        s.l_schott,
+                        s.z_minus_z_al[0],
+                        s.z_minus_z_al[1],
+                        s.l_al,
+                        s.j_change,
+                        s.flux_exact,
+                        s.flux_paper,
+                    ];
+                    let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
+                    writeln!(out, "{}", cells.join(","))?;
+                }
+                Ok(())
             }
-            Ok(())
+            Format::Table => {
+                writeln!(
+                    out,
+                    "# spintop shell (Eqs. (A.1)-(A.3)): tau0 = {}, delay = {}, m0 = {}, m_em = {}, m = k = 1",
+                    crate::numbers::fmt_param(output.tau0),
+                    crate::numbers::fmt_param(output.delay),
+                    table(output.m0),
+                    table(output.m_em)
+                )?;
+                let growth = output
+                    .growth_rate
+                    .map_or(String::new(), |g| format!(", growth rate {}", table(g)));
+                writeln!(
+                    out,
+                    "# regime: {}{growth}; chain rate ln(m_em/|m0|)/delay = {}",
+                    output.regime,
+                    table(output.chain_rate)
+                )?;
+                writeln!(
+                    out,
+                    "# roots: near Abraham-Lorentz {} + {} i; Abraham-Lorentz {} + {} i; {} RK4 steps per delay",
+                    table(output.root_near_al[0]),
+                    table(output.root_near_al[1]),
+                    table(output.root_al[0]),
+                    table(output.root_al[1]),
+                    output.steps_per_delay
+                )?;
+                let head = ["t", "x", "y", "L", "J", "L-J", "L_S", "|Z-Z_AL|", "L-L_AL"];
+                write_aligned(out, head, 14)?;
+                for s in &output.samples {
+                    let row = [
+                        s.t,
+                        s.z[0],
+                        s.z[1],
+                        s.l,
+                        s.j,
+                        s.l_minus_j,
+                        s.l_schott,
+                        mag(s.z_minus_z_al),
+                        s.l - s.l_al,
+                    ];
+                    write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
+                }
+                if let Some(last) = output.samples.last() {
+                    writeln!(
+                        out,
+                        "# at t = {}: J - J(0) = {}; exact flux integral {} (difference {:.1e}); paper's (A.2) {}",
+                        table(last.t),
+                        table(last.j_change),
+                        table(last.flux_exact),
+                        last.j_change - last.flux_exact,
+                        table(last.flux_paper)
+                    )?;
+                }
+                Ok(())
+            }
         }
+    }
+
+    fn advice(&self) -> &'static str {
+        "use a shell radius and times within a few decades of 1"
     }
 }
 

@@ -1,9 +1,9 @@
 //! `simulate`: one model of the top, sampled at given times, as a table, CSV
 //! or the JSON contract.
 
-use super::{Failure, Format, sim_failure, write_aligned};
+use super::{Failure, Format, Output, Stop, sim_failure, write_aligned};
 use crate::math::{Real, Vec3};
-use crate::numbers::table;
+use crate::numbers::{fmt_time, table};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
 use serde::Serialize;
 use std::io::{self, Write};
@@ -160,131 +160,143 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
     })
 }
 
-/// Write the output in the requested format.
-pub fn write_output(
-    out: &mut impl Write,
-    output: &SimulateOutput,
-    format: Format,
-) -> io::Result<()> {
-    match format {
-        Format::Json => {
-            serde_json::to_writer(&mut *out, output)?;
-            writeln!(out)
-        }
-        Format::Csv => {
-            write!(
-                out,
-                "t,omega1,omega2,omega3,omega_perp,energy,l_lab_x,l_lab_y,l_lab_z,tilt,phi,theta,psi"
-            )?;
-            for i in 1..=3 {
-                for j in 1..=3 {
-                    write!(out, ",r{i}{j}")?;
+impl Output for SimulateOutput {
+    /// The table or the CSV (JSON through [`super::write`]).
+    fn write_text(&self, out: &mut dyn Write, format: Format) -> io::Result<()> {
+        let output = self;
+        match format {
+            Format::Json => super::write(out, self, format),
+            Format::Csv => {
+                write!(
+                    out,
+                    "t,omega1,omega2,omega3,omega_perp,energy,l_lab_x,l_lab_y,l_lab_z,tilt,phi,theta,psi"
+                )?;
+                for i in 1..=3 {
+                    for j in 1..=3 {
+                        write!(out, ",r{i}{j}")?;
+                    }
                 }
+                writeln!(out)?;
+                for s in &output.samples {
+                    let mut row = vec![s.t];
+                    row.extend(s.omega);
+                    row.extend([s.omega_perp, s.energy]);
+                    row.extend(s.l_lab);
+                    row.push(s.tilt);
+                    row.extend(s.euler);
+                    row.extend(s.rotation.iter().flatten());
+                    let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
+                    writeln!(out, "{}", cells.join(","))?;
+                }
+                Ok(())
             }
-            writeln!(out)?;
-            for s in &output.samples {
-                let mut row = vec![s.t];
-                row.extend(s.omega);
-                row.extend([s.omega_perp, s.energy]);
-                row.extend(s.l_lab);
-                row.push(s.tilt);
-                row.extend(s.euler);
-                row.extend(s.rotation.iter().flatten());
-                let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
-                writeln!(out, "{}", cells.join(","))?;
-            }
-            if let Some(r) = &output.runaway {
-                writeln!(
-                    out,
-                    "# stopped: runaway at t = {}, growth rate {:.4}; {} later sample(s) omitted",
-                    crate::numbers::fmt_time(r.t),
-                    r.growth_rate,
-                    output.samples_omitted.unwrap_or(0)
-                )?;
-            }
-            Ok(())
-        }
-        Format::Table => {
-            use crate::numbers::fmt_param as fp;
-            let p = &output.parameters;
-            let params = match (p.ratio, p.dipole) {
-                (Some(ratio), _) => format!("I3/I1 = {}, tau = 1", fp(ratio)),
-                (None, Some(d)) => format!(
-                    "I = ({}, {}, {}), d = ({}, {}, {}), kappa = 1",
-                    fp(p.inertia[0]),
-                    fp(p.inertia[1]),
-                    fp(p.inertia[2]),
-                    fp(d[0]),
-                    fp(d[1]),
-                    fp(d[2])
-                ),
-                (None, None) => String::new(),
-            };
-            writeln!(
-                out,
-                "# spintop simulate: {} model; {params}; omega0 = ({}, {}, {})",
-                output.model,
-                fp(p.omega0[0]),
-                fp(p.omega0[1]),
-                fp(p.omega0[2])
-            )?;
-            writeln!(
-                out,
-                "# method: {} ({})",
-                output.method, output.method_detail
-            )?;
-            writeln!(
-                out,
-                "# work: {} rhs evaluations, {} steps, {} rejected",
-                output.stats.rhs_evals, output.stats.steps, output.stats.rejected
-            )?;
-            if let Some(r) = &output.runaway {
-                writeln!(
-                    out,
-                    "# runaway at t = {:.3}, growth rate {:.4}: {} later sample(s) omitted; {}",
-                    r.t,
-                    r.growth_rate,
-                    output.samples_omitted.unwrap_or(0),
-                    r.advice
-                )?;
-            }
-            let head = [
-                "t",
-                "omega1",
-                "omega2",
-                "omega3",
-                "omega_perp",
-                "energy",
-                "|L|",
-                "tilt",
-                "phi",
-                "theta",
-                "psi",
-            ];
-            write_aligned(out, head, 14)?;
-            for s in &output.samples {
-                // Scaled, so that |L| does not overflow where its components do not.
-                let l = {
-                    let v = Vec3::from(s.l_lab);
-                    let m = v.amax();
-                    if m > 0.0 { m * (v / m).norm() } else { 0.0 }
+            Format::Table => {
+                use crate::numbers::fmt_param as fp;
+                let p = &output.parameters;
+                let params = match (p.ratio, p.dipole) {
+                    (Some(ratio), _) => format!("I3/I1 = {}, tau = 1", fp(ratio)),
+                    (None, Some(d)) => format!(
+                        "I = ({}, {}, {}), d = ({}, {}, {}), kappa = 1",
+                        fp(p.inertia[0]),
+                        fp(p.inertia[1]),
+                        fp(p.inertia[2]),
+                        fp(d[0]),
+                        fp(d[1]),
+                        fp(d[2])
+                    ),
+                    (None, None) => String::new(),
                 };
-                let row = [
-                    s.t,
-                    s.omega[0],
-                    s.omega[1],
-                    s.omega[2],
-                    s.omega_perp,
-                    s.energy,
-                    l,
-                    s.tilt,
-                    s.euler[0],
-                    s.euler[1],
-                    s.euler[2],
+                writeln!(
+                    out,
+                    "# spintop simulate: {} model; {params}; omega0 = ({}, {}, {})",
+                    output.model,
+                    fp(p.omega0[0]),
+                    fp(p.omega0[1]),
+                    fp(p.omega0[2])
+                )?;
+                writeln!(
+                    out,
+                    "# method: {} ({})",
+                    output.method, output.method_detail
+                )?;
+                writeln!(
+                    out,
+                    "# work: {} rhs evaluations, {} steps, {} rejected",
+                    output.stats.rhs_evals, output.stats.steps, output.stats.rejected
+                )?;
+                if let Some(r) = &output.runaway {
+                    writeln!(
+                        out,
+                        "# runaway at t = {:.3}, growth rate {:.4}: {} later sample(s) omitted; {}",
+                        r.t,
+                        r.growth_rate,
+                        output.samples_omitted.unwrap_or(0),
+                        r.advice
+                    )?;
+                }
+                let head = [
+                    "t",
+                    "omega1",
+                    "omega2",
+                    "omega3",
+                    "omega_perp",
+                    "energy",
+                    "|L|",
+                    "tilt",
+                    "phi",
+                    "theta",
+                    "psi",
                 ];
-                write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
+                write_aligned(out, head, 14)?;
+                for s in &output.samples {
+                    // Scaled, so that |L| does not overflow where its components do not.
+                    let l = {
+                        let v = Vec3::from(s.l_lab);
+                        let m = v.amax();
+                        if m > 0.0 { m * (v / m).norm() } else { 0.0 }
+                    };
+                    let row = [
+                        s.t,
+                        s.omega[0],
+                        s.omega[1],
+                        s.omega[2],
+                        s.omega_perp,
+                        s.energy,
+                        l,
+                        s.tilt,
+                        s.euler[0],
+                        s.euler[1],
+                        s.euler[2],
+                    ];
+                    write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
+                }
+                Ok(())
             }
-            Ok(())
         }
+    }
+
+    fn advice(&self) -> &'static str {
+        "use smaller rates or moments (in units of 1/tau and I1)"
+    }
+
+    fn stopped(&self) -> Option<Stop> {
+        let r = self.runaway.as_ref()?;
+        let omitted = self.samples_omitted.unwrap_or(0);
+        Some(Stop {
+            line: format!(
+                "runaway at t = {}, growth rate {:.4}; {omitted} later sample(s) omitted",
+                fmt_time(r.t),
+                r.growth_rate
+            ),
+            message: format!(
+                "runaway at t = {:.3}, growing at rate {:.4} per {} (an e-folding time of {:.3}): {omitted} of {} samples omitted; {}",
+                r.t,
+                r.growth_rate,
+                r.unit,
+                1.0 / r.growth_rate,
+                self.samples.len() + omitted,
+                r.advice
+            ),
+        })
     }
 }

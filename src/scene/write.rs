@@ -7,7 +7,7 @@ use super::answer::{
 };
 use crate::math::{Real, Vec3};
 use crate::numbers::{cell, csv, short, significant, table};
-use crate::output::{Format, balance, orbit, shell, simulate, write_aligned};
+use crate::output::{Format, Output, Stop, write_aligned};
 use crate::physics::particle::RigidShape;
 use std::io::{self, Write};
 
@@ -24,7 +24,7 @@ fn when(what: &str, span: &Option<Span>, unit: &str) -> String {
     }
 }
 
-fn write_physical(out: &mut impl Write, p: &PhysicalReport) -> io::Result<()> {
+fn write_physical(out: &mut dyn Write, p: &PhysicalReport) -> io::Result<()> {
     let size = match p.length_nm {
         Some(l) => format!("radius {} nm, length {} nm", short(p.radius_nm), short(l)),
         None => format!("radius {} nm", short(p.radius_nm)),
@@ -84,7 +84,7 @@ fn write_physical(out: &mut impl Write, p: &PhysicalReport) -> io::Result<()> {
 }
 
 fn write_omega_only(
-    out: &mut impl Write,
+    out: &mut dyn Write,
     o: &OmegaOnlyOutput,
     units: Option<&PhysicalReport>,
     format: Format,
@@ -176,14 +176,14 @@ fn write_omega_only(
 }
 
 /// One CSV line of numbers, lossless.
-fn write_csv_row(out: &mut impl Write, row: &[Real]) -> io::Result<()> {
+fn write_csv_row(out: &mut dyn Write, row: &[Real]) -> io::Result<()> {
     let cells: Vec<String> = row.iter().map(|x| csv(*x)).collect();
     writeln!(out, "{}", cells.join(","))
 }
 
 /// The table's `# MODEL model; method: …` line.
 fn write_method_line(
-    out: &mut impl Write,
+    out: &mut dyn Write,
     model: &str,
     method: &str,
     detail: &str,
@@ -191,7 +191,7 @@ fn write_method_line(
     writeln!(out, "# {model} model; method: {method} ({detail})")
 }
 
-fn write_rigid(out: &mut impl Write, p: &RigidReport) -> io::Result<()> {
+fn write_rigid(out: &mut dyn Write, p: &RigidReport) -> io::Result<()> {
     let v = |x: [Real; 3]| {
         format!(
             "({}, {}, {})",
@@ -235,7 +235,7 @@ fn write_rigid(out: &mut impl Write, p: &RigidReport) -> io::Result<()> {
 }
 
 fn write_secular(
-    out: &mut impl Write,
+    out: &mut dyn Write,
     o: &SecularOutput,
     units: Option<&RigidReport>,
     format: Format,
@@ -304,54 +304,78 @@ fn write_secular(
     }
 }
 
-/// Write a report in the requested format.
-pub fn write_report(out: &mut impl Write, report: &Report, format: Format) -> io::Result<()> {
-    if format == Format::Json {
-        serde_json::to_writer(&mut *out, report)?;
-        return writeln!(out);
-    }
-    if format == Format::Table {
-        let s = &report.scene;
-        writeln!(
-            out,
-            "# scene {} ({}, kind {}): {}",
-            s.name, s.file, s.kind, s.description
-        )?;
-        writeln!(
-            out,
-            "# chosen: {}: {}",
-            report.chosen.method, report.chosen.reason
-        )?;
-        for w in &report.warnings {
-            writeln!(out, "# warning: {w}")?;
+/// Write a report in the requested format (see [`crate::output::write`]).
+pub fn write_report(out: &mut dyn Write, report: &Report, format: Format) -> io::Result<()> {
+    crate::output::write(out, report, format)
+}
+
+impl Output for Report {
+    /// The scene's header, its choice and warnings and a real particle's
+    /// report as comment lines, then the matching command's table or CSV.
+    fn write_text(&self, out: &mut dyn Write, format: Format) -> io::Result<()> {
+        let report = self;
+        if format == Format::Json {
+            return crate::output::write(out, report, format);
+        }
+        if format == Format::Table {
+            let s = &report.scene;
+            writeln!(
+                out,
+                "# scene {} ({}, kind {}): {}",
+                s.name, s.file, s.kind, s.description
+            )?;
+            writeln!(
+                out,
+                "# chosen: {}: {}",
+                report.chosen.method, report.chosen.reason
+            )?;
+            for w in &report.warnings {
+                writeln!(out, "# warning: {w}")?;
+            }
+        }
+        match &report.answer {
+            Answer::Top(top) => {
+                if format == Format::Table
+                    && let Some(u) = &top.units
+                {
+                    write_physical(out, u)?;
+                }
+                if format == Format::Table
+                    && let Some(u) = &top.rigid_units
+                {
+                    write_rigid(out, u)?;
+                }
+                match &top.run {
+                    TopRun::Full(o) => o.write_text(out, format),
+                    TopRun::OmegaOnly(o) => write_omega_only(out, o, top.units.as_ref(), format),
+                    TopRun::Secular(o) => write_secular(out, o, top.rigid_units.as_ref(), format),
+                }
+            }
+            Answer::Balance(o) => o.write_text(out, format),
+            Answer::Orbit(o) => o.write_text(out, format),
+            Answer::Shell(o) => o.write_text(out, format),
+            Answer::Stability(a) => {
+                for row in &a.rows {
+                    write!(out, "{row}")?;
+                }
+                Ok(())
+            }
         }
     }
-    match &report.answer {
-        Answer::Top(top) => {
-            if format == Format::Table
-                && let Some(u) = &top.units
-            {
-                write_physical(out, u)?;
-            }
-            if format == Format::Table
-                && let Some(u) = &top.rigid_units
-            {
-                write_rigid(out, u)?;
-            }
-            match &top.run {
-                TopRun::Full(o) => simulate::write_output(out, o, format),
-                TopRun::OmegaOnly(o) => write_omega_only(out, o, top.units.as_ref(), format),
-                TopRun::Secular(o) => write_secular(out, o, top.rigid_units.as_ref(), format),
-            }
+
+    /// A forward run of the full ALE or of (2.5) that ran away.
+    fn stopped(&self) -> Option<Stop> {
+        match &self.answer {
+            Answer::Top(top) => match &top.run {
+                TopRun::Full(o) => o.stopped(),
+                TopRun::OmegaOnly(_) | TopRun::Secular(_) => None,
+            },
+            Answer::Orbit(o) => o.stopped(),
+            Answer::Balance(_) | Answer::Shell(_) | Answer::Stability(_) => None,
         }
-        Answer::Balance(o) => balance::write_output(out, o, format),
-        Answer::Orbit(o) => orbit::write_output(out, o, format),
-        Answer::Shell(o) => shell::write_output(out, o, format),
-        Answer::Stability(a) => {
-            for row in &a.rows {
-                write!(out, "{row}")?;
-            }
-            Ok(())
-        }
+    }
+
+    fn advice(&self) -> &'static str {
+        "the scene's numbers are beyond what a double carries through this computation; ask for smaller rates or earlier times"
     }
 }

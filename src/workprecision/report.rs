@@ -108,10 +108,17 @@ pub fn parse_csv(text: &str) -> Result<Vec<Row>, String> {
             if s.is_empty() {
                 return Ok(None);
             }
-            // Python writes inf and nan; Rust reads both spellings.
-            s.parse::<Real>()
-                .map(Some)
-                .map_err(|_| at(n, &format!("{} '{s}' is not a number", CSV_COLUMNS[i])))
+            // NOTE: Python writes inf and nan, and Rust reads both; a row
+            // holding one is refused, not charted as nothing (an empty cell
+            // is how a run that measured nothing says so).
+            match s.parse::<Real>() {
+                Ok(x) if x.is_finite() => Ok(Some(x)),
+                Ok(_) => Err(at(
+                    n,
+                    &format!("{} '{s}' is not a finite number", CSV_COLUMNS[i]),
+                )),
+                Err(_) => Err(at(n, &format!("{} '{s}' is not a number", CSV_COLUMNS[i]))),
+            }
         };
         let count = |i: usize| -> Result<Option<u64>, String> {
             let s = get(i);

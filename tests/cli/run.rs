@@ -5,36 +5,12 @@
 //! expected (never a panic, never a second line).
 
 use crate::support;
-use support::spintop;
+use support::{Scratch, spintop};
 
 use serde_json::Value;
 use spintop::scene::Body;
 use spintop::scene::catalogue::CATALOGUE;
-use std::path::PathBuf;
 use std::process::Command;
-
-/// A scratch folder for scene files, removed when dropped.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(tag: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("spintop-scenes-{tag}-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        Self(dir)
-    }
-
-    fn write(&self, name: &str, text: &str) -> String {
-        let path = self.0.join(name);
-        std::fs::write(&path, text).unwrap();
-        path.display().to_string()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 const HEAD: &str = "[scene]\nname = \"x\"\nkind = \"top\"\ndescription = \"d\"\n\n";
 const SPHERE: &str = "[units]\nshape = \"sphere\"\nradius_nm = 50.0\ndensity_kg_m3 = 2200.0\ndipole_debye = 1e3\nspin_hz = 1e9\n";
