@@ -24,7 +24,8 @@
 //! `"pending": true`, and the page polls `/evaluate/status` for its progress
 //! and, in the end, its result (mdBook's own request times out after 6 s).
 
-mod http;
+#[doc(hidden)]
+pub mod http;
 mod run;
 
 pub use run::{Limits, Outcome, OutcomeKind, Runner, default_runner};
