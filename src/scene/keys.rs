@@ -5,9 +5,9 @@
 
 use super::SceneError;
 use super::format::{Key, RawSolve};
-use super::top::METHODS;
 use crate::math::Real;
 use crate::physics::ParamError;
+use crate::sim::MethodChoice;
 use std::ops::Range;
 use toml::Spanned;
 
@@ -317,12 +317,12 @@ pub(super) fn fixed_method(
     rtol_ok: bool,
 ) -> Result<(), SceneError> {
     let Some((s, _)) = solve else { return Ok(()) };
-    if let Some((m, span)) = choice(ctx, "solve", "method", &s.method, &METHODS)?
+    if let Some((m, span)) = choice(ctx, "solve", "method", &s.method, &MethodChoice::NAMES)?
         && m != 0
     {
         return Err(ctx.at(
             &span,
-            format!("[solve] method = \"{}\" does not apply to kind = \"{kind}\" ({why}); expected auto", METHODS[m]),
+            format!("[solve] method = \"{}\" does not apply to kind = \"{kind}\" ({why}); expected auto", MethodChoice::NAMES[m]),
         ));
     }
     not_here(
