@@ -136,8 +136,8 @@ fn the_gate_check_fails_on_each_way_around_it() {
 /// place it sits, exit 3 and one line; no NaN, inf or null reaches stdout.
 #[test]
 fn a_non_finite_result_is_refused_with_exit_3_and_nothing_written() {
-    for args in [
-        vec![
+    for format in ["json", "csv", "table"] {
+        let args = [
             "balance",
             "--dipole",
             "precessing",
@@ -146,20 +146,8 @@ fn a_non_finite_result_is_refused_with_exit_3_and_nothing_written() {
             "--times",
             "0",
             "--format",
-            "json",
-        ],
-        vec![
-            "balance",
-            "--dipole",
-            "precessing",
-            "--rate",
-            "1e120",
-            "--times",
-            "0",
-            "--format",
-            "csv",
-        ],
-    ] {
+            format,
+        ];
         let out = spintop(&args);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(3), "{args:?}: {stderr}");
