@@ -1,7 +1,7 @@
 //! The `spintop` command line: a thin shell over [`crate::sim`].
 //!
 //! Raw arguments are parsed by clap, then validated into the objects the core
-//! runs on ([`simulate::SimulateConfig`]), then run; every failure becomes one line on
+//! runs on ([`crate::output::simulate::SimulateConfig`]), then run; every failure becomes one line on
 //! stderr and an exit code:
 //!
 //! | code | meaning |

@@ -1,6 +1,6 @@
 //! The gate: the one way a command's output reaches stdout.
 //!
-//! [`super::run`] hands each command a [`Gate`] and nothing else to write its
+//! [`super::run()`] hands each command a [`Gate`] and nothing else to write its
 //! output with (stderr stays for warnings), so no command can skip it:
 //!
 //! - a result ([`Gate::emit`]) is checked first, every number in its
