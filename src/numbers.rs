@@ -14,6 +14,7 @@
 //! | [`fmt_count`] | a count in a message | `12000`, `1.8e19` |
 //! | [`table`], [`fixed_or_exp`] | a cell of an aligned table | `0.1000000`, `1.000000e-8` |
 //! | [`significant`], [`short`], [`csv`] | a real particle's report and its CSV | `4.635e-3`, `50`, `1e-26` |
+//! | [`sci`], [`duration`] | the bench table's errors and times | `1.23e-8`, `17.2 µs` |
 //! | [`parse_number`] | a number the user typed | `'x' is not a number` |
 //!
 //! Pure and at the bottom of the crate: it imports nothing of spintop's.
@@ -191,6 +192,26 @@ pub fn short(x: Real) -> String {
     }
 }
 
+/// A number in 3 significant digits with an exponent (`1.23e-8`), or `-`.
+pub fn sci(x: Option<Real>) -> String {
+    match x {
+        Some(0.0) => "0".into(),
+        Some(v) if v.is_finite() => format!("{v:.2e}"),
+        Some(v) => v.to_string(),
+        None => "-".into(),
+    }
+}
+
+/// A duration in seconds as µs or ms, 3 significant digits, or `-`.
+pub fn duration(x: Option<Real>) -> String {
+    match x {
+        Some(s) if s < 1e-3 => format!("{:.3} µs", s * 1e6),
+        Some(s) if s < 1.0 => format!("{:.3} ms", s * 1e3),
+        Some(s) => format!("{s:.3} s"),
+        None => "-".into(),
+    }
+}
+
 /// A finite number from the user, or one line saying why not.
 pub fn parse_number(s: &str) -> Result<Real, String> {
     let x: Real = s
@@ -300,6 +321,11 @@ mod tests {
         assert_eq!(short(2200.0), "2200");
         assert_eq!(short(1e-9), "1e-9");
         assert_eq!(short(1.23456789e9), "1.23457e9");
+        assert_eq!(sci(Some(1.234e-8)), "1.23e-8");
+        assert_eq!(sci(Some(0.0)), "0");
+        assert_eq!(sci(None), "-");
+        assert_eq!(duration(Some(17.2e-6)), "17.200 µs");
+        assert_eq!(duration(Some(0.25)), "250.000 ms");
         assert_eq!(fmt_count(12000.0), "12000");
         assert_eq!(fmt_count(1.8e19), "1.8e19");
     }

@@ -153,25 +153,8 @@ pub fn parse_csv(text: &str) -> Result<Vec<Row>, String> {
     Ok(rows)
 }
 
-/// A number in 3 significant digits with an exponent (`1.23e-8`), or `-`.
-pub fn sci(x: Option<Real>) -> String {
-    match x {
-        Some(0.0) => "0".into(),
-        Some(v) if v.is_finite() => format!("{v:.2e}"),
-        Some(v) => v.to_string(),
-        None => "-".into(),
-    }
-}
-
-/// A duration in seconds as µs or ms, 3 significant digits, or `-`.
-pub fn duration(x: Option<Real>) -> String {
-    match x {
-        Some(s) if s < 1e-3 => format!("{:.3} µs", s * 1e6),
-        Some(s) if s < 1.0 => format!("{:.3} ms", s * 1e3),
-        Some(s) => format!("{s:.3} s"),
-        None => "-".into(),
-    }
-}
+// The table's numbers are written by the crate's one number module.
+pub use crate::numbers::{duration, sci};
 
 fn knob_text(r: &Row) -> String {
     match (r.knob, r.value) {
