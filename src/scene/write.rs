@@ -252,8 +252,11 @@ fn write_secular(
                 let s = &r.sample;
                 let mut row = vec![s.t];
                 row.extend(r.t_unit);
-                row.extend([s.energy, s.l_norm, s.axis as Real, s.period]);
-                write_csv_row(out, &row)?;
+                row.extend([s.energy, s.l_norm, s.axis as Real]);
+                let mut cells: Vec<String> = row.iter().map(|x| csv(*x)).collect();
+                // No period (a rotation about an axis): an empty cell.
+                cells.push(s.period.map_or(String::new(), csv));
+                writeln!(out, "{}", cells.join(","))?;
             }
             Ok(())
         }
@@ -291,11 +294,7 @@ fn write_secular(
                     cell(ratio(s.energy, e0)),
                     cell(ratio(s.l_norm, l0)),
                     s.axis.to_string(),
-                    if s.period.is_finite() {
-                        cell(s.period * per)
-                    } else {
-                        "none".to_string()
-                    },
+                    s.period.map_or("none".to_string(), |p| cell(p * per)),
                 ];
                 write_aligned(out, row, 15)?;
             }

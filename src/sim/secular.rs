@@ -50,9 +50,10 @@ pub struct SecularSample {
     pub l_norm: Real,
     /// The body axis the polhode circles, 1, 2 or 3.
     pub axis: usize,
-    /// The period of the free motion round the polhode (infinite for a
-    /// rotation about a principal axis).
-    pub period: Real,
+    /// The period of the free motion round the polhode; `None` (absent in
+    /// JSON) for a rotation about a principal axis, which has none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub period: Option<Real>,
 }
 
 /// A secular run.
@@ -103,7 +104,7 @@ pub fn secular(
                     energy: 0.0,
                     l_norm: 0.0,
                     axis: 3,
-                    period: Real::INFINITY,
+                    period: None,
                 })
                 .collect(),
             stats: Stats::default(),
@@ -153,7 +154,7 @@ pub fn secular(
                 energy: 0.5 * two_e,
                 l_norm: l2.max(0.0).sqrt(),
                 axis: p.axis() + 1,
-                period: p.period(),
+                period: Some(p.period()).filter(|p| p.is_finite()),
             }
         })
         .collect();

@@ -240,3 +240,32 @@ fn a_particle_whose_moment_ratio_underflows_is_a_scene_error() {
         );
     }
 }
+
+/// A quantity that stops existing is absent, not a non-finite number: the
+/// tumbling nanoellipsoid ends turning about one axis, where the free motion
+/// has no period. Its scene passes the gate in every format: no `period` in
+/// those JSON samples (never `null`), an empty CSV cell, `none` in the table.
+#[test]
+fn a_period_that_ends_is_absent_and_passes_the_gate() {
+    let run = |format: &str| {
+        let out = spintop(&["run", "nanoellipsoid-tumbling", "--format", format]);
+        assert!(
+            out.status.success(),
+            "{format}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let json = run("json");
+    assert!(!json.contains("null"), "{json}");
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let samples = v["samples"].as_array().unwrap();
+    assert!(samples.iter().any(|s| s.get("period").is_none()));
+    assert!(
+        samples
+            .iter()
+            .any(|s| s["period"].as_f64().is_some_and(f64::is_finite))
+    );
+    assert!(run("csv").lines().any(|l| l.ends_with(',')));
+    assert!(run("table").contains("none"));
+}

@@ -821,7 +821,7 @@ fn formaldehyde_molecule_auto_picks_the_reduced_ale_and_loses_larmor_power() {
     let d = Vec3::new(2.33e-18, 0.0, 0.0);
     let i = moments;
     let free = |w: &Vec3| -(w.cross(&i.component_mul(w))).component_div(&i);
-    let period = o.samples[0].sample.period * tau_f;
+    let period = o.samples[0].sample.period.expect("a period") * tau_f;
     let n = 400_000;
     let t_end = 200.0 * period;
     let times: Vec<f64> = (0..=n).map(|k| t_end * k as f64 / n as f64).collect();
