@@ -704,7 +704,8 @@ impl Parser {
                 };
                 format!("{root}{}", wrap(&arg))
             }
-            "mathfrak" => {
+            // `\bfrak` is the book's bold Fraktur (book/macros.txt).
+            "mathfrak" | "bfrak" => {
                 let arg = self.argument();
                 arg.chars().map(|c| fraktur(c).unwrap_or(c)).collect()
             }
