@@ -192,7 +192,11 @@ def main() -> int:
                 context = prose[max(0, m.start() - 30) : m.end() + 30].replace("\n", " ")
                 problems.append(f"{path.name}: a combining accent in the prose (write it as $...$): ...{context}...")
             if path.name in PROMISED:
-                tags = set(page.eval_on_selector_all("main .katex-display .tag", "els => els.map(e => e.textContent)"))
+                # One .tag per display; an aligned system's holds one number per row.
+                tag_text = " ".join(
+                    page.eval_on_selector_all("main .katex-display .tag", "els => els.map(e => e.textContent)")
+                )
+                tags = set(re.findall(r"\([^()]+\)", tag_text))
                 for number in PROMISED[path.name]:
                     if f"({number})" not in tags:
                         problems.append(f"{path.name}: equation ({number}) is not typeset with its number")

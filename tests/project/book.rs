@@ -305,6 +305,12 @@ const SYMBOL_MODULES: &[(&str, &str, &str, &str)] = &[
         "Section 2",
     ),
     (
+        "src/physics/radiation.rs",
+        "physics::radiation",
+        "section-2.md",
+        "Section 2",
+    ),
+    (
         "src/physics/central.rs",
         "physics::central",
         "section-2.md",
@@ -398,8 +404,8 @@ fn symbol_table() -> String {
             .collect();
         out.push_str(&format!(
             "\n## `spintop::{module}`\n\n{} Chapter: [{title}]({chapter}).\n\n{}\n",
-            plain_code_names(&summary),
-            plain_code_names(&table.join("\n"))
+            accents_as_math(&plain_code_names(&summary)),
+            accents_as_math(&plain_code_names(&table.join("\n")))
         ));
     }
     out
@@ -426,6 +432,110 @@ fn plain_code_names(text: &str) -> String {
     }
     out.push_str(rest);
     out
+}
+
+/// A combining accent (the dot of Ω̇, the tilde of Ω̃₃, the three dots of 𝔡⃛).
+fn is_accent(c: char) -> bool {
+    matches!(c, '\u{300}'..='\u{36f}' | '\u{20d0}'..='\u{20ff}')
+}
+
+/// The module headers write symbols in Unicode (rustdoc shows them so); on the
+/// book's symbol page an accented symbol becomes inline math, which KaTeX draws
+/// with the accent over its letter: `Ω̃₃` becomes `$\tilde\Omega_3$`, `L̇_S`
+/// becomes `$\dot{L}_S$`. Code spans are left alone.
+fn accents_as_math(text: &str) -> String {
+    let text = text.replace('Ż', "Z\u{307}").replace('ż', "z\u{307}");
+    let greek = |c: char| -> Option<&'static str> {
+        Some(match c {
+            'Ω' => r"\Omega",
+            'ω' => r"\omega",
+            'φ' => r"\varphi",
+            'ψ' => r"\psi",
+            'θ' => r"\theta",
+            'σ' => r"\sigma",
+            'τ' => r"\tau",
+            'α' => r"\alpha",
+            '𝔡' => r"{\bfrak d}",
+            _ => return None,
+        })
+    };
+    let accent = |c: char| match c {
+        '\u{307}' => r"\dot",
+        '\u{308}' => r"\ddot",
+        '\u{20db}' => r"\dddot",
+        '\u{303}' => r"\tilde",
+        '\u{304}' => r"\bar",
+        '\u{302}' => r"\hat",
+        other => panic!("an accent the symbol page does not know: {:?}", other),
+    };
+    let subscript = |c: char| "₀₁₂₃₄₅₆₇₈₉".chars().position(|d| d == c);
+    let mut out = String::new();
+    let mut in_code = false;
+    let chars: Vec<char> = text.chars().collect();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if c == '`' {
+            in_code = !in_code;
+        }
+        let accented = !in_code
+            && (c.is_alphabetic() || greek(c).is_some())
+            && chars.get(i + 1).is_some_and(|&n| is_accent(n));
+        if !accented {
+            out.push(c);
+            i += 1;
+            continue;
+        }
+        // One symbol: a letter, its accents, its subscripts (₃, ⊥ or _S).
+        let mut tex = greek(c).map_or_else(|| c.to_string(), str::to_string);
+        i += 1;
+        while let Some(&m) = chars.get(i).filter(|&&m| is_accent(m)) {
+            // \dot\Omega and \dot{\bfrak d} as they stand; a letter in braces.
+            tex = if tex.starts_with(['\\', '{']) {
+                format!("{}{tex}", accent(m))
+            } else {
+                format!("{}{{{tex}}}", accent(m))
+            };
+            i += 1;
+        }
+        let mut sub = String::new();
+        while let Some(&d) = chars.get(i) {
+            if let Some(k) = subscript(d) {
+                sub.push(char::from(b'0' + k as u8));
+            } else if d == '⊥' {
+                sub.push_str(r"\perp");
+            } else if d == '_' && chars.get(i + 1).is_some_and(|n| n.is_ascii_alphabetic()) {
+                i += 1;
+                while let Some(&l) = chars.get(i).filter(|l| l.is_ascii_alphabetic()) {
+                    sub.push(l);
+                    i += 1;
+                }
+                continue;
+            } else {
+                break;
+            }
+            i += 1;
+        }
+        if !sub.is_empty() {
+            tex = format!("{tex}_{{{sub}}}");
+        }
+        out.push_str(&format!("${tex}$"));
+    }
+    out
+}
+
+#[test]
+fn book_symbol_table_writes_accented_symbols_as_math() {
+    assert_eq!(accents_as_math("Ω̃₃ and `Ω̇`"), r"$\tilde\Omega_{3}$ and `Ω̇`");
+    assert_eq!(
+        accents_as_math("L̇_S = 𝔡̇ × 𝔡̈"),
+        r"$\dot{L}_{S}$ = $\dot{\bfrak d}$ × $\ddot{\bfrak d}$"
+    );
+    assert_eq!(accents_as_math("(φ̇, Ż)"), r"($\dot\varphi$, $\dot{Z}$)");
+    // Outside code spans, no accent is left on the page.
+    let page = symbol_table();
+    let prose = page.split('`').step_by(2).collect::<String>();
+    assert!(!prose.chars().any(is_accent));
 }
 
 #[test]
@@ -493,9 +603,15 @@ fn equation_numbers(text: &str) -> BTreeSet<String> {
     out
 }
 
-/// The numbers a display block tags, ranges such as (4.2)–(4.4) included.
+/// The numbers a display block tags: `\tag{4.2}`, and ranges such as
+/// (4.2)–(4.4) written out.
 fn typeset_numbers(block: &str) -> BTreeSet<String> {
     let mut out = equation_numbers(block);
+    for piece in block.split("\\tag{").skip(1) {
+        if let Some(end) = piece.find('}') {
+            out.extend(equation_numbers(&format!("({})", &piece[..end])));
+        }
+    }
     for (i, _) in block.match_indices(")–(") {
         let before = &block[..i];
         let after = &block[i + ")–(".len()..];
@@ -553,6 +669,68 @@ fn book_every_cited_equation_is_typeset() {
     assert_eq!(
         typeset_numbers(r"\dot x \qquad\text{(4.2)–(4.4)}"),
         ["4.2", "4.3", "4.4"].map(String::from).into()
+    );
+    assert_eq!(
+        typeset_numbers(r"a &= b \tag{4.12}\\ c &= d \tag{4.13}"),
+        ["4.12", "4.13"].map(String::from).into()
+    );
+    assert!(typeset_numbers(r"a = b").is_empty());
+}
+
+/// The prose of a chapter: its text without code blocks, inline code, math,
+/// HTML comments (the live view's experiments) and image descriptions.
+fn prose(chapter: &str) -> String {
+    let mut out = String::new();
+    let mut rest = chapter;
+    // Pairs of delimiters whose content is not prose, longest first.
+    let skip = [
+        ("```", "```"),
+        ("<!--", "-->"),
+        ("$$", "$$"),
+        ("![", "]("),
+        ("`", "`"),
+        ("$", "$"),
+    ];
+    'outer: while !rest.is_empty() {
+        for (open, close) in skip {
+            if let Some(body) = rest.strip_prefix(open) {
+                let end = body.find(close).map_or(body.len(), |e| e + close.len());
+                rest = &body[end..];
+                out.push(' ');
+                continue 'outer;
+            }
+        }
+        let c = rest.chars().next().unwrap();
+        out.push(c);
+        rest = &rest[c.len_utf8()..];
+    }
+    out
+}
+
+/// Accents are drawn by KaTeX over their letters; in the prose a browser's
+/// text font puts a combining accent beside its letter or drops it, so an
+/// accented symbol in the text is written as inline math.
+#[test]
+fn book_prose_writes_accented_symbols_as_math() {
+    let mut problems = Vec::new();
+    for chapter in summary_chapters() {
+        let text = fs::read_to_string(book_src().join(&chapter)).unwrap();
+        let text = prose(&text);
+        for line in text.lines().filter(|l| l.chars().any(is_accent)) {
+            problems.push(format!("{chapter}: {}", line.trim()));
+        }
+    }
+    assert!(
+        problems.is_empty(),
+        "combining accents in the prose:\n{}",
+        problems.join("\n")
+    );
+    // The check can fail.
+    assert!(prose("a Ω̇ b `Ω̇` $\\dot\\Omega$").chars().any(is_accent));
+    assert!(
+        !prose("a `Ω̇` $\\dot\\Omega$ <!-- Ω̇ --> ![Ω̇](x.svg)")
+            .chars()
+            .any(is_accent)
     );
 }
 

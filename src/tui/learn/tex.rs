@@ -729,6 +729,12 @@ impl Parser {
             "underbrace" | "overbrace" | "boxed" | "underline" | "phantom_skip" => self.argument(),
             // The book's own macros (book/macros.txt).
             "ret" => lower("ret"),
+            // `\sub{x}` is `_{x}` (written so where a `}_` would read as
+            // Markdown emphasis).
+            "sub" => {
+                let arg = self.argument();
+                lower(&arg)
+            }
             "tag" => format!("    ({})", self.argument_raw()),
             "label" => {
                 let _ = self.argument_raw();
