@@ -223,6 +223,20 @@ impl Svg {
         self.label((x, y), text, color, size, "middle", true);
     }
 
+    /// The line of small print under a drawing.
+    fn caption(&mut self, y: Real, text: &str) {
+        self.label((20.0, y), text, "black", 12.0, "start", false);
+    }
+
+    /// The diagram called `name`, with `title` as the SVG's title.
+    fn diagram(self, name: &'static str, title: &'static str) -> Diagram {
+        Diagram {
+            name,
+            title,
+            svg: self.finish(title),
+        }
+    }
+
     fn finish(mut self, title: &str) -> String {
         let mut out = String::new();
         let _ = writeln!(
@@ -527,19 +541,8 @@ fn top_axes_dipole() -> Diagram {
         "end",
         true,
     );
-    svg.label(
-        (20.0, 318.0),
-        "lab frame x, y, z (grey); body axes e₁, e₂, e₃ (blue); the dipole d = Σ q ρ along e₃ (red)",
-        "black",
-        12.0,
-        "start",
-        false,
-    );
-    Diagram {
-        name: "top-axes-dipole",
-        title,
-        svg: svg.finish(title),
-    }
+    svg.caption(318.0, "lab frame x, y, z (grey); body axes e₁, e₂, e₃ (blue); the dipole d = Σ q ρ along e₃ (red)");
+    svg.diagram("top-axes-dipole", title)
 }
 
 /// The z-x-z Euler angles: φ about lab z, θ about the line of nodes N, ψ about e₃.
@@ -636,19 +639,11 @@ fn euler_angles() -> Diagram {
         let p = view.page(&at);
         svg.label((p.0, p.1 + 6.0), text, color, 18.0, "middle", true);
     }
-    svg.label(
-        (20.0, 378.0),
+    svg.caption(
+        378.0,
         "O = R_z(φ) R_x(θ) R_z(ψ): turn by φ about z, by θ about the node line N, by ψ about e₃",
-        "black",
-        12.0,
-        "start",
-        false,
     );
-    Diagram {
-        name: "euler-angles",
-        title,
-        svg: svg.finish(title),
-    }
+    svg.diagram("euler-angles", title)
 }
 
 /// The paper's top (Figures 1–2's I₃/I₁ and Ω₀) as the free motion sees it,
@@ -752,27 +747,20 @@ fn precession_cone() -> Diagram {
     let end = rim_centre
         + 1.12 * top.tilt.sin() * (rot_axis(&l_hat, turn) * (e3 - rim_centre).normalize());
     let p = view.page(&end);
+    // Below the arrowhead, clear of the rim.
     svg.label(
-        (p.0 + 10.0, p.1 + 22.0),
+        (p.0 - 6.0, p.1 + 30.0),
         "φ̇ = |L|/I₁",
         RED,
         16.0,
-        "start",
+        "middle",
         true,
     );
-    svg.label(
-        (20.0, 363.0),
+    svg.caption(
+        363.0,
         "truncated top: θ = arctan(I₁Ω⊥₀/(I₃Ω₃₀)) for ever; reduced top: θ → 0 like e^(−t/σ)",
-        "black",
-        12.0,
-        "start",
-        false,
     );
-    Diagram {
-        name: "precession-cone",
-        title,
-        svg: svg.finish(title),
-    }
+    svg.diagram("precession-cone", title)
 }
 
 /// The free top: the body cone about e₃ rolls on the space cone about L,
@@ -840,19 +828,11 @@ fn free_top_cones() -> Diagram {
         "end",
         false,
     );
-    svg.label(
-        (20.0, 458.0),
+    svg.caption(
+        458.0,
         "Ω = L/I₁ + Ω̃₃e₃: e₃ turns about L at |L|/I₁, and Ω turns about e₃ in the body at −Ω̃₃",
-        "black",
-        12.0,
-        "start",
-        false,
     );
-    Diagram {
-        name: "free-top-cones",
-        title,
-        svg: svg.finish(title),
-    }
+    svg.diagram("free-top-cones", title)
 }
 
 /// The charge as a small shell (a plane sketch of the appendix's model).
@@ -938,19 +918,8 @@ fn shell_model() -> Diagram {
         "start",
         true,
     );
-    svg.label(
-        (20.0, 335.0),
-        "(A.1): the self-force of a rigid charged shell, to leading order in r₀, is a retarded mass term",
-        "black",
-        12.0,
-        "start",
-        false,
-    );
-    Diagram {
-        name: "shell-model",
-        title,
-        svg: svg.finish(title),
-    }
+    svg.caption(335.0, "(A.1): the self-force of a rigid charged shell, to leading order in r₀, is a retarded mass term");
+    svg.diagram("shell-model", title)
 }
 
 #[cfg(test)]
