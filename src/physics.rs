@@ -4,6 +4,7 @@
 //! | module | paper | what it holds |
 //! |---|---|---|
 //! | [`balance`] | §2, (2.1)–(2.4) | the Larmor-like law, the torque law and the Schott angular momentum of any dipole trajectory |
+//! | [`radiation`] | §1–§2, (2.1) | the dipole's fields, the energy and angular momentum they carry through a sphere, Larmor's power |
 //! | [`central`] | §2, (2.5)–(2.9) | a charge in a Coulomb or oscillator potential: Abraham–Lorentz, Landau–Lifshitz, collapse, runaways |
 //! | [`rigid_body`] | §3, (3.1)–(3.2) | kinematics, `Ω̇ = F(Ω)` models, observables E, L, tilt |
 //! | [`euler_angles`] | (3.5), (4.8) | z-x-z Euler angles and their rates |
@@ -26,6 +27,7 @@ pub mod free_top;
 pub mod full_ale;
 pub mod general_top;
 pub mod particle;
+pub mod radiation;
 pub mod rigid_body;
 pub mod shell;
 pub mod symmetric_top;
