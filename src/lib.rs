@@ -25,6 +25,7 @@
 pub mod assignment;
 #[cfg(feature = "app")]
 pub mod cli;
+#[cfg(feature = "app")]
 pub mod course;
 #[cfg(feature = "app")]
 pub mod figure;
