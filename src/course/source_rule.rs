@@ -303,7 +303,9 @@ impl Checker<'_> {
     }
 
     fn attribute_named(&mut self, span: proc_macro2::Span, name: &str) {
-        if FORBIDDEN_ATTRIBUTES.contains(&name) {
+        if name == "unsafe" {
+            self.refuse(span, format!("an `#[unsafe(…)]` attribute: {UNSAFE}"));
+        } else if FORBIDDEN_ATTRIBUTES.contains(&name) {
             let why = if name == "path" {
                 "`#[path]` compiles another file as this module".to_string()
             } else {
@@ -536,12 +538,14 @@ impl<'ast> Visit<'ast> for Checker<'_> {
 
 /// Whether `text`, read as a file path from the folder `dir`, leads outside
 /// the copy at `root`: an absolute path elsewhere, a `~`, or enough `..` to
-/// climb out. Text with spaces or format braces is not a path.
+/// climb out. Text with spaces, braces or other characters no file name
+/// uses is not a path.
 fn names_file_outside(text: &str, dir: &Path, root: &Path) -> bool {
+    let path_like = |c: char| c.is_alphanumeric() || "/\\._-~:+@".contains(c);
     if text.is_empty()
         || text.len() > 4096
         || !text.contains(['/', '\\'])
-        || text.contains(|c: char| c.is_whitespace() || c == '{' || c == '}')
+        || !text.chars().all(path_like)
     {
         return false;
     }
@@ -550,6 +554,10 @@ fn names_file_outside(text: &str, dir: &Path, root: &Path) -> bool {
     }
     let path = Path::new(text);
     let joined = if path.is_absolute() {
+        // A root alone, or one name under it, is a separator, not a file.
+        if path.components().filter(|c| matches!(c, Component::Normal(_))).count() < 2 {
+            return false;
+        }
         path.to_path_buf()
     } else {
         if !path.components().any(|c| c == Component::ParentDir) {

@@ -138,6 +138,12 @@ pub(crate) fn shape(actual: &[Real], expected: &[Real], labels: &[String], kind:
     if residual <= 1e-8 * (na + ne) {
         return proportional(k, what, kind);
     }
+    if let Some((i, j)) = swapped(actual, expected) {
+        return format!(
+            "{} and {} are swapped: check which index goes where",
+            labels[i], labels[j]
+        );
+    }
     // Not proportional (so not a scalar): which parts are right?
     let parts: Vec<Part> = actual
         .iter()
@@ -179,12 +185,6 @@ pub(crate) fn shape(actual: &[Real], expected: &[Real], labels: &[String], kind:
             "{} right; {}: look at the terms of the wrong part alone",
             list(&right, "is", "are"),
             wrong.join("; ")
-        );
-    }
-    if let Some((i, j)) = swapped(actual, expected) {
-        return format!(
-            "{} and {} are swapped: check which index goes where",
-            labels[i], labels[j]
         );
     }
     let angle = (dot(actual, expected) / (na * ne)).clamp(-1.0, 1.0).acos();

@@ -785,13 +785,17 @@ fn perp_probe(
             ..*x
         };
         let (a, b) = (again(&a_in)?, again(&b_in)?);
-        let (ra, rb) = (reference(&a_in), reference(&b_in));
-        let det = |p: Vec3, q: Vec3| p.x * q.y - p.y * q.x;
-        let (ds, dr) = (det(a, b), det(ra, rb));
+        let ra = reference(&a_in);
+        // A scaled rotation maps (u, 0) and (0, u) to two perpendicular
+        // vectors of one length, turned the same way.
+        let (na, nb) = (a.x.hypot(a.y), b.x.hypot(b.y));
         let near = |p: Real, q: Real| (p - q).abs() <= 1e-8 * (p.abs() + q.abs()).max(1e-300);
-        if ds * dr < 0.0 && near(ds.abs(), dr.abs()) {
+        let rotation = near(na, nb)
+            && (a.x * b.x + a.y * b.y).abs() <= 1e-8 * na * nb
+            && a.x * b.y - a.y * b.x > 0.0;
+        if !rotation && na + nb > 1e-12 * u {
             return Some(
-                "Omega_1 and Omega_2 do not turn together as a rotation of the start (your Omega_perp is a mirror image): one of the two components has a sign wrong in one of its terms".into(),
+                "Omega_1 and Omega_2 do not turn together as a rotation of the start: one of the two components has a sign wrong in one of its terms (or a sine where a cosine belongs)".into(),
             );
         }
         let (size, rsize) = (a.x.hypot(a.y), ra.x.hypot(ra.y));

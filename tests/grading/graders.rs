@@ -457,8 +457,12 @@ fn wrong_answers(seed: u64) -> Vec<Wrong> {
         w(
             "truncated_ale_rhs",
             "the gyroscopic sign",
-            grading::truncated_ale_rhs(seed, move |i: Vec3, d, om: Vec3| {
-                top_rhs(i, d, om) + 2.0 * om.cross(&i.component_mul(&om)).component_div(&i)
+            grading::truncated_ale_rhs(seed, |i: Vec3, d: Vec3, om: Vec3| {
+                // (I + d (d x W)^T) W' = +W x I W - |d x W|^2 W, solved.
+                let w = d.cross(&om);
+                let b = om.cross(&i.component_mul(&om)) - w.norm_squared() * om;
+                let (ib, id) = (b.component_div(&i), d.component_div(&i));
+                ib - id * (w.dot(&ib) / (1.0 + w.dot(&id)))
             }),
             "gyroscopic term",
         ),
@@ -764,7 +768,7 @@ fn wrong_answers(seed: u64) -> Vec<Wrong> {
             "rk4_step",
             "k4 at the old time",
             grading::rk4_step(seed, rk4_variant([1.0, 2.0, 2.0, 1.0], false)),
-            "wrong time",
+            "the fourth stage evaluates f at the start time",
         ),
         w(
             "rk4_step",
@@ -1078,7 +1082,7 @@ fn newton_steps(tau0: f64, delta: f64, steps: usize) -> C {
 #[test]
 fn characteristic_root_says_newton_stopped_early_not_a_factor_one() {
     for seed in SEEDS {
-        for steps in [1, 2, 3] {
+        for steps in [1, 2] {
             let d = diagnosis(grading::characteristic_root(seed, move |tau0, delta| {
                 newton_steps(tau0, delta, steps)
             }));
