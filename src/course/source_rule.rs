@@ -555,7 +555,12 @@ fn names_file_outside(text: &str, dir: &Path, root: &Path) -> bool {
     let path = Path::new(text);
     let joined = if path.is_absolute() {
         // A root alone, or one name under it, is a separator, not a file.
-        if path.components().filter(|c| matches!(c, Component::Normal(_))).count() < 2 {
+        if path
+            .components()
+            .filter(|c| matches!(c, Component::Normal(_)))
+            .count()
+            < 2
+        {
             return false;
         }
         path.to_path_buf()

@@ -343,6 +343,12 @@ fn an_export_for_github_grades_itself_with_cargo_test_on_every_push() {
         );
     }
     assert!(!workflow.contains('\t'), "YAML indents with spaces");
+    // The book's instructor page shows this very workflow.
+    let page = std::fs::read_to_string(repo().join("book/src/instructors.md")).unwrap();
+    assert!(
+        page.contains(&format!("```yaml\n{workflow}```")),
+        "book/src/instructors.md shows another workflow"
+    );
     // The copy builds where the repository is not: spintop's core is inside it.
     let manifest = std::fs::read_to_string(dir.join("Cargo.toml")).unwrap();
     assert!(
