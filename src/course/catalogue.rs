@@ -332,3 +332,36 @@ pub fn binaries() -> Vec<&'static str> {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    #[test]
+    fn every_assignment_names_a_real_test_and_function() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        for a in COURSE {
+            let tests = std::fs::read_to_string(
+                root.join("lessons/tests").join(format!("{}.rs", a.binary)),
+            )
+            .unwrap();
+            assert!(tests.contains(&format!("fn {}()", a.test)), "{a:?}");
+            let src = std::fs::read_to_string(root.join(a.file)).unwrap();
+            assert!(src.contains(&format!("pub fn {}", a.function)), "{a:?}");
+        }
+        // Every #[test] but the probe (not a grader: `#[ignore]`d, run by learn).
+        let count: usize = std::fs::read_dir(root.join("lessons/tests"))
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.file_name().is_some_and(|n| n != "probe.rs"))
+            .map(|p| {
+                std::fs::read_to_string(p)
+                    .unwrap()
+                    .matches("#[test]")
+                    .count()
+            })
+            .sum();
+        assert_eq!(count, COURSE.len(), "every grader is in the course, once");
+    }
+}

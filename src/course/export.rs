@@ -357,3 +357,92 @@ pub fn export_with(repo: &Path, out: &Path, options: &ExportOptions) -> Result<E
         files: files.into_iter().map(|(p, _)| p).collect(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::course::COURSE;
+
+    #[test]
+    fn an_export_holds_the_stubs_and_graders_and_no_solution() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let out = std::env::temp_dir().join(format!("spintop-export-test-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&out);
+        let written = export(root, &out).unwrap();
+        for a in COURSE {
+            let file = a.file.trim_start_matches("lessons/");
+            let text = std::fs::read_to_string(out.join(file)).unwrap();
+            let start = text.find(&format!("pub fn {}(", a.function)).unwrap();
+            let body = &text[start..start + text[start..].find("\n}").unwrap()];
+            assert!(
+                body.contains("todo!("),
+                "{}: the stub, not a solution",
+                a.function
+            );
+            assert!(out.join("tests").join(format!("{}.rs", a.binary)).is_file());
+        }
+        for rel in &written.files {
+            let text = std::fs::read_to_string(out.join(rel)).unwrap();
+            if rel.starts_with("src") || rel.ends_with("Cargo.toml") {
+                assert!(
+                    !text.contains("solutions"),
+                    "{} mentions the solutions",
+                    rel.display()
+                );
+            }
+        }
+        assert!(!out.join("src/solutions").exists());
+        // Every solution's body is absent from every exported source file.
+        for entry in std::fs::read_dir(root.join("lessons/src/solutions")).unwrap() {
+            let solution = std::fs::read_to_string(entry.unwrap().path()).unwrap();
+            for body in solution.split("\npub fn ").skip(1) {
+                let body = &body[body.find('{').unwrap()..];
+                let body = &body[..body.find("\n}").unwrap_or(body.len())];
+                if body.lines().count() < 3 {
+                    continue;
+                }
+                for rel in written.files.iter().filter(|p| p.starts_with("src")) {
+                    let text = std::fs::read_to_string(out.join(rel)).unwrap();
+                    assert!(!text.contains(body), "{} holds a solution", rel.display());
+                }
+            }
+        }
+        let manifest = std::fs::read_to_string(out.join("Cargo.toml")).unwrap();
+        assert!(
+            manifest.contains("[workspace]")
+                && manifest.contains("spintop = { path")
+                && manifest.contains("default-features = false")
+        );
+        // A second export into the same folder is refused, nothing overwritten.
+        assert!(export(root, &out).unwrap_err().contains("not empty"));
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+
+    #[test]
+    fn stripping_the_solutions_keeps_the_stub() {
+        let text = "use a;\n#[cfg(not(feature = \"solutions\"))]\npub fn f() {\n    todo!()\n}\n\n#[cfg(feature = \"solutions\")]\npub use crate::solutions::ch2::*;\n";
+        assert_eq!(
+            strip_solutions(text),
+            "use a;\npub fn f() {\n    todo!()\n}\n"
+        );
+    }
+
+    #[test]
+    fn two_copies_never_share_a_package_name() {
+        // Cargo would otherwise reuse one copy's test programs for the other
+        // when they share a build folder (see export_manifest).
+        let spintop = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let a = export_manifest(spintop, Path::new("/tmp/course/alice"));
+        let b = export_manifest(spintop, Path::new("/tmp/course/bob"));
+        let name = |m: &str| {
+            m.lines()
+                .find(|l| l.starts_with("name = \"spintop-lessons"))
+                .unwrap()
+                .to_string()
+        };
+        assert_ne!(name(&a), name(&b));
+        for m in [&a, &b] {
+            assert!(m.contains("[lib]\nname = \"spintop_lessons\""), "{m}");
+        }
+    }
+}

@@ -38,3 +38,26 @@ pub fn next_hint(progress: &mut Progress, a: &'static Assignment) -> Hint {
         text: a.hints[rung - 1],
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::course::find;
+
+    #[test]
+    fn the_hint_ladder_climbs_one_rung_per_request_and_stays_on_the_formula() {
+        let a = find("2.2").unwrap();
+        assert_eq!(a.function, "torque_rate");
+        assert_eq!(find("(2.2)"), Some(a));
+        assert_eq!(find("eq_2_2_torque_rate"), Some(a));
+        assert_eq!(find("nope"), None);
+        let mut p = Progress::default();
+        let rungs: Vec<usize> = (0..4).map(|_| next_hint(&mut p, a).rung).collect();
+        assert_eq!(rungs, [1, 2, 3, 3]);
+        let last = next_hint(&mut p, a);
+        assert!(last.is_last() && last.text == a.hints[2]);
+        assert_eq!(p.hints["torque_rate"], 3);
+        // Another assignment starts at the bottom.
+        assert_eq!(next_hint(&mut p, find("larmor_rate").unwrap()).rung, 1);
+    }
+}

@@ -114,3 +114,45 @@ pub fn probe(dir: &Path, spec: &ProbeSpec) -> Result<Probed, String> {
         String::from_utf8_lossy(&out.stderr)
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::course::lessons_dir;
+
+    #[test]
+    fn the_probe_of_a_chapter_is_read_back() {
+        assert!(ProbeSpec::for_chapter("Section 2: two laws").is_none());
+        let spec = ProbeSpec::for_chapter("Section 4.2: the reduced top").unwrap();
+        assert_eq!(
+            spec.request(),
+            "reduced_closed_form 0.4 1 0 0.1 0.2 200 200"
+        );
+        let out = "running 1 test\nprobe 0e0 0e0 1e-1 2e-1\nprobe 1e0 1e-2 9e-2 2e-1\ntest probe ... ok\n";
+        assert_eq!(
+            parse_probe(out),
+            Ok(Probed::Samples(vec![
+                (0.0, [0.0, 0.1, 0.2]),
+                (1.0, [0.01, 0.09, 0.2])
+            ]))
+        );
+        assert_eq!(
+            parse_probe("probe: panicked: not yet implemented: Eq. (4.7)\n"),
+            Ok(Probed::Panicked("not yet implemented: Eq. (4.7)".into()))
+        );
+        assert!(parse_probe("error[E0308]: mismatched types\n").is_err());
+    }
+
+    #[test]
+    fn the_probe_samples_the_reference_solution() {
+        // The instructor's solution through the real probe: cargo runs it.
+        let spec = ProbeSpec::for_chapter("Section 4.2").unwrap();
+        let dir = lessons_dir(Path::new(env!("CARGO_MANIFEST_DIR")));
+        let probed = probe(&dir, &spec).unwrap();
+        // Without the solutions feature the stub answers: not started.
+        assert!(
+            matches!(probed, Probed::Panicked(ref m) if m.contains("not yet implemented")),
+            "{probed:?}"
+        );
+    }
+}

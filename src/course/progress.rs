@@ -72,3 +72,36 @@ pub fn record_passes(progress: &mut Progress, status: &Status, now: u64) -> bool
     }
     changed
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::course::{COURSE, lessons_dir, next_hint};
+
+    #[test]
+    fn the_progress_lives_inside_the_project_and_survives_a_round_trip() {
+        let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+        assert_eq!(
+            progress_path(&lessons_dir(repo)),
+            repo.join("target/spintop-course.json")
+        );
+        let dir = std::env::temp_dir().join(format!("spintop-progress-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        assert_eq!(progress_path(&dir), dir.join("target/spintop-course.json"));
+        assert_eq!(load_progress(&dir), Progress::default());
+        let mut p = Progress::default();
+        next_hint(&mut p, &COURSE[0]);
+        let mut status = Status::new(0, |_| State::Unknown);
+        status.states[1].1 = State::Passing;
+        assert!(record_passes(&mut p, &status, 1234));
+        assert!(
+            !record_passes(&mut p, &status, 9999),
+            "the first pass is kept"
+        );
+        save_progress(&dir, &p).unwrap();
+        assert_eq!(load_progress(&dir), p);
+        assert_eq!(p.first_passed[COURSE[1].function], 1234);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

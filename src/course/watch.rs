@@ -165,3 +165,65 @@ impl Drop for Watch {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_save_regrades_only_the_graders_of_the_saved_file() {
+        assert_eq!(binaries_for(&["ch2.rs".into()]), vec!["ch2"]);
+        // numerics.rs holds three assignments of one grader binary.
+        assert_eq!(binaries_for(&["numerics.rs".into()]), vec!["numerics"]);
+        assert_eq!(
+            binaries_for(&["ch4.rs".into(), "ch2.rs".into()]),
+            vec!["ch2", "ch4"]
+        );
+        // lib.rs (or any file without an assignment) can change every grader.
+        assert!(binaries_for(&["lib.rs".into()]).is_empty());
+        assert!(binaries_for(&["ch2.rs".into(), "helpers.rs".into()]).is_empty());
+    }
+
+    #[test]
+    fn a_partial_regrade_keeps_the_other_verdicts() {
+        let passing = |names: &'static [&'static str]| {
+            move |a: &crate::course::Assignment| {
+                if names.contains(&a.function) {
+                    State::Passing
+                } else {
+                    State::NotStarted
+                }
+            }
+        };
+        let before = Status::new(1, passing(&["larmor_rate", "torque_rate"]));
+        assert_eq!(before.passing(), 2);
+        // A run of the ch4 graders alone: one passes, ch2's are not run.
+        let fresh = Status::new(2, |a| match (a.binary, a.function) {
+            ("ch4", "precession_tilt") => State::Passing,
+            ("ch4", _) => State::NotStarted,
+            _ => State::Unknown,
+        });
+        let after = before.merged(fresh.clone(), &["ch4"]);
+        assert_eq!(after.passing(), 3);
+        assert_eq!(after.seed, 2);
+        // Merging it as if every grader had run forgets ch2's verdicts.
+        assert_eq!(before.merged(fresh, &[]).passing(), 1);
+        // A compile error concerns every assignment.
+        let mut broken = Status::new(3, |a| {
+            if a.binary == "ch4" {
+                State::DoesNotCompile("src/ch4.rs:3: mismatched types".into())
+            } else {
+                State::Unknown
+            }
+        });
+        broken.compile_error = Some(crate::course::Located {
+            file: "src/ch4.rs".into(),
+            line: 3,
+            message: "mismatched types".into(),
+        });
+        let merged = before.merged(broken, &["ch4"]);
+        assert!(!merged.complete());
+        assert_eq!(merged.passing(), 0);
+        assert_eq!(merged.next_place().as_deref(), Some("src/ch4.rs:3"));
+    }
+}

@@ -295,12 +295,8 @@ pub fn axial_schott_rate(seed: u64, student: impl Fn(&Jet) -> Real) -> Grade {
             |j: &JetInput| balance::axial(&j.0[2], &balance::schott_rate(&j.0)),
         ),
         mistake(
-            "that is the projection of L_S, not of its rate dL_S/dt",
-            |j: &JetInput| balance::axial(&j.0[0], &balance::schott_angular_momentum(&j.0)),
-        ),
-        mistake(
-            "that is the projection of the torque (2.2) alone, which is always zero along d: the other term of dL_S/dt is the one that survives",
-            |j: &JetInput| balance::axial(&j.0[0], &balance::torque_rate(&j.0)),
+            "your answer is zero: d x (anything), the torque term or L_S itself, has no part along d; the part of dL_S/dt along d comes from its other term",
+            |_: &JetInput| 0.0,
         ),
     ])
     .run(|j| student(&j.0))
@@ -399,6 +395,15 @@ pub fn precessing_dipole_jet(seed: u64, student: impl Fn(Real, Real, Real) -> Je
             },
         ),
     ])
+    .probe(move |x: &ConeInput, again: &Again<'_, ConeInput, Jet>| {
+        // Where the dipole starts: in the x-z plane, at x = sin(theta).
+        let at0 = ConeInput { t: 0.0, ..*x };
+        let (theirs, right) = (again(&at0)?[0], reference(&at0)[0]);
+        let same_cone = (theirs.z - right.z).abs() < 1e-12 && (theirs.norm() - 1.0).abs() < 1e-12;
+        (same_cone && (theirs - right).norm() > 1e-9).then(|| {
+            "the start is wrong: at t = 0 the dipole lies in the x-z plane (y = 0, x > 0); yours starts elsewhere on the cone (a sine where a cosine belongs?)".to_string()
+        })
+    })
     .variant(
         "the dipole turns the wrong way about z: a positive omega turns it counter-clockwise seen from +z (x toward y)",
         |x: &ConeInput| ConeInput { omega: -x.omega, ..*x },

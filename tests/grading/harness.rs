@@ -420,3 +420,29 @@ fn every_printed_command_repeats_the_course_it_was_given() {
     assert_eq!(course::course_arg_for(&dir), Some(given));
     std::fs::remove_dir_all(dir.parent().unwrap()).ok();
 }
+
+#[test]
+fn the_example_wrong_answers_are_rejected_and_their_diagnoses_name_the_mistake() {
+    let answers = course::diagnose::read_folder(&repo().join("lessons/wrong")).unwrap();
+    assert!(answers.len() >= 30, "{}", answers.len());
+    // Every assignment has at least one.
+    for a in COURSE {
+        assert!(
+            answers.iter().any(|w| w.assignment.function == a.function),
+            "no wrong answer for {}",
+            a.function
+        );
+    }
+    let work = scratch("diagnose");
+    for seed in super::SEEDS {
+        let results = course::diagnose::run(repo(), &answers, seed, &work.join("build")).unwrap();
+        let mut misses = Vec::new();
+        for r in &results {
+            if r.passed || r.says_it() != Some(true) {
+                misses.push(r.text());
+            }
+        }
+        assert!(misses.is_empty(), "seed {seed}:\n{}", misses.join("\n"));
+    }
+    std::fs::remove_dir_all(&work).ok();
+}
