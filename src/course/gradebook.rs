@@ -10,7 +10,6 @@
 use super::harness::{self, Options, State, Status};
 use super::{Assignment, COURSE, Progress, export, load_progress};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -213,48 +212,37 @@ pub fn grade_class(
         .seed
         .unwrap_or_else(crate::grading::verdict::fresh_seed);
     let build_lock = Arc::new(Mutex::new(()));
-    let slots: Vec<Mutex<Option<Copy>>> = copies.iter().map(|_| Mutex::new(None)).collect();
-    let next = AtomicUsize::new(0);
-    std::thread::scope(|scope| {
-        for _ in 0..options.jobs.clamp(1, copies.len().max(1)) {
-            scope.spawn(|| {
-                loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(folder) = copies.get(i) else { break };
-                    let start = Instant::now();
-                    let student = student_name(folder);
-                    let scratch = options.work.join(format!("{i:03}-{student}"));
-                    let opts = Options {
-                        seed: Some(seed),
-                        target_dir: Some(options.target_dir.clone()),
-                        test_limit: options.test_limit.min(options.timeout),
-                        time_limit: Some(options.timeout),
-                        build_lock: Some(Arc::clone(&build_lock)),
-                        jobs: 1,
-                        ..Options::default()
-                    };
-                    let outcome = grade_submission(repo, folder, &scratch, &opts);
-                    let _ = std::fs::remove_dir_all(&scratch);
-                    let copy = Copy {
-                        student,
-                        folder: folder.clone(),
-                        progress: load_progress(folder),
-                        outcome,
-                        seconds: start.elapsed().as_secs_f64(),
-                    };
-                    done(&copy);
-                    if let Ok(mut slot) = slots[i].lock() {
-                        *slot = Some(copy);
-                    }
-                }
-            });
-        }
+    let graded = harness::in_parallel(copies.len(), options.jobs, |i| {
+        let folder = &copies[i];
+        let start = Instant::now();
+        let student = student_name(folder);
+        let scratch = options.work.join(format!("{i:03}-{student}"));
+        let opts = Options {
+            seed: Some(seed),
+            target_dir: Some(options.target_dir.clone()),
+            test_limit: options.test_limit.min(options.timeout),
+            time_limit: Some(options.timeout),
+            build_lock: Some(Arc::clone(&build_lock)),
+            jobs: 1,
+            ..Options::default()
+        };
+        let outcome = grade_submission(repo, folder, &scratch, &opts);
+        let _ = std::fs::remove_dir_all(&scratch);
+        let copy = Copy {
+            student,
+            folder: folder.clone(),
+            progress: load_progress(folder),
+            outcome,
+            seconds: start.elapsed().as_secs_f64(),
+        };
+        done(&copy);
+        copy
     });
-    let copies = slots
+    let copies = graded
         .into_iter()
         .zip(copies)
-        .map(|(slot, folder)| {
-            slot.into_inner().ok().flatten().unwrap_or_else(|| Copy {
+        .map(|(copy, folder)| {
+            copy.unwrap_or_else(|| Copy {
                 student: student_name(folder),
                 folder: folder.clone(),
                 outcome: Outcome::NotGraded("its grading thread ended early".into()),

@@ -316,11 +316,6 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, String> {
     let verdicts = std::env::temp_dir().join(format!("spintop-verdicts-{token}"));
     std::fs::create_dir_all(&verdicts).map_err(|e| format!("{}: {e}", verdicts.display()))?;
     let todo: Vec<&Assignment> = COURSE.iter().filter(|a| selected(a)).collect();
-    let results: Vec<std::sync::Mutex<State>> = todo
-        .iter()
-        .map(|_| std::sync::Mutex::new(State::Unknown))
-        .collect();
-    let next = AtomicUsize::new(0);
     let run = Run {
         dir,
         ctx: &ctx,
@@ -328,34 +323,57 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, String> {
         token: &token,
         verdicts: &verdicts,
     };
-    std::thread::scope(|scope| {
-        for _ in 0..opts.jobs.clamp(1, todo.len().max(1)) {
-            scope.spawn(|| {
-                loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(a) = todo.get(i) else { break };
-                    let state = match programs.iter().find(|(b, _)| b == a.binary) {
-                        Some((_, exe)) => run.test(exe, a),
-                        None => State::Failing(format!(
-                            "cargo built no test program `{}`: is tests/{}.rs in the copy?",
-                            a.binary, a.binary
-                        )),
-                    };
-                    if let Ok(mut slot) = results[i].lock() {
-                        *slot = state;
-                    }
-                }
-            });
+    let results = in_parallel(todo.len(), opts.jobs, |i| {
+        let a = todo[i];
+        match programs.iter().find(|(b, _)| b == a.binary) {
+            Some((_, exe)) => run.test(exe, a),
+            None => State::Failing(format!(
+                "cargo built no test program `{}`: is tests/{}.rs in the copy?",
+                a.binary, a.binary
+            )),
         }
     });
     let _ = std::fs::remove_dir_all(&verdicts);
     let mut status = Status::new(seed, |_| State::Unknown);
     for (a, result) in todo.iter().zip(results) {
         if let Some(slot) = status.states.iter_mut().find(|(b, _)| b.test == a.test) {
-            slot.1 = result.into_inner().unwrap_or(State::Unknown);
+            slot.1 = result.unwrap_or(State::Unknown);
         }
     }
     Ok(status)
+}
+
+/// `work(0)`, …, `work(count − 1)` on at most `jobs` threads at once, each
+/// taking the next index when it is free; each result in its place (`None`
+/// if its thread died).
+pub(crate) fn in_parallel<T: Send>(
+    count: usize,
+    jobs: usize,
+    work: impl Fn(usize) -> T + Sync,
+) -> Vec<Option<T>> {
+    let slots: Vec<std::sync::Mutex<Option<T>>> =
+        (0..count).map(|_| std::sync::Mutex::new(None)).collect();
+    let next = AtomicUsize::new(0);
+    std::thread::scope(|scope| {
+        for _ in 0..jobs.clamp(1, count.max(1)) {
+            scope.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= count {
+                        break;
+                    }
+                    let result = work(i);
+                    if let Ok(mut slot) = slots[i].lock() {
+                        *slot = Some(result);
+                    }
+                }
+            });
+        }
+    });
+    slots
+        .into_iter()
+        .map(|s| s.into_inner().ok().flatten())
+        .collect()
 }
 
 /// What a build gave.

@@ -91,7 +91,7 @@ pub fn check_copy(dir: &Path) -> Vec<Violation> {
         });
     }
     out.extend(check_manifest(&root));
-    for path in rust_files_under(&root.join("src")) {
+    for path in super::export::rust_files(&root.join("src"), &[]) {
         let rel = path.strip_prefix(&root).unwrap_or(&path).to_path_buf();
         match std::fs::read_to_string(&path) {
             Ok(text) => out.extend(check_source(&rel, &text, &root)),
@@ -153,28 +153,6 @@ fn check_manifest(root: &Path) -> Vec<Violation> {
             refuse(name, "a dependency other than spintop");
         }
     }
-    out
-}
-
-/// The `.rs` files under `dir`, every folder deep, sorted (symbolic links are
-/// not followed).
-fn rust_files_under(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for entry in std::fs::read_dir(&d).into_iter().flatten().flatten() {
-            let Ok(kind) = entry.file_type() else {
-                continue;
-            };
-            let path = entry.path();
-            if kind.is_dir() {
-                stack.push(path);
-            } else if kind.is_file() && path.extension().is_some_and(|x| x == "rs") {
-                out.push(path);
-            }
-        }
-    }
-    out.sort();
     out
 }
 

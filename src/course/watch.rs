@@ -11,22 +11,14 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// the lessons crate in `dir`), by path under `src/`.
 pub fn sources_stamps(dir: &Path) -> std::collections::BTreeMap<String, std::time::SystemTime> {
     let src = dir.join("src");
-    let mut out = std::collections::BTreeMap::new();
-    let mut stack = vec![src.clone()];
-    while let Some(d) = stack.pop() {
-        for entry in std::fs::read_dir(&d).into_iter().flatten().flatten() {
-            let path = entry.path();
-            let Ok(meta) = entry.metadata() else { continue };
-            if meta.is_dir() {
-                stack.push(path);
-            } else if path.extension().is_some_and(|x| x == "rs")
-                && let (Ok(time), Ok(rel)) = (meta.modified(), path.strip_prefix(&src))
-            {
-                out.insert(rel.to_string_lossy().into_owned(), time);
-            }
-        }
-    }
-    out
+    super::export::rust_files(&src, &[])
+        .into_iter()
+        .filter_map(|p| {
+            let time = std::fs::metadata(&p).ok()?.modified().ok()?;
+            let rel = p.strip_prefix(&src).ok()?;
+            Some((rel.to_string_lossy().into_owned(), time))
+        })
+        .collect()
 }
 
 /// The test binaries whose graders can change when the files `changed` (paths

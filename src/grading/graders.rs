@@ -1487,14 +1487,14 @@ fn rk4_slips() -> Vec<(Rk4Shape, &'static str)> {
                 from: [(0, 0.5), (0, 0.5), (2, 1.0)],
                 ..RK4
             },
-            "the third stage steps from the wrong slope: it uses the second slope, not the first",
+            "the third stage steps from the wrong slope: it must step from the second slope, and yours steps from the first",
         ),
         (
             Rk4Shape {
                 from: [(0, 0.5), (1, 0.5), (1, 1.0)],
                 ..RK4
             },
-            "the fourth stage steps from the wrong slope: it uses the third slope, not the second",
+            "the fourth stage steps from the wrong slope: it must step from the third slope, and yours steps from the second",
         ),
         (
             Rk4Shape {
