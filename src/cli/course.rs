@@ -605,8 +605,10 @@ fn grade_copies(
         if terminal {
             eprint!("preparing the graders (the first build of spintop can take a minute)…\r");
         }
-        course::gradebook::warm_up(repo, &options)
-            .map_err(|e| CliError::Stopped(format!("course grade: {e}")))?;
+        // A failed warm-up is said, not fatal: each copy's rows then say why.
+        if let Err(e) = course::gradebook::warm_up(repo, &options) {
+            eprintln!("spintop course grade: preparing the graders failed: {e}");
+        }
     }
     let bar = terminal.then(|| {
         let bar = indicatif::ProgressBar::new(copies.len() as u64);
