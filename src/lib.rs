@@ -26,6 +26,7 @@
 pub mod assignment;
 #[cfg(feature = "app")]
 pub mod cli;
+#[cfg(feature = "app")]
 pub mod course;
 #[cfg(feature = "app")]
 pub mod figure;
@@ -81,6 +82,8 @@ pub mod book {
     pub struct RealParticles;
     #[doc = include_str!("../book/src/assignments.md")]
     pub struct Assignments;
+    #[doc = include_str!("../book/src/instructors.md")]
+    pub struct Instructors;
     #[doc = include_str!("../book/src/speed-accuracy.md")]
     pub struct SpeedAccuracy;
     #[doc = include_str!("../book/src/solutions-section-2.md")]

@@ -1079,7 +1079,9 @@ impl Learn {
                 for (a, s) in shown {
                     let (mark, style) = match s {
                         State::Passing => ("✓", theme::info()),
-                        State::Failing(_) | State::DoesNotCompile(_) => ("✗", theme::error()),
+                        State::Failing(_) | State::DoesNotCompile(_) | State::TimedOut(_) => {
+                            ("✗", theme::error())
+                        }
                         _ => ("·", theme::label()),
                     };
                     lines.push(Line::from(vec![
@@ -1106,7 +1108,9 @@ impl Learn {
                                 lines.push(Line::from(format!("  {l}")));
                             }
                         }
-                        State::DoesNotCompile(e) => lines.push(Line::from(format!("  {e}"))),
+                        State::DoesNotCompile(e) | State::TimedOut(e) => {
+                            lines.push(Line::from(format!("  {e}")))
+                        }
                         _ => lines.push(Line::from(format!(
                             "  edit {}: its todo!() is still there; saving re-grades",
                             a.file

@@ -758,11 +758,44 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
             "is not a course",
         ),
         (with(&["course", "grade"], &[]), "<DIR>"),
-        (with(&["course", "grade"], &["/tmp"]), "is not a course"),
         (
-            with(&["course", "grade"], &["/nonexistent-copy"]),
-            "nonexistent-copy",
+            with(&["course", "grade"], &["/tmp", "--jobs", "0"]),
+            "--jobs",
         ),
+        (
+            with(&["course", "grade"], &["/tmp", "--timeout", "0"]),
+            "--timeout",
+        ),
+        (
+            with(&["course", "grade"], &["/tmp", "--test-timeout", "nan"]),
+            "--test-timeout",
+        ),
+        (
+            with(
+                &["course", "grade"],
+                &["/tmp", "--out", "/nonexistent-dir/g.csv"],
+            ),
+            "nonexistent-dir",
+        ),
+        (
+            with(
+                &["course", "grade"],
+                &["/tmp", "/var", "--format", "gradescope"],
+            ),
+            "--out",
+        ),
+        (
+            with(
+                &["course", "export"],
+                &["--out", "/tmp/x", "--ci", "gitlab"],
+            ),
+            "possible values",
+        ),
+        (
+            with(&["course", "diagnose"], &["/nonexistent-wrong"]),
+            "nonexistent-wrong",
+        ),
+        (with(&["course"], &["--seed", "x"]), "--seed"),
         (with(&["course"], &["--format", "xml"]), "possible values"),
         (with(&["book"], &["--port", "99999"]), "--port"),
         (
