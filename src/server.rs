@@ -33,7 +33,7 @@
 //!
 //! A snippet runs as the reader, with the reader's files and network. Each
 //! build and each run is a process tree under a supervisor
-//! ([`tree`](self::tree) says how): its own session and process group, a
+//! (`src/server/tree.rs` says how): its own session and process group, a
 //! child subreaper so that nothing it starts can leave the tree, and
 //! resource limits ([`Limits`]: 4 GiB of address space and 11 CPU seconds
 //! per process, files up to 64 MiB, no core dumps). One tree at a time: a
@@ -348,7 +348,7 @@ impl Server {
     /// Accepts connections until `stop` is set (checked every 20 ms); each
     /// connection is served on a thread of its own, so that one a browser
     /// keeps open never holds up another. This process becomes a child
-    /// subreaper first (see [`tree`](self::tree)).
+    /// subreaper first (see `src/server/tree.rs`).
     pub fn serve(&self, stop: &AtomicBool) {
         tree::become_subreaper();
         while !stop.load(Ordering::Relaxed) {
@@ -382,9 +382,10 @@ impl Server {
     }
 
     /// Stops: kills the running process tree (a snippet, or cargo and its
-    /// compilers) and refuses new ones; returns once it is gone.
-    pub fn shutdown(&self) {
-        self.inner.shared.slot.close(Duration::from_secs(1));
+    /// compilers) and refuses new ones; returns once it is gone (true), or
+    /// after 3 s without seeing it go (false).
+    pub fn shutdown(&self) -> bool {
+        self.inner.shared.slot.close(Duration::from_secs(1))
     }
 }
 

@@ -201,7 +201,7 @@ pub(crate) fn execute(args: BookArgs, out: &mut impl Write) -> Result<(), CliErr
         }
         Ok(())
     })?;
-    server.shutdown();
+    let gone = server.shutdown();
     if let Some(file) = forward {
         let _ = std::fs::remove_file(file);
     }
@@ -212,10 +212,17 @@ pub(crate) fn execute(args: BookArgs, out: &mut impl Write) -> Result<(), CliErr
         signal_hook::consts::SIGQUIT => "SIGQUIT",
         _ => "a signal",
     };
-    writeln!(
-        out,
-        "spintop book: stopped ({name}); nothing it started is left running"
-    )?;
+    if gone {
+        writeln!(
+            out,
+            "spintop book: stopped ({name}); nothing it started is left running"
+        )?;
+    } else {
+        writeln!(
+            out,
+            "spintop book: stopped ({name}), but its last snippet did not end within 3 s"
+        )?;
+    }
     Ok(())
 }
 

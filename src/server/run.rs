@@ -67,7 +67,7 @@ pub struct Runner {
     /// The build folder shared with the workspace.
     pub target_dir: PathBuf,
     /// The spintop binary, which supervises each build and run
-    /// (`spintop book --supervise`, see [`super::tree`]).
+    /// (`spintop book --supervise`, see `src/server/tree.rs`).
     pub launcher: PathBuf,
     /// The limits.
     pub limits: Limits,

@@ -201,8 +201,9 @@ impl Slot {
     }
 
     /// Stops the running tree and refuses new ones; returns once the tree
-    /// is gone (its waiter has seen it end), or after `grace` plus [`GRACE`].
-    pub fn close(&self, grace: Duration) {
+    /// is gone (its waiter has seen it end): true, or false if that took
+    /// longer than `grace` plus [`GRACE`].
+    pub fn close(&self, grace: Duration) -> bool {
         {
             let mut control = lock(&self.control);
             control.closed = true;
@@ -211,10 +212,11 @@ impl Slot {
         let start = Instant::now();
         while start.elapsed() < grace + GRACE {
             if self.turn.try_lock().is_ok() {
-                return;
+                return true;
             }
             std::thread::sleep(Duration::from_millis(10));
         }
+        false
     }
 }
 
