@@ -215,6 +215,15 @@ fn left_children(scratch: &Path) -> Vec<i32> {
         .collect()
 }
 
+/// Both children LEAVES_CHILDREN started are gone.
+fn both_gone(scratch: &Path) {
+    let children = left_children(scratch);
+    assert_eq!(children.len(), 2, "{children:?}");
+    for pid in children {
+        assert!(!alive(pid), "{pid} ({}) outlived the run", cmdline(pid));
+    }
+}
+
 #[test]
 fn a_snippet_runs_against_this_spintop_and_a_page_carries_the_token() {
     let s = start("ok", limits());
@@ -545,11 +554,7 @@ fn a_run_past_the_time_limit_is_killed_with_every_process_it_started() {
         "{shown}"
     );
     assert!(shown.contains("with every process it started"), "{shown}");
-    let children = left_children(&scratch);
-    assert_eq!(children.len(), 2, "{children:?}");
-    for pid in children {
-        assert!(!alive(pid), "{pid} ({}) outlived the run", cmdline(pid));
-    }
+    both_gone(&scratch);
 }
 
 /// "One run at a time" is one process tree at a time: what a snippet
@@ -564,11 +569,7 @@ fn what_a_snippet_leaves_running_is_killed_when_it_ends() {
     );
     let (status, v) = s.run(&code);
     assert_eq!((status, v["success"].clone()), (200, true.into()), "{v}");
-    let children = left_children(&scratch);
-    assert_eq!(children.len(), 2, "{children:?}");
-    for pid in children {
-        assert!(!alive(pid), "{pid} ({}) outlived the run", cmdline(pid));
-    }
+    both_gone(&scratch);
 }
 
 #[test]
