@@ -19,10 +19,15 @@
 //!    every remaining process of the tree, reaps them all and exits.
 //!
 //! The server waits for the supervisor's exit before it starts another tree,
-//! so "one run at a time" is one process tree at a time. The server is a
-//! child subreaper too ([`become_subreaper`]), so that if a supervisor itself
-//! were killed, its orphans would come to the server, which then kills what
-//! is left of the tree's session ([`sweep`]).
+//! so "one run at a time" is one process tree at a time. The supervisor
+//! exits only once every process of its tree is gone, unless it is itself
+//! killed (the server does so if it has not ended 2 s after being told to
+//! stop; the kernel's out-of-memory killer might). Then the server kills
+//! what is left in the tree's session and process group ([`sweep`]); it is
+//! a child subreaper too ([`become_subreaper`]), so those orphans come to it
+//! and not to init. A process that had also left the session by then (a
+//! double fork with `setsid` under a supervisor killed from outside) is the
+//! one case this does not reach.
 //!
 //! NOTE: why a supervisor process and not `pre_exec`: setting limits or a
 //! session between fork and exec needs `CommandExt::pre_exec`, which is
@@ -39,7 +44,7 @@ use std::io::Read;
 use std::os::unix::process::ExitStatusExt;
 use std::process::{Child, ChildStderr, ChildStdin, ChildStdout, Command, ExitStatus, Stdio};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex, MutexGuard, TryLockError};
 use std::time::{Duration, Instant};
 
 /// How long a supervisor has, once told to stop, to kill its tree and exit
@@ -172,9 +177,9 @@ impl Slot {
         lock(&self.control).closed
     }
 
-    /// Starts `program args…` under a supervisor (the spintop binary
-    /// `launcher`) with `bounds`, in `command`'s folder and environment:
-    /// `command` is the supervisor's command, its arguments not yet given.
+    /// Starts `program args…` under a supervisor with `bounds`: `command`
+    /// runs the spintop binary (the supervisor) in the folder and with the
+    /// environment the program gets, its arguments not yet given.
     pub fn start(
         &self,
         mut command: Command,
@@ -211,7 +216,8 @@ impl Slot {
         }
         let start = Instant::now();
         while start.elapsed() < grace + GRACE {
-            if self.turn.try_lock().is_ok() {
+            // Free, or poisoned by a panic: nobody holds a tree.
+            if !matches!(self.turn.try_lock(), Err(TryLockError::WouldBlock)) {
                 return true;
             }
             std::thread::sleep(Duration::from_millis(10));
