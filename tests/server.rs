@@ -1016,8 +1016,20 @@ struct Book {
 
 impl Book {
     fn start(site: &Path, scratch: &Path) -> Self {
+        Self::start_with(site, scratch, &[], &[])
+    }
+
+    /// As [`Book::start`], with further arguments and environment.
+    fn start_with(
+        site: &Path,
+        scratch: &Path,
+        args: &[&str],
+        env: &[(&str, &std::ffi::OsStr)],
+    ) -> Self {
         let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_spintop"))
             .arg("book")
+            .args(args)
+            .envs(env.iter().copied())
             .arg("--site")
             .arg(site)
             .arg("--scratch")
@@ -1099,6 +1111,18 @@ impl Book {
     }
 }
 
+/// A test that fails midway still stops its server (which stops its tree).
+impl Drop for Book {
+    fn drop(&mut self) {
+        if let Ok(None) = self.child.try_wait() {
+            if let Some(pid) = rustix::process::Pid::from_raw(self.child.id() as i32) {
+                let _ = rustix::process::kill_process(pid, rustix::process::Signal::TERM);
+            }
+            let _ = self.child.wait();
+        }
+    }
+}
+
 /// F4: each of SIGTERM, SIGINT, SIGHUP and SIGQUIT during a run stops
 /// `spintop book` with a word, and no process it started survives it: not
 /// the snippet, its `sleep`, or the busy loop it detached; and SIGTERM
@@ -1172,5 +1196,51 @@ fn a_signal_stops_spintop_book_and_leaves_no_process_it_started() {
             cmdline(pid)
         );
     }
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// `--open` never puts the address on a command line, where every user can
+/// read it (`/proc/PID/cmdline`): the browser's opener gets a file only the
+/// reader can read, which forwards to the address, and which is gone once
+/// the server stops. The opener here is a stand-in that records what it got.
+#[test]
+fn open_hands_the_browser_a_file_only_the_reader_can_read_not_the_address() {
+    use std::os::unix::fs::PermissionsExt;
+    let root = std::env::temp_dir().join(format!("spintop-server-open-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    let site = site(&root);
+    let bin = root.join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    let record = root.join("record");
+    let opener = bin.join("xdg-open");
+    std::fs::write(
+        &opener,
+        "#!/bin/sh\n{ echo \"$*\"; stat -c %a \"$1\"; cat \"$1\"; } > \"$RECORD.tmp\"; mv \"$RECORD.tmp\" \"$RECORD\"\n",
+    )
+    .unwrap();
+    std::fs::set_permissions(&opener, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
+    let mut book = Book::start_with(
+        &site,
+        &root.join("scratch"),
+        &["--open"],
+        &[("PATH", path.as_ref()), ("RECORD", record.as_os_str())],
+    );
+    assert!(
+        wait_for(Duration::from_secs(20), || record.is_file()),
+        "the opener was not called"
+    );
+    let seen = std::fs::read_to_string(&record).unwrap();
+    let mut lines = seen.lines();
+    let argument = lines.next().unwrap();
+    assert!(
+        !argument.contains(&book.token),
+        "the token was on a command line: {argument}"
+    );
+    assert_eq!(lines.next(), Some("600"), "{seen}");
+    let address = format!("http://127.0.0.1:{}/?token={}", book.port, book.token);
+    assert!(seen.contains(&format!("url={address}")), "{seen}");
+    assert_eq!(book.stop(rustix::process::Signal::TERM).code(), Some(0));
+    assert!(!Path::new(argument).exists(), "{argument} is left behind");
     let _ = std::fs::remove_dir_all(&root);
 }

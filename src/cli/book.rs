@@ -249,19 +249,23 @@ fn open_browser(dir: &Path, server: &Server, out: &mut impl Write) -> Result<Pat
         .write_all(html.as_bytes())?;
     // Through a shell that exits at once, so the opener (and a browser it
     // starts) is nobody's child here.
-    let opened = Command::new("sh")
-        .args([
-            "-c",
-            "if command -v xdg-open >/dev/null; then xdg-open \"$1\"; else open \"$1\"; fi >/dev/null 2>&1 &",
-            "sh",
-        ])
-        .arg(&page)
-        .status()
-        .is_ok_and(|s| s.success());
+    let opener = if cfg!(target_os = "macos") {
+        "open"
+    } else {
+        "xdg-open"
+    };
+    let found = std::env::var_os("PATH")
+        .is_some_and(|path| std::env::split_paths(&path).any(|d| d.join(opener).is_file()));
+    let opened = found
+        && Command::new("sh")
+            .args(["-c", "\"$0\" \"$1\" >/dev/null 2>&1 &", opener])
+            .arg(&page)
+            .status()
+            .is_ok_and(|s| s.success());
     if !opened {
         writeln!(
             out,
-            "spintop book: could not open a browser; open the address above"
+            "spintop book: could not open a browser ({opener} not found); open the address above"
         )?;
     }
     Ok(page)
