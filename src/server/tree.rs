@@ -324,7 +324,7 @@ pub fn supervise(args: &[OsString]) -> i32 {
     let me = rustix::process::getpid();
     let setup = rustix::process::setsid()
         .map(drop)
-        .and_then(|()| rustix::process::set_child_subreaper(Some(me)))
+        .and_then(|()| subreaper(me))
         .map_err(std::io::Error::from)
         .and_then(|()| bounds.apply());
     if let Err(e) = setup {
@@ -505,7 +505,22 @@ fn kill_tree(root: Pid) {
 /// Makes this process a child subreaper: orphans below it come to it, not
 /// to init.
 pub fn become_subreaper() {
-    let _ = rustix::process::set_child_subreaper(Some(rustix::process::getpid()));
+    let _ = subreaper(rustix::process::getpid());
+}
+
+/// `PR_SET_CHILD_SUBREAPER` for `me` (this process).
+///
+/// NOTE: Linux only, as the `/proc` walk of [`kill_tree`] is. Elsewhere the
+/// tree still has its own session and limits and dies with its process
+/// group, but a process that leaves both can outlive it.
+fn subreaper(me: Pid) -> rustix::io::Result<()> {
+    #[cfg(target_os = "linux")]
+    return rustix::process::set_child_subreaper(Some(me));
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = me;
+        Ok(())
+    }
 }
 
 /// After a supervisor `leader` has ended (or was killed): kills whatever is
