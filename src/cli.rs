@@ -110,23 +110,10 @@ pub(crate) fn parse_list(s: &str) -> Result<Vec<Real>, String> {
 pub(crate) struct TimeList(pub(crate) Vec<Real>);
 
 /// Output times of the time-stepping commands: at least one, all >= 0,
-/// non-decreasing (the core steps forward in time only).
+/// non-decreasing (the core steps forward in time only), by the core's one
+/// rule ([`crate::sim::times::check_times`]).
 pub(crate) fn check_output_times(times: &[Real]) -> Result<(), CliError> {
-    if times.is_empty() {
-        return Err(bad("--times needs at least one time"));
-    }
-    if let Some(&t) = times.iter().find(|t| **t < 0.0) {
-        return Err(bad(format!("--times must be >= 0, got {t}")));
-    }
-    for pair in times.windows(2) {
-        if pair[1] < pair[0] {
-            return Err(bad(format!(
-                "--times must be non-decreasing ({} comes after {})",
-                pair[1], pair[0]
-            )));
-        }
-    }
-    Ok(())
+    crate::sim::times::check_times(times, true).map_err(|e| bad(format!("--{e}")))
 }
 
 pub(crate) fn parse_times(s: &str) -> Result<TimeList, String> {

@@ -117,9 +117,12 @@ pub fn fmt_axis(x: Real) -> String {
 }
 
 /// A count for a message: in full below ten million, else in exponent form
-/// (`1.8e19`), never a saturated integer's twenty digits.
+/// (`1.8e19`), never a saturated integer's twenty digits; a count beyond the
+/// largest double is `more than 1e308`, never `inf`.
 pub fn fmt_count(n: Real) -> String {
-    if n.is_finite() && n.abs() < 1e7 {
+    if !n.is_finite() {
+        "more than 1e308".into()
+    } else if n.abs() < 1e7 {
         format!("{n:.0}")
     } else {
         format!("{n:.1e}")

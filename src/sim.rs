@@ -38,6 +38,7 @@ pub mod physical;
 pub mod secular;
 pub mod shell;
 pub mod split;
+pub mod times;
 
 use physical::general;
 
@@ -422,13 +423,13 @@ pub const MIN_RTOL: Real = 1e-14;
 #[derive(Clone, Copy, Debug, Error, PartialEq)]
 pub enum OptionsError {
     /// rtol outside (0, 1).
-    #[error("rtol must lie in (0, 1), got {0}")]
+    #[error("rtol must lie in (0, 1), got {}", crate::numbers::fmt_value(*.0))]
     RtolOutOfRange(Real),
     /// rtol below [`MIN_RTOL`].
     #[error("rtol {0:e} is below what double precision can deliver; use 1e-14 or more")]
     RtolBelowDouble(Real),
     /// A step that is not a positive finite number.
-    #[error("step must be positive, got {0}")]
+    #[error("step must be positive, got {}", crate::numbers::fmt_value(*.0))]
     StepNotPositive(Real),
     /// rtol given for the fixed-step RK4.
     #[error("rtol applies to the adaptive methods; rk4 takes step")]
@@ -572,7 +573,11 @@ pub enum SimError {
     #[error("the state became non-finite at t = {}", crate::numbers::fmt_time(*.0))]
     NonFiniteSample(Real),
     /// A requested time was negative, non-finite or earlier than the last one.
-    #[error("output times must be finite, >= 0 and non-decreasing (got {0} after {1})")]
+    #[error(
+        "output times must be finite, >= 0 and non-decreasing (got {} after {})",
+        crate::numbers::fmt_value(*.0),
+        crate::numbers::fmt_value(*.1)
+    )]
     BadTime(Real, Real),
     /// The integrator failed; the error carries the time.
     #[error(transparent)]

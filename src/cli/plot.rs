@@ -82,7 +82,10 @@ impl PlotArgs {
         )?;
         // parse_number has already refused NaN and infinities.
         if self.t_end <= 0.0 {
-            return Err(bad(format!("--t-end must be > 0, got {}", self.t_end)));
+            return Err(bad(format!(
+                "--t-end must be > 0, got {}",
+                crate::numbers::fmt_value(self.t_end)
+            )));
         }
         if !(16..=500).contains(&self.width) {
             return Err(bad(format!(

@@ -6,10 +6,12 @@ use super::{
     CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times, parse_vec3,
 };
 use crate::math::{Real, Vec3};
+use crate::numbers::fmt_value;
 use crate::output::simulate::{SimulateConfig, simulate};
 use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
 use crate::physics::symmetric_top::SymmetricTop;
+use crate::sim::times::{MAX_SAMPLES, even_times};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, SimError};
 use clap::{Args, ValueEnum};
 
@@ -126,18 +128,17 @@ impl SimulateArgs {
                 let t_end = self.t_end.unwrap_or(100.0);
                 let n = self.samples.unwrap_or(11);
                 if t_end < 0.0 {
-                    return Err(bad(format!("--t-end must be >= 0, got {t_end}")));
+                    return Err(bad(format!(
+                        "--t-end must be >= 0, got {}",
+                        fmt_value(t_end)
+                    )));
                 }
-                if n == 0 || n > 1_000_000 {
-                    return Err(bad(format!("--samples must be in 1..=1000000, got {n}")));
+                if !(1..=MAX_SAMPLES).contains(&n) {
+                    return Err(bad(format!(
+                        "--samples must be in 1..={MAX_SAMPLES}, got {n}"
+                    )));
                 }
-                if n == 1 {
-                    vec![t_end]
-                } else {
-                    (0..n)
-                        .map(|i| t_end * i as Real / (n - 1) as Real)
-                        .collect()
-                }
+                even_times(t_end, n)
             }
         };
         check_output_times(&times)?;

@@ -6,8 +6,10 @@
 use super::SceneError;
 use super::format::{Key, RawSolve};
 use crate::math::Real;
+use crate::numbers::fmt_value;
 use crate::physics::ParamError;
 use crate::sim::MethodChoice;
+use crate::sim::times::{MAX_SAMPLES, check_times, even_times};
 use std::ops::Range;
 use toml::Spanned;
 
@@ -51,7 +53,10 @@ pub(super) fn num(
     if !x.is_finite() {
         return Err(ctx.at(
             &v.span(),
-            format!("[{section}] {key} = {x} is not a finite number; expected {expected}"),
+            format!(
+                "[{section}] {key} = {} is not a finite number; expected {expected}",
+                fmt_value(x)
+            ),
         ));
     }
     Ok(Some((x, v.span())))
@@ -72,7 +77,10 @@ pub(super) fn num_in(
     {
         return Err(ctx.at(
             span,
-            format!("[{section}] {key} = {x} is out of range; expected {expected}"),
+            format!(
+                "[{section}] {key} = {} is out of range; expected {expected}",
+                fmt_value(*x)
+            ),
         ));
     }
     Ok(got)
@@ -224,32 +232,14 @@ pub(super) fn solve_times(
     if let Some(times) = &s.times {
         let list = times.get_ref();
         let span = times.span();
-        if list.is_empty() {
-            return Err(ctx.at(&span, "[solve] times is empty; expected at least one time"));
-        }
-        if let Some(t) = list.iter().find(|t| !t.is_finite()) {
-            return Err(ctx.at(
-                &span,
-                format!("[solve] times holds {t}; expected finite numbers"),
-            ));
-        }
-        if !any_order {
-            if let Some(t) = list.iter().find(|t| **t < 0.0) {
-                return Err(ctx.at(
-                    &span,
-                    format!("[solve] times holds {t}; expected times >= 0"),
-                ));
-            }
-            if let Some(w) = list.windows(2).find(|w| w[1] < w[0]) {
-                return Err(ctx.at(
-                    &span,
-                    format!(
-                        "[solve] times must be non-decreasing, but {} comes after {}; expected times in increasing order",
-                        w[1], w[0]
-                    ),
-                ));
-            }
-        }
+        check_times(list, !any_order).map_err(|e| {
+            let expected = if any_order {
+                "finite numbers"
+            } else {
+                "finite times >= 0, in increasing order"
+            };
+            ctx.at(&span, format!("[solve] {e}; expected {expected}"))
+        })?;
         let scaled: Vec<Real> = list.iter().map(|t| t * scale).collect();
         if scaled.iter().any(|t| !t.is_finite()) {
             return Err(ctx.at(
@@ -263,10 +253,10 @@ pub(super) fn solve_times(
     let samples = match &s.samples {
         Some(n) => {
             let v = *n.get_ref();
-            if !(1..=1_000_000).contains(&v) {
+            if !(1..=MAX_SAMPLES as i64).contains(&v) {
                 return Err(ctx.at(
                     &n.span(),
-                    format!("[solve] samples = {v} is out of range; expected 1 to 1000000"),
+                    format!("[solve] samples = {v} is out of range; expected 1 to {MAX_SAMPLES}"),
                 ));
             }
             Some(v as usize)
@@ -298,14 +288,7 @@ pub(super) fn solve_times(
             "[solve] t_end overflows when converted to units of tau; expected a shorter time",
         ));
     }
-    let times = if n == 1 {
-        vec![t_end]
-    } else {
-        (0..n)
-            .map(|i| t_end * i as Real / (n - 1) as Real)
-            .collect()
-    };
-    Ok((times, span))
+    Ok((even_times(t_end, n), span))
 }
 
 /// Refuse `method`, `rtol` and `step` where the kind fixes its own method.

@@ -84,7 +84,10 @@ pub enum PhysicalError {
     /// The runaway and the slow motion are not separated: no slow manifold
     /// to shoot onto (a general top spun so fast that τ_f|Ω| is of order 1).
     #[error(
-        "(3.4) has no slow manifold to find here at t = {t:.4}: the slow motion decays at {slow:.3} per time unit, too close to the runaway's {fast:.3} (the physical solution needs the first well below the second); use a smaller --omega or --dipole, or --model reduced"
+        "(3.4) has no slow manifold to find here at t = {}: the slow motion decays at {} per time unit, too close to the runaway's {} (the physical solution needs the first well below the second); use a smaller --omega or --dipole, or --model reduced",
+        crate::numbers::fmt_time(*t),
+        crate::numbers::fmt_num(*slow),
+        crate::numbers::fmt_num(*fast)
     )]
     NotSeparated {
         /// When.

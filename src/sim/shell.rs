@@ -100,13 +100,20 @@ pub fn default_steps_per_delay(delta: Real) -> usize {
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum ShellError {
     /// The solution left the finite range.
-    #[error("the solution left the finite range (|Z| > 1e150) at t = {t:.6}")]
+    #[error(
+        "the solution left the finite range (|Z| > 1e150) at t = {}",
+        crate::numbers::fmt_time(*t)
+    )]
     Overflow {
         /// The end of the interval where it happened.
         t: Real,
     },
     /// A requested time was negative, non-finite or earlier than the last one.
-    #[error("output times must be finite, >= 0 and non-decreasing (got {0} after {1})")]
+    #[error(
+        "output times must be finite, >= 0 and non-decreasing (got {} after {})",
+        crate::numbers::fmt_value(*.0),
+        crate::numbers::fmt_value(*.1)
+    )]
     BadTime(Real, Real),
     /// Fewer than two steps per delay.
     #[error("at least 2 steps per delay are needed, got {0}")]
