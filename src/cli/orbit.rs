@@ -4,7 +4,7 @@
 use super::gate::Gate;
 use super::{CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times};
 use crate::math::Real;
-use crate::output::orbit::{MAX_BACKWARD_SPAN, OrbitRequest, orbit};
+use crate::output::orbit::{OrbitRequest, check_backward_span, orbit};
 use crate::physics::central::{ChargeInField, Potential};
 use crate::sim::orbit::{Force, OrbitConfig};
 use clap::{Args, ValueEnum};
@@ -74,33 +74,25 @@ impl OrbitArgs {
             ForceArg::AlForward => Force::AbrahamLorentzForward,
         };
         let charge = ChargeInField::new(potential, self.tau0).map_err(|e| bad(e.to_string()))?;
-        let mut config = OrbitConfig::new(
+        let config = OrbitConfig::new(
             charge,
             self.r0.unwrap_or(1.0),
             self.eccentricity.unwrap_or(0.0),
             force,
         )
         .map_err(|e| bad(e.to_string()))?;
-        if let Some(rtol) = self.rtol {
-            if !(1e-14..=1e-3).contains(&rtol) {
-                return Err(bad(format!("--rtol must lie in [1e-14, 1e-3], got {rtol}")));
-            }
-            config.rtol = rtol;
-        }
+        let config = match self.rtol {
+            Some(rtol) => config.with_rtol(rtol).map_err(|e| bad(format!("--{e}")))?,
+            None => config,
+        };
         let times = self.times.0;
         check_output_times(&times)?;
         let t_last = *times.last().expect("non-empty");
-        if force == Force::AbrahamLorentz
-            && potential == Potential::Coulomb
-            && t_last / self.tau0 > MAX_BACKWARD_SPAN
-        {
-            return Err(bad(format!(
-                "--force al for coulomb integrates (2.5) backward in steps of a few tau0, and \
-                 t_last/tau0 = {:.1e} exceeds {MAX_BACKWARD_SPAN:.0e}; use --force ll (equal to it up to O(tau0^2)) \
-                 or shorter --times",
-                t_last / self.tau0
-            )));
-        }
+        check_backward_span(&config, t_last).map_err(|e| {
+            bad(format!(
+                "--{e}; use --force ll (equal to it up to O(tau0^2)) or shorter --times"
+            ))
+        })?;
         Ok(OrbitRequest {
             config,
             times,

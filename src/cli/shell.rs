@@ -5,9 +5,8 @@
 use super::gate::Gate;
 use super::{CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times};
 use crate::math::Real;
-use crate::output::shell::{MAX_STEPS, ShellRequest, instability_warning, shell};
+use crate::output::shell::{ShellRequest, instability_warning, shell, steps_per_delay};
 use crate::physics::shell::ShellModel;
-use crate::sim::shell::default_steps_per_delay;
 use clap::Args;
 use std::io::Write;
 
@@ -40,20 +39,17 @@ impl ShellArgs {
         let model = ShellModel::new(self.tau0, self.delay).map_err(|e| bad(e.to_string()))?;
         let times = self.times.0;
         check_output_times(&times)?;
-        let steps = default_steps_per_delay(self.delay);
         let t_last = *times.last().expect("non-empty");
-        let work = (t_last / self.delay).ceil().max(1.0) * steps as Real;
-        if work > MAX_STEPS {
-            return Err(bad(format!(
-                "the run needs {work:.1e} RK4 steps ({} per delay up to t = {t_last}), more than {MAX_STEPS:.0e}: {}",
-                crate::numbers::fmt_count(steps as Real),
-                if self.delay > t_last {
+        let steps = steps_per_delay(&model, t_last).map_err(|e| {
+            bad(format!(
+                "{e}: {}",
+                if e.delay_too_long {
                     "the delay is longer than the run itself; choose a shorter --delay"
                 } else {
                     "ask for shorter --times or a longer --delay"
                 }
-            )));
-        }
+            ))
+        })?;
         Ok(ShellRequest {
             model,
             steps,
@@ -71,10 +67,12 @@ pub(crate) fn execute(
 ) -> Result<(), CliError> {
     let request = args.validate()?;
     let model = request.model;
-    // The warning comes before any output, so a reader piping stdout still sees it first.
+    let output = shell(&request)?;
+    // The warning comes before any output, so a reader piping stdout still
+    // sees it first; a run that failed says so in its one error line instead.
     if let Some(rate) = model.growth_rate() {
         writeln!(err, "{}", instability_warning(&model, rate))?;
         err.flush()?;
     }
-    out.emit(&shell(&request)?, request.format)
+    out.emit(&output, request.format)
 }

@@ -18,6 +18,29 @@ use std::io::{self, Write};
 /// are a few τ₀ (the runaway mode is stiff backward), so the cost grows like t/τ₀.
 pub const MAX_BACKWARD_SPAN: Real = 1e6;
 
+/// A backward integration of (2.5) longer than [`MAX_BACKWARD_SPAN`] τ₀.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error(
+    "force al for coulomb integrates (2.5) backward in steps of a few tau0, and t_last/tau0 = {span:.1e} exceeds {MAX_BACKWARD_SPAN:.0e}"
+)]
+pub struct BackwardTooLong {
+    /// t_last/τ₀.
+    pub span: Real,
+}
+
+/// Refuse a run of `config` up to `t_last` whose backward integration would
+/// be too long: the one check the command line and a scene make before it
+/// starts.
+pub fn check_backward_span(config: &OrbitConfig, t_last: Real) -> Result<(), BackwardTooLong> {
+    let span = t_last / config.charge.tau0();
+    let backward =
+        config.force == Force::AbrahamLorentz && config.charge.potential() == Potential::Coulomb;
+    if backward && span > MAX_BACKWARD_SPAN {
+        return Err(BackwardTooLong { span });
+    }
+    Ok(())
+}
+
 /// A validated `orbit` request.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OrbitRequest {

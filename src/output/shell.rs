@@ -13,6 +13,50 @@ use std::io::{self, Write};
 /// The most RK4 steps one run may take (about a second of work).
 pub const MAX_STEPS: Real = 2e7;
 
+/// A run the method of steps would take too long over: how many RK4 steps it
+/// needs, and whether the delay alone is longer than the run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TooMuchWork {
+    /// RK4 steps the run needs.
+    pub steps: Real,
+    /// RK4 steps per delay.
+    pub per_delay: usize,
+    /// The last output time.
+    pub t_last: Real,
+    /// True when the delay is longer than the run itself.
+    pub delay_too_long: bool,
+}
+
+impl std::fmt::Display for TooMuchWork {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::numbers::{fmt_count, fmt_time};
+        write!(
+            f,
+            "the run needs {} RK4 steps ({} per delay up to t = {}), more than {MAX_STEPS:.0e}",
+            fmt_count(self.steps),
+            fmt_count(self.per_delay as Real),
+            fmt_time(self.t_last)
+        )
+    }
+}
+
+/// The RK4 steps per delay a run of `model` up to `t_last` takes, or why it
+/// would take too many: the one check the command line and a scene make
+/// before a run starts.
+pub fn steps_per_delay(model: &ShellModel, t_last: Real) -> Result<usize, TooMuchWork> {
+    let per_delay = crate::sim::shell::default_steps_per_delay(model.delta());
+    let steps = (t_last / model.delta()).ceil().max(1.0) * per_delay as Real;
+    if steps > MAX_STEPS {
+        return Err(TooMuchWork {
+            steps,
+            per_delay,
+            t_last,
+            delay_too_long: model.delta() > t_last,
+        });
+    }
+    Ok(per_delay)
+}
+
 /// A validated `shell` request.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShellRequest {

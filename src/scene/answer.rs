@@ -10,15 +10,13 @@ use super::{
 use crate::integrate::Stats;
 use crate::math::Real;
 use crate::output::balance::{self, BalanceConfig, BalanceOutput, BalanceParameters, DipoleChoice};
-use crate::output::orbit::{self, MAX_BACKWARD_SPAN, OrbitOutput, OrbitRequest};
-use crate::output::shell::{self, MAX_STEPS as SHELL_MAX_STEPS, ShellOutput, ShellRequest};
+use crate::output::orbit::{self, OrbitOutput, OrbitRequest};
+use crate::output::shell::{self, ShellOutput, ShellRequest};
 use crate::output::simulate::{Parameters, SimulateConfig, SimulateOutput, simulate};
 use crate::output::{Failure, Format};
 use crate::physics::particle::{DEBYE_ESU_CM, Milestones, RigidShape, SPEED_OF_LIGHT_CM_S};
 use crate::sim::Model;
-use crate::sim::orbit::Force;
 use crate::sim::secular::{Law, SecularSample, secular};
-use crate::sim::shell::default_steps_per_delay;
 use crate::stability::Row;
 use serde::Serialize;
 
@@ -496,19 +494,16 @@ pub fn answer(scene: &Scene) -> Result<Report, Failure> {
         }
         Body::Orbit(o) => {
             let t_last = o.times.last().copied().unwrap_or(0.0);
-            let tau0 = o.config.charge.tau0();
-            if o.config.force == Force::AbrahamLorentz
-                && o.config.charge.potential() == crate::physics::central::Potential::Coulomb
-                && t_last / tau0 > MAX_BACKWARD_SPAN
-            {
-                return Err(Failure::BadInput(scene.error_at(
-                    scene.lines.times,
-                    format!(
-                        "[solve] force = \"al\" for coulomb integrates (2.5) backward in steps of a few tau0, and t_last/tau0 = {:.1e} exceeds {MAX_BACKWARD_SPAN:.0e}; expected shorter times, or force = \"ll\"",
-                        t_last / tau0
-                    ),
-                ).to_string()));
-            }
+            orbit::check_backward_span(&o.config, t_last).map_err(|e| {
+                Failure::BadInput(
+                    scene
+                        .error_at(
+                            scene.lines.times,
+                            format!("[solve] {e}; expected shorter times, or force = \"ll\""),
+                        )
+                        .to_string(),
+                )
+            })?;
             let request = OrbitRequest {
                 config: o.config,
                 times: o.times.clone(),
@@ -517,18 +512,17 @@ pub fn answer(scene: &Scene) -> Result<Report, Failure> {
             Answer::Orbit(orbit::orbit(&request)?)
         }
         Body::Shell(s) => {
-            let steps = default_steps_per_delay(s.model.delta());
             let t_last = s.times.last().copied().unwrap_or(0.0);
-            let work = (t_last / s.model.delta()).ceil().max(1.0) * steps as Real;
-            if work > SHELL_MAX_STEPS {
-                return Err(Failure::BadInput(scene.error_at(
-                    scene.lines.times,
-                    format!(
-                        "[solve] the run needs {work:.1e} RK4 steps ({} per delay up to t = {t_last}), more than {SHELL_MAX_STEPS:.0e}; expected shorter times or a longer delay",
-                        crate::numbers::fmt_count(steps as Real)
-                    ),
-                ).to_string()));
-            }
+            let steps = shell::steps_per_delay(&s.model, t_last).map_err(|e| {
+                Failure::BadInput(
+                    scene
+                        .error_at(
+                            scene.lines.times,
+                            format!("[solve] {e}; expected shorter times or a longer delay"),
+                        )
+                        .to_string(),
+                )
+            })?;
             let request = ShellRequest {
                 model: s.model,
                 steps,

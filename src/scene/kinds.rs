@@ -4,9 +4,7 @@
 //! stability suite (`stability`).
 
 use super::format::{RawBalance, RawOrbit, RawShell, RawSolve};
-use super::keys::{
-    At, Ctx, choice, finite_array, fixed_method, missing, num, num_in, param, solve_times,
-};
+use super::keys::{At, Ctx, choice, finite_array, fixed_method, missing, num, param, solve_times};
 use super::{Body, Built, SceneError, plan};
 use crate::math::Real;
 use crate::physics::balance::{Dumbbell, PlanarLoop, PrecessingDipole};
@@ -247,16 +245,11 @@ pub(super) fn orbit_scene(
     .map_err(|err| param(ctx, err, &spans, own, s))?;
     fixed_method(ctx, solve.clone(), s, "its method follows from force", true)?;
     if let Some((sv, _)) = &solve
-        && let Some((rtol, _)) = num_in(
-            ctx,
-            "solve",
-            "rtol",
-            &sv.rtol,
-            |r| (1e-14..=1e-3).contains(&r),
-            "a relative tolerance in [1e-14, 1e-3]",
-        )?
+        && let Some((rtol, span)) = num(ctx, "solve", "rtol", &sv.rtol, "a relative tolerance")?
     {
-        config.rtol = rtol;
+        config = config
+            .with_rtol(rtol)
+            .map_err(|e| ctx.at(&span, format!("[solve] {e}")))?;
     }
     let (times, times_span) = solve_times(ctx, solve, own, None, false, 1.0)?;
     Ok(Built {

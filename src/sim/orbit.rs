@@ -66,9 +66,15 @@ pub struct OrbitConfig {
     pub rtol: Real,
 }
 
+/// The loosest relative tolerance an orbit is integrated at: (2.5)'s
+/// runaway amplifies a looser one beyond what the averaged laws check.
+pub const MAX_ORBIT_RTOL: Real = 1e-3;
+
 impl OrbitConfig {
     /// Validate r₀ > 0 (and, for Coulomb, above [`OrbitConfig::floor_radius`])
-    /// and e ∈ [0, 1).
+    /// and e ∈ [0, 1); for the oscillator under the Landau–Lifshitz force,
+    /// τ₀ < 2, below which s² + τ₀s + 1 = 0 has complex roots (an orbit that
+    /// decays; at τ₀ ≥ 2 the charge is overdamped and has none).
     pub fn new(
         charge: ChargeInField,
         r0: Real,
@@ -91,6 +97,16 @@ impl OrbitConfig {
                 range: "in [0, 1) (a bound orbit)",
             });
         }
+        if force == Force::LandauLifshitz
+            && charge.potential() == Potential::Harmonic
+            && charge.tau0() >= 2.0
+        {
+            return Err(ParamError::OutOfRange {
+                name: "tau0",
+                value: charge.tau0(),
+                range: "below 2 for the oscillator under force ll: at tau0 >= 2 the roots of s^2 + tau0 s + 1 = 0 are real, the charge is overdamped and has no orbit",
+            });
+        }
         let config = Self {
             charge,
             r0,
@@ -107,6 +123,18 @@ impl OrbitConfig {
             });
         }
         Ok(config)
+    }
+
+    /// This problem at relative tolerance `rtol`, in [1e-14, 1e-3].
+    pub fn with_rtol(self, rtol: Real) -> Result<Self, ParamError> {
+        if !(crate::sim::MIN_RTOL..=MAX_ORBIT_RTOL).contains(&rtol) {
+            return Err(ParamError::OutOfRange {
+                name: "rtol",
+                value: rtol,
+                range: "in [1e-14, 1e-3]",
+            });
+        }
+        Ok(Self { rtol, ..self })
     }
 
     /// The starting position and velocity.
@@ -218,7 +246,8 @@ pub enum OrbitError {
     Integrate(#[from] IntegrateError),
     /// The orbit fell inside [`OrbitConfig::floor_radius`].
     #[error(
-        "the orbit fell to r = {r:.3e} at t = {t}, where the orbital time comes within 10 tau0 and the model ends"
+        "the orbit fell to r = {r:.3e} at t = {}, where the orbital time comes within 10 tau0 and the model ends",
+        crate::numbers::fmt_time(*t)
     )]
     Collapsed {
         /// When.
