@@ -148,7 +148,23 @@ pub fn sim_failure(e: SimError, model: &Model, choice: MethodChoice) -> Failure 
         _ => return Failure::from(e),
     };
     let closed = model.has_closed_form();
-    let full = matches!(model, Model::Full(_));
+    let full = model.is_full();
+    // The closed forms ran: nothing stepped, so only the time or the inputs
+    // can have overflowed.
+    let closed_form_run = matches!(
+        model.method(choice),
+        Ok(crate::sim::Method::ClosedForm | crate::sim::Method::ClosedFormDop853)
+    );
+    // A general top's numbers are in kappa = 1 units, and its dipole is an
+    // input that can overflow too.
+    let inputs = if matches!(
+        model,
+        Model::General(_) | Model::GeneralReduced(_) | Model::GeneralFull(_)
+    ) {
+        "a smaller --omega or --dipole (kappa = 1 units)"
+    } else {
+        "a smaller --omega (in units of 1/tau)"
+    };
     let exact = if closed && matches!(choice, M::Rk4 | M::Dopri5 | M::Dop853) {
         ", or --method exact (the closed forms take no steps)"
     } else {
@@ -158,11 +174,14 @@ pub fn sim_failure(e: SimError, model: &Model, choice: MethodChoice) -> Failure 
         (IntegrateError::NonFinite { .. }, M::Rk4) => {
             format!("RK4's fixed step is too large for these rates (its stability limit is about 2.8 over the largest decay rate): use a smaller --step, or an adaptive method (--method dop853){exact}")
         }
+        (IntegrateError::NonFinite { .. }, _) if closed_form_run => {
+            format!("the closed forms overflow a double at this time: ask for earlier times, or use {inputs}")
+        }
         (IntegrateError::NonFinite { .. }, _) if full => {
-            "the full ALE's solution left the range of a double: use smaller --omega or a shorter --t-end, or compare --model reduced".into()
+            format!("the full ALE's solution left the range of a double: use {inputs} or a shorter --t-end, or compare --model reduced")
         }
         (IntegrateError::NonFinite { .. }, _) => {
-            format!("the rates overflow a double: use a smaller --omega (in units of 1/tau){exact}")
+            format!("the rates overflow a double: use {inputs}{exact}")
         }
         (IntegrateError::StepSizeUnderflow { .. }, _) => {
             if closed && choice != M::Exact && choice != M::Auto {

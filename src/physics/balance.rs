@@ -230,6 +230,19 @@ pub fn period_average(traj: &impl DipoleTrajectory) -> Option<Balance> {
 }
 // ANCHOR_END: period_average
 
+/// Refuse a rotation rate ω that is zero (a static dipole has no period and
+/// does not radiate) or so small that its period 2π/|ω| overflows a double.
+fn check_rate(omega: Real) -> Result<(), ParamError> {
+    if !(2.0 * std::f64::consts::PI / omega.abs()).is_finite() {
+        return Err(ParamError::OutOfRange {
+            name: "rate",
+            value: omega,
+            range: "non-zero, with a period 2 pi/|rate| a double can hold (a static dipole has no period and does not radiate)",
+        });
+    }
+    Ok(())
+}
+
 /// A rigid dipole of unit length precessing about lab z on a cone of
 /// half-angle θ at rate ω: the dipole of a symmetric top in regular
 /// precession.
@@ -255,13 +268,7 @@ impl PrecessingDipole {
                 range: "[0, pi]",
             });
         }
-        if omega == 0.0 {
-            return Err(ParamError::OutOfRange {
-                name: "rate",
-                value: omega,
-                range: "non-zero (a static dipole has no period and does not radiate)",
-            });
-        }
+        check_rate(omega)?;
         Ok(Self { theta, omega })
     }
 
@@ -418,13 +425,7 @@ impl Dumbbell {
                 });
             }
         }
-        if omega == 0.0 {
-            return Err(ParamError::OutOfRange {
-                name: "rate",
-                value: omega,
-                range: "non-zero (a static dipole has no period and does not radiate)",
-            });
-        }
+        check_rate(omega)?;
         Ok(Self {
             amplitude: length * (q1 * m2 - q2 * m1) / (m1 + m2),
             omega,

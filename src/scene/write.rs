@@ -375,6 +375,6 @@ impl Output for Report {
     }
 
     fn advice(&self) -> &'static str {
-        "the scene's numbers are beyond what a double carries through this computation; ask for smaller rates or earlier times"
+        "ask for smaller rates or earlier times"
     }
 }

@@ -139,6 +139,22 @@ fn check(c: &Case) -> Option<String> {
             ));
         }
     }
+    // A number in a message is written short: never a double's three
+    // hundred digits (`1e300`, not `1000…0`).
+    let longest_digits = stderr
+        .split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0);
+    if longest_digits > 24 {
+        problems.push(format!(
+            "a number of {longest_digits} digits in the message"
+        ));
+    }
+    // (An infinity the user typed is echoed as typed.)
+    if stderr.contains(" inf ") && !stderr.contains("inf is not a finite number") {
+        problems.push("an infinite number computed in the message".into());
+    }
     let haystack = if code == 0 { &stdout } else { &stderr };
     if !haystack.contains(&c.fragment) {
         problems.push(format!("no {:?} in the message", c.fragment));
@@ -1501,6 +1517,234 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
     ];
     for (args, fragment) in edges {
         cases.push(case(&args, 0, fragment));
+    }
+    cases.extend(extremes(dir));
+    cases
+}
+
+/// Extreme values a user can type: each echoed short in its message (never
+/// three hundred digits), refused or answered with advice that fits what
+/// was asked, in one line.
+fn extremes(dir: &std::path::Path) -> Vec<Case> {
+    let sim = |extra: &[&str]| with(&["simulate", "--model", "reduced"], extra);
+    let mut cases = vec![
+        // Each value is echoed in exponent form.
+        Case {
+            args: sim(&["--rtol", "1e300"]),
+            ..case(&[], 2, "1e300")
+        },
+        Case {
+            args: sim(&["--rtol", "-1e-300"]),
+            ..case(&[], 2, "-1e-300")
+        },
+        Case {
+            args: sim(&["--method", "rk4", "--step", "-1e300"]),
+            ..case(&[], 2, "-1e300")
+        },
+        Case {
+            args: sim(&["--times", "5,-1e300"]),
+            ..case(&[], 2, "-1e300")
+        },
+        Case {
+            args: sim(&["--times", "5,1e-300"]),
+            ..case(&[], 2, "1e-300")
+        },
+        Case {
+            args: sim(&["--t-end", "-1e300"]),
+            ..case(&[], 2, "-1e300")
+        },
+        case(&["plot", "--t-end", "-1e300"], 2, "-1e300"),
+        case(
+            &[
+                "orbit",
+                "--potential",
+                "coulomb",
+                "--tau0",
+                "1e-3",
+                "--rtol",
+                "1e300",
+                "--times",
+                "1",
+            ],
+            2,
+            "1e300",
+        ),
+        // The step count of a run to t = 1e308 overflows: said in words, the
+        // time in exponent form.
+        case(
+            &[
+                "shell", "--tau0", "1e-3", "--delay", "0.03", "--times", "0,1e308",
+            ],
+            2,
+            "1e308",
+        ),
+        case(&["tui", "--bench", "1e300"], 2, "1e300"),
+        // Evenly spaced times up to a last time near the largest double: the
+        // spacing does not overflow on the way.
+        case(
+            &[
+                "simulate",
+                "--model",
+                "truncated",
+                "--t-end",
+                "1e306",
+                "--samples",
+                "200",
+            ],
+            0,
+            "truncated",
+        ),
+        // The oscillator under the Landau-Lifshitz force is overdamped for
+        // tau0 >= 2: no orbit, and its closed-form mode does not exist.
+        case(
+            &[
+                "orbit",
+                "--potential",
+                "harmonic",
+                "--tau0",
+                "3",
+                "--times",
+                "0,1",
+            ],
+            2,
+            "tau0",
+        ),
+        case(
+            &[
+                "orbit",
+                "--potential",
+                "harmonic",
+                "--tau0",
+                "2",
+                "--times",
+                "0,1",
+                "--format",
+                "json",
+            ],
+            2,
+            "tau0",
+        ),
+        // An unstable shell that runs away: one line, the error.
+        case(
+            &[
+                "shell", "--tau0", "1e-3", "--delay", "1.5e-3", "--times", "0,1,20",
+            ],
+            3,
+            "unstable",
+        ),
+        // A closed form asked for a time near the largest double, the top at
+        // rest: the advice is an earlier time (a smaller omega cannot help).
+        case(
+            &[
+                "simulate",
+                "--model",
+                "truncated",
+                "--omega",
+                "0,0,0",
+                "--times",
+                "1e308",
+            ],
+            3,
+            "earlier",
+        ),
+        // A general top's overflow names its own inputs and units.
+        case(
+            &[
+                "simulate",
+                "--model",
+                "general",
+                "--inertia",
+                "1,1,1",
+                "--dipole",
+                "1e300,0,0",
+                "--t-end",
+                "1",
+            ],
+            3,
+            "--dipole",
+        ),
+        // The full ALE of a general top whose linearisation overflows: a
+        // numerical failure at once, never an eigenvalue search for ever.
+        case(
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--inertia",
+                "1,1,1",
+                "--dipole",
+                "1e100,0,0",
+                "--t-end",
+                "1",
+            ],
+            3,
+            "--dipole",
+        ),
+        // A rate so slow that its period overflows a double is refused.
+        case(
+            &[
+                "balance",
+                "--dipole",
+                "precessing",
+                "--rate",
+                "1e-308",
+                "--times",
+                "0",
+            ],
+            2,
+            "rate",
+        ),
+        case(
+            &[
+                "balance", "--dipole", "dumbbell", "--rate", "5e-324", "--times", "0",
+            ],
+            2,
+            "rate",
+        ),
+    ];
+    let scenes = [
+        (
+            "extreme-times",
+            "[scene]\nname = \"s\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [1.0, -1e300]\n",
+            2,
+            "-1e300",
+        ),
+        (
+            "extreme-shell",
+            "[scene]\nname = \"s\"\nkind = \"shell\"\ndescription = \"d\"\n\n[shell]\ntau0 = 1e-3\ndelay = 0.03\n\n[solve]\ntimes = [0.0, 1e308]\n",
+            2,
+            "1e308",
+        ),
+        (
+            "extreme-oscillator",
+            "[scene]\nname = \"s\"\nkind = \"orbit\"\ndescription = \"d\"\n\n[orbit]\npotential = \"harmonic\"\ntau0 = 3.0\nforce = \"ll\"\n\n[solve]\ntimes = [0.0, 1.0]\n",
+            2,
+            "tau0",
+        ),
+        (
+            "extreme-rate",
+            "[scene]\nname = \"s\"\nkind = \"balance\"\ndescription = \"d\"\n\n[balance]\ndipole = \"precessing\"\nrate = 1e-308\n\n[solve]\ntimes = [0.0, 1.0]\n",
+            2,
+            "rate",
+        ),
+        // A result that overflows: the advice is said once, after the gate's
+        // own sentence.
+        (
+            "extreme-torque",
+            "[scene]\nname = \"s\"\nkind = \"balance\"\ndescription = \"d\"\n\n[balance]\ndipole = \"precessing\"\nrate = 1e200\n\n[solve]\ntimes = [0.0, 1.0]\n",
+            3,
+            "computation; ask for smaller rates",
+        ),
+        (
+            "extreme-evenly",
+            "[scene]\nname = \"s\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"truncated\"\n\n[solve]\nt_end = 1e306\nsamples = 200\n",
+            0,
+            "truncated",
+        ),
+    ];
+    for (name, body, code, fragment) in scenes {
+        let path = scene_file(dir, name, body);
+        cases.push(case(&["run", &path, "--format", "json"], code, fragment));
     }
     cases
 }

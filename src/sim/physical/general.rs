@@ -57,8 +57,9 @@ const SLOW_E_FOLDINGS: Real = 3.0;
 
 /// The rates of (3.4) linearised at Ω (with W from the reduced model): the
 /// slowest runaway (the smallest positive real part of the runaway pair) and
-/// the fastest decay or growth of the rest.
-fn rates(top: &GeneralTop, omega: &Vec3) -> (Real, Real) {
+/// the fastest decay or growth of the rest; `None` when the linearisation
+/// overflows a double.
+fn rates(top: &GeneralTop, omega: &Vec3) -> Option<(Real, Real)> {
     let y0 = near_manifold(top, omega);
     let h = 1e-7 * y0.amax().max(1e-300);
     let mut jac = nalgebra::SMatrix::<Real, 6, 6>::zeros();
@@ -68,6 +69,12 @@ fn rates(top: &GeneralTop, omega: &Vec3) -> (Real, Real) {
         let col = (general_full_ale_rhs(top, &(y0 + e)) - general_full_ale_rhs(top, &(y0 - e)))
             / (2.0 * h);
         jac.set_column(j, &col);
+    }
+    // NOTE: nalgebra's eigenvalue iteration never ends on a matrix holding a
+    // NaN or an infinity (a dipole of 1e100 in kappa = 1 units overflows the
+    // right-hand side): such a linearisation is a numerical failure.
+    if !jac.iter().all(|x| x.is_finite()) {
+        return None;
     }
     let eig = jac.complex_eigenvalues();
     // The runaway pair is told from the rest by the rates it has at rest,
@@ -83,7 +90,7 @@ fn rates(top: &GeneralTop, omega: &Vec3) -> (Real, Real) {
         .map(|l| l.re)
         .filter(|re| *re <= threshold)
         .fold(0.0, |m: Real, re| m.max(re.abs()));
-    (fast, slow)
+    Some((fast, slow))
 }
 
 /// The runaway rates of (3.4) linearised about rest (Ω = 0), smaller first:
@@ -364,7 +371,10 @@ pub fn general_physical_solution(
         // The margin outlasts the slowest runaway; the segment keeps the shot
         // within a few e-foldings of the slow decay (shorter still if the
         // shoot fails: halved up to five times).
-        let (fast, slow) = rates(top, &start);
+        let (fast, slow) =
+            rates(top, &start).ok_or(PhysicalError::Integrate(IntegrateError::NonFinite {
+                t: t0,
+            }))?;
         if !(fast.is_finite() && fast > 0.0 && slow <= SEPARATION * fast) {
             return Err(PhysicalError::NotSeparated { t: t0, slow, fast });
         }
@@ -516,7 +526,7 @@ mod tests {
                     "{ours:?} vs {notes:?}"
                 );
             }
-            let (fast, _) = rates(&top, &(Vec3::new(1.0, -0.5, 0.3) * 1e-4));
+            let (fast, _) = rates(&top, &(Vec3::new(1.0, -0.5, 0.3) * 1e-4)).expect("finite");
             assert!(
                 (fast - notes[0]).abs() < 1e-5 * notes[0],
                 "{fast} vs the notes' {notes:?}"
