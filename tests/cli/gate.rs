@@ -269,3 +269,82 @@ fn a_period_that_ends_is_absent_and_passes_the_gate() {
     assert!(run("csv").lines().any(|l| l.ends_with(',')));
     assert!(run("table").contains("none"));
 }
+
+/// A value as large as a run of a million samples, walked lazily: it counts
+/// the samples a writer asked of it.
+struct Lazy {
+    samples: usize,
+    walked: std::cell::Cell<usize>,
+}
+
+impl serde::Serialize for Lazy {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::{SerializeSeq, SerializeStruct};
+        struct Samples<'a>(&'a Lazy);
+        impl serde::Serialize for Samples<'_> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                let mut seq = s.serialize_seq(Some(self.0.samples))?;
+                for i in 0..self.0.samples {
+                    self.0.walked.set(self.0.walked.get() + 1);
+                    seq.serialize_element(&[i as f64; 8])?;
+                }
+                seq.end()
+            }
+        }
+        let mut st = s.serialize_struct("Lazy", 2)?;
+        st.serialize_field("model", "truncated")?;
+        st.serialize_field("samples", &Samples(self))?;
+        st.end()
+    }
+}
+
+impl spintop::output::Output for Lazy {
+    fn write_text(
+        &self,
+        _: &mut dyn std::io::Write,
+        _: spintop::output::Format,
+    ) -> std::io::Result<()> {
+        Ok(())
+    }
+    fn advice(&self) -> &'static str {
+        ""
+    }
+}
+
+/// A writer that takes `room` bytes and then fails, as a closed pipe does.
+struct Full {
+    room: usize,
+}
+
+impl std::io::Write for Full {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if self.room == 0 {
+            return Err(std::io::ErrorKind::BrokenPipe.into());
+        }
+        let n = buf.len().min(self.room);
+        self.room -= n;
+        Ok(n)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// The JSON form is written as it is walked, never built whole in memory
+/// first (a million samples took 2.2 GB that way): a reader that stops after
+/// 4 kB has cost a few samples, not a million.
+#[test]
+fn json_output_streams_and_is_never_built_whole_first() {
+    let value = Lazy {
+        samples: 1_000_000,
+        walked: std::cell::Cell::new(0),
+    };
+    let mut out = Full { room: 4096 };
+    let result = spintop::output::write(&mut out, &value, spintop::output::Format::Json);
+    assert!(result.is_err(), "the writer was full");
+    assert!(
+        value.walked.get() < 1000,
+        "{} samples walked before 4 kB were written",
+        value.walked.get()
+    );
+}
