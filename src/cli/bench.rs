@@ -70,6 +70,10 @@ impl ChartModel {
 
 /// The raw arguments of `bench`, before validation.
 #[derive(Debug, Args)]
+#[command(after_help = "Examples:\n  \
+    spintop bench --quick                            every problem and method in about a second\n  \
+    spintop bench --model reduced --out spintop.csv\n  \
+    spintop bench --join benches/results/peers-2026-11-26.csv benches/results/scipy-2026-11-25.csv")]
 pub struct BenchArgs {
     /// A short sweep: 4 tolerances, 3 RK4 steps, 3 timed samples (about a second in a release build).
     #[arg(long)]

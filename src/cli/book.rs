@@ -18,6 +18,9 @@ use std::time::{Duration, Instant, SystemTime};
 
 /// The raw arguments of `book`.
 #[derive(Debug, Default, Args)]
+#[command(after_help = "Examples:\n  \
+    spintop book                                     prints the address (with its token) to open\n  \
+    spintop book --open --port 8000")]
 pub struct BookArgs {
     /// The port on 127.0.0.1 (default: a free one).
     #[arg(long)]

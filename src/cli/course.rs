@@ -15,7 +15,13 @@ use std::time::Duration;
 
 /// The raw arguments of `course`.
 #[derive(Debug, Default, Args)]
-#[command(args_conflicts_with_subcommands = true)]
+#[command(
+    args_conflicts_with_subcommands = true,
+    after_help = "Examples:\n  \
+        spintop course                                   every assignment, its state and what to do next\n  \
+        spintop course hint torque_rate                  the next rung of its hint ladder\n  \
+        spintop course watch                             re-grade on every save"
+)]
 pub struct CourseArgs {
     #[command(subcommand)]
     action: Option<CourseAction>,

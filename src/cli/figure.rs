@@ -21,7 +21,9 @@ use std::path::PathBuf;
 #[derive(Debug, Args)]
 #[command(
     after_help = "Figure 1 is the truncated model (no Schott term), Figure 2 the reduced model \
-                  (Schott term kept); both with I3/I1 = 2/5 and Omega0 = (0, 0.1, 0.2) in 1/tau."
+                  (Schott term kept); both with I3/I1 = 2/5 and Omega0 = (0, 0.1, 0.2) in 1/tau.\n\
+                  Examples: spintop figure 2; spintop figure 1 --svg figure-1.svg; \
+                  spintop figure euler-angles --svg euler-angles.svg"
 )]
 pub struct FigureArgs {
     /// Which figure: 1 (truncated model) or 2 (reduced model), or the name of

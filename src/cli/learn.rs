@@ -15,6 +15,10 @@ use std::path::{Path, PathBuf};
 
 /// The raw arguments of `learn`.
 #[derive(Debug, Default, Args)]
+#[command(after_help = "Examples:\n  \
+    spintop learn                                    the book in the terminal, where you left it\n  \
+    spintop learn --chapter 4.2                      Section 4.2 beside its scene\n  \
+    spintop learn --list")]
 pub struct LearnArgs {
     /// Open this chapter: a section of the paper (2, 3, 4.1, 4.2, 5, A) or a
     /// file name of the book (section-4-2, numerical-methods, …).

@@ -28,6 +28,9 @@ enum PlotModel {
 
 /// The raw arguments of `plot`, before validation.
 #[derive(Debug, Args)]
+#[command(after_help = "Examples:\n  \
+    spintop plot --model both --t-end 500\n  \
+    spintop plot --model reduced --log-time --t-end 1e4 --width 100")]
 pub struct PlotArgs {
     /// Which model(s) to plot.
     #[arg(long, value_enum, default_value = "both")]

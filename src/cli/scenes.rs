@@ -12,7 +12,8 @@ use std::io::Write;
 /// The raw arguments of `scenes` (none).
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Run one with `spintop run NAME`, or open a top scene live with `spintop tui NAME`."
+    after_help = "Run one with `spintop run NAME`, or open a top scene live with `spintop tui NAME`.\n\
+                  Example: spintop scenes, then spintop run nanoparticle-1e7-debye"
 )]
 pub struct ScenesArgs {}
 

@@ -16,6 +16,10 @@ use std::time::Duration;
 
 /// The raw arguments of `tui`, before validation.
 #[derive(Debug, Default, Args)]
+#[command(after_help = "Examples:\n  \
+    spintop tui                                      the paper's Figures 1 and 2, side by side\n  \
+    spintop tui asymmetric-top                       a catalogue scene (`spintop scenes` lists them)\n  \
+    spintop tui --ratio 1.5 --method dop853 --warp 100")]
 pub struct TuiArgs {
     /// A top scene to open: a scene file, or a catalogue name (`spintop scenes`).
     #[arg(value_name = "SCENE", conflicts_with_all = ["ratio", "omega", "method"])]

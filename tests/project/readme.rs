@@ -198,3 +198,32 @@ fn the_readme_check_refuses_a_command_it_cannot_run() {
     assert_eq!(shown[1].1, None);
     assert_eq!(shown[2].1, Some(vec!["scenes".to_string()]));
 }
+
+/// The README sends a reader to `spintop CMD --help` for "every option of a
+/// command with examples": every command's help has one.
+#[test]
+fn every_commands_help_gives_an_example() {
+    let out = spintop(&["--help".to_string()], &root());
+    let help = String::from_utf8(out.stdout).unwrap();
+    let listed: Vec<String> = help
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next().map(String::from))
+        .filter(|c| c != "help")
+        .collect();
+    assert!(listed.len() >= 14, "{help}");
+    let without: Vec<String> = listed
+        .into_iter()
+        .filter(|c| {
+            let out = spintop(&[c.clone(), "--help".to_string()], &root());
+            !String::from_utf8_lossy(&out.stdout).contains("Example")
+        })
+        .collect();
+    assert!(
+        without.is_empty(),
+        "`spintop CMD --help` gives no example for: {}",
+        without.join(", ")
+    );
+}
