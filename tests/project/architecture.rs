@@ -14,14 +14,18 @@
 //! [`LAUNCHERS`]). Every path into the crate counts: `use` trees over
 //! several lines and nested braces, `super::` chains (resolved against the
 //! file's module and any inline `mod` it sits in), `self::`, and fully
-//! qualified `crate::…` paths in code. Comments and string literals do not.
-//! Among the top-level modules, and among the files of one module (say
+//! qualified `crate::…` paths in code (spaces round `::` too), a path in an
+//! attribute's string (`#[serde(with = "crate::…")]`), and the use of a
+//! `#[macro_export]` macro (an import of the module that defines it).
+//! Comments, doc links and other string literals do not. The forms it
+//! cannot follow are refused outright: an alias of the crate, a glob of its
+//! root, a re-export in the crate root, `#[path]` and `include!`. Among the top-level modules, and among the files of one module (say
 //! `integrate/dopri5.rs` and `integrate/explicit.rs`), no two may import each
 //! other, directly or round a longer circle.
 //!
 //! A new import that breaks a rule fails here with the file, the line and the
-//! rule; `the_checker_fails_on_each_kind_of_wrong_import` shows each kind of
-//! wrong import caught.
+//! rule; `the_checker_fails_on_each_kind_of_wrong_import` and
+//! `the_checker_sees_imports_in_every_disguise` show each kind caught.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -117,15 +121,41 @@ fn module_of(root: &Path, file: &Path) -> Vec<String> {
 }
 
 /// The text with comments and the insides of string and char literals
-/// blanked (lines kept), so that only code is read.
+/// blanked (lines kept), so that only code is read. A string inside an
+/// attribute that is a path into the crate (`#[serde(with = "crate::a::f")]`)
+/// is kept, unquoted: the compiler follows it as code.
 fn code_only(text: &str) -> String {
     let chars: Vec<char> = text.chars().collect();
     let mut out = String::with_capacity(text.len());
     let mut i = 0;
     let blank = |c: char| if c == '\n' { '\n' } else { ' ' };
+    // The depth of `[` inside the attribute being read (0: none), and
+    // whether the last `#` (or `#!`) opens one.
+    let (mut attribute, mut hash) = (0usize, false);
     while i < chars.len() {
         let c = chars[i];
         let next = chars.get(i + 1).copied();
+        match c {
+            '#' => hash = true,
+            '!' if hash => {}
+            '[' if hash || attribute > 0 => {
+                attribute += 1;
+                hash = false;
+            }
+            ']' if attribute > 0 => attribute -= 1,
+            c if !c.is_whitespace() => hash = false,
+            _ => {}
+        }
+        if c == '"' && attribute > 0 {
+            let rest: String = chars[i + 1..].iter().take_while(|c| **c != '"').collect();
+            if is_crate_path(&rest) {
+                out.push(' ');
+                out.push_str(&rest);
+                out.push(' ');
+                i += rest.chars().count() + 2;
+                continue;
+            }
+        }
         if c == '/' && next == Some('/') {
             while i < chars.len() && chars[i] != '\n' {
                 out.push(' ');
@@ -215,6 +245,16 @@ fn code_only(text: &str) -> String {
     out
 }
 
+/// `crate::a::b`, `$crate::a`, `super::x`, `self::y`: a path into the crate.
+fn is_crate_path(text: &str) -> bool {
+    let parts: Vec<&str> = text.trim_start_matches('$').split("::").collect();
+    parts.len() > 1
+        && matches!(parts[0], "crate" | "super" | "self")
+        && parts
+            .iter()
+            .all(|p| !p.is_empty() && p.chars().all(|c| c.is_alphanumeric() || c == '_'))
+}
+
 fn ident_char(c: Option<char>) -> bool {
     c.is_some_and(|c| c.is_alphanumeric() || c == '_')
 }
@@ -227,6 +267,7 @@ struct Written {
     segments: Vec<String>,
     line: usize,
     inline: Vec<String>,
+    from_use: bool,
 }
 
 /// The segments of one plain path (`a :: b as c` → `a`, `b`).
@@ -346,6 +387,7 @@ fn written_paths(code: &str) -> Vec<Written> {
                                     segments,
                                     line: line + tree[..offset].matches('\n').count(),
                                     inline: inline_names.clone(),
+                                    from_use: true,
                                 });
                             }
                         }
@@ -354,9 +396,16 @@ fn written_paths(code: &str) -> Vec<Written> {
                         continue;
                     }
                 } else if word == "crate" || word == "super" || word == "self" {
-                    // A path in code: `crate::a::b`, `super::super::c`.
+                    // A path in code: `crate::a::b`, `super::super::c`,
+                    // also with spaces or line breaks round `::`.
                     let mut segments = Vec::new();
                     let mut j = i;
+                    let after_space = |mut k: usize| {
+                        while chars.get(k).is_some_and(|c| c.is_whitespace()) {
+                            k += 1;
+                        }
+                        k
+                    };
                     loop {
                         let w = word_at(j);
                         if w.is_empty() {
@@ -364,8 +413,9 @@ fn written_paths(code: &str) -> Vec<Written> {
                         }
                         segments.push(w.clone());
                         j += w.chars().count();
-                        if chars.get(j) == Some(&':') && chars.get(j + 1) == Some(&':') {
-                            j += 2;
+                        let k = after_space(j);
+                        if chars.get(k) == Some(&':') && chars.get(k + 1) == Some(&':') {
+                            j = after_space(k + 2);
                         } else {
                             break;
                         }
@@ -375,8 +425,10 @@ fn written_paths(code: &str) -> Vec<Written> {
                             segments,
                             line,
                             inline: inline_names,
+                            from_use: false,
                         });
                     }
+                    line += chars[i..j].iter().filter(|c| **c == '\n').count();
                     i = j;
                     continue;
                 }
@@ -397,6 +449,20 @@ fn resolve(
     written: &Written,
     modules: &BTreeSet<Vec<String>>,
 ) -> Option<Vec<String>> {
+    let path: Vec<String> = absolute(file_module, written)?
+        .into_iter()
+        .filter(|s| s != "*")
+        .collect();
+    // The longest prefix that is a module of the file tree.
+    (1..=path.len())
+        .rev()
+        .map(|n| path[..n].to_vec())
+        .find(|p| modules.contains(p))
+}
+
+/// A written path from the crate root (`super::x` in `a::b` → `a::x`);
+/// `*` kept for a glob.
+fn absolute(file_module: &[String], written: &Written) -> Option<Vec<String>> {
     let mut here: Vec<String> = file_module.to_vec();
     here.extend(written.inline.iter().cloned());
     let mut segments = written.segments.iter().peekable();
@@ -415,16 +481,12 @@ fn resolve(
         }
     };
     for s in segments {
-        if s == "self" || s == "*" {
+        if s == "self" {
             continue;
         }
         path.push(s.clone());
     }
-    // The longest prefix that is a module of the file tree.
-    (1..=path.len())
-        .rev()
-        .map(|n| path[..n].to_vec())
-        .find(|p| modules.contains(p))
+    Some(path)
 }
 
 /// One import between modules: from, to, the file and line.
@@ -438,40 +500,181 @@ struct Import {
 
 /// Every import between two different modules of the tree under `root/src`.
 fn imports(root: &Path) -> Vec<Import> {
-    let mut files = Vec::new();
-    rust_files(&root.join("src"), &mut files);
-    files.sort();
+    let files = sources(root);
     let modules: BTreeSet<Vec<String>> = files
         .iter()
-        .map(|f| module_of(root, f))
+        .map(|f| module_of(root, &f.path))
         .filter(|m| !m.is_empty())
         .collect();
+    // Each `#[macro_export]` macro and the module that defines it: a use of
+    // it elsewhere imports that module.
+    let mut exported: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for f in &files {
+        let module = module_of(root, &f.path);
+        let t = tokens(&f.code);
+        let mut export = false;
+        for (k, (word, _)) in t.iter().enumerate() {
+            if word == "macro_export" {
+                export = true;
+            } else if word == "macro_rules"
+                && export
+                && let Some((name, _)) = t.get(k + 2)
+            {
+                exported.insert(name.clone(), module.clone());
+                export = false;
+            }
+        }
+    }
     let mut out = Vec::new();
-    for file in &files {
-        let from = module_of(root, file);
+    for f in &files {
+        let from = module_of(root, &f.path);
         if from.is_empty() {
             continue;
         }
-        let rel = file
-            .strip_prefix(root)
-            .expect("under the root")
-            .to_string_lossy()
-            .replace('\\', "/");
-        let text = std::fs::read_to_string(file).expect("a readable source file");
-        for w in written_paths(&code_only(&text)) {
-            if let Some(to) = resolve(&from, &w, &modules)
-                && to != from
+        let mut reached: Vec<(Vec<String>, usize)> = written_paths(&f.code)
+            .iter()
+            .filter_map(|w| resolve(&from, w, &modules).map(|to| (to, w.line)))
+            .collect();
+        let t = tokens(&f.code);
+        for (k, (word, line)) in t.iter().enumerate() {
+            let bang = t.get(k + 1).is_some_and(|(n, _)| n == "!");
+            let defined_here = k >= 2 && t[k - 2].0 == "macro_rules";
+            if bang
+                && !defined_here
+                && let Some(module) = exported.get(word)
             {
+                reached.push((module.clone(), *line));
+            }
+        }
+        for (to, line) in reached {
+            if to != from {
                 out.push(Import {
                     from: from.clone(),
                     to,
-                    file: rel.clone(),
-                    line: w.line,
+                    file: f.rel.clone(),
+                    line,
                 });
             }
         }
     }
     out
+}
+
+/// One source file: its path, its path from the root (`src/a.rs`) and its
+/// code ([`code_only`]).
+struct Source {
+    path: PathBuf,
+    rel: String,
+    code: String,
+}
+
+/// Every `.rs` file under `root/src`, sorted.
+fn sources(root: &Path) -> Vec<Source> {
+    let mut files = Vec::new();
+    rust_files(&root.join("src"), &mut files);
+    files.sort();
+    files
+        .into_iter()
+        .map(|path| {
+            let rel = path
+                .strip_prefix(root)
+                .expect("under the root")
+                .to_string_lossy()
+                .replace('\\', "/");
+            let text = std::fs::read_to_string(&path).expect("a readable source file");
+            Source {
+                code: code_only(&text),
+                path,
+                rel,
+            }
+        })
+        .collect()
+}
+
+/// The words and the punctuation of code, one character each, with lines.
+fn tokens(code: &str) -> Vec<(String, usize)> {
+    let mut out = Vec::new();
+    let mut line = 1;
+    let mut chars = code.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c == '\n' {
+            line += 1;
+        } else if c.is_alphanumeric() || c == '_' {
+            let mut word = c.to_string();
+            while let Some(&n) = chars.peek().filter(|n| n.is_alphanumeric() || **n == '_') {
+                word.push(n);
+                chars.next();
+            }
+            out.push((word, line));
+        } else if !c.is_whitespace() {
+            out.push((c.to_string(), line));
+        }
+    }
+    out
+}
+
+/// The forms of import the checker cannot follow, refused wherever they
+/// are: an alias of the crate (`use crate as c`, `extern crate self as c`),
+/// a glob of the crate root, a re-export at the root (it hides the module an
+/// item comes from), another file compiled in (`#[path]`, `include!`).
+fn disguises(root: &Path) -> Vec<String> {
+    let mut bad = Vec::new();
+    for f in sources(root) {
+        let module = module_of(root, &f.path);
+        let at = |line: usize, what: &str| format!("{}:{line}: {what}", f.rel);
+        for w in written_paths(&f.code).iter().filter(|w| w.from_use) {
+            match absolute(&module, w).as_deref() {
+                Some([]) => bad.push(at(w.line, "an alias of the crate: name the module instead")),
+                Some([star]) if star == "*" => bad.push(at(
+                    w.line,
+                    "a glob of the crate root: name the modules it uses",
+                )),
+                _ => {}
+            }
+        }
+        let t = tokens(&f.code);
+        let word = |k: usize| t.get(k).map_or("", |(w, _)| w.as_str());
+        // The depth of `[` inside an attribute (0: outside one).
+        let mut attribute = 0usize;
+        for (k, (w, line)) in t.iter().enumerate() {
+            let line = *line;
+            match w.as_str() {
+                "[" if attribute > 0 || word(k.wrapping_sub(1)) == "#" => attribute += 1,
+                "[" if word(k.wrapping_sub(1)) == "!" && word(k.wrapping_sub(2)) == "#" => {
+                    attribute += 1;
+                }
+                "]" if attribute > 0 => attribute -= 1,
+                "path" if attribute > 0 && word(k + 1) == "=" => bad.push(at(
+                    line,
+                    "`#[path]` compiles another module's file here: import the module",
+                )),
+                "include" if word(k + 1) == "!" => bad.push(at(
+                    line,
+                    "`include!` compiles another file's code here: import its module",
+                )),
+                "extern" if word(k + 1) == "crate" && word(k + 2) == "self" => {
+                    bad.push(at(line, "an alias of the crate (`extern crate self`)"));
+                }
+                // `pub use` or `pub(crate) use` in the crate root.
+                "use"
+                    if module.is_empty()
+                        && (word(k.wrapping_sub(1)) == "pub"
+                            || (word(k.wrapping_sub(1)) == ")"
+                                && t[..k]
+                                    .iter()
+                                    .rposition(|(w, _)| w == "(")
+                                    .is_some_and(|p| word(p.wrapping_sub(1)) == "pub"))) =>
+                {
+                    bad.push(at(
+                        line,
+                        "the crate root re-exports an item, which hides the module it comes from",
+                    ));
+                }
+                _ => {}
+            }
+        }
+    }
+    bad
 }
 
 // ---------------------------------------------------------------- rules
@@ -574,10 +777,12 @@ fn circles(edges: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
 /// Every import that breaks the order, and every circle, as lines.
 fn violations(root: &Path) -> Vec<String> {
     let imports = imports(root);
-    let mut bad: Vec<String> = imports
-        .iter()
-        .filter_map(|i| rule_broken(i).map(|r| format!("{}:{}: {r}", i.file, i.line)))
-        .collect();
+    let mut bad: Vec<String> = disguises(root);
+    bad.extend(
+        imports
+            .iter()
+            .filter_map(|i| rule_broken(i).map(|r| format!("{}:{}: {r}", i.file, i.line))),
+    );
     // Circles among the top-level modules, and among the files of one module.
     let mut top: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     let mut siblings: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
@@ -743,5 +948,96 @@ fn the_checker_fails_on_each_kind_of_wrong_import() {
     // And nothing else: the right imports beside them (a comment, a string,
     // math from anywhere, super::super within physics, the launcher, sim
     // from a service and a shell) pass.
+    assert_eq!(bad.len(), expect.len(), "{}", bad.join("\n"));
+}
+
+/// The checker reads paths in every form the compiler reads them: with
+/// spaces round `::`, in the strings of attributes (`serde`'s
+/// `with = "crate::…"`), and through exported macros; and it refuses the
+/// forms it cannot follow (an alias of the crate, a glob of its root, a
+/// re-export at the root, another module's file compiled in with `#[path]`
+/// or `include!`). Nothing else is reported: a doc link is not an import.
+#[test]
+fn the_checker_sees_imports_in_every_disguise() {
+    let dir = std::env::temp_dir().join(format!("spintop-arch-disguise-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let files: &[(&str, &str)] = &[
+        // 1. A re-export at the root hides the module an item comes from.
+        ("src/lib.rs", "pub mod math;\npub use cli::run as launch;\n"),
+        ("src/math.rs", "pub type Real = f64;\n"),
+        ("src/numbers.rs", ""),
+        // 2. Spaces round `::` in code: sim → cli.
+        ("src/sim.rs", "fn g() {\n    crate :: cli :: run();\n}\n"),
+        // 3. An alias of the crate: physics reaches sim through it.
+        (
+            "src/physics.rs",
+            "use crate as root;\nfn f() {\n    root::sim::g();\n}\n",
+        ),
+        // 4. A glob of the crate root brings every module into scope.
+        (
+            "src/integrate.rs",
+            "use crate::*;\nfn f() { cli::run(); }\n",
+        ),
+        // 5. A doc link is no import (rustdoc reads it, the compiler does
+        // not): a lower module may name who calls it.
+        (
+            "src/stability.rs",
+            "/// Compare [`crate::workprecision::Sweep`].\npub fn s() {}\n",
+        ),
+        ("src/workprecision.rs", ""),
+        // 6. A path in an attribute's string: figure → tui.
+        (
+            "src/figure.rs",
+            "#[derive(serde::Serialize)]\npub struct F {\n    #[serde(serialize_with = \"crate::tui::fmt\")]\n    x: f64,\n}\n",
+        ),
+        ("src/tui.rs", ""),
+        // 7. Another module's file compiled in: plot takes the server's.
+        (
+            "src/plot.rs",
+            "#[path = \"server/http.rs\"]\nmod http;\nfn f() { include!(\"server/page.rs\"); }\n",
+        ),
+        ("src/server.rs", "pub mod http;\n"),
+        ("src/server/http.rs", ""),
+        // 8. An exported macro that reaches the cli, used from the scene.
+        (
+            "src/cli.rs",
+            "#[macro_export]\nmacro_rules! launch_cli {\n    () => { $crate::cli::run() };\n}\npub fn run() {}\n",
+        ),
+        ("src/scene.rs", "fn f() {\n    crate::launch_cli!();\n}\n"),
+        // 9. `extern crate self` is an alias of the crate too.
+        (
+            "src/output.rs",
+            "extern crate self as spintop;\nfn f() { spintop::cli::run(); }\n",
+        ),
+    ];
+    for (path, text) in files {
+        let path = dir.join(path);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+    let bad = violations(&dir);
+    let _ = std::fs::remove_dir_all(&dir);
+    let expect = [
+        "src/lib.rs:2: the crate root re-exports",
+        "src/sim.rs:2: sim (layer 3) imports cli (layer 5)",
+        "src/physics.rs:1: an alias of the crate",
+        "src/integrate.rs:1: a glob of the crate root",
+        "src/figure.rs:3: figure (layer 4) imports tui (layer 5)",
+        "src/plot.rs:1: `#[path]`",
+        "src/plot.rs:3: `include!`",
+        "src/scene.rs:2: scene (layer 4) imports cli (layer 5)",
+        "src/output.rs:1: an alias of the crate",
+    ];
+    let missed: Vec<&str> = expect
+        .iter()
+        .copied()
+        .filter(|e| !bad.iter().any(|b| b.starts_with(e)))
+        .collect();
+    assert!(
+        missed.is_empty(),
+        "not caught:\n{}\ngot:\n{}",
+        missed.join("\n"),
+        bad.join("\n")
+    );
     assert_eq!(bad.len(), expect.len(), "{}", bad.join("\n"));
 }
