@@ -103,6 +103,33 @@ fn malformed_scene_files_exit_2_with_the_file_the_line_and_what_was_expected() {
     }
 }
 
+/// A run that stops inside a scene says what to change in the scene's own
+/// keys, never in flags of the command line the scene does not have: the
+/// general top spun so fast that (3.4) has no slow manifold (the same run as
+/// `simulate` with flags names `--omega`, tests/cli/simulate.rs).
+#[test]
+fn a_numerical_failure_in_a_scene_names_the_scenes_keys() {
+    let dir = Scratch::new("keys");
+    let path = dir.write(
+        "fast.toml",
+        &format!(
+            "{HEAD}[top]\nmodel = \"full\"\ninertia = [1.0, 2.0, 2.5]\ndipole = [1.0, 0.5, 0.2]\nomega = [5.0, 3.0, 1.0]\n\n[solve]\nt_end = 10.0\n"
+        ),
+    );
+    let out = spintop(&["run", &path]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains("no slow manifold")
+            && err.contains("[top] omega")
+            && err.contains("[top] dipole")
+            && err.contains("[top] model = \"reduced\""),
+        "{err}"
+    );
+    assert!(!err.contains("--"), "a flag in a scene's advice: {err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+}
+
 #[test]
 fn unknown_scene_and_csv_stability_are_refused_with_exit_2() {
     let out = spintop(&["run", "no-such-scene"]);
