@@ -67,6 +67,7 @@ pub fn general_full_ale_rhs(top: &GeneralTop, y: &State<6>) -> State<6> {
     out
 }
 
+// ANCHOR: slow_manifold_second_order
 /// The second-order term G₂ of the slow manifold of (3.4) for any top:
 /// on the physical solution Ω̇ = G₀ + G₁ + G₂ + O(τ_f³), where G₀ + G₁ is the
 /// reduced ALE ([`GeneralTop::reduced_ale_rhs`]).
@@ -115,6 +116,7 @@ pub fn slow_manifold_second_order(top: &GeneralTop, omega: &Vec3) -> Vec3 {
     let a1 = dg1(&g0) + dg0(omega, &g1);
     t_lin(&g1, &a1).component_div(&i)
 }
+// ANCHOR_END: slow_manifold_second_order
 
 /// The full ALE of the symmetric top (4.1) as a 4-dimensional system in
 /// (Ω₁, Ω₂, V₁, V₂) with V = ż, z = Ω₁ + iΩ₂, at a constant Ω₃ (units τ = 1 = I₁

@@ -31,6 +31,7 @@ use crate::physics::symmetric_top::SymmetricTop;
 use nalgebra::Complex;
 use thiserror::Error;
 
+// ANCHOR: slow_manifold_rate
 /// ż/z on the slow manifold of (3.4), as a series in τ (the physics notes,
 /// carried two orders further).
 ///
@@ -58,6 +59,7 @@ pub fn slow_manifold_rate(top: &SymmetricTop, omega3: Real, u: Real) -> Complex<
         -top.omega3_tilde(omega3) - 2.0 * t2 * k * s + 14.0 * t2 * t2 * k * s * s,
     )
 }
+// ANCHOR_END: slow_manifold_rate
 
 /// The exact late-time decay time of |z| on the slow manifold, where u → 0.
 ///
