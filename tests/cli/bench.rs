@@ -122,7 +122,7 @@ fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
     // columns of this 50-column chart; the times are measured, so a marker
     // may hide another: at least two pairs must show it).
     let markers = |text: &str, mark: fn(char) -> bool| -> Vec<(usize, usize)> {
-        let chart = text.splitn(2, "against RHS evaluations").nth(1).unwrap();
+        let chart = text.split_once("against RHS evaluations").unwrap().1;
         chart
             .lines()
             .skip_while(|l| !l.contains("8 dop853"))

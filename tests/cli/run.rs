@@ -215,7 +215,7 @@ fn run_a_real_particle_reports_units_milestones_and_the_skipped_orientation() {
     let (r, rho) = (50e-9_f64, 2200.0);
     let mass = rho * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
     let i1 = 0.4 * mass * r * r;
-    let (debye, eps0, c) = (3.335_640_95e-30, 8.854_187_8128e-12, 299_792_458.0_f64);
+    let (debye, eps0, c) = (3.335_640_95e-30, 8.854_187_812_8e-12, 299_792_458.0_f64);
     let d = 1e7 * debye;
     let tau = d * d / (6.0 * std::f64::consts::PI * eps0 * i1 * c.powi(3));
     assert!(
