@@ -139,8 +139,11 @@ fn eq_4_7_plot_of_omega3_ends_at_the_closed_form() {
         .map(|r| 4 * end_line + r)
         .collect();
     let (first, last) = (rows[0] as f64, rows[rows.len() - 1] as f64);
+    // (4.7) in place: Ω₃ = Ω₃₀/R, R = √(1 + 2τΩ⊥₀²t) = √21 (τ = 1, Ω⊥₀ = 0.1).
+    let omega3 = 0.2 / (1.0f64 + 2.0 * 0.01 * 1000.0).sqrt();
     let top = SymmetricTop::figure();
-    let omega3 = truncated_closed_form(&top, &Vec3::new(0.0, 0.1, 0.2), 1000.0).z;
+    let closed = truncated_closed_form(&top, &Vec3::new(0.0, 0.1, 0.2), 1000.0).z;
+    assert!((closed - omega3).abs() < 1e-15, "{closed} vs {omega3}");
     // Dot row 0 is y = +0.25; each is 0.5/80 high.
     let expected = (0.25 - omega3) / (0.5 / (4 * height) as f64);
     assert!(
