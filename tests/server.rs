@@ -554,6 +554,8 @@ fn a_run_past_the_time_limit_is_killed_with_every_process_it_started() {
         "{shown}"
     );
     assert!(shown.contains("with every process it started"), "{shown}");
+    // Killed at the 3 s limit: the note gives the limit it applied.
+    assert!(shown.contains("time limit (3 s)"), "{shown}");
     both_gone(&scratch);
 }
 

@@ -149,6 +149,7 @@ impl SimulateArgs {
             euler0: self.euler,
             times,
             format: self.format,
+            entry: crate::output::Entry::CommandLine,
         })
     }
 }

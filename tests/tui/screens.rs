@@ -82,9 +82,37 @@ fn log_time_view_after_a_long_run() {
     let terminal = screen(&app, 120, 40);
     let s = text(&terminal);
     assert!(s.contains("log-time view") && s.contains("log t"));
+    // The time axis spans Δt = 0.1 to t = 1000 in four decades, ticks at
+    // both ends and in the middle: on a log axis the middle is 10 (on a
+    // linear one it would be 500), halfway between the left label's start
+    // and the right label's end.
+    let ticks = s
+        .lines()
+        .find(|l| {
+            l.trim_start_matches(['"', '│'])
+                .trim_start()
+                .starts_with("0.1")
+                && l.contains("1000")
+        })
+        .expect("a tick line");
+    let panel: Vec<char> = ticks.split("││").next().unwrap().chars().collect();
+    let find = |label: &str, from: usize| {
+        let l: Vec<char> = label.chars().collect();
+        (from..=panel.len() - l.len())
+            .find(|&i| {
+                panel[i..i + l.len()] == l[..]
+                    && !panel.get(i + l.len()).is_some_and(|c| c.is_ascii_digit())
+            })
+            .unwrap_or_else(|| panic!("{label} on {ticks}"))
+    };
+    let left = find("0.1", 0);
+    let right_end = find("1000", left + 3) + 4;
+    let middle = find("10", left + 3);
+    let centre = middle as f64 + 1.0;
+    let halfway = 0.5 * (left + right_end) as f64;
     assert!(
-        s.contains("0.1") && s.contains("1000"),
-        "the axis spans Δt to t"
+        (centre - halfway).abs() <= 1.5 && middle < right_end - 4,
+        "10 at column {centre}, halfway {halfway}: {ticks}"
     );
     insta::assert_snapshot!(terminal.backend());
 }
