@@ -7,9 +7,10 @@
 //! the course does. Progress is one small file, `target/spintop-learn.json`.
 
 use super::{CliError, bad};
-use crate::tui::learn::{self, Learn, Progress};
+use crate::tui::learn::{Learn, Progress};
+use crate::tui::session::{self, Session};
 use clap::Args;
-use std::io::{self, IsTerminal, Write};
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
 /// The raw arguments of `learn`.
@@ -70,15 +71,6 @@ fn read_progress(path: &Path) -> Progress {
         .unwrap_or_default()
 }
 
-/// Restores the terminal when dropped.
-struct Restore;
-
-impl Drop for Restore {
-    fn drop(&mut self) {
-        ratatui::restore();
-    }
-}
-
 /// Runs `spintop learn`.
 pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliError> {
     let repo = repository();
@@ -121,28 +113,28 @@ pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliEr
         Err(_) if args.chapter.is_none() => Learn::open(&book, None).map_err(bad)?,
         Err(e) => return Err(bad(e)),
     };
-    session.mark_visited(&progress.opened);
+    session.restore(&progress);
     if args.list {
         return list(&mut session, &progress, out);
     }
-    if !io::stdout().is_terminal() {
-        return Err(bad(
-            "spintop learn needs a terminal, but stdout is not one; `spintop learn --list` prints the course as text",
-        ));
-    }
-    crate::tui::signals::check_terminal_capable().map_err(|e| {
+    session::check().map_err(|e| {
         bad(format!(
-            "{e}; `spintop learn --list` prints the course as text"
+            "spintop learn {e}; `spintop learn --list` prints the course as text"
         ))
     })?;
-    if let Some(dir) = course {
-        session.watch_course(&dir);
+    match course {
+        Some(dir) => session.watch_course(&dir),
+        None if args.no_grading => session.grading_off(
+            "--no-grading turned the grader off; run spintop learn without it to grade the \
+             assignments beside the book, or `spintop course` to grade them once",
+        ),
+        None => session.grading_off(
+            "there is no lessons/ crate here to grade; a copy made by `spintop course export` \
+             is graded with --course DIR",
+        ),
     }
-    let signal = {
-        let _restore = Restore;
-        let mut terminal = ratatui::try_init()?;
-        learn::run(&mut terminal, &mut session)?
-    };
+    let mut session = session.in_background();
+    let signal = Session::start(true)?.run(&mut session, None)?.signal;
     let progress = Progress::of(&session);
     if let Some(dir) = progress_path.parent() {
         // Progress is a convenience: failing to save it is reported, not fatal.

@@ -7,10 +7,11 @@
 //! comment in the book must parse and apply to its chapter's scene. Two
 //! screens of Section 4.2 are pinned by insta snapshots (reviewed by hand).
 
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use ratatui::{Terminal, backend::TestBackend};
 use spintop::tui::learn::markdown::{self, code_style};
-use spintop::tui::learn::{Experiment, Learn, Mode, find_chapter};
+use spintop::tui::learn::scene::Spec;
+use spintop::tui::learn::{Command, Experiment, Learn, Mode, find_chapter};
 use std::path::{Path, PathBuf};
 
 fn book() -> PathBuf {
@@ -19,16 +20,35 @@ fn book() -> PathBuf {
         .join("src")
 }
 
+/// Draw at `width`×`height`, as the terminal loop does: the size first.
 fn draw(learn: &mut Learn, width: u16, height: u16) -> String {
+    if learn.size() != (width, height) {
+        learn.apply(Command::Resize(width, height));
+    }
     let mut terminal = Terminal::new(TestBackend::new(width, height)).expect("a test terminal");
     terminal
-        .draw(|f| learn.draw(f))
+        .draw(|f| spintop::tui::learn::view::draw(f, learn))
         .expect("drawing never fails on a TestBackend");
     terminal.backend().to_string()
 }
 
 fn key(code: KeyCode) -> KeyEvent {
     KeyEvent::new(code, KeyModifiers::NONE)
+}
+
+/// A key, as the terminal loop applies it.
+fn press(learn: &mut Learn, code: KeyCode) {
+    if let Some(command) = learn.command_for(&Event::Key(key(code))) {
+        learn.apply(command);
+    }
+}
+
+/// The live-view settings of a chapter's scene, if it has them.
+fn top_settings(spec: &Spec) -> Option<spintop::tui::Settings> {
+    match spec {
+        Spec::Top { settings, .. } => Some(*settings),
+        _ => None,
+    }
 }
 
 /// Marks of text that was not rendered: raw TeX, mdBook directives, Markdown.
@@ -134,7 +154,7 @@ fn every_page_of_every_chapter_draws_at_both_sizes() {
             // Scroll to the end page by page; the screen must stay clean.
             for _ in 0..400 {
                 let before = learn.scroll();
-                learn.key(key(KeyCode::PageDown));
+                press(&mut learn, KeyCode::PageDown);
                 let page = draw(&mut learn, w, h);
                 for line in page.lines() {
                     assert!(
@@ -147,7 +167,7 @@ fn every_page_of_every_chapter_draws_at_both_sizes() {
                     break;
                 }
             }
-            learn.key(key(KeyCode::Right));
+            press(&mut learn, KeyCode::Right);
         }
         assert_eq!(learn.current(), n - 1, "→ walks through every chapter");
     }
@@ -164,7 +184,10 @@ fn every_experiment_in_the_book_applies_to_its_chapters_scene() {
         for (_, text) in &rendered.experiments {
             let e = Experiment::parse(text)
                 .unwrap_or_else(|err| panic!("{}: `{text}`: {err}", chapter.file));
-            e.apply(&scene.settings)
+            let base = top_settings(&scene.spec).unwrap_or_else(|| {
+                panic!("{}: an experiment, but no live-view scene", chapter.file)
+            });
+            e.apply(&base)
                 .unwrap_or_else(|err| panic!("{}: `{text}`: {err}", chapter.file));
             total += 1;
         }
@@ -176,9 +199,9 @@ fn every_experiment_in_the_book_applies_to_its_chapters_scene() {
 fn the_experiment_key_changes_the_scene_and_scrolls_to_the_experiment() {
     let mut learn = Learn::open(&book(), Some("4.2")).expect("chapter 4.2 opens");
     draw(&mut learn, 160, 48);
-    let before = *learn.scene().settings();
-    learn.key(key(KeyCode::Char('x')));
-    let after = *learn.scene().settings();
+    let before = *learn.scene().unwrap().settings();
+    press(&mut learn, KeyCode::Char('x'));
+    let after = *learn.scene().unwrap().settings();
     assert_ne!(before, after, "x must change the scene's parameters");
     assert!(learn.scroll() > 0, "x scrolls the text to the experiment");
     let shown = draw(&mut learn, 160, 48);
@@ -205,15 +228,35 @@ fn chapters_are_found_by_section_or_file_name_and_contents_jump() {
             .is_some_and(|e| e.contains("4.2"))
     );
 
+    // The contents list every chapter and its sections; Enter on a section
+    // opens its chapter with the section's heading at the top of the page.
     let mut learn = Learn::open(&book(), None).unwrap();
-    learn.key(key(KeyCode::Char('c')));
-    assert_eq!(learn.mode(), Mode::Contents(0));
-    for _ in 0..3 {
-        learn.key(key(KeyCode::Down));
+    draw(&mut learn, 80, 24);
+    press(&mut learn, KeyCode::Char('c'));
+    assert_eq!(learn.mode(), &Mode::Contents(0));
+    let wanted = learn
+        .contents()
+        .iter()
+        .position(|e| {
+            e.heading
+                .as_ref()
+                .is_some_and(|(_, h)| h.starts_with("The Coulomb collapse"))
+        })
+        .expect("Section 2's sections are in the contents");
+    let chapter = learn.contents()[wanted].chapter;
+    assert_eq!(learn.chapters()[chapter].file, "section-2.md");
+    for _ in 0..wanted {
+        press(&mut learn, KeyCode::Down);
     }
-    learn.key(key(KeyCode::Enter));
-    assert_eq!(learn.current(), 3);
-    assert_eq!(learn.mode(), Mode::Read);
+    press(&mut learn, KeyCode::Enter);
+    assert_eq!(learn.current(), chapter);
+    assert_eq!(learn.mode(), &Mode::Read);
+    let shown = draw(&mut learn, 80, 24);
+    let first_text_line = shown.lines().nth(2).unwrap_or_default();
+    assert!(
+        first_text_line.contains("The Coulomb collapse"),
+        "the section's heading opens the page:\n{shown}"
+    );
 }
 
 #[test]
@@ -251,7 +294,7 @@ fn the_course_panel_shows_the_graders_verdicts() {
     learn.course_report(Report::Graded(course::parse(output)));
     let shown = draw(&mut learn, 160, 48);
     assert!(shown.contains("course 2 of 22 ▰▱▱▱▱▱▱▱▱▱"), "{shown}");
-    learn.key(key(KeyCode::Char('a')));
+    press(&mut learn, KeyCode::Char('a'));
     let shown = draw(&mut learn, 160, 48);
     for text in [
         "2 of 22 passing",
@@ -281,7 +324,7 @@ fn h_climbs_the_hint_ladder_of_the_chapters_next_assignment() {
     );
     let formula = target.hints[2];
     for rung in 1..=3 {
-        learn.key(key(KeyCode::Char('h')));
+        press(&mut learn, KeyCode::Char('h'));
         assert_eq!(learn.hint().unwrap().rung, rung);
         let shown = draw(&mut learn, 160, 48);
         assert!(shown.contains(&format!("hint {rung} of 3")), "{shown}");
@@ -289,9 +332,9 @@ fn h_climbs_the_hint_ladder_of_the_chapters_next_assignment() {
         assert!(formula.starts_with("sigma = I1^2"));
     }
     // Another press stays on the last rung; any other key closes the panel.
-    learn.key(key(KeyCode::Char('h')));
+    press(&mut learn, KeyCode::Char('h'));
     assert_eq!(learn.hint().unwrap().rung, 3);
-    learn.key(key(KeyCode::Char('j')));
+    press(&mut learn, KeyCode::Char('j'));
     assert!(!draw(&mut learn, 160, 48).contains("hint 3 of 3"));
 }
 
@@ -342,6 +385,6 @@ fn the_students_function_of_time_is_drawn_against_the_reference() {
     // A stub says so instead of a chart; another chapter shows nothing.
     learn.probe_report((spec, Ok(Probed::Panicked("not yet implemented".into()))));
     assert!(draw(&mut learn, 160, 48).contains("reduced_closed_form panics: not yet implemented"));
-    learn.key(key(KeyCode::Left));
+    press(&mut learn, KeyCode::Left);
     assert!(!draw(&mut learn, 160, 48).contains("yours:"));
 }

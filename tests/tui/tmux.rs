@@ -286,7 +286,7 @@ fn the_live_view_opens_the_asymmetric_top_scene() {
     assert_eq!(tmux.format("#{alternate_on}"), "1");
     for text in [
         "truncated (3.3)",
-        "reduced (3.4) reduced",
+        "reduced (3.4): Schott term kept",
         "physical (3.4)",
         "I = (1, 1.5, 0.8)",
         "d = (0.2, 0, 1)",
