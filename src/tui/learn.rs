@@ -13,9 +13,10 @@
 //! them); `x` applies the next one to the scene and scrolls the text to it.
 //!
 //! The shape is the live view's: [`Learn`] is the state, keys become a
-//! [`Command`], [`Learn::apply`] is the one place the state changes, and
-//! [`view`] draws it without changing anything.
+//! [`Command`] ([`event`]), [`Learn::apply`] is the one place the state
+//! changes, and [`view`] draws it without changing anything.
 
+pub mod event;
 pub mod figures;
 pub mod markdown;
 pub mod scene;
@@ -23,12 +24,9 @@ pub mod tex;
 pub mod view;
 
 use super::app::{Settings, Top, WARPS};
-use super::session::Screen;
 use crate::math::Real;
 use crate::present::parse_number;
 use crate::sim::MethodChoice;
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseEventKind};
-use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use scene::{SceneKey, Spec, Stage};
 use std::collections::BTreeMap;
@@ -939,89 +937,6 @@ impl Learn {
         self.grading_off.as_deref()
     }
 
-    /// The command an event asks for now, if any.
-    pub fn command_for(&self, event: &Event) -> Option<Command> {
-        match event {
-            Event::Resize(w, h) => Some(Command::Resize(*w, *h)),
-            Event::Mouse(m) => match (m.kind, &self.mode) {
-                (MouseEventKind::ScrollDown, Mode::Read) => Some(Command::Scroll(3)),
-                (MouseEventKind::ScrollUp, Mode::Read) => Some(Command::Scroll(-3)),
-                (MouseEventKind::ScrollDown, Mode::Contents(_)) => Some(Command::ContentsDown),
-                (MouseEventKind::ScrollUp, Mode::Contents(_)) => Some(Command::ContentsUp),
-                _ => None,
-            },
-            Event::Key(key) => self.key_command(*key),
-            _ => None,
-        }
-    }
-
-    fn key_command(&self, key: KeyEvent) -> Option<Command> {
-        if key.kind == KeyEventKind::Release {
-            return None;
-        }
-        if key.modifiers.contains(KeyModifiers::CONTROL) {
-            return matches!(key.code, KeyCode::Char('c' | 'C')).then_some(Command::Quit);
-        }
-        // On the "please enlarge" screen only quit is taken.
-        if self.too_small() {
-            return matches!(key.code, KeyCode::Char('q')).then_some(Command::Quit);
-        }
-        use Command as C;
-        Some(match &self.mode {
-            Mode::Search(_) => match key.code {
-                KeyCode::Enter => C::SearchCommit,
-                KeyCode::Esc => C::Close,
-                KeyCode::Backspace => C::SearchBackspace,
-                KeyCode::Char(c) => C::SearchInput(c),
-                _ => return None,
-            },
-            Mode::Course if key.code == KeyCode::Char('h') => C::Hint,
-            Mode::Help | Mode::Course => match key.code {
-                KeyCode::Char('q') => C::Quit,
-                // Any other key closes the overlay; Esc never quits.
-                _ => C::Close,
-            },
-            Mode::Contents(_) => match key.code {
-                KeyCode::Up | KeyCode::Char('k') => C::ContentsUp,
-                KeyCode::Down | KeyCode::Char('j') => C::ContentsDown,
-                KeyCode::Enter => C::ContentsOpen,
-                KeyCode::Char('q') => C::Quit,
-                _ => C::Close,
-            },
-            Mode::Read | Mode::Scene => match key.code {
-                KeyCode::Char('q') => C::Quit,
-                KeyCode::Esc => C::Close,
-                KeyCode::Tab => C::ToggleScene,
-                KeyCode::Char('?') => C::Help,
-                KeyCode::Char('c') => C::Contents,
-                KeyCode::Char('a') => C::Course,
-                KeyCode::Char('h') => C::Hint,
-                KeyCode::Down | KeyCode::Char('j') => C::Scroll(1),
-                KeyCode::Up | KeyCode::Char('k') => C::Scroll(-1),
-                KeyCode::PageDown | KeyCode::Char(' ' | 'f') => C::PageDown,
-                KeyCode::PageUp | KeyCode::Char('b') => C::PageUp,
-                KeyCode::Home | KeyCode::Char('g') => C::Top,
-                KeyCode::End | KeyCode::Char('G') => C::End,
-                KeyCode::Right => C::NextChapter,
-                KeyCode::Left => C::PreviousChapter,
-                KeyCode::Char('x') => C::Experiment,
-                KeyCode::Char('o') => C::ToggleFolds,
-                KeyCode::Char('/') => C::SearchStart,
-                KeyCode::Char('n') => C::SearchNext,
-                KeyCode::Char('N') => C::SearchPrevious,
-                KeyCode::Char('p') => C::Scene(SceneKey::Pause),
-                KeyCode::Char('.') => C::Scene(SceneKey::Step),
-                KeyCode::Char('r') => C::Scene(SceneKey::Reset),
-                KeyCode::Char('l') => C::Scene(SceneKey::Log),
-                KeyCode::Char('m') => C::Scene(SceneKey::Method),
-                KeyCode::Char('v') => C::Scene(SceneKey::NextModel),
-                KeyCode::Char('+' | '=') => C::Scene(SceneKey::Faster),
-                KeyCode::Char('-' | '_') => C::Scene(SceneKey::Slower),
-                _ => return None,
-            },
-        })
-    }
-
     /// Apply one command: the only place the state changes (besides the
     /// clock and the grader's news).
     pub fn apply(&mut self, command: Command) {
@@ -1247,30 +1162,6 @@ impl Learn {
         self.scroll = line.saturating_sub(self.page() / 3);
         self.clamp_scroll();
         self.message = Some((text, false));
-    }
-}
-
-impl Screen for Learn {
-    type Command = Command;
-
-    fn command(&self, event: &Event) -> Option<Command> {
-        self.command_for(event)
-    }
-
-    fn apply(&mut self, command: Command) {
-        Learn::apply(self, command);
-    }
-
-    fn advance(&mut self, elapsed: Duration) {
-        Learn::advance(self, elapsed);
-    }
-
-    fn draw(&self, frame: &mut Frame) {
-        view::draw(frame, self);
-    }
-
-    fn should_quit(&self) -> bool {
-        self.quit
     }
 }
 

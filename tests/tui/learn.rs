@@ -139,30 +139,129 @@ fn every_chapter_renders_with_no_raw_tex_or_markup_outside_code() {
     }
 }
 
+/// The named functions an equation writes upright, set off by spaces.
+const NAMED_FUNCTIONS: [&str; 7] = ["sin", "cos", "tan", "cot", "ln", "exp", "log"];
+
+/// Where an equation's text glues a named function to its neighbour:
+/// `Rsin α`, `φ̇sin θ`, `sinα` (`sin²θ`, `sin(α)` and `ln(m)` are fine, and
+/// so are words that only contain a name: `cosh`, `arcsin`, `using`).
+fn glued_function(math: &str) -> Option<String> {
+    let chars: Vec<char> = math.chars().collect();
+    let operand = |c: char| {
+        c.is_alphanumeric()
+            || matches!(c as u32, 0x300..=0x36F | 0x20D0..=0x20FF)
+            || "₀₁₂₃₄₅₆₇₈₉²³⁻¹ₑₘ)]}|".contains(c)
+    };
+    let mut i = 0;
+    while i < chars.len() {
+        if !chars[i].is_ascii_alphabetic() {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < chars.len() && chars[i].is_ascii_alphabetic() {
+            i += 1;
+        }
+        let word: String = chars[start..i].iter().collect();
+        let context = || -> String {
+            chars[start.saturating_sub(6)..(i + 6).min(chars.len())]
+                .iter()
+                .collect()
+        };
+        for f in NAMED_FUNCTIONS {
+            if word == f {
+                let before = start > 0 && operand(chars[start - 1]);
+                let after = chars.get(i).is_some_and(|c| c.is_alphabetic());
+                if before || after {
+                    return Some(context());
+                }
+            } else if let Some(prefix) = word.strip_suffix(f)
+                && (1..=2).contains(&prefix.len())
+                && prefix != "arc"
+            {
+                // A one- or two-letter factor glued on: Rsin, kcos.
+                return Some(context());
+            }
+        }
+    }
+    None
+}
+
+#[test]
+fn the_named_function_check_finds_glued_names() {
+    assert!(glued_function("Ω₂₀/Rsin α").is_some());
+    assert!(glued_function("φ̇sin θ").is_some());
+    assert!(glued_function("sinα").is_some());
+    for fine in [
+        "(Ω₂₀/R) sin α",
+        "sin²θ",
+        "ln(m/m₀)",
+        "cosh x",
+        "arcsin x",
+        "arctan(1/3)",
+    ] {
+        assert_eq!(glued_function(fine), None, "{fine}");
+    }
+}
+
+/// Every page of every chapter, drawn at 80×24 and 160×48: no raw TeX, no
+/// mdBook directive and no Markdown markup outside code, and no equation
+/// with a named function glued to its neighbour.
 #[test]
 fn every_page_of_every_chapter_draws_at_both_sizes() {
+    let code = code_style().fg;
+    let math = markdown::math_style().fg;
     for (w, h) in [(80u16, 24u16), (160, 48)] {
         let mut learn = Learn::open(&book(), None).expect("the book opens");
         let n = learn.chapters().len();
         for i in 0..n {
+            let file = learn.chapters()[i].file.clone();
             let shown = draw(&mut learn, w, h);
             assert!(
                 shown.contains(&learn.chapters()[i].title),
-                "{}: title not in the header",
-                learn.chapters()[i].file
+                "{file}: title not in the header"
             );
-            // Scroll to the end page by page; the screen must stay clean.
+            // Scroll to the end page by page; every page must be clean.
             for _ in 0..400 {
                 let before = learn.scroll();
-                press(&mut learn, KeyCode::PageDown);
-                let page = draw(&mut learn, w, h);
-                for line in page.lines() {
+                learn.apply(Command::Resize(w, h));
+                let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
+                terminal
+                    .draw(|f| spintop::tui::learn::view::draw(f, &learn))
+                    .unwrap();
+                let buffer = terminal.backend().buffer();
+                for y in 0..h {
+                    let cells: Vec<_> = (0..w).map(|x| &buffer[(x, y)]).collect();
+                    let all: String = cells.iter().map(|c| c.symbol()).collect();
                     assert!(
-                        !line.contains("{{#") && !line.contains("$$"),
-                        "{}: {line}",
-                        learn.chapters()[i].file
+                        !all.contains("{{#") && !all.contains("$$"),
+                        "{file} at {w}×{h}: {all}"
                     );
+                    let prose: String = cells
+                        .iter()
+                        .filter(|c| c.fg != code.unwrap_or_default())
+                        .map(|c| c.symbol())
+                        .collect();
+                    if let Some(what) = unrendered(&prose) {
+                        panic!("{file} at {w}×{h}: {what} on screen: {prose:?}");
+                    }
+                    let equations: String = cells
+                        .iter()
+                        .map(|c| {
+                            if c.fg == math.unwrap_or_default() {
+                                c.symbol()
+                            } else {
+                                "\u{1}"
+                            }
+                        })
+                        .collect();
+                    for equation in equations.split('\u{1}').filter(|e| !e.trim().is_empty()) {
+                        if let Some(glued) = glued_function(equation) {
+                            panic!("{file} at {w}×{h}: a named function glued in `{glued}`: {all}");
+                        }
+                    }
                 }
+                press(&mut learn, KeyCode::PageDown);
                 if learn.scroll() == before {
                     break;
                 }
@@ -171,6 +270,87 @@ fn every_page_of_every_chapter_draws_at_both_sizes() {
         }
         assert_eq!(learn.current(), n - 1, "→ walks through every chapter");
     }
+}
+
+/// True when the break between a wrapped line `before` and its continuation
+/// `rest` cut a token: both sides are parts of a name or a number, and the
+/// source has them joined with no space between.
+pub fn cuts_a_token(before: &str, rest: &str, source: &str) -> bool {
+    let token = |c: char| c.is_alphanumeric() || c == '_' || c == '.';
+    let before = before.trim_end();
+    let rest = rest.trim_start();
+    let (Some(a), Some(b)) = (before.chars().last(), rest.chars().next()) else {
+        return false;
+    };
+    if !(token(a) && token(b)) {
+        return false;
+    }
+    let tail: String = {
+        let v: Vec<char> = before.chars().collect();
+        v[v.len().saturating_sub(8)..].iter().collect()
+    };
+    let head: String = rest.chars().take(8).collect();
+    source.contains(&format!("{tail}{head}"))
+}
+
+/// Code and program output are wrapped between tokens, with the rest of a
+/// line marked ↪, never inside a name or a number, at the text widths of
+/// 80×24 and 160×48, over every code block of the book, library source
+/// unfolded.
+#[test]
+fn code_is_wrapped_between_tokens_in_every_chapter() {
+    let learn = Learn::open(&book(), None).expect("the book opens");
+    let mut wrapped = 0;
+    for chapter in learn.chapters() {
+        let source = std::fs::read_to_string(book().join(&chapter.file)).unwrap();
+        let source = markdown::resolve_includes(&source, &book());
+        for width in [76u16, 80] {
+            let r = markdown::render_with(&source, width, markdown::Options { unfold: true });
+            let text: Vec<String> = r
+                .lines
+                .iter()
+                .map(|l| l.spans.iter().map(|s| s.content.as_ref()).collect())
+                .collect();
+            for (k, line) in text.iter().enumerate().skip(1) {
+                let Some(rest) = line.trim_start().strip_prefix(markdown::CONTINUATION) else {
+                    continue;
+                };
+                wrapped += 1;
+                assert!(
+                    !cuts_a_token(&text[k - 1], rest, &source),
+                    "{} at {width}: a token is cut:\n{}\n{line}",
+                    chapter.file,
+                    text[k - 1]
+                );
+                assert!(line.chars().count() <= usize::from(width), "{line}");
+            }
+        }
+    }
+    assert!(
+        wrapped > 10,
+        "only {wrapped} wrapped lines: the test sees too little"
+    );
+}
+
+/// The library's source excerpts are folded to one line by default, and
+/// `o` shows them whole (and folds them again).
+#[test]
+fn library_source_is_folded_until_o() {
+    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    draw(&mut learn, 80, 24);
+    let folded = learn.rendered().lines.len();
+    let text = markdown::plain(&learn.rendered().lines);
+    assert!(
+        text.contains("▸ src/physics/central.rs:abraham_lorentz"),
+        "{text}"
+    );
+    assert!(!text.contains("pub fn abraham_lorentz_rhs"), "folded");
+    press(&mut learn, KeyCode::Char('o'));
+    let text = markdown::plain(&learn.rendered().lines);
+    assert!(text.contains("pub fn abraham_lorentz_rhs"), "unfolded");
+    assert!(learn.rendered().lines.len() > folded + 100);
+    press(&mut learn, KeyCode::Char('o'));
+    assert_eq!(learn.rendered().lines.len(), folded);
 }
 
 #[test]

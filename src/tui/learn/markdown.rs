@@ -294,9 +294,14 @@ impl Renderer {
             t.cell.push_str(text);
             return;
         }
-        // Split into words and single spaces so that wrapping can break there.
+        // Split into words and single spaces so that wrapping can break there;
+        // a named function stays on the line of its argument (cos θ).
         let mut word = String::new();
         for c in text.chars() {
+            if (c == ' ' || c == '\n') && is_function_word(&word) {
+                word.push(NBSP);
+                continue;
+            }
             if c == ' ' || c == '\n' {
                 if !word.is_empty() {
                     self.pieces.push(Piece {
@@ -994,6 +999,13 @@ pub fn wrap_code(line: &str, width: usize) -> Vec<String> {
     out
 }
 
+/// `sin`, `cos²`, `ln`, … written in prose: kept with the word after it.
+fn is_function_word(word: &str) -> bool {
+    let w = word.trim_end_matches(|c: char| "²³⁻¹".contains(c));
+    let last = w.rsplit(NBSP).next().unwrap_or(w);
+    matches!(last, "sin" | "cos" | "tan" | "cot" | "ln" | "exp" | "log")
+}
+
 /// The no-break space that holds an equation's group together in prose.
 const NBSP: char = '\u{a0}';
 
@@ -1108,6 +1120,11 @@ pub fn plain_inline(markdown: &str) -> String {
 /// The style of code (spans in it may hold backslashes legitimately).
 pub fn code_style() -> Style {
     style::code()
+}
+
+/// The style of math, inline and displayed.
+pub fn math_style() -> Style {
+    style::math()
 }
 
 /// The plain text of rendered lines (for tests and `--list`).
