@@ -33,11 +33,11 @@ use crate::present::parse_number;
 pub use crate::present::{lab_frame, paper_frame};
 use crate::scene::Scene;
 use crate::scene::live::live_scene;
-use crate::sim::{InitialState, Method, MethodChoice, MethodOptions, Model, Sample};
+use crate::sim::{InitialState, Method, MethodChoice, MethodOptions, Model, Sample, SimError};
 use std::collections::VecDeque;
 use std::time::Duration;
 
-use super::stepper::{Plan, Progress, Report, Stepper};
+use super::stepper::{Plan, Progress, Report, Stepper, Stopped};
 
 /// Everything a key can ask of the live view (and of the scene beside a
 /// chapter of `spintop learn`).
@@ -661,7 +661,7 @@ impl Column {
     }
 
     /// Take tick `k`'s outcome; a failure stops this column only.
-    fn take(&mut self, k: u64, outcome: Result<Progress, String>) {
+    fn take(&mut self, k: u64, outcome: Result<Progress, Stopped>) {
         if self.failure.is_some() {
             return;
         }
@@ -672,7 +672,16 @@ impl Column {
                 self.last_step = p.last_step;
                 self.record(k, &p.sample);
             }
-            Err(e) => self.stop(e),
+            // The forward run is there to run away: said as what it shows.
+            Err(Stopped::Sim(SimError::Runaway(r))) if self.is_forward() => {
+                self.failure = Some(format!(
+                    "ran away at t = {:.3}: it leaves the physical solution at {}/τ, an e-folding time of {}τ, as (3.4) does forward from any start",
+                    r.t,
+                    crate::present::fmt_num(r.growth_rate),
+                    crate::present::fmt_num(1.0 / r.growth_rate)
+                ));
+            }
+            Err(e) => self.stop(e.to_string()),
         }
     }
 
@@ -713,7 +722,7 @@ impl Column {
                 ("reduced", "(3.4)", "Schott term kept, runaways removed")
             }
             (Model::Full(_) | Model::GeneralFull(_), Method::Forward) => {
-                ("forward", "(3.4)", "integrated forward: it runs away")
+                ("forward", "(3.4)", "the same start, integrated forward")
             }
             (Model::GeneralFull(_) | Model::Full(_), _) => {
                 ("physical", "(3.4)", "its non-runaway solution, Ω̈ kept")

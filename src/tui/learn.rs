@@ -353,7 +353,7 @@ pub fn panes(size: (u16, u16), scene_full: bool, has_scene: bool) -> Panes {
         (None, Some(body))
     } else if body.width >= SIDE_BY_SIDE && has_scene {
         let [left, right] =
-            Layout::horizontal([Constraint::Percentage(52), Constraint::Percentage(48)])
+            Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)])
                 .areas(body);
         (Some(left), Some(right))
     } else {

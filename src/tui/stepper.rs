@@ -13,7 +13,7 @@
 
 use crate::integrate::Stats;
 use crate::math::Real;
-use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, Simulation};
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
@@ -48,6 +48,28 @@ impl Plan {
     }
 }
 
+/// Why a model stopped in a tick.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stopped {
+    /// The core's reason.
+    Sim(SimError),
+    /// It reached the last time it runs to.
+    Horizon(Real),
+}
+
+impl std::fmt::Display for Stopped {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Stopped::Sim(e) => write!(f, "{e}"),
+            Stopped::Horizon(h) => write!(
+                f,
+                "the run reached its last time, t = {}, and ends there",
+                crate::present::fmt_num(*h)
+            ),
+        }
+    }
+}
+
 /// What one model did in one tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Progress {
@@ -65,7 +87,7 @@ pub struct Tick {
     /// The tick: t = k·Δt.
     pub k: u64,
     /// Each model's progress, or why it stopped now.
-    pub outcomes: Vec<Option<Result<Progress, String>>>,
+    pub outcomes: Vec<Option<Result<Progress, Stopped>>>,
 }
 
 /// What the stepper reports.
@@ -140,17 +162,14 @@ impl Models {
                 return None;
             }
             let outcome = slot.as_mut().map(|sim| match horizon {
-                Some(h) if t > *h => Err(format!(
-                    "the run reached its last time, t = {}, and ends there",
-                    crate::present::fmt_num(*h)
-                )),
+                Some(h) if t > *h => Err(Stopped::Horizon(*h)),
                 _ => match sim.advance_to(t) {
                     Ok(sample) => Ok(Progress {
                         sample: *sample,
                         stats: sim.stats(),
                         last_step: sim.last_step(),
                     }),
-                    Err(e) => Err(e.to_string()),
+                    Err(e) => Err(Stopped::Sim(e)),
                 },
             });
             if matches!(outcome, Some(Err(_))) {

@@ -51,6 +51,7 @@ pub fn draw(frame: &mut Frame, app: &App) {
         body,
         app,
         &(0..app.columns().len()).collect::<Vec<_>>(),
+        "Tab",
     );
     draw_footer(frame, footer, app);
     if *app.mode() == Mode::Help {
@@ -61,17 +62,18 @@ pub fn draw(frame: &mut Frame, app: &App) {
 /// The columns `shown` of `app` in `area`: side by side when each gets
 /// [`COLUMN_WIDTH`], else the one [`super::app::View::shown`] picks, its
 /// title saying which of how many it is (also the scene of `spintop learn`).
-pub(crate) fn draw_columns(frame: &mut Frame, area: Rect, app: &App, shown: &[usize]) {
+/// `next` names the key that shows the next model there.
+pub(crate) fn draw_columns(frame: &mut Frame, area: Rect, app: &App, shown: &[usize], next: &str) {
     let n = shown.len().max(1) as u16;
     if area.width / n >= COLUMN_WIDTH || n == 1 {
         let parts =
             Layout::horizontal((0..n).map(|_| Constraint::Ratio(1, u32::from(n)))).split(area);
         for (part, i) in parts.iter().zip(shown) {
-            draw_column(frame, *part, app, *i, None);
+            draw_column(frame, *part, app, *i, None, next);
         }
     } else {
         let at = app.view().shown % shown.len();
-        draw_column(frame, area, app, shown[at], Some((at, shown.len())));
+        draw_column(frame, area, app, shown[at], Some((at, shown.len())), next);
     }
 }
 
@@ -102,7 +104,7 @@ fn too_small(frame: &mut Frame, area: Rect) {
 
 /// One cell of a header line: its renderings from the fullest to the
 /// shortest (an empty one drops the cell).
-pub(crate) struct Cell(pub Vec<Vec<Span<'static>>>);
+pub struct Cell(pub Vec<Vec<Span<'static>>>);
 
 impl Cell {
     /// A cell that is always shown whole.
@@ -195,7 +197,7 @@ fn message_lines(app: &App, width: u16) -> Vec<Line<'static>> {
                 ),
                 Top::Symmetric(_) => (
                     "Left: no Schott term, loss law (2.1). Right: Schott term kept, torque (2.2).",
-                    "Left: loss law (2.1). Right: torque (2.2), Schott term kept.",
+                    "Left: loss law (2.1). Right: torque (2.2).",
                 ),
             };
             let i = SUBSCRIPTS[app.view().selected];
@@ -204,7 +206,7 @@ fn message_lines(app: &App, width: u16) -> Vec<Line<'static>> {
             let text = if Span::raw(full.as_str()).width() < usize::from(width) {
                 full
             } else {
-                format!("{short} Ω{i}₀: ↑/↓, Enter edits. ? help")
+                format!("{short} Ω{i}₀: ↑/↓ Enter edits. ? help")
             };
             (text, theme::label())
         }
@@ -240,7 +242,9 @@ pub(crate) fn wrap_words(text: &str, width: usize) -> Vec<String> {
 /// The status of the clock: running, running behind the warp, or paused.
 pub(crate) fn status(app: &App) -> Span<'static> {
     let u = app.settings().top().time_unit();
-    if app.paused() {
+    if app.columns().iter().all(|c| c.failure().is_some()) {
+        Span::styled(" stopped ", theme::status(true))
+    } else if app.paused() {
         Span::styled(" paused ", theme::status(true))
     } else if let Some(rate) = app.behind() {
         Span::styled(
@@ -318,7 +322,7 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App, message: Vec<Line<'stat
     omega.push(label(format!(")/{u}")));
     params.push(Cell::fixed(omega));
     let method = match settings.top() {
-        Top::Full(_) => "physical │ forward".to_string(),
+        Top::Full(_) => "physical, forward".to_string(),
         _ => settings.method().title().to_string(),
     };
     params.push(Cell::or(
@@ -350,26 +354,33 @@ fn fmt_triple(v: [crate::math::Real; 3]) -> String {
 
 /// One model's column: its chart, hodograph, top in space and numbers.
 /// `which`: its place among models shown one at a time, if they are.
-fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize, which: Option<(usize, usize)>) {
+fn draw_column(
+    frame: &mut Frame,
+    area: Rect,
+    app: &App,
+    i: usize,
+    which: Option<(usize, usize)>,
+    next: &str,
+) {
     let column = &app.columns()[i];
     let (name, equations, gist) = column.title();
     let mut marks = Vec::new();
     if column.failure().is_some() {
         marks.push(Span::styled(
             if column.is_forward() {
-                "ran away "
+                "│ ran away "
             } else {
-                "stopped "
+                "│ stopped "
             },
             theme::error(),
         ));
     }
     if column.stand_in().is_some() {
-        marks.push(Span::styled("= reduced here ", theme::info()));
+        marks.push(Span::styled("│ = reduced here ", theme::info()));
     }
     if let Some((at, n)) = which {
         marks.push(Span::styled(
-            format!("│ model {} of {n} (Tab, v) ", at + 1),
+            format!("│ model {} of {n} ({next}: next) ", at + 1),
             theme::key(),
         ));
     }
@@ -414,7 +425,7 @@ fn draw_column(frame: &mut Frame, area: Rect, app: &App, i: usize, which: Option
     ])
     .areas(inner);
     let series = OmegaSeries::new(column, app.view().log_time);
-    frame.render_widget(series.chart(), chart_area);
+    frame.render_widget(series.chart(chart_area.height), chart_area);
     let [hodo_area, space_area] =
         Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)])
             .areas(pictures);
@@ -498,10 +509,13 @@ const KEYS: [Key; 11] = [
 
 fn draw_footer(frame: &mut Frame, area: Rect, app: &App) {
     let ratio = app.settings().ratio().is_some();
+    let method = app.settings().top().takes_a_method();
     let turns = (area.width / app.columns().len().max(1) as u16) < COLUMN_WIDTH;
     let keys: Vec<&Key> = KEYS
         .iter()
-        .filter(|k| (ratio || k.key != "[ ]") && (turns || k.key != "Tab"))
+        .filter(|k| {
+            (ratio || k.key != "[ ]") && (turns || k.key != "Tab") && (method || k.key != "m")
+        })
         .collect();
     frame.render_widget(Paragraph::new(key_line(&keys, area.width)), area);
 }
@@ -659,7 +673,16 @@ fn draw_help(frame: &mut Frame, area: Rect, top: &Top) {
     });
     let width = 78.min(area.width);
     let inner = usize::from(width.saturating_sub(2)).max(1);
-    let rows: usize = lines.iter().map(|l| l.width().max(1).div_ceil(inner)).sum();
+    let rows_of =
+        |lines: &[Line]| -> usize { lines.iter().map(|l| l.width().max(1).div_ceil(inner)).sum() };
+    // A short terminal gets the keys alone: the title, then the keys.
+    if rows_of(&lines) + 4 > usize::from(area.height) {
+        let keys = 5..5 + HELP_KEYS.len();
+        let mut short = vec![lines[0].clone()];
+        short.extend(lines[keys].iter().cloned());
+        lines = short;
+    }
+    let rows = rows_of(&lines);
     let height = (rows as u16 + 2).min(area.height);
     let [_, h, _] = Layout::horizontal([
         Constraint::Fill(1),

@@ -85,8 +85,10 @@ impl OmegaSeries {
         }
     }
 
-    /// The chart: Braille lines, labelled axes, the curve names in the title.
-    pub fn chart(&self) -> Chart<'_> {
+    /// The chart, for an area `rows` high: Braille lines, labelled axes, the
+    /// curve names in the title. A short chart labels only the ends of its y
+    /// axis (three labels on two rows would print over each other).
+    pub fn chart(&self, rows: u16) -> Chart<'_> {
         let names = ["Ω₁", "Ω₂", "Ω₃", "Ω⊥"];
         let datasets = self
             .curves
@@ -148,9 +150,13 @@ impl OmegaSeries {
                     .style(theme::frame())
                     .bounds(self.y_bounds)
                     .labels(
-                        [fmt_axis(ylo), "0".into(), fmt_axis(yhi)]
-                            .into_iter()
-                            .map(|l| Span::styled(l, theme::label())),
+                        if rows >= 7 {
+                            vec![fmt_axis(ylo), "0".into(), fmt_axis(yhi)]
+                        } else {
+                            vec![fmt_axis(ylo), fmt_axis(yhi)]
+                        }
+                        .into_iter()
+                        .map(|l| Span::styled(l, theme::label())),
                     ),
             )
     }
@@ -389,7 +395,9 @@ pub fn numbers(
     let s = column.current();
     let u = column.time_unit();
     // Labels on the left are short, on the right long ("RHS evals").
-    let (left_width, width) = if wide { (6, 10) } else { (6, 7) };
+    // NOTE: the narrow labels leave the longest pair of values (a tilt or a
+    // rate in exponent form beside "exact+dop853") room in 38 columns.
+    let (left_width, width) = if wide { (6, 10) } else { (5, 7) };
     let pair_in = |label: &str, value: String, width: usize| {
         Line::from(vec![
             Span::styled(padded(label, width), theme::label()),
@@ -455,6 +463,9 @@ pub fn numbers(
         pair("error", error),
     ];
     let last = match column.failure() {
+        Some(why) if column.is_forward() => {
+            Line::from(Span::styled(why.to_string(), theme::error()))
+        }
         Some(why) => Line::from(Span::styled(format!("stopped: {why}"), theme::error())),
         None => {
             let [o1, o2, o3] = s.omega;

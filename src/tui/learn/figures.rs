@@ -67,8 +67,11 @@ pub fn lines(number: FigureNumber, width: u16) -> Vec<Line<'static>> {
     let mut buf = Buffer::empty(area);
     let cells: Vec<Rect> = if two {
         let [top, bottom] = Layout::vertical([Constraint::Length(PANEL_ROWS); 2]).areas(area);
-        let split =
-            |r: Rect| -> [Rect; 2] { Layout::horizontal([Constraint::Ratio(1, 2); 2]).areas(r) };
+        let split = |r: Rect| -> [Rect; 2] {
+            Layout::horizontal([Constraint::Ratio(1, 2); 2])
+                .spacing(2)
+                .areas(r)
+        };
         let [a, b] = split(top);
         let [c, d] = split(bottom);
         vec![a, b, c, d]
@@ -104,15 +107,23 @@ fn hodograph(figure: &Figure, area: Rect, buf: &mut Buffer) {
     let scale = figure.omega0.norm();
     let project = |w: [f64; 3]| cam.project([w[0] / scale, w[1] / scale, w[2] / scale]);
     let curve: Vec<(f64, f64)> = figure.samples.iter().map(|s| project(s.omega)).collect();
+    // Its shadows on the three coordinate planes, as in the paper's panel.
     let shadow: Vec<(f64, f64)> = figure
         .samples
         .iter()
-        .map(|s| project([s.omega[0], s.omega[1], 0.0]))
+        .flat_map(|s| {
+            let [w1, w2, w3] = s.omega;
+            [
+                project([w1, w2, 0.0]),
+                project([0.0, w2, w3]),
+                project([w1, 0.0, w3]),
+            ]
+        })
         .collect();
     let y = [-0.6, 1.1];
     let inner = panel("").inner(area);
     Canvas::default()
-        .block(panel("(a) hodograph of Ω, body frame; pale: its shadow"))
+        .block(panel("(a) Ω, body frame; pale: its shadows"))
         .marker(Marker::Braille)
         .x_bounds(x_bounds(inner, y))
         .y_bounds(y)
@@ -157,7 +168,7 @@ fn in_space(figure: &Figure, area: Rect, buf: &mut Buffer) {
     let y = [-0.4, 1.3];
     let inner = panel("").inner(area);
     Canvas::default()
-        .block(panel("(b) the top in space: axis tip, L in red"))
+        .block(panel("(b) the top in space; L in red"))
         .marker(Marker::Braille)
         .x_bounds(x_bounds(inner, y))
         .y_bounds(y)
@@ -174,8 +185,9 @@ fn in_space(figure: &Figure, area: Rect, buf: &mut Buffer) {
             }
             ctx.layer();
             ctx.draw(&Points::new(&l_path, L_COLOUR));
+            // L's label left of its end, clear of the axis's e₃.
             if let Some(&(x, y)) = l_path.last() {
-                ctx.print(x, y, Span::styled("L", Style::new().fg(L_COLOUR)));
+                ctx.print(x - 0.25, y, Span::styled("L", Style::new().fg(L_COLOUR)));
             }
         })
         .render(area, buf);
@@ -244,7 +256,7 @@ fn rates(figure: &Figure, area: Rect, buf: &mut Buffer) {
         .fold(0.0, f64::max);
     let y = crate::present::nice_ceiling(top * 1.05);
     chart_of(
-        "(d) φ̇ (yellow) and ψ̇ (green), 1/τ",
+        "(d) φ̇ yellow, ψ̇ green, 1/τ",
         vec![
             (phi, Style::new().fg(theme::OMEGA[3])),
             (psi, Style::new().fg(theme::OMEGA[1])),

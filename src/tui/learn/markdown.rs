@@ -453,6 +453,10 @@ impl Renderer {
             }
             Event::Html(h) | Event::InlineHtml(h) => self.html(&h),
             Event::SoftBreak => {
+                if let Some((_, alt)) = self.image.as_mut() {
+                    alt.push(' ');
+                    return;
+                }
                 let s = self.style();
                 self.text(" ", s);
             }

@@ -15,6 +15,7 @@
 
 use super::super::app::{App, Command as LiveCommand, Settings, WARPS};
 use super::super::theme;
+use super::super::view::Cell;
 use crate::math::Real;
 use crate::physics::central::{ChargeInField, Potential, coulomb_circular_radius};
 use crate::physics::shell::ShellModel;
@@ -104,12 +105,12 @@ impl Scene {
             "preface.md" | "errata.md" => both(),
             "section-2.md" => Scene {
                 spec: Spec::Orbit { tau0: 1e-3 },
-                about: "a charge on a Coulomb orbit, τ₀ = 10⁻³: Landau–Lifshitz collapses, Abraham–Lorentz forward runs away",
+                about: "a charge on a Coulomb orbit: Landau–Lifshitz collapses, Abraham–Lorentz runs away",
             },
             "section-3.md" | "full-ale.md" => top(
                 valid(Settings::full(0.4, [0.0, 0.1, 0.2], 10.0)),
                 vec![0, 1],
-                "the full ALE (3.4): its physical solution beside the forward run, which runs away",
+                "the full ALE (3.4): its physical solution beside the forward runaway",
             ),
             "section-4-1.md" => top(
                 figure,
@@ -132,13 +133,13 @@ impl Scene {
                     columns: vec![0, 1],
                     log_time: true,
                 },
-                about: "both end states, on a log time axis at 1000 τ/s: the truncated top runs down, the reduced one stands up",
+                about: "both end states on a log time axis: the truncated top runs down, the reduced one stands up",
             },
             "appendix.md" => Scene {
                 spec: Spec::Shell {
                     runs: [(1e-3, 0.03), (0.06, 0.1)],
                 },
-                about: "the shell's delay equation (A.1) against the point charge: stable (δ = 30τ₀) and unstable (m_em > m₀)",
+                about: "the shell's delay equation (A.1) against the point charge, stable and unstable",
             },
             "asymmetric-top.md" => {
                 // The chapter's top: three models side by side.
@@ -496,50 +497,79 @@ impl Stage {
         }
     }
 
-    /// The parameters, one line.
-    pub fn parameters(&self) -> Vec<Span<'static>> {
+    /// The parameters, as cells of one line (the last ones shorten or go
+    /// first on a narrow screen), the clock's state at the end.
+    pub fn parameters(&self) -> Vec<Cell> {
         let label = |s: &str| Span::styled(s.to_string(), theme::label());
         let value = |s: String| Span::styled(s, theme::value());
-        let mut spans = vec![Span::raw(" ")];
+        let fmt = super::super::app::fmt_param;
+        let mut cells = Vec::new();
         match self {
             Stage::Top(app) => {
                 let settings = app.settings();
                 let w = settings.omega0();
                 if let Some(r) = settings.ratio() {
-                    spans.push(label("I₃/I₁ = "));
-                    spans.push(value(super::super::app::fmt_param(r)));
-                    spans.push(label("  "));
+                    cells.push(Cell::fixed(vec![label(" I₃/I₁ = "), value(fmt(r))]));
                 }
-                spans.push(label("Ω₀ = "));
-                spans.push(value(format!(
-                    "({}, {}, {})",
-                    super::super::app::fmt_param(w[0]),
-                    super::super::app::fmt_param(w[1]),
-                    super::super::app::fmt_param(w[2])
-                )));
-                spans.push(label("  method "));
-                spans.push(value(match settings.top() {
-                    super::super::app::Top::Full(_) => "physical │ forward".into(),
+                let lead = if cells.is_empty() {
+                    " Ω₀ = "
+                } else {
+                    "Ω₀ = "
+                };
+                cells.push(Cell::fixed(vec![
+                    label(lead),
+                    value(format!("({}, {}, {})", fmt(w[0]), fmt(w[1]), fmt(w[2]))),
+                ]));
+                let method = match settings.top() {
+                    super::super::app::Top::Full(_) => "physical, forward".to_string(),
                     _ => settings.method().title().to_string(),
-                }));
-                spans.push(label("  warp "));
-                spans.push(value(format!(
-                    "{} {}/s",
-                    settings.warp(),
-                    settings.top().time_unit()
-                )));
+                };
+                cells.push(Cell::or(
+                    vec![label("method "), value(method.clone())],
+                    vec![value(method)],
+                ));
+                let warp = format!("{} {}/s", settings.warp(), settings.top().time_unit());
+                cells.push(Cell(vec![
+                    vec![label("warp "), value(warp.clone())],
+                    vec![value(warp)],
+                    Vec::new(),
+                ]));
+                cells.push(Cell::fixed(vec![super::super::view::status(app)]));
             }
             Stage::Orbit(p) => {
-                spans.push(label("m = k = 1, r₀ = 1, τ₀ = 10⁻³  warp "));
-                spans.push(value(format!("{}/s", WARPS[p.warp])));
+                cells.push(Cell::or(
+                    vec![label(" m = k = 1, r₀ = 1, τ₀ = 10⁻³")],
+                    vec![label(" τ₀ = 10⁻³")],
+                ));
+                cells.push(Cell::fixed(vec![
+                    label("warp "),
+                    value(format!("{}/s", WARPS[p.warp])),
+                ]));
+                cells.push(Cell::fixed(vec![playback_status(p.paused)]));
             }
             Stage::Shell(p) => {
-                spans.push(label("m = k = 1, oscillator, Z = x + iy  warp "));
-                spans.push(value(format!("{}/s", WARPS[p.warp])));
+                cells.push(Cell::or(
+                    vec![label(" m = k = 1, the oscillator, Z = x + iy")],
+                    vec![label(" m = k = 1")],
+                ));
+                cells.push(Cell::fixed(vec![
+                    label("warp "),
+                    value(format!("{}/s", WARPS[p.warp])),
+                ]));
+                cells.push(Cell::fixed(vec![playback_status(p.paused)]));
             }
             Stage::None => {}
         }
-        spans
+        cells
+    }
+}
+
+/// "paused" or "running", as the live view shows its clock.
+pub fn playback_status(paused: bool) -> Span<'static> {
+    if paused {
+        Span::styled(" paused ", theme::status(true))
+    } else {
+        Span::styled(" running ", theme::status(false))
     }
 }
 
@@ -750,8 +780,8 @@ fn draw_shell_run(frame: &mut Frame, area: Rect, run: &ShellRun, t: Real) {
     let stable = m.m0() > m.m_em();
     let title = format!(
         " shell δ = {}, τ₀ = {}: {} ",
-        crate::present::fmt_num(m.delta()),
-        crate::present::fmt_num(m.tau0()),
+        super::super::app::fmt_param(m.delta()),
+        super::super::app::fmt_param(m.tau0()),
         if stable {
             "m₀ > mₑₘ, stable"
         } else {

@@ -12,7 +12,7 @@
 
 use super::super::theme;
 use super::super::view::{Cell, Key, draw_columns, fit_cells, key_line, status as live_status};
-use super::scene::{Stage, draw_orbit, draw_shell};
+use super::scene::{Stage, draw_orbit, draw_shell, playback_status};
 use super::{Learn, Mode, Spec, progress_bar, text_inner};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -232,20 +232,19 @@ fn draw_scene(frame: &mut Frame, area: Rect, learn: &Learn) {
     .areas(area);
     frame.render_widget(
         Paragraph::new(Line::from(Span::styled(
-            format!(" scene: {}", learn.scene_info().about),
+            shortened(
+                &format!(" scene: {}", learn.scene_info().about),
+                about.width,
+            ),
             theme::label(),
         ))),
         about,
     );
     let stage = learn.stage();
-    let mut spans = stage.parameters();
-    spans.push(Span::raw("  "));
-    spans.push(match stage {
-        Stage::Top(app) => live_status(app),
-        _ if stage.paused() => Span::styled(" paused ", theme::status(true)),
-        _ => Span::styled(" running ", theme::status(false)),
-    });
-    frame.render_widget(Paragraph::new(Line::from(spans)), params);
+    frame.render_widget(
+        Paragraph::new(fit_cells(stage.parameters(), params.width)),
+        params,
+    );
     match stage {
         Stage::Top(app) => {
             let columns: Vec<usize> = match &learn.scene_info().spec {
@@ -265,12 +264,34 @@ fn draw_scene(frame: &mut Frame, area: Rect, learn: &Learn) {
             } else {
                 rest
             };
-            draw_columns(frame, rest, app, &columns);
+            draw_columns(frame, rest, app, &columns, "v");
         }
         Stage::Orbit(p) => draw_orbit(frame, rest, p),
         Stage::Shell(p) => draw_shell(frame, rest, p),
         Stage::None => {}
     }
+}
+
+/// `text` cut at a word to fit `width` columns, "…" where it was cut.
+fn shortened(text: &str, width: u16) -> String {
+    let limit = usize::from(width);
+    if Span::raw(text).width() <= limit {
+        return text.to_string();
+    }
+    let lead = text.len() - text.trim_start().len();
+    let mut out = text[..lead].to_string();
+    for word in text.trim_start().split(' ') {
+        let next = if out.trim().is_empty() {
+            format!("{out}{word}")
+        } else {
+            format!("{out} {word}")
+        };
+        if Span::raw(next.as_str()).width() + 1 > limit {
+            break;
+        }
+        out = next;
+    }
+    format!("{}…", out.trim_end_matches([',', ':', ';']))
 }
 
 fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn) {
@@ -291,8 +312,7 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn) {
                     spans.push(Span::raw(" "));
                     spans.push(match stage {
                         Stage::Top(app) => live_status(app),
-                        _ if stage.paused() => Span::styled(" paused ", theme::status(true)),
-                        _ => Span::styled(" running ", theme::status(false)),
+                        _ => playback_status(stage.paused()),
                     });
                     if learn.panes().scene.is_none() {
                         spans.push(Span::styled("  (Tab shows it)", theme::label()));
@@ -331,32 +351,24 @@ fn centered(area: Rect, width: u16, height: u16) -> Rect {
 }
 
 /// The help's lines: every key, grouped.
-const HELP: [(&str, &str); 19] = [
-    ("space PgDn f", "a page down"),
-    ("b PgUp", "a page up"),
-    ("j k ↓ ↑ wheel", "a line (the wheel: three)"),
+const HELP: [(&str, &str); 14] = [
+    ("space b", "a page down, a page up (also PgDn, PgUp, f)"),
+    ("j k ↓ ↑", "a line; the mouse wheel: three"),
     ("g G", "the top, the end of the chapter"),
-    ("/ n N", "search; the next and the previous match"),
-    ("← →", "the previous, the next chapter"),
-    ("c", "contents: chapters and their sections, Enter opens"),
-    ("o", "library source: shown whole, or folded to one line"),
-    ("Tab", "the scene full screen, and back"),
+    ("/ n N", "search; the next, the previous match"),
+    ("← → c", "the previous, the next chapter; the contents"),
+    ("o", "library source whole, or folded to one line"),
     (
-        "x",
-        "the chapter's next experiment (▶ try this) on the scene",
+        "Tab x",
+        "the scene full screen; the next experiment (▶ try this)",
     ),
-    ("p", "pause or resume the scene"),
-    (".", "one step of the paused scene"),
+    ("p .", "pause the scene; one step while it is paused"),
     ("r l + -", "restart, log time, warp of the scene"),
-    (
-        "m",
-        "the scene's method (closed form, RK4, DP5, DOP853, Radau5)",
-    ),
-    ("v", "the scene's next model, where one is shown at a time"),
+    ("m v", "the scene's method; its next model, one at a time"),
     ("a h", "the assignments; a hint for the next one"),
     ("Esc", "close a panel, clear a search (never quits)"),
-    ("?", "this help"),
-    ("q ^C", "quit (the chapter reopens where you left it)"),
+    ("?", "this help (any key closes it)"),
+    ("q ^C", "quit: the chapter reopens where you left it"),
 ];
 
 fn draw_help(frame: &mut Frame, area: Rect) {
@@ -366,15 +378,17 @@ fn draw_help(frame: &mut Frame, area: Rect) {
         Line::from("Places marked ▶ try this are experiments: x runs the next one."),
         Line::from(""),
     ];
+    // A short terminal gets the keys alone.
+    if area.height < HELP.len() as u16 + lines.len() as u16 + 2 {
+        lines.clear();
+    }
     for (k, what) in HELP {
         lines.push(Line::from(vec![
-            Span::styled(format!("{k:>14}  "), theme::key()),
+            Span::styled(format!("{k:>8}  "), theme::key()),
             Span::raw(what),
         ]));
     }
-    lines.push(Line::from(""));
-    lines.push(Line::from("any key closes this help"));
-    let width = 76u16.min(area.width);
+    let width = 72u16.min(area.width);
     let inner = usize::from(width.saturating_sub(2)).max(1);
     let rows: usize = lines.iter().map(|l| l.width().max(1).div_ceil(inner)).sum();
     let popup = centered(area, width, rows as u16 + 2);
@@ -556,8 +570,11 @@ fn draw_contents(frame: &mut Frame, area: Rect, learn: &Learn, selected: usize) 
                 ))));
             }
             Some((level, text)) => {
-                let indent = if *level <= 2 { 10 } else { 13 };
-                items.push(ListItem::new(format!("{}{text}", " ".repeat(indent))));
+                let indent = if *level <= 2 { 11 } else { 14 };
+                items.push(ListItem::new(Line::from(Span::styled(
+                    format!("{}· {text}", " ".repeat(indent)),
+                    theme::label(),
+                ))));
             }
         }
     }
