@@ -508,6 +508,7 @@ impl Learn {
     /// from now on (the terminal's way; the tests step them inline).
     pub fn in_background(mut self) -> Self {
         self.background = true;
+        figures::compute_in_background();
         if let Ok(stage) = Stage::start(&self.scene_info.spec, true) {
             self.stage = stage;
             self.stage.resize(self.size.0, self.size.1);
@@ -694,6 +695,7 @@ impl Learn {
             width,
             markdown::Options {
                 unfold: self.unfolded,
+                figures_later: self.background,
             },
         );
         self.scroll = (fraction * self.rendered.lines.len() as f64).round() as usize;
@@ -834,6 +836,16 @@ impl Learn {
     /// Steps the scene by wall-clock time, and takes the course grader's news.
     pub fn advance(&mut self, elapsed: Duration) {
         self.stage.advance(elapsed);
+        if self.rendered.figures_pending
+            && [
+                crate::figure::FigureNumber::One,
+                crate::figure::FigureNumber::Two,
+            ]
+            .into_iter()
+            .all(figures::ready)
+        {
+            self.render();
+        }
         let reports = self.watch.as_ref().map(|w| w.poll()).unwrap_or_default();
         for report in reports {
             self.course_report(report);

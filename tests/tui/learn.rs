@@ -305,7 +305,11 @@ fn code_is_wrapped_between_tokens_in_every_chapter() {
         let source = std::fs::read_to_string(book().join(&chapter.file)).unwrap();
         let source = markdown::resolve_includes(&source, &book());
         for width in [76u16, 80] {
-            let r = markdown::render_with(&source, width, markdown::Options { unfold: true });
+            let options = markdown::Options {
+                unfold: true,
+                ..Default::default()
+            };
+            let r = markdown::render_with(&source, width, options);
             let text: Vec<String> = r
                 .lines
                 .iter()

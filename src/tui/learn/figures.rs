@@ -24,17 +24,40 @@ pub const L_COLOUR: Color = Color::Red;
 /// Rows of one panel, title included.
 const PANEL_ROWS: u16 = 11;
 
-/// The points of Figure `number`, computed once per process.
-fn figure(number: FigureNumber) -> Result<&'static Figure, String> {
-    static ONE: OnceLock<Result<Figure, String>> = OnceLock::new();
-    static TWO: OnceLock<Result<Figure, String>> = OnceLock::new();
-    let cell = match number {
+static ONE: OnceLock<Result<Figure, String>> = OnceLock::new();
+static TWO: OnceLock<Result<Figure, String>> = OnceLock::new();
+
+fn cell(number: FigureNumber) -> &'static OnceLock<Result<Figure, String>> {
+    match number {
         FigureNumber::One => &ONE,
         FigureNumber::Two => &TWO,
-    };
-    cell.get_or_init(|| Figure::new(number).map_err(|e| e.to_string()))
+    }
+}
+
+/// The points of Figure `number`, computed once per process (here, now, if
+/// they are not yet).
+fn figure(number: FigureNumber) -> Result<&'static Figure, String> {
+    cell(number)
+        .get_or_init(|| Figure::new(number).map_err(|e| e.to_string()))
         .as_ref()
         .map_err(Clone::clone)
+}
+
+/// Compute both figures on a thread of their own, once (the terminal's
+/// way: Figure 2 integrates the reduced top's orientation to t = 8000).
+pub fn compute_in_background() {
+    static STARTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    if !STARTED.swap(true, std::sync::atomic::Ordering::Relaxed) {
+        std::thread::spawn(|| {
+            let _ = figure(FigureNumber::One);
+            let _ = figure(FigureNumber::Two);
+        });
+    }
+}
+
+/// True once Figure `number` is computed.
+pub fn ready(number: FigureNumber) -> bool {
+    cell(number).get().is_some()
 }
 
 /// Which figure a book image shows, from its file name.
@@ -49,8 +72,19 @@ pub fn number_of(path: &str) -> Option<FigureNumber> {
 }
 
 /// Figure `number` as lines of at most `width` columns: four panels, two
-/// side by side from 60 columns, else one under another.
-pub fn lines(number: FigureNumber, width: u16) -> Vec<Line<'static>> {
+/// side by side from 60 columns, else one under another. When `wait` is
+/// false and the figure is still being computed, one line says so.
+pub fn lines(number: FigureNumber, width: u16, wait: bool) -> Vec<Line<'static>> {
+    if !wait && !ready(number) {
+        compute_in_background();
+        return vec![Line::from(Span::styled(
+            format!(
+                "(Figure {} is being computed; it appears here in a moment)",
+                number.number()
+            ),
+            theme::label(),
+        ))];
+    }
     let figure = match figure(number) {
         Ok(f) => f,
         Err(e) => {

@@ -28,6 +28,8 @@ pub struct Rendered {
     pub experiments: Vec<(usize, String)>,
     /// TeX commands the converter did not know (a test keeps this empty).
     pub unknown_tex: Vec<String>,
+    /// A figure is still being computed: render again once it is there.
+    pub figures_pending: bool,
 }
 
 /// Resolves mdBook's `{{#include path}}` and `{{#include path:anchor}}`
@@ -226,6 +228,9 @@ struct Table {
 pub struct Options {
     /// Show the library's source excerpts whole instead of one line each.
     pub unfold: bool,
+    /// Figures still being computed get a line saying so instead of waiting
+    /// for them (the terminal's way; a test draws them at once).
+    pub figures_later: bool,
 }
 
 /// Renders one chapter (`source` already with includes resolved) at `width`
@@ -344,28 +349,40 @@ impl Renderer {
         let mut line: Vec<Span<'static>> = vec![Span::raw(prefix.clone())];
         let mut used = prefix.width();
         let room = self.width.saturating_sub(prefix.width()).max(1);
+        // Words: the pieces between spaces, kept together (a code span and
+        // the comma after it are one word; the line breaks at spaces only).
+        let mut words: Vec<Vec<Piece>> = Vec::new();
+        let mut spaces: Vec<Option<Style>> = Vec::new();
+        let mut pending_space = None;
         for piece in split_too_long(pieces, room) {
-            let w = piece.text.width();
             if piece.text == " " {
-                if used > prefix.width() {
-                    line.push(Span::styled(" ", piece.style));
-                    used += 1;
-                }
+                pending_space = Some(piece.style);
                 continue;
             }
-            if used + w > self.width && used > prefix.width() {
-                // Drop a trailing space before breaking.
-                if line.last().is_some_and(|s| s.content == " ") {
-                    line.pop();
-                }
+            if words.is_empty() || pending_space.is_some() {
+                spaces.push(pending_space.take());
+                words.push(vec![piece]);
+            } else if let Some(word) = words.last_mut() {
+                word.push(piece);
+            }
+        }
+        for (word, space) in words.into_iter().zip(spaces) {
+            let w: usize = word.iter().map(|p| p.text.width()).sum();
+            let gap = usize::from(space.is_some() && used > prefix.width());
+            if used + gap + w > self.width && used > prefix.width() {
                 self.out.lines.push(Line::from(std::mem::take(&mut line)));
                 first = false;
                 prefix = self.line_prefix(first);
                 line.push(Span::raw(prefix.clone()));
                 used = prefix.width();
+            } else if gap == 1 {
+                line.push(Span::styled(" ", space.unwrap_or_default()));
+                used += 1;
             }
-            used += w;
-            line.push(Span::styled(piece.text, piece.style));
+            for piece in word {
+                used += piece.text.width();
+                line.push(Span::styled(piece.text, piece.style));
+            }
         }
         let _ = first;
         self.out.lines.push(Line::from(line));
@@ -712,7 +729,14 @@ impl Renderer {
         let caption = without_colours(alt);
         if let Some(number) = super::figures::number_of(path) {
             let width = u16::try_from(self.width).unwrap_or(u16::MAX);
-            self.out.lines.extend(super::figures::lines(number, width));
+            if self.options.figures_later && !super::figures::ready(number) {
+                self.out.figures_pending = true;
+            }
+            self.out.lines.extend(super::figures::lines(
+                number,
+                width,
+                !self.options.figures_later,
+            ));
             self.pieces = caption
                 .split_whitespace()
                 .flat_map(|w| {
@@ -1071,7 +1095,11 @@ pub fn prose_subscripts(text: &str) -> String {
             let end = (i + 1..chars.len())
                 .find(|&k| !chars[k].is_alphanumeric())
                 .unwrap_or(chars.len());
-            let sub: Option<String> = (end - i - 1 <= 3 && end > i + 1)
+            // One letter stays (R_x beside R_z, whose z has no subscript
+            // form); digits and names of two or three letters (m_em) turn.
+            let len = end - i - 1;
+            let digits = chars[i + 1..end].iter().all(char::is_ascii_digit);
+            let sub: Option<String> = ((2..=3).contains(&len) || (1..=3).contains(&len) && digits)
                 .then(|| {
                     chars[i + 1..end]
                         .iter()

@@ -455,6 +455,23 @@ impl Stage {
                     SceneKey::NextModel => LiveCommand::NextModel,
                 };
                 app.apply(command);
+                let u = app.settings().top().time_unit();
+                if key == SceneKey::Pause {
+                    // The live view's own words name its keys (space, →);
+                    // here the scene pauses on p.
+                    return if app.paused() {
+                        (
+                            format!(
+                                "scene paused at t = {:.2}{u}: . steps Δt = {}{u}, p resumes",
+                                app.time(),
+                                super::super::app::TICK
+                            ),
+                            false,
+                        )
+                    } else {
+                        ("scene running".into(), false)
+                    };
+                }
                 match app.message() {
                     Some(m) => (format!("scene: {}", m.text), m.is_error),
                     None if key == SceneKey::Log => (
@@ -645,12 +662,19 @@ pub fn draw_orbit(frame: &mut Frame, area: Rect, p: &Playback<OrbitRuns>) {
     let here = now
         .map(|s| vec![(s.position[0], s.position[1])])
         .unwrap_or_default();
-    let half_w = 1.1 * f64::from(plane.width.max(1)) / (2.0 * f64::from(plane.height.max(1)));
+    // The whole orbit (radius 1) in view, round: a cell is two Braille dots
+    // wide and four tall, so x spans w/(2h) of y's span per cell ratio.
+    let aspect = f64::from(plane.width.max(1)) / (2.0 * f64::from(plane.height.max(1)));
+    let (half_w, half_h) = if aspect >= 1.0 {
+        (1.1 * aspect, 1.1)
+    } else {
+        (1.1, 1.1 / aspect)
+    };
     frame.render_widget(
         Canvas::default()
             .marker(Marker::Braille)
             .x_bounds([-half_w, half_w])
-            .y_bounds([-1.1, 1.1])
+            .y_bounds([-half_h, half_h])
             .paint(move |ctx| {
                 ctx.draw(&Points::new(&trail, theme::TRAIL));
                 ctx.draw(&Points::new(&here, theme::MOMENTUM));
