@@ -475,7 +475,8 @@ pub(crate) struct Key {
     pub drop: u8,
 }
 
-const fn key(
+/// A footer key: the key and its word, long and short, and when it leaves.
+pub(crate) const fn key(
     key: &'static str,
     word: &'static str,
     short_key: &'static str,

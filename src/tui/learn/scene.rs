@@ -101,6 +101,15 @@ impl Scene {
             None => file,
         };
         let valid = |s: Result<Settings, String>| s.unwrap_or(figure);
+        // The figures' top (I₃/I₁ = 2/5, Ω₀ = (0, 0.1, 0.2)) by `method` at `warp`.
+        let figure_by = |method, warp| {
+            valid(Settings::new(
+                crate::figure::FIGURE_RATIO,
+                crate::figure::FIGURE_OMEGA0,
+                method,
+                warp,
+            ))
+        };
         match file {
             "preface.md" | "errata.md" => both(),
             "section-2.md" => Scene {
@@ -124,12 +133,7 @@ impl Scene {
             ),
             "section-5.md" => Scene {
                 spec: Spec::Top {
-                    settings: valid(Settings::new(
-                        0.4,
-                        [0.0, 0.1, 0.2],
-                        MethodChoice::Exact,
-                        1000.0,
-                    )),
+                    settings: figure_by(MethodChoice::Exact, 1000.0),
                     columns: vec![0, 1],
                     log_time: true,
                 },
@@ -159,22 +163,12 @@ impl Scene {
                 }
             }
             "numerical-methods.md" | "where-methods-fail.md" => top(
-                valid(Settings::new(
-                    0.4,
-                    [0.0, 0.1, 0.2],
-                    MethodChoice::Rk4,
-                    100.0,
-                )),
+                figure_by(MethodChoice::Rk4, 100.0),
                 vec![0, 1],
                 "both models under fixed-step RK4 at 100 τ/s: press x to break it",
             ),
             "speed-accuracy.md" => top(
-                valid(Settings::new(
-                    0.4,
-                    [0.0, 0.1, 0.2],
-                    MethodChoice::Dop853,
-                    10.0,
-                )),
+                figure_by(MethodChoice::Dop853, 10.0),
                 vec![0, 1],
                 "both models by DOP853 beside their closed forms",
             ),
@@ -554,31 +548,33 @@ impl Stage {
                 cells.push(Cell::fixed(vec![super::super::view::status(app)]));
             }
             Stage::Orbit(p) => {
-                cells.push(Cell::or(
-                    vec![label(" m = k = 1, r₀ = 1, τ₀ = 10⁻³")],
-                    vec![label(" τ₀ = 10⁻³")],
-                ));
-                cells.push(Cell::fixed(vec![
-                    label("warp "),
-                    value(format!("{}/s", WARPS[p.warp])),
-                ]));
-                cells.push(Cell::fixed(vec![playback_status(p.paused)]));
+                let units = (" m = k = 1, r₀ = 1, τ₀ = 10⁻³", " τ₀ = 10⁻³");
+                cells.extend(playback_cells(units, p.warp, p.paused));
             }
             Stage::Shell(p) => {
-                cells.push(Cell::or(
-                    vec![label(" m = k = 1, the oscillator, Z = x + iy")],
-                    vec![label(" m = k = 1")],
-                ));
-                cells.push(Cell::fixed(vec![
-                    label("warp "),
-                    value(format!("{}/s", WARPS[p.warp])),
-                ]));
-                cells.push(Cell::fixed(vec![playback_status(p.paused)]));
+                let units = (" m = k = 1, the oscillator, Z = x + iy", " m = k = 1");
+                cells.extend(playback_cells(units, p.warp, p.paused));
             }
             Stage::None => {}
         }
         cells
     }
+}
+
+/// A played-back scene's parameters: its units (long, short), its warp and
+/// its clock.
+fn playback_cells(units: (&str, &str), warp: usize, paused: bool) -> [Cell; 3] {
+    [
+        Cell::or(
+            vec![Span::styled(units.0.to_string(), theme::label())],
+            vec![Span::styled(units.1.to_string(), theme::label())],
+        ),
+        Cell::fixed(vec![
+            Span::styled("warp ", theme::label()),
+            Span::styled(format!("{}/s", WARPS[warp]), theme::value()),
+        ]),
+        Cell::fixed(vec![playback_status(paused)]),
+    ]
 }
 
 /// "paused" or "running", as the live view shows its clock.
@@ -708,18 +704,8 @@ pub fn draw_orbit(frame: &mut Frame, area: Rect, p: &Playback<OrbitRuns>) {
         Span::styled("━run ", Style::new().fg(theme::OMEGA[2])),
         Span::styled("━(2.9) averaged", theme::frame()),
     ])))
-    .x_axis(
-        Axis::default()
-            .style(theme::frame())
-            .bounds([0.0, t_end])
-            .labels(["0".to_string(), format!("{t_end:.0}")]),
-    )
-    .y_axis(
-        Axis::default()
-            .style(theme::frame())
-            .bounds([0.0, 1.05])
-            .labels(["0", "1"]),
-    );
+    .x_axis(time_axis(t_end))
+    .y_axis(value_axis([0.0, 1.05], ["0".into(), "1".into()]));
     frame.render_widget(chart, radius);
     let n = now.map_or(String::new(), |s| {
         format!(
@@ -854,18 +840,11 @@ fn draw_shell_run(frame: &mut Frame, area: Rect, run: &ShellRun, t: Real) {
         "log₁₀|Z − Z_AL|: the shell against the point charge",
         theme::title(),
     )))
-    .x_axis(
-        Axis::default()
-            .style(theme::frame())
-            .bounds([0.0, t_end])
-            .labels(["0".to_string(), format!("{t_end:.0}")]),
-    )
-    .y_axis(
-        Axis::default()
-            .style(theme::frame())
-            .bounds([lo, hi])
-            .labels([format!("{lo:.0}"), format!("{hi:.0}")]),
-    );
+    .x_axis(time_axis(t_end))
+    .y_axis(value_axis(
+        [lo, hi],
+        [format!("{lo:.0}"), format!("{hi:.0}")],
+    ));
     frame.render_widget(chart, chart_area);
     let growth = match m.growth_rate() {
         Some(g) => format!(
@@ -889,6 +868,22 @@ fn draw_shell_run(frame: &mut Frame, area: Rect, run: &ShellRun, t: Real) {
         Paragraph::new(Span::styled(text, theme::value())).wrap(Wrap { trim: true }),
         numbers,
     );
+}
+
+/// A time axis from 0 to `t_end`, labelled at its ends.
+fn time_axis(t_end: Real) -> Axis<'static> {
+    Axis::default()
+        .style(theme::frame())
+        .bounds([0.0, t_end])
+        .labels(["0".to_string(), format!("{t_end:.0}")])
+}
+
+/// A value axis over `bounds`, labelled at its ends.
+fn value_axis(bounds: [Real; 2], labels: [String; 2]) -> Axis<'static> {
+    Axis::default()
+        .style(theme::frame())
+        .bounds(bounds)
+        .labels(labels)
 }
 
 fn panel(title: &str) -> Block<'static> {

@@ -11,7 +11,9 @@
 //! ```
 
 use super::super::theme;
-use super::super::view::{Cell, Key, draw_columns, fit_cells, key_line, status as live_status};
+use super::super::view::{
+    Cell, Key, draw_columns, fit_cells, key, key_line, status as live_status,
+};
 use super::scene::{Stage, draw_orbit, draw_shell, playback_status};
 use super::{Learn, Mode, Spec, progress_bar, text_inner};
 use ratatui::Frame;
@@ -38,22 +40,6 @@ const KEYS: [Key; 12] = [
     key("a", "assignments", "a", "course", 1),
     key("h", "hint", "h", "hint", 1),
 ];
-
-const fn key(
-    key: &'static str,
-    word: &'static str,
-    short_key: &'static str,
-    short_word: &'static str,
-    drop: u8,
-) -> Key {
-    Key {
-        key,
-        word,
-        short_key,
-        short_word,
-        drop,
-    }
-}
 
 /// Draw the screen for the current state.
 pub fn draw(frame: &mut Frame, learn: &Learn) {
@@ -339,6 +325,25 @@ fn draw_footer(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
     frame.render_widget(Paragraph::new(key_line(&keys, area.width)), area);
 }
 
+/// `lines` in a bordered box `width` wide (at most), as tall as they are
+/// once wrapped, in the middle of `area`.
+fn popup(frame: &mut Frame, area: Rect, width: u16, title: &str, lines: Vec<Line<'static>>) {
+    let width = width.min(area.width);
+    // Rows once wrapped to the popup's inner width.
+    let inner = usize::from(width.saturating_sub(2)).max(1);
+    let rows: usize = lines.iter().map(|l| l.width().max(1).div_ceil(inner)).sum();
+    let at = centered(area, width, rows as u16 + 2);
+    frame.render_widget(Clear, at);
+    frame.render_widget(
+        Paragraph::new(lines).wrap(Wrap { trim: false }).block(
+            Block::bordered()
+                .border_type(BorderType::Rounded)
+                .title(title.to_string()),
+        ),
+        at,
+    );
+}
+
 fn centered(area: Rect, width: u16, height: u16) -> Rect {
     let w = width.min(area.width);
     let h = height.min(area.height);
@@ -388,19 +393,7 @@ fn draw_help(frame: &mut Frame, area: Rect) {
             Span::raw(what),
         ]));
     }
-    let width = 72u16.min(area.width);
-    let inner = usize::from(width.saturating_sub(2)).max(1);
-    let rows: usize = lines.iter().map(|l| l.width().max(1).div_ceil(inner)).sum();
-    let popup = centered(area, width, rows as u16 + 2);
-    frame.render_widget(Clear, popup);
-    frame.render_widget(
-        Paragraph::new(lines).wrap(Wrap { trim: false }).block(
-            Block::bordered()
-                .border_type(BorderType::Rounded)
-                .title(" help "),
-        ),
-        popup,
-    );
+    popup(frame, area, 72, " help ", lines);
 }
 
 fn draw_course(frame: &mut Frame, area: Rect, learn: &Learn) {
@@ -521,19 +514,7 @@ fn draw_course(frame: &mut Frame, area: Rect, learn: &Learn) {
         },
         theme::label(),
     )));
-    // Rows once wrapped to the popup's inner width.
-    let inner = usize::from(area.width.min(100).saturating_sub(2)).max(1);
-    let rows: usize = lines.iter().map(|l| l.width().max(1).div_ceil(inner)).sum();
-    let popup = centered(area, 100, rows as u16 + 2);
-    frame.render_widget(Clear, popup);
-    frame.render_widget(
-        Paragraph::new(lines).wrap(Wrap { trim: false }).block(
-            Block::bordered()
-                .border_type(BorderType::Rounded)
-                .title(" course "),
-        ),
-        popup,
-    );
+    popup(frame, area, 100, " course ", lines);
 }
 
 fn draw_contents(frame: &mut Frame, area: Rect, learn: &Learn, selected: usize) {
