@@ -107,10 +107,11 @@ pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliEr
     } else {
         progress.last.clone()
     });
-    let mut session = match Learn::open(&book, start.as_deref()) {
+    // The scenes run on threads of their own: the screen never waits on them.
+    let mut session = match Learn::open_in_background(&book, start.as_deref()) {
         Ok(s) => s,
         // A stale "last chapter" in the progress file falls back to the preface.
-        Err(_) if args.chapter.is_none() => Learn::open(&book, None).map_err(bad)?,
+        Err(_) if args.chapter.is_none() => Learn::open_in_background(&book, None).map_err(bad)?,
         Err(e) => return Err(bad(e)),
     };
     session.restore(&progress);
@@ -133,7 +134,6 @@ pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliEr
              is graded with --course DIR",
         ),
     }
-    let mut session = session.in_background();
     let signal = Session::start(true)?.run(&mut session, None)?.signal;
     let progress = Progress::of(&session);
     if let Some(dir) = progress_path.parent() {
@@ -192,13 +192,21 @@ fn list(session: &mut Learn, progress: &Progress, out: &mut impl Write) -> Resul
             1 => "; 1 experiment".into(),
             n => format!("; {n} experiments"),
         };
-        writeln!(out, "           scene: {}{experiments}", c.scene().about)?;
+        writeln!(out, "           {}{experiments}", scene_line(&c.scene()))?;
     }
     writeln!(
         out,
         "open one with: spintop learn --chapter 4.2 (a section) or --chapter numerical-methods (a file)"
     )?;
     Ok(())
+}
+
+/// "scene: …", or "no scene: why".
+fn scene_line(scene: &crate::tui::learn::scene::Scene) -> String {
+    match scene.spec {
+        crate::tui::learn::scene::Spec::None => scene.describe(),
+        _ => format!("scene: {}", scene.about),
+    }
 }
 
 fn experiments_of(session: &Learn, index: usize) -> Result<usize, CliError> {

@@ -432,8 +432,20 @@ pub type ProbeReport = (
 );
 
 impl Learn {
-    /// Opens the book at `book` (the `book/src` folder) on chapter `start`.
+    /// Opens the book at `book` (the `book/src` folder) on chapter `start`,
+    /// its scenes stepped on this thread whenever asked (the tests' way).
     pub fn open(book: &Path, start: Option<&str>) -> Result<Self, String> {
+        Self::open_with(book, start, false)
+    }
+
+    /// [`Learn::open`] with every scene's models and computations on
+    /// threads of their own (the terminal's way: no key waits on them).
+    pub fn open_in_background(book: &Path, start: Option<&str>) -> Result<Self, String> {
+        figures::compute_in_background();
+        Self::open_with(book, start, true)
+    }
+
+    fn open_with(book: &Path, start: Option<&str>, background: bool) -> Result<Self, String> {
         let summary = std::fs::read_to_string(book.join("SUMMARY.md"))
             .map_err(|e| format!("cannot read {}: {e}", book.join("SUMMARY.md").display()))?;
         let chapters = chapters(&summary);
@@ -482,7 +494,7 @@ impl Learn {
             next_experiment: 0,
             stage: Stage::None,
             scene_info,
-            background: false,
+            background,
             unfolded: false,
             mode: Mode::Read,
             search: None,
@@ -502,18 +514,6 @@ impl Learn {
         };
         learn.load(current)?;
         Ok(learn)
-    }
-
-    /// Run every scene's models and computations on threads of their own
-    /// from now on (the terminal's way; the tests step them inline).
-    pub fn in_background(mut self) -> Self {
-        self.background = true;
-        figures::compute_in_background();
-        if let Ok(stage) = Stage::start(&self.scene_info.spec, true) {
-            self.stage = stage;
-            self.stage.resize(self.size.0, self.size.1);
-        }
-        self
     }
 
     /// The chapters.
@@ -772,7 +772,7 @@ impl Learn {
         if experiments.is_empty() {
             self.message = Some((
                 match self.scene_info.spec {
-                    Spec::None => format!("this chapter has no experiments ({})", self.scene_info.about),
+                    Spec::None => format!("this chapter has no experiments ({})", self.scene_info.describe()),
                     _ => "this chapter has no experiments; its scene runs with the chapter's own values"
                         .into(),
                 },
@@ -1045,7 +1045,7 @@ impl Learn {
                 if self.mode == Mode::Scene {
                     self.mode = Mode::Read;
                 } else if matches!(self.stage, Stage::None) {
-                    self.message = Some((self.scene_info.about.to_string(), false));
+                    self.message = Some((self.scene_info.describe(), false));
                 } else {
                     self.mode = Mode::Scene;
                 }

@@ -639,11 +639,17 @@ fn a_chapter_reopens_where_it_was_left() {
     for _ in 0..4 {
         tmux.keys("Space");
     }
-    let left = tmux.wait_for("four pages on", long, |s| {
-        first_text_line(s) != first_text_line(&first)
-    });
-    sleep(Duration::from_millis(300));
-    let left = first_text_line(&tmux.capture()).max(first_text_line(&left));
+    // Four pages on, once the screen has settled (two captures agree).
+    let start = Instant::now();
+    let left = loop {
+        let a = first_text_line(&tmux.capture());
+        sleep(Duration::from_millis(300));
+        let b = first_text_line(&tmux.capture());
+        if a == b && a != first_text_line(&first) {
+            break b;
+        }
+        assert!(start.elapsed() < long, "the pages did not settle");
+    };
     tmux.keys("Right");
     tmux.wait_for("the next chapter", long, |s| {
         s.lines().next().is_some_and(|h| h.contains("Section 4.2"))

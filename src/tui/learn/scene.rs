@@ -72,6 +72,15 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The line that says what the scene is: its `about`, or for a chapter
+    /// with none, "no scene: " and why.
+    pub fn describe(&self) -> String {
+        match self.spec {
+            Spec::None => format!("no scene: {}", self.about),
+            _ => self.about.to_string(),
+        }
+    }
+
     /// The scene of the chapter in `file` (a file name of `book/src`).
     pub fn of(file: &str) -> Scene {
         let figure = Settings::default();
@@ -173,10 +182,10 @@ impl Scene {
                 "both models by DOP853 beside their closed forms",
             ),
             "question-and-scales.md" | "real-particles.md" => none(
-                "no scene: a real particle turns far too slowly to watch; `spintop run nanoparticle-1e3-debye` prints its times",
+                "a real particle turns far too slowly to watch; `spintop run nanoparticle-1e3-debye` prints its times",
             ),
-            "assignments.md" => none("no scene: the assignments are in the course panel (a)"),
-            _ => none("no scene: this page is reference, with nothing to run"),
+            "assignments.md" => none("the assignments are in the course panel (a)"),
+            _ => none("this page is reference, with nothing to run"),
         }
     }
 }

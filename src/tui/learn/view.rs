@@ -304,7 +304,7 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn) {
                         spans.push(Span::styled("  (Tab shows it)", theme::label()));
                     }
                 }
-                None => spans.push(Span::styled(learn.scene_info().about, theme::label())),
+                None => spans.push(Span::styled(learn.scene_info().describe(), theme::label())),
             }
             Line::from(spans)
         }
