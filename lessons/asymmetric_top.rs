@@ -203,7 +203,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         let along = wr.dot(&d).abs() / (wr.norm() * d.norm());
         writeln!(
             out,
-            "  {what}: truncated {et:.3e}, reduced {er:.3e} (its Omega makes cos = {along:.4} with d)"
+            "  {what}: truncated {et:.3e}, reduced {er:.3e} (its Omega makes |cos| = {along:.4} with d)"
         )?;
     }
     Ok(())

@@ -185,7 +185,12 @@ pub(crate) fn sim_failure(
     model: &crate::sim::Model,
     choice: crate::sim::MethodChoice,
 ) -> CliError {
-    CliError::from(crate::output::sim_failure(e, model, choice))
+    CliError::from(crate::output::sim_failure(
+        e,
+        model,
+        choice,
+        crate::output::Entry::CommandLine,
+    ))
 }
 
 pub(crate) fn bad(msg: impl Into<String>) -> CliError {

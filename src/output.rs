@@ -105,59 +105,154 @@ pub enum Failure {
     Stopped(String),
 }
 
+/// Where a question came from, so that advice names what can be changed
+/// there: a flag on the command line, a key in a scene file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Entry {
+    /// `spintop simulate`, `plot`, `orbit`, …: flags.
+    #[default]
+    CommandLine,
+    /// `spintop run SCENE`: the scene's keys.
+    Scene,
+}
+
+/// A setting that advice can point at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Knob {
+    /// The tolerance.
+    Rtol,
+    /// The last output time.
+    TEnd,
+    /// The initial body rate.
+    Omega,
+    /// A general top's dipole.
+    Dipole,
+    /// RK4's step.
+    Step,
+    /// The closed forms.
+    MethodExact,
+    /// An adaptive method.
+    MethodAdaptive,
+    /// The reduced model.
+    ModelReduced,
+    /// The orbit's radiation time.
+    Tau0,
+    /// The orbit's force law.
+    ForceLl,
+}
+
+impl Entry {
+    /// How a user names `knob` at this entry point.
+    pub fn name(self, knob: Knob) -> &'static str {
+        use Knob as K;
+        match (self, knob) {
+            (Entry::CommandLine, K::Rtol) => "--rtol",
+            (Entry::CommandLine, K::TEnd) => "--t-end",
+            (Entry::CommandLine, K::Omega) => "--omega",
+            (Entry::CommandLine, K::Dipole) => "--dipole",
+            (Entry::CommandLine, K::Step) => "--step",
+            (Entry::CommandLine, K::MethodExact) => "--method exact",
+            (Entry::CommandLine, K::MethodAdaptive) => "--method dop853",
+            (Entry::CommandLine, K::ModelReduced) => "--model reduced",
+            (Entry::CommandLine, K::Tau0) => "--tau0",
+            (Entry::CommandLine, K::ForceLl) => "--force ll",
+            (Entry::Scene, K::Rtol) => "[solve] rtol",
+            (Entry::Scene, K::TEnd) => "[solve] t_end (or times)",
+            (Entry::Scene, K::Omega) => "[top] omega",
+            (Entry::Scene, K::Dipole) => "[top] dipole",
+            (Entry::Scene, K::Step) => "[solve] step",
+            (Entry::Scene, K::MethodExact) => "[solve] method = \"exact\"",
+            (Entry::Scene, K::MethodAdaptive) => "[solve] method = \"dop853\"",
+            (Entry::Scene, K::ModelReduced) => "[top] model = \"reduced\"",
+            (Entry::Scene, K::Tau0) => "[orbit] tau0",
+            (Entry::Scene, K::ForceLl) => "[orbit] force = \"ll\"",
+        }
+    }
+}
+
 impl From<SimError> for Failure {
     fn from(e: SimError) -> Self {
+        Failure::of(e, Entry::CommandLine)
+    }
+}
+
+impl Failure {
+    /// A simulation's failure, with advice in the words of `entry`.
+    pub fn of(e: SimError, entry: Entry) -> Self {
+        use crate::sim::physical::PhysicalError as P;
+        let k = |knob| entry.name(knob);
         match e {
             SimError::Integrate(IntegrateError::InvalidOption(msg)) => Failure::BadInput(msg),
-            SimError::Integrate(e) => numerical(&e),
-            SimError::NonFiniteSample(t) => numerical(&IntegrateError::NonFinite { t }),
-            SimError::Physical(crate::sim::physical::PhysicalError::Integrate(e)) => numerical(&e),
-            SimError::Physical(e @ crate::sim::physical::PhysicalError::NoConvergence(_)) => {
-                Failure::Stopped(format!("{e}; try a looser --rtol or a shorter --t-end"))
-            }
-            SimError::Physical(e @ crate::sim::physical::PhysicalError::NotSeparated { .. }) => {
-                Failure::Stopped(e.to_string())
-            }
+            SimError::Integrate(e) => numerical(&e, entry),
+            SimError::NonFiniteSample(t) => numerical(&IntegrateError::NonFinite { t }, entry),
+            SimError::Physical(P::Integrate(e)) => numerical(&e, entry),
+            // NOTE: the symmetric top's shoot brackets at every spin (its
+            // guess decays at linear theory's rate), and the general top's
+            // converges once its horizon is cut into segments; a shoot that
+            // still fails is not helped by any setting known.
+            SimError::Physical(e @ P::NoConvergence(_)) => Failure::Stopped(format!(
+                "{e}; no setting is known to help here (the horizon is already cut into segments, and a looser {} only changes the digits): please report the inputs",
+                k(Knob::Rtol)
+            )),
+            SimError::Physical(e @ P::NotSeparated { .. }) => Failure::Stopped(format!(
+                "{e}; a smaller {} or {}, or {}, avoids it",
+                k(Knob::Omega),
+                k(Knob::Dipole),
+                k(Knob::ModelReduced)
+            )),
             other => Failure::BadInput(other.to_string()),
         }
     }
 }
 
 /// An integrator's failure with general advice.
-fn numerical(e: &IntegrateError) -> Failure {
-    Failure::Stopped(format!("{e}; {}", advice(e)))
+fn numerical(e: &IntegrateError, entry: Entry) -> Failure {
+    Failure::Stopped(format!("{e}; {}", advice(e, entry)))
 }
 
 /// What to try after a numerical failure.
-fn advice(e: &IntegrateError) -> &'static str {
+fn advice(e: &IntegrateError, entry: Entry) -> String {
+    let k = |knob| entry.name(knob);
     match e {
-        IntegrateError::NonFinite { .. } => {
-            "the step is too large for this problem: try a smaller --step, or an adaptive method (--method dop853)"
-        }
-        IntegrateError::StepSizeUnderflow { .. } => {
-            "the problem is too stiff or singular here: try --method exact where a closed form exists, a looser --rtol, or a smaller --omega"
-        }
-        IntegrateError::TooManySteps { .. } => {
-            "the run needs too many steps: shorten --t-end, loosen --rtol, enlarge --step, or use --method exact"
-        }
-        IntegrateError::NoConvergence { .. } => {
-            "the implicit method's Newton iteration failed: try a smaller --step or an adaptive method"
-        }
-        IntegrateError::InvalidOption(_) => "check the method options",
+        IntegrateError::NonFinite { .. } => format!(
+            "the step is too large for this problem: try a smaller {}, or an adaptive method ({})",
+            k(Knob::Step),
+            k(Knob::MethodAdaptive)
+        ),
+        IntegrateError::StepSizeUnderflow { .. } => format!(
+            "the problem is too stiff or singular here: try {} where a closed form exists, a looser {}, or a smaller {}",
+            k(Knob::MethodExact),
+            k(Knob::Rtol),
+            k(Knob::Omega)
+        ),
+        IntegrateError::TooManySteps { .. } => format!(
+            "the run needs too many steps: shorten {}, loosen {}, enlarge {}, or use {}",
+            k(Knob::TEnd),
+            k(Knob::Rtol),
+            k(Knob::Step),
+            k(Knob::MethodExact)
+        ),
+        IntegrateError::NoConvergence { .. } => format!(
+            "the implicit method's Newton iteration failed: try a smaller {} or an adaptive method",
+            k(Knob::Step)
+        ),
+        IntegrateError::InvalidOption(_) => "check the method options".into(),
     }
 }
 
 /// A simulation's failure, with advice that applies to the model and the
-/// method in use: it names only options that exist for them and are not
-/// already chosen (no "--method exact" for a model without a closed form or a
-/// run already exact, no "--step" for an adaptive method).
-pub fn sim_failure(e: SimError, model: &Model, choice: MethodChoice) -> Failure {
+/// method in use, in the words of `entry`: it names only options that exist
+/// for them and are not already chosen (no "method exact" for a model
+/// without a closed form or a run already exact, no step for an adaptive
+/// method).
+pub fn sim_failure(e: SimError, model: &Model, choice: MethodChoice, entry: Entry) -> Failure {
     use crate::sim::MethodChoice as M;
+    let k = |knob| entry.name(knob);
     let integrate = match &e {
         SimError::Integrate(ie) if !matches!(ie, IntegrateError::InvalidOption(_)) => ie.clone(),
         SimError::NonFiniteSample(t) => IntegrateError::NonFinite { t: *t },
         SimError::Physical(crate::sim::physical::PhysicalError::Integrate(ie)) => ie.clone(),
-        _ => return Failure::from(e),
+        _ => return Failure::of(e, entry),
     };
     let closed = model.has_closed_form();
     let full = model.is_full();
@@ -173,44 +268,61 @@ pub fn sim_failure(e: SimError, model: &Model, choice: MethodChoice) -> Failure 
         model,
         Model::General(_) | Model::GeneralReduced(_) | Model::GeneralFull(_)
     ) {
-        "a smaller --omega or --dipole (kappa = 1 units)"
+        format!(
+            "a smaller {} or {} (kappa = 1 units)",
+            k(Knob::Omega),
+            k(Knob::Dipole)
+        )
     } else {
-        "a smaller --omega (in units of 1/tau)"
+        format!("a smaller {} (in units of 1/tau)", k(Knob::Omega))
     };
     let exact = if closed && matches!(choice, M::Rk4 | M::Dopri5 | M::Dop853) {
-        ", or --method exact (the closed forms take no steps)"
+        format!(
+            ", or {} (the closed forms take no steps)",
+            k(Knob::MethodExact)
+        )
     } else {
-        ""
+        String::new()
     };
+    let (omega, rtol, t_end, step) = (k(Knob::Omega), k(Knob::Rtol), k(Knob::TEnd), k(Knob::Step));
     let advice: String = match (&integrate, choice) {
         (IntegrateError::NonFinite { .. }, M::Rk4) => {
-            format!("RK4's fixed step is too large for these rates (its stability limit is about 2.8 over the largest decay rate): use a smaller --step, or an adaptive method (--method dop853){exact}")
+            format!(
+                "RK4's fixed step is too large for these rates (its stability limit is about 2.8 over the largest decay rate): use a smaller {step}, or an adaptive method ({}){exact}",
+                k(Knob::MethodAdaptive)
+            )
         }
-        (IntegrateError::NonFinite { .. }, _) if closed_form_run => {
-            format!("the closed forms overflow a double at this time: ask for earlier times, or use {inputs}")
-        }
-        (IntegrateError::NonFinite { .. }, _) if full => {
-            format!("the full ALE's solution left the range of a double: use {inputs} or a shorter --t-end, or compare --model reduced")
-        }
+        (IntegrateError::NonFinite { .. }, _) if closed_form_run => format!(
+            "the closed forms overflow a double at this time: ask for earlier times, or use {inputs}"
+        ),
+        (IntegrateError::NonFinite { .. }, _) if full => format!(
+            "the full ALE's solution left the range of a double: use {inputs} or a shorter {t_end}, or compare {}",
+            k(Knob::ModelReduced)
+        ),
         (IntegrateError::NonFinite { .. }, _) => {
             format!("the rates overflow a double: use {inputs}{exact}")
         }
         (IntegrateError::StepSizeUnderflow { .. }, _) => {
             if closed && choice != M::Exact && choice != M::Auto {
-                "the problem is stiff or singular here: --method exact takes no steps; else use a smaller --omega".into()
+                format!(
+                    "the problem is stiff or singular here: {} takes no steps; else use a smaller {omega}",
+                    k(Knob::MethodExact)
+                )
             } else {
-                "the problem is stiff or singular here: use a smaller --omega or a looser --rtol".into()
+                format!(
+                    "the problem is stiff or singular here: use a smaller {omega} or a looser {rtol}"
+                )
             }
         }
         (IntegrateError::TooManySteps { .. }, M::Rk4) => {
-            format!("use a larger --step (if RK4 stays stable) or a shorter --t-end{exact}")
+            format!("use a larger {step} (if RK4 stays stable) or a shorter {t_end}{exact}")
         }
         (IntegrateError::TooManySteps { .. }, _) => {
-            format!("use a looser --rtol or a shorter --t-end{exact}")
+            format!("use a looser {rtol} or a shorter {t_end}{exact}")
         }
-        (IntegrateError::NoConvergence { .. }, _) => {
-            "the implicit method's Newton iteration failed: use an adaptive method or a smaller --omega".into()
-        }
+        (IntegrateError::NoConvergence { .. }, _) => format!(
+            "the implicit method's Newton iteration failed: use an adaptive method or a smaller {omega}"
+        ),
         (IntegrateError::InvalidOption(_), _) => "check the method options".into(),
     };
     Failure::Stopped(format!("{integrate}; {advice}"))

@@ -7,13 +7,23 @@
 //! reader's machine, this is what holds, each point tested against the real
 //! server in `tests/server.rs`:
 //!
-//! # Who can run code: the holder of the printed address
+//! # Who can run code: the reader, holding the printed address
 //!
-//! Jupyter's model. The port is visible to every user of the machine
-//! (`ss -ltn`), so the key is a token: 128 random bits, made at start-up,
-//! kept in memory and shown only in the address the server prints,
-//! `http://127.0.0.1:PORT/?token=…` ([`Server::url`]).
+//! Jupyter's model, and one step further. The port is visible to every user
+//! of the machine (`ss -ltn`), so the key is a token: 128 random bits, made
+//! at start-up, kept in memory and shown only in the address the server
+//! prints, `http://127.0.0.1:PORT/?token=…` ([`Server::url`]).
 //!
+//! - On Linux, only the reader's processes (and root's) are served: the
+//!   kernel's socket tables say whose process made each connection
+//!   (`src/server/peer.rs`), and another user's gets 403 whatever it
+//!   holds, without taking one of the reader's connections. The token alone
+//!   would not do: a browser sends a host's cookies to every port of it, so
+//!   a page of another user's server on 127.0.0.1 that the reader opens (by
+//!   a link, or a web page that forwards there) receives the cookie, which
+//!   is the token. Elsewhere the token is the only key, and a reader who
+//!   shares the machine should open no other user's pages on 127.0.0.1
+//!   while the book is open.
 //! - Every request needs it, pages and static files included. The first
 //!   visit with `?token=` sets a cookie (HttpOnly, SameSite=Strict, named
 //!   after the port, since a host's cookies are shared by all its ports) and
@@ -34,29 +44,46 @@
 //! A snippet runs as the reader, with the reader's files and network. Each
 //! build and each run is a process tree under a supervisor
 //! (`src/server/tree.rs` says how): its own session and process group, a
-//! child subreaper so that nothing it starts can leave the tree, and
-//! resource limits ([`Limits`]: 4 GiB of address space and 11 CPU seconds
-//! per process, files up to 64 MiB, no core dumps). One tree at a time: a
-//! second ▶ gets 429 with what is busy and for how long. A run is killed,
-//! whole, after 10 s; a compile after 120 s once the scratch project is
-//! built (900 s for the first, cold build); the output is cut at 64 KiB.
-//! What a snippet hands to a service outside its tree (cron, `systemd-run`,
-//! an already running tmux server) is beyond these limits, as it would be
-//! for any program the reader runs.
+//! child subreaper so that what it starts (daemons, double forks, `setsid`,
+//! `nohup`) stays in the tree, and for a run resource limits ([`Limits`]):
+//! per process 4 GiB of address space and 11 CPU seconds, files up to
+//! 64 MiB each, no core dumps, and at most 512 processes and threads more
+//! than the reader had when it started (the kernel does not hold root to
+//! that one). These bound each process, not the tree's sum: its processes
+//! together may take more memory, and its files more disk (or `/dev/shm`,
+//! which is memory). A compile (cargo, rustc) has only its time limit. One
+//! tree at a time: a second ▶ gets 429 with what is busy and for how long.
+//! A run is killed, whole, after 10 s; a compile after 120 s once the
+//! scratch project is built (900 s for the first, cold build); the output
+//! is cut at 64 KiB.
+//!
+//! A snippet may kill its own supervisor (it runs as the reader): what it
+//! started then lands on the server, and `spintop book` kills every process
+//! below it but the running tree as soon as it sees a child end
+//! ([`Server::sweep_strays`]). What a snippet hands to a service outside
+//! its tree (cron, `systemd-run`, an already running tmux server), or a
+//! program written to outrun the kill (each process forking the next and
+//! ending faster than `/proc` can be read), is beyond these limits, as it
+//! would be for any program the reader runs.
 //!
 //! # Slow clients
 //!
 //! A request must arrive whole (head and body) within 10 s of its first byte
 //! ([`Limits::request_time`]), else 408; at [`MAX_CONNECTIONS`] the oldest
 //! idle or slow connection is dropped for a new one, so slow connections
-//! cannot shut the book. Malformed requests get a 4xx with a one-line
+//! cannot shut the book (and on Linux another user's connections are never
+//! among them). Malformed requests get a 4xx with a one-line
 //! reason: 400, 405, 404, 411, 413 (over 64 KiB).
 //!
 //! # Stops
 //!
 //! [`Server::shutdown`] (also on drop) kills the running tree, a snippet or
 //! cargo with its compilers, and waits until it is gone; `spintop book`
-//! calls it on SIGINT, SIGTERM, SIGHUP and SIGQUIT.
+//! calls it on SIGINT, SIGTERM, SIGHUP and SIGQUIT, then kills whatever a
+//! snippet left to it, and says whether anything survived. If the server
+//! itself is killed (SIGKILL), each supervisor sees its control pipe close
+//! and kills its tree; what a snippet had already left to the server then
+//! goes to init.
 //!
 //! # What is written where
 //!
@@ -80,6 +107,7 @@
 
 #[doc(hidden)]
 pub mod http;
+mod peer;
 mod run;
 mod tree;
 
@@ -90,7 +118,7 @@ use run::{Shared, Stage};
 use std::io::Read;
 use std::net::{TcpListener, TcpStream};
 use std::path::{Component, Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 use subtle::ConstantTimeEq;
@@ -118,6 +146,10 @@ pub struct Config {
     /// Where snippets are compiled and run.
     pub runner: Runner,
 }
+
+/// The most connections of other users' processes answered (403) at once;
+/// more are closed unanswered.
+const REFUSING: usize = 8;
 
 /// The most connections served at once (a browser opens six per page);
 /// when they are all open, the oldest idle or slow one is dropped for a new
@@ -215,6 +247,7 @@ struct Inner {
     shared: Shared,
     warm: Mutex<WarmState>,
     connections: Mutex<Vec<Arc<http::Watch>>>,
+    refusing: AtomicUsize,
 }
 
 /// An answer: status, content type, further headers, body.
@@ -269,6 +302,7 @@ impl Server {
                 shared: Shared::default(),
                 warm: Mutex::new(WarmState::NotStarted),
                 connections: Mutex::default(),
+                refusing: AtomicUsize::new(0),
             }),
         })
     }
@@ -355,9 +389,14 @@ impl Server {
         while !stop.load(Ordering::Relaxed) {
             match self.listener.accept() {
                 Ok((stream, _)) => {
+                    let peer = peer::peer(&stream);
                     let Ok(mut conn) = http::Connection::new(stream) else {
                         continue;
                     };
+                    if let Some(why) = refusal(peer) {
+                        self.inner.refuse(conn, why);
+                        continue;
+                    }
                     if !self.inner.admit(&conn) {
                         let _ = conn.respond(
                             503,
@@ -388,6 +427,17 @@ impl Server {
     pub fn shutdown(&self) -> bool {
         self.inner.shared.slot.close(Duration::from_secs(1))
     }
+
+    /// For a process that serves this server and starts nothing else
+    /// (`spintop book`): kills every process below this one but the running
+    /// tree, and reaps those that have ended; returns how many living ones
+    /// it found. A snippet that kills its own supervisor leaves what it
+    /// started to this process (see `src/server/tree.rs`); calling this
+    /// when a child ends (SIGCHLD) keeps one tree at a time, and after
+    /// [`Server::shutdown`], nothing running.
+    pub fn sweep_strays(&self) -> usize {
+        self.inner.shared.slot.sweep_strays()
+    }
 }
 
 impl Drop for Server {
@@ -415,6 +465,29 @@ impl Inner {
             .flat_map(|v| v.split(';'))
             .filter_map(|pair| pair.trim().split_once('='))
             .any(|(k, v)| k == name && self.is_token(v))
+    }
+
+    /// Answers a connection of another user's process 403 (on a thread of
+    /// its own, after reading its request for at most a second), never
+    /// among the reader's connections; at most [`REFUSING`] at once, the
+    /// rest closed unanswered.
+    fn refuse(self: &Arc<Self>, mut conn: http::Connection, why: String) {
+        if self.refusing.fetch_add(1, Ordering::SeqCst) >= REFUSING {
+            self.refusing.fetch_sub(1, Ordering::SeqCst);
+            return;
+        }
+        let inner = Arc::clone(self);
+        std::thread::spawn(move || {
+            conn.set_request_time(Duration::from_secs(1));
+            let limit = inner.config.runner.limits.request_bytes;
+            if !matches!(conn.next_request(limit), Err(http::ReadError::Closed)) {
+                let reply = reason(403, &why);
+                let mut headers: Vec<(&str, &str)> = vec![("Content-Type", reply.content_type)];
+                headers.extend(SECURITY_HEADERS);
+                let _ = conn.respond(403, &headers, &reply.body, false, false);
+            }
+            inner.refusing.fetch_sub(1, Ordering::SeqCst);
+        });
     }
 
     /// Makes room for `conn`: at [`MAX_CONNECTIONS`], the connection idle or
@@ -525,8 +598,11 @@ impl Inner {
                     }
                     // The printed address: keep the key in a cookie, and
                     // the address bar (and history) without it.
+                    // One leading slash: a browser reads `//host/` (or
+                    // `/\host/`) as another host.
+                    let path = format!("/{}", path.trim_start_matches(['/', '\\']));
                     let clean = if rest.is_empty() {
-                        path.to_string()
+                        path
                     } else {
                         format!("{path}?{rest}")
                     };
@@ -728,6 +804,22 @@ impl Inner {
         };
         drop(job);
         json(200, value)
+    }
+}
+
+/// Why a connection from `peer` is refused, if it is: another user's
+/// process, or a peer already gone (see `src/server/peer.rs`).
+fn refusal(peer: peer::Peer) -> Option<String> {
+    match peer {
+        peer::Peer::Trusted | peer::Peer::Unknown => None,
+        peer::Peer::OtherUser(uid) => Some(format!(
+            "refused: this connection comes from another user's process (uid {uid}); spintop book answers only the user who started it (uid {}), whatever key the request holds",
+            rustix::process::geteuid().as_raw()
+        )),
+        peer::Peer::Gone => Some(
+            "refused: the connection's other end was closed before the server could see whose it is"
+                .into(),
+        ),
     }
 }
 

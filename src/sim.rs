@@ -32,6 +32,7 @@ use crate::physics::symmetric_top::{
 use serde::Serialize;
 use thiserror::Error;
 
+pub mod accuracy;
 pub mod cost;
 pub mod orbit;
 pub mod physical;

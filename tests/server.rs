@@ -257,42 +257,44 @@ fn a_snippet_runs_against_this_spintop_and_a_page_carries_the_token() {
     assert!(!css.contains(&s.token));
 }
 
-/// F1: the port is visible to every user; the printed address is the key.
-/// Another local user (`nobody`, when the test runs as root) connects, and
-/// gets neither a page (from which to lift the token) nor a run; with the
-/// printed address it would (so the refusals are the rule's, not the
-/// client's).
-#[test]
-fn another_local_user_cannot_read_a_page_or_run_code_without_the_printed_address() {
-    use std::os::unix::process::CommandExt;
-    let s = start("other-user", limits());
+/// Whether there is another user to become: the tests run as root.
+fn can_become_another_user() -> bool {
     let root = rustix::process::geteuid().is_root();
     if !root {
-        eprintln!(
-            "not root, so no other user to become: the other user's requests are sent as this user"
-        );
+        eprintln!("not root, so no other user to become: skipped");
     }
-    // One request over bash's /dev/tcp, as uid 65534 (nobody).
-    let as_other_user = |raw: String| -> String {
-        let mut command = std::process::Command::new("bash");
-        command
-            .args([
-                "-c",
-                "exec 3<>/dev/tcp/127.0.0.1/$PORT || exit 9; printf '%s' \"$REQUEST\" >&3; cat <&3",
-            ])
-            .env("PORT", s.port.to_string())
-            .env("REQUEST", raw)
-            .current_dir("/");
-        if root {
-            command.uid(65534).gid(65534);
-        }
-        let out = command.output().unwrap();
-        assert!(out.status.success(), "{out:?}");
-        String::from_utf8_lossy(&out.stdout).into_owned()
+    root
+}
+
+/// One raw request over bash's `/dev/tcp`, as uid 65534 (`nobody`) if
+/// `other_user`, else as this user: the answer, as sent.
+fn over_dev_tcp(port: u16, raw: String, other_user: bool) -> String {
+    use std::os::unix::process::CommandExt;
+    let mut command = std::process::Command::new("bash");
+    command
+        .args([
+            "-c",
+            "exec 3<>/dev/tcp/127.0.0.1/$PORT || exit 9; printf '%s' \"$REQUEST\" >&3; cat <&3",
+        ])
+        .env("PORT", port.to_string())
+        .env("REQUEST", raw)
+        .current_dir("/");
+    if other_user {
+        command.uid(65534).gid(65534);
+    }
+    let out = command.output().unwrap();
+    assert!(out.status.success(), "{out:?}");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// A raw GET of `path`, and a raw run of `id` with `token` in the header.
+fn raw_get_and_run(port: u16) -> (impl Fn(&str) -> String, impl Fn(&str) -> String) {
+    let host = format!("Host: 127.0.0.1:{port}\r\n");
+    let get = {
+        let host = host.clone();
+        move |path: &str| format!("GET {path} HTTP/1.1\r\n{host}Connection: close\r\n\r\n")
     };
-    let host = format!("Host: 127.0.0.1:{}\r\n", s.port);
-    let get = |path: &str| format!("GET {path} HTTP/1.1\r\n{host}Connection: close\r\n\r\n");
-    let run = |token: &str| {
+    let run = move |token: &str| {
         let code = body("println!(\"{:?}\", std::process::Command::new(\"id\").output());");
         format!(
             "POST /evaluate.json HTTP/1.1\r\n{host}Connection: close\r\nX-Spintop-Token: {token}\r\nContent-Length: {}\r\n\r\n{}",
@@ -300,6 +302,19 @@ fn another_local_user_cannot_read_a_page_or_run_code_without_the_printed_address
             String::from_utf8(code).unwrap()
         )
     };
+    (get, run)
+}
+
+/// F1: the port is visible to every user; the printed address is the key.
+/// Another local user (`nobody`, when the test runs as root) connects, and
+/// gets neither a page (from which to lift the token) nor a run; this user
+/// with the printed address is let in over the same client (so the
+/// refusals are the rule's, not the client's).
+#[test]
+fn another_local_user_cannot_read_a_page_or_run_code_without_the_printed_address() {
+    let s = start("other-user", limits());
+    let other_user = can_become_another_user();
+    let (get, run) = raw_get_and_run(s.port);
     for (what, raw) in [
         ("the first page", get("/")),
         ("a chapter", get("/index.html")),
@@ -314,14 +329,56 @@ fn another_local_user_cannot_read_a_page_or_run_code_without_the_printed_address
             run("0123456789abcdef0123456789abcdef"),
         ),
     ] {
-        let answer = as_other_user(raw);
+        let answer = over_dev_tcp(s.port, raw, other_user);
         assert!(answer.starts_with("HTTP/1.1 403 "), "{what}: {answer}");
         assert!(!answer.contains(&s.token), "{what}: the token leaked");
         assert!(!answer.contains("uid="), "{what}: code ran: {answer}");
     }
-    // The same user with the printed address is let in.
-    let answer = as_other_user(get(&format!("/?token={}", s.token)));
+    // The reader with the printed address is let in.
+    let answer = over_dev_tcp(s.port, get(&format!("/?token={}", s.token)), false);
     assert!(answer.starts_with("HTTP/1.1 303 "), "{answer}");
+}
+
+/// F1, the cookie: a browser sends a host's cookies to every port of it, so
+/// a page of another user's server on 127.0.0.1 that the reader opens (by a
+/// link, or a web page that forwards there) receives the cookie, which is
+/// the token. Holding the printed address must still not let another user
+/// read a page or run code; the reader, over the same client, gets both.
+#[test]
+fn another_local_user_holding_the_printed_address_can_neither_read_a_page_nor_run_code() {
+    if !cfg!(target_os = "linux") || !can_become_another_user() {
+        return;
+    }
+    let s = start("other-user-key", limits());
+    let (get, run) = raw_get_and_run(s.port);
+    let cookie = |path: &str| {
+        format!(
+            "GET {path} HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nCookie: {}\r\nConnection: close\r\n\r\n",
+            s.port,
+            s.cookie()
+        )
+    };
+    for (what, raw) in [
+        ("the printed address", get(&format!("/?token={}", s.token))),
+        ("a page with the cookie", cookie("/")),
+        ("a stylesheet with the cookie", cookie("/css/book.css")),
+        ("a run with the token", run(&s.token)),
+    ] {
+        let answer = over_dev_tcp(s.port, raw, true);
+        assert!(answer.starts_with("HTTP/1.1 403 "), "{what}: {answer}");
+        assert!(answer.contains("another user"), "{what}: {answer}");
+        assert!(!answer.contains("Set-Cookie"), "{what}: {answer}");
+        assert!(!answer.contains("window.spintopBook"), "{what}: {answer}");
+        assert!(!answer.contains("uid="), "{what}: code ran: {answer}");
+    }
+    // The reader, with the same requests over the same client.
+    let page = over_dev_tcp(s.port, cookie("/"), false);
+    assert!(page.starts_with("HTTP/1.1 200 "), "{page}");
+    let ran = over_dev_tcp(s.port, run(&s.token), false);
+    assert!(
+        ran.starts_with("HTTP/1.1 200 ") && ran.contains("uid="),
+        "{ran}"
+    );
 }
 
 #[test]
@@ -358,6 +415,31 @@ fn the_printed_address_sets_an_httponly_strict_cookie_named_for_the_port_and_red
     let elsewhere = format!("spintop-book-{}={}", s.port.wrapping_add(1), s.token);
     let (status, _) = request(s.port, "GET", "/", &[("Cookie", &elsewhere)], b"").unwrap();
     assert_eq!(status, 403);
+}
+
+/// The redirect of the printed address stays in the book: a path that a
+/// browser reads as another host (`//host/`, `/\host/`) is not sent back
+/// as the `Location`.
+#[test]
+fn the_printed_address_redirects_only_within_the_book() {
+    let s = start("redirect", limits());
+    for path in ["//evil.example/", "/\\evil.example/", "/\\/evil.example/"] {
+        let r = fetch(
+            s.port,
+            "GET",
+            &format!("{path}?token={}", s.token),
+            &[],
+            b"",
+        )
+        .unwrap();
+        assert_eq!(r.code, 303, "{path}: {r:?}");
+        let location = r.header("Location").unwrap();
+        assert!(location.starts_with('/'), "{path}: {location}");
+        assert!(
+            !location[1..].starts_with(['/', '\\']),
+            "{path}: {location} leaves the book"
+        );
+    }
 }
 
 #[test]
@@ -554,6 +636,8 @@ fn a_run_past_the_time_limit_is_killed_with_every_process_it_started() {
         "{shown}"
     );
     assert!(shown.contains("with every process it started"), "{shown}");
+    // Killed at the 3 s limit: the note gives the limit it applied.
+    assert!(shown.contains("time limit (3 s)"), "{shown}");
     both_gone(&scratch);
 }
 
@@ -609,6 +693,80 @@ fn a_snippet_runs_in_a_session_of_its_own_under_resource_limits() {
         .unwrap();
     let sid = shown.lines().next().unwrap().trim_start_matches("session ");
     assert_ne!(sid, own_sid, "{shown}");
+}
+
+/// The tasks (processes and threads) of real user `uid`, as RLIMIT_NPROC
+/// counts them.
+fn tasks_of(uid: u32) -> u64 {
+    std::fs::read_dir("/proc")
+        .unwrap()
+        .flatten()
+        .filter_map(|e| std::fs::read_to_string(e.path().join("status")).ok())
+        .filter_map(|status| {
+            let field = |name: &str| {
+                status
+                    .lines()
+                    .find_map(|l| l.strip_prefix(name))
+                    .and_then(|v| v.split_whitespace().next())
+                    .and_then(|v| v.parse::<u64>().ok())
+            };
+            (field("Uid:")? == u64::from(uid)).then(|| field("Threads:"))?
+        })
+        .sum()
+}
+
+/// A fork bomb is bounded: a run may start only `Limits::processes` more
+/// processes and threads than the reader had when it started (RLIMIT_NPROC,
+/// which counts every task of a user, so it is set from the count at the
+/// start). The kernel does not hold root to it, so as root the limit is
+/// checked; as another user, also that the run cannot pass it.
+#[test]
+fn a_run_may_start_only_a_bounded_number_of_processes() {
+    let margin = 64;
+    let s = start(
+        "nproc",
+        Limits {
+            processes: margin,
+            ..limits()
+        },
+    );
+    let uid = rustix::process::getuid().as_raw();
+    let enforced = uid != 0;
+    let tries = if enforced { margin + 200 } else { 0 };
+    let code = format!(
+        "print!(\"{{}}\", std::fs::read_to_string(\"/proc/self/limits\").unwrap());\nlet mut kept = Vec::new();\nfor _ in 0..{tries} {{\n    match std::thread::Builder::new().stack_size(64 << 10).spawn(|| std::thread::sleep(std::time::Duration::from_secs(2))) {{\n        Ok(t) => kept.push(t),\n        Err(_) => break,\n    }}\n}}\nprintln!(\"started {{}}\", kept.len());"
+    );
+    let before = tasks_of(uid);
+    let (status, v) = s.run(&code);
+    let after = tasks_of(uid);
+    assert_eq!(status, 200, "{v}");
+    let shown = v["result"].as_str().unwrap();
+    let line = shown
+        .lines()
+        .find(|l| l.starts_with("Max processes"))
+        .unwrap_or_else(|| panic!("{shown}"));
+    let values: Vec<u64> = line["Max processes".len()..]
+        .split_whitespace()
+        .take(2)
+        .map(|v| v.parse().unwrap_or(u64::MAX))
+        .collect();
+    assert_eq!(values[0], values[1], "{line}");
+    // Other tests (and other users' builds) start and end tasks meanwhile.
+    let slack = 2000;
+    let (low, high) = (before.min(after), before.max(after));
+    assert!(
+        values[0] >= margin + low.saturating_sub(slack) && values[0] <= margin + high + slack,
+        "{line}: this user had {before} to {after} tasks"
+    );
+    if enforced {
+        let started: u64 = shown
+            .lines()
+            .find_map(|l| l.strip_prefix("started "))
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(started < tries, "{shown}");
+    }
 }
 
 #[test]
@@ -1196,6 +1354,86 @@ fn a_signal_stops_spintop_book_and_leaves_no_process_it_started() {
             cmdline(pid)
         );
     }
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// A snippet that leaves its session and then kills its own supervisor
+/// (any process of the reader may): what it left is adopted by `spintop
+/// book`, a child subreaper, and not by the dead supervisor's session
+/// sweep, since it is in a session of its own.
+const KILLS_ITS_SUPERVISOR: &str = r#"use std::process::Command;
+fn main() {
+    Command::new("sh")
+        .args(["-c", "setsid sh -c 'echo $$ > escapee.pid.tmp; mv escapee.pid.tmp escapee.pid; while :; do sleep 1; done' &"])
+        .status()
+        .unwrap();
+    while std::fs::metadata("escapee.pid").is_err() {
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    let supervisor = std::os::unix::process::parent_id().to_string();
+    println!("killing my supervisor {supervisor}");
+    Command::new("kill").args(["-9", &supervisor]).status().unwrap();
+    std::thread::sleep(std::time::Duration::from_secs(30));
+}
+"#;
+
+/// F2 and F4 for a snippet that kills its supervisor: `spintop book` kills
+/// what lands on it (so one tree at a time holds), reaps it (no zombie is
+/// left on the server), and a stop leaves nothing running.
+#[test]
+fn a_snippet_that_kills_its_supervisor_leaves_nothing_running() {
+    let root = std::env::temp_dir().join(format!("spintop-server-escape-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    let site = site(&root);
+    let scratch = root.join("scratch");
+    let mut book = Book::start(&site, &scratch);
+    book.wait_line("▶ is ready");
+    let (status, text) = request(
+        book.port,
+        "POST",
+        "/evaluate.json",
+        &[("X-Spintop-Token", &book.token)],
+        &body(KILLS_ITS_SUPERVISOR),
+    )
+    .unwrap();
+    assert!(status == 200 || status == 202, "{status} {text}");
+    assert!(
+        wait_for(Duration::from_secs(300), || scratch
+            .join("escapee.pid")
+            .is_file()),
+        "the snippet did not start its escapee"
+    );
+    let escapee: i32 = std::fs::read_to_string(scratch.join("escapee.pid"))
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    let server = book.child.id() as i32;
+    assert!(
+        wait_for(Duration::from_secs(5), || !alive(escapee)),
+        "{escapee} ({}) outlived its run, under {server}",
+        cmdline(escapee)
+    );
+    let zombies = || -> Vec<i32> {
+        processes()
+            .iter()
+            .filter(|&&(_, ppid, state)| ppid == server && state == 'Z')
+            .map(|&(pid, _, _)| pid)
+            .collect()
+    };
+    assert!(
+        wait_for(Duration::from_secs(5), || zombies().is_empty()),
+        "zombies left on the server: {:?}",
+        zombies()
+    );
+    let status = book.stop(rustix::process::Signal::TERM);
+    assert_eq!(status.code(), Some(0), "{status:?}");
+    let last = book.wait_line("stopped");
+    assert!(
+        last.contains("nothing it started is left running"),
+        "{last}"
+    );
+    assert!(!alive(escapee));
     let _ = std::fs::remove_dir_all(&root);
 }
 

@@ -160,6 +160,10 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     };
     let signal = Arc::new(AtomicUsize::new(0));
     let stop = Arc::new(AtomicBool::new(false));
+    // A child ended: a supervisor, or one of what a snippet that killed its
+    // supervisor left to this process.
+    let child_ended = Arc::new(AtomicBool::new(false));
+    signal_hook::flag::register(signal_hook::consts::SIGCHLD, Arc::clone(&child_ended))?;
     for s in [
         signal_hook::consts::SIGINT,
         signal_hook::consts::SIGTERM,
@@ -179,6 +183,9 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
         scope.spawn(|| server.serve(&stop));
         let mut shown = false;
         while !stop.load(Ordering::Relaxed) {
+            if child_ended.swap(false, Ordering::Relaxed) {
+                server.sweep_strays();
+            }
             if !shown {
                 match server.warm_up_state() {
                     WarmUp::Ready { took } => {
@@ -205,7 +212,18 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
         }
         Ok(())
     })?;
-    let gone = server.shutdown();
+    // The tree, then whatever a tree left to this process (for up to 3 s:
+    // what is killed may have started more meanwhile).
+    let mut gone = server.shutdown();
+    let start = Instant::now();
+    while server.sweep_strays() > 0 {
+        if start.elapsed() > Duration::from_secs(3) {
+            gone = false;
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    server.sweep_strays();
     if let Some(file) = forward {
         let _ = std::fs::remove_file(file);
     }
@@ -224,7 +242,7 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     } else {
         writeln!(
             out,
-            "spintop book: stopped ({name}), but its last snippet did not end within 3 s"
+            "spintop book: stopped ({name}), but what its last snippet started did not end within 3 s"
         )?;
     }
     Ok(())

@@ -97,6 +97,7 @@ impl OrbitArgs {
             config,
             times,
             format: self.format,
+            entry: crate::output::Entry::CommandLine,
         })
     }
 }

@@ -150,6 +150,7 @@ impl SimulateArgs {
             euler0: self.euler,
             times,
             format: self.format,
+            entry: crate::output::Entry::CommandLine,
         })
     }
 }

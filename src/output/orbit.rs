@@ -50,6 +50,8 @@ pub struct OrbitRequest {
     pub times: Vec<Real>,
     /// Output format.
     pub format: Format,
+    /// Where the request came from (for the words of advice).
+    pub entry: super::Entry,
 }
 
 /// The inputs, echoed in the JSON output.
@@ -135,16 +137,27 @@ pub fn orbit(request: &OrbitRequest) -> Result<OrbitOutput, Failure> {
     let tau0 = config.charge.tau0();
     let potential = config.charge.potential();
     let collapse = config.collapse_time();
+    use super::{Entry, Knob};
+    let k = |knob| request.entry.name(knob);
+    let times = match request.entry {
+        Entry::CommandLine => "--times",
+        Entry::Scene => "[solve] times",
+    };
     let run = run_orbit(config, &request.times).map_err(|e| match e {
         OrbitError::Collapsed { .. } => Failure::Stopped(format!(
-            "{e}; the averaged collapse time is t_c = {}: ask for times before it, or a smaller --tau0",
-            table(collapse.unwrap_or(Real::INFINITY))
+            "{e}; the averaged collapse time is t_c = {}: ask for times before it, or a smaller {}",
+            table(collapse.unwrap_or(Real::INFINITY)),
+            k(Knob::Tau0)
         )),
         OrbitError::ShootingFailed { .. } => Failure::Stopped(format!(
-            "{e}; try shorter --times, a smaller --tau0, or --force ll"
+            "{e}; try shorter {times}, a smaller {}, or {}",
+            k(Knob::Tau0),
+            k(Knob::ForceLl)
         )),
         OrbitError::Integrate(ie) => Failure::Stopped(format!(
-            "{ie}; try a looser --rtol, shorter --times, or a smaller --tau0"
+            "{ie}; try a looser {}, shorter {times}, or a smaller {}",
+            k(Knob::Rtol),
+            k(Knob::Tau0)
         )),
     })?;
     let integrated = run.method != "exact";

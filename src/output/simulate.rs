@@ -1,7 +1,7 @@
 //! `simulate`: one model of the top, sampled at given times, as a table, CSV
 //! or the JSON contract.
 
-use super::{Failure, Format, Output, Stop, sim_failure, write_aligned};
+use super::{Entry, Failure, Format, Output, Stop, sim_failure, write_aligned};
 use crate::math::{Real, Vec3};
 use crate::numbers::{fmt_time, table};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
@@ -25,6 +25,8 @@ pub struct SimulateConfig {
     pub times: Vec<Real>,
     /// Output format.
     pub format: Format,
+    /// Where the request came from (for the words of advice).
+    pub entry: Entry,
 }
 
 /// The JSON output of `simulate` (the contract).
@@ -95,7 +97,7 @@ pub struct Parameters {
 /// Run a validated `simulate` request.
 pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
     let horizon = config.times.last().copied().unwrap_or(0.0);
-    let failure = |e| sim_failure(e, &config.model, config.method);
+    let failure = |e| sim_failure(e, &config.model, config.method, config.entry);
     let mut sim = Simulation::new(
         config.model,
         config.method,
@@ -115,7 +117,14 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
                 runaway = Some(RunawayReport {
                     t: r.t,
                     growth_rate: r.growth_rate,
-                    advice: "integrate backward or use the reduced model (--model full --method auto gives the physical solution)",
+                    advice: match config.entry {
+                        Entry::CommandLine => {
+                            "integrate backward or use the reduced model (--model full --method auto gives the physical solution)"
+                        }
+                        Entry::Scene => {
+                            "integrate backward or use the reduced model ([solve] method = \"auto\" gives the physical solution)"
+                        }
+                    },
                     unit: if matches!(config.model, Model::GeneralFull(_)) {
                         "time unit (kappa = 1)"
                     } else {

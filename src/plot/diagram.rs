@@ -715,21 +715,26 @@ fn precession_cone() -> Diagram {
         arrow(&mut svg, &view, &Vec3::zeros(), &v, color, width);
         svg.label_at_tip(o, view.page(&v), text, color, 12.0);
     }
-    // θ between L and the axis.
+    // θ between L and the axis, in its own colour: Ω's green would read as
+    // the angle to Ω, which runs close to the arc's middle.
     let across = l_hat.cross(&e3).normalize();
-    let at = arc(
+    let (radius, angle) = (0.3, top.tilt);
+    arc(
         &mut svg,
         &view,
         &Vec3::zeros(),
         &across,
         &l_hat,
-        0.3,
-        top.tilt,
-        GREEN,
+        radius,
+        angle,
+        PURPLE,
         "L×e3",
     );
+    // Its name between Ω and e3 (Ω lies near the arc's middle, at the angle
+    // atan(Ω⊥/Ω₃) from e3), just outside the arc.
+    let at = 1.4 * radius * (rot_axis(&across, 0.74 * angle) * l_hat);
     let p = view.page(&at);
-    svg.label((p.0, p.1 + 6.0), "θ", GREEN, 18.0, "middle", true);
+    svg.label((p.0, p.1 + 6.0), "θ", PURPLE, 18.0, "middle", true);
     // The precession: e3 turns about L, in the right-handed sense.
     let rim_centre = top.tilt.cos() * l_hat;
     let turn = 1.0;

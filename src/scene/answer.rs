@@ -13,7 +13,7 @@ use crate::output::balance::{self, BalanceConfig, BalanceOutput, BalanceParamete
 use crate::output::orbit::{self, OrbitOutput, OrbitRequest};
 use crate::output::shell::{self, ShellOutput, ShellRequest};
 use crate::output::simulate::{Parameters, SimulateConfig, SimulateOutput, simulate};
-use crate::output::{Failure, Format};
+use crate::output::{Entry, Failure, Format};
 use crate::physics::particle::{DEBYE_ESU_CM, Milestones, RigidShape, SPEED_OF_LIGHT_CM_S};
 use crate::sim::Model;
 use crate::sim::secular::{Law, SecularSample, secular};
@@ -340,6 +340,7 @@ fn run_top(
                 euler0: top.euler0,
                 times: top.times.clone(),
                 format: Format::Json,
+                entry: Entry::Scene,
             };
             let output = simulate(&config)?;
             if let Some(w) = pole_warning(&output.samples) {
@@ -508,6 +509,7 @@ pub fn answer(scene: &Scene) -> Result<Report, Failure> {
                 config: o.config,
                 times: o.times.clone(),
                 format: Format::Json,
+                entry: Entry::Scene,
             };
             Answer::Orbit(orbit::orbit(&request)?)
         }

@@ -342,7 +342,7 @@ pub(super) fn top_scene(
     let (model, model_choice) = match asked_tier {
         Some(tier) => (tiers[tier], None),
         None => {
-            let choice = plan::choose_model(&tiers, &omega0, t_last, options.rtol());
+            let choice = plan::choose_model(&tiers, &omega0, &times, options.rtol());
             (tiers[choice.tier], Some(choice.reason))
         }
     };
@@ -358,6 +358,13 @@ pub(super) fn top_scene(
     if let Some(why) = model_choice {
         plan.chosen.reason = format!("{why}; {}", plan.chosen.reason);
     }
+    // `auto` may step at a tighter tolerance than the scene's (see plan::general_path).
+    let options = match plan.rtol {
+        Some(r) => options
+            .with_rtol(r)
+            .map_err(|e| ctx.at(own, format!("[solve] {e}")))?,
+        None => options,
+    };
     Ok(Built {
         body: Body::Top(Box::new(TopScene {
             model,

@@ -34,6 +34,12 @@ pub struct Limits {
     pub memory: u64,
     /// The largest file a run may write, in bytes (then SIGXFSZ).
     pub file_size: u64,
+    /// How many processes and threads a run may start beyond those the
+    /// reader has when it starts (RLIMIT_NPROC counts every task of a user,
+    /// so it is set from that count): a fork bomb stops there, with the
+    /// machine's other programs still able to start theirs. The kernel does
+    /// not hold root to it.
+    pub processes: u64,
     /// The most output kept; the rest is dropped, with a note.
     pub output_bytes: usize,
     /// How long the first answer waits before saying "compiling…".
@@ -51,6 +57,7 @@ impl Default for Limits {
             cpu: Duration::from_secs(11),
             memory: 4 << 30,
             file_size: 64 << 20,
+            processes: 512,
             output_bytes: 64 * 1024,
             answer_within: Duration::from_millis(4500),
         }
@@ -414,6 +421,7 @@ impl Runner {
             address_space: Some(self.limits.memory),
             cpu_seconds: Some(whole_seconds(self.limits.cpu).max(1)),
             file_size: Some(self.limits.file_size),
+            processes: Some(self.limits.processes),
         };
         let mut run = match shared.slot.start(command, bounds, binary.as_os_str(), &[]) {
             Ok(r) => r,

@@ -21,13 +21,16 @@
 //! The server waits for the supervisor's exit before it starts another tree,
 //! so "one run at a time" is one process tree at a time. The supervisor
 //! exits only once every process of its tree is gone, unless it is itself
-//! killed (the server does so if it has not ended 2 s after being told to
-//! stop; the kernel's out-of-memory killer might). Then the server kills
+//! killed: by the server if it has not ended 2 s after being told to stop,
+//! by the kernel's out-of-memory killer, or by the tree itself (it runs as
+//! the reader, and so may signal its supervisor). Then the server kills
 //! what is left in the tree's session and process group ([`sweep`]); it is
 //! a child subreaper too ([`become_subreaper`]), so those orphans come to it
-//! and not to init. A process that had also left the session by then (a
-//! double fork with `setsid` under a supervisor killed from outside) is the
-//! one case this does not reach.
+//! and not to init. One that had left the session (`setsid`) before is
+//! reached only by [`Slot::sweep_strays`], which kills every process below
+//! the server but the running tree: `spintop book` calls it whenever a
+//! child ends and at stop. A library user with children of its own (a
+//! test) cannot, and has only the session sweep.
 //!
 //! NOTE: why a supervisor process and not `pre_exec`: setting limits or a
 //! session between fork and exec needs `CommandExt::pre_exec`, which is
@@ -61,6 +64,10 @@ pub struct Bounds {
     pub cpu_seconds: Option<u64>,
     /// The largest file a process may write, in bytes (then SIGXFSZ).
     pub file_size: Option<u64>,
+    /// How many processes and threads the tree may start beyond those its
+    /// user has when it starts (RLIMIT_NPROC, which counts every task of
+    /// the user; the kernel does not hold root to it).
+    pub processes: Option<u64>,
 }
 
 impl Bounds {
@@ -71,6 +78,7 @@ impl Bounds {
             ("as", self.address_space),
             ("cpu", self.cpu_seconds),
             ("fsize", self.file_size),
+            ("nproc", self.processes),
         ]
         .into_iter()
         .filter_map(|(k, v)| v.map(|v| format!("{k}={v}")))
@@ -94,6 +102,7 @@ impl Bounds {
                 "as" => bounds.address_space = Some(value),
                 "cpu" => bounds.cpu_seconds = Some(value),
                 "fsize" => bounds.file_size = Some(value),
+                "nproc" => bounds.processes = Some(value),
                 _ => return None,
             }
         }
@@ -126,6 +135,10 @@ impl Bounds {
             )?;
         }
         limit(Resource::Fsize, self.file_size)?;
+        let tasks = self
+            .processes
+            .map(|extra| tasks_of(rustix::process::getuid().as_raw()) + extra);
+        limit(Resource::Nproc, tasks)?;
         Ok(())
     }
 }
@@ -141,6 +154,8 @@ pub struct Slot {
 #[derive(Debug, Default)]
 struct Control {
     pipe: Option<ChildStdin>,
+    /// The running tree's supervisor, a child of this process.
+    supervisor: Option<i32>,
     closed: bool,
 }
 
@@ -196,6 +211,7 @@ impl Slot {
             .stdin(Stdio::piped())
             .spawn()?;
         control.pipe = supervisor.stdin.take();
+        control.supervisor = i32::try_from(supervisor.id()).ok();
         Ok(Started { supervisor })
     }
 
@@ -203,6 +219,47 @@ impl Slot {
     /// control pipe).
     fn stop(&self) {
         lock(&self.control).pipe = None;
+    }
+
+    /// For a process that runs nothing but this slot's trees (`spintop
+    /// book`): kills every process below this one that is not the running
+    /// tree, and reaps those of them that have ended; returns how many
+    /// living ones it found (0: nothing but the running tree is left).
+    ///
+    /// A tree that kills its own supervisor (any process of the reader
+    /// may) leaves its processes to this process, a child subreaper, and
+    /// [`sweep`] finds those only in the supervisor's session and group:
+    /// one that had started a session of its own is left running, and when
+    /// it ends, unreaped. Not for a process with children of its own
+    /// besides the trees (such as a test harness): it would kill and reap
+    /// them too.
+    pub fn sweep_strays(&self) -> usize {
+        // Held throughout, so that no supervisor starts unseen meanwhile.
+        let control = lock(&self.control);
+        let me = rustix::process::getpid().as_raw_nonzero().get();
+        let table = processes();
+        let mut living = 0;
+        for stray in table
+            .iter()
+            .filter(|p| p.ppid == me && Some(p.pid) != control.supervisor)
+        {
+            let Some(pid) = Pid::from_raw(stray.pid) else {
+                continue;
+            };
+            if stray.dead {
+                let _ = rustix::process::waitpid(Some(pid), WaitOptions::NOHANG);
+                continue;
+            }
+            living += 1;
+            let _ = rustix::process::kill_process(pid, Signal::KILL);
+            for below in tree(&table, stray.pid)
+                .into_iter()
+                .filter_map(Pid::from_raw)
+            {
+                let _ = rustix::process::kill_process(below, Signal::KILL);
+            }
+        }
+        living
     }
 
     /// Stops the running tree and refuses new ones; returns once the tree
@@ -251,7 +308,11 @@ impl Started {
             tick();
             let status = self.supervisor.try_wait();
             if !matches!(status, Ok(None)) {
-                lock(&slot.control).pipe = None;
+                {
+                    let mut control = lock(&slot.control);
+                    control.pipe = None;
+                    control.supervisor = None;
+                }
                 // A supervisor that ended by a signal (ours or another's)
                 // may have left its tree behind.
                 let clean = matches!(status, Ok(Some(s)) if s.signal().is_none());
@@ -462,6 +523,27 @@ fn processes() -> Vec<Proc> {
         .collect()
 }
 
+/// The tasks (processes and threads) of real user `uid`, as RLIMIT_NPROC
+/// counts them.
+fn tasks_of(uid: u32) -> u64 {
+    let Ok(dir) = std::fs::read_dir("/proc") else {
+        return 0;
+    };
+    dir.flatten()
+        .filter_map(|e| std::fs::read_to_string(e.path().join("status")).ok())
+        .filter_map(|status| {
+            let field = |name: &str| {
+                status
+                    .lines()
+                    .find_map(|l| l.strip_prefix(name))
+                    .and_then(|v| v.split_whitespace().next())
+                    .and_then(|v| v.parse::<u64>().ok())
+            };
+            (field("Uid:")? == u64::from(uid)).then(|| field("Threads:"))?
+        })
+        .sum()
+}
+
 /// The living processes below `root` (by parent links), or in `root`'s
 /// session or process group, `root` itself excluded.
 fn tree(table: &[Proc], root: i32) -> Vec<i32> {
@@ -608,6 +690,7 @@ mod tests {
                 address_space: Some(4 << 30),
                 cpu_seconds: Some(11),
                 file_size: Some(64 << 20),
+                processes: Some(512),
             },
             Bounds {
                 cpu_seconds: Some(3),

@@ -17,6 +17,74 @@ pub const MAX_STEPS: Real = crate::integrate::DEFAULT_MAX_STEPS as Real;
 /// The full model's physical solution is tabulated with hΩ ≤ 0.05.
 pub const FULL_TURN_PER_STEP: Real = 0.05;
 
+// ANCHOR: steps_per_radian
+/// Steps (accepted and rejected) DP5, DOP853 and Radau IIA 5 take per radian
+/// the body turns, at each tolerance: the most any of six free tops took
+/// (asymmetric, elongated, near the separatrix, symmetric), Ω and the
+/// orientation stepped together, with 10 % to spare (30 % for Radau IIA 5,
+/// measured on fewer turns). `tests/numerics/cost.rs` measures them again.
+const STEPS_PER_RADIAN: [(Real, [Real; 3]); 8] = [
+    //  rtol    DP5   DOP853 Radau5
+    (1e-4, [3.2, 1.0, 3.5]),
+    (1e-6, [6.6, 1.1, 7.8]),
+    (1e-8, [16.0, 2.3, 18.0]),
+    (1e-10, [41.0, 4.0, 37.0]),
+    (1e-11, [64.0, 5.4, 54.0]),
+    (1e-12, [100.0, 6.9, 78.0]),
+    (1e-13, [155.0, 9.0, 113.0]),
+    (1e-14, [242.0, 12.6, 165.0]),
+];
+// ANCHOR_END: steps_per_radian
+
+/// Steps an adaptive method takes per radian of turning at `rtol`, read
+/// from [`STEPS_PER_RADIAN`] (linear in ln steps against ln rtol between its
+/// rows, its end rows beyond them); 1 for any other method, which the
+/// orientation's 1 rad per step bounds.
+pub fn steps_per_radian(method: Method, rtol: Real) -> Real {
+    let column = match method {
+        Method::Dopri5 => 0,
+        Method::Dop853 => 1,
+        Method::Radau5 => 2,
+        _ => return 1.0,
+    };
+    let x = rtol.clamp(1e-14, 1e-4).log10();
+    let rows = &STEPS_PER_RADIAN;
+    let i = rows
+        .windows(2)
+        .position(|w| x >= w[1].0.log10())
+        .unwrap_or(rows.len() - 2);
+    let (x0, y0) = (rows[i].0.log10(), rows[i].1[column].ln());
+    let (x1, y1) = (rows[i + 1].0.log10(), rows[i + 1].1[column].ln());
+    (y0 + (y1 - y0) * (x - x0) / (x1 - x0)).exp()
+}
+
+/// How fast an integrator's error of Ω and the orientation grows with the
+/// turning: after φ radians at tolerance r it is about r·(1 + C·φ²). Over
+/// many turns every step's error in the invariants shifts the frequency of
+/// the motion, and the phase error is the integral of that shift; C is the
+/// largest r·φ² ratio DOP853 showed on the six tops of [`STEPS_PER_RADIAN`]
+/// (4.7e-3, for the orientation of an asymmetric top), rounded up.
+pub const PHASE_GROWTH: Real = 5e-3;
+
+/// The estimated error of Ω and the orientation, relative, after stepping
+/// `angle` radians at integrator tolerance `rtol`.
+pub fn stepping_error(rtol: Real, angle: Real) -> Real {
+    rtol * (1.0 + PHASE_GROWTH * angle * angle)
+}
+
+/// The tightest tolerance the planner asks of an integrator: below it,
+/// rounding in a double takes over from the method's own error.
+pub const TIGHTEST_RTOL: Real = 1e-13;
+
+/// How a run that steps Ω will be stepped to stay within `rtol` over `angle`
+/// radians: the integrator's tolerance (at most `rtol`, tightened so that
+/// [`stepping_error`] stays within `rtol`), its steps, and its error; `None`
+/// when even [`TIGHTEST_RTOL`] would not hold the error within `rtol`.
+pub fn tolerance_for(rtol: Real, angle: Real) -> Option<Real> {
+    let needed = rtol / (1.0 + PHASE_GROWTH * angle * angle);
+    (needed >= TIGHTEST_RTOL).then_some(needed.min(rtol))
+}
+
 /// How far the body turns by `t`, in radians: exactly |Ω₀|ϑ(t) for the
 /// truncated model (every rate falls as 1/R), at most |Ω₀|t for the reduced
 /// and full ones (neither speeds up), and about √(2E₀/I_min) t for the general
@@ -115,6 +183,7 @@ pub fn estimate(
                 .into(),
         ),
         (Model::Reduced(top), Method::Dopri5 | Method::Dop853) => {
+            let turning = angle * steps_per_radian(method, options.rtol());
             // The reduced model's damping rate never falls below tau k^2
             // (k = (I3/I1) Omega3 is constant), and an explicit method's step
             // cannot exceed its stability limit over that rate: about 3.3/λ
@@ -124,7 +193,7 @@ pub fn estimate(
             let rate = top.tau() * k * k;
             let limit = if method == Method::Dopri5 { 3.3 } else { 6.0 };
             let stiff = t_last * rate / limit;
-            if stiff > angle {
+            if stiff > turning {
                 Some(Estimate {
                     steps: stiff,
                     what: format!(
@@ -132,25 +201,29 @@ pub fn estimate(
                         method_name(method, model),
                         limit / rate
                     ),
-                    cheaper: "the closed forms (--method exact) take no steps at all",
+                    cheaper: "the closed forms (method exact) take no steps at all",
                 })
             } else {
-                e(
-                    angle,
-                    format!(
-                        "{} (at most 1 rad of turning per step)",
-                        method_name(method, model)
-                    ),
-                )
+                e(turning, per_radian(method, model, options))
             }
         }
         (_, _) => e(
-            angle,
-            format!(
-                "{} (at most 1 rad of turning per step)",
-                method_name(method, model)
-            ),
+            angle * steps_per_radian(method, options.rtol()),
+            per_radian(method, model, options),
         ),
+    }
+}
+
+/// "DOP853 at rtol 1e-10 (about 4.0 steps per radian of turning, measured)".
+fn per_radian(method: Method, model: &Model, options: &MethodOptions) -> String {
+    let name = method_name(method, model);
+    match method {
+        Method::Dopri5 | Method::Dop853 | Method::Radau5 => format!(
+            "{name} at rtol {:.0e} (about {:.1} steps per radian of turning, measured)",
+            options.rtol(),
+            steps_per_radian(method, options.rtol())
+        ),
+        _ => format!("{name} (at most 1 rad of turning per step)"),
     }
 }
 
@@ -213,17 +286,24 @@ mod tests {
 
     #[test]
     fn stiffness_of_the_reduced_model_bounds_an_explicit_methods_steps() {
-        // Where methods fail, row 3: S = 1000, t = 10, DP5 took 19378 steps.
+        // Where methods fail, row 3: S = 1000, t = 10, DP5 took 19378 steps,
+        // held by its stability limit whatever the tolerance; at rtol 1e-6
+        // the turning (2236 rad at 6.6 steps per radian) asks for fewer.
         let top = SymmetricTop::figure();
-        let o = MethodOptions::default();
+        let o = MethodOptions::default().with_rtol(1e-6).unwrap();
         let w = Vec3::new(0.0, 100.0, 200.0);
         let e = estimate(&Model::Reduced(top), Method::Dopri5, &o, &w, 10.0).unwrap();
         assert!((e.steps / 19378.0 - 1.0).abs() < 0.01, "{e:?}");
         assert!(e.what.contains("stiff"), "{e:?}");
+        // At the default rtol the turning's measured steps per radian (on
+        // tumbling tops) dominate: an upper bound, above the 19378 steps.
+        let o = MethodOptions::default();
+        let e = estimate(&Model::Reduced(top), Method::Dopri5, &o, &w, 10.0).unwrap();
+        assert!(e.steps > 19378.0 && e.what.contains("per radian"), "{e:?}");
         // A thousand times longer is refused up front, naming the stiffness.
         let err = check(&Model::Reduced(top), Method::Dop853, &o, &w, 1e4).unwrap_err();
         assert!(
-            err.to_string().contains("stiff") && err.to_string().contains("--method exact"),
+            err.to_string().contains("stiff") && err.to_string().contains("method exact"),
             "{err}"
         );
     }

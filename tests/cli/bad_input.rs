@@ -1177,12 +1177,6 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         ),
         (
             vec![
-                "simulate", "--model", "full", "--omega", "0,10,10", "--t-end", "10",
-            ],
-            "--t-end",
-        ),
-        (
-            vec![
                 "simulate",
                 "--model",
                 "truncated",

@@ -4,6 +4,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod auto_model;
 mod balance_laws;
 mod central_field;
 mod closed_forms;
