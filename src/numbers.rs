@@ -129,6 +129,16 @@ pub fn fmt_count(n: Real) -> String {
     }
 }
 
+/// An estimate for a message (steps, radians, an error): `about 8.9e299`,
+/// or `more than 1e308` when it overflows a double, never `about inf`.
+pub fn fmt_about(x: Real) -> String {
+    if x.is_finite() {
+        format!("about {x:.1e}")
+    } else {
+        "more than 1e308".into()
+    }
+}
+
 /// A cell of the commands' aligned tables: seven decimals where that reads
 /// well, else exponent notation.
 pub fn table(x: Real) -> String {
@@ -242,6 +252,14 @@ pub fn stable_key(text: &str) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_estimate_beyond_a_double_is_said_in_words() {
+        assert_eq!(fmt_about(8.9e299), "about 8.9e299");
+        assert_eq!(fmt_about(19378.0), "about 1.9e4");
+        assert_eq!(fmt_about(Real::INFINITY), "more than 1e308");
+        assert_eq!(fmt_count(Real::INFINITY), "more than 1e308");
+    }
 
     #[test]
     fn times_in_messages_are_short() {

@@ -5,7 +5,7 @@
 //! The engine is [`crate::course`]; this file validates and prints.
 
 use super::gate::Gate;
-use super::{CliError, bad};
+use super::{CliError, bad, parse_number};
 use crate::course::{self, Options, State};
 use crate::grading;
 use clap::{Args, Subcommand};
@@ -121,10 +121,10 @@ enum CourseAction {
         #[arg(long, value_enum, default_value_t = GradeFormat::Csv)]
         format: GradeFormat,
         /// The longest one copy may take, its build and every grader (seconds)
-        #[arg(long, value_name = "SECONDS", default_value_t = 120.0)]
+        #[arg(long, value_name = "SECONDS", default_value_t = 120.0, value_parser = parse_number, allow_hyphen_values = true)]
         timeout: f64,
         /// The longest one grader may take (seconds)
-        #[arg(long, value_name = "SECONDS", default_value_t = 30.0)]
+        #[arg(long, value_name = "SECONDS", default_value_t = 30.0, value_parser = parse_number, allow_hyphen_values = true)]
         test_timeout: f64,
         /// Copies graded at once (default: the number of cores)
         #[arg(long, value_name = "N")]
@@ -532,7 +532,8 @@ impl Limits {
                 Ok(Duration::from_secs_f64(v))
             } else {
                 Err(bad(format!(
-                    "{flag} {v}: give a number of seconds above 0 and at most a day"
+                    "{flag} {}: give a number of seconds above 0 and at most a day",
+                    crate::numbers::fmt_value(v)
                 )))
             }
         };

@@ -15,6 +15,7 @@
 //! from the closed form instead, however long it is.
 
 use crate::math::{Real, Vec3};
+use crate::numbers::{fmt_about, fmt_time};
 use crate::physics::central::Potential;
 use crate::physics::rigid_body::{angular_momentum_body, energy, omega_perp, tilt};
 use crate::physics::shell::ShellModel;
@@ -185,27 +186,18 @@ pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Rea
     {
         return GeneralPath::Secular { error };
     }
-    // The longest run stepping can hold within rtol: the turning at which
-    // either the error or the budget runs out (both grow with it).
-    let fits =
-        |phi: Real| tolerance_for(rtol, phi).is_some_and(|r| phi * per_radian(r) <= MAX_STEPS);
-    let (mut lo, mut hi) = (0.0, angle);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if fits(mid) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let t_max = t_last * lo / angle;
+    // A general top turns in proportion to the time (also when the whole
+    // turning overflows a double).
+    let rate = turning_angle(model, omega0, 1.0);
+    let t_max = longest_stepped_turning(rtol, angle) / rate;
     let why = match stepped {
         Some((r, steps)) => format!(
-            "it would take about {steps:.1e} steps at rtol {r:.0e}, more than the {MAX_STEPS:.0e} allowed"
+            "it would take {} steps at rtol {r:.0e}, more than the {MAX_STEPS:.0e} allowed",
+            fmt_about(steps)
         ),
         None => format!(
-            "an integrator's error of Omega and the orientation grows like the square of the turning: about {:.1e} even at rtol {TIGHTEST_RTOL:.0e}",
-            stepping_error(TIGHTEST_RTOL, angle)
+            "an integrator's error of Omega and the orientation grows like the square of the turning: {} even at rtol {TIGHTEST_RTOL:.0e}",
+            fmt_about(stepping_error(TIGHTEST_RTOL, angle))
         ),
     };
     let secular = match secular_error {
@@ -220,12 +212,54 @@ pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Rea
         Some(e) => format!("; or rtol >= {:.0e} for the secular model", e * 1.5),
         None => String::new(),
     };
+    // Below TIGHTEST_RTOL no run is held within rtol, however short.
+    let instead = if t_max > 0.0 {
+        format!("ask for times up to {} at this rtol", fmt_time(t_max))
+    } else {
+        format!("ask for rtol >= {TIGHTEST_RTOL:.0e}")
+    };
     GeneralPath::Neither(format!(
-        "the asymmetric top ({}) turns about {angle:.1e} rad by t = {t_last:.3e}: stepping it cannot hold its answer within rtol = {rtol:.0e} ({why}), and {secular}; ask for times up to {t_max:.3e} at this rtol{looser}",
-        model.equations()
+        "the asymmetric top ({}) turns {} rad by t = {}: stepping it cannot hold its answer within rtol = {rtol:.0e} ({why}), and {secular}; {instead}{looser}",
+        model.equations(),
+        fmt_about(angle),
+        fmt_time(t_last)
     ))
 }
 // ANCHOR_END: general_path
+
+/// The longest turning, up to `angle`, that stepping holds within `rtol`
+/// on the step budget: where either the error ([`tolerance_for`]) or the
+/// budget runs out, both growing with the turning; 0 when no turning is
+/// held (rtol below [`TIGHTEST_RTOL`]).
+fn longest_stepped_turning(rtol: Real, angle: Real) -> Real {
+    let fits = |phi: Real| {
+        tolerance_for(rtol, phi)
+            .is_some_and(|r| phi * steps_per_radian(Method::Dop853, r) <= MAX_STEPS)
+    };
+    if fits(angle) {
+        return angle;
+    }
+    // NOTE: halved first, down to where it fits, then bisected: a bisection
+    // from 0 alone resolves only angle/2^60, and an angle of 1e299 rad left
+    // a bound of 0 (the advice read `times up to 0`).
+    let mut hi = angle.min(Real::MAX);
+    while hi > 0.0 && !fits(hi) {
+        hi *= 0.5;
+    }
+    if hi == 0.0 {
+        return 0.0;
+    }
+    let (mut lo, mut hi) = (hi, (2.0 * hi).min(angle));
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if fits(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
 
 /// What `model = "auto"` chose: 0 truncated, 1 reduced, 2 physical.
 pub(super) struct ModelChoice {
@@ -354,7 +388,9 @@ pub(super) fn plan_top(
             "; ask for shorter times"
         };
         format!(
-            "{what} would take about {steps:.1e} steps to reach t = {t_last:.3e} tau, more than the {MAX_STEPS:.0e} allowed{hint}"
+            "{what} would take {} steps to reach t = {} tau, more than the {MAX_STEPS:.0e} allowed{hint}",
+            fmt_about(steps),
+            fmt_time(t_last)
         )
     };
     let asked =
@@ -372,7 +408,9 @@ pub(super) fn plan_top(
         } else {
             (steps > ORIENTATION_STEP_LIMIT).then(|| {
                 format!(
-                    "the orientation has no closed form, and Q' = Q Omega^(t) would take about {steps:.1e} steps (the body turns {angle:.1e} rad, at most 1 rad per step)"
+                    "the orientation has no closed form, and Q' = Q Omega^(t) would take {} steps (the body turns {} rad, at most 1 rad per step)",
+                    fmt_about(steps),
+                    fmt_about(angle)
                 )
             })
         };
@@ -707,4 +745,28 @@ pub(super) fn stability_choice(row: u8) -> Chosen {
             "row {row} runs a natural method beside spintop's own, each with the methods and times the row fixes (spintop stability --row {row})"
         ),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::cost::PHASE_GROWTH;
+
+    /// The error bound rtol·(1 + Cφ²) reaches the tightest tolerance at
+    /// φ = √((rtol/TIGHTEST_RTOL − 1)/C): at rtol 1e-10, 447 rad, found
+    /// from a requested turning of 1e299 rad as from one of 1e3.
+    #[test]
+    fn the_longest_stepped_turning_solves_the_phase_error_law() {
+        let rtol = 1e-10;
+        let closed = ((rtol / TIGHTEST_RTOL - 1.0) / PHASE_GROWTH).sqrt();
+        for angle in [1e3, 1e12, 3.7e299, Real::MAX, Real::INFINITY] {
+            let phi = longest_stepped_turning(rtol, angle);
+            assert!(
+                (phi / closed - 1.0).abs() < 1e-9,
+                "{angle}: {phi} vs {closed}"
+            );
+        }
+        assert_eq!(longest_stepped_turning(rtol, 100.0), 100.0);
+        assert_eq!(longest_stepped_turning(1e-14, 1e3), 0.0);
+    }
 }

@@ -257,8 +257,11 @@ pub fn check(
 /// A run refused before it started.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error(
-    "{} would take about {:.1e} steps to reach t = {:.3e}, more than the {MAX_STEPS:.0e} allowed; {}",
-    estimate.what, estimate.steps, t_last, estimate.cheaper
+    "{} would take {} steps to reach t = {}, more than the {MAX_STEPS:.0e} allowed; {}",
+    estimate.what,
+    crate::numbers::fmt_about(estimate.steps),
+    crate::numbers::fmt_time(*t_last),
+    estimate.cheaper
 )]
 pub struct TooCostly {
     /// The estimate.
