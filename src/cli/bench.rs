@@ -352,6 +352,16 @@ fn join(config: &JoinConfig, out: &mut Gate<'_>) -> Result<(), CliError> {
         rows.extend(read_rows(path)?);
     }
     out.check(&rows, "the files hold a number that is not finite")?;
+    if rows.is_empty() {
+        return Err(bad(format!(
+            "{} hold no row to chart, only a header",
+            files
+                .iter()
+                .map(|p| format!("'{}'", p.display()))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+    }
     let has = |name: &str| rows.iter().any(|r| r.model == name);
     let model = match config.chart {
         Some(kind) if has(kind.name()) => Some(kind.name().to_string()),

@@ -120,6 +120,23 @@ pub fn parse_csv(text: &str) -> Result<Vec<Row>, String> {
                 Err(_) => Err(at(n, &format!("{} '{s}' is not a number", CSV_COLUMNS[i]))),
             }
         };
+        // An error or a time below zero, a tolerance or a step not above
+        // it, is no measurement.
+        let at_least = |i: usize, positive: bool| -> Result<Option<Real>, String> {
+            match real(i)? {
+                Some(x) if x < 0.0 || (positive && x == 0.0) => Err(at(
+                    n,
+                    &format!(
+                        "{} '{}' is {}; expected a number {}",
+                        CSV_COLUMNS[i],
+                        get(i),
+                        if x < 0.0 { "negative" } else { "zero" },
+                        if positive { "above 0" } else { ">= 0" }
+                    ),
+                )),
+                x => Ok(x),
+            }
+        };
         let count = |i: usize| -> Result<Option<u64>, String> {
             let s = get(i);
             if s.is_empty() {
@@ -139,13 +156,13 @@ pub fn parse_csv(text: &str) -> Result<Vec<Row>, String> {
             method: get(2).to_string(),
             target,
             knob,
-            value: real(5)?,
-            omega_error: real(6)?,
-            orientation_error: real(7)?,
+            value: at_least(5, true)?,
+            omega_error: at_least(6, false)?,
+            orientation_error: at_least(7, false)?,
             rhs_evals: count(8)?,
             steps: count(9)?,
             rejected: count(10)?,
-            time_s: real(11)?,
+            time_s: at_least(11, false)?,
             repeats: count(12)?.unwrap_or(0) as u32,
             status: get(13).to_string(),
         });

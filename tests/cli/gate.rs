@@ -222,6 +222,56 @@ fn bench_join_refuses_a_non_finite_row_with_the_file_and_the_line() {
     }
 }
 
+/// An error, a time or a knob below zero is no measurement (a log-log chart
+/// drew a negative error at its floor, as if it were the best), and files
+/// that hold no row at all draw nothing: each refused in one line, with the
+/// file and the line.
+#[test]
+fn bench_join_refuses_negative_measurements_and_files_without_rows() {
+    let dir = Scratch::new("gate-join-negative");
+    let head = "source,model,method,target,knob,value,omega_error,orientation_error,rhs_evals,steps,rejected,time_s,repeats,status\n";
+    let good = "scipy,reduced,DOP853,omega,rtol,0.001,0.0007,,242,17,0,0.0017,5,ok\n";
+    for (name, bad, column) in [
+        (
+            "neg-error.csv",
+            "scipy,reduced,DOP853,omega,rtol,1e-6,-1e-3,,242,17,0,0.0017,5,ok\n",
+            "omega_error",
+        ),
+        (
+            "neg-orientation.csv",
+            "scipy,reduced,DOP853,omega,rtol,1e-6,1e-3,-1e-9,242,17,0,0.0017,5,ok\n",
+            "orientation_error",
+        ),
+        (
+            "neg-time.csv",
+            "scipy,reduced,DOP853,omega,rtol,1e-6,1e-7,,242,17,0,-0.1,5,ok\n",
+            "time_s",
+        ),
+        (
+            "zero-knob.csv",
+            "scipy,reduced,DOP853,omega,rtol,0,1e-7,,242,17,0,0.1,5,ok\n",
+            "value",
+        ),
+    ] {
+        let path = dir.write(name, &format!("{head}{good}{bad}"));
+        let out = spintop(&["bench", "--join", &path]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
+        assert!(out.stdout.is_empty(), "{name}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(
+            stderr.contains(&path) && stderr.contains("line 3") && stderr.contains(column),
+            "{name}: {stderr}"
+        );
+    }
+    let empty = dir.write("header-only.csv", head);
+    let out = spintop(&["bench", "--join", &empty, &empty]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(out.stdout.is_empty());
+    assert!(stderr.contains("no row"), "{stderr}");
+}
+
 /// A cylinder 300 decades longer than wide passes every size check, but its
 /// I₃/I₁ underflows to 0: the scene is refused as bad input, never a panic.
 #[test]
