@@ -139,6 +139,8 @@ pub enum Knob {
     Tau0,
     /// The orbit's force law.
     ForceLl,
+    /// The orbit's physical solution of (2.5).
+    ForceAl,
 }
 
 impl Entry {
@@ -156,6 +158,7 @@ impl Entry {
             (Entry::CommandLine, K::ModelReduced) => "--model reduced",
             (Entry::CommandLine, K::Tau0) => "--tau0",
             (Entry::CommandLine, K::ForceLl) => "--force ll",
+            (Entry::CommandLine, K::ForceAl) => "--force al",
             (Entry::Scene, K::Rtol) => "[solve] rtol",
             (Entry::Scene, K::TEnd) => "[solve] t_end (or times)",
             (Entry::Scene, K::Omega) => "[top] omega",
@@ -166,6 +169,7 @@ impl Entry {
             (Entry::Scene, K::ModelReduced) => "[top] model = \"reduced\"",
             (Entry::Scene, K::Tau0) => "[orbit] tau0",
             (Entry::Scene, K::ForceLl) => "[orbit] force = \"ll\"",
+            (Entry::Scene, K::ForceAl) => "[orbit] force = \"al\"",
         }
     }
 }

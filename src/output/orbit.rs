@@ -129,6 +129,9 @@ pub struct OrbitOutput {
     /// Backward shooting (Coulomb `al`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shooting: Option<Shooting>,
+    /// Where the request came from (for the words of a stop's advice).
+    #[serde(skip)]
+    pub entry: super::Entry,
 }
 
 /// Run a validated `orbit` request.
@@ -202,6 +205,7 @@ pub fn orbit(request: &OrbitRequest) -> Result<OrbitOutput, Failure> {
             iterations,
             mismatch,
         }),
+        entry: request.entry,
     })
 }
 
@@ -330,11 +334,13 @@ impl Output for OrbitOutput {
                 r.threshold
             ),
             message: format!(
-                "runaway at t = {}: (2.5) integrated forward left the physical solution, growing at rate {} (predicted {}); {omitted} of {} samples omitted; use --force al (its physical solution) or --force ll",
+                "runaway at t = {}: (2.5) integrated forward left the physical solution, growing at rate {} (predicted {}); {omitted} of {} samples omitted; use {} (its physical solution) or {}",
                 fmt_time(r.t),
                 r.growth_rate.map_or("unmeasured".to_string(), table),
                 table(r.predicted_rate),
-                self.samples.len() + omitted
+                self.samples.len() + omitted,
+                self.entry.name(super::Knob::ForceAl),
+                self.entry.name(super::Knob::ForceLl)
             ),
         })
     }

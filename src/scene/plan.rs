@@ -205,7 +205,8 @@ pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Rea
             "the secular model, which answers E and |L| alone, is good to about {e:.1e} here"
         ),
         None => format!(
-            "the secular model is not offered at this radiation share, {share:.1e} per radian (above {SECULAR_MAX_SHARE:.0e}, where averaging over a turn fails)"
+            "the secular model is not offered at this radiation share, {} per radian (above {SECULAR_MAX_SHARE:.0e}, where averaging over a turn fails)",
+            fmt_about(share)
         ),
     };
     let looser = match secular_error {
@@ -375,7 +376,8 @@ pub(super) fn plan_top(
         let tk = reduced_tau_k(top, &omega0);
         if tk >= STRONG_SPIN {
             warnings.push(format!(
-                "tau k = {tk:.3} >= {STRONG_SPIN}: the reduced model (4.12)-(4.14) is right only through first order in tau k, and its decay rate is off at third order; compare model = \"full\", the physical solution of (3.4)"
+                "tau k = {} >= {STRONG_SPIN}: the reduced model (4.12)-(4.14) is right only through first order in tau k, and its decay rate is off at third order; compare model = \"full\", the physical solution of (3.4)",
+                crate::numbers::fixed_or_exp(tk, 3, 3, 1e5)
             ));
         }
     }
@@ -688,7 +690,7 @@ pub fn pole_warning(samples: &[Sample]) -> Option<String> {
         near.len(),
         samples.len(),
         first.euler[1],
-        first.t
+        fmt_time(first.t)
     ))
 }
 

@@ -141,15 +141,33 @@ fn check(c: &Case) -> Option<String> {
     }
     // A number in a message is written short: never a double's three
     // hundred digits (`1e300`, not `1000…0`).
-    let longest_digits = stderr
-        .split(|c: char| !c.is_ascii_digit())
-        .map(str::len)
-        .max()
-        .unwrap_or(0);
-    if longest_digits > 24 {
+    let longest_digits = |text: &str| {
+        text.split(|c: char| !c.is_ascii_digit())
+            .map(str::len)
+            .max()
+            .unwrap_or(0)
+    };
+    if longest_digits(&stderr) > 24 {
         problems.push(format!(
-            "a number of {longest_digits} digits in the message"
+            "a number of {} digits in the message",
+            longest_digits(&stderr)
         ));
+    }
+    // Nor in the output: its warnings and headers included.
+    if longest_digits(&stdout) > 24 {
+        problems.push(format!(
+            "a number of {} digits in the output",
+            longest_digits(&stdout)
+        ));
+    }
+    // A scene's message names the scene's keys, never a flag of another
+    // command (`run` itself takes --format).
+    if c.args.first().is_some_and(|a| a == "run")
+        && stderr
+            .split_whitespace()
+            .any(|w| w.starts_with("--") && !w.starts_with("--format") && !w.starts_with("--help"))
+    {
+        problems.push("a command-line flag named in a scene's message".into());
     }
     // No number in a message is `inf` or `NaN` unless the user typed it
     // (echoed as typed, with "is not a finite number").
@@ -1790,6 +1808,29 @@ fn extremes(dir: &std::path::Path) -> Vec<Case> {
         let path = scene_file(dir, name, body);
         cases.push(case(&["run", &path, "--format", "json"], code, fragment));
     }
+    // A general top whose radiation share overflows: said in words.
+    let share = scene_file(
+        dir,
+        "extreme-share",
+        "[scene]\nname = \"s\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"auto\"\ninertia = [1e-300, 1.0, 1.0]\ndipole = [1e300, 0.0, 0.0]\n",
+    );
+    cases.push(case(&["run", &share], 2, "more than 1e308 per radian"));
+    // A reduced top spun to 1e100 and asked about t = 1e-200: its
+    // warnings (tau k, the Euler pole) write both numbers short.
+    let spun = scene_file(
+        dir,
+        "extreme-warnings",
+        "[scene]\nname = \"s\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"reduced\"\nomega = [0.0, 0.0, 1e100]\n\n[solve]\ntimes = [1e-200]\n",
+    );
+    cases.push(case(&["run", &spun], 0, "tau k = 4.000e99"));
+    // A forward run of (2.5) that runs away: the advice names the scene's
+    // key, not the command line's flag.
+    let forward = scene_file(
+        dir,
+        "extreme-orbit-forward",
+        "[scene]\nname = \"s\"\nkind = \"orbit\"\ndescription = \"d\"\n\n[orbit]\npotential = \"coulomb\"\ntau0 = 1e-3\nforce = \"al-forward\"\n\n[solve]\ntimes = [0.0, 1.0, 1e4]\n",
+    );
+    cases.push(case(&["run", &forward], 3, "[orbit] force = \"al\""));
     cases
 }
 
