@@ -20,7 +20,7 @@ pub struct TooMuchWork {
     /// RK4 steps the run needs.
     pub steps: Real,
     /// RK4 steps per delay.
-    pub per_delay: usize,
+    pub per_delay: Real,
     /// The last output time.
     pub t_last: Real,
     /// True when the delay is longer than the run itself.
@@ -34,7 +34,7 @@ impl std::fmt::Display for TooMuchWork {
             f,
             "the run needs {} RK4 steps ({} per delay up to t = {}), more than {MAX_STEPS:.0e}",
             fmt_count(self.steps),
-            fmt_count(self.per_delay as Real),
+            fmt_count(self.per_delay),
             fmt_time(self.t_last)
         )
     }
@@ -44,8 +44,8 @@ impl std::fmt::Display for TooMuchWork {
 /// would take too many: the one check the command line and a scene make
 /// before a run starts.
 pub fn steps_per_delay(model: &ShellModel, t_last: Real) -> Result<usize, TooMuchWork> {
-    let per_delay = crate::sim::shell::default_steps_per_delay(model.delta());
-    let steps = (t_last / model.delta()).ceil().max(1.0) * per_delay as Real;
+    let per_delay = crate::sim::shell::steps_per_delay_count(model.delta());
+    let steps = (t_last / model.delta()).ceil().max(1.0) * per_delay;
     if steps > MAX_STEPS {
         return Err(TooMuchWork {
             steps,
@@ -54,7 +54,7 @@ pub fn steps_per_delay(model: &ShellModel, t_last: Real) -> Result<usize, TooMuc
             delay_too_long: model.delta() > t_last,
         });
     }
-    Ok(per_delay)
+    Ok(crate::sim::shell::default_steps_per_delay(model.delta()))
 }
 
 /// A validated `shell` request.

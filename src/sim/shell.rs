@@ -93,7 +93,14 @@ pub const OVERFLOW: Real = 1e150;
 /// itself (period 2π) stays resolved to the same level (h ≤ 0.002: about
 /// 1e-11 at t = 20).
 pub fn default_steps_per_delay(delta: Real) -> usize {
-    MIN_STEPS_PER_DELAY.max((delta / MAX_STEP).ceil() as usize)
+    steps_per_delay_count(delta) as usize
+}
+
+/// [`default_steps_per_delay`] as a double, which does not saturate: what a
+/// run's cost is checked with before it starts (a delay of 1e300 needs
+/// 5e302 steps, not the 1.8e19 of the largest `usize`).
+pub fn steps_per_delay_count(delta: Real) -> Real {
+    (MIN_STEPS_PER_DELAY as Real).max((delta / MAX_STEP).ceil())
 }
 
 /// Why a run stopped.

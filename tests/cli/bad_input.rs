@@ -1603,6 +1603,15 @@ fn extremes(dir: &std::path::Path) -> Vec<Case> {
             "1e308",
         ),
         case(&["tui", "--bench", "1e300"], 2, "1e300"),
+        // A delay of 1e300 needs 5e302 steps per delay, not the 1.8e19 of a
+        // saturated integer.
+        case(
+            &[
+                "shell", "--tau0", "1e-3", "--delay", "1e300", "--times", "0,1",
+            ],
+            2,
+            "(5.0e302 per delay",
+        ),
         // Evenly spaced times up to a last time near the largest double: the
         // spacing does not overflow on the way.
         case(
