@@ -5,27 +5,11 @@
 //! early and a join of a file holding NaN each end with exit 3 or 2 and one
 //! line, never with the number printed.
 
-use crate::support::{Scratch, spintop};
+use crate::support::{Scratch, commands, spintop};
 use std::path::PathBuf;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// The commands `spintop --help` lists (all but `help`).
-fn commands() -> Vec<String> {
-    let out = spintop(&["--help"]);
-    let help = String::from_utf8(out.stdout).unwrap();
-    let listed: Vec<String> = help
-        .lines()
-        .skip_while(|l| !l.starts_with("Commands:"))
-        .skip(1)
-        .take_while(|l| l.starts_with("  "))
-        .filter_map(|l| l.split_whitespace().next().map(String::from))
-        .filter(|c| c != "help")
-        .collect();
-    assert!(listed.len() >= 14, "{help}");
-    listed
 }
 
 /// Why `source` (one command's file under `src/cli/`) could write its output
@@ -181,29 +165,57 @@ fn a_run_that_stopped_says_so_in_every_format() {
     }
 }
 
-/// `bench --join` reads the rows of other sessions; a row whose error is NaN
-/// or whose time is infinite is refused with the file and the line, exit 2,
-/// before anything is drawn.
+/// A non-finite number, an error or a time below zero, or a knob not above
+/// it, is no measurement (a negative error was drawn at a log-log chart's
+/// floor, as if it were the best): each refused in one line with the file,
+/// the line and the column; and files that hold no row at all draw nothing.
 #[test]
-fn bench_join_refuses_a_non_finite_row_with_the_file_and_the_line() {
+fn bench_join_refuses_a_row_that_is_no_measurement_with_the_file_and_the_line() {
     let dir = Scratch::new("gate-join");
     let head = "source,model,method,target,knob,value,omega_error,orientation_error,rhs_evals,steps,rejected,time_s,repeats,status\n";
     let good = "scipy,reduced,DOP853,omega,rtol,0.001,0.0007,,242,17,0,0.0017,5,ok\n";
-    for (name, bad, column) in [
+    for (name, bad, column, why) in [
         (
             "nan-error.csv",
             "scipy,reduced,DOP853,omega,rtol,1e-6,nan,,242,17,0,0.0017,5,ok\n",
             "omega_error",
+            "not a finite number",
         ),
         (
             "inf-time.csv",
             "scipy,reduced,DOP853,omega,rtol,1e-6,1e-7,,242,17,0,inf,5,ok\n",
             "time_s",
+            "not a finite number",
         ),
         (
             "neg-inf-knob.csv",
             "scipy,reduced,DOP853,omega,rtol,-inf,1e-7,,242,17,0,0.1,5,ok\n",
             "value",
+            "not a finite number",
+        ),
+        (
+            "neg-error.csv",
+            "scipy,reduced,DOP853,omega,rtol,1e-6,-1e-3,,242,17,0,0.0017,5,ok\n",
+            "omega_error",
+            "negative",
+        ),
+        (
+            "neg-orientation.csv",
+            "scipy,reduced,DOP853,omega,rtol,1e-6,1e-3,-1e-9,242,17,0,0.0017,5,ok\n",
+            "orientation_error",
+            "negative",
+        ),
+        (
+            "neg-time.csv",
+            "scipy,reduced,DOP853,omega,rtol,1e-6,1e-7,,242,17,0,-0.1,5,ok\n",
+            "time_s",
+            "negative",
+        ),
+        (
+            "zero-knob.csv",
+            "scipy,reduced,DOP853,omega,rtol,0,1e-7,,242,17,0,0.1,5,ok\n",
+            "value",
+            "zero",
         ),
     ] {
         let path = dir.write(name, &format!("{head}{good}{bad}"));
@@ -216,51 +228,7 @@ fn bench_join_refuses_a_non_finite_row_with_the_file_and_the_line() {
             stderr.contains(&path)
                 && stderr.contains("line 3")
                 && stderr.contains(column)
-                && stderr.contains("not a finite number"),
-            "{name}: {stderr}"
-        );
-    }
-}
-
-/// An error, a time or a knob below zero is no measurement (a log-log chart
-/// drew a negative error at its floor, as if it were the best), and files
-/// that hold no row at all draw nothing: each refused in one line, with the
-/// file and the line.
-#[test]
-fn bench_join_refuses_negative_measurements_and_files_without_rows() {
-    let dir = Scratch::new("gate-join-negative");
-    let head = "source,model,method,target,knob,value,omega_error,orientation_error,rhs_evals,steps,rejected,time_s,repeats,status\n";
-    let good = "scipy,reduced,DOP853,omega,rtol,0.001,0.0007,,242,17,0,0.0017,5,ok\n";
-    for (name, bad, column) in [
-        (
-            "neg-error.csv",
-            "scipy,reduced,DOP853,omega,rtol,1e-6,-1e-3,,242,17,0,0.0017,5,ok\n",
-            "omega_error",
-        ),
-        (
-            "neg-orientation.csv",
-            "scipy,reduced,DOP853,omega,rtol,1e-6,1e-3,-1e-9,242,17,0,0.0017,5,ok\n",
-            "orientation_error",
-        ),
-        (
-            "neg-time.csv",
-            "scipy,reduced,DOP853,omega,rtol,1e-6,1e-7,,242,17,0,-0.1,5,ok\n",
-            "time_s",
-        ),
-        (
-            "zero-knob.csv",
-            "scipy,reduced,DOP853,omega,rtol,0,1e-7,,242,17,0,0.1,5,ok\n",
-            "value",
-        ),
-    ] {
-        let path = dir.write(name, &format!("{head}{good}{bad}"));
-        let out = spintop(&["bench", "--join", &path]);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
-        assert!(out.stdout.is_empty(), "{name}");
-        assert_eq!(stderr.lines().count(), 1, "{stderr}");
-        assert!(
-            stderr.contains(&path) && stderr.contains("line 3") && stderr.contains(column),
+                && stderr.contains(why),
             "{name}: {stderr}"
         );
     }

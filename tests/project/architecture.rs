@@ -823,6 +823,19 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The violations of a scratch tree of `files` (path, text) written under
+/// `dir`, which is removed after.
+fn violations_of_scratch(dir: &Path, files: &[(&str, &str)]) -> Vec<String> {
+    for (path, text) in files {
+        let path = dir.join(path);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+    let bad = violations(dir);
+    let _ = std::fs::remove_dir_all(dir);
+    bad
+}
+
 #[test]
 fn imports_follow_the_layers_and_run_in_no_circle() {
     let bad = violations(&root());
@@ -918,13 +931,7 @@ fn the_checker_fails_on_each_kind_of_wrong_import() {
         ),
         ("src/server.rs", ""),
     ];
-    for (path, text) in files {
-        let path = dir.join(path);
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(path, text).unwrap();
-    }
-    let bad = violations(&dir);
-    let _ = std::fs::remove_dir_all(&dir);
+    let bad = violations_of_scratch(&dir, files);
     let expect = [
         "src/physics.rs:1: physics (layer 1) imports sim (layer 3)",
         "src/integrate.rs:4: integrate (layer 2) imports scene (layer 4)",
@@ -1010,13 +1017,7 @@ fn the_checker_sees_imports_in_every_disguise() {
             "extern crate self as spintop;\nfn f() { spintop::cli::run(); }\n",
         ),
     ];
-    for (path, text) in files {
-        let path = dir.join(path);
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(path, text).unwrap();
-    }
-    let bad = violations(&dir);
-    let _ = std::fs::remove_dir_all(&dir);
+    let bad = violations_of_scratch(&dir, files);
     let expect = [
         "src/lib.rs:2: the crate root re-exports",
         "src/sim.rs:2: sim (layer 3) imports cli (layer 5)",

@@ -20,6 +20,22 @@ pub fn spintop(args: &[&str]) -> Output {
         .expect("the binary runs")
 }
 
+/// The commands `spintop --help` lists (all but `help`).
+pub fn commands() -> Vec<String> {
+    let out = spintop(&["--help"]);
+    let help = String::from_utf8(out.stdout).unwrap();
+    let listed: Vec<String> = help
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next().map(String::from))
+        .filter(|c| c != "help")
+        .collect();
+    assert!(listed.len() >= 14, "{help}");
+    listed
+}
+
 /// Run `spintop SUBCOMMAND ARGS --format json`, require success, parse the object.
 pub fn json(subcommand: &str, args: &[&str]) -> Value {
     let mut all = vec![subcommand];
