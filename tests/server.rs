@@ -1091,9 +1091,9 @@ fn page_load(s: &Running) -> Duration {
 }
 
 /// F3: slowloris. Every connection the server takes sends one byte of a
-/// request head a second; a page load still answers, within a second of
-/// its time without them, because the oldest slow connection is dropped
-/// for each new one.
+/// request head a second; a page load still answers, long before the
+/// request time, because the oldest slow connection is dropped for each new
+/// one.
 #[test]
 fn slow_connections_do_not_delay_a_page_load() {
     let s = start("slowloris", limits());
@@ -1119,8 +1119,13 @@ fn slow_connections_do_not_delay_a_page_load() {
     let loaded = page_load(&s);
     stop.store(true, Ordering::Relaxed);
     trickle.join().unwrap();
+    // Every request answered 200 (page_load checks), and well before the
+    // request time (10 s) would have cut the slow ones: a server that waited
+    // for that, or answered 503, fails here. The margin is wide because a
+    // loaded machine (CI on 2 cores) slows both loads; speed itself is not
+    // what this test measures.
     assert!(
-        loaded < unloaded + Duration::from_secs(1),
+        loaded < unloaded + Duration::from_secs(5),
         "with {MAX_CONNECTIONS} slow connections a page took {loaded:?}, without {unloaded:?}"
     );
 }

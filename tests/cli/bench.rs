@@ -62,11 +62,26 @@ fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
     let out = spintop(&["bench", "--join", csv.to_str().unwrap()]);
     let stdout = text(&out.stdout);
     assert!(out.status.success(), "{}", text(&out.stderr));
+    // The best integrator at 1e-12 is the one whose matched time is least
+    // in the file (which one depends on the machine's timing that day: the
+    // join must name the file's, whichever it is).
+    let matched = report::matched(&rows);
+    let i = report::MATCHED_ERRORS
+        .iter()
+        .position(|&e| e == 1e-12)
+        .unwrap();
+    let fastest = matched
+        .iter()
+        .filter(|m| m.source == "spintop" && !m.method.starts_with("closed-form"))
+        .filter(|m| m.time[i].is_some())
+        .min_by(|a, b| a.time[i].unwrap().total_cmp(&b.time[i].unwrap()))
+        .expect("a spintop method reaches 1e-12");
     assert!(
         stdout.contains("time @1e-8")
-            // The exact rotation∘damping splitting of the reduced model is the
-            // cheapest method at 1e-12 (its error is rounding at any step).
-            && stdout.contains("best integrator at 1e-12: spintop rotation-damping"),
+            && stdout.contains(&format!(
+                "best integrator at 1e-12: spintop {} ",
+                fastest.method
+            )),
         "{stdout}"
     );
 
