@@ -176,6 +176,69 @@ fn every_known_trick_fails_with_no_shortcut_its_file_and_its_line() {
     }
 }
 
+/// Tricks found by a reviewer who had not read the rule: each one, before it
+/// was refused, let a copy with no assignment done grade 22 of 22 (the first
+/// one reads the verdict's token from the environment, writes the verdict
+/// file and exits with success) or run code of its own before `main`.
+#[test]
+fn the_tricks_a_reviewer_found_fail_with_no_shortcut_too() {
+    let tricks: Vec<(&str, &str, &str, usize)> = vec![
+        (
+            "std and its module handed to a macro as separate words",
+            "src/ch2.rs",
+            "\nmacro_rules! call {\n    ($a:ident $b:ident $f:ident ($($x:expr),*)) => { $a::$b::$f($($x),*) };\n}\npub fn token() -> String {\n    call!(std env var(\"SPINTOP_GRADE_NONCE\")).unwrap_or_default()\n}\n",
+            5,
+        ),
+        (
+            "std pasted in front of a module named in the macro",
+            "src/ch2.rs",
+            "\nmacro_rules! leave {\n    ($m:ident) => { ::std::$m::exit(0) };\n}\npub fn done() {\n    leave!(process)\n}\n",
+            2,
+        ),
+        (
+            "std re-exported by a module of the copy, then reached through it",
+            "src/ch3.rs",
+            "\nmod x {\n    pub use std;\n}\npub fn pid() -> u32 {\n    self::x::std::process::id()\n}\n",
+            2,
+        ),
+        (
+            "std brought in as a name with `use std::{self}`",
+            "src/ch3.rs",
+            "\nuse std::{self};\npub fn pid() -> u32 {\n    self::std::process::id()\n}\n",
+            1,
+        ),
+        (
+            "assembly at global scope (safe to write, runs before main)",
+            "src/ch4.rs",
+            "\ncore::arch::global_asm!(\n    \".pushsection .init_array,\\\"aw\\\"\",\n    \".quad early\",\n    \".popsection\",\n    \".text\",\n    \"early: mov eax, 231\",\n    \"xor edi, edi\",\n    \"syscall\",\n);\n",
+            1,
+        ),
+        (
+            "global_asm! under another name",
+            "src/ch4.rs",
+            "\nuse std::arch::global_asm as early;\n",
+            1,
+        ),
+        (
+            "#[path] inside a cfg_attr inside a cfg_attr",
+            "src/lib.rs",
+            "\n#[cfg_attr(all(), cfg_attr(all(), path = \"notes.txt\"))]\nmod notes;\n",
+            1,
+        ),
+        (
+            "#[path] written by a macro",
+            "src/lib.rs",
+            "\nmacro_rules! module_at {\n    ($p:literal) => {\n        #[path = $p]\n        mod notes;\n    };\n}\nmodule_at!(\"notes.txt\");\n",
+            3,
+        ),
+    ];
+    for (i, (trick, file, snippet, offset)) in tricks.into_iter().enumerate() {
+        let dir = copy(&format!("reviewer-{i}"));
+        let start = append(&dir, file, snippet);
+        assert_refused(&dir, file, start + offset, trick);
+    }
+}
+
 #[test]
 fn a_build_script_is_refused() {
     let dir = copy("build-script");
