@@ -446,14 +446,17 @@ impl<'a, I: fmt::Debug + 'a, T: Answer + 'a> Grader<'a, I, T> {
         actual: String,
         diagnosis: String,
     ) -> Box<Failed> {
+        // An answer that is not finite is reported in words, so that the
+        // report reaches the student (the CLI prints no bare `NaN`).
+        let words = |s: String| crate::numbers::non_finite_in_words(&s);
         Box::new(Failed {
             assignment: self.name,
             equation: self.equation,
             seed: self.seed,
-            input,
-            expected,
-            actual,
-            diagnosis,
+            input: words(input),
+            expected: words(expected),
+            actual: words(actual),
+            diagnosis: words(diagnosis),
             course: None,
         })
     }

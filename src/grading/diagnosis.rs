@@ -108,7 +108,7 @@ pub fn shape_diagnosis(actual: &[Real], expected: &[Real]) -> String {
 /// single number.
 pub(crate) fn shape(actual: &[Real], expected: &[Real], labels: &[String], kind: Kind) -> String {
     if actual.iter().any(|x| !x.is_finite()) {
-        return "your answer is not finite (NaN or infinity): a division by zero, or the square root of a negative number?".into();
+        return "your answer is not finite (not a number, or infinite): a division by zero, or the square root of a negative number?".into();
     }
     if actual.len() != expected.len() {
         return "your answer has the wrong number of components".into();

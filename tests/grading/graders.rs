@@ -1217,3 +1217,24 @@ fn inputs_change_between_gradings_and_a_table_of_one_fails_the_next() {
         assert_eq!(seen(seed_a), seen(seed_a));
     }
 }
+
+/// An answer that is not finite (0/0 somewhere) is a common first attempt:
+/// its report names it in words, so that the CLI, which prints no bare
+/// `NaN`, shows the whole report instead of stopping at the line `got:`.
+#[test]
+fn a_non_finite_answer_is_reported_in_words_that_the_cli_prints() {
+    for seed in SEEDS {
+        let grade = grading::rk4_step(seed, |_f: DynField, _t, _y: &State<3>, _h| {
+            State::<3>::repeat(f64::NAN)
+        });
+        let failed = grade.expect_err("a NaN answer fails");
+        let text = failed.to_string();
+        assert_eq!(spintop::numbers::non_finite_word(&text), None, "{text}");
+        assert!(text.contains("got:       (not-a-number"), "{text}");
+        assert!(failed.diagnosis.contains("not finite"), "{text}");
+        let grade = grading::reduced_decay_time(seed, |_r, _tau, _w3| f64::INFINITY);
+        let text = grade.expect_err("an infinite answer fails").to_string();
+        assert_eq!(spintop::numbers::non_finite_word(&text), None, "{text}");
+        assert!(text.contains("infinity"), "{text}");
+    }
+}
