@@ -1737,6 +1737,13 @@ pub fn reduced_rk4(seed: u64, student: impl Fn(Real, Real, Vec3, Real, usize) ->
             |x: &RunInput| x.omega0,
         ),
         mistake(
+            "that is the exact Ω(t_end) of the closed form (4.15)-(4.16), not `steps` RK4 steps: the assignment asks for the numerical run, whose error the book measures against the closed form".to_string(),
+            |x: &RunInput| match SymmetricTop::new(x.ratio, x.tau) {
+                Ok(top) => sym::reduced_closed_form(&top, &x.omega0, x.t_end),
+                Err(_) => Vec3::repeat(Real::NAN),
+            },
+        ),
+        mistake(
             "the run ends at the wrong time: each step is t_end long (h = t_end/steps was not divided)".to_string(),
             |x: &RunInput| run_with(x, RK4, sym::reduced_ale_rhs, x.steps, x.t_end),
         ),
@@ -1753,7 +1760,9 @@ pub fn reduced_rk4(seed: u64, student: impl Fn(Real, Real, Vec3, Real, usize) ->
     ]);
     let order_probe = |x: &RunInput, again: &Again<'_, RunInput, Vec3>| {
         let (order, finest) = observed_order(x, again)?;
-        Some(if (3.5..=4.6).contains(&order) && finest > 1e-7 {
+        Some(if !order.is_finite() {
+            "your answer does not change with the number of steps: it is not a run of `steps` RK4 steps".to_string()
+        } else if (3.5..=4.6).contains(&order) && finest > 1e-7 {
             "your run converges at order 4, but to a wrong answer: the right-hand side it integrates is not (4.12)-(4.14), or the start or the end is wrong".to_string()
         } else if order.abs() < 0.3 {
             "the error does not shrink as the steps get smaller: the run converges to a wrong answer (the step size, the number of steps, or the right-hand side)".to_string()

@@ -1031,6 +1031,12 @@ fn reduced_rk4_checks_the_value_not_only_the_order() {
         })
         .expect_err("the closed form plus 0.3 h^4 is not an RK4 run");
         assert_eq!(failed.assignment, "reduced_rk4");
+        // The closed form itself is named (its error is zero, so its
+        // order of convergence is no number at all).
+        let d = diagnosis(grading::reduced_rk4(seed, |r, tau, w0, t_end, _n| {
+            sym::reduced_closed_form(&top(r, tau), &w0, t_end)
+        }));
+        assert!(d.contains("closed form"), "{d}");
         // A real RK4 run passes to rounding, whatever its step count.
         grading::reduced_rk4(seed, |r, tau, w0, t_end, n| {
             rk4_run(r, tau, w0, n, t_end / n as f64)
