@@ -99,15 +99,22 @@ impl Copy {
 }
 
 /// The one-line reason behind a state (the diagnosis of a failure, the
-/// compiler's first error, what timed out).
+/// compiler's first error, what timed out). A report whose first line ends
+/// in a colon is named with its next line too (a shortcut's file and line).
 fn reason(state: &State) -> String {
     match state {
         State::Failing(report) => report
             .lines()
             .find_map(|l| l.trim().strip_prefix("diagnosis:").map(str::trim))
-            .or_else(|| report.lines().next())
-            .unwrap_or_default()
-            .to_string(),
+            .map(str::to_string)
+            .unwrap_or_else(|| {
+                let mut lines = report.lines().map(str::trim);
+                let first = lines.next().unwrap_or_default();
+                match (first.ends_with(':'), lines.next()) {
+                    (true, Some(next)) => format!("{first} {next}"),
+                    _ => first.to_string(),
+                }
+            }),
         State::DoesNotCompile(why) | State::TimedOut(why) => why.clone(),
         _ => String::new(),
     }
