@@ -304,6 +304,9 @@ impl Answer for (Real, Real) {
     fn labels() -> Vec<String> {
         vec!["the first number".into(), "the second number".into()]
     }
+    fn kind() -> diagnosis::Kind {
+        diagnosis::Kind::Parts
+    }
 }
 
 impl Answer for [Vec3; 4] {

@@ -489,3 +489,48 @@ fn the_example_wrong_answers_are_rejected_and_their_diagnoses_name_the_mistake()
     }
     std::fs::remove_dir_all(&work).ok();
 }
+
+/// The independent set (lessons/wrong/independent/): 73 wrong answers over
+/// the 22 assignments, written by a reviewer who had not read the graders,
+/// as a student would make them. Measured in lessons/README.md ("Diagnoses,
+/// measured"): every one is rejected, and all but one diagnosis contain the
+/// words that name the mistake. Neither count may fall.
+#[test]
+fn the_independent_wrong_answers_are_all_rejected_and_their_diagnoses_name_the_mistake() {
+    let answers = course::diagnose::read_folder(&repo().join("lessons/wrong/independent")).unwrap();
+    assert!(answers.len() >= 60, "{}", answers.len());
+    for a in COURSE {
+        assert!(
+            answers.iter().any(|w| w.assignment.function == a.function),
+            "no wrong answer for {}",
+            a.function
+        );
+    }
+    let work = scratch("independent");
+    for seed in super::SEEDS {
+        let results = course::diagnose::run(repo(), &answers, seed, &work.join("build")).unwrap();
+        let passed: Vec<String> = results
+            .iter()
+            .filter(|r| r.passed)
+            .map(|r| r.text())
+            .collect();
+        assert!(
+            passed.is_empty(),
+            "seed {seed}: accepted\n{}",
+            passed.join("\n")
+        );
+        let unnamed: Vec<String> = results
+            .iter()
+            .filter(|r| r.says_it() != Some(true))
+            .map(|r| r.text())
+            .collect();
+        assert!(
+            unnamed.len() <= 1,
+            "seed {seed}: {} of {} diagnoses do not name the mistake:\n{}",
+            unnamed.len(),
+            results.len(),
+            unnamed.join("\n")
+        );
+    }
+    std::fs::remove_dir_all(&work).ok();
+}
