@@ -187,9 +187,126 @@ fn check_manifest(root: &Path) -> Vec<Violation> {
     out
 }
 
+/// The most a file the rule reads may nest brackets, and the most tokens it
+/// may put in one run without a comma or a semicolon (attributes and doc
+/// comments not counted; an item ends a run), and its largest size.
+///
+/// NOTE: syn parses and walks a syntax tree by recursion, some 10 kB of
+/// stack a level in a debug build: 1,000 nested brackets overflowed the main
+/// thread's 8 MB and aborted `spintop course grade`, CSV and the whole
+/// class with it. So the rule first measures the nesting on proc-macro2's
+/// tokens (lexed and dropped without recursion) and refuses a file beyond
+/// these bounds, which no assignment comes near (the course's own files nest
+/// 8 deep, in runs under 200 tokens), then parses within them on a thread
+/// whose stack holds the deepest tree they allow.
+const MAX_NESTING: usize = 100;
+const MAX_RUN: usize = 4000;
+const MAX_BYTES: usize = 1 << 20;
+const PARSER_STACK: usize = 256 << 20;
+
 /// The violations in one file, `rel` (relative to the copy at `root`), of
 /// text `text`.
 pub fn check_source(rel: &Path, text: &str, root: &Path) -> Vec<Violation> {
+    let refuse = |line: usize, what: String, unreadable: bool| Violation {
+        file: rel.to_path_buf(),
+        line,
+        what,
+        unreadable,
+    };
+    if text.len() > MAX_BYTES {
+        let what = format!(
+            "{} kB, more than the rule reads ({} kB): an assignment's file is a few kB",
+            text.len() >> 10,
+            MAX_BYTES >> 10
+        );
+        return vec![refuse(1, what, false)];
+    }
+    let (owned_rel, owned_text, owned_root) =
+        (rel.to_path_buf(), text.to_string(), root.to_path_buf());
+    let parsed = std::thread::Builder::new()
+        .name("source rule".into())
+        .stack_size(PARSER_STACK)
+        .spawn(move || check_parsed(&owned_rel, &owned_text, &owned_root))
+        .map_err(|e| e.to_string())
+        .and_then(|t| t.join().map_err(|_| "its parser stopped".to_string()));
+    parsed.unwrap_or_else(|why| {
+        vec![refuse(
+            1,
+            format!("the rule could not read it ({why}), so it cannot vouch for it"),
+            true,
+        )]
+    })
+}
+
+/// Where `tokens` nest deeper, or run longer, than the rule reads: the line
+/// and what it is. Without recursion.
+fn too_deep(tokens: proc_macro2::TokenStream) -> Option<(usize, String)> {
+    use proc_macro2::{Delimiter, TokenTree};
+    let item = [
+        "fn", "pub", "struct", "enum", "impl", "trait", "mod", "use", "const", "static", "type",
+        "let",
+    ];
+    // Each open group: its tokens, the run so far, and the previous token.
+    let mut stack = vec![(tokens.into_iter().peekable(), 0usize, None::<TokenTree>)];
+    while let Some((iter, run, previous)) = stack.last_mut() {
+        let Some(t) = iter.next() else {
+            stack.pop();
+            continue;
+        };
+        let attribute = matches!(&t, TokenTree::Punct(p) if p.as_char() == '#' || (p.as_char() == '!' && matches!(previous, Some(TokenTree::Punct(q)) if q.as_char() == '#')))
+            || matches!((&t, &*previous), (TokenTree::Group(g), Some(TokenTree::Punct(p))) if g.delimiter() == Delimiter::Bracket && (p.as_char() == '#' || p.as_char() == '!'));
+        match &t {
+            TokenTree::Punct(p) if p.as_char() == ';' || p.as_char() == ',' => *run = 0,
+            TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => {
+                // An item or a statement after a block starts a new run.
+                let next_starts = match iter.peek() {
+                    None => true,
+                    Some(TokenTree::Ident(i)) => item.contains(&i.to_string().as_str()),
+                    Some(TokenTree::Punct(p)) => p.as_char() == '#',
+                    _ => false,
+                };
+                *run = if next_starts { 0 } else { *run + 1 };
+            }
+            _ if attribute => {}
+            _ => *run += 1,
+        }
+        let line = t.span().start().line.max(1);
+        if *run > MAX_RUN {
+            return Some((
+                line,
+                format!(
+                    "more than {MAX_RUN} tokens in one expression, without a comma or a semicolon: deeper than the rule reads, and far beyond what an assignment needs"
+                ),
+            ));
+        }
+        *previous = Some(t.clone());
+        if let TokenTree::Group(g) = t {
+            if stack.len() >= MAX_NESTING {
+                return Some((
+                    line,
+                    format!(
+                        "brackets nested more than {MAX_NESTING} deep: deeper than the rule reads, and far beyond what an assignment needs"
+                    ),
+                ));
+            }
+            stack.push((g.stream().into_iter().peekable(), 0, None));
+        }
+    }
+    None
+}
+
+/// [`check_source`] itself, on a stack deep enough for what [`too_deep`] lets through.
+fn check_parsed(rel: &Path, text: &str, root: &Path) -> Vec<Violation> {
+    if let Ok(tokens) = text.parse::<proc_macro2::TokenStream>()
+        && let Some((line, what)) = too_deep(tokens)
+    {
+        return vec![Violation {
+            file: rel.to_path_buf(),
+            line,
+            what,
+            unreadable: false,
+        }];
+    }
     let file = match syn::parse_file(text) {
         Ok(f) => f,
         Err(e) => {
@@ -759,6 +876,57 @@ mod tests {
         let v = check("fn f() -> usize {\n    builtin # offset_of(std::process::Child, x)\n}\n");
         assert_eq!(v.len(), 1, "{v:?}");
         assert_eq!(v[0].line, 2);
+    }
+
+    /// A file nested far deeper than any assignment once overflowed the
+    /// parser's stack and aborted the whole grade book; now it is refused
+    /// with its line, and the long plain files a student may write are not.
+    #[test]
+    fn a_file_nested_beyond_the_rules_bounds_is_refused_not_a_crash() {
+        let deep = |open: &str, inner: &str, close: &str, n: usize| {
+            format!(
+                "pub fn f() -> i32 {{\n    {}{inner}{}\n}}\n",
+                open.repeat(n),
+                close.repeat(n)
+            )
+        };
+        for (text, what) in [
+            (deep("(", "1", ")", 50_000), "nested"),
+            (deep("[", "1", "]", 50_000), "nested"),
+            (deep("", "1", " + 1", 100_000), "tokens"),
+            (deep("-", "1", "", 100_000), "tokens"),
+            (deep("if true { 1 } else ", "{ 1 }", "", 20_000), "tokens"),
+        ] {
+            let v = check(&text);
+            assert_eq!(v.len(), 1, "{v:?}");
+            assert_eq!(v[0].line, 2, "{v:?}");
+            assert!(v[0].what.contains(what) && !v[0].unreadable, "{v:?}");
+        }
+        // Just within the bounds, the deepest trees they allow are read on
+        // the rule's stack without a violation (nor a crash).
+        for text in [
+            deep("(", "1", ")", MAX_NESTING - 3),
+            deep("", "1", " + 1", MAX_RUN / 2 - 10),
+            deep("-", "1", "", MAX_RUN - 10),
+            deep("if true { 1 } else ", "{ 1 }", "", MAX_RUN / 4 - 10),
+            deep("", "1.0f64", ".abs()", MAX_RUN / 4 - 10),
+        ] {
+            assert_eq!(check(&text), vec![]);
+        }
+        // Long, plain and legitimate: many items, long doc comments, a
+        // table of numbers.
+        let mut long = String::new();
+        for i in 0..600 {
+            long.push_str(&format!(
+                "/// A helper.\n/// It returns {i}.\npub fn h{i}() -> f64 {{ {i}.0 }}\n"
+            ));
+        }
+        long.push_str("pub const TABLE: [f64; 3000] = [");
+        long.push_str(&"0.5, ".repeat(3000));
+        long.push_str("];\n");
+        assert_eq!(check(&long), vec![]);
+        let big = "// padding\n".repeat(200_000);
+        assert!(check(&big)[0].what.contains("more than the rule reads"));
     }
 
     #[test]

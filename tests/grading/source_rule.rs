@@ -244,6 +244,11 @@ fn the_tricks_a_reviewer_found_fail_with_no_shortcut_too() {
 /// Tricks found on a second pass.
 #[test]
 fn the_tricks_of_a_second_pass_fail_with_no_shortcut_too() {
+    let deep = format!(
+        "\npub fn f() -> i32 {{\n    {}1{}\n}}\n",
+        "(".repeat(50_000),
+        ")".repeat(50_000)
+    );
     let tricks: Vec<(&str, &str, &str, usize)> = vec![
         (
             "the build's environment read by env!",
@@ -255,6 +260,12 @@ fn the_tricks_of_a_second_pass_fail_with_no_shortcut_too() {
             "std::fs further down a path",
             "src/ch3.rs",
             "\npub fn f() -> bool {\n    crate::ch4::std::fs::exists(\"x\").is_ok()\n}\n",
+            2,
+        ),
+        (
+            "brackets nested 50,000 deep (the parser's stack overflowed: spintop course grade aborted, no CSV for the class)",
+            "src/ch4.rs",
+            &deep,
             2,
         ),
     ];
