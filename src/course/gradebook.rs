@@ -140,8 +140,15 @@ fn prepare(repo: &Path, submission: &Path, scratch: &Path) -> Result<(), String>
     if scratch.exists() {
         std::fs::remove_dir_all(scratch).map_err(|e| format!("{}: {e}", scratch.display()))?;
     }
-    export::export(repo, scratch)?;
     let src = submission.join("src");
+    if std::fs::symlink_metadata(&src).is_ok_and(|m| m.file_type().is_symlink()) {
+        // Not walked: it may stand for any folder of the machine.
+        return Err(format!(
+            "{}: src/ is a symbolic link, not the student's own folder",
+            submission.display()
+        ));
+    }
+    export::export(repo, scratch)?;
     let skip = ["solutions"];
     let place = |path: &Path| -> Result<PathBuf, String> {
         let to = scratch

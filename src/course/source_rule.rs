@@ -109,6 +109,15 @@ pub fn check_copy(dir: &Path) -> Vec<Violation> {
         });
     }
     out.extend(check_manifest(&root));
+    if std::fs::symlink_metadata(root.join("src")).is_ok_and(|m| m.file_type().is_symlink()) {
+        out.push(Violation {
+            file: "src".into(),
+            line: 1,
+            what: "src/ is a symbolic link: the files it stands for are not your copy's own (and the rule does not walk a folder elsewhere)".into(),
+            unreadable: false,
+        });
+        return out;
+    }
     for link in super::export::symbolic_links(&root.join("src"), &[]) {
         let rel = link.strip_prefix(&root).unwrap_or(&link).to_path_buf();
         let target =

@@ -289,6 +289,17 @@ fn a_symbolic_link_to_the_solution_is_refused() {
     assert_refused(&dir, "src/done.rs", 1, "a symbolic link");
 }
 
+/// The whole `src/` a symbolic link (to the repository's lessons, where the
+/// solutions are): refused without walking the folder it stands for.
+#[cfg(unix)]
+#[test]
+fn a_src_folder_that_is_a_symbolic_link_is_refused() {
+    let dir = copy("src-link");
+    std::fs::remove_dir_all(dir.join("src")).unwrap();
+    std::os::unix::fs::symlink(repo().join("lessons/src"), dir.join("src")).unwrap();
+    assert_refused(&dir, "src", 1, "src/ a symbolic link");
+}
+
 #[test]
 fn a_build_script_is_refused() {
     let dir = copy("build-script");
