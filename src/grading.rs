@@ -304,6 +304,9 @@ impl Answer for (Real, Real) {
     fn labels() -> Vec<String> {
         vec!["the first number".into(), "the second number".into()]
     }
+    fn kind() -> diagnosis::Kind {
+        diagnosis::Kind::Parts
+    }
 }
 
 impl Answer for [Vec3; 4] {
@@ -446,14 +449,17 @@ impl<'a, I: fmt::Debug + 'a, T: Answer + 'a> Grader<'a, I, T> {
         actual: String,
         diagnosis: String,
     ) -> Box<Failed> {
+        // An answer that is not finite is reported in words, so that the
+        // report reaches the student (the CLI prints no bare `NaN`).
+        let words = |s: String| crate::numbers::non_finite_in_words(&s);
         Box::new(Failed {
             assignment: self.name,
             equation: self.equation,
             seed: self.seed,
-            input,
-            expected,
-            actual,
-            diagnosis,
+            input: words(input),
+            expected: words(expected),
+            actual: words(actual),
+            diagnosis: words(diagnosis),
             course: None,
         })
     }

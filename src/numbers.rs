@@ -16,6 +16,7 @@
 //! | [`significant`], [`short`], [`csv`] | a real particle's report and its CSV | `4.635e-3`, `50`, `1e-26` |
 //! | [`sci`], [`duration`] | the bench table's errors and times | `1.23e-8`, `17.2 µs` |
 //! | [`parse_number`] | a number the user typed | `'x' is not a number` |
+//! | [`non_finite_word`], [`non_finite_in_words`] | a `NaN` or `inf` in prose, found or spelt out | `not-a-number`, `-infinity` |
 //!
 //! Pure and at the bottom of the crate: it imports nothing of spintop's.
 
@@ -249,6 +250,49 @@ pub fn stable_key(text: &str) -> u32 {
     (h & 0xffff_ffff) as u32
 }
 
+/// The characters besides white space that end a word of prose, where a
+/// number printed as `NaN` or `inf` is looked for.
+const WORD_ENDS: &str = ",;:()[]{}=|/<>\"'";
+
+fn word_end(c: char) -> bool {
+    c.is_whitespace() || WORD_ENDS.contains(c)
+}
+
+/// The first word of `text` that is how Rust prints a non-finite number
+/// (`NaN`, `inf`, `-inf`, `+inf`), if any: what the CLI's gate refuses to
+/// print as if it were a result.
+pub fn non_finite_word(text: &str) -> Option<&str> {
+    text.split(word_end)
+        .find(|w| matches!(*w, "NaN" | "-NaN" | "inf" | "-inf" | "+inf"))
+}
+
+/// `text` with each word that is a non-finite number spelt out
+/// (`not-a-number`, `infinity`, `-infinity`): for a message that must name
+/// one, such as a grader's report of an answer that is not finite.
+pub fn non_finite_in_words(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        out.push_str(match word.as_str() {
+            "NaN" | "-NaN" => "not-a-number",
+            "inf" | "+inf" => "infinity",
+            "-inf" => "-infinity",
+            other => other,
+        });
+        word.clear();
+    };
+    for c in text.chars() {
+        if word_end(c) {
+            flush(&mut word, &mut out);
+            out.push(c);
+        } else {
+            word.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -259,6 +303,25 @@ mod tests {
         assert_eq!(fmt_about(19378.0), "about 1.9e4");
         assert_eq!(fmt_about(Real::INFINITY), "more than 1e308");
         assert_eq!(fmt_count(Real::INFINITY), "more than 1e308");
+    }
+
+    #[test]
+    fn non_finite_numbers_in_prose_are_found_and_spelt_out() {
+        let text = format!(
+            "got: ({:e}, {:e}, {}), x={}",
+            f64::NAN,
+            -f64::INFINITY,
+            1.5,
+            f64::INFINITY
+        );
+        assert_eq!(non_finite_word(&text), Some("NaN"));
+        let words = non_finite_in_words(&text);
+        assert_eq!(words, "got: (not-a-number, -infinity, 1.5), x=infinity");
+        assert_eq!(non_finite_word(&words), None);
+        assert_eq!(
+            non_finite_in_words("an infinite loop, info"),
+            "an infinite loop, info"
+        );
     }
 
     #[test]

@@ -16,6 +16,7 @@
 //! the gate.
 
 use super::CliError;
+use crate::numbers::non_finite_word;
 use crate::output::check::first_non_finite;
 use crate::output::{Format, Output};
 use serde::Serialize;
@@ -76,13 +77,6 @@ impl std::fmt::Display for NonFiniteText {
 }
 
 impl std::error::Error for NonFiniteText {}
-
-/// The first word of `text` that is how Rust prints a non-finite number
-/// (`NaN`, `inf`, `-inf`, `+inf`), if any.
-fn non_finite_word(text: &str) -> Option<&str> {
-    text.split(|c: char| c.is_whitespace() || ",;:()[]{}=|/<>\"'".contains(c))
-        .find(|w| matches!(*w, "NaN" | "-NaN" | "inf" | "-inf" | "+inf"))
-}
 
 impl Write for Gate<'_> {
     /// Prose: written as it comes, unless it holds a non-finite number.

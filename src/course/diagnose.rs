@@ -183,8 +183,17 @@ pub fn run(
     let spintop = repo
         .canonicalize()
         .map_err(|e| format!("{}: {e}", repo.display()))?;
+    // NOTE: named after the scratch folder, as an exported copy is (see
+    // `export_manifest`): two gradings of two folders that share a build
+    // folder would otherwise overwrite each other's program.
+    let key = crate::numbers::stable_key(
+        &work
+            .canonicalize()
+            .unwrap_or_else(|_| work.to_path_buf())
+            .to_string_lossy(),
+    );
     let manifest = format!(
-        "[package]\nname = \"spintop-diagnose\"\nversion = \"0.1.0\"\nedition = \"2024\"\npublish = false\n\n[workspace]\n\n[dependencies]\nspintop = {{ path = {:?}, default-features = false }}\n",
+        "[package]\nname = \"spintop-diagnose-{key:08x}\"\nversion = \"0.1.0\"\nedition = \"2024\"\npublish = false\n\n[workspace]\n\n[dependencies]\nspintop = {{ path = {:?}, default-features = false }}\n",
         spintop.display().to_string()
     );
     let mut files: Vec<(PathBuf, String)> = vec![

@@ -25,6 +25,24 @@ pub fn check_lessons_dir(dir: &Path) -> Result<(), String> {
 /// ones `skip` names (relative to `dir`), sorted; symbolic links are not
 /// followed.
 pub(crate) fn rust_files(dir: &Path, skip: &[&str]) -> Vec<PathBuf> {
+    walk(dir, skip, |kind, path| {
+        kind.is_file() && path.extension().is_some_and(|x| x == "rs")
+    })
+}
+
+/// The symbolic links under `dir` (to files or to folders), every folder
+/// deep but the ones `skip` names, sorted.
+pub(crate) fn symbolic_links(dir: &Path, skip: &[&str]) -> Vec<PathBuf> {
+    walk(dir, skip, |kind, _| kind.is_symlink())
+}
+
+/// The entries under `dir` that `keep` accepts, every real folder deep (a
+/// link to a folder is not entered) but the ones `skip` names, sorted.
+fn walk(
+    dir: &Path,
+    skip: &[&str],
+    keep: impl Fn(std::fs::FileType, &Path) -> bool,
+) -> Vec<PathBuf> {
     let mut out = Vec::new();
     let mut stack = vec![dir.to_path_buf()];
     while let Some(d) = stack.pop() {
@@ -38,8 +56,9 @@ pub(crate) fn rust_files(dir: &Path, skip: &[&str]) -> Vec<PathBuf> {
                 continue;
             };
             if kind.is_dir() {
-                stack.push(path);
-            } else if kind.is_file() && path.extension().is_some_and(|x| x == "rs") {
+                stack.push(path.clone());
+            }
+            if keep(kind, &path) {
                 out.push(path);
             }
         }

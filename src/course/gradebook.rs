@@ -99,15 +99,22 @@ impl Copy {
 }
 
 /// The one-line reason behind a state (the diagnosis of a failure, the
-/// compiler's first error, what timed out).
+/// compiler's first error, what timed out). A report whose first line ends
+/// in a colon is named with its next line too (a shortcut's file and line).
 fn reason(state: &State) -> String {
     match state {
         State::Failing(report) => report
             .lines()
             .find_map(|l| l.trim().strip_prefix("diagnosis:").map(str::trim))
-            .or_else(|| report.lines().next())
-            .unwrap_or_default()
-            .to_string(),
+            .map(str::to_string)
+            .unwrap_or_else(|| {
+                let mut lines = report.lines().map(str::trim);
+                let first = lines.next().unwrap_or_default();
+                match (first.ends_with(':'), lines.next()) {
+                    (true, Some(next)) => format!("{first} {next}"),
+                    _ => first.to_string(),
+                }
+            }),
         State::DoesNotCompile(why) | State::TimedOut(why) => why.clone(),
         _ => String::new(),
     }
@@ -126,20 +133,43 @@ pub fn student_name(folder: &Path) -> String {
 }
 
 /// Puts together `scratch`: a fresh export of `repo` with the student's
-/// `src/**/*.rs` from `submission` in place of the stubs.
+/// `src/**/*.rs` from `submission` in place of the stubs. Like an export, it
+/// leaves out `src/solutions/` (the instructor's, never a student's work);
+/// a symbolic link is kept as a link, so that the source rule names it.
 fn prepare(repo: &Path, submission: &Path, scratch: &Path) -> Result<(), String> {
     if scratch.exists() {
         std::fs::remove_dir_all(scratch).map_err(|e| format!("{}: {e}", scratch.display()))?;
     }
-    export::export(repo, scratch)?;
     let src = submission.join("src");
-    for path in export::rust_files(&src, &[]) {
-        let rel = path.strip_prefix(&src).unwrap_or(&path);
-        let to = scratch.join("src").join(rel);
+    if std::fs::symlink_metadata(&src).is_ok_and(|m| m.file_type().is_symlink()) {
+        // Not walked: it may stand for any folder of the machine.
+        return Err(format!(
+            "{}: src/ is a symbolic link, not the student's own folder",
+            submission.display()
+        ));
+    }
+    export::export(repo, scratch)?;
+    let skip = ["solutions"];
+    let place = |path: &Path| -> Result<PathBuf, String> {
+        let to = scratch
+            .join("src")
+            .join(path.strip_prefix(&src).unwrap_or(path));
         if let Some(parent) = to.parent() {
             std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
         }
-        std::fs::copy(&path, &to).map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(to)
+    };
+    for path in export::rust_files(&src, &skip) {
+        std::fs::copy(&path, place(&path)?).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    for link in export::symbolic_links(&src, &skip) {
+        #[cfg(unix)]
+        if let Ok(target) = std::fs::read_link(&link) {
+            let to = place(&link)?;
+            let _ = std::fs::remove_file(&to);
+            std::os::unix::fs::symlink(target, &to)
+                .map_err(|e| format!("{}: {e}", to.display()))?;
+        }
     }
     Ok(())
 }

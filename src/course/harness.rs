@@ -667,9 +667,10 @@ fn how(status: ExitStatus) -> String {
     }
 }
 
-/// The last meaningful line a process wrote to its error stream.
+/// The last meaningful line a process wrote to its error stream (a `NaN` in
+/// it spelt out, so that the CLI prints the report).
 fn last_words(stderr: &str) -> String {
-    stderr
+    let line: String = stderr
         .lines()
         .rev()
         .map(str::trim)
@@ -677,5 +678,6 @@ fn last_words(stderr: &str) -> String {
         .unwrap_or("it wrote nothing")
         .chars()
         .take(300)
-        .collect()
+        .collect();
+    crate::numbers::non_finite_in_words(&line)
 }

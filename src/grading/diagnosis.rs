@@ -8,8 +8,11 @@
 
 use crate::math::Real;
 
+/// The factor between an angle in degrees and the same angle in radians.
+const DEGREES: Real = 180.0 / std::f64::consts::PI;
+
 /// Simple factors a formula can be off by, and how to say them.
-const FACTORS: [(Real, &str); 14] = [
+const FACTORS: [(Real, &str); 16] = [
     (2.0, "2"),
     (0.5, "1/2"),
     (3.0, "3"),
@@ -24,6 +27,8 @@ const FACTORS: [(Real, &str); 14] = [
     (0.5 / std::f64::consts::PI, "1/(2π)"),
     (std::f64::consts::SQRT_2, "√2"),
     (std::f64::consts::FRAC_1_SQRT_2, "1/√2"),
+    (DEGREES, "180/π"),
+    (1.0 / DEGREES, "π/180"),
 ];
 
 /// How close two numbers must be to count as equal in a diagnosis.
@@ -47,6 +52,10 @@ pub fn factor_words(k: Real) -> String {
             return format!("−{name}");
         }
     }
+    // Far from 1, in exponent form, so that a small factor is not "0.000".
+    if k.abs() < 1e-2 || k.abs() >= 1e4 {
+        return format!("{k:.3e}").replace('-', "−");
+    }
     // Enough significant digits that the printed number is not 1 (or −1).
     let off = (k.abs() - 1.0).abs().max(1e-16);
     let digits = ((-off.log10()).ceil() as usize + 1).clamp(4, 16);
@@ -61,8 +70,11 @@ pub(crate) enum Kind {
     Real,
     /// A complex number (real and imaginary part): a modulus and a phase.
     Complex,
-    /// A vector or a tuple of numbers.
+    /// A vector: components of one quantity, with a size and a direction.
     Vector,
+    /// Numbers of different meaning side by side (two masses): each is
+    /// judged on its own, none has a direction.
+    Parts,
 }
 
 /// The parts of two answers compared one by one.
@@ -108,7 +120,7 @@ pub fn shape_diagnosis(actual: &[Real], expected: &[Real]) -> String {
 /// single number.
 pub(crate) fn shape(actual: &[Real], expected: &[Real], labels: &[String], kind: Kind) -> String {
     if actual.iter().any(|x| !x.is_finite()) {
-        return "your answer is not finite (NaN or infinity): a division by zero, or the square root of a negative number?".into();
+        return "your answer is not finite (not a number, or infinite): a division by zero, or the square root of a negative number?".into();
     }
     if actual.len() != expected.len() {
         return "your answer has the wrong number of components".into();
@@ -135,7 +147,7 @@ pub(crate) fn shape(actual: &[Real], expected: &[Real], labels: &[String], kind:
     } else {
         "your value"
     };
-    if residual <= 1e-8 * (na + ne) {
+    if residual <= 1e-8 * (na + ne) && kind != Kind::Parts {
         return proportional(k, what, kind);
     }
     if let Some((i, j)) = swapped(actual, expected) {
@@ -159,7 +171,7 @@ pub(crate) fn shape(actual: &[Real], expected: &[Real], labels: &[String], kind:
             .collect()
     };
     let right = named(|p| *p == Part::Right);
-    if !right.is_empty() {
+    if !right.is_empty() || kind == Kind::Parts {
         let mut wrong = Vec::new();
         let signs = named(|p| *p == Part::Sign);
         if !signs.is_empty() {
@@ -180,6 +192,9 @@ pub(crate) fn shape(actual: &[Real], expected: &[Real], labels: &[String], kind:
         let other = named(|p| *p == Part::Wrong);
         if !other.is_empty() {
             wrong.push(format!("{} wrong", list(&other, "is", "are")));
+        }
+        if right.is_empty() {
+            return format!("{}: look at each of them alone", wrong.join("; "));
         }
         return format!(
             "{} right; {}: look at the terms of the wrong part alone",
@@ -223,6 +238,17 @@ fn proportional(k: Real, what: &str, kind: Kind) -> String {
     let simple = FACTORS
         .iter()
         .any(|(f, _)| (k.abs() / f - 1.0).abs() < 1e-9);
+    if simple && ((k.abs() / DEGREES - 1.0).abs() < 1e-9 || (k.abs() * DEGREES - 1.0).abs() < 1e-9)
+    {
+        let (yours, right) = if k.abs() > 1.0 {
+            ("degrees", "radians")
+        } else {
+            ("radians", "degrees")
+        };
+        return format!(
+            "{what} is {words} times the right one: an angle in {yours} where {right} belong (Rust's sin, cos and atan2 work in radians)"
+        );
+    }
     if simple {
         return format!("right up to a factor {words}: {what} is {words} times the right one");
     }
@@ -290,6 +316,23 @@ mod tests {
         let k = factor_words(1.000_000_3);
         assert!(k.starts_with("1.0000003"), "{k}");
         assert_ne!(k.trim_end_matches('0'), "1.");
+    }
+
+    #[test]
+    fn a_factor_far_from_one_is_never_printed_as_zero() {
+        assert_eq!(factor_words(3.2e-5), "3.200e−5");
+        assert_eq!(factor_words(-2.5e6), "−2.500e6");
+        assert_eq!(factor_words(180.0 / std::f64::consts::PI), "180/π");
+    }
+
+    #[test]
+    fn degrees_for_radians_and_two_unrelated_numbers_are_named() {
+        let d = shape_diagnosis(&[0.7_f64.to_degrees()], &[0.7]);
+        assert!(d.contains("degrees where radians belong"), "{d}");
+        let labels = ["m₀".to_string(), "m_em".to_string()];
+        let d = shape(&[0.8, 0.2], &[0.9, 0.1], &labels, Kind::Parts);
+        assert!(!d.contains("direction"), "{d}");
+        assert!(d.contains("m_em is 2 times the right one"), "{d}");
     }
 
     #[test]

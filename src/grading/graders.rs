@@ -89,17 +89,18 @@ fn crossings<'a>(
     }
     for (i, a) in JET_NAMES.iter().enumerate() {
         for (j, b) in JET_NAMES.iter().enumerate() {
-            if i == j
-                || special
-                    .iter()
-                    .any(|((p, q, _), _)| (*p, *q) == (i, j) || (*p, *q) == (j, i))
-            {
-                continue;
-            }
-            if (i, j) == (right.0, right.1) || (j, i) == (right.0, right.1) {
+            if i == j || (i, j) == (right.0, right.1) || (j, i) == (right.0, right.1) {
                 continue; // the right pair: a sign or the order, said by the shape
             }
             for s in [1.0, -1.0] {
+                // A special pair has its own words; with the other sign (or
+                // the factors the other way round) it is a wrong pair.
+                let said = special.iter().any(|((p, q, t), _)| {
+                    ((*p, *q) == (i, j) && *t == s) || ((*p, *q) == (j, i) && *t == -s)
+                });
+                if said {
+                    continue;
+                }
                 let text = format!(
                     "you crossed {a} with {b}: the law involves another pair of the dipole's derivatives (count the derivatives)"
                 );
@@ -370,6 +371,46 @@ pub fn precessing_dipole_jet(seed: u64, student: impl Fn(Real, Real, Real) -> Je
             },
         ),
         mistake(
+            "d' has a factor omega too many: each time derivative brings exactly one factor omega (d' has one)",
+            move |x: &ConeInput| {
+                let mut j = reference(x);
+                j[1] *= x.omega;
+                j
+            },
+        ),
+        mistake(
+            "d'' has the wrong power of omega (one): each time derivative brings one factor omega, so d'' has two",
+            move |x: &ConeInput| {
+                let mut j = reference(x);
+                j[2] /= x.omega;
+                j
+            },
+        ),
+        mistake(
+            "d'' has the wrong power of omega (three): each time derivative brings one factor omega, so d'' has two",
+            move |x: &ConeInput| {
+                let mut j = reference(x);
+                j[2] *= x.omega;
+                j
+            },
+        ),
+        mistake(
+            "d''' has the wrong power of omega (two): each time derivative brings one factor omega, so d''' has three",
+            move |x: &ConeInput| {
+                let mut j = reference(x);
+                j[3] /= x.omega;
+                j
+            },
+        ),
+        mistake(
+            "d''' has the wrong power of omega (four): each time derivative brings one factor omega, so d''' has three",
+            move |x: &ConeInput| {
+                let mut j = reference(x);
+                j[3] *= x.omega;
+                j
+            },
+        ),
+        mistake(
             "d'' points the wrong way: a uniform circular motion accelerates toward its axis",
             move |x: &ConeInput| {
                 let mut j = reference(x);
@@ -535,6 +576,15 @@ pub fn truncated_ale_rhs(seed: u64, student: impl Fn(Vec3, Vec3, Vec3) -> Vec3) 
             "the radiation damping is missing altogether: that is Euler's equations of a free top",
             |x: &TopInput| top_rhs_with(x, 1.0, 0.0, None),
         ),
+        mistake(
+            "the damping's size is |d|^2 |Omega|^2: it is the square of d x Omega, which vanishes when the rotation is along the dipole",
+            move |x: &TopInput| {
+                // (3.3) with the damping's coefficient |d x Omega|^2 replaced.
+                let damp = dw(x).norm_squared();
+                let s = x.dipole.norm_squared() * x.omega.norm_squared() / damp;
+                top_rhs_with(x, 1.0, s, Some((x.dipole, dw(x))))
+            },
+        ),
     ])
     .variant(
         "the moments of inertia are attached to the wrong axes (I1 and I3 swapped?): check with a zero dipole, where Euler's equations must come out",
@@ -620,10 +670,17 @@ fn euler_diagnosis(m: &Mat3, (phi, theta, psi): (Real, Real, Real)) -> &'static 
     if !finite {
         return "not finite: a division or an inverse trigonometric function out of its range?";
     }
+    let r = pi / 180.0;
+    if (EulerAngles::new(phi * r, theta * r, psi * r).to_rotation() - m).norm() < 1e-9 {
+        return "the angles are in degrees: a rotation is built from radians (Rust's atan2, acos and asin return radians)";
+    }
     if !(0.0..=pi).contains(&theta) {
         return "theta is outside [0, pi]: the z-x-z convention keeps the nutation angle there";
     }
     let theta_off = (theta - truth.theta).abs() > 1e-13 * (1.0 + truth.theta);
+    if theta_off && truth.theta > pi / 2.0 && (theta - sin_true.min(1.0).asin()).abs() <= 1e-12 {
+        return "theta comes from an inverse sine, which never exceeds pi/2: the axis's tilt from z runs from 0 to pi, so it needs the cosine too (a two-argument arctangent)";
+    }
     if theta_off && (theta - m[(2, 2)].clamp(-1.0, 1.0).acos()).abs() <= 1e-15 {
         return "theta comes from an inverse cosine of the (3,3) entry, which loses digits near theta = 0 and pi: a two-argument arctangent keeps them";
     }
@@ -874,6 +931,14 @@ pub fn truncated_omega_perp(seed: u64, student: impl Fn(Real, Real, Real, Real) 
         |x: &TopTime| TopTime { tau: x.tau / 2.0, ..*x },
     )
     .variant(
+        "the truncated model's slowing does not involve the moment ratio: Omega_perp's loss depends on tau and Omega_perp alone",
+        |x: &TopTime| TopTime { tau: x.tau * x.ratio, ..*x },
+    )
+    .variant(
+        "the truncated model's slowing does not involve the moment ratio: Omega_perp's loss depends on tau and Omega_perp alone",
+        |x: &TopTime| TopTime { tau: x.tau / x.ratio, ..*x },
+    )
+    .variant(
         "the right shape, the wrong speed: the slowing runs twice too fast (a factor 2 too many inside the square root)",
         |x: &TopTime| TopTime { tau: 2.0 * x.tau, ..*x },
     )
@@ -928,6 +993,20 @@ pub fn truncated_closed_form(seed: u64, student: impl Fn(Real, Real, Vec3, Real)
         mistake(
             "the moment ratio is upside down in the precession rate: the ratio is I3/I1",
             move |x: &TopTime| with_phase(x, (1.0 - 1.0 / x.ratio) * x.omega0.z * vartheta(x)),
+        ),
+        mistake(
+            "the slowing factor R is built from the whole |Omega0|^2: only the perpendicular rate Omega_perp0 enters it (a spin along the dipole radiates nothing)",
+            |x: &TopTime| {
+                let w = x.omega0.z;
+                let r = (1.0 + 2.0 * x.tau * x.omega0.norm_squared() * x.t).sqrt();
+                let alpha = (1.0 - x.ratio) * w * 2.0 * x.t / (1.0 + r);
+                let (s, c) = alpha.sin_cos();
+                Vec3::new(
+                    (x.omega0.x * c + x.omega0.y * s) / r,
+                    (x.omega0.y * c - x.omega0.x * s) / r,
+                    w / r,
+                )
+            },
         ),
         mistake(
             "Omega_3 is held constant: in the truncated model the spin slows together with Omega_perp",
@@ -1093,6 +1172,14 @@ pub fn precession_tilt(seed: u64, student: impl Fn(Real, Vec3) -> Real) -> Grade
             "that is the angle from the equator: the tilt is measured from the symmetry axis (pi/2 minus your angle)",
             move |x: &(Real, Vec3)| std::f64::consts::FRAC_PI_2 - tilt(x),
         ),
+        mistake(
+            "Omega_perp is the size of both perpendicular components: Omega_2 is left out",
+            move |(ratio, w): &(Real, Vec3)| tilt(&(*ratio, Vec3::new(w.x, 0.0, w.z))),
+        ),
+        mistake(
+            "Omega_perp is the size of both perpendicular components: Omega_1 is left out",
+            move |(ratio, w): &(Real, Vec3)| tilt(&(*ratio, Vec3::new(0.0, w.y, w.z))),
+        ),
     ])
     .run(|(ratio, w)| student(*ratio, *w))
 }
@@ -1183,6 +1270,14 @@ pub fn reduced_ale_rhs(seed: u64, student: impl Fn(Real, Real, Vec3) -> Vec3) ->
         mistake(
             "the damping's Schott part is missing: Omega_perp is damped by more than its own square in the reduced model",
             move |x: &SymInput| reduced_rhs_with(x, wt3(x), 0.0),
+        ),
+        mistake(
+            "the damping rate lacks Omega_perp's own square: Omega_perp is damped by its own square and the axial part together",
+            move |x: &SymInput| {
+                let w = x.omega;
+                let damp = x.tau * k2(x);
+                Vec3::new(wt3(x) * w.y - damp * w.x, -wt3(x) * w.x - damp * w.y, 0.0)
+            },
         ),
         mistake(
             "the free precession turns the wrong way: check the signs of the two precession terms against (4.12)-(4.13)",
@@ -1310,6 +1405,27 @@ pub fn reduced_closed_form(seed: u64, student: impl Fn(Real, Real, Vec3, Real) -
         mistake(
             "the precession turns the wrong way: in the body frame Omega_perp turns clockwise (seen from the tip of the symmetry axis) when the top is prolate and Omega_3 > 0, counter-clockwise when it is oblate: check the sign of the phase against (4.12)-(4.13)",
             move |x: &TopTime| variant(x, 1.0, -1.0),
+        ),
+        mistake(
+            "Omega_perp decays twice too fast at late times: the exponential in Phi falls at half the rate of its exponent's argument s (it is Omega_perp squared that falls at the rate s)",
+            move |x: &TopTime| {
+                let late = variant(x, 1.0, 1.0);
+                let k = x.ratio * x.omega0.z;
+                let s = 2.0 * x.tau * k * k * x.t;
+                Vec3::new(late.x * (-0.5 * s).exp(), late.y * (-0.5 * s).exp(), late.z)
+            },
+        ),
+        mistake(
+            "the square root in Phi is the truncated model's: in the reduced model its growth slows as the exponential decays, it does not grow linearly in t",
+            move |x: &TopTime| {
+                let u0 = x.omega0.x * x.omega0.x + x.omega0.y * x.omega0.y;
+                let k = x.ratio * x.omega0.z;
+                let s = 2.0 * x.tau * k * k * x.t;
+                let g = if s == 0.0 { 1.0 } else { -(-s).exp_m1() / s };
+                let fix = ((1.0 + 2.0 * x.tau * u0 * x.t * g) / (1.0 + 2.0 * x.tau * u0 * x.t)).sqrt();
+                let w = variant(x, 1.0, 1.0);
+                Vec3::new(w.x * fix, w.y * fix, w.z)
+            },
         ),
         mistake(
             "the spin decays: in the reduced model Omega_3 is constant",
@@ -1533,6 +1649,10 @@ pub fn rk4_step(seed: u64, student: impl Fn(DynField, Real, &State<3>, Real) -> 
         .collect();
     mistakes.extend([
         mistake(
+            "your step returns the increment alone: the new state is the old one plus it",
+            move |x: &StepInput| reference_rk4_step(&f(x), x.t, &x.y, x.h) - x.y,
+        ),
+        mistake(
             "that is one step of Euler's method: only the first stage is used",
             move |x: &StepInput| x.y + f(x)(x.t, &x.y) * x.h,
         ),
@@ -1550,8 +1670,89 @@ pub fn rk4_step(seed: u64, student: impl Fn(DynField, Real, &State<3>, Real) -> 
         |a: &State<3>, b: &State<3>| close(a, b, 1e-13),
     )
     .mistakes(mistakes)
+    .probe(rk4_weights_probe)
+    .probe(step_order_probe(
+        "classical RK4",
+        move |x: &StepInput| reference_rk4_step(&f(x), x.t, &x.y, x.h),
+        |y: &State<3>| *y,
+    ))
     .labels(&["y₁", "y₂", "y₃"])
     .run(|x| student(&fields()[x.field].1, x.t, &x.y, x.h))
+}
+
+/// The inputs a step probe tries beside `x`: the same field, nearby starts.
+fn nearby_steps(x: &StepInput) -> [StepInput; 3] {
+    [
+        *x,
+        StepInput {
+            t: x.t + 0.37,
+            y: x.y * 0.8 + State::<3>::repeat(0.1),
+            ..*x
+        },
+        StepInput {
+            t: x.t - 0.21,
+            y: x.y.map(|v| -v) + State::<3>::new(0.2, -0.1, 0.05),
+            ..*x
+        },
+    ]
+}
+
+/// The weights the student's RK4 step gives its four stages, fitted on
+/// three inputs: when the stages are the classical ones and only their
+/// weights differ, it says so (and what the weights look like).
+fn rk4_weights_probe(x: &StepInput, again: &Again<'_, StepInput, State<3>>) -> Option<String> {
+    let mut rows = Vec::new();
+    let mut rhs = Vec::new();
+    for s in nearby_steps(x) {
+        let theirs = again(&s)?;
+        let f = fields()[s.field].1;
+        let k1 = f(s.t, &s.y);
+        let k2 = f(s.t + s.h / 2.0, &(s.y + k1 * (s.h / 2.0)));
+        let k3 = f(s.t + s.h / 2.0, &(s.y + k2 * (s.h / 2.0)));
+        let k4 = f(s.t + s.h, &(s.y + k3 * s.h));
+        for c in 0..3 {
+            rows.extend([k1[c], k2[c], k3[c], k4[c]].map(|k| k * s.h));
+            rhs.push(theirs[c] - s.y[c]);
+        }
+    }
+    let a = nalgebra::DMatrix::from_row_slice(rhs.len(), 4, &rows);
+    let b = nalgebra::DVector::from_vec(rhs);
+    let w = a.clone().svd(true, true).solve(&b, 1e-14).ok()?;
+    let fits = (&a * &w - &b).norm() <= 1e-10 * (1.0 + b.norm());
+    let classical = nalgebra::DVector::from_vec(vec![1.0, 2.0, 2.0, 1.0]) / 6.0;
+    (fits && (&w - classical).norm() > 1e-8).then(|| {
+        let w6: Vec<String> = w.iter().map(|v| format!("{:.3}", 6.0 * v)).collect();
+        format!(
+            "your four stages are right, but you combine them with other weights: about ({}) over 6; the classical step counts the middle two twice and the ends once",
+            w6.join(", ")
+        )
+    })
+}
+
+/// How the student's step approaches the right one as h shrinks: a step
+/// that gets closer like a power of h is a consistent method with a
+/// coefficient or a node wrong; `part` picks the state out of an answer.
+fn step_order_probe<'a, T: 'a>(
+    method: &'static str,
+    reference: impl Fn(&StepInput) -> T + 'a,
+    part: impl Fn(&T) -> State<3> + 'a,
+) -> impl Fn(&StepInput, &Again<'_, StepInput, T>) -> Option<String> + 'a {
+    move |x, again| {
+        let dev = |h: Real| -> Option<Real> {
+            let s = StepInput { h, ..*x };
+            Some((part(&again(&s)?) - part(&reference(&s))).norm())
+        };
+        let (d1, d2, d3) = (dev(x.h)?, dev(x.h / 2.0)?, dev(x.h / 4.0)?);
+        if !(d1 > 0.0 && d2 > 0.0 && d3 > 0.0) {
+            return None;
+        }
+        let p = (d2 / d3).log2();
+        (p >= 1.5 && (d1 / d2).log2() >= 1.0).then(|| {
+            format!(
+                "your step is not {method}, but close to it, and closer as h shrinks (the difference falls like h^{p:.1}): a coefficient, a weight or the time of a stage is wrong; check each against the method's table"
+            )
+        })
+    }
 }
 
 /// Grade one Dormand–Prince 5(4) step: (y₅, y₅ − ŷ₄).
@@ -1600,7 +1801,28 @@ pub fn dp5_step(
                 (y5, e / x.h)
             },
         ),
+        mistake(
+            "your step returns the increment alone: the new state is the old one plus it",
+            move |x: &StepInput| {
+                let (y5, e) = reference(x);
+                (y5 - x.y, e)
+            },
+        ),
     ])
+    .probe(move |x: &StepInput, again: &Again<'_, StepInput, (State<3>, State<3>)>| {
+        // The step right, the estimate not: the fourth-order solution. (An
+        // estimate right but for signs is left to the shape, which names them.)
+        let (theirs, right) = (again(x)?, reference(x));
+        let signs_only = theirs
+            .1
+            .iter()
+            .zip(right.1.iter())
+            .all(|(a, b)| (a.abs() - b.abs()).abs() <= 1e-9 * (1e-300 + b.abs()));
+        (close(&theirs.0, &right.0, 1e-13) && !signs_only).then(|| {
+            "the step is right, the error estimate is not: it is the fifth-order result minus the embedded fourth-order one, which has weights of its own and uses a seventh stage, f at the end of the step from the fifth-order result".to_string()
+        })
+    })
+    .probe(step_order_probe("Dormand-Prince 5(4)", reference, |a: &(State<3>, State<3>)| a.0))
     .labels(&[
         "the step's y₁",
         "the step's y₂",
@@ -1737,6 +1959,13 @@ pub fn reduced_rk4(seed: u64, student: impl Fn(Real, Real, Vec3, Real, usize) ->
             |x: &RunInput| x.omega0,
         ),
         mistake(
+            "that is the exact Ω(t_end) of the closed form (4.15)-(4.16), not `steps` RK4 steps: the assignment asks for the numerical run, whose error the book measures against the closed form".to_string(),
+            |x: &RunInput| match SymmetricTop::new(x.ratio, x.tau) {
+                Ok(top) => sym::reduced_closed_form(&top, &x.omega0, x.t_end),
+                Err(_) => Vec3::repeat(Real::NAN),
+            },
+        ),
+        mistake(
             "the run ends at the wrong time: each step is t_end long (h = t_end/steps was not divided)".to_string(),
             |x: &RunInput| run_with(x, RK4, sym::reduced_ale_rhs, x.steps, x.t_end),
         ),
@@ -1751,9 +1980,41 @@ pub fn reduced_rk4(seed: u64, student: impl Fn(Real, Real, Vec3, Real, usize) ->
             },
         ),
     ]);
+    // The end: a run that does not move with t_end, or that stops (or goes
+    // on) after another number of the right steps.
+    let end_probe = |x: &RunInput, again: &Again<'_, RunInput, Vec3>| {
+        let theirs = again(x)?;
+        let later = again(&RunInput {
+            t_end: 1.37 * x.t_end,
+            ..*x
+        })?;
+        if close(&theirs, &later, 1e-11) {
+            return Some(
+                "your answer does not change with t_end: the run must end at t_end, so the step size is t_end over the number of steps".to_string(),
+            );
+        }
+        let top = SymmetricTop::new(x.ratio, x.tau).ok()?;
+        let h = x.t_end / x.steps as Real;
+        let f = |_t: Real, y: &State<3>| sym::reduced_ale_rhs(&top, y);
+        let mut y = x.omega0;
+        for k in 1..=3 * x.steps {
+            y = reference_rk4_step(&f, (k - 1) as Real * h, &y, h);
+            if k != x.steps && close(&theirs, &y, 1e-11) {
+                return Some(format!(
+                    "your run takes {k} steps of size t_end/steps, not steps = {}: it ends at t = {}, not at t_end = {} (count the loop's steps)",
+                    x.steps,
+                    crate::numbers::fmt_time(k as Real * h),
+                    crate::numbers::fmt_time(x.t_end)
+                ));
+            }
+        }
+        None
+    };
     let order_probe = |x: &RunInput, again: &Again<'_, RunInput, Vec3>| {
         let (order, finest) = observed_order(x, again)?;
-        Some(if (3.5..=4.6).contains(&order) && finest > 1e-7 {
+        Some(if !order.is_finite() {
+            "your answer does not change with the number of steps: it is not a run of `steps` RK4 steps".to_string()
+        } else if (3.5..=4.6).contains(&order) && finest > 1e-7 {
             "your run converges at order 4, but to a wrong answer: the right-hand side it integrates is not (4.12)-(4.14), or the start or the end is wrong".to_string()
         } else if order.abs() < 0.3 {
             "the error does not shrink as the steps get smaller: the run converges to a wrong answer (the step size, the number of steps, or the right-hand side)".to_string()
@@ -1776,6 +2037,7 @@ pub fn reduced_rk4(seed: u64, student: impl Fn(Real, Real, Vec3, Real, usize) ->
         |a: &Vec3, b: &Vec3| close(a, b, 1e-11),
     )
     .mistakes(mistakes)
+    .probe(end_probe)
     .probe(order_probe)
     .labels(&OMEGA)
     .run(|x| student(x.ratio, x.tau, x.omega0, x.t_end, x.steps))
@@ -1908,6 +2170,20 @@ pub fn shell_acceleration(seed: u64, student: impl Fn(Real, Real, C, C) -> C) ->
             "the retarded acceleration is missing: the field's mass acts with the acceleration one delay earlier",
             move |x: &ShellInput| -x.z / masses(x).0,
         ),
+        mistake(
+            "divided by the field's mass: the acceleration now is multiplied by the bare mass m0, so solve for it by dividing by m0",
+            move |x: &ShellInput| {
+                let (_, m_em) = masses(x);
+                (-x.z - x.z_ddot_ret * m_em) / m_em
+            },
+        ),
+        mistake(
+            "the retarded term is not divided by the bare mass: solving for Z''(t) divides everything on the other side by m0",
+            move |x: &ShellInput| {
+                let (m0, m_em) = masses(x);
+                -x.z / m0 - x.z_ddot_ret * m_em
+            },
+        ),
     ])
     .run(|x| student(x.tau0, x.delta, x.z, x.z_ddot_ret))
 }
@@ -1975,7 +2251,7 @@ pub fn characteristic_root(seed: u64, student: impl Fn(Real, Real) -> C) -> Grad
             .find(|(_, s)| (**s - theirs).norm() <= 1e-13 * s.norm() && (**s - last).norm() > 1e-10)
             .map(|(k, _)| {
                 format!(
-                    "you stopped Newton's method after {k} step{}: it has not converged yet. Iterate until the step is below rounding, not a fixed number of times",
+                    "you stopped Newton's method after {k} step{}: it has not converged yet. Iterate until the Newton step is below rounding (a fixed number of steps, or a test of |P(s)| against a tolerance far above rounding, stops too early)",
                     if k == 1 { "" } else { "s" }
                 )
             })

@@ -1031,6 +1031,12 @@ fn reduced_rk4_checks_the_value_not_only_the_order() {
         })
         .expect_err("the closed form plus 0.3 h^4 is not an RK4 run");
         assert_eq!(failed.assignment, "reduced_rk4");
+        // The closed form itself is named (its error is zero, so its
+        // order of convergence is no number at all).
+        let d = diagnosis(grading::reduced_rk4(seed, |r, tau, w0, t_end, _n| {
+            sym::reduced_closed_form(&top(r, tau), &w0, t_end)
+        }));
+        assert!(d.contains("closed form"), "{d}");
         // A real RK4 run passes to rounding, whatever its step count.
         grading::reduced_rk4(seed, |r, tau, w0, t_end, n| {
             rk4_run(r, tau, w0, n, t_end / n as f64)
@@ -1215,5 +1221,26 @@ fn inputs_change_between_gradings_and_a_table_of_one_fails_the_next() {
         };
         assert_ne!(seen(seed_a), seen(seed_b));
         assert_eq!(seen(seed_a), seen(seed_a));
+    }
+}
+
+/// An answer that is not finite (0/0 somewhere) is a common first attempt:
+/// its report names it in words, so that the CLI, which prints no bare
+/// `NaN`, shows the whole report instead of stopping at the line `got:`.
+#[test]
+fn a_non_finite_answer_is_reported_in_words_that_the_cli_prints() {
+    for seed in SEEDS {
+        let grade = grading::rk4_step(seed, |_f: DynField, _t, _y: &State<3>, _h| {
+            State::<3>::repeat(f64::NAN)
+        });
+        let failed = grade.expect_err("a NaN answer fails");
+        let text = failed.to_string();
+        assert_eq!(spintop::numbers::non_finite_word(&text), None, "{text}");
+        assert!(text.contains("got:       (not-a-number"), "{text}");
+        assert!(failed.diagnosis.contains("not finite"), "{text}");
+        let grade = grading::reduced_decay_time(seed, |_r, _tau, _w3| f64::INFINITY);
+        let text = grade.expect_err("an infinite answer fails").to_string();
+        assert_eq!(spintop::numbers::non_finite_word(&text), None, "{text}");
+        assert!(text.contains("infinity"), "{text}");
     }
 }

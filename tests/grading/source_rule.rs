@@ -176,6 +176,130 @@ fn every_known_trick_fails_with_no_shortcut_its_file_and_its_line() {
     }
 }
 
+/// Tricks found by a reviewer who had not read the rule: each one, before it
+/// was refused, let a copy with no assignment done grade 22 of 22 (the first
+/// one reads the verdict's token from the environment, writes the verdict
+/// file and exits with success) or run code of its own before `main`. A
+/// macro of the copy's own is refused where it is defined: what it builds
+/// out of its arguments can only be read once it is expanded.
+#[test]
+fn the_tricks_a_reviewer_found_fail_with_no_shortcut_too() {
+    let tricks: Vec<(&str, &str, &str, usize)> = vec![
+        (
+            "std and its module handed to a macro as separate words",
+            "src/ch2.rs",
+            "\nmacro_rules! call {\n    ($a:ident $b:ident $f:ident ($($x:expr),*)) => { $a::$b::$f($($x),*) };\n}\npub fn token() -> String {\n    call!(std env var(\"SPINTOP_GRADE_NONCE\")).unwrap_or_default()\n}\n",
+            1,
+        ),
+        (
+            "std pasted in front of a module named in the macro",
+            "src/ch2.rs",
+            "\nmacro_rules! leave {\n    ($m:ident) => { ::std::$m::exit(0) };\n}\npub fn done() {\n    leave!(process)\n}\n",
+            1,
+        ),
+        (
+            "std re-exported by a module of the copy, then reached through it",
+            "src/ch3.rs",
+            "\nmod x {\n    pub use std;\n}\npub fn pid() -> u32 {\n    self::x::std::process::id()\n}\n",
+            2,
+        ),
+        (
+            "std brought in as a name with `use std::{self}`",
+            "src/ch3.rs",
+            "\nuse std::{self};\npub fn pid() -> u32 {\n    self::std::process::id()\n}\n",
+            1,
+        ),
+        (
+            "assembly at global scope (safe to write, runs before main)",
+            "src/ch4.rs",
+            "\ncore::arch::global_asm!(\n    \".pushsection .init_array,\\\"aw\\\"\",\n    \".quad early\",\n    \".popsection\",\n    \".text\",\n    \"early: mov eax, 231\",\n    \"xor edi, edi\",\n    \"syscall\",\n);\n",
+            1,
+        ),
+        (
+            "global_asm! under another name",
+            "src/ch4.rs",
+            "\nuse std::arch::global_asm as early;\n",
+            1,
+        ),
+        (
+            "#[path] inside a cfg_attr inside a cfg_attr",
+            "src/lib.rs",
+            "\n#[cfg_attr(all(), cfg_attr(all(), path = \"notes.txt\"))]\nmod notes;\n",
+            1,
+        ),
+        (
+            "#[path] written by a macro",
+            "src/lib.rs",
+            "\nmacro_rules! module_at {\n    ($p:literal) => {\n        #[path = $p]\n        mod notes;\n    };\n}\nmodule_at!(\"notes.txt\");\n",
+            1,
+        ),
+    ];
+    for (i, (trick, file, snippet, offset)) in tricks.into_iter().enumerate() {
+        let dir = copy(&format!("reviewer-{i}"));
+        let start = append(&dir, file, snippet);
+        assert_refused(&dir, file, start + offset, trick);
+    }
+}
+
+/// Tricks found on a second pass.
+#[test]
+fn the_tricks_of_a_second_pass_fail_with_no_shortcut_too() {
+    let deep = format!(
+        "\npub fn f() -> i32 {{\n    {}1{}\n}}\n",
+        "(".repeat(50_000),
+        ")".repeat(50_000)
+    );
+    let tricks: Vec<(&str, &str, &str, usize)> = vec![
+        (
+            "the build's environment read by env!",
+            "src/ch2.rs",
+            "\npub fn home() -> &'static str {\n    env!(\"HOME\")\n}\n",
+            2,
+        ),
+        (
+            "std::fs further down a path",
+            "src/ch3.rs",
+            "\npub fn f() -> bool {\n    crate::ch4::std::fs::exists(\"x\").is_ok()\n}\n",
+            2,
+        ),
+        (
+            "brackets nested 50,000 deep (the parser's stack overflowed: spintop course grade aborted, no CSV for the class)",
+            "src/ch4.rs",
+            &deep,
+            2,
+        ),
+    ];
+    for (i, (trick, file, snippet, offset)) in tricks.into_iter().enumerate() {
+        let dir = copy(&format!("second-{i}"));
+        let start = append(&dir, file, snippet);
+        assert_refused(&dir, file, start + offset, trick);
+    }
+}
+
+/// A module whose file is a symbolic link to the repository's reference
+/// solution: the rule reads only real files, the compiler follows the link.
+/// Refused, on the student's machine and in the instructor's clean checkout.
+#[cfg(unix)]
+#[test]
+fn a_symbolic_link_to_the_solution_is_refused() {
+    let dir = copy("link");
+    let solution = repo().join("lessons/src/solutions/ch2.rs");
+    std::os::unix::fs::symlink(&solution, dir.join("src/done.rs")).unwrap();
+    append(&dir, "src/lib.rs", "\nmod done;\n");
+    assert_refused(&dir, "src/done.rs", 1, "a symbolic link");
+}
+
+/// The whole `src/` a symbolic link (to the repository's lessons, where the
+/// solutions are): refused without walking the folder it stands for.
+#[cfg(unix)]
+#[test]
+fn a_src_folder_that_is_a_symbolic_link_is_refused() {
+    let dir = copy("src-link");
+    std::fs::remove_dir_all(dir.join("src")).unwrap();
+    std::os::unix::fs::symlink(repo().join("lessons/src"), dir.join("src")).unwrap();
+    assert_refused(&dir, "src", 1, "src/ a symbolic link");
+}
+
 #[test]
 fn a_build_script_is_refused() {
     let dir = copy("build-script");
@@ -207,8 +331,33 @@ use spintop :: assignment :: C;
 use spintop::math::*;
 use std::io::Write;
 use std::f64::consts::PI;
+use std::fmt::Write as _;
 // spintop::physics::balance::larmor_rate is the reference; not used
 /* spintop::sim */
+#[derive(Debug, Clone, Copy)]
+struct Stage {
+    env: f64,
+    os: [f64; 2],
+}
+#[allow(clippy::many_single_char_names)]
+#[inline]
+fn helper(h: f64) -> f64 {
+    let env = Stage { env: h, os: [0.0; 2] };
+    let arch = std::array::from_fn::<f64, 3, _>(|i| i as f64 * env.env);
+    let mut text = String::new();
+    let _ = write!(text, \"{:?}\", env.os);
+    debug_assert!(matches!(arch.len(), 3));
+    std::mem::swap(&mut text, &mut String::new());
+    const { 2.0 } * arch[1]
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn small() {
+        assert_eq!(helper(1.0), 2.0);
+    }
+}
 pub fn f(jet: &Jet) -> Vec3 {
     let v = spintop::math::Vec3::zeros();
     let s = crate::ch4::reduced_ale_rhs(0.4, 1.0, v);

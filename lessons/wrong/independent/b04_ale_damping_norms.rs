@@ -1,0 +1,12 @@
+//! assignment: truncated_ale_rhs
+//! mistake: |d x Omega|^2 replaced by |d|^2 |Omega|^2 (the angle forgotten)
+//! says: |d|^2 |Omega|^2
+use spintop::assignment::{Mat3, Vec3};
+
+pub fn truncated_ale_rhs(inertia: Vec3, dipole: Vec3, omega: Vec3) -> Vec3 {
+    let w = dipole.cross(&omega);
+    let a = Mat3::from_diagonal(&inertia) + dipole * w.transpose();
+    let b = -omega.cross(&inertia.component_mul(&omega))
+        - dipole.norm_squared() * omega.norm_squared() * omega;
+    a.lu().solve(&b).unwrap_or_else(|| Vec3::repeat(f64::NAN))
+}

@@ -1,0 +1,13 @@
+//! assignment: euler_from_rotation
+//! mistake: theta = asin(sqrt(m13^2 + m23^2)): never above pi/2
+//! says: pi/2
+use spintop::assignment::{DynField, Mat3, State, Vec3};
+
+pub fn euler_from_rotation(m: &Mat3) -> (f64, f64, f64) {
+    let s = m[(0, 2)].hypot(m[(1, 2)]);
+    let theta = s.min(1.0).asin();
+    if s < 1e-12 {
+        return (m[(1, 0)].atan2(m[(0, 0)]), theta, 0.0);
+    }
+    (m[(0, 2)].atan2(-m[(1, 2)]), theta, m[(2, 0)].atan2(m[(2, 1)]))
+}

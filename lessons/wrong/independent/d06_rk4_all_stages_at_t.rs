@@ -1,0 +1,12 @@
+//! assignment: rk4_step
+//! mistake: every stage evaluated at time t (the stage times forgotten)
+//! says: start time
+use spintop::assignment::{DynField, Mat3, State, Vec3};
+
+pub fn rk4_step(f: DynField, t: f64, y: &State<3>, h: f64) -> State<3> {
+    let k1 = f(t, y);
+    let k2 = f(t, &(y + k1 * (h / 2.0)));
+    let k3 = f(t, &(y + k2 * (h / 2.0)));
+    let k4 = f(t, &(y + k3 * h));
+    y + (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (h / 6.0)
+}
