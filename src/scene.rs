@@ -372,8 +372,8 @@ pub struct StabilityScene {
 /// The model names of `[top] model`.
 pub const MODELS: [&str; 5] = ["truncated", "reduced", "general", "full", "auto"];
 /// The method names of `[solve] method`.
-pub const METHODS: [&str; 7] = [
-    "auto", "exact", "rk4", "dopri5", "dop853", "radau5", "forward",
+pub const METHODS: [&str; 8] = [
+    "auto", "exact", "rk4", "dopri5", "dop853", "radau5", "taylor", "forward",
 ];
 /// The shapes of `[units] shape`.
 pub const SHAPES: [&str; 4] = ["sphere", "cylinder", "ellipsoid", "molecule"];
@@ -1170,6 +1170,7 @@ fn top_scene(
         3 => MethodChoice::Dopri5,
         4 => MethodChoice::Dop853,
         5 => MethodChoice::Radau5,
+        6 => MethodChoice::Taylor,
         _ => MethodChoice::Forward,
     };
     let method_span = method_key.as_ref().map_or(own.clone(), |(_, s)| s.clone());
@@ -1180,11 +1181,14 @@ fn top_scene(
     if let Some(tier) = asked_tier {
         match (&tiers[tier], method) {
             (Model::General(_) | Model::GeneralReduced(_), MethodChoice::Exact) => {
-                return Err(ctx.at(&method_span, "[solve] method = \"exact\": the asymmetric top has no closed form; expected auto, rk4, dopri5, dop853 or radau5"));
+                return Err(ctx.at(&method_span, "[solve] method = \"exact\": the asymmetric top has no closed form; expected auto, rk4, dopri5, dop853, radau5 or taylor"));
             }
             (
                 Model::Full(_) | Model::GeneralFull(_),
-                MethodChoice::Rk4 | MethodChoice::Dopri5 | MethodChoice::Radau5,
+                MethodChoice::Rk4
+                | MethodChoice::Dopri5
+                | MethodChoice::Radau5
+                | MethodChoice::Taylor,
             ) => {
                 return Err(ctx.at(&method_span, format!("[solve] method = \"{method_name}\" does not apply to model = \"full\"; expected auto (its physical solution) or forward (the runaway)")));
             }
@@ -1195,7 +1199,7 @@ fn top_scene(
                 | Model::GeneralReduced(_),
                 MethodChoice::Forward,
             ) => {
-                return Err(ctx.at(&method_span, "[solve] method = \"forward\" belongs to model = \"full\"; expected auto, exact, rk4, dopri5, dop853 or radau5"));
+                return Err(ctx.at(&method_span, "[solve] method = \"forward\" belongs to model = \"full\"; expected auto, exact, rk4, dopri5, dop853, radau5 or taylor"));
             }
             _ => {}
         }

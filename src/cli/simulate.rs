@@ -30,7 +30,7 @@ enum ModelArg {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum MethodArg {
-    /// Closed forms where they exist, DOP853 for the rest.
+    /// Closed forms where they exist, DOP853 for the rest (Taylor at rtol <= 1e-9).
     Auto,
     /// Closed forms only.
     Exact,
@@ -42,6 +42,8 @@ enum MethodArg {
     Dop853,
     /// Radau IIA 5, implicit and L-stable, adaptive (--rtol): for stiff tops.
     Radau5,
+    /// Taylor series of variable order, adaptive (--rtol): the fastest at tight tolerances.
+    Taylor,
     /// Full model only: integrate (3.4) forward and watch it run away.
     Forward,
 }
@@ -54,6 +56,7 @@ fn method_name(m: MethodChoice) -> &'static str {
         MethodChoice::Dopri5 => "dopri5",
         MethodChoice::Dop853 => "dop853",
         MethodChoice::Radau5 => "radau5",
+        MethodChoice::Taylor => "taylor",
         MethodChoice::Forward => "forward",
     }
 }
@@ -169,6 +172,7 @@ impl SimulateArgs {
             MethodArg::Dopri5 => MethodChoice::Dopri5,
             MethodArg::Dop853 => MethodChoice::Dop853,
             MethodArg::Radau5 => MethodChoice::Radau5,
+            MethodArg::Taylor => MethodChoice::Taylor,
             MethodArg::Forward => MethodChoice::Forward,
         };
         // Each model takes only the methods that mean something for it; the
@@ -191,12 +195,12 @@ impl SimulateArgs {
             }
             (Model::General(_), MethodChoice::Exact) => {
                 return Err(bad(
-                    "the general model (3.3) has no closed form; use --method auto (DOP853), dop853, dopri5, radau5 or rk4",
+                    "the general model (3.3) has no closed form; use --method auto (DOP853, or Taylor at rtol <= 1e-9), taylor, dop853, dopri5, radau5 or rk4",
                 ));
             }
             (Model::GeneralReduced(_), MethodChoice::Exact) => {
                 return Err(bad(
-                    "the reduced model of a general top has no closed form; use --method auto (DOP853), dop853, dopri5, radau5 or rk4",
+                    "the reduced model of a general top has no closed form; use --method auto (DOP853, or Taylor at rtol <= 1e-9), taylor, dop853, dopri5, radau5 or rk4",
                 ));
             }
             _ => {}

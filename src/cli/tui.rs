@@ -113,7 +113,11 @@ pub fn scene_settings(scene: &Scene, warp: Option<Real>) -> Result<(Settings, St
         MethodChoice::Dopri5 => Method::Dopri5,
         MethodChoice::Dop853 => Method::Dop853,
         MethodChoice::Radau5 => Method::Radau5,
-        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => closed,
+        // NOTE: the live view steps a few model units per frame and offers
+        // its own methods; a scene's taylor (or auto) opens on its default.
+        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward | MethodChoice::Taylor => {
+            closed
+        }
     };
     let mut note = format!("scene {}", scene.name);
     let settings = match top.model {

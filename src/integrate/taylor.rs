@@ -239,6 +239,61 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
         &self.jet
     }
 
+    /// One step toward `t_stop`, of the size the series allows, never past
+    /// it ([`Stepper::step`] without a right-hand side: the stepper owns its
+    /// system). Calling it with `t_stop == t()` is a no-op.
+    pub fn advance(&mut self, t_stop: Real) -> Result<(), IntegrateError> {
+        check_t_stop(t_stop)?;
+        if t_stop == self.t {
+            return Ok(());
+        }
+        if self.stats.steps >= self.opts.max_steps {
+            return Err(IntegrateError::TooManySteps {
+                t: self.t,
+                max_steps: self.opts.max_steps,
+            });
+        }
+        self.build_jet();
+        let order_p = self.order;
+        if !self
+            .jet
+            .iter()
+            .all(|s| s[..=order_p].iter().all(|c| c.is_finite()))
+        {
+            return Err(IntegrateError::NonFinite { t: self.t });
+        }
+        let h = self.step_size().min(self.opts.h_max);
+        if h.is_nan() || h < underflow_limit(self.t) {
+            return Err(IntegrateError::StepSizeUnderflow {
+                t: self.t,
+                h: (t_stop - self.t).signum() * h,
+            });
+        }
+        let (h, t_new, _) = clip_step(self.t, t_stop, h);
+        let y_new = self.horner(h);
+        if !all_finite(&y_new) {
+            return Err(IntegrateError::NonFinite { t: self.t });
+        }
+        let p = order_p as u64;
+        self.stats.steps += 1;
+        self.stats.rhs_evals += p * (p + 1) / 2;
+        self.t_prev = self.t;
+        self.t = t_new;
+        self.y = y_new;
+        self.h_last = h;
+        Ok(())
+    }
+
+    /// The last step's own polynomial at `t` in `[t_prev(), t()]` (the
+    /// current state before any step): as accurate as the step, for one
+    /// Horner evaluation ([`Stepper::dense`] without a right-hand side).
+    pub fn value_at(&self, t: Real) -> State<N> {
+        if self.h_last == 0.0 || t == self.t {
+            return self.y;
+        }
+        self.horner(t - self.t_prev)
+    }
+
     /// Fill the jet at the current state, orders 0 to p.
     fn build_jet(&mut self) {
         for (series, &y) in self.jet.iter_mut().zip(self.y.iter()) {
@@ -306,60 +361,18 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
 impl<const N: usize, S: TaylorRhs<N>> Stepper<N> for Taylor<N, S> {
     stepper_getters!();
 
-    /// One step toward `t_stop`, of the size the series allows.
+    /// One step toward `t_stop` ([`Taylor::advance`]).
     ///
     /// NOTE: the method steps the recurrences of the system it owns; `rhs` is
     /// not called (pass the same system's [`Rhs`] view, as
     /// [`crate::integrate::solve`] needs one).
     fn step<R: Rhs<N>>(&mut self, _rhs: &R, t_stop: Real) -> Result<(), IntegrateError> {
-        check_t_stop(t_stop)?;
-        if t_stop == self.t {
-            return Ok(());
-        }
-        if self.stats.steps >= self.opts.max_steps {
-            return Err(IntegrateError::TooManySteps {
-                t: self.t,
-                max_steps: self.opts.max_steps,
-            });
-        }
-        self.build_jet();
-        let order_p = self.order;
-        if !self
-            .jet
-            .iter()
-            .all(|s| s[..=order_p].iter().all(|c| c.is_finite()))
-        {
-            return Err(IntegrateError::NonFinite { t: self.t });
-        }
-        let h = self.step_size().min(self.opts.h_max);
-        if h.is_nan() || h < underflow_limit(self.t) {
-            return Err(IntegrateError::StepSizeUnderflow {
-                t: self.t,
-                h: (t_stop - self.t).signum() * h,
-            });
-        }
-        let (h, t_new, _) = clip_step(self.t, t_stop, h);
-        let y_new = self.horner(h);
-        if !all_finite(&y_new) {
-            return Err(IntegrateError::NonFinite { t: self.t });
-        }
-        let p = order_p as u64;
-        self.stats.steps += 1;
-        self.stats.rhs_evals += p * (p + 1) / 2;
-        self.t_prev = self.t;
-        self.t = t_new;
-        self.y = y_new;
-        self.h_last = h;
-        Ok(())
+        self.advance(t_stop)
     }
 
-    /// The step's own polynomial at `t` in `[t_prev(), t()]`: as accurate as
-    /// the step, at the cost of one Horner evaluation.
+    /// The step's own polynomial at `t` ([`Taylor::value_at`]).
     fn dense<R: Rhs<N>>(&mut self, _rhs: &R, t: Real) -> State<N> {
-        if self.h_last == 0.0 || t == self.t {
-            return self.y;
-        }
-        self.horner(t - self.t_prev)
+        self.value_at(t)
     }
 
     fn reset(&mut self, y: State<N>) {

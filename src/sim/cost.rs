@@ -111,7 +111,10 @@ pub fn estimate(
             "the full ALE (3.4)'s physical solution (a table with hOmega <= 0.05 and h <= tau/4)"
                 .into(),
         ),
-        (Model::Reduced(top), MethodChoice::Dopri5 | MethodChoice::Dop853) => {
+        (
+            Model::Reduced(top),
+            MethodChoice::Dopri5 | MethodChoice::Dop853 | MethodChoice::Taylor,
+        ) => {
             // The reduced model's damping rate never falls below tau k^2
             // (k = (I3/I1) Omega3 is constant), and an explicit method's step
             // cannot exceed its stability limit over that rate: about 3.3/λ
@@ -119,10 +122,13 @@ pub fn estimate(
             // measures 19378 DP5 steps at S = 1000, t = 10; this gives 19393).
             let k = top.ratio() * omega0.z;
             let rate = top.tau() * k * k;
-            let limit = if choice == MethodChoice::Dopri5 {
-                3.3
-            } else {
-                6.0
+            // NOTE: the Taylor method's step on y' = −λy is ρ/e² with
+            // ρ ≈ (p!)^(1/p)/λ, about 0.6/λ at order 11 (rtol 1e-8) and
+            // 0.95/λ at order 18.
+            let limit = match choice {
+                MethodChoice::Dopri5 => 3.3,
+                MethodChoice::Taylor => 0.6,
+                _ => 6.0,
             };
             let stiff = t_last * rate / limit;
             if stiff > angle {
@@ -150,6 +156,7 @@ pub fn estimate(
             MethodChoice::Dopri5
             | MethodChoice::Dop853
             | MethodChoice::Radau5
+            | MethodChoice::Taylor
             | MethodChoice::Auto
             | MethodChoice::Exact
             | MethodChoice::Forward,
@@ -168,6 +175,7 @@ fn choice_name(choice: MethodChoice, model: &Model) -> &'static str {
         MethodChoice::Dopri5 => "DP5",
         MethodChoice::Dop853 => "DOP853",
         MethodChoice::Radau5 => "Radau IIA 5",
+        MethodChoice::Taylor => "the Taylor method",
         _ if matches!(model, Model::General(_)) => "DOP853 on the general top (3.3)",
         _ => "the integration",
     }

@@ -10,6 +10,7 @@
 //! | [`Method::Physical`] | rtol | full ALE (3.4): backward DOP853 + shooting | – |
 //! | [`Method::Radau5`] | rtol | truncated, reduced, general | – |
 //! | [`Method::RotationDamping`] | step h | reduced: exact rotation ∘ damping splitting | – |
+//! | [`Method::Taylor`] | rtol | truncated, reduced, general (each model's own recurrences) | the same, with the orientation quaternion |
 //!
 //! "Ω alone" integrates Ω̇ = F(Ω), the three equations a student would hand to
 //! SciPy, through [`crate::integrate::solve`]: this is the row the peers are
@@ -19,9 +20,10 @@
 
 use super::problem::{OmegaRhs, Problem, ProblemKind};
 use super::{KnobKind, Solution, Solver, Target};
+use crate::integrate::taylor::{GeneralTruncated, SymmetricReduced, SymmetricTruncated};
 use crate::integrate::{
     self, AdaptiveOptions, Composition, Dop853, Dopri5, IntegrateError, Radau5, ReducedFlow, Rhs,
-    Rk4, Splitting, Stepper,
+    Rk4, Splitting, Stepper, Taylor, TaylorRhs,
 };
 use crate::math::{Real, State, Vec3};
 use crate::physics::symmetric_top::{reduced_ale_rhs, reduced_closed_form_many, truncated_ale_rhs};
@@ -58,6 +60,10 @@ pub enum Method {
     /// The reduced model split into its rotation and its damping, each solved
     /// exactly (they commute, so the split is exact for any step h).
     RotationDamping,
+    /// The Taylor series method (Jorba & Zou's order and step), on each
+    /// model's Taylor coefficients by recurrence; its dense output is the
+    /// step's own polynomial.
+    Taylor,
     // NOTE: Strang and Yoshida-4 split the free top (τ = 0), which is not one
     // of the four problems here; stability row 4 measures them.
 }
@@ -65,7 +71,7 @@ pub enum Method {
 
 impl Method {
     /// Every method built so far.
-    pub const ALL: [Method; 8] = [
+    pub const ALL: [Method; 9] = [
         Method::ClosedForm,
         Method::ClosedFormDop853,
         Method::Rk4,
@@ -74,6 +80,7 @@ impl Method {
         Method::Physical,
         Method::Radau5,
         Method::RotationDamping,
+        Method::Taylor,
     ];
 
     /// The name in tables and CSV files.
@@ -87,6 +94,7 @@ impl Method {
             Method::Physical => "physical",
             Method::Radau5 => "radau5",
             Method::RotationDamping => "rotation-damping",
+            Method::Taylor => "taylor",
         }
     }
 
@@ -99,7 +107,8 @@ impl Method {
             | Method::Dopri5
             | Method::Dop853
             | Method::Physical
-            | Method::Radau5 => KnobKind::Rtol,
+            | Method::Radau5
+            | Method::Taylor => KnobKind::Rtol,
         }
     }
 
@@ -117,6 +126,8 @@ impl Method {
             (Method::Radau5, Target::Omega) => problem != P::Full,
             (Method::RotationDamping, Target::Omega) => problem == P::Reduced,
             (Method::Radau5 | Method::RotationDamping, Target::OmegaOrientation) => false,
+            (Method::Taylor, Target::Omega) => problem != P::Full,
+            (Method::Taylor, Target::OmegaOrientation) => problem != P::Full,
         }
     }
 }
@@ -317,6 +328,9 @@ fn solve_omega(
         .omega_rhs()
         .ok_or_else(|| not_applicable(method, problem))?;
     let knob = knob_value(method, knob)?;
+    if method == Method::Taylor {
+        return taylor_omega(problem, rhs, knob, y0, times);
+    }
     // NOTE: the model is chosen here, once per solve: each arm hands the
     // stepper a right-hand side of its own type, so the step loop is
     // monomorphic in it and no evaluation matches on the model.
@@ -355,11 +369,39 @@ fn integrate_omega<R: Rhs<3>>(
         Method::ClosedForm
         | Method::ClosedFormDop853
         | Method::Physical
-        | Method::RotationDamping => {
+        | Method::RotationDamping
+        | Method::Taylor => {
             return Err(not_applicable(method, problem));
         }
     })
 }
+
+// ANCHOR: taylor_omega
+/// Ω alone by the Taylor method: each model hands the stepper its own
+/// recurrences (the [`Rhs`] view is what [`integrate::solve`] is given).
+fn taylor_omega(
+    problem: &Problem,
+    rhs: OmegaRhs,
+    rtol: Real,
+    y0: Vec3,
+    times: &[Real],
+) -> Result<Solution, RunError> {
+    fn run<S: TaylorRhs<3> + Rhs<3> + Copy>(
+        system: S,
+        y0: Vec3,
+        opts: AdaptiveOptions,
+        times: &[Real],
+    ) -> Result<Solution, IntegrateError> {
+        run_stepper(Taylor::new(system, 0.0, y0, opts)?, &system, times)
+    }
+    let opts = adaptive(problem, rtol)?;
+    Ok(match rhs {
+        OmegaRhs::Truncated(top) => run(SymmetricTruncated(top), y0, opts, times)?,
+        OmegaRhs::Reduced(top) => run(SymmetricReduced(top), y0, opts, times)?,
+        OmegaRhs::General(top) => run(GeneralTruncated(top), y0, opts, times)?,
+    })
+}
+// ANCHOR_END: taylor_omega
 
 /// Ω and O(t), the way `spintop simulate` computes them.
 fn solve_with_orientation(
@@ -375,6 +417,7 @@ fn solve_with_orientation(
         Method::Rk4 => MethodChoice::Rk4,
         Method::Dopri5 => MethodChoice::Dopri5,
         Method::Dop853 => MethodChoice::Dop853,
+        Method::Taylor => MethodChoice::Taylor,
         Method::Physical | Method::Radau5 | Method::RotationDamping => {
             return Err(not_applicable(method, problem));
         }

@@ -472,3 +472,102 @@ fn budget_and_bad_options_are_reported() {
     solve(&mut t, &system, &[1e6]).unwrap();
     assert_eq!((t.stats().steps, *t.y()), (1, Vec3::zeros()));
 }
+
+/// `auto` integrates an asymmetric top with the Taylor method exactly where
+/// the measured crossover puts it (rtol ≤ `TAYLOR_AUTO_RTOL`) and with
+/// DOP853 above; the scene planner's label and the simulation agree, and the
+/// symmetric tops keep their closed forms at any rtol.
+#[test]
+fn auto_uses_the_taylor_method_only_below_the_measured_crossover() {
+    use spintop::scene::plan::taylor_where_it_wins;
+    use spintop::sim::{
+        InitialState, MethodChoice, MethodOptions, Model, Simulation, TAYLOR_AUTO_RTOL,
+    };
+    let initial = InitialState {
+        omega: Vec3::new(0.0, 0.1, 0.2),
+        rotation: Mat3::identity(),
+    };
+    let label = |model: Model, rtol: Real| {
+        let options = MethodOptions {
+            rtol,
+            ..MethodOptions::default()
+        };
+        Simulation::new(model, MethodChoice::Auto, options, initial, Some(10.0))
+            .unwrap()
+            .method()
+            .label()
+    };
+    for (rtol, want) in [
+        (1e-6, "dop853"),
+        (2.0 * TAYLOR_AUTO_RTOL, "dop853"),
+        (TAYLOR_AUTO_RTOL, "taylor"),
+        (1e-14, "taylor"),
+    ] {
+        for model in [
+            Model::General(general_top()),
+            Model::GeneralReduced(general_top()),
+        ] {
+            assert_eq!(label(model, rtol), want, "{model:?} at {rtol:e}");
+        }
+        assert_eq!(taylor_where_it_wins(rtol).0, want);
+        let top = SymmetricTop::figure();
+        assert_eq!(label(Model::Truncated(top), rtol), "exact");
+        assert_eq!(label(Model::Reduced(top), rtol), "exact+dop853");
+    }
+}
+
+/// The simulation's Taylor engine (Ω and the orientation quaternion) against
+/// the 40-digit references, Ω and O at all 200 points, at rtol 1e-14; and it
+/// refuses the full ALE by name.
+#[test]
+fn simulation_with_the_taylor_method_matches_the_references() {
+    use spintop::sim::{MethodChoice, MethodOptions, Model, SimError, Simulation};
+    for kind in [
+        ProblemKind::Truncated,
+        ProblemKind::Reduced,
+        ProblemKind::General,
+    ] {
+        let problem = Problem::new(kind).unwrap();
+        let options = MethodOptions {
+            rtol: 1e-14,
+            ..MethodOptions::default()
+        };
+        let mut sim = Simulation::new(
+            *problem.model(),
+            MethodChoice::Taylor,
+            options,
+            *problem.initial(),
+            Some(problem.t_end()),
+        )
+        .unwrap();
+        let samples = sim.run(problem.times()).unwrap();
+        let omega: Vec<Vec3> = samples.iter().map(|s| s.omega_vec()).collect();
+        let reference = problem.reference();
+        let e_omega = omega_error(&reference.omega, &omega);
+        let e_rot = reference
+            .rotation
+            .as_ref()
+            .unwrap()
+            .iter()
+            .zip(&samples)
+            .map(|(r, s)| rotation_angle(r, &s.rotation_matrix()))
+            .fold(0.0, Real::max);
+        assert!(
+            e_omega < 1e-14 && e_rot < 1e-13,
+            "{kind:?}: {e_omega:e} {e_rot:e}"
+        );
+        assert_eq!(sim.method().label(), "taylor");
+        assert!(sim.stats().steps > 0 && sim.stats().rejected == 0);
+    }
+    let full = Simulation::new(
+        Model::Full(SymmetricTop::figure()),
+        MethodChoice::Taylor,
+        MethodOptions::default(),
+        *Problem::new(ProblemKind::Truncated).unwrap().initial(),
+        Some(10.0),
+    );
+    assert!(
+        matches!(full, Err(SimError::MethodNotForModel("full"))),
+        "{full:?}"
+    );
+}
