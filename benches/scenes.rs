@@ -10,7 +10,8 @@
 //! ```
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use spintop::cli::run::{answer, load};
+use spintop::scene::answer::answer;
+use spintop::scene::catalogue::find;
 use std::hint::black_box;
 
 fn scenes(c: &mut Criterion) {
@@ -22,7 +23,10 @@ fn scenes(c: &mut Criterion) {
         "nanoellipsoid-tumbling",
         "figure-2",
     ] {
-        let scene = load(name).expect("a catalogue scene");
+        let scene = find(name)
+            .expect("a catalogue scene")
+            .scene()
+            .expect("it parses");
         g.bench_function(name, |b| {
             b.iter(|| answer(black_box(&scene)).expect("an answer"))
         });

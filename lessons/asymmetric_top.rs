@@ -30,10 +30,9 @@ fn chapter_top(scale: Real) -> GeneralTop {
 /// Ω at `times` for a model of the general top, by DOP853 at rtol 1e-12.
 fn omega_at(model: Model, omega0: Vec3, times: &[Real]) -> Vec<Vec3> {
     let initial = InitialState::new(omega0, EulerAngles::new(0.0, 0.0, 0.0)).expect("finite");
-    let options = MethodOptions {
-        rtol: 1e-12,
-        ..MethodOptions::default()
-    };
+    let options = MethodOptions::default()
+        .with_rtol(1e-12)
+        .expect("a valid tolerance");
     let last = times.last().copied();
     let mut sim = Simulation::new(model, MethodChoice::Auto, options, initial, last)
         .expect("the run is cheap");
@@ -204,7 +203,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         let along = wr.dot(&d).abs() / (wr.norm() * d.norm());
         writeln!(
             out,
-            "  {what}: truncated {et:.3e}, reduced {er:.3e} (its Omega makes cos = {along:.4} with d)"
+            "  {what}: truncated {et:.3e}, reduced {er:.3e} (its Omega makes |cos| = {along:.4} with d)"
         )?;
     }
     Ok(())

@@ -123,10 +123,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         ("dopri5", MethodChoice::Dopri5),
         ("dop853", MethodChoice::Dop853),
     ] {
-        let options = MethodOptions {
-            rtol: 1e-10,
-            step: 0.05,
-        };
+        let options = MethodOptions::new(1e-10, 0.05).expect("valid options");
         let mut sim = Simulation::new(Model::General(asym), method, options, initial, Some(1000.0))
             .expect("valid");
         let mut worst: f64 = 0.0;

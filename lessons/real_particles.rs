@@ -6,12 +6,13 @@
 //! The book shows this program's output; `tests/project/book.rs` checks that what the
 //! book shows is what the program prints.
 
-use spintop::cli::Format;
-use spintop::cli::run::{answer, write_report};
+use spintop::output::Format;
 use spintop::physics::particle::{
     DEBYE_ESU_CM, Milestones, Particle, SECONDS_PER_YEAR, SPEED_OF_LIGHT_CM_S, Shape,
 };
+use spintop::scene::answer::answer;
 use spintop::scene::catalogue::find;
+use spintop::scene::write::write_report;
 use std::io::{self, Write};
 
 fn years(tau_units: Option<f64>, tau_s: f64) -> String {
@@ -90,7 +91,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         .expect("in the catalogue")
         .scene()
         .expect("the catalogue parses");
-    let report = answer(&scene).map_err(|e| io::Error::other(e.message()))?;
+    let report = answer(&scene).map_err(|e| io::Error::other(e.to_string()))?;
     let mut text = Vec::new();
     write_report(&mut text, &report, Format::Table)?;
     out.write_all(&text)

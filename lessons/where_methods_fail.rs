@@ -7,11 +7,9 @@
 //! The book shows this program's output; `tests/project/book.rs` checks that what the
 //! book shows is what the program prints.
 
-use spintop::integrate::{
-    AdaptiveOptions, Composition, Dop853, FreeRigidBody, RigidBodyState, Rk4, Splitting, Stepper,
-    solve,
-};
+use spintop::integrate::{AdaptiveOptions, Composition, Dop853, Rk4, Splitting, Stepper, solve};
 use spintop::math::{Mat3, State, Vec3};
+use spintop::physics::free_top::{FreeRigidBody, RigidBodyState};
 use spintop::physics::full_ale::symmetric_full_ale_rhs;
 use spintop::physics::shell::ShellModel;
 use spintop::physics::symmetric_top::{SymmetricTop, reduced_ale_rhs, reduced_amplitude};

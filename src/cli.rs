@@ -1,7 +1,7 @@
 //! The `spintop` command line: a thin shell over [`crate::sim`].
 //!
 //! Raw arguments are parsed by clap, then validated into the objects the core
-//! runs on ([`simulate::SimulateConfig`]), then run; every failure becomes one line on
+//! runs on ([`crate::output::simulate::SimulateConfig`]), then run; every failure becomes one line on
 //! stderr and an exit code:
 //!
 //! | code | meaning |
@@ -10,11 +10,12 @@
 //! | 2 | bad input: malformed or unphysical arguments |
 //! | 3 | numerical failure: the run was stopped, with the time and what to try |
 
-use crate::integrate::IntegrateError;
 use crate::math::Real;
-pub(crate) use crate::present::parse_number;
+pub(crate) use crate::numbers::parse_number;
+use crate::output::Failure;
+pub use crate::output::Format;
 use crate::sim::SimError;
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Parser, Subcommand};
 use std::ffi::OsString;
 use std::io::{self, Write};
 use std::process::ExitCode;
@@ -24,6 +25,7 @@ pub mod bench;
 pub mod book;
 pub mod course;
 pub mod figure;
+pub mod gate;
 pub mod learn;
 pub mod orbit;
 pub mod plot;
@@ -99,17 +101,6 @@ enum Command {
     Book(book::BookArgs),
 }
 
-/// Output format.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Format {
-    /// Aligned columns for reading.
-    Table,
-    /// Comma-separated values with a header row, full precision.
-    Csv,
-    /// One JSON object (the documented contract).
-    Json,
-}
-
 pub(crate) fn parse_list(s: &str) -> Result<Vec<Real>, String> {
     s.split(',').map(parse_number).collect()
 }
@@ -153,8 +144,6 @@ pub(crate) fn parse_vec3(s: &str) -> Result<[Real; 3], String> {
 pub enum CliError {
     /// Malformed or unphysical input.
     BadInput(String),
-    /// The integrator stopped.
-    Numerical(IntegrateError),
     /// A run stopped for a numerical or modelling reason; the message carries
     /// the time and what to try.
     Stopped(String),
@@ -170,7 +159,7 @@ impl CliError {
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::BadInput(_) => EXIT_BAD_INPUT,
-            CliError::Numerical(_) | CliError::Stopped(_) => EXIT_NUMERICAL,
+            CliError::Stopped(_) => EXIT_NUMERICAL,
             CliError::Io(_) => 1,
             // As a shell reports a process a signal stopped: 128 + its number.
             CliError::Signal(n, _) => u8::try_from(128 + n).unwrap_or(EXIT_NUMERICAL),
@@ -181,7 +170,6 @@ impl CliError {
     pub fn message(&self) -> String {
         match self {
             CliError::BadInput(msg) | CliError::Stopped(msg) => msg.clone(),
-            CliError::Numerical(e) => format!("{e}; {}", advice(e)),
             CliError::Io(e) => format!("cannot write output: {e}"),
             CliError::Signal(_, name) => format!("stopped by {name}; the terminal is restored"),
         }
@@ -190,101 +178,32 @@ impl CliError {
 
 impl From<SimError> for CliError {
     fn from(e: SimError) -> Self {
+        CliError::from(Failure::from(e))
+    }
+}
+
+impl From<Failure> for CliError {
+    fn from(e: Failure) -> Self {
         match e {
-            SimError::Integrate(IntegrateError::InvalidOption(msg)) => CliError::BadInput(msg),
-            SimError::Integrate(e) => CliError::Numerical(e),
-            SimError::NonFiniteSample(t) => CliError::Numerical(IntegrateError::NonFinite { t }),
-            SimError::Physical(crate::sim::physical::PhysicalError::Integrate(e)) => {
-                CliError::Numerical(e)
-            }
-            SimError::Physical(e @ crate::sim::physical::PhysicalError::NoConvergence(_)) => {
-                CliError::Stopped(format!("{e}; try a looser --rtol or a shorter --t-end"))
-            }
-            SimError::Physical(e @ crate::sim::physical::PhysicalError::NotSeparated { .. }) => {
-                CliError::Stopped(e.to_string())
-            }
-            SimError::MethodNotForModel(model) => CliError::BadInput(format!(
-                "this method does not apply to the {model} model: --method forward is for --model full, which takes auto or forward"
-            )),
-            SimError::NoClosedForm(model) => CliError::BadInput(format!(
-                "the {model} model has no closed form; use --method auto or dop853"
-            )),
-            other => CliError::BadInput(other.to_string()),
+            Failure::BadInput(msg) => CliError::BadInput(msg),
+            Failure::Stopped(msg) => CliError::Stopped(msg),
         }
     }
 }
 
-/// What to try after a numerical failure.
-fn advice(e: &IntegrateError) -> &'static str {
-    match e {
-        IntegrateError::NonFinite { .. } => {
-            "the step is too large for this problem: try a smaller --step, or an adaptive method (--method dop853)"
-        }
-        IntegrateError::StepSizeUnderflow { .. } => {
-            "the problem is too stiff or singular here: try --method exact where a closed form exists, a looser --rtol, or a smaller --omega"
-        }
-        IntegrateError::TooManySteps { .. } => {
-            "the run needs too many steps: shorten --t-end, loosen --rtol, enlarge --step, or use --method exact"
-        }
-        IntegrateError::NoConvergence { .. } => {
-            "the implicit method's Newton iteration failed: try a smaller --step or an adaptive method"
-        }
-        IntegrateError::InvalidOption(_) => "check the method options",
-    }
-}
-
-/// A simulation's failure, with advice that applies to the model and the
-/// method in use: it names only options that exist for them and are not
-/// already chosen (no "--method exact" for a model without a closed form or a
-/// run already exact, no "--step" for an adaptive method).
+/// A simulation's failure, with advice for the model and the method in use
+/// (see [`crate::output::sim_failure`]).
 pub(crate) fn sim_failure(
     e: SimError,
     model: &crate::sim::Model,
     choice: crate::sim::MethodChoice,
 ) -> CliError {
-    use crate::sim::MethodChoice as M;
-    let integrate = match &e {
-        SimError::Integrate(ie) if !matches!(ie, IntegrateError::InvalidOption(_)) => ie.clone(),
-        SimError::NonFiniteSample(t) => IntegrateError::NonFinite { t: *t },
-        SimError::Physical(crate::sim::physical::PhysicalError::Integrate(ie)) => ie.clone(),
-        _ => return CliError::from(e),
-    };
-    let closed = model.has_closed_form();
-    let full = matches!(model, crate::sim::Model::Full(_));
-    let exact = if closed && matches!(choice, M::Rk4 | M::Dopri5 | M::Dop853) {
-        ", or --method exact (the closed forms take no steps)"
-    } else {
-        ""
-    };
-    let advice: String = match (&integrate, choice) {
-        (IntegrateError::NonFinite { .. }, M::Rk4) => {
-            format!("RK4's fixed step is too large for these rates (its stability limit is about 2.8 over the largest decay rate): use a smaller --step, or an adaptive method (--method dop853){exact}")
-        }
-        (IntegrateError::NonFinite { .. }, _) if full => {
-            "the full ALE's solution left the range of a double: use smaller --omega or a shorter --t-end, or compare --model reduced".into()
-        }
-        (IntegrateError::NonFinite { .. }, _) => {
-            format!("the rates overflow a double: use a smaller --omega (in units of 1/tau){exact}")
-        }
-        (IntegrateError::StepSizeUnderflow { .. }, _) => {
-            if closed && choice != M::Exact && choice != M::Auto {
-                "the problem is stiff or singular here: --method exact takes no steps; else use a smaller --omega".into()
-            } else {
-                "the problem is stiff or singular here: use a smaller --omega or a looser --rtol".into()
-            }
-        }
-        (IntegrateError::TooManySteps { .. }, M::Rk4) => {
-            format!("use a larger --step (if RK4 stays stable) or a shorter --t-end{exact}")
-        }
-        (IntegrateError::TooManySteps { .. }, _) => {
-            format!("use a looser --rtol or a shorter --t-end{exact}")
-        }
-        (IntegrateError::NoConvergence { .. }, _) => {
-            "the implicit method's Newton iteration failed: use an adaptive method or a smaller --omega".into()
-        }
-        (IntegrateError::InvalidOption(_), _) => "check the method options".into(),
-    };
-    CliError::Stopped(format!("{integrate}; {advice}"))
+    CliError::from(crate::output::sim_failure(
+        e,
+        model,
+        choice,
+        crate::output::Entry::CommandLine,
+    ))
 }
 
 pub(crate) fn bad(msg: impl Into<String>) -> CliError {
@@ -293,48 +212,16 @@ pub(crate) fn bad(msg: impl Into<String>) -> CliError {
 
 impl From<io::Error> for CliError {
     fn from(e: io::Error) -> Self {
+        // The gate's refusal of a non-finite number in prose is a numerical
+        // failure (exit 3), not a failed write.
+        if let Some(refusal) = e
+            .get_ref()
+            .filter(|inner| inner.is::<gate::NonFiniteText>())
+        {
+            return CliError::Stopped(refusal.to_string());
+        }
         CliError::Io(e)
     }
-}
-
-/// Format a number for the table: fixed where that reads well, else exponent.
-pub(crate) fn num(x: Real) -> String {
-    fixed_or_exp(x, 7, 6, 1e6)
-}
-
-/// `x` with `digits` decimals when it is 0 or 1e-3 ≤ |x| < `upper`, else in
-/// exponent notation with `exp_digits` decimals in the mantissa.
-pub(crate) fn fixed_or_exp(x: Real, digits: usize, exp_digits: usize, upper: Real) -> String {
-    // A value that rounds to zero in the fixed form is printed as 0, not -0.
-    let x = if x == 0.0 { 0.0 } else { x };
-    if x == 0.0 || (1e-3..upper).contains(&x.abs()) {
-        let fixed = format!("{x:.digits$}");
-        if fixed.starts_with('-') && fixed[1..].chars().all(|c| c == '0' || c == '.') {
-            return fixed[1..].to_string();
-        }
-        fixed
-    } else {
-        format!("{x:.exp_digits$e}")
-    }
-}
-
-/// One row of an aligned table: every cell right-aligned in `width` columns.
-pub(crate) fn write_aligned<S: std::fmt::Display>(
-    out: &mut impl Write,
-    cells: impl IntoIterator<Item = S>,
-    width: usize,
-) -> io::Result<()> {
-    for c in cells {
-        // A cell as wide as its column still gets a space before it, so that
-        // columns never run together.
-        let c = c.to_string();
-        if c.chars().count() >= width {
-            write!(out, " {c}")?;
-        } else {
-            write!(out, "{c:>width$}")?;
-        }
-    }
-    writeln!(out)
 }
 
 /// Reads a text file given on the command line, refusing what is not one: a
@@ -378,57 +265,6 @@ pub(crate) fn read_text_file(
         )));
     }
     String::from_utf8(bytes).map_err(|_| bad(format!("{shown}: the {what} is not UTF-8 text")))
-}
-
-/// The path of the first number in `value` that is NaN or infinite
-/// (`samples[3].larmor[2]`), if any: every command checks its output with this
-/// before writing it, so no NaN, `inf` or JSON `null` is ever reported as a
-/// result.
-///
-/// NOTE: the output is walked as a `toml::Value`, which, unlike JSON, keeps
-/// NaN and infinities as numbers; `None` fields are simply absent there.
-pub(crate) fn first_non_finite<T: serde::Serialize>(value: &T) -> Option<String> {
-    fn walk(v: &toml::Value, path: &mut String) -> bool {
-        match v {
-            toml::Value::Float(x) => !x.is_finite(),
-            toml::Value::Array(items) => items.iter().enumerate().any(|(i, item)| {
-                let len = path.len();
-                path.push_str(&format!("[{i}]"));
-                let found = walk(item, path);
-                if !found {
-                    path.truncate(len);
-                }
-                found
-            }),
-            toml::Value::Table(table) => table.iter().any(|(k, item)| {
-                let len = path.len();
-                if !path.is_empty() {
-                    path.push('.');
-                }
-                path.push_str(k);
-                let found = walk(item, path);
-                if !found {
-                    path.truncate(len);
-                }
-                found
-            }),
-            _ => false,
-        }
-    }
-    let value = toml::Value::try_from(value).ok()?;
-    let mut path = String::new();
-    walk(&value, &mut path).then_some(path)
-}
-
-/// Refuses an output holding a NaN or an infinity: a numerical failure (exit
-/// 3) that names where, with `advice` for the command at hand.
-pub(crate) fn ensure_finite<T: serde::Serialize>(value: &T, advice: &str) -> Result<(), CliError> {
-    match first_non_finite(value) {
-        None => Ok(()),
-        Some(path) => Err(CliError::Stopped(format!(
-            "the result is not a finite number at {path}: the inputs are beyond what a double can carry through this computation; {advice}"
-        ))),
-    }
 }
 
 /// clap's report on one line: the error, the missing arguments, the possible
@@ -489,25 +325,28 @@ where
             return ExitCode::from(EXIT_BAD_INPUT);
         }
     };
+    // Every command writes its output through the gate, and only through it.
+    let mut gate = gate::Gate::new(stdout);
+    let out = &mut gate;
     let result = match cli.command {
         // No subcommand opens the live view, the program's main job.
-        None => tui::execute(tui::TuiArgs::default(), stdout),
-        Some(Command::Simulate(args)) => simulate::execute(args, stdout, stderr),
-        Some(Command::Balance(args)) => balance::execute(args, stdout),
-        Some(Command::Orbit(args)) => orbit::execute(args, stdout),
-        Some(Command::Shell(args)) => shell::execute(args, stdout, stderr),
-        Some(Command::Tui(args)) => tui::execute(args, stdout),
-        Some(Command::Plot(args)) => plot::execute(args, stdout),
-        Some(Command::Stability(args)) => stability::execute(args, stdout),
-        Some(Command::Run(args)) => run::execute(args, stdout, stderr),
-        Some(Command::Scenes(args)) => scenes::execute(args, stdout),
-        Some(Command::Bench(args)) => bench::execute(args, stdout),
-        Some(Command::Figure(args)) => figure::execute(args, stdout),
-        Some(Command::Learn(args)) => learn::execute(args, stdout),
-        Some(Command::Course(args)) => course::execute(args, stdout),
-        Some(Command::Book(args)) => book::execute(args, stdout),
+        None => tui::execute(tui::TuiArgs::default(), out),
+        Some(Command::Simulate(args)) => simulate::execute(args, out),
+        Some(Command::Balance(args)) => balance::execute(args, out),
+        Some(Command::Orbit(args)) => orbit::execute(args, out),
+        Some(Command::Shell(args)) => shell::execute(args, out, stderr),
+        Some(Command::Tui(args)) => tui::execute(args, out),
+        Some(Command::Plot(args)) => plot::execute(args, out),
+        Some(Command::Stability(args)) => stability::execute(args, out),
+        Some(Command::Run(args)) => run::execute(args, out, stderr),
+        Some(Command::Scenes(args)) => scenes::execute(args, out),
+        Some(Command::Bench(args)) => bench::execute(args, out),
+        Some(Command::Figure(args)) => figure::execute(args, out),
+        Some(Command::Learn(args)) => learn::execute(args, out),
+        Some(Command::Course(args)) => course::execute(args, out),
+        Some(Command::Book(args)) => book::execute(args, out),
     };
-    match result.and_then(|()| stdout.flush().map_err(CliError::from)) {
+    match result.and_then(|()| gate.flush().map_err(CliError::from)) {
         Ok(()) => ExitCode::SUCCESS,
         // A closed pipe (`spintop … | head`) is the reader's choice, not an error.
         Err(CliError::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,

@@ -1,41 +1,57 @@
 //! Graders for the course assignments of the `spintop-lessons` package.
 //!
-//! Each grader takes a student's function, feeds it many random valid inputs
-//! from a fixed seed (so every run and every student sees the same cases),
-//! compares the answer with spintop's own implementation (or, where there is
-//! one, a closed form or an invariant), and stops at the first failing input
-//! with a [`Failed`]: the input, the expected and the actual value, and a
-//! **diagnosis** of what is wrong (a sign flip, a factor 2, the Larmor-like law
-//! handed in for the torque, right at t = 0 but drifting, …). A failure never
-//! prints the formula: that is the last rung of the hint ladder
-//! (`spintop course hint NAME`, see [`crate::course`]).
+//! Each grader takes a student's function and a **seed**, draws many random
+//! valid inputs from it (a new seed each grading, so that a table of one
+//! grading's answers is worth nothing at the next; the seed is printed in
+//! every failure, so that it can be replayed), adds the edge cases the
+//! assignment needs (a pole, a negative spin, …), compares the answers with
+//! spintop's own implementation (or a closed form, or an invariant), and stops
+//! at the first failing input with a [`Failed`]: the input, the expected and
+//! the actual value, and a **diagnosis** of what is wrong (a sign flip, a
+//! factor 2, the Larmor-like law handed in for the torque, one step too many,
+//! …). A failure never prints the formula: that is the last rung of the hint
+//! ladder (`spintop course hint NAME`).
 //!
-//! A student's file must not call the reference: [`no_shortcut`] reads the
-//! assignment file's source and rejects any path into spintop other than
-//! [`crate::math`] and [`crate::assignment`].
+//! A diagnosis is only given when it is confirmed: a plausible mistake must
+//! predict the student's answer on the failing input and on other inputs too.
 //!
-//! The graders themselves, one per assignment, are in `grading/graders.rs`
-//! and are re-exported here.
+//! The graders run inside the student's test process (`lessons/tests/*.rs`,
+//! through [`graded!`](crate::graded)); whether one passed is then read by
+//! `spintop course` from the test's exit status and from a verdict file that
+//! only the grader writes ([`verdict`]), never from printed text. The rule
+//! about the student's source (no path into spintop's answers, no file or
+//! process access) is checked by the course's shell on a parsed syntax tree
+//! before anything is compiled; the graders themselves stay in the core, so
+//! that a student's build compiles neither a parser nor the terminal UI.
+//!
+//! The graders, one per assignment, are in `grading/graders.rs` and are
+//! re-exported here.
 
 use crate::math::{Real, State, Vec3};
 use crate::physics::shell::C;
 use std::cell::Cell;
 use std::fmt;
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::rc::Rc;
 use std::sync::Once;
 
+mod diagnosis;
 mod graders;
+pub mod verdict;
+pub use diagnosis::{factor_words, shape_diagnosis};
 pub use graders::*;
+pub use verdict::assert_graded;
 
 pub use crate::assignment::DynField;
 
-/// The seed of every grader's random cases.
-pub const SEED: u64 = 2026;
-/// Random cases per grader (plus its fixed special cases).
+/// Random cases per grader (plus its fixed edge cases).
 pub const CASES: usize = 200;
 
 /// The words that start a shortcut's diagnosis.
 pub const NO_SHORTCUT: &str = "no shortcut";
+
+/// The words that start the diagnosis of an untouched stub.
+pub const STUB: &str = "the stub is still a todo!()";
 
 /// A passed assignment.
 #[derive(Clone, Debug, PartialEq)]
@@ -55,6 +71,8 @@ pub struct Failed {
     pub assignment: &'static str,
     /// The equation it implements.
     pub equation: &'static str,
+    /// The seed the inputs were drawn from (the same seed, the same inputs).
+    pub seed: u64,
     /// The input, readable.
     pub input: String,
     /// What the reference gives (or what physics requires).
@@ -63,10 +81,47 @@ pub struct Failed {
     pub actual: String,
     /// What is wrong, in words (never the formula).
     pub diagnosis: String,
+    /// The `--course DIR` that a replay or a hint must repeat (`None` for the
+    /// repository's own lessons, where `spintop course` looks by default).
+    pub course: Option<String>,
+}
+
+impl Failed {
+    /// Whether the function is still the untouched `todo!()` stub.
+    pub fn is_stub(&self) -> bool {
+        self.diagnosis.starts_with(STUB)
+    }
+}
+
+/// ` --course DIR` for a command that must repeat the course it was given,
+/// or nothing (the repository's own lessons, where `spintop course` looks by
+/// default).
+pub fn course_arg(course: Option<&str>) -> String {
+    course
+        .map(|c| format!(" --course {}", shell_word(c)))
+        .unwrap_or_default()
+}
+
+/// The command that climbs the hint ladder of `assignment`.
+pub fn hint_command(assignment: &str, course: Option<&str>) -> String {
+    format!("spintop course hint {assignment}{}", course_arg(course))
+}
+
+/// `s` as one word of a shell command (quoted when it needs to be).
+fn shell_word(s: &str) -> String {
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "/._-+:@%".contains(c))
+    {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', r"'\''"))
+    }
 }
 
 impl fmt::Display for Failed {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let course = course_arg(self.course.as_deref());
         writeln!(
             f,
             "{} ({}) is not right yet.",
@@ -76,24 +131,22 @@ impl fmt::Display for Failed {
         writeln!(f, "  expected:  {}", self.expected)?;
         writeln!(f, "  got:       {}", self.actual)?;
         writeln!(f, "  diagnosis: {}", self.diagnosis)?;
+        writeln!(
+            f,
+            "  seed:      {seed} (these inputs again: SPINTOP_SEED={seed} cargo test, or spintop course --seed {seed}{course})",
+            seed = self.seed
+        )?;
         write!(
             f,
-            "  stuck?     spintop course hint {} (one rung at a time)",
-            self.assignment
+            "  stuck?     {} (one rung at a time)",
+            hint_command(self.assignment, self.course.as_deref())
         )
     }
 }
 
 /// The outcome of a grader.
-/// (The failure is boxed: it carries four strings.)
+/// (The failure is boxed: it carries several strings.)
 pub type Grade = Result<Passed, Box<Failed>>;
-
-/// Panic with a readable report unless `grade` passed (for `#[test]`s).
-pub fn assert_passes(grade: Grade) {
-    if let Err(failed) = grade {
-        panic!("\n{failed}\n");
-    }
-}
 
 /// SplitMix64 (Steele, Lea & Flood 2014): small, seedable, reproducible.
 #[derive(Clone, Debug)]
@@ -116,6 +169,14 @@ impl Rng {
     pub fn uniform(&mut self, a: Real, b: Real) -> Real {
         let u = (self.next_u64() >> 11) as Real / (1u64 << 53) as Real;
         a + (b - a) * u
+    }
+    /// −1 or +1, evenly.
+    pub fn sign(&mut self) -> Real {
+        if self.next_u64() >> 63 == 0 {
+            -1.0
+        } else {
+            1.0
+        }
     }
     /// A vector with components uniform in [−r, r).
     pub fn vec3(&mut self, r: Real) -> Vec3 {
@@ -168,7 +229,7 @@ fn panic_diagnosis(msg: &str) -> String {
     if msg.starts_with("panicked: not yet implemented")
         || msg.starts_with("panicked: not implemented")
     {
-        "the stub is still a todo!(): fill it in.".to_string()
+        format!("{STUB}: fill it in.")
     } else {
         "your function panicked on a valid input: an unwrap, an index out of range, or an overflow?"
             .to_string()
@@ -181,6 +242,12 @@ pub(crate) trait Answer {
     fn show(&self) -> String;
     /// Its numbers, for the diagnosis.
     fn parts(&self) -> Vec<Real>;
+    /// The names of its numbers, for the diagnosis (one per part).
+    fn labels() -> Vec<String>;
+    /// What kind of number it is: a real or complex scalar has no direction.
+    fn kind() -> diagnosis::Kind {
+        diagnosis::Kind::Vector
+    }
 }
 
 impl Answer for Real {
@@ -189,6 +256,12 @@ impl Answer for Real {
     }
     fn parts(&self) -> Vec<Real> {
         vec![*self]
+    }
+    fn labels() -> Vec<String> {
+        vec!["the value".into()]
+    }
+    fn kind() -> diagnosis::Kind {
+        diagnosis::Kind::Real
     }
 }
 
@@ -199,6 +272,11 @@ impl Answer for Vec3 {
     fn parts(&self) -> Vec<Real> {
         self.as_slice().to_vec()
     }
+    fn labels() -> Vec<String> {
+        ["component 1", "component 2", "component 3"]
+            .map(String::from)
+            .to_vec()
+    }
 }
 
 impl Answer for (State<3>, State<3>) {
@@ -208,6 +286,12 @@ impl Answer for (State<3>, State<3>) {
     fn parts(&self) -> Vec<Real> {
         [self.0.parts(), self.1.parts()].concat()
     }
+    fn labels() -> Vec<String> {
+        (1..=3)
+            .map(|i| format!("the step's component {i}"))
+            .chain((1..=3).map(|i| format!("the error estimate's component {i}")))
+            .collect()
+    }
 }
 
 impl Answer for (Real, Real) {
@@ -216,6 +300,9 @@ impl Answer for (Real, Real) {
     }
     fn parts(&self) -> Vec<Real> {
         vec![self.0, self.1]
+    }
+    fn labels() -> Vec<String> {
+        vec!["the first number".into(), "the second number".into()]
     }
 }
 
@@ -232,6 +319,12 @@ impl Answer for [Vec3; 4] {
     fn parts(&self) -> Vec<Real> {
         self.iter().flat_map(|v| v.parts()).collect()
     }
+    fn labels() -> Vec<String> {
+        ["d", "d'", "d''", "d'''"]
+            .iter()
+            .flat_map(|v| ["x", "y", "z"].map(|c| format!("{v}.{c}")))
+            .collect()
+    }
 }
 
 impl Answer for C {
@@ -241,111 +334,60 @@ impl Answer for C {
     fn parts(&self) -> Vec<Real> {
         vec![self.re, self.im]
     }
-}
-
-/// What is wrong with `actual` against `expected`, from their numbers alone:
-/// not finite, zero, a sign flip, a simple factor, the right size in the wrong
-/// direction, or neither.
-pub fn shape_diagnosis(actual: &[Real], expected: &[Real]) -> String {
-    if actual.iter().any(|x| !x.is_finite()) {
-        return "your answer is not finite (NaN or infinity): a division by zero, or the square root of a negative number?".into();
+    fn labels() -> Vec<String> {
+        vec!["the real part".into(), "the imaginary part".into()]
     }
-    if actual.len() != expected.len() {
-        return "your answer has the wrong number of components".into();
+    fn kind() -> diagnosis::Kind {
+        diagnosis::Kind::Complex
     }
-    let dot = |a: &[Real], b: &[Real]| a.iter().zip(b).map(|(x, y)| x * y).sum::<Real>();
-    let ne = dot(expected, expected).sqrt();
-    let na = dot(actual, actual).sqrt();
-    if ne == 0.0 {
-        return "the answer here is zero and yours is not: a term that should cancel does not"
-            .into();
-    }
-    if na <= 1e-12 * (1.0 + ne) {
-        return "your answer is zero where it should not be: a term is missing, or a variable is never used".into();
-    }
-    let k = dot(actual, expected) / (ne * ne);
-    let residual = actual
-        .iter()
-        .zip(expected)
-        .map(|(a, e)| (a - k * e).powi(2))
-        .sum::<Real>()
-        .sqrt();
-    if residual <= 1e-8 * (na + ne) {
-        if (k + 1.0).abs() < 1e-6 {
-            return "a sign flip: your answer is exactly −1 times the right one".into();
-        }
-        for (f, name) in [
-            (2.0, "2"),
-            (0.5, "1/2"),
-            (-2.0, "−2"),
-            (-0.5, "−1/2"),
-            (4.0, "4"),
-            (0.25, "1/4"),
-            (3.0, "3"),
-            (1.0 / 3.0, "1/3"),
-        ] {
-            if (k / f - 1.0).abs() < 1e-6 {
-                return format!(
-                    "right up to a factor {name}: your answer is {name} times the right one"
-                );
-            }
-        }
-        return format!(
-            "right direction, wrong size: your answer is {k:.4} times the right one (a missing parameter, or one used twice?)"
-        );
-    }
-    if (na - ne).abs() <= 1e-8 * ne {
-        let angle = (dot(actual, expected) / (na * ne)).clamp(-1.0, 1.0).acos();
-        return format!(
-            "right size, wrong direction ({:.1}° off): two components swapped, or a rotation turning the wrong way?",
-            angle.to_degrees()
-        );
-    }
-    format!(
-        "wrong in size and direction (size {:.4} times the right one): check each term against the equation",
-        na / ne
-    )
 }
 
 /// A plausible wrong answer and what it means.
 pub(crate) struct Mistake<'a, I, T> {
-    pub(crate) diagnosis: &'static str,
-    pub(crate) answer: Box<dyn Fn(&I) -> T + 'a>,
+    pub(crate) diagnosis: String,
+    pub(crate) answer: Rc<dyn Fn(&I) -> T + 'a>,
 }
 
+/// A plausible wrong answer, computed directly.
 pub(crate) fn mistake<'a, I, T>(
-    diagnosis: &'static str,
+    diagnosis: impl Into<String>,
     answer: impl Fn(&I) -> T + 'a,
 ) -> Mistake<'a, I, T> {
     Mistake {
-        diagnosis,
-        answer: Box::new(answer),
+        diagnosis: diagnosis.into(),
+        answer: Rc::new(answer),
     }
 }
 
 /// A comparison of two answers.
 pub(crate) type Close<'a, T> = Box<dyn Fn(&T, &T) -> bool + 'a>;
 
+/// The student's function called again on another input (`None`: it panicked).
+pub(crate) type Again<'a, I, T> = dyn Fn(&I) -> Option<T> + 'a;
+
 /// A probe: given the failing input and a way to call the student's function
-/// on another input, a diagnosis (e.g. "right at t = 0 but drifting").
-pub(crate) type Probe<'a, I, T> = Box<dyn Fn(&I, &dyn Fn(&I) -> Option<T>) -> Option<String> + 'a>;
+/// on other inputs, a diagnosis (e.g. "one step too many").
+pub(crate) type Probe<'a, I, T> = Box<dyn Fn(&I, &Again<'_, I, T>) -> Option<String> + 'a>;
 
 /// One grader: its inputs, the reference, the tolerance, and what it knows
 /// of plausible wrong answers.
 pub(crate) struct Grader<'a, I, T> {
     pub(crate) name: &'static str,
     pub(crate) equation: &'static str,
+    pub(crate) seed: u64,
     pub(crate) inputs: Vec<I>,
-    pub(crate) reference: Box<dyn Fn(&I) -> T + 'a>,
+    pub(crate) reference: Rc<dyn Fn(&I) -> T + 'a>,
     pub(crate) close: Close<'a, T>,
     pub(crate) mistakes: Vec<Mistake<'a, I, T>>,
-    pub(crate) probe: Option<Probe<'a, I, T>>,
+    pub(crate) probes: Vec<Probe<'a, I, T>>,
+    pub(crate) labels: Option<Vec<String>>,
 }
 
-impl<'a, I: fmt::Debug, T: Answer> Grader<'a, I, T> {
+impl<'a, I: fmt::Debug + 'a, T: Answer + 'a> Grader<'a, I, T> {
     pub(crate) fn new(
         name: &'static str,
         equation: &'static str,
+        seed: u64,
         inputs: Vec<I>,
         reference: impl Fn(&I) -> T + 'a,
         close: impl Fn(&T, &T) -> bool + 'a,
@@ -353,24 +395,47 @@ impl<'a, I: fmt::Debug, T: Answer> Grader<'a, I, T> {
         Self {
             name,
             equation,
+            seed,
             inputs,
-            reference: Box::new(reference),
+            reference: Rc::new(reference),
             close: Box::new(close),
             mistakes: Vec::new(),
-            probe: None,
+            probes: Vec::new(),
+            labels: None,
         }
     }
 
+    /// Plausible wrong answers, computed directly.
     pub(crate) fn mistakes(mut self, mistakes: Vec<Mistake<'a, I, T>>) -> Self {
-        self.mistakes = mistakes;
+        self.mistakes.extend(mistakes);
+        self
+    }
+
+    /// A plausible wrong answer that is the right formula with a wrong input
+    /// (a parameter doubled, two components swapped, …): the reference
+    /// evaluated at `change(input)`.
+    pub(crate) fn variant(
+        mut self,
+        diagnosis: &'static str,
+        change: impl Fn(&I) -> I + 'a,
+    ) -> Self {
+        let reference = Rc::clone(&self.reference);
+        self.mistakes
+            .push(mistake(diagnosis, move |x: &I| reference(&change(x))));
         self
     }
 
     pub(crate) fn probe(
         mut self,
-        probe: impl Fn(&I, &dyn Fn(&I) -> Option<T>) -> Option<String> + 'a,
+        probe: impl Fn(&I, &Again<'_, I, T>) -> Option<String> + 'a,
     ) -> Self {
-        self.probe = Some(Box::new(probe));
+        self.probes.push(Box::new(probe));
+        self
+    }
+
+    /// Names for the parts of an answer, for the diagnosis.
+    pub(crate) fn labels(mut self, labels: &[&str]) -> Self {
+        self.labels = Some(labels.iter().map(|s| s.to_string()).collect());
         self
     }
 
@@ -384,38 +449,78 @@ impl<'a, I: fmt::Debug, T: Answer> Grader<'a, I, T> {
         Box::new(Failed {
             assignment: self.name,
             equation: self.equation,
+            seed: self.seed,
             input,
             expected,
             actual,
             diagnosis,
+            course: None,
         })
     }
 
-    /// The diagnosis of a wrong `actual` at `input`.
-    fn diagnose(&self, input: &I, actual: &T, expected: &T, student: &dyn Fn(&I) -> T) -> String {
-        for m in &self.mistakes {
-            let wrong = (m.answer)(input);
-            if wrong.parts().iter().all(|x| x.is_finite()) && (self.close)(actual, &wrong) {
-                return m.diagnosis.to_string();
+    /// Whether the mistake `m` explains the student's answers: it predicts
+    /// `actual` at the failing input, and (where it differs from the right
+    /// answer) the student's answers at two more inputs.
+    fn confirmed(
+        &self,
+        m: &Mistake<'a, I, T>,
+        at: usize,
+        actual: &T,
+        again: &Again<'_, I, T>,
+    ) -> bool {
+        let wrong = (m.answer)(&self.inputs[at]);
+        if !wrong.parts().iter().all(|x| x.is_finite()) || !(self.close)(actual, &wrong) {
+            return false;
+        }
+        let mut seen = 0;
+        for other in self
+            .inputs
+            .iter()
+            .cycle()
+            .skip(at + 1)
+            .take(self.inputs.len() - 1)
+        {
+            let wrong = (m.answer)(other);
+            let right = (self.reference)(other);
+            if !wrong.parts().iter().all(|x| x.is_finite()) || (self.close)(&wrong, &right) {
+                continue; // this input cannot tell the mistake from the right answer
+            }
+            match again(other) {
+                Some(theirs) if (self.close)(&theirs, &wrong) => seen += 1,
+                _ => return false,
+            }
+            if seen == 2 {
+                break;
             }
         }
-        if let Some(probe) = &self.probe {
-            let again = |i: &I| call(|| student(i)).ok();
-            if let Some(d) = probe(input, &again) {
+        true
+    }
+
+    /// The diagnosis of a wrong `actual` at input number `at`.
+    fn diagnose(&self, at: usize, actual: &T, expected: &T, student: &dyn Fn(&I) -> T) -> String {
+        let again = |i: &I| call(|| student(i)).ok();
+        for m in &self.mistakes {
+            if self.confirmed(m, at, actual, &again) {
+                return m.diagnosis.clone();
+            }
+        }
+        for probe in &self.probes {
+            if let Some(d) = probe(&self.inputs[at], &again) {
                 return d;
             }
         }
-        shape_diagnosis(&actual.parts(), &expected.parts())
+        let labels = self.labels.clone().unwrap_or_else(T::labels);
+        diagnosis::shape(&actual.parts(), &expected.parts(), &labels, T::kind())
     }
 
     /// Grade `student` on every input.
     pub(crate) fn run(&self, student: impl Fn(&I) -> T) -> Grade {
-        for input in &self.inputs {
+        for (at, input) in self.inputs.iter().enumerate() {
             let expected = (self.reference)(input);
             match call(|| student(input)) {
                 Ok(actual) if (self.close)(&actual, &expected) => {}
                 Ok(actual) => {
-                    let diagnosis = self.diagnose(input, &actual, &expected, &student);
+                    let diagnosis = self.diagnose(at, &actual, &expected, &student);
                     return Err(self.fail(
                         format!("{input:?}"),
                         expected.show(),
@@ -452,128 +557,4 @@ pub(crate) fn close<T: Answer>(a: &T, b: &T, tol: Real) -> bool {
         .sqrt();
     let nb: Real = b.iter().map(|y| y * y).sum::<Real>().sqrt();
     a.len() == b.len() && a.iter().all(|x| x.is_finite()) && diff <= tol * (1.0 + nb)
-}
-
-/// The modules of spintop an assignment file may name.
-pub const ALLOWED_MODULES: [&str; 2] = ["math", "assignment"];
-
-/// Check that an assignment file does not reach spintop's own answers.
-///
-/// `source` is the file's text; every path that starts with `spintop` must go
-/// on with `::math` or `::assignment` (so `use spintop as s`, `use
-/// spintop::{physics, …}`, `spintop::physics::…`, `spintop::sim::…`,
-/// `spintop::grading::…` are all rejected), and `include!`-like macros and
-/// `#[path]` (ways to compile spintop's own sources into the file) are
-/// rejected too. Comments are skipped. Returns the offending line.
-pub fn no_shortcut(source: &str) -> Result<(), String> {
-    let text = strip_comments(source);
-    for (number, line) in text.lines().enumerate() {
-        for banned in ["include!", "include_str!", "include_bytes!", "#[path"] {
-            if line.replace(' ', "").contains(banned) {
-                return Err(format!("line {}: {}", number + 1, line.trim()));
-            }
-        }
-        let bytes = line.as_bytes();
-        let mut from = 0;
-        while let Some(at) = line[from..].find("spintop") {
-            let start = from + at;
-            let end = start + "spintop".len();
-            from = end;
-            let ident = |b: u8| b.is_ascii_alphanumeric() || b == b'_';
-            if (start > 0 && ident(bytes[start - 1])) || (end < bytes.len() && ident(bytes[end])) {
-                continue; // part of another name, e.g. spintop_lessons
-            }
-            let rest: String = line[end..].chars().filter(|c| !c.is_whitespace()).collect();
-            let ok = rest.strip_prefix("::").is_some_and(|after| {
-                ALLOWED_MODULES.iter().any(|m| {
-                    after.strip_prefix(m).is_some_and(|tail| {
-                        !tail.starts_with(|c: char| c.is_alphanumeric() || c == '_')
-                    })
-                })
-            });
-            if !ok {
-                return Err(format!("line {}: {}", number + 1, line.trim()));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// The source without `//` and `/* */` comments (line breaks kept).
-fn strip_comments(source: &str) -> String {
-    let mut out = String::with_capacity(source.len());
-    let mut chars = source.chars().peekable();
-    let mut in_block = 0usize;
-    let mut in_string = false;
-    while let Some(c) = chars.next() {
-        if in_block > 0 {
-            if c == '*' && chars.peek() == Some(&'/') {
-                chars.next();
-                in_block -= 1;
-            } else if c == '/' && chars.peek() == Some(&'*') {
-                chars.next();
-                in_block += 1;
-            } else if c == '\n' {
-                out.push('\n');
-            }
-            continue;
-        }
-        if in_string {
-            out.push(c);
-            if c == '\\' {
-                if let Some(n) = chars.next() {
-                    out.push(n);
-                }
-            } else if c == '"' {
-                in_string = false;
-            }
-            continue;
-        }
-        match c {
-            '"' => {
-                in_string = true;
-                out.push(c);
-            }
-            '/' if chars.peek() == Some(&'/') => {
-                for n in chars.by_ref() {
-                    if n == '\n' {
-                        out.push('\n');
-                        break;
-                    }
-                }
-            }
-            '/' if chars.peek() == Some(&'*') => {
-                chars.next();
-                in_block = 1;
-            }
-            _ => out.push(c),
-        }
-    }
-    out
-}
-
-/// `grade`, unless one of the assignment's `sources` (`(file, text)`) takes a
-/// shortcut through spintop's own implementation: then a failure whose
-/// diagnosis starts with [`NO_SHORTCUT`].
-pub fn without_shortcut(grade: Grade, sources: &[(&str, &str)]) -> Grade {
-    let (assignment, equation) = match &grade {
-        Ok(p) => (p.assignment, p.equation),
-        Err(f) => (f.assignment, f.equation),
-    };
-    for (file, text) in sources {
-        if let Err(line) = no_shortcut(text) {
-            return Err(Box::new(Failed {
-                assignment,
-                equation,
-                input: format!("the source of {file}"),
-                expected: "paths into spintop only through spintop::math and spintop::assignment"
-                    .into(),
-                actual: line,
-                diagnosis: format!(
-                    "{NO_SHORTCUT}: this file reaches into spintop itself, where the reference answers live. Write the physics yourself; vectors come from spintop::math, the argument types from spintop::assignment (lessons/README.md says why)."
-                ),
-            }));
-        }
-    }
-    grade
 }

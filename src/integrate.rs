@@ -20,11 +20,12 @@
 //! | [`Taylor`] | variable, ⌈−½ ln rtol + 1⌉ (11 at 1e-8, 18 at 1e-14) | Jorba & Zou, from the last two coefficients; no rejections | the step's own Taylor polynomial |
 //!
 //! The two explicit pairs share one adaptive step loop (`explicit.rs`: the
-//! first stage, the starting step, the step budget, the error test, the
-//! controller, rejection and the statistics); each keeps only its stages,
-//! error norm, controller constants and dense output. Radau IIA 5 and RK4
-//! use the same small checks (`attempt_allowed`, `start_step`,
-//! `fixed_step_allowed`) and getters (`stepper_getters!`).
+//! error test, the controller, rejection and the statistics); each keeps only
+//! its stages, error norm, controller constants and dense output. The step
+//! control they, Radau IIA 5, RK4 and the splittings share (the checks before
+//! a run and before each attempt, the first stage and Hairer's starting step,
+//! landing on `t_stop`, the error norm) lives once, in `control.rs`, and no
+//! method file imports another.
 //!
 //! All of them step forward or backward: the direction is the sign of
 //! `t_stop − t`. The explicit methods use only [`Rhs::eval`]; [`Radau5`] also
@@ -35,12 +36,13 @@
 //! order by order, which a [`TaylorRhs`] gives by recurrence for a right-hand
 //! side made of sums and products (each top model has one, in
 //! `taylor/tops.rs`). The stepper owns that system and implements [`Stepper`]
-//! without calling the `rhs` it is handed.
+//! without calling the `rhs` it is handed; it shares the checks of
+//! `control.rs` with the others.
 //!
 //! The splittings do not take a right-hand side: they compose the exact flows
-//! of the parts of a [`SplitFlow`] (the free rigid body cut into three axis
-//! rotations, [`FreeRigidBody`]; the reduced model (4.12)–(4.14) cut into a
-//! rotation and a damping, [`ReducedFlow`]), on a state that may hold an
+//! of the parts of any [`SplitFlow`] (the free rigid body cut into three axis
+//! rotations, the reduced model (4.12)–(4.14) cut into a rotation and a
+//! damping: see [`crate::sim::split`]), on a state that may hold an
 //! orientation, so they have their own small API instead of [`Stepper`]. They
 //! count sub-flow evaluations in [`Stats::rhs_evals`].
 
@@ -49,6 +51,7 @@ use nalgebra::SMatrix;
 use serde::Serialize;
 use thiserror::Error;
 
+pub(crate) mod control;
 pub mod dop853;
 pub mod dopri5;
 pub(crate) mod explicit;
@@ -61,10 +64,7 @@ pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use radau5::Radau5;
 pub use rk4::Rk4;
-pub use splitting::{
-    Composition, FreeRigidBody, ReducedFlow, ReducedSplitting, RigidBodySplitting, RigidBodyState,
-    SplitFlow, Splitting, reduced_split_solve,
-};
+pub use splitting::{Composition, SplitFlow, Splitting};
 pub use taylor::{Taylor, TaylorRhs};
 
 // ANCHOR: rhs_trait
@@ -146,13 +146,13 @@ impl std::ops::AddAssign for Stats {
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum IntegrateError {
     /// The state or the error estimate stopped being finite.
-    #[error("the solution became non-finite at t = {}", crate::math::fmt_time(*t))]
+    #[error("the solution became non-finite at t = {}", crate::numbers::fmt_time(*t))]
     NonFinite {
         /// Time of the last finite state.
         t: Real,
     },
     /// The adaptive step size fell below what the floating-point time axis can resolve.
-    #[error("the step size fell to {h:.3e} at t = {}, below what the time axis can resolve", crate::math::fmt_time(*t))]
+    #[error("the step size fell to {h:.3e} at t = {}, below what the time axis can resolve", crate::numbers::fmt_time(*t))]
     StepSizeUnderflow {
         /// Time where the method gave up.
         t: Real,
@@ -160,7 +160,7 @@ pub enum IntegrateError {
         h: Real,
     },
     /// More accepted steps than the budget allows (a guard against hangs).
-    #[error("the step budget of {max_steps} steps ran out at t = {}", crate::math::fmt_time(*t))]
+    #[error("the step budget of {max_steps} steps ran out at t = {}", crate::numbers::fmt_time(*t))]
     TooManySteps {
         /// Time reached when the budget ran out.
         t: Real,
@@ -170,7 +170,7 @@ pub enum IntegrateError {
     /// The implicit method's Newton iteration did not converge and the step
     /// could not be shortened (the fixed-step mode of [`Radau5`]).
     #[error(
-        "the Newton iteration of the implicit method did not converge at t = {} with step {h:.3e}", crate::math::fmt_time(*t)
+        "the Newton iteration of the implicit method did not converge at t = {} with step {h:.3e}", crate::numbers::fmt_time(*t)
     )]
     NoConvergence {
         /// Time of the step's start (the state there is kept).
@@ -206,23 +206,15 @@ pub const DEFAULT_MAX_STEPS: u64 = 10_000_000;
 impl AdaptiveOptions {
     /// Tolerances with defaults for the rest; rejects non-finite or out-of-range values.
     pub fn new(rtol: Real, atol: Real) -> Result<Self, IntegrateError> {
-        if !(rtol.is_finite() && rtol > 0.0 && rtol < 1.0) {
-            return Err(IntegrateError::InvalidOption(format!(
-                "rtol must lie in (0, 1), got {rtol}"
-            )));
-        }
-        if !(atol.is_finite() && atol >= 0.0) {
-            return Err(IntegrateError::InvalidOption(format!(
-                "atol must be finite and ≥ 0, got {atol}"
-            )));
-        }
-        Ok(Self {
+        let opts = Self {
             rtol,
             atol,
             h_init: None,
             h_max: Real::INFINITY,
             max_steps: DEFAULT_MAX_STEPS,
-        })
+        };
+        control::validate_options(&opts)?;
+        Ok(opts)
     }
 }
 
@@ -255,137 +247,6 @@ pub trait Stepper<const N: usize> {
     fn reset(&mut self, y: State<N>);
 }
 // ANCHOR_END: stepper_trait
-
-/// Refuse a non-finite `t_stop` (shared by the steppers).
-pub(crate) fn check_t_stop(t_stop: Real) -> Result<(), IntegrateError> {
-    if t_stop.is_finite() {
-        Ok(())
-    } else {
-        Err(IntegrateError::InvalidOption(format!(
-            "t_stop must be finite, got {t_stop}"
-        )))
-    }
-}
-
-/// A stepper starts only from a finite time and state.
-pub(crate) fn check_start(t0: Real, finite_state: bool) -> Result<(), IntegrateError> {
-    if t0.is_finite() && finite_state {
-        Ok(())
-    } else {
-        Err(IntegrateError::InvalidOption(
-            "the initial time and state must be finite".into(),
-        ))
-    }
-}
-
-/// The checks before every attempt of an adaptive method: the step budget
-/// (accepted plus rejected attempts) and a step magnitude `h` the time axis
-/// can still resolve at `t` (`dir` is the direction of integration).
-pub(crate) fn attempt_allowed(
-    stats: &Stats,
-    max_steps: u64,
-    t: Real,
-    h: Real,
-    dir: Real,
-) -> Result<(), IntegrateError> {
-    if stats.steps + stats.rejected >= max_steps {
-        return Err(IntegrateError::TooManySteps { t, max_steps });
-    }
-    if h.is_nan() || h < dopri5::underflow_limit(t) {
-        return Err(IntegrateError::StepSizeUnderflow { t, h: dir * h });
-    }
-    Ok(())
-}
-
-/// The step budget of a fixed-step method: `steps` taken of `max_steps`.
-pub(crate) fn fixed_step_allowed(
-    steps: u64,
-    max_steps: u64,
-    t: Real,
-) -> Result<(), IntegrateError> {
-    if steps >= max_steps {
-        Err(IntegrateError::TooManySteps { t, max_steps })
-    } else {
-        Ok(())
-    }
-}
-
-/// The start of an adaptive step: `f(t, y)` (from the last step when known,
-/// else evaluated and counted) and the step magnitude to try first, from the
-/// last step's controller or, the first time, Hairer's guess for a method of
-/// order `order` (one more evaluation, counted).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn start_step<const N: usize, R: Rhs<N>>(
-    rhs: &R,
-    t: Real,
-    y: &State<N>,
-    f: &mut Option<State<N>>,
-    stats: &mut Stats,
-    h_next: Option<Real>,
-    dir: Real,
-    order: i32,
-    opts: &AdaptiveOptions,
-) -> Result<(State<N>, Real), IntegrateError> {
-    let f0 = first_stage(rhs, t, y, f, stats)?;
-    let h = match h_next {
-        Some(h) => h,
-        None => {
-            stats.rhs_evals += 1;
-            dopri5::hinit(rhs, t, y, &f0, dir, order, opts)
-        }
-    };
-    Ok((f0, h))
-}
-
-/// The five [`Stepper`] getters of a stepper whose position lives in the
-/// fields `t`, `y`, `t_prev`, `h_last` and `stats`, of itself
-/// (`stepper_getters!()`) or of one of its fields (`stepper_getters!(core)`).
-macro_rules! stepper_getters {
-    ($($at:ident)?) => {
-        fn t(&self) -> Real {
-            self$(.$at)?.t
-        }
-
-        fn y(&self) -> &State<N> {
-            &self$(.$at)?.y
-        }
-
-        fn t_prev(&self) -> Real {
-            self$(.$at)?.t_prev
-        }
-
-        fn last_step(&self) -> Real {
-            self$(.$at)?.h_last
-        }
-
-        fn stats(&self) -> Stats {
-            self$(.$at)?.stats
-        }
-    };
-}
-pub(crate) use stepper_getters;
-
-/// The first stage `f(t, y)`: the cached one (FSAL, or the end slope of the
-/// last step) when there is one, else evaluated, counted and cached. A
-/// non-finite slope is reported at `t`.
-pub(crate) fn first_stage<const N: usize, R: Rhs<N>>(
-    rhs: &R,
-    t: Real,
-    y: &State<N>,
-    cache: &mut Option<State<N>>,
-    stats: &mut Stats,
-) -> Result<State<N>, IntegrateError> {
-    if let Some(f) = *cache {
-        return Ok(f);
-    }
-    let f = rhs.eval(t, y);
-    stats.rhs_evals += 1;
-    if !crate::math::all_finite(&f) {
-        return Err(IntegrateError::NonFinite { t });
-    }
-    *cache = Some(f);
-    Ok(f)
-}
 
 // ANCHOR: solve
 /// Integrate from the stepper's current time through every time in `times`

@@ -6,6 +6,7 @@
 //! uses is cited in its doc comment as `Paper: Eq. (N.M).`
 //!
 //! - [`math`]: scalar, vector and rotation types; SO(3) helpers.
+//! - [`numbers`]: how numbers are written (messages, headers, tables, CSV, axes) and read.
 //! - [`physics`]: the paper, one module per concept (pure: no I/O, no clock).
 //! - [`integrate`]: RK4, Dormand–Prince 5(4), DOP853 and Radau IIA 5 over one small trait; Strang and Yoshida-4 splittings.
 //! - [`sim`]: a model plus a method, stepped and sampled (pure).
@@ -14,9 +15,9 @@
 //! - [`figure`]: the paper's Figures 1 and 2 as point sets (pure).
 //! - [`workprecision`]: error against cost for every method on the paper's problems (pure;
 //!   the clock is injected).
+//! - [`output`]: what `simulate`, `balance`, `orbit` and `shell` answer: the request, the
+//!   computation, the JSON contract and its table and CSV forms (the scene engine prints the same).
 //! - [`plot`]: ASCII charts for the lessons, the book and the command line; the figures as text and SVG.
-//! - [`present`]: what the shells show the same way (method names, frames, number parsing
-//!   and axis formatting), below all of them.
 //! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
 //! - [`tui`]: the live terminal view, another thin shell over [`sim`].
 #![forbid(unsafe_code)]
@@ -25,6 +26,7 @@
 pub mod assignment;
 #[cfg(feature = "app")]
 pub mod cli;
+#[cfg(feature = "app")]
 pub mod course;
 #[cfg(feature = "app")]
 pub mod figure;
@@ -32,10 +34,12 @@ pub mod figure;
 pub mod grading;
 pub mod integrate;
 pub mod math;
+pub mod numbers;
+#[cfg(feature = "app")]
+pub mod output;
 pub mod physics;
 #[cfg(feature = "app")]
 pub mod plot;
-pub mod present;
 #[cfg(feature = "app")]
 pub mod scene;
 #[cfg(feature = "app")]
@@ -78,6 +82,8 @@ pub mod book {
     pub struct RealParticles;
     #[doc = include_str!("../book/src/assignments.md")]
     pub struct Assignments;
+    #[doc = include_str!("../book/src/instructors.md")]
+    pub struct Instructors;
     #[doc = include_str!("../book/src/speed-accuracy.md")]
     pub struct SpeedAccuracy;
     #[doc = include_str!("../book/src/solutions-section-2.md")]

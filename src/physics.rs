@@ -4,6 +4,7 @@
 //! | module | paper | what it holds |
 //! |---|---|---|
 //! | [`balance`] | §2, (2.1)–(2.4) | the Larmor-like law, the torque law and the Schott angular momentum of any dipole trajectory |
+//! | [`radiation`] | §1–§2, (2.1) | the dipole's fields, the energy and angular momentum they carry through a sphere, Larmor's power |
 //! | [`central`] | §2, (2.5)–(2.9) | a charge in a Coulomb or oscillator potential: Abraham–Lorentz, Landau–Lifshitz, collapse, runaways |
 //! | [`rigid_body`] | §3, (3.1)–(3.2) | kinematics, `Ω̇ = F(Ω)` models, observables E, L, tilt |
 //! | [`euler_angles`] | (3.5), (4.8) | z-x-z Euler angles and their rates |
@@ -26,6 +27,7 @@ pub mod free_top;
 pub mod full_ale;
 pub mod general_top;
 pub mod particle;
+pub mod radiation;
 pub mod rigid_body;
 pub mod shell;
 pub mod symmetric_top;
@@ -44,11 +46,11 @@ pub enum ParamError {
     /// The symmetric top's I₃/I₁ lies outside (0, 2].
     #[error(
         "I3/I1 = {} is not a rigid body: the moments must be positive and obey I3 <= I1 + I2 = 2 I1, so 0 < I3/I1 <= 2",
-        crate::math::fmt_value(*.0)
+        crate::numbers::fmt_value(*.0)
     )]
     RatioOutOfRange(Real),
     /// A principal moment is not positive.
-    #[error("principal moment I{index} = {} must be positive", crate::math::fmt_value(*value))]
+    #[error("principal moment I{index} = {} must be positive", crate::numbers::fmt_value(*value))]
     MomentNotPositive {
         /// 1, 2 or 3.
         index: usize,
@@ -58,19 +60,19 @@ pub enum ParamError {
     /// The principal moments break a triangle inequality.
     #[error(
         "moments ({}, {}, {}) are not a rigid body: each must be at most the sum of the other two",
-        crate::math::fmt_value(*.0),
-        crate::math::fmt_value(*.1),
-        crate::math::fmt_value(*.2)
+        crate::numbers::fmt_value(*.0),
+        crate::numbers::fmt_value(*.1),
+        crate::numbers::fmt_value(*.2)
     )]
     TriangleInequality(Real, Real, Real),
     /// The dipole is zero, so there is no radiation and no model to study.
     #[error("the dipole must be non-zero (a top without a dipole does not radiate)")]
     ZeroDipole,
     /// τ is negative.
-    #[error("tau must be >= 0, got {}", crate::math::fmt_value(*.0))]
+    #[error("tau must be >= 0, got {}", crate::numbers::fmt_value(*.0))]
     NegativeTau(Real),
     /// A parameter lies outside its allowed range (Section 2's models).
-    #[error("{name} = {} is out of range: it must be {range}", crate::math::fmt_value(*value))]
+    #[error("{name} = {} is out of range: it must be {range}", crate::numbers::fmt_value(*value))]
     OutOfRange {
         /// Which input.
         name: &'static str,

@@ -6,6 +6,7 @@
 
 use std::fmt::Write as _;
 
+pub mod diagram;
 pub mod figure;
 pub mod panels;
 use textplots::{Chart, LabelBuilder, LabelFormat, Plot, Shape};

@@ -9,7 +9,7 @@
 //! |---|---|---|
 //! | truncated (4.2)–(4.4) | closed form (4.7) | closed form, Rot(n_L, |L₀|ϑ)·O₀·R_z(Ω̃₃₀ϑ) |
 //! | reduced (4.12)–(4.14) | closed form (4.15)–(4.16) | O = Q·R_z(Ω̃₃t): the precession exact, Q by DOP853 on SO(3), driven by the closed form |
-//! | general (3.3) | DOP853, or the Taylor method at rtol ≤ [`TAYLOR_AUTO_RTOL`] | the same method, in the same state |
+//! | general (3.3) | DOP853, or the Taylor method at rtol ≤ [`TAYLOR_AUTO_RTOL`] | the same method, in the same state (the Taylor method carries a unit quaternion) |
 //!
 //! Orientations are integrated on the group: the state carries a small rotation
 //! vector σ with `O = O_base exp(σ̂)` and `dσ/dt = J_r⁻¹(σ) Ω`
@@ -36,11 +36,13 @@ use crate::physics::symmetric_top::{
 use serde::Serialize;
 use thiserror::Error;
 
+pub mod accuracy;
 pub mod cost;
 pub mod orbit;
 pub mod physical;
 pub mod secular;
 pub mod shell;
+pub mod split;
 
 use physical::general;
 
@@ -93,6 +95,61 @@ impl Model {
         matches!(self, Model::Truncated(_) | Model::Reduced(_))
     }
 
+    /// Ω(t) from Ω₀ by the closed form, for the two models that have one:
+    /// (4.7) for the truncated model, (4.15)–(4.16) for the reduced one;
+    /// `None` for the others.
+    pub fn closed_form(&self, omega0: &Vec3, t: Real) -> Option<Vec3> {
+        match self {
+            Model::Truncated(top) => Some(truncated_closed_form(top, omega0, t)),
+            Model::Reduced(top) => Some(reduced_closed_form(top, omega0, t)),
+            Model::General(_)
+            | Model::GeneralReduced(_)
+            | Model::Full(_)
+            | Model::GeneralFull(_) => None,
+        }
+    }
+
+    // ANCHOR: auto_choice
+    /// The method a choice runs on this model at these options: `auto` takes
+    /// the closed forms where they exist, the physical solution for the full
+    /// ALE, and for the rest DOP853, or the Taylor method where the measured
+    /// crossover says it is faster ([`auto_integrator`]). A choice the model
+    /// does not take is refused, with what it takes. This is the one step
+    /// from a user's choice to a method.
+    pub fn method(
+        &self,
+        choice: MethodChoice,
+        options: &MethodOptions,
+    ) -> Result<Method, MethodRefused> {
+        use MethodChoice as C;
+        let refused = MethodRefused {
+            model: self.name(),
+            method: choice,
+        };
+        Ok(match (self, choice) {
+            (Model::Full(_) | Model::GeneralFull(_), C::Auto) => Method::Physical,
+            (Model::Full(_) | Model::GeneralFull(_), C::Forward) => Method::Forward,
+            (Model::Full(_) | Model::GeneralFull(_), _) | (_, C::Forward) => return Err(refused),
+            (Model::Truncated(_), C::Auto | C::Exact) => Method::ClosedForm,
+            (Model::Reduced(_), C::Auto | C::Exact) => Method::ClosedFormDop853,
+            (_, C::Exact) => return Err(refused),
+            (_, C::Auto) => auto_integrator(options.rtol),
+            (_, C::Dop853) => Method::Dop853,
+            (_, C::Rk4) => Method::Rk4,
+            (_, C::Dopri5) => Method::Dopri5,
+            (_, C::Radau5) => Method::Radau5,
+            (_, C::Taylor) => Method::Taylor,
+        })
+    }
+    // ANCHOR_END: auto_choice
+
+    /// Refuse a choice this model does not take (see [`Model::method`]):
+    /// every entry point (the command line, scenes, the live view) asks here.
+    /// Whether a model takes a choice does not depend on the tolerance.
+    pub fn check_method(&self, choice: MethodChoice) -> Result<(), MethodRefused> {
+        self.method(choice, &MethodOptions::default()).map(|_| ())
+    }
+
     /// The principal moments.
     pub fn inertia(&self) -> Vec3 {
         match self {
@@ -140,37 +197,380 @@ enum FirstOrder {
     GeneralReduced(GeneralTop),
 }
 
-/// The method asked for.
+/// What the user chose: a method by name, or `auto` for the lightest one that
+/// is right for the model. Every entry point (the command line's `--method`,
+/// a scene's `[solve] method`, the live view's `--method` and `m` key) takes
+/// this type, checks it against the model with [`Model::check_method`], and
+/// the simulation turns it into the [`Method`] it runs with [`Model::method`]
+/// (the one step from a choice to a method).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "app", derive(clap::ValueEnum))]
 pub enum MethodChoice {
-    /// Closed forms where they exist, DOP853 for the rest.
+    /// Closed forms where they exist, DOP853 for the rest (the Taylor
+    /// method at rtol ≤ [`TAYLOR_AUTO_RTOL`]).
+    #[cfg_attr(
+        feature = "app",
+        value(
+            help = "Closed forms where they exist, DOP853 for the rest (Taylor at rtol <= 1e-9)"
+        )
+    )]
     Auto,
-    /// Closed forms only (an error for the general model); the reduced model's
-    /// orientation, which has none, is still integrated with DOP853.
+    /// Closed forms only (refused for a model without one); the reduced
+    /// model's orientation, which has none, is still integrated with DOP853.
+    #[cfg_attr(feature = "app", value(help = "Closed forms only"))]
     Exact,
     /// Fixed-step classical RK4 on Ω and the orientation together.
+    #[cfg_attr(feature = "app", value(help = "Fixed-step classical RK4 (--step)"))]
     Rk4,
     /// Dormand–Prince 5(4) on Ω and the orientation together.
+    #[cfg_attr(
+        feature = "app",
+        value(help = "Dormand-Prince 5(4), adaptive (--rtol)")
+    )]
     Dopri5,
     /// DOP853 on Ω and the orientation together.
+    #[cfg_attr(feature = "app", value(help = "DOP853, adaptive (--rtol)"))]
     Dop853,
     /// Radau IIA of order 5 (implicit, L-stable) on Ω and the orientation
     /// together: for a stiff top (τΩ not small).
+    #[cfg_attr(
+        feature = "app",
+        value(help = "Radau IIA 5, implicit and L-stable, adaptive (--rtol): for stiff tops")
+    )]
     Radau5,
-    /// The Taylor series method on Ω and the orientation quaternion together
-    /// (the models of the form Ω̇ = F(Ω), whose F is a polynomial).
+    /// The Taylor series method of variable order on Ω and the orientation
+    /// (a unit quaternion) together: the fastest at tight tolerances.
+    #[cfg_attr(
+        feature = "app",
+        value(
+            help = "Taylor series of variable order, adaptive (--rtol): the fastest at tight tolerances"
+        )
+    )]
     Taylor,
     /// Full ALE only: integrate (3.4) forward, which runs away.
+    #[cfg_attr(
+        feature = "app",
+        value(help = "Full model only: integrate (3.4) forward and watch it run away")
+    )]
     Forward,
 }
 
-/// Tolerance and step of the numerical methods.
+impl MethodChoice {
+    /// Every choice, in the order of [`MethodChoice::NAMES`].
+    pub const ALL: [MethodChoice; 8] = [
+        MethodChoice::Auto,
+        MethodChoice::Exact,
+        MethodChoice::Rk4,
+        MethodChoice::Dopri5,
+        MethodChoice::Dop853,
+        MethodChoice::Radau5,
+        MethodChoice::Taylor,
+        MethodChoice::Forward,
+    ];
+
+    /// The names the user types (`--method NAME`, `method = "NAME"`), in the
+    /// order of [`MethodChoice::ALL`].
+    pub const NAMES: [&'static str; 8] = [
+        "auto", "exact", "rk4", "dopri5", "dop853", "radau5", "taylor", "forward",
+    ];
+
+    /// The name the user types: `auto`, `exact`, `rk4`, …
+    pub fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+
+    /// The choice of that name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::NAMES
+            .iter()
+            .position(|n| *n == name)
+            .map(|i| Self::ALL[i])
+    }
+
+    /// The short title a screen shows: `closed form`, `RK4`, `DP5`, `DOP853`,
+    /// `Radau5`, `Taylor`.
+    pub fn title(self) -> &'static str {
+        match self {
+            MethodChoice::Auto => "auto",
+            MethodChoice::Exact => "closed form",
+            MethodChoice::Rk4 => "RK4",
+            MethodChoice::Dopri5 => "DP5",
+            MethodChoice::Dop853 => "DOP853",
+            MethodChoice::Radau5 => "Radau5",
+            MethodChoice::Taylor => "Taylor",
+            MethodChoice::Forward => "forward",
+        }
+    }
+}
+
+/// A numerical method of the core: what a simulation reports it ran, what the
+/// work-precision sweep and the stability rows compare. A [`Simulation`]
+/// runs the first nine; the splittings are run by
+/// [`crate::integrate::splitting`] directly.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Ω and O both from the closed forms (4.7), (4.9)–(4.11): no integration.
+    ClosedForm,
+    /// Ω from its closed form (4.15)–(4.16), O integrated by DOP853 on SO(3).
+    ClosedFormDop853,
+    /// Classical RK4 at a fixed step.
+    Rk4,
+    /// Dormand–Prince 5(4), adaptive.
+    Dopri5,
+    /// DOP853, adaptive.
+    Dop853,
+    /// Radau IIA 5, implicit and L-stable, adaptive.
+    Radau5,
+    /// The full ALE's physical solution: DOP853 backward from the slow
+    /// manifold, shooting on the final state; O driven by it.
+    Physical,
+    /// The full ALE integrated forward (it runs away), O driven by it.
+    Forward,
+    /// The Taylor series method of variable order (Jorba & Zou's order and
+    /// step, coefficients by recurrence), on Ω and the orientation
+    /// quaternion together.
+    Taylor,
+    /// The reduced model split into its rotation and its damping, each solved
+    /// exactly (they commute, so the split is exact for any step).
+    RotationDamping,
+    /// The Strang splitting of the free rigid body into axis rotations.
+    Strang,
+    /// Yoshida's fourth-order composition of the same splitting.
+    Yoshida4,
+}
+
+impl Method {
+    /// Short label, as outputs report it: `exact`, `exact+dop853`, `rk4`,
+    /// `dopri5`, `dop853`, `radau5`, `physical`, `forward`, …
+    pub fn label(&self) -> &'static str {
+        match self {
+            Method::ClosedForm => "exact",
+            Method::ClosedFormDop853 => "exact+dop853",
+            Method::Rk4 => "rk4",
+            Method::Dopri5 => "dopri5",
+            Method::Dop853 => "dop853",
+            Method::Radau5 => "radau5",
+            Method::Physical => "physical",
+            Method::Forward => "forward",
+            Method::Taylor => "taylor",
+            Method::RotationDamping => "rotation-damping",
+            Method::Strang => "strang",
+            Method::Yoshida4 => "yoshida4",
+        }
+    }
+
+    /// One sentence saying what was computed how.
+    pub fn detail(&self) -> &'static str {
+        match self {
+            Method::ClosedForm => "omega and orientation from closed forms (4.7), (4.9)",
+            Method::ClosedFormDop853 => {
+                "omega from the closed form (4.15)-(4.16); orientation O = Q Rz(Omega3~ t), the precession exact and Q integrated by DOP853 on SO(3)"
+            }
+            Method::Rk4 => {
+                "omega and orientation integrated together by fixed-step RK4 (orientation on SO(3))"
+            }
+            Method::Dopri5 => {
+                "omega and orientation integrated together by Dormand-Prince 5(4) (orientation on SO(3))"
+            }
+            Method::Dop853 => {
+                "omega and orientation integrated together by DOP853 (orientation on SO(3))"
+            }
+            Method::Radau5 => {
+                "omega and orientation integrated together by Radau IIA 5, implicit (orientation on SO(3))"
+            }
+            Method::Physical => {
+                "the physical solution of (3.4): DOP853 backward from final data near the slow manifold, shooting on the final rate; orientation by DOP853 on SO(3)"
+            }
+            Method::Forward => {
+                "(3.4) integrated forward by DOP853 from the reduced model's slope, with a runaway monitor; orientation by DOP853 on SO(3)"
+            }
+            Method::Taylor => {
+                "omega and the orientation quaternion integrated together by the Taylor series method (order and step of Jorba and Zou)"
+            }
+            Method::RotationDamping => {
+                "omega by the reduced model split into its rotation and its damping, each exact"
+            }
+            Method::Strang => "the free rigid body split into exact axis rotations (Strang)",
+            Method::Yoshida4 => {
+                "the free rigid body split into exact axis rotations (Yoshida's fourth order)"
+            }
+        }
+    }
+
+    /// True for the methods that step (all but the closed forms of Ω and O).
+    pub fn is_integrated(&self) -> bool {
+        !matches!(self, Method::ClosedForm)
+    }
+}
+
+// ANCHOR: taylor_auto_rule
+/// `auto` integrates a top without a closed form with the Taylor method at
+/// this rtol and below, with DOP853 above.
+///
+/// NOTE: measured, not guessed (benches/README.md, "The Taylor method"): Ω
+/// and the orientation together, as a simulation computes them, on the
+/// general problem of `spintop bench`. From rtol 1e-10 down the Taylor
+/// method takes less time than DOP853 at every tolerance, and at matched
+/// error too; at 1e-8 and looser the two are within noise of each other or
+/// DOP853 is ahead, and there DOP853 is kept: its embedded error estimate
+/// checks every step, where the series' step rests on an estimate of its
+/// radius of convergence.
+pub const TAYLOR_AUTO_RTOL: Real = 1e-9;
+
+/// The integrator `auto` steps a model without a closed form with at `rtol`:
+/// the Taylor method at and below [`TAYLOR_AUTO_RTOL`], DOP853 above (the
+/// rule [`Model::method`] follows, and the scene planner counts steps by).
+pub fn auto_integrator(rtol: Real) -> Method {
+    if rtol <= TAYLOR_AUTO_RTOL {
+        Method::Taylor
+    } else {
+        Method::Dop853
+    }
+}
+// ANCHOR_END: taylor_auto_rule
+
+/// A method the model does not take, and what it takes instead.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MethodRefused {
+    /// The model's name.
+    pub model: &'static str,
+    /// What was chosen.
+    pub method: MethodChoice,
+}
+
+impl std::fmt::Display for MethodRefused {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (model, method) = (self.model, self.method.name());
+        match (model, self.method) {
+            ("full" | "general-full", _) => write!(
+                f,
+                "the {model} model (3.4) takes method auto (its physical solution, by DOP853 shooting backward in time) or forward (the runaway), not {method}"
+            ),
+            (_, MethodChoice::Forward) => {
+                let takes = if model.starts_with("general") {
+                    "auto, rk4, dopri5, dop853, radau5 or taylor"
+                } else {
+                    "auto, exact, rk4, dopri5, dop853, radau5 or taylor"
+                };
+                write!(
+                    f,
+                    "method forward is for the full model (3.4) only (it shows its runaway); the {model} model takes {takes}"
+                )
+            }
+            _ => write!(
+                f,
+                "the {model} model has no closed form; it takes method auto (DOP853, or Taylor at rtol <= {TAYLOR_AUTO_RTOL:.0e}), taylor, dop853, dopri5, radau5 or rk4, not {method}"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for MethodRefused {}
+
+/// Tolerance and step of the numerical methods, checked when built.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MethodOptions {
+    rtol: Real,
+    step: Real,
+}
+
+/// The smallest relative tolerance accepted: below ~1e-14 a tolerance asks
+/// for digits a double does not have.
+pub const MIN_RTOL: Real = 1e-14;
+
+/// A tolerance or a step refused, or given for a method that ignores it.
+/// Each message starts with the key's name (`rtol`, `step`), so an entry
+/// point can put its own prefix before it (`--`, `[solve] `).
+#[derive(Clone, Copy, Debug, Error, PartialEq)]
+pub enum OptionsError {
+    /// rtol outside (0, 1).
+    #[error("rtol must lie in (0, 1), got {0}")]
+    RtolOutOfRange(Real),
+    /// rtol below [`MIN_RTOL`].
+    #[error("rtol {0:e} is below what double precision can deliver; use 1e-14 or more")]
+    RtolBelowDouble(Real),
+    /// A step that is not a positive finite number.
+    #[error("step must be positive, got {0}")]
+    StepNotPositive(Real),
+    /// rtol given for the fixed-step RK4.
+    #[error("rtol applies to the adaptive methods; rk4 takes step")]
+    RtolForRk4,
+    /// step given for a method other than RK4.
+    #[error("step sets the fixed step of method rk4 only; the adaptive methods take rtol")]
+    StepNotRk4,
+}
+
+impl OptionsError {
+    /// The key at fault: `rtol` or `step`.
+    pub fn key(&self) -> &'static str {
+        match self {
+            OptionsError::RtolOutOfRange(_)
+            | OptionsError::RtolBelowDouble(_)
+            | OptionsError::RtolForRk4 => "rtol",
+            OptionsError::StepNotPositive(_) | OptionsError::StepNotRk4 => "step",
+        }
+    }
+}
+
+impl MethodOptions {
+    /// Tolerance `rtol` in [1e-14, 1) and RK4 step `step` > 0, in units of τ.
+    pub fn new(rtol: Real, step: Real) -> Result<Self, OptionsError> {
+        Self::default().with_rtol(rtol)?.with_step(step)
+    }
+
+    /// These options with another tolerance, in [1e-14, 1).
+    pub fn with_rtol(self, rtol: Real) -> Result<Self, OptionsError> {
+        if !(rtol > 0.0 && rtol < 1.0) {
+            return Err(OptionsError::RtolOutOfRange(rtol));
+        }
+        if rtol < MIN_RTOL {
+            return Err(OptionsError::RtolBelowDouble(rtol));
+        }
+        Ok(Self { rtol, ..self })
+    }
+
+    /// These options with another RK4 step, positive and finite.
+    pub fn with_step(self, step: Real) -> Result<Self, OptionsError> {
+        if !(step > 0.0 && step.is_finite()) {
+            return Err(OptionsError::StepNotPositive(step));
+        }
+        Ok(Self { step, ..self })
+    }
+
+    /// The options a user gave with a choice of method: a tolerance only for
+    /// the adaptive methods, a step only for RK4, each checked; the default
+    /// for what was not given.
+    pub fn for_choice(
+        choice: MethodChoice,
+        rtol: Option<Real>,
+        step: Option<Real>,
+    ) -> Result<Self, OptionsError> {
+        let rk4 = choice == MethodChoice::Rk4;
+        let mut options = Self::default();
+        if let Some(rtol) = rtol {
+            if rk4 {
+                return Err(OptionsError::RtolForRk4);
+            }
+            options = options.with_rtol(rtol)?;
+        }
+        if let Some(step) = step {
+            if !rk4 {
+                return Err(OptionsError::StepNotRk4);
+            }
+            options = options.with_step(step)?;
+        }
+        Ok(options)
+    }
+
     /// Relative tolerance of the adaptive methods.
-    pub rtol: Real,
+    pub fn rtol(&self) -> Real {
+        self.rtol
+    }
+
     /// Step of the fixed-step RK4, in units of τ.
-    pub step: Real,
+    pub fn step(&self) -> Real {
+        self.step
+    }
 }
 
 impl Default for MethodOptions {
@@ -223,15 +623,15 @@ pub enum SimError {
     /// An input was NaN or infinite.
     #[error("{0} must be finite numbers")]
     NotFinite(&'static str),
-    /// `Exact` was asked for a model with no closed form.
-    #[error("the {0} model has no closed form")]
-    NoClosedForm(&'static str),
+    /// The model does not take the method chosen.
+    #[error(transparent)]
+    Refused(#[from] MethodRefused),
     /// An input lies beyond what the model can represent.
     #[error("{0}")]
     OutOfRange(&'static str),
     /// A sample came out non-finite although the method reported no failure
     /// (a last guard: spintop never prints a NaN table).
-    #[error("the state became non-finite at t = {}", crate::math::fmt_time(*.0))]
+    #[error("the state became non-finite at t = {}", crate::numbers::fmt_time(*.0))]
     NonFiniteSample(Real),
     /// A requested time was negative, non-finite or earlier than the last one.
     #[error("output times must be finite, >= 0 and non-decreasing (got {0} after {1})")]
@@ -239,9 +639,15 @@ pub enum SimError {
     /// The integrator failed; the error carries the time.
     #[error(transparent)]
     Integrate(#[from] IntegrateError),
-    /// The method does not apply to the model.
-    #[error("this method does not apply to the {0} model")]
-    MethodNotForModel(&'static str),
+    /// A method named directly ([`Simulation::with_method`]) cannot run the
+    /// model.
+    #[error("the method {method} does not run the {model} model")]
+    MethodNotForModel {
+        /// The method's label.
+        method: &'static str,
+        /// The model's name.
+        model: &'static str,
+    },
     /// The model needs to know its last time in advance.
     #[error("the {0} model needs the last output time in advance")]
     NeedsHorizon(&'static str),
@@ -254,106 +660,6 @@ pub enum SimError {
     /// The run would take more work than allowed (estimated before it starts).
     #[error(transparent)]
     TooCostly(#[from] cost::TooCostly),
-}
-
-/// The method actually used, as reported in outputs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MethodUsed {
-    /// Ω and O both from closed forms.
-    Exact,
-    /// Ω from its closed form, O integrated by DOP853 on SO(3).
-    ExactOmegaDop853Orientation,
-    /// Ω and O integrated together by this method.
-    Integrated(Integrator),
-    /// Full ALE: the physical solution by backward shooting, O driven by it.
-    Physical,
-    /// Full ALE integrated forward (it runs away), O driven by it.
-    Forward,
-    /// Ω and the orientation quaternion by the Taylor series method.
-    Taylor,
-}
-
-// ANCHOR: taylor_auto_rule
-/// `auto` integrates a top without a closed form with the Taylor method at
-/// this rtol and below, with DOP853 above.
-///
-/// NOTE: measured, not guessed (benches/README.md, "Taylor method"): Ω and
-/// the orientation together, as a simulation computes them, on the general
-/// problem of `spintop bench` and three other asymmetric tops (fast and
-/// slow, 5 to 1000 outputs). At rtol 1e-10 and below the Taylor method takes
-/// 1.3 to 4 times less time than DOP853 in every case; around 1e-8 the two
-/// are within 10 % of each other either way; at 1e-4 and looser the Taylor
-/// method is again 1.2–1.35× faster, but there DOP853 is kept: the gain is
-/// small and its embedded error estimate checks every step, where the
-/// series' step rests on an estimate of its radius of convergence.
-pub const TAYLOR_AUTO_RTOL: Real = 1e-9;
-
-/// True when `auto` integrates a model without a closed form at `rtol` with
-/// the Taylor method rather than DOP853.
-pub fn auto_uses_taylor(rtol: Real) -> bool {
-    rtol <= TAYLOR_AUTO_RTOL
-}
-// ANCHOR_END: taylor_auto_rule
-
-/// A numerical integrator.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Integrator {
-    /// Classical RK4.
-    Rk4,
-    /// Dormand–Prince 5(4).
-    Dopri5,
-    /// DOP853.
-    Dop853,
-    /// Radau IIA 5.
-    Radau5,
-}
-
-impl MethodUsed {
-    /// Short label: `exact`, `exact+dop853`, `rk4`, `dopri5`, `dop853`.
-    pub fn label(&self) -> &'static str {
-        match self {
-            MethodUsed::Exact => "exact",
-            MethodUsed::ExactOmegaDop853Orientation => "exact+dop853",
-            MethodUsed::Integrated(Integrator::Rk4) => "rk4",
-            MethodUsed::Integrated(Integrator::Dopri5) => "dopri5",
-            MethodUsed::Integrated(Integrator::Dop853) => "dop853",
-            MethodUsed::Integrated(Integrator::Radau5) => "radau5",
-            MethodUsed::Physical => "physical",
-            MethodUsed::Forward => "forward",
-            MethodUsed::Taylor => "taylor",
-        }
-    }
-
-    /// One sentence saying what was computed how.
-    pub fn detail(&self) -> &'static str {
-        match self {
-            MethodUsed::Exact => "omega and orientation from closed forms (4.7), (4.9)",
-            MethodUsed::ExactOmegaDop853Orientation => {
-                "omega from the closed form (4.15)-(4.16); orientation O = Q Rz(Omega3~ t), the precession exact and Q integrated by DOP853 on SO(3)"
-            }
-            MethodUsed::Integrated(Integrator::Rk4) => {
-                "omega and orientation integrated together by fixed-step RK4 (orientation on SO(3))"
-            }
-            MethodUsed::Integrated(Integrator::Dopri5) => {
-                "omega and orientation integrated together by Dormand-Prince 5(4) (orientation on SO(3))"
-            }
-            MethodUsed::Integrated(Integrator::Dop853) => {
-                "omega and orientation integrated together by DOP853 (orientation on SO(3))"
-            }
-            MethodUsed::Integrated(Integrator::Radau5) => {
-                "omega and orientation integrated together by Radau IIA 5, implicit (orientation on SO(3))"
-            }
-            MethodUsed::Physical => {
-                "the physical solution of (3.4): DOP853 backward from final data near the slow manifold, shooting on the final rate; orientation by DOP853 on SO(3)"
-            }
-            MethodUsed::Forward => {
-                "(3.4) integrated forward by DOP853 from the reduced model's slope, with a runaway monitor; orientation by DOP853 on SO(3)"
-            }
-            MethodUsed::Taylor => {
-                "omega and the orientation quaternion integrated together by the Taylor series method (order and step of Jorba and Zou)"
-            }
-        }
-    }
 }
 
 /// Everything observed at one time. Serialises to the `simulate` JSON contract.
@@ -455,12 +761,14 @@ enum AnyStepper<const N: usize> {
 }
 
 impl<const N: usize> AnyStepper<N> {
+    /// The stepper of `which`, or `None` when `which` is not one of the four
+    /// steppers.
     fn new(
-        which: Integrator,
+        which: Method,
         y0: State<N>,
         options: &MethodOptions,
         scale: Real,
-    ) -> Result<Self, IntegrateError> {
+    ) -> Result<Option<Self>, IntegrateError> {
         // NOTE: the absolute tolerance only matters where a component passes
         // through zero; tying it to the size of Ω₀ keeps the control relative
         // for tops of any speed (and positive for a top at rest).
@@ -473,18 +781,19 @@ impl<const N: usize> AnyStepper<N> {
     }
 
     fn with_atol(
-        which: Integrator,
+        which: Method,
         y0: State<N>,
         options: &MethodOptions,
         atol: Real,
-    ) -> Result<Self, IntegrateError> {
+    ) -> Result<Option<Self>, IntegrateError> {
         let adaptive = || AdaptiveOptions::new(options.rtol, atol);
-        Ok(match which {
-            Integrator::Rk4 => AnyStepper::Rk4(Rk4::new(0.0, y0, options.step)?),
-            Integrator::Dopri5 => AnyStepper::Dopri5(Dopri5::new(0.0, y0, adaptive()?)?),
-            Integrator::Dop853 => AnyStepper::Dop853(Dop853::new(0.0, y0, adaptive()?)?),
-            Integrator::Radau5 => AnyStepper::Radau5(Radau5::new(0.0, y0, adaptive()?)?),
-        })
+        Ok(Some(match which {
+            Method::Rk4 => AnyStepper::Rk4(Rk4::new(0.0, y0, options.step)?),
+            Method::Dopri5 => AnyStepper::Dopri5(Dopri5::new(0.0, y0, adaptive()?)?),
+            Method::Dop853 => AnyStepper::Dop853(Dop853::new(0.0, y0, adaptive()?)?),
+            Method::Radau5 => AnyStepper::Radau5(Radau5::new(0.0, y0, adaptive()?)?),
+            _ => return Ok(None),
+        }))
     }
 }
 
@@ -637,8 +946,8 @@ enum Engine {
     ClosedForm(SymmetricTop),
     /// Reduced model: Ω closed form, σ integrated.
     ReducedOrientation(SymmetricTop, Box<OnGroup<3>>),
-    /// Ω and σ integrated together.
-    Coupled(Integrator, FirstOrder, Box<OnGroup<6>>),
+    /// Ω and σ integrated together by one of the steppers.
+    Coupled(Method, FirstOrder, Box<OnGroup<6>>),
     /// Full ALE: Ω from a table (the physical solution, or a forward run up to
     /// its runaway), σ integrated along it.
     Table(Box<physical::OmegaTable>, TableKind, Stats, Box<OnGroup<3>>),
@@ -647,6 +956,11 @@ enum Engine {
 }
 
 /// The Taylor method on (Ω, q), with one model's recurrences.
+///
+/// NOTE: a unit quaternion, not σ on the group as the Runge–Kutta methods
+/// carry: q̇ = ½ q ⊗ (0, Ω) is a polynomial in (q, Ω), so the series takes it
+/// as it takes Ω, and its linearity means rounding only scales q, which is
+/// normalised as it is read.
 // NOTE: the variants differ by their auxiliary series (a few kB); the whole
 // enum is boxed once in `Engine`, so boxing each variant would buy nothing.
 #[allow(clippy::large_enum_variant)]
@@ -670,7 +984,7 @@ macro_rules! taylor_dispatch {
 }
 
 impl TaylorRun {
-    /// At Ω₀ and O(0) = `base`, the tolerances of the other integrators.
+    /// At Ω₀ and O(0) = `base`, with the tolerances of the other integrators.
     fn new(
         dynamics: FirstOrder,
         initial: &InitialState,
@@ -682,6 +996,8 @@ impl TaylorRun {
         let q = base.quaternion();
         y0.fixed_rows_mut::<4>(3)
             .copy_from(&nalgebra::Vector4::new(q.w, q.i, q.j, q.k));
+        // The same absolute tolerance as `AnyStepper::new`: relative control
+        // for a top of any speed.
         let atol = (1e-6 * options.rtol * initial.omega.norm()).max(1e-300);
         let opts = AdaptiveOptions::new(options.rtol, atol)?;
         fn build<M: TaylorRhs<3>>(
@@ -712,8 +1028,7 @@ impl TaylorRun {
     }
 
     /// Step until `t` lies in the last step (toward `horizon`), then read Ω
-    /// and O there; q is normalised as it is read (its equation is linear, so
-    /// rounding only scales it).
+    /// and O there from the step's polynomial.
     fn advance(&mut self, t: Real, horizon: Real) -> Result<(Vec3, Mat3), IntegrateError> {
         let y = taylor_dispatch!(self, s => {
             while s.t() < t {
@@ -755,7 +1070,12 @@ fn physical_table(
             let (table, sol) = physical::physical_table(top, omega0, span, rtol)?;
             (table, sol.stats)
         }
-        _ => return Err(SimError::NoClosedForm(model.name())),
+        _ => {
+            return Err(SimError::MethodNotForModel {
+                method: Method::Physical.label(),
+                model: model.name(),
+            });
+        }
     })
 }
 
@@ -781,7 +1101,9 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    /// Build a simulation at t = 0.
+    /// Build a simulation at t = 0 with the method `choice` resolves to for
+    /// `model` ([`Model::method`]; a choice the model does not take is
+    /// refused with what it takes).
     ///
     /// `horizon` is the last time that will be asked for (the adaptive methods
     /// step toward it and never past it); `None` means open-ended, as in the TUI.
@@ -792,27 +1114,44 @@ impl Simulation {
         initial: InitialState,
         horizon: Option<Real>,
     ) -> Result<Self, SimError> {
+        let method = model.method(choice, &options)?;
+        Self::with_method(model, method, options, initial, horizon)
+    }
+
+    /// Build a simulation at t = 0 that runs `method` itself (the sweeps of
+    /// [`crate::workprecision`] name the method, not a choice). A method that
+    /// cannot run `model` is refused.
+    pub fn with_method(
+        model: Model,
+        method: Method,
+        options: MethodOptions,
+        initial: InitialState,
+        horizon: Option<Real>,
+    ) -> Result<Self, SimError> {
         // NOTE: the steppers take a finite t_stop; the largest double stands for
         // "open-ended" (the TUI), and no run gets anywhere near it.
         let horizon = horizon.unwrap_or(Real::MAX);
         if horizon.is_nan() || horizon < 0.0 {
             return Err(SimError::BadTime(horizon, 0.0));
         }
+        let not_for_model = || SimError::MethodNotForModel {
+            method: method.label(),
+            model: model.name(),
+        };
         if horizon < Real::MAX {
-            cost::check(&model, choice, &options, &initial.omega, horizon)?;
+            cost::check(&model, method, &options, &initial.omega, horizon)?;
         }
         let base = Quat::from_matrix(&initial.rotation);
         let scale = initial.omega.norm();
-        let on_group = |which: Integrator, dynamics: FirstOrder| -> Result<Engine, SimError> {
+        let on_group = |dynamics: FirstOrder| -> Result<Engine, SimError> {
             let mut y0 = State::<6>::zeros();
             y0.fixed_rows_mut::<3>(0).copy_from(&initial.omega);
+            let stepper =
+                AnyStepper::new(method, y0, &options, scale)?.ok_or_else(not_for_model)?;
             Ok(Engine::Coupled(
-                which,
+                method,
                 dynamics,
-                Box::new(OnGroup {
-                    stepper: AnyStepper::new(which, y0, &options, scale)?,
-                    base,
-                }),
+                Box::new(OnGroup { stepper, base }),
             ))
         };
         let orientation_only = || -> Result<Box<OnGroup<3>>, SimError> {
@@ -821,89 +1160,62 @@ impl Simulation {
             // from 0 at every fold; a tolerance relative to its size would ask
             // for ever more digits right after each fold. Its error is an angle:
             // rtol radians, absolute.
-            Ok(Box::new(OnGroup {
-                stepper: AnyStepper::with_atol(Integrator::Dop853, zero, &options, options.rtol)?,
-                base,
-            }))
+            let stepper = AnyStepper::with_atol(Method::Dop853, zero, &options, options.rtol)?
+                .ok_or_else(not_for_model)?;
+            Ok(Box::new(OnGroup { stepper, base }))
         };
-        let engine = match (choice, model.first_order()) {
-            (_, None) => {
-                let (omega0, rtol) = (&initial.omega, options.rtol);
-                match choice {
-                    MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Dop853 => {
-                        // Open-ended (the live view): one chunk now, the next
-                        // when the view gets there (see `advance_to`).
-                        let span = if horizon == Real::MAX {
-                            physical_chunk_length(&model)
-                        } else {
-                            horizon
-                        };
-                        let (table, stats) = physical_table(&model, omega0, span, rtol)?;
-                        Engine::Table(
-                            Box::new(table),
-                            TableKind::Physical,
-                            stats,
-                            orientation_only()?,
-                        )
-                    }
-                    MethodChoice::Forward if horizon == Real::MAX => {
-                        return Err(SimError::NeedsHorizon(model.name()));
-                    }
-                    MethodChoice::Forward => {
-                        let (table, runaway, stats) = match model {
-                            Model::GeneralFull(top) => {
-                                let (table, run) =
-                                    general::general_forward_table(&top, omega0, horizon, rtol)?;
-                                (table, run.runaway, run.stats)
-                            }
-                            Model::Full(top) => {
-                                let (table, run) =
-                                    physical::forward_table(&top, omega0, horizon, rtol)?;
-                                (table, run.runaway, run.stats)
-                            }
-                            _ => return Err(SimError::NoClosedForm(model.name())),
-                        };
-                        Engine::Table(
-                            Box::new(table),
-                            TableKind::Forward(runaway),
-                            stats,
-                            orientation_only()?,
-                        )
-                    }
-                    MethodChoice::Rk4
-                    | MethodChoice::Dopri5
-                    | MethodChoice::Radau5
-                    | MethodChoice::Taylor => {
-                        return Err(SimError::MethodNotForModel(model.name()));
-                    }
-                }
+        let (omega0, rtol) = (&initial.omega, options.rtol);
+        let engine = match (method, model.first_order()) {
+            (Method::Physical, None) => {
+                // Open-ended (the live view): one chunk now, the next
+                // when the view gets there (see `advance_to`).
+                let span = if horizon == Real::MAX {
+                    physical_chunk_length(&model)
+                } else {
+                    horizon
+                };
+                let (table, stats) = physical_table(&model, omega0, span, rtol)?;
+                Engine::Table(
+                    Box::new(table),
+                    TableKind::Physical,
+                    stats,
+                    orientation_only()?,
+                )
             }
-            // ANCHOR: auto_choice
-            (MethodChoice::Forward, Some(_)) => {
-                return Err(SimError::MethodNotForModel(model.name()));
+            (Method::Forward, None) if horizon == Real::MAX => {
+                return Err(SimError::NeedsHorizon(model.name()));
             }
-            (MethodChoice::Auto | MethodChoice::Exact, Some(FirstOrder::Truncated(top))) => {
-                Engine::ClosedForm(top)
+            (Method::Forward, None) => {
+                let (table, runaway, stats) = match model {
+                    Model::GeneralFull(top) => {
+                        let (table, run) =
+                            general::general_forward_table(&top, omega0, horizon, rtol)?;
+                        (table, run.runaway, run.stats)
+                    }
+                    Model::Full(top) => {
+                        let (table, run) = physical::forward_table(&top, omega0, horizon, rtol)?;
+                        (table, run.runaway, run.stats)
+                    }
+                    _ => return Err(not_for_model()),
+                };
+                Engine::Table(
+                    Box::new(table),
+                    TableKind::Forward(runaway),
+                    stats,
+                    orientation_only()?,
+                )
             }
-            (MethodChoice::Auto | MethodChoice::Exact, Some(FirstOrder::Reduced(top))) => {
+            (Method::ClosedForm, Some(FirstOrder::Truncated(top))) => Engine::ClosedForm(top),
+            (Method::ClosedFormDop853, Some(FirstOrder::Reduced(top))) => {
                 Engine::ReducedOrientation(top, orientation_only()?)
             }
-            (MethodChoice::Exact, Some(FirstOrder::General(_) | FirstOrder::GeneralReduced(_))) => {
-                return Err(SimError::NoClosedForm(model.name()));
+            (Method::Rk4 | Method::Dopri5 | Method::Dop853 | Method::Radau5, Some(d)) => {
+                on_group(d)?
             }
-            (MethodChoice::Auto, Some(d)) if auto_uses_taylor(options.rtol) => {
+            (Method::Taylor, Some(d)) => {
                 Engine::Taylor(Box::new(TaylorRun::new(d, &initial, &base, &options)?))
             }
-            (MethodChoice::Auto | MethodChoice::Dop853, Some(d)) => {
-                on_group(Integrator::Dop853, d)?
-            }
-            (MethodChoice::Taylor, Some(d)) => {
-                Engine::Taylor(Box::new(TaylorRun::new(d, &initial, &base, &options)?))
-            }
-            (MethodChoice::Rk4, Some(d)) => on_group(Integrator::Rk4, d)?,
-            (MethodChoice::Dopri5, Some(d)) => on_group(Integrator::Dopri5, d)?,
-            (MethodChoice::Radau5, Some(d)) => on_group(Integrator::Radau5, d)?,
-            // ANCHOR_END: auto_choice
+            _ => return Err(not_for_model()),
         };
         let current = Sample::new(0.0, &model.inertia(), &initial.rotation, &initial.omega);
         Ok(Self {
@@ -927,14 +1239,14 @@ impl Simulation {
     }
 
     /// The method in use.
-    pub fn method(&self) -> MethodUsed {
+    pub fn method(&self) -> Method {
         match &self.engine {
-            Engine::ClosedForm(_) => MethodUsed::Exact,
-            Engine::ReducedOrientation(..) => MethodUsed::ExactOmegaDop853Orientation,
-            Engine::Coupled(which, ..) => MethodUsed::Integrated(*which),
-            Engine::Table(_, TableKind::Physical, ..) => MethodUsed::Physical,
-            Engine::Table(_, TableKind::Forward(_), ..) => MethodUsed::Forward,
-            Engine::Taylor(_) => MethodUsed::Taylor,
+            Engine::ClosedForm(_) => Method::ClosedForm,
+            Engine::ReducedOrientation(..) => Method::ClosedFormDop853,
+            Engine::Coupled(which, ..) => *which,
+            Engine::Table(_, TableKind::Physical, ..) => Method::Physical,
+            Engine::Table(_, TableKind::Forward(_), ..) => Method::Forward,
+            Engine::Taylor(_) => Method::Taylor,
         }
     }
 
@@ -1063,5 +1375,125 @@ impl Simulation {
             out.push(*self.advance_to(t)?);
         }
         Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod method_rule_tests {
+    use super::*;
+
+    fn models() -> Vec<Model> {
+        let sym = SymmetricTop::figure();
+        let general = GeneralTop::new(Vec3::new(1.0, 1.5, 2.0), Vec3::new(0.3, 0.2, 1.0)).unwrap();
+        vec![
+            Model::Truncated(sym),
+            Model::Reduced(sym),
+            Model::Full(sym),
+            Model::General(general),
+            Model::GeneralReduced(general),
+            Model::GeneralFull(general),
+        ]
+    }
+
+    /// The rule every entry point asks (`Model::check_method`) and what a
+    /// simulation actually builds agree for every model and every choice: a
+    /// choice the rule takes builds and runs, one it refuses is refused by
+    /// the simulation with the same reason.
+    #[test]
+    fn the_method_rule_is_what_the_simulation_runs() {
+        let initial =
+            InitialState::new(Vec3::new(0.0, 0.1, 0.2), EulerAngles::new(0.0, 0.0, 0.0)).unwrap();
+        for model in models() {
+            for choice in MethodChoice::ALL {
+                let built =
+                    Simulation::new(model, choice, MethodOptions::default(), initial, Some(1.0));
+                match model.method(choice, &MethodOptions::default()) {
+                    Ok(method) => {
+                        let mut sim = built.unwrap_or_else(|e| {
+                            panic!("{} by {}: {e}", model.name(), choice.name())
+                        });
+                        assert_eq!(sim.method(), method);
+                        assert!(sim.advance_to(1.0).is_ok());
+                    }
+                    Err(refused) => {
+                        assert_eq!(built.unwrap_err(), SimError::Refused(refused));
+                        let text = refused.to_string();
+                        assert!(text.contains(model.name()), "{text}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// `auto` takes the closed forms where they exist and the physical
+    /// solution for the full ALE at any tolerance; for the asymmetric tops
+    /// DOP853 above [`TAYLOR_AUTO_RTOL`] and the Taylor method at and below
+    /// it.
+    #[test]
+    fn auto_takes_the_closed_forms_where_they_exist() {
+        let rtols = [1e-3, 1e-8, 2.0 * TAYLOR_AUTO_RTOL, TAYLOR_AUTO_RTOL, 1e-14];
+        for (model, rtol) in models().into_iter().flat_map(|m| rtols.map(|r| (m, r))) {
+            let options = MethodOptions::default().with_rtol(rtol).unwrap();
+            let method = model.method(MethodChoice::Auto, &options).unwrap();
+            let integrated = if rtol <= TAYLOR_AUTO_RTOL {
+                Method::Taylor
+            } else {
+                Method::Dop853
+            };
+            let expected = match model {
+                Model::Truncated(_) => Method::ClosedForm,
+                Model::Reduced(_) => Method::ClosedFormDop853,
+                Model::Full(_) | Model::GeneralFull(_) => Method::Physical,
+                Model::General(_) | Model::GeneralReduced(_) => integrated,
+            };
+            assert_eq!(method, expected, "{} at {rtol:e}", model.name());
+            assert_eq!(
+                model.closed_form(&Vec3::new(0.0, 0.1, 0.2), 1.0).is_some(),
+                model.has_closed_form()
+            );
+        }
+    }
+
+    #[test]
+    fn options_are_checked_once_when_built() {
+        assert!(MethodOptions::new(1e-10, 0.01).is_ok());
+        assert_eq!(
+            MethodOptions::new(0.0, 0.01),
+            Err(OptionsError::RtolOutOfRange(0.0))
+        );
+        assert!(MethodOptions::new(Real::NAN, 0.01).is_err());
+        assert_eq!(
+            MethodOptions::new(1e-15, 0.01),
+            Err(OptionsError::RtolBelowDouble(1e-15))
+        );
+        assert!(MethodOptions::new(MIN_RTOL, 0.01).is_ok());
+        assert!(MethodOptions::new(1e-10, 0.0).is_err());
+        assert!(MethodOptions::new(1e-10, Real::INFINITY).is_err());
+        let rk4 = MethodChoice::Rk4;
+        assert_eq!(
+            MethodOptions::for_choice(rk4, Some(1e-8), None),
+            Err(OptionsError::RtolForRk4)
+        );
+        assert_eq!(
+            MethodOptions::for_choice(MethodChoice::Dop853, None, Some(0.1)),
+            Err(OptionsError::StepNotRk4)
+        );
+        let o = MethodOptions::for_choice(rk4, None, Some(0.1)).unwrap();
+        assert_eq!((o.rtol(), o.step()), (1e-10, 0.1));
+        for e in [
+            OptionsError::RtolForRk4,
+            OptionsError::StepNotPositive(-1.0),
+        ] {
+            assert!(e.to_string().starts_with(e.key()), "{e}");
+        }
+    }
+
+    #[test]
+    fn every_choice_has_its_name() {
+        for (choice, name) in MethodChoice::ALL.iter().zip(MethodChoice::NAMES) {
+            assert_eq!(choice.name(), name);
+            assert_eq!(MethodChoice::from_name(name), Some(*choice));
+        }
+        assert_eq!(MethodChoice::from_name("euler"), None);
     }
 }

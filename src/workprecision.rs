@@ -33,7 +33,8 @@ pub mod method;
 pub mod problem;
 pub mod report;
 
-pub use method::{Method, Spintop};
+pub use crate::sim::Method;
+pub use method::{SWEPT, Spintop};
 pub use problem::{OmegaRhs, Problem, ProblemKind};
 
 /// What a run solves for.

@@ -6,6 +6,7 @@
 //! (`benches/scipy_work_precision.py`) and prints each method's cost at
 //! matched error, side by side.
 
+use super::gate::Gate;
 use super::{CliError, bad};
 use crate::math::Real;
 use crate::workprecision::report::{self, CostAxis};
@@ -224,14 +225,14 @@ impl Stopwatch for WallClock {
 }
 
 /// Validate, run and print `bench`.
-pub(crate) fn execute(args: BenchArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: BenchArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     match args.validate()? {
         Job::Join(config) => join(&config, out),
         Job::Sweep(config) => sweep(&config, out),
     }
 }
 
-fn sweep(config: &BenchConfig, out: &mut impl Write) -> Result<(), CliError> {
+fn sweep(config: &BenchConfig, out: &mut Gate<'_>) -> Result<(), CliError> {
     let problems: Vec<Problem> = config
         .kinds
         .iter()
@@ -241,6 +242,10 @@ fn sweep(config: &BenchConfig, out: &mut impl Write) -> Result<(), CliError> {
     let entries = Spintop::all();
     let solvers: Vec<&dyn Solver> = entries.iter().map(|s| s as &dyn Solver).collect();
     let rows = workprecision::sweep(&problems, &solvers, &config.plan, Some(&mut WallClock));
+    out.check(
+        &rows,
+        "a method's error or time overflowed; run a single --model to see which",
+    )?;
 
     let build = if cfg!(debug_assertions) {
         "debug build: the times are not representative, use cargo run --release"
@@ -337,12 +342,13 @@ fn summary(rows: &[Row]) -> Vec<String> {
     lines
 }
 
-fn join(config: &JoinConfig, out: &mut impl Write) -> Result<(), CliError> {
+fn join(config: &JoinConfig, out: &mut Gate<'_>) -> Result<(), CliError> {
     let files = &config.files;
     let mut rows = Vec::new();
     for path in files {
         rows.extend(read_rows(path)?);
     }
+    out.check(&rows, "the files hold a number that is not finite")?;
     let has = |name: &str| rows.iter().any(|r| r.model == name);
     let model = match config.chart {
         Some(kind) if has(kind.name()) => Some(kind.name().to_string()),

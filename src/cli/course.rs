@@ -1,13 +1,17 @@
 //! `spintop course`: the assignments in course order with their state, the
-//! progress, and what to do next, from one grading run of
-//! `cargo test -p spintop-lessons` (its build noise and backtraces hidden).
-//! The engine is [`crate::course`]; this file only prints it.
+//! progress, and what to do next, from one grading (each grader in its own
+//! process, its verdict read from structure); and the instructor's tools:
+//! `export`, `grade` (a whole class, CSV or Gradescope), `diagnose`.
+//! The engine is [`crate::course`]; this file validates and prints.
 
+use super::gate::Gate;
 use super::{CliError, bad};
-use crate::course::{self, State};
+use crate::course::{self, Options, State};
+use crate::grading;
 use clap::{Args, Subcommand};
 use std::io::{IsTerminal, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 /// The raw arguments of `course`.
 #[derive(Debug, Default, Args)]
@@ -30,6 +34,10 @@ pub struct CourseArgs {
     /// The status as text (default) or as JSON, for an instructor's scripts.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
+    /// Draw the graders' inputs from this seed (a failure's report names its
+    /// seed; the same seed gives the same inputs). Default: a fresh one.
+    #[arg(long, value_name = "N")]
+    seed: Option<u64>,
 }
 
 /// How `spintop course` prints the status.
@@ -40,6 +48,23 @@ enum Format {
     Text,
     /// One JSON document, for scripts.
     Json,
+}
+
+/// How `spintop course grade` writes the grades.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum GradeFormat {
+    /// One CSV row per student and assignment.
+    #[default]
+    Csv,
+    /// Gradescope's autograder results.json (one per student).
+    Gradescope,
+}
+
+/// Where an exported copy is graded on every push.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum CiChoice {
+    /// GitHub Actions (.github/workflows/grade.yml).
+    Github,
 }
 
 /// What `course` can do besides printing the status.
@@ -59,6 +84,10 @@ enum CourseAction {
         /// The folder to create (it must not exist yet, or be empty)
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
+        /// Also add a workflow that grades the copy with `cargo test` on
+        /// every push (and a copy of spintop's core, so that it builds there)
+        #[arg(long, value_enum, value_name = "SERVICE")]
+        ci: Option<CiChoice>,
     },
     /// The next rung of an assignment's hint ladder: where to look, then the
     /// idea, then the formula (one rung per call)
@@ -69,15 +98,48 @@ enum CourseAction {
         #[arg(long, value_name = "DIR")]
         course: Option<PathBuf>,
     },
-    /// Instructor: grade students' copies with the repository's graders and
-    /// write a CSV (student, assignment, equation, state, hint rungs used)
+    /// Instructor: grade students' copies with the repository's graders, each
+    /// within a time limit, and write one row per student and assignment
+    /// whatever happens (a missing folder, a copy that does not compile or
+    /// hangs); exit 3 when a copy could not be fully graded
     Grade {
         /// The students' copies (folders made by `course export`), one per student
         #[arg(required = true, value_name = "DIR")]
         copies: Vec<PathBuf>,
-        /// Write the CSV here instead of to standard output
-        #[arg(long, value_name = "FILE")]
+        /// Write the CSV (or, with --format gradescope, results.json; a folder
+        /// of STUDENT/results.json for several copies) here instead of to
+        /// standard output
+        #[arg(long, value_name = "PATH")]
         out: Option<PathBuf>,
+        /// CSV rows, or Gradescope's results.json
+        #[arg(long, value_enum, default_value_t = GradeFormat::Csv)]
+        format: GradeFormat,
+        /// The longest one copy may take, its build and every grader (seconds)
+        #[arg(long, value_name = "SECONDS", default_value_t = 120.0)]
+        timeout: f64,
+        /// The longest one grader may take (seconds)
+        #[arg(long, value_name = "SECONDS", default_value_t = 30.0)]
+        test_timeout: f64,
+        /// Copies graded at once (default: the number of cores)
+        #[arg(long, value_name = "N")]
+        jobs: Option<usize>,
+        /// Draw every grader's inputs from this seed (default: a fresh one for the class)
+        #[arg(long, value_name = "N")]
+        seed: Option<u64>,
+    },
+    /// Instructor: grade a folder of wrong answers (one `.rs` file each, its
+    /// `//! assignment:` and `//! mistake:` in its header) and print each
+    /// grader's diagnosis, to measure how often it names the mistake
+    Diagnose {
+        /// The folder of wrong answers
+        #[arg(value_name = "DIR")]
+        dir: PathBuf,
+        /// The inputs' seed (default: a fresh one)
+        #[arg(long, value_name = "N")]
+        seed: Option<u64>,
+        /// A table for people (default), or JSON lines for scripts
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
     },
 }
 
@@ -86,7 +148,7 @@ pub(crate) fn lessons(chosen: Option<&PathBuf>) -> Result<PathBuf, CliError> {
     let dir = match chosen {
         Some(dir) => dir.clone(),
         None => {
-            let dir = course::lessons_dir(std::path::Path::new(env!("CARGO_MANIFEST_DIR")));
+            let dir = course::lessons_dir(course::repository());
             if !dir.join("Cargo.toml").is_file() {
                 return Err(bad(format!(
                     "spintop course grades the assignments in the repository, and {} is missing; run it from a clone of spintop, or name a course with --course DIR",
@@ -100,40 +162,52 @@ pub(crate) fn lessons(chosen: Option<&PathBuf>) -> Result<PathBuf, CliError> {
     Ok(dir)
 }
 
+/// The `--course DIR` a printed command must repeat (as the user typed it).
+fn given(chosen: Option<&PathBuf>) -> Option<String> {
+    chosen.map(|d| d.display().to_string())
+}
+
 fn mark(state: &State) -> &'static str {
     match state {
         State::Passing => "✓",
-        State::Failing(_) | State::DoesNotCompile(_) => "✗",
+        State::Failing(_) | State::DoesNotCompile(_) | State::TimedOut(_) => "✗",
         State::NotStarted | State::Unknown => "·",
     }
 }
 
 /// Runs `spintop course`.
-pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     match args.action {
-        Some(CourseAction::Export { out: dir }) => return export(&dir, out),
+        Some(CourseAction::Export { out: dir, ci }) => return export(&dir, ci, out),
         Some(CourseAction::Watch { course }) => return watch(course.as_ref(), out),
         Some(CourseAction::Hint { name, course }) => return hint(&name, course.as_ref(), out),
-        Some(CourseAction::Grade { copies, out: csv }) => {
-            return grade_copies(&copies, csv.as_ref(), out);
+        Some(CourseAction::Grade {
+            copies,
+            out: path,
+            format,
+            timeout,
+            test_timeout,
+            jobs,
+            seed,
+        }) => {
+            let limits = Limits::new(timeout, test_timeout, jobs)?;
+            return grade_copies(&copies, path.as_ref(), format, limits, seed, out);
+        }
+        Some(CourseAction::Diagnose { dir, seed, format }) => {
+            return diagnose(&dir, seed, format, out);
         }
         None => {}
     }
-    let wanted = args
-        .assignment
-        .as_deref()
-        .map(|w| w.trim_start_matches('(').trim_end_matches(')').to_string());
-    if let Some(w) = &wanted
-        && !course::COURSE
-            .iter()
-            .any(|a| a.function == w || a.equation.trim_matches(['(', ')']) == w)
-    {
-        let names: Vec<&str> = course::COURSE.iter().map(|a| a.function).collect();
-        return Err(bad(format!(
-            "--assignment {w}: no such assignment; one of {}",
-            names.join(", ")
-        )));
-    }
+    let wanted = match args.assignment.as_deref() {
+        Some(w) => Some(course::find(w).ok_or_else(|| {
+            let names: Vec<&str> = course::COURSE.iter().map(|a| a.function).collect();
+            bad(format!(
+                "--assignment {w}: no such assignment; one of {}",
+                names.join(", ")
+            ))
+        })?),
+        None => None,
+    };
     let dir = lessons(args.course.as_ref())?;
     if args.solutions && !dir.join("src/solutions").is_dir() {
         return Err(bad(format!(
@@ -141,10 +215,17 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
             dir.join("src/solutions").display()
         )));
     }
+    let course_arg = given(args.course.as_ref());
     if std::io::stderr().is_terminal() {
         eprint!("grading (cargo test on {})…\r", dir.display());
     }
-    let status = course::grade(&dir, args.solutions).map_err(bad)?;
+    let options = Options {
+        solutions: args.solutions,
+        seed: args.seed,
+        course_arg: course_arg.clone(),
+        ..Options::default()
+    };
+    let status = course::grade(&dir, &options).map_err(bad)?;
     if !args.solutions {
         course::record_passes_now(&dir, &status);
     }
@@ -171,7 +252,12 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
         eprint!("{}\r", " ".repeat(48));
     }
     let n = status.states.len();
-    writeln!(out, "spintop course: {} of {n} passing", status.passing())?;
+    writeln!(
+        out,
+        "spintop course: {} of {n} passing (inputs from seed {})",
+        status.passing(),
+        status.seed
+    )?;
     for (a, s) in &status.states {
         writeln!(
             out,
@@ -184,11 +270,27 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
             s.word()
         )?;
     }
-    let show = match &wanted {
-        Some(w) => status
-            .states
-            .iter()
-            .find(|(a, _)| a.function == w || a.equation.trim_matches(['(', ')']) == w),
+    // A compile error or a shortcut comes first: nothing else can be graded.
+    if let Some(place) = status.next_place() {
+        let what = if status.compile_error.is_some() {
+            "the lessons do not compile"
+        } else {
+            "the copy takes a shortcut"
+        };
+        let detail = status
+            .compile_error
+            .as_ref()
+            .or(status.shortcut.as_ref())
+            .map(|l| l.message.clone())
+            .unwrap_or_default();
+        writeln!(out, "next: fix {place} ({what})")?;
+        writeln!(out, "  {detail}")?;
+        if wanted.is_none() {
+            return Ok(());
+        }
+    }
+    let show = match wanted {
+        Some(w) => status.states.iter().find(|(a, _)| a.function == w.function),
         None => status.next(),
     };
     match show {
@@ -215,12 +317,13 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
                 )?,
                 State::Failing(report) => {
                     // The whole report for one assignment; its first lines for "next".
-                    let limit = if wanted.is_some() { usize::MAX } else { 8 };
+                    let limit = if wanted.is_some() { usize::MAX } else { 9 };
                     for line in report.lines().take(limit) {
                         writeln!(out, "  {line}")?;
                     }
                 }
                 State::DoesNotCompile(e) => writeln!(out, "  the lessons do not compile: {e}")?,
+                State::TimedOut(why) => writeln!(out, "  {why}")?,
                 State::Passing => writeln!(out, "  passing")?,
                 State::Unknown => {
                     writeln!(out, "  its grader did not report; run it alone to see why")?
@@ -235,8 +338,8 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
             if !matches!(s, State::Passing | State::Failing(_)) {
                 writeln!(
                     out,
-                    "  stuck? spintop course hint {} (where to look, then the idea, then the formula)",
-                    a.function
+                    "  stuck? {} (where to look, then the idea, then the formula)",
+                    grading::hint_command(a.function, course_arg.as_deref())
                 )?;
             }
         }
@@ -244,16 +347,26 @@ pub(crate) fn execute(args: CourseArgs, out: &mut impl Write) -> Result<(), CliE
     Ok(())
 }
 
-/// `spintop course export --out DIR`.
-fn export(dir: &std::path::Path, out: &mut impl Write) -> Result<(), CliError> {
-    let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let written = course::export(repo, dir).map_err(|e| bad(format!("course export: {e}")))?;
+/// `spintop course export --out DIR [--ci github]`.
+fn export(dir: &Path, ci: Option<CiChoice>, out: &mut impl Write) -> Result<(), CliError> {
+    let options = course::ExportOptions {
+        ci: ci.map(|CiChoice::Github| course::Ci::Github),
+    };
+    let written = course::export_with(course::repository(), dir, &options)
+        .map_err(|e| bad(format!("course export: {e}")))?;
     writeln!(
         out,
         "spintop course export: wrote {} files to {} (stubs, graders, the assignments page; no solutions)",
         written.files.len(),
         dir.display()
     )?;
+    if ci.is_some() {
+        writeln!(
+            out,
+            "  {} grades it with `cargo test` on every push; spintop's core is copied into spintop/ so that it builds there",
+            course::export::GITHUB_WORKFLOW
+        )?;
+    }
     writeln!(
         out,
         "  hand it out; a student runs `cargo test` in it, or `spintop course --course {}`",
@@ -278,7 +391,14 @@ fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError>
         dir.join("src").display()
     )?;
     out.flush()?;
-    let watch = course::Watch::start(&dir);
+    let course_arg = given(chosen);
+    let watch = course::Watch::with_options(
+        &dir,
+        Options {
+            course_arg: course_arg.clone(),
+            ..Options::default()
+        },
+    );
     let mut last: Option<course::Status> = None;
     loop {
         for report in watch.poll() {
@@ -295,17 +415,23 @@ fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError>
                         let changed = last.as_ref().is_none_or(|l| l.states[i].1 != *s);
                         if changed && (last.is_some() || *s != State::NotStarted) {
                             writeln!(out, "  {}", verdict_line(a, s))?;
-                            if let State::Failing(report) | State::DoesNotCompile(report) = s {
-                                for line in report.lines().take(6) {
+                            if let Some(report) = s.reason() {
+                                for line in report.lines().take(7) {
                                     writeln!(out, "      {line}")?;
                                 }
                             }
                         }
                     }
-                    let next = status
-                        .next()
-                        .map(|(a, _)| format!("; next: {} {}", a.equation, a.function))
-                        .unwrap_or_default();
+                    let next = match (status.next_place(), status.next()) {
+                        (Some(place), _) => format!("; next: fix {place}"),
+                        (None, Some((a, _))) => format!(
+                            "; next: {} {} (stuck? {})",
+                            a.equation,
+                            a.function,
+                            grading::hint_command(a.function, course_arg.as_deref())
+                        ),
+                        (None, None) => String::new(),
+                    };
                     writeln!(
                         out,
                         "{} of {} passing{next}",
@@ -317,7 +443,7 @@ fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError>
             }
             out.flush()?;
         }
-        std::thread::sleep(std::time::Duration::from_millis(100));
+        std::thread::sleep(Duration::from_millis(100));
     }
 }
 
@@ -327,10 +453,6 @@ fn status_json(status: &course::Status, progress: &course::Progress) -> serde_js
         .states
         .iter()
         .map(|(a, s)| {
-            let report = match s {
-                State::Failing(r) | State::DoesNotCompile(r) => Some(r.clone()),
-                _ => None,
-            };
             serde_json::json!({
                 "function": a.function,
                 "equation": a.equation,
@@ -338,16 +460,20 @@ fn status_json(status: &course::Status, progress: &course::Progress) -> serde_js
                 "file": a.file,
                 "test": format!("{}::{}", a.binary, a.test),
                 "state": s.word(),
-                "report": report,
+                "report": s.reason(),
                 "hint_rungs_used": progress.hints.get(a.function).copied().unwrap_or(0),
                 "first_passed_unix": progress.first_passed.get(a.function),
             })
         })
         .collect();
+    let place = |l: &course::Located| serde_json::json!({"file": l.file, "line": l.line, "message": l.message});
     serde_json::json!({
         "passing": status.passing(),
         "total": status.states.len(),
+        "seed": status.seed,
         "next": status.next().map(|(a, _)| a.function),
+        "compile_error": status.compile_error.as_ref().map(place),
+        "shortcut": status.shortcut.as_ref().map(place),
         "assignments": assignments,
     })
 }
@@ -378,88 +504,262 @@ fn hint(name: &str, chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<()
     } else {
         writeln!(
             out,
-            "  (run `spintop course hint {}` again for the next rung)",
-            a.function
+            "  (run `{}` again for the next rung)",
+            grading::hint_command(a.function, given(chosen).as_deref())
         )?;
     }
     Ok(())
 }
 
-/// A CSV field, quoted when it needs to be.
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
+/// The time limits and parallelism of `course grade`, validated.
+#[derive(Debug, Clone, Copy)]
+struct Limits {
+    timeout: Duration,
+    test_timeout: Duration,
+    jobs: usize,
+}
+
+impl Limits {
+    fn new(timeout: f64, test_timeout: f64, jobs: Option<usize>) -> Result<Self, CliError> {
+        let seconds = |v: f64, flag: &str| {
+            if v.is_finite() && v > 0.0 && v <= 86_400.0 {
+                Ok(Duration::from_secs_f64(v))
+            } else {
+                Err(bad(format!(
+                    "{flag} {v}: give a number of seconds above 0 and at most a day"
+                )))
+            }
+        };
+        let jobs = match jobs {
+            Some(0) => return Err(bad("--jobs 0: give at least 1 copy at a time")),
+            Some(n) if n > 256 => return Err(bad(format!("--jobs {n}: at most 256"))),
+            Some(n) => n,
+            None => std::thread::available_parallelism().map_or(2, |n| n.get()),
+        };
+        Ok(Self {
+            timeout: seconds(timeout, "--timeout")?,
+            test_timeout: seconds(test_timeout, "--test-timeout")?,
+            jobs,
+        })
     }
 }
 
 /// `spintop course grade DIR...`: each copy graded with the repository's
-/// graders, one CSV row per student and assignment.
+/// graders, one row per student and assignment, whatever happens.
 fn grade_copies(
     copies: &[PathBuf],
-    csv: Option<&PathBuf>,
+    path: Option<&PathBuf>,
+    format: GradeFormat,
+    limits: Limits,
+    seed: Option<u64>,
     out: &mut impl Write,
 ) -> Result<(), CliError> {
-    let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let repo = course::repository();
     if !course::lessons_dir(repo).join("Cargo.toml").is_file() {
         return Err(bad(
             "spintop course grade needs the repository's graders (lessons/); run it from a clone of spintop",
         ));
     }
-    for dir in copies {
-        course::check_lessons_dir(dir).map_err(|e| bad(format!("course grade: {e}")))?;
-    }
-    let work = repo.join("target").join("course-grade");
-    // The repository's own build folder: spintop is already compiled there.
-    let target = std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| repo.join("target"));
-    let mut rows = vec!["student,assignment,equation,state,hint_rungs_used".to_string()];
-    for (i, dir) in copies.iter().enumerate() {
-        let student = dir
-            .canonicalize()
-            .ok()
-            .and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
-            .unwrap_or_else(|| dir.display().to_string());
-        if std::io::stderr().is_terminal() {
-            eprint!("grading {student} ({} of {})…\r", i + 1, copies.len());
+    // Where the grades go is checked before any copy is graded.
+    let several = copies.len() > 1;
+    if let Some(p) = path {
+        if format == GradeFormat::Gradescope && several {
+            if p.exists() && !p.is_dir() {
+                return Err(bad(format!(
+                    "--out {}: with several copies, Gradescope's results go to a folder (one STUDENT/results.json each)",
+                    p.display()
+                )));
+            }
+        } else {
+            let parent = p.parent().filter(|q| !q.as_os_str().is_empty());
+            if parent.is_some_and(|q| !q.is_dir()) {
+                return Err(bad(format!(
+                    "--out {}: the folder {} does not exist",
+                    p.display(),
+                    parent.map(|q| q.display().to_string()).unwrap_or_default()
+                )));
+            }
+            if p.is_dir() {
+                return Err(bad(format!("--out {}: a folder; give a file", p.display())));
+            }
         }
-        let status = course::grade_submission(repo, dir, &work.join("copy"), &target)
-            .map_err(|e| bad(format!("course grade {}: {e}", dir.display())))?;
-        let progress = course::load_progress(dir);
-        for (a, s) in &status.states {
-            rows.push(
-                [
-                    csv_field(&student),
-                    a.function.to_string(),
-                    csv_field(a.equation),
-                    s.word().to_string(),
-                    progress
-                        .hints
-                        .get(a.function)
-                        .copied()
-                        .unwrap_or(0)
-                        .to_string(),
-                ]
-                .join(","),
-            );
+    } else if format == GradeFormat::Gradescope && several {
+        return Err(bad(
+            "--format gradescope with several copies writes one results.json each: give --out FOLDER",
+        ));
+    }
+    let options = course::gradebook::ClassOptions {
+        timeout: limits.timeout,
+        test_limit: limits.test_timeout,
+        jobs: limits.jobs,
+        seed,
+        // The repository's own build folder: spintop is already compiled there.
+        target_dir: std::env::var_os("CARGO_TARGET_DIR")
+            .map(PathBuf::from)
+            .unwrap_or_else(|| repo.join("target")),
+        work: repo.join("target").join("course-grade"),
+    };
+    let terminal = std::io::stderr().is_terminal();
+    // Spintop itself is built once, before any copy's clock starts (only when
+    // some copy will be built at all).
+    if copies.iter().any(|c| course::check_lessons_dir(c).is_ok()) {
+        if terminal {
+            eprint!("preparing the graders (the first build of spintop can take a minute)…\r");
+        }
+        // A failed warm-up is said, not fatal: each copy's rows then say why.
+        if let Err(e) = course::gradebook::warm_up(repo, &options) {
+            eprintln!("spintop course grade: preparing the graders failed: {e}");
         }
     }
-    let text = rows.join("\n") + "\n";
-    match csv {
-        Some(path) => {
-            std::fs::write(path, &text)
-                .map_err(|e| bad(format!("course grade --out {}: {e}", path.display())))?;
+    let bar = terminal.then(|| {
+        let bar = indicatif::ProgressBar::new(copies.len() as u64);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "grading {bar:30} {pos}/{len} copies, {elapsed} ({msg})",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        bar
+    });
+    let class = course::gradebook::grade_class(repo, copies, &options, &|copy| {
+        if let Some(bar) = &bar {
+            bar.set_message(copy.student.clone());
+            bar.inc(1);
+        }
+    });
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    match format {
+        GradeFormat::Csv => {
+            let text = class.csv();
+            match path {
+                Some(p) => {
+                    std::fs::write(p, &text)
+                        .map_err(|e| bad(format!("course grade --out {}: {e}", p.display())))?;
+                    writeln!(
+                        out,
+                        "spintop course grade: {} students, {} rows written to {} (inputs from seed {})",
+                        class.copies.len(),
+                        class.copies.len() * course::COURSE_LEN,
+                        p.display(),
+                        class.seed
+                    )?;
+                }
+                None => write!(out, "{text}")?,
+            }
+        }
+        GradeFormat::Gradescope => {
+            for copy in &class.copies {
+                let json =
+                    serde_json::to_string_pretty(&class.gradescope(copy)).unwrap_or_default();
+                match (path, several) {
+                    (None, _) => writeln!(out, "{json}")?,
+                    (Some(p), false) => std::fs::write(p, json + "\n")
+                        .map_err(|e| bad(format!("course grade --out {}: {e}", p.display())))?,
+                    (Some(p), true) => {
+                        let file = p.join(&copy.student).join("results.json");
+                        if let Some(parent) = file.parent() {
+                            std::fs::create_dir_all(parent)
+                                .map_err(|e| bad(format!("{}: {e}", parent.display())))?;
+                        }
+                        std::fs::write(&file, json + "\n")
+                            .map_err(|e| bad(format!("{}: {e}", file.display())))?;
+                    }
+                }
+            }
+            if let Some(p) = path {
+                writeln!(
+                    out,
+                    "spintop course grade: Gradescope results for {} students written to {}",
+                    class.copies.len(),
+                    p.display()
+                )?;
+            }
+        }
+    }
+    let ungraded = class.ungraded();
+    if ungraded > 0 {
+        let names: Vec<String> = class
+            .copies
+            .iter()
+            .filter(|c| !c.fully_graded())
+            .map(|c| {
+                let words: Vec<&str> = course::COURSE
+                    .iter()
+                    .map(|a| c.row(a).0)
+                    .filter(|w| {
+                        !matches!(
+                            *w,
+                            "passing" | "failing" | "not started" | "does not compile"
+                        )
+                    })
+                    .collect();
+                format!(
+                    "{} ({})",
+                    c.student,
+                    words.first().copied().unwrap_or("not graded")
+                )
+            })
+            .collect();
+        return Err(CliError::Stopped(format!(
+            "course grade: {ungraded} of {} copies could not be fully graded: {}; their rows say why",
+            class.copies.len(),
+            names.join(", ")
+        )));
+    }
+    Ok(())
+}
+
+/// `spintop course diagnose DIR`: the graders' diagnoses of a folder of
+/// wrong answers.
+fn diagnose(
+    dir: &Path,
+    seed: Option<u64>,
+    format: Format,
+    out: &mut impl Write,
+) -> Result<(), CliError> {
+    let repo = course::repository();
+    let answers =
+        course::diagnose::read_folder(dir).map_err(|e| bad(format!("course diagnose: {e}")))?;
+    let seed = seed.unwrap_or_else(grading::verdict::fresh_seed);
+    if std::io::stderr().is_terminal() {
+        eprint!("building {} wrong answers…\r", answers.len());
+    }
+    let results = course::diagnose::run(
+        repo,
+        &answers,
+        seed,
+        &repo.join("target").join("course-diagnose"),
+    )
+    .map_err(|e| CliError::Stopped(format!("course diagnose: {e}")))?;
+    match format {
+        Format::Json => {
+            for r in &results {
+                writeln!(
+                    out,
+                    "{}",
+                    serde_json::to_string(&r.json()).unwrap_or_default()
+                )?;
+            }
+        }
+        Format::Text => {
+            for r in &results {
+                writeln!(out, "{}", r.text())?;
+            }
+            let failed = results.iter().filter(|r| !r.passed).count();
+            let expected: Vec<_> = results.iter().filter(|r| r.answer.says.is_some()).collect();
+            let said = expected
+                .iter()
+                .filter(|r| r.says_it() == Some(true))
+                .count();
             writeln!(
                 out,
-                "spintop course grade: {} students, {} rows written to {}",
-                copies.len(),
-                rows.len() - 1,
-                path.display()
+                "spintop course diagnose: {} wrong answers, {failed} rejected (seed {seed}); {said} of {} diagnoses contain the words their file expects",
+                results.len(),
+                expected.len()
             )?;
         }
-        None => write!(out, "{text}")?,
     }
     Ok(())
 }

@@ -1,13 +1,17 @@
-//! `spintop figure 1|2 [--svg FILE]`: the paper's Figures 1 and 2.
+//! `spintop figure 1|2 [--svg FILE]`: the paper's Figures 1 and 2, and
+//! `spintop figure NAME --svg FILE`: one of the book's diagrams.
 //!
 //! Prints the figure as text charts; with `--svg FILE` also writes it as an
 //! SVG document. The points come from [`crate::figure`], the drawing from
-//! [`crate::plot::figure`]. A figure number other than 1 or 2, or a file that
-//! cannot be written, is bad input: one line on stderr, exit code 2, and
-//! nothing on stdout.
+//! [`crate::plot::figure`]; the diagrams from [`crate::plot::diagram`], which
+//! projects spintop's own vectors. A name that is neither 1, 2 nor a diagram,
+//! or a file that cannot be written, is bad input: one line on stderr, exit
+//! code 2, and nothing on stdout.
 
+use super::gate::Gate;
 use super::{CliError, bad};
 use crate::figure::{Figure, FigureNumber};
+use crate::plot::diagram;
 use crate::plot::figure::{ascii, svg};
 use clap::Args;
 use std::io::Write;
@@ -20,7 +24,9 @@ use std::path::PathBuf;
                   (Schott term kept); both with I3/I1 = 2/5 and Omega0 = (0, 0.1, 0.2) in 1/tau."
 )]
 pub struct FigureArgs {
-    /// Which figure: 1 (truncated model) or 2 (reduced model).
+    /// Which figure: 1 (truncated model) or 2 (reduced model), or the name of
+    /// one of the book's diagrams (top-axes-dipole, euler-angles,
+    /// precession-cone, free-top-cones, shell-model).
     #[arg(value_name = "N")]
     number: String,
     /// Also write the figure as SVG to FILE.
@@ -29,8 +35,24 @@ pub struct FigureArgs {
 }
 
 /// Validate, compute, write the SVG (if asked), then print the text charts.
-pub(crate) fn execute(args: FigureArgs, out: &mut impl Write) -> Result<(), CliError> {
-    let number = FigureNumber::parse(&args.number).map_err(|e| bad(e.to_string()))?;
+pub(crate) fn execute(args: FigureArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
+    if let Some(d) = diagram::by_name(args.number.trim()) {
+        if let Some(path) = &args.svg {
+            std::fs::write(path, &d.svg)
+                .map_err(|e| bad(format!("cannot write the SVG to {}: {e}", path.display())))?;
+        }
+        writeln!(out, "{}: {}", d.name, d.title)?;
+        if let Some(path) = &args.svg {
+            writeln!(out, "SVG written to {}", path.display())?;
+        }
+        return Ok(());
+    }
+    let number = FigureNumber::parse(&args.number).map_err(|e| {
+        bad(format!(
+            "{e}; the book's diagrams are {}",
+            diagram::NAMES.join(", ")
+        ))
+    })?;
     let figure = Figure::new(number).map_err(|e| bad(e.to_string()))?;
     // NOTE: the file is written before anything is printed, so a path that
     // cannot be written leaves stdout empty and the error is the only output.

@@ -6,6 +6,7 @@
 //! same Markdown mdBook builds), so `spintop learn` needs the repository, as
 //! the course does. Progress is one small file, `target/spintop-learn.json`.
 
+use super::gate::Gate;
 use super::{CliError, bad};
 use crate::tui::learn::{self, Learn, Progress};
 use clap::Args;
@@ -80,7 +81,7 @@ impl Drop for Restore {
 }
 
 /// Runs `spintop learn`.
-pub(crate) fn execute(args: LearnArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let repo = repository();
     let progress_path = progress_file(&repo);
     if args.reset {

@@ -5,12 +5,13 @@
 //! in Braille dots, with the same parameters, initial orientation (lab z along
 //! L₀) and y ranges as the live view.
 
-use super::tui::ViewMethod;
+use super::gate::Gate;
 use super::{CliError, bad, parse_number, parse_vec3};
 use crate::math::{Real, Vec3};
+use crate::numbers::{fmt_axis, nice_ceiling};
+use crate::physics::rigid_body::lab_frame;
 use crate::physics::symmetric_top::SymmetricTop;
-use crate::present::{Method, fmt_axis, nice_ceiling, paper_frame};
-use crate::sim::{InitialState, MethodOptions, Model, Sample, SimError, Simulation};
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
 use clap::{Args, ValueEnum};
 use std::io::Write;
 use textplots::{AxisBuilder, Chart, LabelBuilder, LabelFormat, LineStyle, Plot, Shape};
@@ -46,7 +47,7 @@ pub struct PlotArgs {
     log_time: bool,
     /// Numerical method.
     #[arg(long, value_enum, default_value = "exact")]
-    method: ViewMethod,
+    method: MethodChoice,
     /// Width of each chart, in characters (16 to 500).
     #[arg(long, default_value_t = 60, allow_hyphen_values = true)]
     width: u32,
@@ -61,7 +62,7 @@ struct PlotConfig {
     top: SymmetricTop,
     models: Vec<Model>,
     omega0: [Real; 3],
-    method: Method,
+    method: MethodChoice,
     times: Vec<Real>,
     log_time: bool,
     width: u32,
@@ -75,7 +76,10 @@ const LOG_DECADES: Real = 4.0;
 impl PlotArgs {
     fn validate(self) -> Result<PlotConfig, CliError> {
         let top = SymmetricTop::new(self.ratio, 1.0).map_err(SimError::from)?;
-        InitialState::new(Vec3::from(self.omega), paper_frame(&top, self.omega))?;
+        InitialState::new(
+            Vec3::from(self.omega),
+            lab_frame(&top.inertia(), &Vec3::from(self.omega)),
+        )?;
         // parse_number has already refused NaN and infinities.
         if self.t_end <= 0.0 {
             return Err(bad(format!("--t-end must be > 0, got {}", self.t_end)));
@@ -97,6 +101,11 @@ impl PlotArgs {
             PlotModel::Reduced => vec![Model::Reduced(top)],
             PlotModel::Both => vec![Model::Truncated(top), Model::Reduced(top)],
         };
+        for model in &models {
+            model
+                .check_method(self.method)
+                .map_err(|e| bad(format!("--method {}: {e}", self.method.name())))?;
+        }
         // NOTE: two samples per Braille dot column, so lines join smoothly.
         let n = 4 * self.width as usize;
         let times = (0..=n)
@@ -113,7 +122,7 @@ impl PlotArgs {
             top,
             models,
             omega0: self.omega,
-            method: self.method.into(),
+            method: self.method,
             times,
             log_time: self.log_time,
             width: self.width,
@@ -132,11 +141,13 @@ fn samples(
     model: Model,
     top: &SymmetricTop,
 ) -> Result<(Vec<Sample>, &'static str), CliError> {
-    let mut initial =
-        InitialState::new(Vec3::from(config.omega0), paper_frame(top, config.omega0))?;
-    initial.rotation = paper_frame(top, config.omega0).to_rotation();
+    let mut initial = InitialState::new(
+        Vec3::from(config.omega0),
+        lab_frame(&top.inertia(), &Vec3::from(config.omega0)),
+    )?;
+    initial.rotation = lab_frame(&top.inertia(), &Vec3::from(config.omega0)).to_rotation();
     let horizon = config.times.last().copied();
-    let choice = config.method.choice();
+    let choice = config.method;
     let failure = |e| super::sim_failure(e, &model, choice);
     let mut sim = Simulation::new(model, choice, MethodOptions::default(), initial, horizon)
         .map_err(failure)?;
@@ -225,7 +236,7 @@ fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError
 }
 
 /// Validate, run and print `plot`.
-pub(crate) fn execute(args: PlotArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: PlotArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let config = args.validate()?;
     write_plots(&config, out)
 }

@@ -4,6 +4,7 @@
 //! so the list and `spintop run NAME` work from any directory.
 
 use super::CliError;
+use super::gate::Gate;
 use crate::scene::catalogue::CATALOGUE;
 use clap::Args;
 use std::io::Write;
@@ -16,7 +17,7 @@ use std::io::Write;
 pub struct ScenesArgs {}
 
 /// Print the catalogue: name, kind, the first sentence of the description.
-pub(crate) fn execute(_args: ScenesArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(_args: ScenesArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     for entry in CATALOGUE {
         // NOTE: the catalogue is tested to parse; a failure here is a build
         // from an edited tree, reported rather than skipped.

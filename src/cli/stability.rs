@@ -1,11 +1,13 @@
 //! `spintop stability`: the six rows of the stability suite, each the naive
 //! method that fails beside the method spintop uses, with measured numbers.
 
+use super::gate::Gate;
 use super::{CliError, bad};
+use crate::output::{Format, Output};
 use crate::stability::{Row, RowError, all_rows};
 use clap::{Args, ValueEnum};
 use serde::Serialize;
-use std::io::Write;
+use std::io::{self, Write};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum StabilityFormat {
@@ -32,13 +34,31 @@ pub struct StabilityArgs {
     format: StabilityFormat,
 }
 
+/// The rows measured, the `stability --format json` contract.
 #[derive(Serialize)]
-struct Report<'a> {
-    rows: &'a [Row],
+struct Report {
+    rows: Vec<Row>,
+}
+
+impl Output for Report {
+    /// One block per row, for reading (there is no CSV form).
+    fn write_text(&self, out: &mut dyn Write, _format: Format) -> io::Result<()> {
+        for (i, row) in self.rows.iter().enumerate() {
+            if i > 0 {
+                writeln!(out)?;
+            }
+            write!(out, "{row}")?;
+        }
+        Ok(())
+    }
+
+    fn advice(&self) -> &'static str {
+        "a row's measurement overflowed; run that row alone with --row to see it"
+    }
 }
 
 /// Run and print `stability`.
-pub(crate) fn execute(args: StabilityArgs, out: &mut impl Write) -> Result<(), CliError> {
+pub(crate) fn execute(args: StabilityArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let rows: Vec<Result<Row, RowError>> = match args.row {
         None => all_rows(),
         Some(n @ 1..=6) => vec![crate::stability::row(n)],
@@ -48,20 +68,9 @@ pub(crate) fn execute(args: StabilityArgs, out: &mut impl Write) -> Result<(), C
     for row in rows {
         done.push(row.map_err(|e| CliError::Stopped(e.to_string()))?);
     }
-    match args.format {
-        StabilityFormat::Table => {
-            for (i, row) in done.iter().enumerate() {
-                if i > 0 {
-                    writeln!(out)?;
-                }
-                write!(out, "{row}")?;
-            }
-        }
-        StabilityFormat::Json => {
-            serde_json::to_writer_pretty(&mut *out, &Report { rows: &done })
-                .map_err(|e| CliError::Io(e.into()))?;
-            writeln!(out)?;
-        }
-    }
-    Ok(())
+    let format = match args.format {
+        StabilityFormat::Table => Format::Table,
+        StabilityFormat::Json => Format::Json,
+    };
+    out.emit(&Report { rows: done }, format)
 }

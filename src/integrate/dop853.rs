@@ -22,8 +22,9 @@
 // compiler rounds each to the nearest f64.
 #![allow(clippy::excessive_precision)]
 
+use crate::integrate::control::stepper_getters;
 use crate::integrate::explicit::{Core, EmbeddedPair, core_accessors};
-use crate::integrate::{AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper, stepper_getters};
+use crate::integrate::{AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper};
 use crate::math::{Real, State};
 
 /// Stages of one step.

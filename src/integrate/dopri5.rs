@@ -19,8 +19,9 @@
 //! (Hairer's `hinit`, `AdaptiveOptions::h_init == None`), else 0. The step budget
 //! `max_steps` counts accepted plus rejected attempts.
 
+use crate::integrate::control::{rms_scaled, stepper_getters};
 use crate::integrate::explicit::{Core, EmbeddedPair, core_accessors};
-use crate::integrate::{AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper, stepper_getters};
+use crate::integrate::{AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper};
 use crate::math::{Real, State};
 
 // Butcher tableau of Dormand–Prince 5(4) (Hairer, Nørsett & Wanner, Table II.5.2).
@@ -72,9 +73,6 @@ const FAC_MIN: Real = 0.2;
 const FAC_MAX: Real = 10.0;
 const BETA: Real = 0.04;
 const EXPO1: Real = 0.2 - 0.75 * BETA;
-/// Step ratio after an attempt whose error estimate was not finite.
-pub(crate) const NONFINITE_CUT: Real = 0.2;
-
 /// Dormand–Prince 5(4) with PI step-size control and order-4 dense output.
 #[derive(Clone, Debug)]
 pub struct Dopri5<const N: usize> {
@@ -172,113 +170,6 @@ pub fn dopri5_step<const N: usize, R: Rhs<N>>(
     let k1 = rhs.eval(t, y);
     let a = attempt(rhs, t, y, &k1, h, t + h);
     (a.y_new, a.err)
-}
-
-/// Check options the caller may have built by hand.
-pub(crate) fn validate_options(opts: &AdaptiveOptions) -> Result<(), IntegrateError> {
-    let bad = |msg: String| Err(IntegrateError::InvalidOption(msg));
-    if !(opts.rtol.is_finite() && opts.rtol > 0.0 && opts.rtol < 1.0) {
-        return bad(format!("rtol must lie in (0, 1), got {}", opts.rtol));
-    }
-    if !(opts.atol.is_finite() && opts.atol >= 0.0) {
-        return bad(format!("atol must be finite and ≥ 0, got {}", opts.atol));
-    }
-    if let Some(h) = opts.h_init
-        && !(h.is_finite() && h > 0.0)
-    {
-        return bad(format!("h_init must be finite and > 0, got {h}"));
-    }
-    if opts.h_max.is_nan() || opts.h_max <= 0.0 {
-        return bad(format!("h_max must be > 0, got {}", opts.h_max));
-    }
-    Ok(())
-}
-
-/// `x / s` that reads 0/0 as 0 (a component that is exactly zero with `atol = 0`
-/// has zero error, not NaN error).
-#[inline]
-fn ratio(x: Real, s: Real) -> Real {
-    if x == 0.0 { 0.0 } else { x / s }
-}
-
-/// Root mean square of `v_i / scale_i`.
-pub(crate) fn rms_scaled<const N: usize>(v: &State<N>, scale: &State<N>) -> Real {
-    if N == 0 {
-        return 0.0;
-    }
-    let sum: Real = v
-        .iter()
-        .zip(scale.iter())
-        .map(|(&x, &s)| ratio(x, s).powi(2))
-        .sum();
-    (sum / N as Real).sqrt()
-}
-
-/// The error scale `atol + rtol·max(|y_i|, |y_new_i|)`.
-pub(crate) fn error_scale<const N: usize>(
-    opts: &AdaptiveOptions,
-    y: &State<N>,
-    y_new: &State<N>,
-) -> State<N> {
-    y.zip_map(y_new, |a, b| opts.atol + opts.rtol * a.abs().max(b.abs()))
-}
-
-/// Hairer's starting step size (`hinit` in DOPRI5/DOP853; HNW I, Sec. II.4): a
-/// step magnitude from one explicit Euler step and a second-derivative estimate.
-/// Costs exactly one evaluation of `rhs`, which the caller counts.
-// NOTE: the norms are RMS norms (as in SciPy's `select_initial_step`) rather than
-// Hairer's plain sums, so that the guess is consistent with the RMS error norm;
-// the two differ only by √N in the second-derivative estimate.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn hinit<const N: usize, R: Rhs<N>>(
-    rhs: &R,
-    t: Real,
-    y: &State<N>,
-    f0: &State<N>,
-    direction: Real,
-    order: i32,
-    opts: &AdaptiveOptions,
-) -> Real {
-    let scale = y.map(|v| opts.atol + opts.rtol * v.abs());
-    let d0 = rms_scaled(y, &scale);
-    let d1 = rms_scaled(f0, &scale);
-    let h0 = if d0 < 1e-5 || d1 < 1e-5 || !d0.is_finite() || !d1.is_finite() {
-        1e-6
-    } else {
-        0.01 * d0 / d1
-    };
-    let h0 = h0.min(opts.h_max);
-    let y1 = y + f0 * (direction * h0);
-    let f1 = rhs.eval(t + direction * h0, &y1);
-    let d2 = rms_scaled(&(f1 - f0), &scale) / h0;
-    let h1 = if !d2.is_finite() {
-        h0 * 1e-3
-    } else if d1 <= 1e-15 && d2 <= 1e-15 {
-        (h0 * 1e-3).max(1e-6)
-    } else {
-        (0.01 / d1.max(d2)).powf(1.0 / order as Real)
-    };
-    let h = (100.0 * h0).min(h1).min(opts.h_max);
-    if h > 0.0 && h.is_finite() { h } else { h0 }
-}
-
-/// The step size (magnitude) below which the time axis cannot resolve a step.
-pub(crate) fn underflow_limit(t: Real) -> Real {
-    16.0 * Real::EPSILON * t.abs().max(Real::MIN_POSITIVE)
-}
-
-/// The signed step to attempt from `t` toward `t_stop` with magnitude `h`, and
-/// the time it ends at; clipped (or stretched by at most 1 %) to land exactly on
-/// `t_stop`. The bool says whether it was clipped.
-pub(crate) fn clip_step(t: Real, t_stop: Real, h: Real) -> (Real, Real, bool) {
-    let dir = (t_stop - t).signum();
-    // NOTE: Hairer's 1.01: a step that would leave less than 1 % of itself before
-    // t_stop is stretched to t_stop instead of leaving a sliver step behind.
-    if dir * (t + dir * 1.01 * h - t_stop) >= 0.0 {
-        (t_stop - t, t_stop, true)
-    } else {
-        (dir * h, t + dir * h, false)
-    }
 }
 
 impl<const N: usize> Dopri5<N> {

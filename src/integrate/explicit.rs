@@ -10,11 +10,11 @@
 //! control, starting step) and Hairer's codes DOPRI5 and DOP853, whose loop
 //! this is.
 
-use crate::integrate::dopri5::{NONFINITE_CUT, clip_step, error_scale, validate_options};
-use crate::integrate::{
-    AdaptiveOptions, IntegrateError, Rhs, Stats, attempt_allowed, check_start, check_t_stop,
-    start_step,
+use crate::integrate::control::{
+    NONFINITE_CUT, attempt_allowed, check_start, check_t_stop, clip_step, error_scale, start_step,
+    validate_options,
 };
+use crate::integrate::{AdaptiveOptions, IntegrateError, Rhs, Stats};
 use crate::math::{Real, State, all_finite};
 
 /// What an explicit embedded pair gives the shared loop.

@@ -73,11 +73,11 @@
 //! iteration that fails is reported as [`IntegrateError::NoConvergence`]
 //! (there is no smaller step to fall back to).
 
-use crate::integrate::dopri5::{NONFINITE_CUT, clip_step, rms_scaled, validate_options};
-use crate::integrate::{
-    AdaptiveOptions, DEFAULT_MAX_STEPS, IntegrateError, Rhs, Stats, Stepper, attempt_allowed,
-    check_start, check_t_stop, start_step, stepper_getters,
+use crate::integrate::control::{
+    NONFINITE_CUT, attempt_allowed, check_start, check_t_stop, clip_step, rms_scaled, start_step,
+    stepper_getters, validate_options,
 };
+use crate::integrate::{AdaptiveOptions, DEFAULT_MAX_STEPS, IntegrateError, Rhs, Stats, Stepper};
 use crate::math::{Real, State, all_finite};
 use nalgebra::{Complex, ComplexField, SMatrix, SVector};
 

@@ -22,10 +22,8 @@
 //! [`IntegrateError::NonFinite`] at the time of the last finite state, which is
 //! kept; the stepper never holds a non-finite state.
 
-use crate::integrate::{
-    DEFAULT_MAX_STEPS, IntegrateError, Rhs, Stats, Stepper, check_start, check_t_stop,
-    fixed_step_allowed, stepper_getters,
-};
+use crate::integrate::control::{check_start, check_t_stop, fixed_step_allowed, stepper_getters};
+use crate::integrate::{DEFAULT_MAX_STEPS, IntegrateError, Rhs, Stats, Stepper};
 use crate::math::{Real, State, all_finite};
 
 /// Classical RK4 with a fixed step size, stepping forward or backward.

@@ -45,11 +45,11 @@
 //! [`IntegrateError::NonFinite`] at the time of the last finite state, which is
 //! kept; the stepper never holds a non-finite state.
 
-use crate::integrate::dopri5::{clip_step, underflow_limit, validate_options};
-use crate::integrate::{
-    AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper, check_start, check_t_stop,
-    stepper_getters,
+use crate::integrate::control::{
+    attempt_allowed, check_start, check_t_stop, clip_step, fixed_step_allowed, stepper_getters,
+    validate_options,
 };
+use crate::integrate::{AdaptiveOptions, IntegrateError, Rhs, Stats, Stepper};
 use crate::math::{Real, State, all_finite};
 
 pub mod tops;
@@ -159,6 +159,23 @@ pub fn taylor_order(eps: Real) -> usize {
     (p.max(2.0) as usize).min(MAX_ORDER)
 }
 
+/// The factor e^(−0.7/(p−1))/e² of Jorba & Zou's step at order p.
+fn step_factor(order: usize) -> Real {
+    (-0.7 / (order as Real - 1.0)).exp() / std::f64::consts::E.powi(2)
+}
+
+/// The step the method takes at `rtol` on a decay `y' = −λy`, in units of
+/// 1/λ: the coefficients are `(−λ)ᵏ/k!·y`, so the radius estimate is
+/// `((p−1)!)^(1/(p−1))/λ` (the smaller of orders p−1 and p), times the step
+/// factor. About 0.6 at rtol 1e-8 (order 11) and 1 at 1e-14 (order 18): the
+/// bound a fast damping puts on every step, as a stability limit does on an
+/// explicit Runge–Kutta method's.
+pub fn decay_step(rtol: Real) -> Real {
+    let p = taylor_order(rtol);
+    let ln_factorial: Real = (2..p).map(|k| (k as Real).ln()).sum();
+    (ln_factorial / (p as Real - 1.0)).exp() * step_factor(p)
+}
+
 /// The Taylor method on a [`TaylorRhs`], which it owns.
 #[derive(Clone, Debug)]
 pub struct Taylor<const N: usize, S: TaylorRhs<N>> {
@@ -203,7 +220,7 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
             t_prev: t0,
             h_last: 0.0,
             order,
-            rho_factor: (-0.7 / (order as Real - 1.0)).exp() / std::f64::consts::E.powi(2),
+            rho_factor: step_factor(order),
             opts,
             stats: Stats::default(),
         })
@@ -247,12 +264,8 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
         if t_stop == self.t {
             return Ok(());
         }
-        if self.stats.steps >= self.opts.max_steps {
-            return Err(IntegrateError::TooManySteps {
-                t: self.t,
-                max_steps: self.opts.max_steps,
-            });
-        }
+        // No attempt is ever rejected: the budget counts accepted steps.
+        fixed_step_allowed(self.stats.steps, self.opts.max_steps, self.t)?;
         self.build_jet();
         let order_p = self.order;
         if !self
@@ -263,12 +276,8 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
             return Err(IntegrateError::NonFinite { t: self.t });
         }
         let h = self.step_size().min(self.opts.h_max);
-        if h.is_nan() || h < underflow_limit(self.t) {
-            return Err(IntegrateError::StepSizeUnderflow {
-                t: self.t,
-                h: (t_stop - self.t).signum() * h,
-            });
-        }
+        let dir = (t_stop - self.t).signum();
+        attempt_allowed(&self.stats, self.opts.max_steps, self.t, h, dir)?;
         let (h, t_new, _) = clip_step(self.t, t_stop, h);
         let y_new = self.horner(h);
         if !all_finite(&y_new) {

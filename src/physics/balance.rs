@@ -388,8 +388,9 @@ impl DipoleTrajectory for PlanarLoop {
 /// 𝔡(t) = ℓ (q₁m₂ − q₂m₁)/(m₁ + m₂) (cos ωt, sin ωt, 0)
 /// ```
 ///
-/// A planar rigid rotor: L_S ≡ 0, so the two laws agree at every instant, and
-/// equal charge-to-mass ratios give no dipole at all.
+/// A planar rigid rotor turning at a constant rate: 𝔡̈ = −ω²𝔡, so L_S = 𝔡 × 𝔡̈ ≡ 0
+/// and the two laws agree at every instant (a rotor that speeds up or slows
+/// down has L_S = κ|𝔡|²ω̇ ẑ ≠ 0); equal charge-to-mass ratios give no dipole at all.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dumbbell {
     amplitude: Real,

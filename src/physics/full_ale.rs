@@ -67,6 +67,57 @@ pub fn general_full_ale_rhs(top: &GeneralTop, y: &State<6>) -> State<6> {
     out
 }
 
+// ANCHOR: slow_manifold_second_order
+/// The second-order term G₂ of the slow manifold of (3.4) for any top:
+/// on the physical solution Ω̇ = G₀ + G₁ + G₂ + O(τ_f³), where G₀ + G₁ is the
+/// reduced ALE ([`GeneralTop::reduced_ale_rhs`]).
+///
+/// Paper: Eq. (3.4) (its slow manifold; not in the paper).
+///
+/// Write (3.4) as IΩ̇ = −Ω × IΩ + T(Ω, Ω̇, Ω̈) with the torque affine in its
+/// last two arguments, and put Ω̇ = G(Ω), Ω̈ = DG(Ω)[G(Ω)] (the manifold is
+/// invariant). Order by order in |d|²:
+///
+/// ```text
+/// G₀ = −I⁻¹(Ω × IΩ)                                   (free Euler)
+/// G₁ = I⁻¹ T(Ω, G₀, DG₀[G₀])                          (the reduced ALE's torque)
+/// G₂ = I⁻¹ T′(Ω; G₁, DG₁[G₀] + DG₀[G₁])
+/// T′(Ω; W, A) = d × {−d × A + (d·W)Ω + 2(d·Ω)W}        (T's part linear in Ω̇, Ω̈)
+/// ```
+///
+/// DG₁ needs the derivative of T along V with Ω̇ and Ω̈ held, which is
+/// d × {d × (2(Ω·V)Ω + |Ω|²V) + (d·W)V + 2(d·V)W}, plus T′ of the
+/// derivatives of G₀ and DG₀[G₀] along V; G₀ is quadratic, so each is exact.
+/// For the symmetric top G₂ = −2iτ²k(u + k²)z (the notes' series; tested).
+pub fn slow_manifold_second_order(top: &GeneralTop, omega: &Vec3) -> Vec3 {
+    let i = top.inertia();
+    let d = top.dipole();
+    // Q(a, b) = a × Ib + b × Ia; G₀(Ω) = −I⁻¹Q(Ω, Ω)/2, DG₀(Ω)[V] = −I⁻¹Q(Ω, V).
+    let q = |a: &Vec3, b: &Vec3| a.cross(&i.component_mul(b)) + b.cross(&i.component_mul(a));
+    let dg0 = |at: &Vec3, v: &Vec3| -q(at, v).component_div(&i);
+    let g0 = -(omega.cross(&i.component_mul(omega))).component_div(&i);
+    let a0 = dg0(omega, &g0);
+    let t_lin =
+        |w: &Vec3, a: &Vec3| d.cross(&(-d.cross(a) + d.dot(w) * omega + 2.0 * d.dot(omega) * w));
+    let torque1 = d.cross(&d.cross(&(omega.norm_squared() * omega))) + t_lin(&g0, &a0);
+    let g1 = torque1.component_div(&i);
+    // DG₁[V]: the explicit Ω-dependence of T, then T′ of DG₀[V] and D(DG₀[G₀])[V].
+    let dg1 = |v: &Vec3| -> Vec3 {
+        let explicit = d.cross(
+            &(d.cross(&(2.0 * omega.dot(v) * omega + omega.norm_squared() * v))
+                + d.dot(&g0) * v
+                + 2.0 * d.dot(v) * g0),
+        );
+        let dg0_v = dg0(omega, v);
+        // A₀(Ω) = −I⁻¹Q(Ω, G₀(Ω)): its derivative along V.
+        let da0_v = -(q(v, &g0) + q(omega, &dg0_v)).component_div(&i);
+        (explicit + t_lin(&dg0_v, &da0_v)).component_div(&i)
+    };
+    let a1 = dg1(&g0) + dg0(omega, &g1);
+    t_lin(&g1, &a1).component_div(&i)
+}
+// ANCHOR_END: slow_manifold_second_order
+
 /// The full ALE of the symmetric top (4.1) as a 4-dimensional system in
 /// (Ω₁, Ω₂, V₁, V₂) with V = ż, z = Ω₁ + iΩ₂, at a constant Ω₃ (units τ = 1 = I₁
 /// as in Section 4, τ kept as a parameter).
@@ -197,23 +248,58 @@ mod runaway_tests {
     use crate::physics::symmetric_top::reduced_ale_rhs;
     use nalgebra::SMatrix;
 
-    /// The physics notes give the frozen-linearisation eigenvalues of (3.4) at the
-    /// figure state as 1.025 ± 0.154i (growth at about 1/τ). They are recomputed
-    /// here from a finite-difference Jacobian J of the 4-dimensional system.
+    /// The frozen linearisation of (3.4) at the figure state (I₃/I₁ = 2/5,
+    /// Ω₀ = (0, 0.1, 0.2), ż from the reduced model), two ways.
     ///
-    /// The notes freeze the state in the frame that co-rotates with the body-frame
-    /// precession (z = w e^{−iΩ̃₃t}), where the reduced motion is nearly at rest.
-    /// That change of frame turns J into a matrix similar to J + Ω̃₃S, with S the
-    /// generator (x, y) → (−y, x) on both z and ż; in the body frame itself the
-    /// imaginary parts are shifted by about Ω̃₃ = 0.12 (1.025 ± 0.276i), while the
-    /// growth rate, the real part, is the same in both frames.
+    /// By hand: with z = z₀ + δz, (3.4) gives
+    /// τδz̈ = (1 − 2iτΩ₃)δż + (iΩ̃₃ + τ(|z₀|² + Ω₃²))δz + τz₀(z̄₀δz + z₀δz̄),
+    /// a real 4×4 system in (δz, δż), whose eigenvalues are the roots of its
+    /// characteristic polynomial. In the frame that co-rotates with the
+    /// body-frame precession (z = w e^{−iΩ̃₃t}, where the reduced motion is
+    /// nearly at rest) the matrix becomes J + Ω̃₃S, S the generator
+    /// (x, y) → (−y, x) on both δz and δż: the runaway pair is
+    /// 1.025085 ± 0.155894i there, growing at about 1/τ.
+    ///
+    /// From the code: the eigenvalues of a central-difference Jacobian of
+    /// `symmetric_full_ale_rhs` must agree with the hand-built ones to 1e-8.
     #[test]
-    fn eq_3_4_runaway_eigenvalues_at_the_figure_state_are_1_025_pm_0_154i() {
+    fn eq_3_4_runaway_eigenvalues_at_the_figure_state_are_1_025085_pm_0_155894i() {
         let top = SymmetricTop::figure();
         let omega = Vec3::new(0.0, 0.1, 0.2);
         let slope = reduced_ale_rhs(&top, &omega);
         let y0 = State::<4>::new(omega.x, omega.y, slope.x, slope.y);
-        let h = 1e-7;
+        let (tau, w3) = (top.tau(), omega.z);
+        let w3t = top.omega3_tilde(w3);
+        // The hand-built linearisation: rows (δx, δy, δvx, δvy)' in terms of
+        // (δx, δy, δvx, δvy), z₀ = x₀ + iy₀.
+        let (x0, y0r) = (omega.x, omega.y);
+        let g = tau * (x0 * x0 + y0r * y0r + w3 * w3);
+        // τ z₀(z̄₀δz + z₀δz̄) = τ(2x₀(x₀δx + y₀δy), 2y₀(x₀δx + y₀δy)) in (re, im).
+        let mut by_hand = SMatrix::<f64, 4, 4>::zeros();
+        by_hand[(0, 2)] = 1.0;
+        by_hand[(1, 3)] = 1.0;
+        let rows = [
+            // d(δvx)/dt · τ = δvx + 2τΩ₃δvy − Ω̃₃δy + gδx + 2τx₀(x₀δx + y₀δy)
+            [
+                g + 2.0 * tau * x0 * x0,
+                -w3t + 2.0 * tau * x0 * y0r,
+                1.0,
+                2.0 * tau * w3,
+            ],
+            // d(δvy)/dt · τ = δvy − 2τΩ₃δvx + Ω̃₃δx + gδy + 2τy₀(x₀δx + y₀δy)
+            [
+                w3t + 2.0 * tau * x0 * y0r,
+                g + 2.0 * tau * y0r * y0r,
+                -2.0 * tau * w3,
+                1.0,
+            ],
+        ];
+        for (r, row) in rows.iter().enumerate() {
+            for (c, v) in row.iter().enumerate() {
+                by_hand[(2 + r, c)] = v / tau;
+            }
+        }
+        let h = 1e-6;
         let mut jac = SMatrix::<f64, 4, 4>::zeros();
         for j in 0..4 {
             let mut e = State::<4>::zeros();
@@ -223,24 +309,31 @@ mod runaway_tests {
                 / (2.0 * h);
             jac.set_column(j, &col);
         }
-        let body = jac.complex_eigenvalues();
         let mut generator = SMatrix::<f64, 4, 4>::zeros();
         for k in [0, 2] {
             generator[(k, k + 1)] = -1.0;
             generator[(k + 1, k)] = 1.0;
         }
-        let co_rotating = (jac + top.omega3_tilde(omega.z) * generator).complex_eigenvalues();
-        let growth: Vec<f64> = body.iter().filter(|l| l.re > 0.5).map(|l| l.re).collect();
-        assert!(growth.iter().all(|g| (g - 1.025).abs() < 5e-4), "{body:?}");
-        let eig = co_rotating;
-        let runaway: Vec<_> = eig.iter().filter(|l| l.re > 0.5).collect();
-        assert_eq!(runaway.len(), 2, "{eig:?}");
-        // We get 1.02509 ± 0.15589i: the growth rate agrees with the notes to 1e-4;
-        // the frequency differs from their 0.154 by 0.002 (their freezing point may
-        // differ slightly, e.g. a later time on the reduced solution).
+        let sorted = |m: SMatrix<f64, 4, 4>| {
+            let mut v: Vec<_> = m.complex_eigenvalues().iter().copied().collect();
+            v.sort_by(|a, b| (a.re, a.im).partial_cmp(&(b.re, b.im)).unwrap());
+            v
+        };
+        for shift in [0.0, w3t] {
+            let ours = sorted(jac + shift * generator);
+            let hand = sorted(by_hand + shift * generator);
+            for (a, b) in ours.iter().zip(&hand) {
+                assert!((a - b).norm() < 1e-8, "{ours:?} vs {hand:?}");
+            }
+        }
+        let runaway: Vec<_> = sorted(by_hand + w3t * generator)
+            .into_iter()
+            .filter(|l| l.re > 0.5)
+            .collect();
+        assert_eq!(runaway.len(), 2, "{runaway:?}");
         for l in runaway {
             assert!(
-                (l.re - 1.025).abs() < 5e-4 && (l.im.abs() - 0.154).abs() < 3e-3,
+                (l.re - 1.025085).abs() < 1e-6 && (l.im.abs() - 0.155894).abs() < 1e-6,
                 "{l}"
             );
         }

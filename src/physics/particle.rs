@@ -61,7 +61,7 @@ impl Shape {
 
 /// A homogeneous sphere or cylinder with a permanent dipole on its axis, in
 /// Gaussian units. Built only through [`Particle::new`], so every size is
-/// positive and finite.
+/// positive and finite and its I₃/I₁ is a rigid body's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Particle {
     shape: Shape,
@@ -69,6 +69,20 @@ pub struct Particle {
     length_cm: Real,
     density_g_cm3: Real,
     dipole_esu_cm: Real,
+    /// The paper's symmetric top of its I₃/I₁, built (and so checked) once.
+    top: SymmetricTop,
+}
+
+/// I₃/I₁ of a homogeneous sphere (1) or cylinder of radius a and length h
+/// (6a²/(3a² + h²)).
+fn shape_ratio(shape: Shape, radius_cm: Real, length_cm: Real) -> Real {
+    match shape {
+        Shape::Sphere => 1.0,
+        Shape::Cylinder => {
+            let (a2, h2) = (radius_cm.powi(2), length_cm.powi(2));
+            6.0 * a2 / (3.0 * a2 + h2)
+        }
+    }
 }
 
 fn positive(name: &'static str, value: Real) -> Result<Real, ParamError> {
@@ -99,16 +113,26 @@ impl Particle {
         }
         positive("density", density_g_cm3)?;
         positive("dipole", dipole_esu_cm)?;
+        let length_cm = if shape == Shape::Cylinder {
+            length_cm
+        } else {
+            0.0
+        };
+        let ratio = shape_ratio(shape, radius_cm, length_cm);
+        // NOTE: a cylinder 150 decades longer than wide has I₃/I₁ = 6a²/(3a²
+        // + h²) below the smallest double: refused here, as a parameter.
+        let top = SymmetricTop::new(ratio, 1.0).map_err(|_| ParamError::OutOfRange {
+            name: "I3/I1 of the shape",
+            value: ratio,
+            range: "in (0, 2], which a double cannot hold when the length and the radius differ by some 150 decades or more",
+        })?;
         Ok(Self {
             shape,
             radius_cm,
-            length_cm: if shape == Shape::Cylinder {
-                length_cm
-            } else {
-                0.0
-            },
+            length_cm,
             density_g_cm3,
             dipole_esu_cm,
+            top,
         })
     }
 
@@ -165,13 +189,7 @@ impl Particle {
 
     /// I₃/I₁: 1 for a sphere, 6a²/(3a² + h²) for a cylinder.
     pub fn ratio(&self) -> Real {
-        match self.shape {
-            Shape::Sphere => 1.0,
-            Shape::Cylinder => {
-                let (a2, h2) = (self.radius_cm.powi(2), self.length_cm.powi(2));
-                6.0 * a2 / (3.0 * a2 + h2)
-            }
-        }
+        shape_ratio(self.shape, self.radius_cm, self.length_cm)
     }
 
     // ANCHOR: tau_seconds
@@ -191,8 +209,7 @@ impl Particle {
 
     /// The particle as the paper's symmetric top (I₁ = 1, τ = 1 units).
     pub fn top(&self) -> SymmetricTop {
-        SymmetricTop::new(self.ratio(), 1.0)
-            .expect("a sphere's or a cylinder's I3/I1 lies in (0, 2]")
+        self.top
     }
 
     /// The body rate Ω₀, in 1/τ, of a particle spinning at `spin_hz` turns per
@@ -245,6 +262,8 @@ pub struct RigidParticle {
     shape: RigidShape,
     inertia_g_cm2: Vec3,
     dipole_esu_cm: Vec3,
+    /// Its κ = 1 top, built (and so checked) once.
+    top: GeneralTop,
 }
 
 impl RigidParticle {
@@ -281,10 +300,14 @@ impl RigidParticle {
         if dipole == Vec3::zeros() {
             return Err(ParamError::ZeroDipole);
         }
+        // The κ = 1 top: moments over min I, dipole over |D|, checked as any
+        // general top is (a |D| that overflows a double is refused here).
+        let top = GeneralTop::new(inertia / inertia.min(), dipole / dipole.norm())?;
         Ok(Self {
             shape,
             inertia_g_cm2: inertia,
             dipole_esu_cm: dipole,
+            top,
         })
     }
 
@@ -310,11 +333,7 @@ impl RigidParticle {
 
     /// The general top in κ = 1 units: moments over min I, dipole over |D|.
     pub fn top(&self) -> GeneralTop {
-        GeneralTop::new(
-            self.inertia_g_cm2 / self.inertia_g_cm2.min(),
-            self.dipole_esu_cm / self.dipole_esu_cm.norm(),
-        )
-        .expect("moments checked in new, dipole non-zero")
+        self.top
     }
 
     /// Ω₀ in the top's units from body-frame rates in turns per second.

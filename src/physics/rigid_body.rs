@@ -15,6 +15,7 @@
 //! | `alpha` | α | any body-frame vector | – |
 
 use crate::math::{Mat3, Real, Vec3};
+use crate::physics::euler_angles::{EulerAngles, frame_with_z_along};
 
 /// An Euler-type equation `Ω̇ = F(Ω)` for the body-frame angular velocity of a
 /// free top: the truncated, reduced or general models all have this form.
@@ -118,6 +119,22 @@ impl Observables {
     }
 }
 
+/// The initial orientation that puts the lab z axis along L₀ = IΩ₀, as in
+/// the paper's particular solution (4.11) and its figures: then θ is the tilt
+/// between the symmetry axis and L, and φ̇ and ψ̇ are the precession and spin
+/// rates. The live view, `plot` and a scene's `frame = "paper"` all start
+/// from it.
+///
+/// Paper: Eq. (4.11).
+///
+/// ```text
+/// third row of O = R_z(φ)R_x(θ)R_z(ψ) = (sin θ sin ψ, sin θ cos ψ, cos θ) = Oᵀẑ = L₀/|L₀|
+/// θ = the tilt,  ψ = atan2(L₁, L₂),  φ = 0;   L₀ = 0 keeps O = 1
+/// ```
+pub fn lab_frame(inertia: &Vec3, omega0: &Vec3) -> EulerAngles {
+    frame_with_z_along(&angular_momentum_body(inertia, omega0))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -184,7 +201,8 @@ mod tests {
             (0.1f64 / 0.08).atan(),
             epsilon = 1e-15
         );
-        assert_relative_eq!(tilt(&inertia, &omega), 0.8960553845713439, epsilon = 1e-15);
+        // The physics notes' erratum 4 gives it to four places: 0.8961 rad.
+        assert!((tilt(&inertia, &omega) - 0.8961).abs() < 5e-5);
         assert_eq!(tilt(&inertia, &Vec3::zeros()), 0.0);
     }
 }

@@ -23,7 +23,7 @@
 
 use super::rigid_body::{BodyDynamics, angular_momentum_body};
 use super::{ParamError, finite};
-use crate::math::{Mat3, Real, Vec3, rot_axis, rot_z};
+use crate::math::{Mat3, Real, Vec3, all_finite, rot_axis, rot_z};
 
 /// An axially symmetric top with its dipole on the symmetry axis (4.1), in units I₁ = 1.
 ///
@@ -528,6 +528,88 @@ pub fn reduced_ale_jacobian(top: &SymmetricTop, omega: &Vec3) -> Mat3 {
     )
 }
 // ANCHOR_END: reduced_jacobian
+
+// ---------------------------------------------------------------- the reduced model split
+
+// ANCHOR: reduced_flows
+/// The rotation part of the reduced model: (Ω₁, Ω₂) turn clockwise by Ω̃₃h.
+///
+/// Paper: Eq. (4.12), Eq. (4.13), Eq. (4.14).
+///
+/// ```text
+/// Ω̇₁ = Ω̃₃Ω₂,  Ω̇₂ = −Ω̃₃Ω₁,  Ω̇₃ = 0
+/// Ω₁ ← Ω₁ cos Ω̃₃h + Ω₂ sin Ω̃₃h,  Ω₂ ← Ω₂ cos Ω̃₃h − Ω₁ sin Ω̃₃h
+/// ```
+pub fn reduced_rotation_flow(top: &SymmetricTop, omega: &Vec3, h: Real) -> Vec3 {
+    let alpha = top.omega3_tilde(omega.z) * h;
+    let (s, c) = alpha.sin_cos();
+    Vec3::new(
+        omega.x * c + omega.y * s,
+        omega.y * c - omega.x * s,
+        omega.z,
+    )
+}
+
+/// The damping part of the reduced model over time `h`: Ω⊥ shrinks along its
+/// own direction. `None` when a backward step (h < 0) reaches the blow-up of
+/// Ω⊥, where the flow stops existing.
+///
+/// Paper: Eq. (4.12), Eq. (4.13), Eq. (4.16).
+///
+/// ```text
+/// Ω̇⊥ = −τ(Ω⊥² + k²)Ω⊥,  k = (I₃/I₁)Ω₃
+/// Ω⊥(h) = Ω⊥ e^{−s/2} / √(1 + Ω⊥² a²),  s = 2τk²h,  a² = 2τh g(s) = (1 − e^{−s})/k²
+/// ```
+///
+/// with g(s) = (1 − e^{−s})/s as in [`crate::physics::symmetric_top::reduced_amplitude`].
+///
+/// NOTE: a² is −expm1(−s)/k² (no cancellation for tiny s, no overflow for huge
+/// s: it tends to 1/k²), or 2τh when k²·τh is zero to the last bit. Forward, the
+/// denominator is hypot(1, Ω⊥a), which cannot overflow; once Ω⊥a > 1 the new
+/// rate is computed as e^{−s/2}/(a·hypot(1, 1/(Ω⊥a))), the late-time
+/// 1/√(2τhg) form that does not depend on Ω⊥ at all, so huge τΩ⊥²h loses no
+/// digits. e^{−s/2} underflowing to 0 is the right answer (Ω⊥ below 1e-300).
+pub fn reduced_damping_flow(top: &SymmetricTop, omega: &Vec3, h: Real) -> Option<Vec3> {
+    let tau = top.tau();
+    let k = top.ratio() * omega.z;
+    let k2 = k * k;
+    let s = 2.0 * tau * k2 * h;
+    let a2 = if s != 0.0 && k2 > 0.0 {
+        -(-s).exp_m1() / k2
+    } else {
+        2.0 * tau * h
+    };
+    let omega_perp = omega.x.hypot(omega.y);
+    if omega_perp == 0.0 {
+        return Some(*omega);
+    }
+    let decay = (-0.5 * s).exp();
+    let (o1, o2) = if a2 >= 0.0 {
+        let a = a2.sqrt();
+        let w = omega_perp * a;
+        if w <= 1.0 {
+            let factor = decay / w.hypot(1.0);
+            (omega.x * factor, omega.y * factor)
+        } else {
+            let magnitude = decay / (a * (1.0 / w).hypot(1.0));
+            (
+                omega.x / omega_perp * magnitude,
+                omega.y / omega_perp * magnitude,
+            )
+        }
+    } else {
+        // Backward: 1 + Ω⊥²a² reaches 0 at the blow-up of the backward flow.
+        let d = 1.0 + omega_perp * omega_perp * a2;
+        if d.is_nan() || d <= 0.0 {
+            return None;
+        }
+        let factor = decay / d.sqrt();
+        (omega.x * factor, omega.y * factor)
+    };
+    let out = Vec3::new(o1, o2, omega.z);
+    all_finite(&out).then_some(out)
+}
+// ANCHOR_END: reduced_flows
 
 #[cfg(test)]
 mod tests {

@@ -18,6 +18,8 @@ use crate::figure::{Figure, FigureNumber};
 use crate::math::{Real, Vec3};
 use crate::physics::symmetric_top::reduced_decay_time;
 use plotters::coord::Shift;
+use plotters::coord::ranged3d::Cartesian3d;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 
@@ -224,6 +226,40 @@ pub fn svg(figure: &Figure) -> String {
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 type DrawResult = Result<(), Box<dyn std::error::Error>>;
+type Chart3d<'a, 'b> =
+    ChartContext<'a, SVGBackend<'b>, Cartesian3d<RangedCoordf64, RangedCoordf64, RangedCoordf64>>;
+
+/// A lab (or body) vector in plotters' 3D coordinates.
+///
+/// plotters' (X, Y, Z) is right-handed with Y up the page, X to the front
+/// right and Z to the front left in the panels' view; the cyclic map
+/// (x, y, z) ↦ (y, z, x) is a rotation, so the lab frame stays right-handed
+/// on the page: z up, x to the front left, y to the front right, and a turn
+/// about z in the positive sense runs counterclockwise seen from above.
+fn lab_to_plot(v: Vec3) -> (Real, Real, Real) {
+    (v.y, v.z, v.x)
+}
+
+/// A 3D panel in the figures' view: `lab` gives the ranges of lab x, y, z.
+fn panel_3d<'a, 'b>(
+    area: &'a Area<'b>,
+    caption: &str,
+    lab: [std::ops::Range<Real>; 3],
+) -> Result<Chart3d<'a, 'b>, Box<dyn std::error::Error>> {
+    let [x, y, z] = lab;
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 16))
+        .margin(10)
+        // plotters' (X, Y, Z) = lab (y, z, x), see [`lab_to_plot`].
+        .build_cartesian_3d(y, z, x)?;
+    chart.with_projection(|mut pb| {
+        pb.yaw = 0.6;
+        pb.pitch = 0.35;
+        pb.scale = 0.85;
+        pb.into_matrix()
+    });
+    Ok(chart)
+}
 
 fn draw(figure: &Figure, root: &Area) -> DrawResult {
     root.fill(&WHITE)?;
@@ -251,20 +287,11 @@ fn draw(figure: &Figure, root: &Area) -> DrawResult {
 /// Panel (a): Ω(t) in the body frame, Ω₃ up, and its three projections.
 fn hodograph_panel(figure: &Figure, area: &Area) -> DrawResult {
     let p = OMEGA_PERP_AXIS;
-    let mut chart = ChartBuilder::on(area)
-        .caption(
-            "(a) \u{3a9}(t) in the body frame and its projections",
-            ("sans-serif", 16),
-        )
-        .margin(10)
-        // plotters' y is up: (x, y, z) = (Ω₁, Ω₃, Ω₂).
-        .build_cartesian_3d(-p..p, 0.0..OMEGA3_AXIS, -p..p)?;
-    chart.with_projection(|mut pb| {
-        pb.yaw = 0.6;
-        pb.pitch = 0.35;
-        pb.scale = 0.85;
-        pb.into_matrix()
-    });
+    let mut chart = panel_3d(
+        area,
+        "(a) \u{3a9}(t) in the body frame and its projections",
+        [-p..p, -p..p, 0.0..OMEGA3_AXIS],
+    )?;
     chart
         .configure_axes()
         .light_grid_style(BLACK.mix(0.06))
@@ -277,9 +304,10 @@ fn hodograph_panel(figure: &Figure, area: &Area) -> DrawResult {
     let omega: Vec<(Real, Real, Real)> = figure
         .samples
         .iter()
-        .map(|s| (s.omega[0], s.omega[2], s.omega[1]))
+        .map(|s| lab_to_plot(Vec3::from(s.omega)))
         .collect();
-    // The projections lie on the three back walls of the box.
+    // The projections lie on the floor Ω₃ = 0 and the two back walls,
+    // Ω₂ = −p (left) and Ω₁ = −p (right).
     for project in [
         |(x, _, z): (Real, Real, Real)| (x, 0.0, z),
         |(_, y, z): (Real, Real, Real)| (-OMEGA_PERP_AXIS, y, z),
@@ -297,11 +325,18 @@ fn hodograph_panel(figure: &Figure, area: &Area) -> DrawResult {
     let start = omega[0];
     chart.draw_series(std::iter::once(Circle::new(start, 4, CURVE_COLOR.filled())))?;
     let label = ("sans-serif", 15).into_font().color(&BLACK);
-    // The axis names sit beyond the tick labels of the two front edges.
+    // The axis names sit beyond the tick labels of the two front edges: Ω₂'s
+    // ticks are on the front-left edge, Ω₁'s on the front-right one.
     for (text, at) in [
-        ("\u{3a9}\u{2081}", (0.0, 0.0, p * 1.55)),
-        ("\u{3a9}\u{2082}", (p * 1.5, 0.0, 0.0)),
-        ("\u{3a9}\u{2083}", (-p * 0.9, OMEGA3_AXIS * 0.97, -p)),
+        ("\u{3a9}\u{2081}", lab_to_plot(Vec3::new(0.0, p * 1.5, 0.0))),
+        (
+            "\u{3a9}\u{2082}",
+            lab_to_plot(Vec3::new(p * 1.55, 0.0, 0.0)),
+        ),
+        (
+            "\u{3a9}\u{2083}",
+            lab_to_plot(Vec3::new(-p, -p * 0.9, OMEGA3_AXIS * 0.97)),
+        ),
         (
             "\u{3a9}\u{2080}",
             (start.0 + 0.012, start.1 + 0.01, start.2),
@@ -314,20 +349,11 @@ fn hodograph_panel(figure: &Figure, area: &Area) -> DrawResult {
 
 /// Panel (b): the top in space, lab z (L∞) up.
 fn space_panel(figure: &Figure, area: &Area) -> DrawResult {
-    let mut chart = ChartBuilder::on(area)
-        .caption(
-            "(b) the top in space: axis tip path, L(t) and L\u{221e}",
-            ("sans-serif", 16),
-        )
-        .margin(10)
-        // (x, y, z) = (lab x, lab z, lab y): L∞ points up.
-        .build_cartesian_3d(-1.0..1.0, 0.0..1.2, -1.0..1.0)?;
-    chart.with_projection(|mut pb| {
-        pb.yaw = 0.6;
-        pb.pitch = 0.35;
-        pb.scale = 0.85;
-        pb.into_matrix()
-    });
+    let mut chart = panel_3d(
+        area,
+        "(b) the top in space: axis tip path, L(t) and L\u{221e}",
+        [-1.0..1.0, -1.0..1.0, 0.0..1.2],
+    )?;
     chart
         .configure_axes()
         .light_grid_style(BLACK.mix(0.06))
@@ -337,7 +363,7 @@ fn space_panel(figure: &Figure, area: &Area) -> DrawResult {
         .z_labels(3)
         .label_style(("sans-serif", 11))
         .draw()?;
-    let up = |v: Vec3| (v.x, v.z, v.y);
+    let up = lab_to_plot;
     let tip: Vec<(Real, Real, Real)> = figure.samples.iter().map(|s| up(Figure::axis(s))).collect();
     let l_dir: Vec<(Real, Real, Real)> = figure
         .samples
@@ -389,9 +415,14 @@ fn space_panel(figure: &Figure, area: &Area) -> DrawResult {
             },
             label.clone(),
         ),
-        Text::new("x".to_string(), (0.0, 0.0, 1.55), label.clone()),
-        Text::new("y".to_string(), (1.5, 0.0, 0.0), label.clone()),
-        Text::new("z".to_string(), (-0.9, 1.16, -1.0), label),
+        // Beside the tick labels of their edges: y front left, x front right.
+        Text::new("x".to_string(), up(Vec3::new(0.0, 1.5, 0.0)), label.clone()),
+        Text::new(
+            "y".to_string(),
+            up(Vec3::new(1.55, 0.0, 0.0)),
+            label.clone(),
+        ),
+        Text::new("z".to_string(), up(Vec3::new(-1.0, -0.9, 1.16)), label),
     ])?;
     Ok(())
 }
@@ -488,4 +519,47 @@ fn rates_panel(figure: &Figure, area: &Area) -> DrawResult {
         )))?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Mat3;
+
+    /// The panels' lab frame is right-handed on the page: rebuilt from the
+    /// page coordinates plotters gives the lab axes and their depth (away
+    /// from the viewer), x̂, ŷ, ẑ have a positive determinant; z goes up the
+    /// page and leans toward the viewer (seen from above); and x̂ to ŷ turns
+    /// counterclockwise on the page.
+    #[test]
+    fn the_figures_3d_panels_draw_the_lab_frame_right_handed() {
+        let mut buffer = String::new();
+        let root = SVGBackend::with_string(&mut buffer, (500, 500)).into_drawing_area();
+        let chart = panel_3d(&root, "", [-1.0..1.0, -1.0..1.0, -1.0..1.0]).unwrap();
+        let spec = chart.as_coord_spec();
+        let page = |v: Vec3| {
+            let (x, y, z) = lab_to_plot(v);
+            let (px, py) = spec.translate(&(x, y, z));
+            // Page right, page up, toward the viewer.
+            Vec3::new(
+                px as Real,
+                -(py as Real),
+                -(spec.projected_depth(&x, &y, &z) as Real),
+            )
+        };
+        let o = page(Vec3::zeros());
+        let [ex, ey, ez] = [Vec3::x(), Vec3::y(), Vec3::z()].map(|v| (page(v) - o).normalize());
+        assert!(ex.cross(&ey).dot(&ez) > 0.95, "left-handed on the page");
+        assert!(
+            ez.y > 0.9 && ez.z > 0.0,
+            "z is not up, or the view is from below"
+        );
+        assert!(ex.x * ey.y - ex.y * ey.x > 0.0, "x to y turns clockwise");
+        // And the map itself is a rotation.
+        let m = Mat3::from_columns(&[Vec3::x(), Vec3::y(), Vec3::z()].map(|v| {
+            let (a, b, c) = lab_to_plot(v);
+            Vec3::new(a, b, c)
+        }));
+        assert!((m.determinant() - 1.0).abs() < 1e-15);
+    }
 }

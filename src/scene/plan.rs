@@ -7,7 +7,7 @@
 //! |---|---|---|
 //! | truncated | closed form (4.7) | closed form (4.9), or skipped when its phase outgrows a double |
 //! | reduced | closed form (4.15)–(4.16) | Q′ = QΩ̂(t) alone on SO(3), or skipped when that would take too many steps |
-//! | general | DOP853, or the Taylor method at rtol ≤ 1e-9 ([`taylor_where_it_wins`]) | the same method, with Ω |
+//! | general | DOP853, or the Taylor method at rtol ≤ 1e-9 ([`crate::sim::auto_integrator`]) | the same method, with Ω |
 //! | full | physical solution of (3.4), backward shooting | driven by it |
 //!
 //! A span that would need more steps than [`MAX_STEPS`] is refused for the
@@ -22,8 +22,13 @@ use crate::physics::symmetric_top::{
     SymmetricTop, reduced_closed_form, reduced_closed_form_many, truncated_clock,
     truncated_closed_form,
 };
+use crate::sim::accuracy::{general_errors, secular_errors, symmetric_errors};
+use crate::sim::cost::{TIGHTEST_RTOL, stepping_error, steps_per_radian, tolerance_for};
 use crate::sim::orbit::{Force, OrbitConfig};
-use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample};
+use crate::sim::secular::{Law, averaging_error};
+use crate::sim::{
+    InitialState, Method, MethodChoice, MethodOptions, Model, Sample, auto_integrator,
+};
 use serde::Serialize;
 
 /// The most steps any integration of a scene may take (the integrators' own cap).
@@ -101,60 +106,36 @@ pub(super) struct TopPlan {
     pub chosen: Chosen,
     pub orientation: Orientation,
     pub warnings: Vec<String>,
+    /// The integrator's tolerance, where `auto` tightens the scene's.
+    pub rtol: Option<Real>,
 }
 
 pub use crate::sim::cost::turning_angle;
 
-// ANCHOR: taylor_where_it_wins
-/// `auto`'s integrator for a top without a closed form at `rtol`: the Taylor
-/// method where the measured crossover says it is faster
-/// ([`crate::sim::TAYLOR_AUTO_RTOL`], the rule [`crate::sim::Simulation`]
-/// follows), DOP853 above it. The label and the reason, in one sentence.
-pub fn taylor_where_it_wins(rtol: Real) -> (&'static str, String) {
-    if crate::sim::auto_uses_taylor(rtol) {
-        (
-            "taylor",
-            format!(
-                "the Taylor series method (at rtol <= {:.0e} it needs several times fewer steps than DOP853 for the same error, measured; the orientation as a unit quaternion)",
-                crate::sim::TAYLOR_AUTO_RTOL
-            ),
-        )
-    } else {
-        (
-            "dop853",
-            format!(
-                "DOP853 (orientation on SO(3); below rtol = {:.0e} the Taylor method would be faster)",
-                crate::sim::TAYLOR_AUTO_RTOL
-            ),
-        )
-    }
+/// The label the simulation will report for a method on a model (the
+/// method a choice runs is [`Model::method`]'s to say; a refused choice,
+/// which the scene's validation has already turned away, is labelled by its
+/// name).
+fn label(model: &Model, method: MethodChoice, options: &MethodOptions) -> &'static str {
+    model
+        .method(method, options)
+        .map_or(method.name(), |m| m.label())
 }
-// ANCHOR_END: taylor_where_it_wins
 
-/// The label the simulation will report for a method on a model.
-fn label(model: &Model, method: MethodChoice, rtol: Real) -> &'static str {
-    match (model, method) {
-        (Model::Full(_) | Model::GeneralFull(_), MethodChoice::Forward) => "forward",
-        (Model::Full(_) | Model::GeneralFull(_), _) => "physical",
-        (_, MethodChoice::Rk4) => "rk4",
-        (_, MethodChoice::Dopri5) => "dopri5",
-        (_, MethodChoice::Dop853) => "dop853",
-        (_, MethodChoice::Radau5) => "radau5",
-        (_, MethodChoice::Taylor) => "taylor",
-        (Model::Truncated(_), _) => "exact",
-        (Model::Reduced(_), _) => "exact+dop853",
-        (Model::General(_) | Model::GeneralReduced(_), _) => taylor_where_it_wins(rtol).0,
+/// How a scene's reason names the integrator `auto` steps an asymmetric top
+/// with.
+fn integrator_words(method: Method) -> String {
+    match method {
+        Method::Taylor => format!(
+            "the Taylor series method (orientation as a unit quaternion; at rtol <= {:.0e} it is faster than DOP853, measured)",
+            crate::sim::TAYLOR_AUTO_RTOL
+        ),
+        _ => "DOP853 (orientation on SO(3))".to_string(),
     }
 }
 
 fn reduced_tau_k(top: &SymmetricTop, omega0: &Vec3) -> Real {
     top.tau() * (top.ratio() * omega0.z).abs()
-}
-
-/// What `model = "auto"` chose: 0 truncated, 1 reduced, 2 physical.
-pub(super) struct ModelChoice {
-    pub tier: usize,
-    pub reason: String,
 }
 
 /// The radiation's share per radian of turning: τ|Ω₀| for the symmetric
@@ -169,63 +150,177 @@ pub fn radiation_share(model: &Model, omega0: &Vec3) -> Real {
     time * omega0.norm()
 }
 
-/// How far each model may stray from the physical solution of (3.4) over
-/// `turns` radians, relative to |Ω|, for radiation share `eps`:
-///
-/// - the truncated ALE (3.3) drops the Schott term, which changes the loss
-///   law at its own order (the two laws even end in different states), so
-///   its error grows like the loss itself, ε per radian: ε·turns;
-/// - the reduced ALE is right through first order; its precession rate is
-///   off at O(ε²) (physics notes), so its phase drifts by ε²·turns;
-///
-/// both capped at 1 (the answer is then qualitatively off). They are
-/// estimates, not strict bounds: against the physical solution of an
-/// asymmetric top (tests/physics/general_full.rs) the errors stay below
-/// twice them, and within a factor 30 of them; a top spinning about its
-/// dipole loses nothing under either law.
-pub fn model_errors(eps: Real, turns: Real, strong: bool) -> [Real; 2] {
-    let truncated = (eps * turns).min(1.0);
-    let reduced = if strong {
-        1.0
-    } else {
-        (eps * eps * turns).min(1.0)
-    };
-    [truncated, reduced]
+/// How a general top's run is answered when its method is `auto`.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum GeneralPath {
+    /// `auto`'s integrator on Ω and the orientation (DOP853, or the Taylor
+    /// method: [`crate::sim::auto_integrator`]), at this integrator
+    /// tolerance (at most the scene's, tightened so that the error over the
+    /// run stays within it), taking about this many steps.
+    Stepped {
+        /// The integrator's tolerance.
+        rtol: Real,
+        /// The steps it will take.
+        steps: Real,
+    },
+    /// The secular model (E and |L| alone), good to about `error`.
+    Secular {
+        /// Its estimated error, relative.
+        error: Real,
+    },
+    /// Neither holds the answer within `rtol`: the refusal, with the cheaper ways.
+    Neither(String),
 }
 
+// ANCHOR: general_path
+/// How to answer a general top over `t_last` within `rtol`: stepped, with
+/// the tolerance that keeps the integrator's error within `rtol` if that
+/// fits the step budget; else the secular model, if its own error
+/// ([`averaging_error`]) is within `rtol`; else neither, with what to ask
+/// for instead.
+pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Real) -> GeneralPath {
+    let angle = turning_angle(model, omega0, t_last);
+    let per_radian = |r: Real| steps_per_radian(auto_integrator(r), r);
+    let stepped = tolerance_for(rtol, angle).map(|r| (r, angle * per_radian(r)));
+    if let Some((r, steps)) = stepped
+        && steps <= MAX_STEPS
+    {
+        return GeneralPath::Stepped { rtol: r, steps };
+    }
+    let (Model::General(top) | Model::GeneralReduced(top)) = model else {
+        return GeneralPath::Neither(format!("{} has no secular model", model.name()));
+    };
+    let law = if matches!(model, Model::General(_)) {
+        Law::Truncated
+    } else {
+        Law::Reduced
+    };
+    let share = radiation_share(model, omega0);
+    let secular_error = (share <= SECULAR_MAX_SHARE).then(|| averaging_error(top, law, omega0));
+    if let Some(error) = secular_error
+        && error <= rtol
+    {
+        return GeneralPath::Secular { error };
+    }
+    // The longest run stepping can hold within rtol: the turning at which
+    // either the error or the budget runs out (both grow with it).
+    let fits =
+        |phi: Real| tolerance_for(rtol, phi).is_some_and(|r| phi * per_radian(r) <= MAX_STEPS);
+    let (mut lo, mut hi) = (0.0, angle);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if fits(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let t_max = t_last * lo / angle;
+    let why = match stepped {
+        Some((r, steps)) => format!(
+            "it would take about {steps:.1e} steps at rtol {r:.0e}, more than the {MAX_STEPS:.0e} allowed"
+        ),
+        None => format!(
+            "an integrator's error of Omega and the orientation grows like the square of the turning: about {:.1e} even at rtol {TIGHTEST_RTOL:.0e}",
+            stepping_error(TIGHTEST_RTOL, angle)
+        ),
+    };
+    let secular = match secular_error {
+        Some(e) => format!(
+            "the secular model, which answers E and |L| alone, is good to about {e:.1e} here"
+        ),
+        None => format!(
+            "the secular model is not offered at this radiation share, {share:.1e} per radian (above {SECULAR_MAX_SHARE:.0e}, where averaging over a turn fails)"
+        ),
+    };
+    let looser = match secular_error {
+        Some(e) => format!("; or rtol >= {:.0e} for the secular model", e * 1.5),
+        None => String::new(),
+    };
+    GeneralPath::Neither(format!(
+        "the asymmetric top ({}) turns about {angle:.1e} rad by t = {t_last:.3e}: stepping it cannot hold its answer within rtol = {rtol:.0e} ({why}), and {secular}; ask for times up to {t_max:.3e} at this rtol{looser}",
+        model.equations()
+    ))
+}
+// ANCHOR_END: general_path
+
+/// What `model = "auto"` chose: 0 truncated, 1 reduced, 2 physical.
+pub(super) struct ModelChoice {
+    pub tier: usize,
+    pub reason: String,
+}
+
+// ANCHOR: choose_model
 /// `model = "auto"`: the lightest of the truncated ALE, the reduced ALE and
-/// the physical solution of (3.4) whose error over the scene's span stays
-/// within the scene's tolerance `tol`.
+/// the physical solution of (3.4) whose estimated error over the scene's
+/// `times` stays within the scene's tolerance `tol` ([`crate::sim::accuracy`]:
+/// closed forms for the symmetric top, the leading errors integrated along
+/// the run for any other, in E and |L| when the secular model will answer).
+/// The reduced model is never chosen at τk ≥ [`STRONG_SPIN`], where it is
+/// qualitatively off.
 pub(super) fn choose_model(
     tiers: &[Model; 3],
     omega0: &Vec3,
-    t_last: Real,
+    times: &[Real],
     tol: Real,
 ) -> ModelChoice {
-    let eps = radiation_share(&tiers[0], omega0);
-    let turns = turning_angle(&tiers[1], omega0, t_last);
+    let t_last = times.last().copied().unwrap_or(0.0);
+    let (errors, measured, how) = match &tiers[1] {
+        Model::Reduced(top) | Model::Truncated(top) | Model::Full(top) => (
+            symmetric_errors(top, omega0, t_last),
+            "Omega",
+            "in closed form",
+        ),
+        Model::GeneralReduced(top) | Model::General(top) | Model::GeneralFull(top) => {
+            match general_path(&tiers[1], omega0, t_last, tol) {
+                GeneralPath::Secular { .. } => match secular_errors(top, omega0, times, tol) {
+                    Ok(e) => (e, "E and |L|", "along the secular drift of each law"),
+                    Err(_) => (
+                        general_errors(top, omega0, t_last),
+                        "Omega",
+                        "integrated along the run",
+                    ),
+                },
+                _ => (
+                    general_errors(top, omega0, t_last),
+                    "Omega",
+                    "integrated along the run",
+                ),
+            }
+        }
+    };
     let strong = match &tiers[1] {
         Model::Reduced(top) => reduced_tau_k(top, omega0) >= STRONG_SPIN,
-        _ => eps >= STRONG_SPIN,
+        _ => radiation_share(&tiers[0], omega0) >= STRONG_SPIN,
     };
-    let [err_t, err_r] = model_errors(eps, turns, strong);
-    let symbol = if tiers[0].has_closed_form() {
-        "tau"
-    } else {
-        "tau_f"
+    let name = |tier: usize| {
+        [
+            "the truncated ALE (3.3)",
+            "the reduced ALE",
+            "the physical solution of (3.4)",
+        ][tier]
     };
-    let tier = if err_t <= tol {
+    if errors.exact {
+        let axis = if tiers[0].has_closed_form() {
+            "lies along the symmetry axis, which carries the dipole"
+        } else {
+            "is a steady spin about a principal axis along the dipole"
+        };
+        return ModelChoice {
+            tier: 0,
+            reason: format!(
+                "model = \"auto\": Omega0 {axis}, so nothing radiates and every model keeps the same steady spin; the lightest, {}, answers exactly",
+                name(0)
+            ),
+        };
+    }
+    let tier = if errors.truncated <= tol {
         0
-    } else if err_r <= tol {
+    } else if errors.reduced <= tol && !strong {
         1
     } else {
         2
     };
-    let name = [
-        "the truncated ALE (3.3)",
-        "the reduced ALE",
-        "the physical solution of (3.4)",
-    ][tier];
     let strong_note = if strong {
         " (qualitatively off at this spin)"
     } else {
@@ -234,14 +329,18 @@ pub(super) fn choose_model(
     ModelChoice {
         tier,
         reason: format!(
-            "model = \"auto\": the body turns {turns:.1e} rad and loses a share {symbol}|Omega0| = {eps:.1e} of its spin per radian; over that the truncated ALE (3.3), which drops the Schott term, may be off by {err_t:.1e}, the reduced ALE by {err_r:.1e}{strong_note} (its precession rate is off at second order); the lightest within rtol = {tol:.0e} is {name}, so it answers"
+            "model = \"auto\": over the run the truncated ALE (3.3), which drops the Schott term, may be off by {:.1e} and the reduced ALE, right through first order, by {:.1e}{strong_note} in {measured} (their leading errors against the physical solution of (3.4), {how}); the lightest within rtol = {tol:.0e} is {}, so it answers",
+            errors.truncated,
+            errors.reduced,
+            name(tier)
         ),
     }
 }
+// ANCHOR_END: choose_model
 
 /// Above this share of spin lost per radian, the secular model is not
-/// offered (first-order averaging is good to about that share).
-pub const SECULAR_MAX_SHARE: Real = 1e-6;
+/// offered: averaging over a turn assumes the turn changes little.
+pub const SECULAR_MAX_SHARE: Real = 1e-2;
 
 /// Choose how to answer a top scene, refuse what no method can do, and warn
 /// where the model is asked for more than it gives.
@@ -263,7 +362,7 @@ pub(super) fn plan_top(
             ));
         }
     }
-    let auto = label(model, MethodChoice::Auto, options.rtol);
+    let auto = label(model, MethodChoice::Auto, options);
     let closed = model.has_closed_form();
     let too_many = |steps: Real, what: &str| -> String {
         let hint = if closed {
@@ -338,6 +437,7 @@ pub(super) fn plan_top(
             chosen: Chosen::new(method_label, reason),
             orientation,
             warnings: std::mem::take(&mut warnings),
+            rtol: None,
         }
     };
     let plan = match (model, method) {
@@ -345,7 +445,7 @@ pub(super) fn plan_top(
             symmetric_path(top, method == MethodChoice::Exact)
         }
         (_, MethodChoice::Rk4) => {
-            let steps = t_last / options.step;
+            let steps = t_last / options.step();
             if steps > MAX_STEPS {
                 return Err(Refusal {
                     at: Blame::Method,
@@ -359,6 +459,7 @@ pub(super) fn plan_top(
                 chosen: Chosen::new("rk4", asked("rk4")),
                 orientation: Orientation::Computed,
                 warnings,
+                rtol: None,
             }
         }
         (Model::Full(_) | Model::GeneralFull(_), _) => {
@@ -383,12 +484,70 @@ pub(super) fn plan_top(
                     "physical",
                     "(3.4) has no closed form and runs away forward at a rate of about 1/tau: its physical solution by backward shooting (DOP853), the orientation driven by it".to_string(),
                 ),
-                other => ("physical", asked(if other == MethodChoice::Exact { "exact" } else { "dop853" })),
+                other => ("physical", asked(other.name())),
             };
             TopPlan {
                 chosen: Chosen::new(label, reason),
                 orientation: Orientation::Computed,
                 warnings,
+                rtol: None,
+            }
+        }
+        (Model::General(_) | Model::GeneralReduced(_), MethodChoice::Auto) => {
+            let equations = model.equations();
+            match general_path(model, &omega0, t_last, options.rtol()) {
+                GeneralPath::Stepped { rtol, steps } => {
+                    let tighter = if rtol < options.rtol() {
+                        format!(
+                            ", at rtol {rtol:.1e}, tighter than the scene's {:.0e} so that its error over {angle:.1e} rad stays within it (an integrator's error of the phase grows like the square of the turning)",
+                            options.rtol()
+                        )
+                    } else {
+                        String::new()
+                    };
+                    let integrator = auto_integrator(rtol);
+                    TopPlan {
+                        chosen: Chosen::new(
+                            integrator.label(),
+                            format!(
+                                "the asymmetric top ({equations}) has no closed form: omega and the orientation are integrated together by {}{tighter}, about {steps:.1e} steps",
+                                integrator_words(integrator)
+                            ),
+                        ),
+                        orientation: Orientation::Computed,
+                        warnings,
+                        rtol: (rtol < options.rtol()).then_some(rtol),
+                    }
+                }
+                GeneralPath::Secular { error } => {
+                    let eps = radiation_share(model, &omega0);
+                    let why = format!(
+                        "the secular model follows E and |L| only: the phase round the polhode and the orientation after {angle:.1e} rad are beyond what stepping holds within rtol"
+                    );
+                    TopPlan {
+                        chosen: Chosen::new(
+                            "secular",
+                            format!(
+                                "{angle:.1e} rad are too many turns to step within rtol = {:.0e} and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853), good to about {error:.1e} (the swing of E and |L| within a turn, which averaging leaves out)",
+                                options.rtol(),
+                                if matches!(model, Model::General(_)) {
+                                    "(3.3)"
+                                } else {
+                                    "the reduced (3.4)"
+                                }
+                            ),
+                        ),
+                        orientation: Orientation::Skipped(why),
+                        warnings,
+                        rtol: None,
+                    }
+                }
+                GeneralPath::Neither(message) => {
+                    return Err(Refusal {
+                        at: Blame::Times,
+                        message: format!("[solve] {message}"),
+                    });
+                }
             }
         }
         (
@@ -396,71 +555,50 @@ pub(super) fn plan_top(
             MethodChoice::Dopri5
             | MethodChoice::Dop853
             | MethodChoice::Radau5
-            | MethodChoice::Taylor
-            | MethodChoice::Auto,
+            | MethodChoice::Taylor,
         ) => {
-            let steps = angle;
-            let name = label(model, method, options.rtol);
-            let eps = radiation_share(model, &omega0);
-            let averagable = matches!(model, Model::General(_) | Model::GeneralReduced(_))
-                && method == MethodChoice::Auto
-                && eps <= SECULAR_MAX_SHARE.min(options.rtol);
-            if steps > MAX_STEPS && averagable {
-                let why = format!(
-                    "the secular model follows E and |L| only: the phase round the polhode and the orientation after {angle:.1e} rad are beyond what a double resolves"
-                );
-                return Ok(TopPlan {
-                    chosen: Chosen::new(
-                        "secular",
-                        format!(
-                            "{angle:.1e} rad are too many turns to step ({MAX_STEPS:.0e} allowed) and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853), good to about {eps:.1e}",
-                            if matches!(model, Model::General(_)) {
-                                "(3.3)"
-                            } else {
-                                "the reduced (3.4)"
-                            }
-                        ),
-                    ),
-                    orientation: Orientation::Skipped(why),
-                    warnings,
-                });
-            }
-            if steps > MAX_STEPS {
-                let at = if method == MethodChoice::Auto {
-                    Blame::Times
-                } else {
-                    Blame::Method
-                };
-                let what = if method == MethodChoice::Auto {
-                    format!(
-                        "the asymmetric top ({}), which has no closed form,",
-                        model.equations()
-                    )
-                } else {
-                    format!("method = \"{name}\" (at most 1 rad of turning per step)")
-                };
+            let name = label(model, method, options);
+            let resolved = model.method(method, options).ok();
+            let estimate = resolved
+                .and_then(|m| crate::sim::cost::estimate(model, m, options, &omega0, t_last));
+            if let Some(e) = &estimate
+                && (e.steps.is_nan() || e.steps > MAX_STEPS)
+            {
                 return Err(Refusal {
-                    at,
-                    message: format!("[solve] {}", too_many(steps, &what)),
+                    at: Blame::Method,
+                    message: format!(
+                        "[solve] method = \"{name}\": {}",
+                        too_many(e.steps, &e.what)
+                    ),
                 });
             }
-            let reason = if method == MethodChoice::Auto {
-                format!(
-                    "the asymmetric top ({}) has no closed form: omega and the orientation are integrated together by {}",
-                    model.equations(),
-                    taylor_where_it_wins(options.rtol).1
-                )
-            } else {
-                asked(name)
-            };
+            let drift = stepping_error(options.rtol(), angle);
+            if !closed && drift > options.rtol() {
+                warnings.push(format!(
+                    "over {angle:.1e} rad an integrator's error of the phase grows like the square of the turning: {name} at rtol {:.0e} may be off by about {drift:.1e}; method = \"auto\" tightens the tolerance or answers with the secular model",
+                    options.rtol()
+                ));
+            }
             TopPlan {
-                chosen: Chosen::new(name, reason),
+                chosen: Chosen::new(name, asked(name)),
                 orientation: Orientation::Computed,
                 warnings,
+                rtol: None,
             }
         }
         (_, MethodChoice::Exact | MethodChoice::Forward) => {
-            unreachable!("refused while validating [solve] method")
+            // Refused while validating [solve] method; said again here
+            // rather than assumed.
+            return Err(Refusal {
+                at: Blame::Method,
+                message: match model.check_method(method) {
+                    Err(e) => format!("[solve] method = \"{}\": {e}", method.name()),
+                    Ok(()) => format!(
+                        "[solve] method = \"{}\" cannot be planned here",
+                        method.name()
+                    ),
+                },
+            });
         }
     };
     Ok(plan)

@@ -9,14 +9,26 @@
 //! page pending forever in about one load in three. Here every connection
 //! has its own thread from the moment it is accepted, and an idle one is
 //! closed after [`IDLE`].
+//!
+//! Slow clients: a request must arrive whole, head and body, within the
+//! request time from its first byte (however slowly the bytes come), else
+//! [`ReadError::TooSlow`]; and each connection keeps a [`Watch`] saying
+//! whether it is idle, arriving, being answered or being written, and
+//! since when, so that the server can drop the one idle or slow for longest
+//! when all its connections are taken.
 
 use std::io::{self, BufRead, BufReader, Read, Write};
-use std::net::TcpStream;
-use std::time::Duration;
+use std::net::{Shutdown, TcpStream};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
 /// How long a kept-alive connection may sit idle (and how long a write may
 /// block) before it is closed.
 pub const IDLE: Duration = Duration::from_secs(30);
+
+/// The request time of a new [`Connection`] (see
+/// [`Connection::set_request_time`]).
+const REQUEST_TIME: Duration = Duration::from_secs(10);
 
 /// The longest request head (request line and headers) accepted.
 const HEAD_BYTES: usize = 16 * 1024;
@@ -53,11 +65,24 @@ pub enum Body {
 impl Request {
     /// The value of header `name` (case-insensitive), if present.
     pub fn header(&self, name: &str) -> Option<&str> {
-        self.headers
-            .iter()
-            .find(|(k, _)| k.eq_ignore_ascii_case(name))
-            .map(|(_, v)| v.as_str())
+        values(&self.headers, name).next()
     }
+
+    /// Every value of header `name` (case-insensitive), in order.
+    pub fn headers<'a>(&'a self, name: &'a str) -> impl Iterator<Item = &'a str> + 'a {
+        values(&self.headers, name)
+    }
+}
+
+/// Every value of header `name` (case-insensitive) among `headers`, in order.
+pub fn values<'a, 'n>(
+    headers: &'a [(String, String)],
+    name: &'n str,
+) -> impl Iterator<Item = &'a str> + use<'a, 'n> {
+    headers
+        .iter()
+        .filter(move |(k, _)| k.eq_ignore_ascii_case(name))
+        .map(|(_, v)| v.as_str())
 }
 
 /// Why no request could be read.
@@ -68,12 +93,57 @@ pub enum ReadError {
     Closed,
     /// Not HTTP, or a head too long: answer 400 and close.
     Malformed(String),
+    /// The request did not arrive whole within the request time of its
+    /// first byte: answer 408 and close.
+    TooSlow,
+}
+
+/// What a connection is doing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// Waiting for a request's first byte (kept alive, or just opened).
+    Idle,
+    /// A request is arriving.
+    Arriving,
+    /// The server is working on the answer.
+    Answering,
+    /// The answer is being written.
+    Writing,
+}
+
+/// What a connection is doing and since when, and a handle to close it:
+/// the server keeps one per open connection.
+#[derive(Debug)]
+pub struct Watch {
+    socket: TcpStream,
+    state: Mutex<(Phase, Instant)>,
+}
+
+impl Watch {
+    fn set(&self, phase: Phase) {
+        *self.state.lock().unwrap_or_else(|e| e.into_inner()) = (phase, Instant::now());
+    }
+
+    /// Since when the connection has been idle, arriving or being written,
+    /// if it is: such a connection may be dropped for a new one. One the
+    /// server is answering (a run the page waits for) may not.
+    pub fn droppable_since(&self) -> Option<Instant> {
+        let (phase, since) = *self.state.lock().unwrap_or_else(|e| e.into_inner());
+        (phase != Phase::Answering).then_some(since)
+    }
+
+    /// Closes the connection: its thread's read or write fails at once.
+    pub fn drop_now(&self) {
+        let _ = self.socket.shutdown(Shutdown::Both);
+    }
 }
 
 /// A connection's reading half.
 pub struct Connection {
     reader: BufReader<TcpStream>,
     writer: TcpStream,
+    watch: Arc<Watch>,
+    request_time: Duration,
 }
 
 impl Connection {
@@ -84,15 +154,32 @@ impl Connection {
         stream.set_write_timeout(Some(IDLE))?;
         stream.set_nodelay(true)?;
         let writer = stream.try_clone()?;
+        let watch = Arc::new(Watch {
+            socket: stream.try_clone()?,
+            state: Mutex::new((Phase::Idle, Instant::now())),
+        });
         Ok(Self {
             reader: BufReader::new(stream),
             writer,
+            watch,
+            request_time: REQUEST_TIME,
         })
+    }
+
+    /// The time a whole request may take to arrive from its first byte.
+    pub fn set_request_time(&mut self, limit: Duration) {
+        self.request_time = limit;
+    }
+
+    /// The connection's [`Watch`].
+    pub fn watch(&self) -> Arc<Watch> {
+        Arc::clone(&self.watch)
     }
 
     /// The next request, its body read up to `body_limit` bytes.
     pub fn next_request(&mut self, body_limit: usize) -> Result<Request, ReadError> {
-        let head = self.read_head()?;
+        self.watch.set(Phase::Idle);
+        let (head, deadline) = self.read_head()?;
         let mut headers = [httparse::EMPTY_HEADER; HEADERS];
         let mut parsed = httparse::Request::new(&mut headers);
         match parsed.parse(&head) {
@@ -151,23 +238,50 @@ impl Connection {
             return Ok(request);
         }
         let mut body = vec![0; length];
-        self.reader
-            .read_exact(&mut body)
-            .map_err(|_| ReadError::Closed)?;
+        let mut filled = 0;
+        while filled < length {
+            self.wait_until(deadline)?;
+            match self.reader.read(&mut body[filled..]) {
+                Ok(0) => return Err(ReadError::Closed),
+                Ok(n) => filled += n,
+                Err(e) => return Err(timed_out(&e, deadline)),
+            }
+        }
         request.body = Body::Read(body);
+        self.watch.set(Phase::Answering);
         Ok(request)
     }
 
-    /// Bytes up to and including the blank line that ends a request head.
-    fn read_head(&mut self) -> Result<Vec<u8>, ReadError> {
+    /// Sets the socket's read timeout to what is left until `deadline`
+    /// (none yet: [`IDLE`]); [`ReadError::TooSlow`] once it has passed.
+    fn wait_until(&self, deadline: Option<Instant>) -> Result<(), ReadError> {
+        let timeout = match deadline {
+            None => IDLE,
+            Some(d) => d
+                .checked_duration_since(Instant::now())
+                .filter(|t| !t.is_zero())
+                .ok_or(ReadError::TooSlow)?,
+        };
+        self.reader
+            .get_ref()
+            .set_read_timeout(Some(timeout))
+            .map_err(|_| ReadError::Closed)
+    }
+
+    /// Bytes up to and including the blank line that ends a request head,
+    /// and the deadline of the whole request (the request time after its
+    /// first byte).
+    fn read_head(&mut self) -> Result<(Vec<u8>, Option<Instant>), ReadError> {
         let mut head = Vec::new();
+        let mut line_start = 0;
+        let mut deadline = None;
         loop {
-            let before = head.len();
-            let n = (&mut self.reader)
-                .take((HEAD_BYTES + 1 - before) as u64)
-                .read_until(b'\n', &mut head)
-                .map_err(|_| ReadError::Closed)?;
-            if n == 0 {
+            self.wait_until(deadline)?;
+            let buf = match self.reader.fill_buf() {
+                Ok(buf) => buf,
+                Err(e) => return Err(timed_out(&e, deadline)),
+            };
+            if buf.is_empty() {
                 // EOF: between requests it is the client's goodbye.
                 return if head.is_empty() {
                     Err(ReadError::Closed)
@@ -175,21 +289,36 @@ impl Connection {
                     Err(ReadError::Malformed("the request head was cut off".into()))
                 };
             }
+            if deadline.is_none() {
+                deadline = Some(Instant::now() + self.request_time);
+                self.watch.set(Phase::Arriving);
+            }
+            let room = (HEAD_BYTES + 1 - head.len()).min(buf.len());
+            let (take, line_ends) = match buf[..room].iter().position(|&b| b == b'\n') {
+                Some(i) => (i + 1, true),
+                None => (room, false),
+            };
+            head.extend_from_slice(&buf[..take]);
+            self.reader.consume(take);
             if head.len() > HEAD_BYTES {
                 return Err(ReadError::Malformed(format!(
                     "request head longer than {} KiB",
                     HEAD_BYTES / 1024
                 )));
             }
-            let line = &head[before..];
+            if !line_ends {
+                continue;
+            }
+            let line = &head[line_start..];
             if line == b"\r\n" || line == b"\n" {
-                if before == 0 {
+                if line_start == 0 {
                     // Blank lines before a request line are allowed (RFC 9112 §2.2).
                     head.clear();
                     continue;
                 }
-                return Ok(head);
+                return Ok((head, deadline));
             }
+            line_start = head.len();
         }
     }
 
@@ -216,8 +345,25 @@ impl Connection {
         if !head_only {
             bytes.extend_from_slice(body);
         }
+        self.watch.set(Phase::Writing);
         self.writer.write_all(&bytes)?;
-        self.writer.flush()
+        self.writer.flush()?;
+        self.watch.set(Phase::Idle);
+        Ok(())
+    }
+}
+
+/// A failed read: past the deadline (a timeout once the request has begun)
+/// it is [`ReadError::TooSlow`], else the connection is closed.
+fn timed_out(e: &io::Error, deadline: Option<Instant>) -> ReadError {
+    let timeout = matches!(
+        e.kind(),
+        io::ErrorKind::WouldBlock | io::ErrorKind::TimedOut
+    );
+    if timeout && deadline.is_some() {
+        ReadError::TooSlow
+    } else {
+        ReadError::Closed
     }
 }
 
@@ -225,10 +371,12 @@ fn reason(code: u16) -> &'static str {
     match code {
         200 => "OK",
         202 => "Accepted",
+        303 => "See Other",
         400 => "Bad Request",
         403 => "Forbidden",
         404 => "Not Found",
         405 => "Method Not Allowed",
+        408 => "Request Timeout",
         411 => "Length Required",
         413 => "Content Too Large",
         429 => "Too Many Requests",

@@ -1,22 +1,45 @@
 //! Compiling and running one snippet: a scratch Cargo project that depends on
 //! the local spintop by path and shares the workspace's build folder, so a
-//! warm run compiles only the snippet.
+//! warm run compiles only the snippet. Both the build and the run are
+//! process trees under a supervisor ([`super::tree`]): bounded, one at a
+//! time, and killed whole.
 
+use super::tree::{Bounds, Ended, Slot};
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-/// The limits of one run.
+/// The server's limits: of a request, and of one build and run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Limits {
     /// The largest request accepted.
     pub request_bytes: usize,
-    /// The longest compile (a cold first build of spintop included).
+    /// The time a whole request (head and body) may take to arrive, from
+    /// its first byte, however slowly the bytes come.
+    pub request_time: Duration,
+    /// The longest compile while the scratch project is cold (spintop and
+    /// its dependencies are compiled once).
     pub compile: Duration,
-    /// The longest run; then the process is killed.
+    /// The longest compile once a build has succeeded (only the snippet is
+    /// compiled then): a compile-time loop holds ▶ no longer than this.
+    pub compile_warm: Duration,
+    /// The longest run; then the program and everything it started are killed.
     pub run: Duration,
+    /// The CPU time of each process of a run (then SIGXCPU).
+    pub cpu: Duration,
+    /// The address space (virtual memory) of each process of a run, in bytes.
+    pub memory: u64,
+    /// The largest file a run may write, in bytes (then SIGXFSZ).
+    pub file_size: u64,
+    /// How many processes and threads a run may start beyond those the
+    /// reader has when it starts (RLIMIT_NPROC counts every task of a user,
+    /// so it is set from that count): a fork bomb stops there, with the
+    /// machine's other programs still able to start theirs. The kernel does
+    /// not hold root to it.
+    pub processes: u64,
     /// The most output kept; the rest is dropped, with a note.
     pub output_bytes: usize,
     /// How long the first answer waits before saying "compiling…".
@@ -27,25 +50,54 @@ impl Default for Limits {
     fn default() -> Self {
         Self {
             request_bytes: 64 * 1024,
+            request_time: Duration::from_secs(10),
             compile: Duration::from_secs(900),
+            compile_warm: Duration::from_secs(120),
             run: Duration::from_secs(10),
+            cpu: Duration::from_secs(11),
+            memory: 4 << 30,
+            file_size: 64 << 20,
+            processes: 512,
             output_bytes: 64 * 1024,
             answer_within: Duration::from_millis(4500),
         }
     }
 }
 
-/// Where snippets are compiled.
+/// Where snippets are compiled, and with what.
 #[derive(Debug, Clone)]
 pub struct Runner {
-    /// The scratch project (created on first use; nothing is written elsewhere).
+    /// The scratch project (created on first use).
     pub scratch: PathBuf,
     /// The spintop crate the snippets use.
     pub spintop: PathBuf,
     /// The build folder shared with the workspace.
     pub target_dir: PathBuf,
+    /// The spintop binary, which supervises each build and run
+    /// (`spintop book --supervise`, see `src/server/tree.rs`).
+    pub launcher: PathBuf,
     /// The limits.
     pub limits: Limits,
+}
+
+/// What the builds and runs of one server share: the one process tree at a
+/// time, and whether the scratch project has been built (then a compile
+/// has [`Limits::compile_warm`]).
+#[derive(Debug, Default)]
+pub(crate) struct Shared {
+    pub(crate) slot: Slot,
+    pub(crate) warm: AtomicBool,
+}
+
+/// What a build or run reports while it goes on.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Stage<'a> {
+    /// Its turn came: cargo starts.
+    Compiling,
+    /// One of cargo's progress lines ("Compiling nalgebra v0.35.0").
+    Line(&'a str),
+    /// Compiled: the program runs.
+    Running,
 }
 
 /// How a run ended.
@@ -70,11 +122,14 @@ pub enum OutcomeKind {
     Failed,
     /// It did not compile.
     CompileError,
-    /// The compile took longer than allowed.
+    /// The compile took longer than allowed (cargo and every compiler it
+    /// started were killed).
     CompileTimeout,
-    /// The run took longer than allowed and was killed.
+    /// The run took longer than allowed and was killed, with everything it
+    /// started.
     RunTimeout,
-    /// Cargo could not be started, or the scratch folder written.
+    /// Cargo could not be started, the scratch folder written, or the
+    /// server is stopping.
     Internal,
 }
 
@@ -110,12 +165,13 @@ impl Outcome {
         }
         match self.kind {
             OutcomeKind::RunTimeout => note(format!(
-                "[stopped: the run took longer than the time limit ({:.0} s) and was killed]",
+                "[stopped: the run took longer than the time limit ({:.0} s) and was killed, with every process it started]",
                 self.elapsed.as_secs_f64().max(1.0)
             )),
-            OutcomeKind::CompileTimeout => {
-                note("[stopped: the compile took longer than the time limit]".into())
-            }
+            OutcomeKind::CompileTimeout => note(format!(
+                "[stopped: the compile took longer than the time limit ({:.0} s) and was killed]",
+                self.elapsed.as_secs_f64().max(1.0)
+            )),
             OutcomeKind::Failed if self.output.trim().is_empty() => {
                 note("[the program failed with no output]".into())
             }
@@ -133,7 +189,14 @@ struct Capped {
     truncated: bool,
 }
 
-fn pump(mut from: impl Read + Send + 'static, into: Arc<Mutex<Capped>>, limit: usize) {
+/// Reads `from` to its end into `into`; the returned receiver gets a message
+/// then.
+fn pump(
+    mut from: impl Read + Send + 'static,
+    into: Arc<Mutex<Capped>>,
+    limit: usize,
+) -> std::sync::mpsc::Receiver<()> {
+    let (done, finished) = std::sync::mpsc::channel();
     std::thread::spawn(move || {
         let mut buf = [0u8; 8192];
         while let Ok(n) = from.read(&mut buf) {
@@ -148,24 +211,15 @@ fn pump(mut from: impl Read + Send + 'static, into: Arc<Mutex<Capped>>, limit: u
             let take = n.min(room);
             c.text.extend_from_slice(&buf[..take]);
         }
+        let _ = done.send(());
     });
+    finished
 }
 
-/// Waits for `child` up to `limit`, then kills it; its status if it ended in time.
-fn wait_or_kill(child: &mut Child, limit: Duration) -> Option<std::process::ExitStatus> {
-    let start = Instant::now();
-    loop {
-        match child.try_wait() {
-            Ok(Some(status)) => return Some(status),
-            Ok(None) if start.elapsed() < limit => std::thread::sleep(Duration::from_millis(20)),
-            _ => {
-                let _ = child.kill();
-                let _ = child.wait();
-                return None;
-            }
-        }
-    }
-}
+/// The trivial program the background build compiles: it makes cargo
+/// build spintop and its dependencies, so that a reader's first ▶ compiles
+/// only the snippet.
+const WARM_UP: &str = "fn main() {}\n";
 
 impl Runner {
     /// The snippet program's name: one per scratch folder, so that two
@@ -173,7 +227,7 @@ impl Runner {
     fn binary_name(&self) -> String {
         format!(
             "spintop-snippet-{:08x}",
-            crate::present::stable_key(&self.scratch.to_string_lossy())
+            crate::numbers::stable_key(&self.scratch.to_string_lossy())
         )
     }
 
@@ -202,11 +256,46 @@ impl Runner {
         std::fs::write(self.scratch.join("src/main.rs"), code)
     }
 
-    /// Compiles and runs `code`, reporting cargo's progress lines to
-    /// `progress`. Code without `fn main` is wrapped in one, as rustdoc and
-    /// mdBook do (mdBook leaves editable snippets unwrapped).
-    pub fn run(&self, code: &str, edition: &str, progress: &mut dyn FnMut(&str)) -> Outcome {
+    /// The supervisor's command, in the scratch folder.
+    fn supervised(&self) -> Command {
+        let mut command = Command::new(&self.launcher);
+        command
+            .current_dir(&self.scratch)
+            .env("CARGO_TARGET_DIR", &self.target_dir);
+        command
+    }
+
+    /// The background build: the scratch project with a trivial program,
+    /// under the cold compile limit. Its outcome is a success once spintop
+    /// is built for the snippets.
+    pub(crate) fn warm_up(&self, shared: &Shared, progress: &mut dyn FnMut(Stage<'_>)) -> Outcome {
+        let _turn = shared.slot.turn();
         let start = Instant::now();
+        progress(Stage::Compiling);
+        if let Err(e) = self.prepare(WARM_UP, "2024") {
+            return internal(format!("cannot write the scratch project: {e}"), start);
+        }
+        match self.build(shared, self.limits.compile, start, progress) {
+            Ok(()) => Outcome {
+                kind: OutcomeKind::Success,
+                output: String::new(),
+                truncated: false,
+                elapsed: start.elapsed(),
+            },
+            Err(outcome) => outcome,
+        }
+    }
+
+    /// Compiles and runs `code` when no other tree runs, reporting its
+    /// stages to `progress`. Code without `fn main` is wrapped in one, as
+    /// rustdoc and mdBook do (mdBook leaves editable snippets unwrapped).
+    pub(crate) fn run(
+        &self,
+        code: &str,
+        edition: &str,
+        shared: &Shared,
+        progress: &mut dyn FnMut(Stage<'_>),
+    ) -> Outcome {
         let wrapped;
         let code = if code.contains("fn main") {
             code
@@ -218,31 +307,48 @@ impl Runner {
             "2015" | "2018" | "2021" | "2024" => edition,
             _ => "2024",
         };
-        let internal = |msg: String, start: Instant| Outcome {
-            kind: OutcomeKind::Internal,
-            output: msg,
-            truncated: false,
-            elapsed: start.elapsed(),
-        };
+        let _turn = shared.slot.turn();
+        let start = Instant::now();
+        progress(Stage::Compiling);
         if let Err(e) = self.prepare(code, edition) {
             return internal(format!("cannot write the scratch project: {e}"), start);
         }
-        // 1. Compile, with cargo's progress passed on line by line.
+        let limit = if shared.warm.load(Ordering::SeqCst) {
+            self.limits.compile_warm
+        } else {
+            self.limits.compile
+        };
+        if let Err(outcome) = self.build(shared, limit, start, progress) {
+            return outcome;
+        }
+        progress(Stage::Running);
+        self.execute(shared, start)
+    }
+
+    /// 1. Compile, with cargo's progress passed on line by line.
+    fn build(
+        &self,
+        shared: &Shared,
+        limit: Duration,
+        start: Instant,
+        progress: &mut dyn FnMut(Stage<'_>),
+    ) -> Result<(), Outcome> {
         let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-        let mut build = match Command::new(&cargo)
-            .current_dir(&self.scratch)
-            .args(["build", "--color", "never", "--message-format", "short"])
-            .env("CARGO_TARGET_DIR", &self.target_dir)
-            .stdin(Stdio::null())
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-        {
-            Ok(child) => child,
-            Err(e) => return internal(format!("cannot run cargo: {e}"), start),
+        let mut command = self.supervised();
+        command.stdout(Stdio::null()).stderr(Stdio::piped());
+        let started = shared.slot.start(
+            command,
+            // Core dumps off; cargo and rustc need their memory and CPU.
+            Bounds::default(),
+            &cargo,
+            &["build", "--color", "never", "--message-format", "short"],
+        );
+        let mut build = match started {
+            Ok(s) => s,
+            Err(e) => return Err(internal(format!("cannot run cargo: {e}"), start)),
         };
         let (tx, rx) = std::sync::mpsc::channel::<String>();
-        if let Some(err) = build.stderr.take() {
+        if let Some(err) = build.stderr() {
             std::thread::spawn(move || {
                 for line in BufReader::new(err).lines().map_while(Result::ok) {
                     if tx.send(line).is_err() {
@@ -252,95 +358,95 @@ impl Runner {
             });
         }
         let mut errors = Vec::new();
-        let status = loop {
-            for line in rx.try_iter() {
-                let t = line.trim();
-                if t.starts_with("Compiling") || t.starts_with("Checking") {
-                    progress(&format!("{t} ({:.0} s)", start.elapsed().as_secs_f64()));
-                } else if !t.starts_with("Finished") && !t.starts_with("Blocking") && !t.is_empty()
-                {
-                    errors.push(line);
-                }
-            }
-            match build.try_wait() {
-                Ok(Some(status)) => break Some(status),
-                Ok(None) if start.elapsed() < self.limits.compile => {
-                    std::thread::sleep(Duration::from_millis(50))
-                }
-                _ => {
-                    let _ = build.kill();
-                    let _ = build.wait();
-                    break None;
-                }
-            }
-        };
-        // The last lines, after the exit.
-        std::thread::sleep(Duration::from_millis(20));
-        for line in rx.try_iter() {
+        let mut take = |line: String, errors: &mut Vec<String>| {
             let t = line.trim();
-            if !(t.starts_with("Compiling") || t.starts_with("Finished") || t.is_empty()) {
+            if t.starts_with("Compiling") || t.starts_with("Checking") {
+                progress(Stage::Line(t));
+            } else if !t.starts_with("Finished") && !t.starts_with("Blocking") && !t.is_empty() {
                 errors.push(line);
             }
+        };
+        let ended = build.wait(&shared.slot, limit, || {
+            for line in rx.try_iter() {
+                take(line, &mut errors);
+            }
+        });
+        // The last lines, after the exit (the pipe is closed by now, or soon).
+        while let Ok(line) = rx.recv_timeout(Duration::from_millis(200)) {
+            take(line, &mut errors);
         }
-        match status {
-            None => {
-                return Outcome {
+        let status = match ended {
+            Ended::Exited(status) => status,
+            Ended::TimedOut => {
+                return Err(Outcome {
                     kind: OutcomeKind::CompileTimeout,
                     output: String::new(),
                     truncated: false,
                     elapsed: start.elapsed(),
-                };
+                });
             }
-            Some(s) if !s.success() => {
-                let mut text = errors.join("\n");
-                let truncated = text.len() > self.limits.output_bytes;
-                if truncated {
-                    let mut cut = self.limits.output_bytes;
-                    while !text.is_char_boundary(cut) {
-                        cut -= 1;
-                    }
-                    text.truncate(cut);
+            Ended::Stopped => return Err(internal("the server is stopping".into(), start)),
+        };
+        if !status.success() {
+            let mut text = errors.join("\n");
+            let truncated = text.len() > self.limits.output_bytes;
+            if truncated {
+                let mut cut = self.limits.output_bytes;
+                while !text.is_char_boundary(cut) {
+                    cut -= 1;
                 }
-                return Outcome {
-                    kind: OutcomeKind::CompileError,
-                    output: text,
-                    truncated,
-                    elapsed: start.elapsed(),
-                };
+                text.truncate(cut);
             }
-            Some(_) => {}
+            return Err(Outcome {
+                kind: OutcomeKind::CompileError,
+                output: text,
+                truncated,
+                elapsed: start.elapsed(),
+            });
         }
-        // 2. Run, with the time and output limits.
-        progress("running");
+        shared.warm.store(true, Ordering::SeqCst);
+        Ok(())
+    }
+
+    /// 2. Run, under the time, output and resource limits.
+    fn execute(&self, shared: &Shared, start: Instant) -> Outcome {
         let binary = self.target_dir.join("debug").join(self.binary_name());
-        let mut child = match Command::new(&binary)
-            .current_dir(&self.scratch)
+        let mut command = self.supervised();
+        command
             .env("RUST_BACKTRACE", "0")
-            .stdin(Stdio::null())
             .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-        {
-            Ok(c) => c,
+            .stderr(Stdio::piped());
+        let whole_seconds = |d: Duration| d.as_secs() + u64::from(d.subsec_nanos() > 0);
+        let bounds = Bounds {
+            address_space: Some(self.limits.memory),
+            cpu_seconds: Some(whole_seconds(self.limits.cpu).max(1)),
+            file_size: Some(self.limits.file_size),
+            processes: Some(self.limits.processes),
+        };
+        let mut run = match shared.slot.start(command, bounds, binary.as_os_str(), &[]) {
+            Ok(r) => r,
             Err(e) => return internal(format!("cannot start {}: {e}", binary.display()), start),
         };
         let captured = Arc::new(Mutex::new(Capped::default()));
-        if let Some(out) = child.stdout.take() {
-            pump(out, Arc::clone(&captured), self.limits.output_bytes);
-        }
-        if let Some(err) = child.stderr.take() {
-            pump(err, Arc::clone(&captured), self.limits.output_bytes);
-        }
+        let pumps: Vec<_> = [run.stdout().map(|o| Box::new(o) as Box<dyn Read + Send>)]
+            .into_iter()
+            .chain([run.stderr().map(|e| Box::new(e) as Box<dyn Read + Send>)])
+            .flatten()
+            .map(|from| pump(from, Arc::clone(&captured), self.limits.output_bytes))
+            .collect();
         let run_start = Instant::now();
-        let status = wait_or_kill(&mut child, self.limits.run);
-        // Let the pumps drain what is left in the pipes.
-        std::thread::sleep(Duration::from_millis(50));
+        let ended = run.wait(&shared.slot, self.limits.run, || {});
+        // The tree is gone, so the pipes are closed: let the pumps drain them.
+        for done in pumps {
+            let _ = done.recv_timeout(Duration::from_secs(1));
+        }
         let c = captured.lock().unwrap_or_else(|e| e.into_inner());
         let output = String::from_utf8_lossy(&c.text).into_owned();
-        let kind = match status {
-            None => OutcomeKind::RunTimeout,
-            Some(s) if s.success() => OutcomeKind::Success,
-            Some(_) => OutcomeKind::Failed,
+        let kind = match ended {
+            Ended::TimedOut => OutcomeKind::RunTimeout,
+            Ended::Exited(s) if s.success() => OutcomeKind::Success,
+            Ended::Exited(_) => OutcomeKind::Failed,
+            Ended::Stopped => return internal("the server is stopping".into(), start),
         };
         Outcome {
             kind,
@@ -355,7 +461,17 @@ impl Runner {
     }
 }
 
-/// The scratch folder and build folder `spintop book` uses in `repo`.
+fn internal(msg: String, start: Instant) -> Outcome {
+    Outcome {
+        kind: OutcomeKind::Internal,
+        output: msg,
+        truncated: false,
+        elapsed: start.elapsed(),
+    }
+}
+
+/// The scratch folder, build folder and launcher `spintop book` uses in
+/// `repo`: the launcher is the running binary itself.
 pub fn default_runner(repo: &Path) -> Runner {
     let target_dir = std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
@@ -364,6 +480,7 @@ pub fn default_runner(repo: &Path) -> Runner {
         scratch: repo.join("target").join("spintop-book").join("scratch"),
         spintop: repo.to_path_buf(),
         target_dir,
+        launcher: std::env::current_exe().unwrap_or_else(|_| PathBuf::from("spintop")),
         limits: Limits::default(),
     }
 }

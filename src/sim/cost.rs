@@ -6,7 +6,7 @@
 //! scene planner uses the same [`turning_angle`] and [`FULL_TURN_PER_STEP`]
 //! to choose its method and word its refusals.
 
-use super::{MethodChoice, MethodOptions, Model};
+use super::{Method, MethodOptions, Model};
 use crate::math::{Real, Vec3};
 use crate::physics::rigid_body::{energy, omega_perp};
 use crate::physics::symmetric_top::truncated_clock;
@@ -16,6 +16,77 @@ pub const MAX_STEPS: Real = crate::integrate::DEFAULT_MAX_STEPS as Real;
 
 /// The full model's physical solution is tabulated with hΩ ≤ 0.05.
 pub const FULL_TURN_PER_STEP: Real = 0.05;
+
+// ANCHOR: steps_per_radian
+/// Steps (accepted and rejected) DP5, DOP853, Radau IIA 5 and the Taylor
+/// method take per radian the body turns, at each tolerance: the most any of
+/// six free tops took (asymmetric, elongated, near the separatrix,
+/// symmetric), Ω and the orientation stepped together, with 10 % to spare
+/// (30 % for Radau IIA 5, measured on fewer turns; the Taylor method's on
+/// the three asymmetric tops of `tests/numerics/cost.rs`, which measures
+/// them all again).
+const STEPS_PER_RADIAN: [(Real, [Real; 4]); 8] = [
+    //  rtol    DP5   DOP853 Radau5 Taylor
+    (1e-4, [3.2, 1.0, 3.5, 2.0]),
+    (1e-6, [6.6, 1.1, 7.8, 2.0]),
+    (1e-8, [16.0, 2.3, 18.0, 1.9]),
+    (1e-10, [41.0, 4.0, 37.0, 1.9]),
+    (1e-11, [64.0, 5.4, 54.0, 1.9]),
+    (1e-12, [100.0, 6.9, 78.0, 1.9]),
+    (1e-13, [155.0, 9.0, 113.0, 1.9]),
+    (1e-14, [242.0, 12.6, 165.0, 1.9]),
+];
+// ANCHOR_END: steps_per_radian
+
+/// Steps an adaptive method takes per radian of turning at `rtol`, read
+/// from [`STEPS_PER_RADIAN`] (linear in ln steps against ln rtol between its
+/// rows, its end rows beyond them); 1 for any other method, which the
+/// orientation's 1 rad per step bounds.
+pub fn steps_per_radian(method: Method, rtol: Real) -> Real {
+    let column = match method {
+        Method::Dopri5 => 0,
+        Method::Dop853 => 1,
+        Method::Radau5 => 2,
+        Method::Taylor => 3,
+        _ => return 1.0,
+    };
+    let x = rtol.clamp(1e-14, 1e-4).log10();
+    let rows = &STEPS_PER_RADIAN;
+    let i = rows
+        .windows(2)
+        .position(|w| x >= w[1].0.log10())
+        .unwrap_or(rows.len() - 2);
+    let (x0, y0) = (rows[i].0.log10(), rows[i].1[column].ln());
+    let (x1, y1) = (rows[i + 1].0.log10(), rows[i + 1].1[column].ln());
+    (y0 + (y1 - y0) * (x - x0) / (x1 - x0)).exp()
+}
+
+/// How fast an integrator's error of Ω and the orientation grows with the
+/// turning: after φ radians at tolerance r it is about r·(1 + C·φ²). Over
+/// many turns every step's error in the invariants shifts the frequency of
+/// the motion, and the phase error is the integral of that shift; C is the
+/// largest r·φ² ratio DOP853 showed on the six tops of [`STEPS_PER_RADIAN`]
+/// (4.7e-3, for the orientation of an asymmetric top), rounded up.
+pub const PHASE_GROWTH: Real = 5e-3;
+
+/// The estimated error of Ω and the orientation, relative, after stepping
+/// `angle` radians at integrator tolerance `rtol`.
+pub fn stepping_error(rtol: Real, angle: Real) -> Real {
+    rtol * (1.0 + PHASE_GROWTH * angle * angle)
+}
+
+/// The tightest tolerance the planner asks of an integrator: below it,
+/// rounding in a double takes over from the method's own error.
+pub const TIGHTEST_RTOL: Real = 1e-13;
+
+/// How a run that steps Ω will be stepped to stay within `rtol` over `angle`
+/// radians: the integrator's tolerance (at most `rtol`, tightened so that
+/// [`stepping_error`] stays within `rtol`), its steps, and its error; `None`
+/// when even [`TIGHTEST_RTOL`] would not hold the error within `rtol`.
+pub fn tolerance_for(rtol: Real, angle: Real) -> Option<Real> {
+    let needed = rtol / (1.0 + PHASE_GROWTH * angle * angle);
+    (needed >= TIGHTEST_RTOL).then_some(needed.min(rtol))
+}
 
 /// How far the body turns by `t`, in radians: exactly |Ω₀|ϑ(t) for the
 /// truncated model (every rate falls as 1/R), at most |Ω₀|t for the reduced
@@ -45,11 +116,11 @@ pub struct Estimate {
     pub cheaper: &'static str,
 }
 
-/// The work of a run of `model` by `choice` from `omega0` to `t_last`;
+/// The work of a run of `model` by `method` from `omega0` to `t_last`;
 /// `None` when nothing is stepped (a closed form).
 pub fn estimate(
     model: &Model,
-    choice: MethodChoice,
+    method: Method,
     options: &MethodOptions,
     omega0: &Vec3,
     t_last: Real,
@@ -68,18 +139,21 @@ pub fn estimate(
             cheaper,
         })
     };
-    match (model, choice) {
-        (Model::Truncated(_), MethodChoice::Auto | MethodChoice::Exact) => None,
-        (Model::Reduced(_), MethodChoice::Auto | MethodChoice::Exact) => Some(Estimate {
+    match (model, method) {
+        (_, Method::ClosedForm) => None,
+        (_, Method::ClosedFormDop853) => Some(Estimate {
             steps: angle,
             what: "the reduced model's orientation (no closed form; at most 1 rad per step)".into(),
             cheaper: "ask for an earlier last time; a scene file (`spintop run`) answers Omega alone from the closed form at any time",
         }),
-        (_, MethodChoice::Rk4) => e(
-            t_last / options.step,
-            format!("RK4 with step {}", crate::math::fmt_value(options.step)),
+        (_, Method::Rk4) => e(
+            t_last / options.step(),
+            format!(
+                "RK4 with step {}",
+                crate::numbers::fmt_value(options.step())
+            ),
         ),
-        (Model::Full(top), MethodChoice::Forward) => {
+        (Model::Full(top), Method::Forward) => {
             // A forward run stops at its runaway, a few tau in; its table is
             // still sized by the horizon.
             e(
@@ -91,12 +165,12 @@ pub fn estimate(
                 x
             })
         }
-        (Model::GeneralFull(top), choice) => {
+        (Model::GeneralFull(top), method) => {
             // Each 40 tau_f segment costs about ten backward shots over twice
             // its length, each step at most tau_f/4 (the fast modes' scale).
             let tau_f = crate::sim::physical::general::fast_time(top);
             let table = (angle / FULL_TURN_PER_STEP).max(t_last / (0.25 * tau_f));
-            let (steps, what) = if choice == MethodChoice::Forward {
+            let (steps, what) = if method == Method::Forward {
                 (table, "the full ALE (3.4) of a general top forward")
             } else {
                 (
@@ -111,72 +185,64 @@ pub fn estimate(
             "the full ALE (3.4)'s physical solution (a table with hOmega <= 0.05 and h <= tau/4)"
                 .into(),
         ),
-        (
-            Model::Reduced(top),
-            MethodChoice::Dopri5 | MethodChoice::Dop853 | MethodChoice::Taylor,
-        ) => {
+        (Model::Reduced(top), Method::Dopri5 | Method::Dop853 | Method::Taylor) => {
+            let turning = angle * steps_per_radian(method, options.rtol());
             // The reduced model's damping rate never falls below tau k^2
             // (k = (I3/I1) Omega3 is constant), and an explicit method's step
             // cannot exceed its stability limit over that rate: about 3.3/λ
             // for DP5 and 6/λ for DOP853 (the where-methods-fail chapter
             // measures 19378 DP5 steps at S = 1000, t = 10; this gives 19393).
+            // The Taylor method's step on a decay at rate λ is its radius
+            // rule's, 0.6/λ at rtol 1e-8 to 1/λ at 1e-14.
             let k = top.ratio() * omega0.z;
             let rate = top.tau() * k * k;
-            // NOTE: the Taylor method's step on y' = −λy is ρ/e² with
-            // ρ ≈ (p!)^(1/p)/λ, about 0.6/λ at order 11 (rtol 1e-8) and
-            // 0.95/λ at order 18.
-            let limit = match choice {
-                MethodChoice::Dopri5 => 3.3,
-                MethodChoice::Taylor => 0.6,
+            let limit = match method {
+                Method::Dopri5 => 3.3,
+                Method::Taylor => crate::integrate::taylor::decay_step(options.rtol()),
                 _ => 6.0,
             };
             let stiff = t_last * rate / limit;
-            if stiff > angle {
+            if stiff > turning {
                 Some(Estimate {
                     steps: stiff,
                     what: format!(
                         "{} on a stiff problem (the damping rate tau k^2 = {rate:.2e}/tau holds an explicit step below {:.1e} tau)",
-                        choice_name(choice, model),
+                        method_name(method, model),
                         limit / rate
                     ),
-                    cheaper: "the closed forms (--method exact) take no steps at all",
+                    cheaper: "the closed forms (method exact) take no steps at all",
                 })
             } else {
-                e(
-                    angle,
-                    format!(
-                        "{} (at most 1 rad of turning per step)",
-                        choice_name(choice, model)
-                    ),
-                )
+                e(turning, per_radian(method, model, options))
             }
         }
-        (
-            _,
-            MethodChoice::Dopri5
-            | MethodChoice::Dop853
-            | MethodChoice::Radau5
-            | MethodChoice::Taylor
-            | MethodChoice::Auto
-            | MethodChoice::Exact
-            | MethodChoice::Forward,
-        ) => e(
-            angle,
-            format!(
-                "{} (at most 1 rad of turning per step)",
-                choice_name(choice, model)
-            ),
+        (_, _) => e(
+            angle * steps_per_radian(method, options.rtol()),
+            per_radian(method, model, options),
         ),
     }
 }
 
-fn choice_name(choice: MethodChoice, model: &Model) -> &'static str {
-    match choice {
-        MethodChoice::Dopri5 => "DP5",
-        MethodChoice::Dop853 => "DOP853",
-        MethodChoice::Radau5 => "Radau IIA 5",
-        MethodChoice::Taylor => "the Taylor method",
-        _ if matches!(model, Model::General(_)) => "DOP853 on the general top (3.3)",
+/// "DOP853 at rtol 1e-10 (about 4.0 steps per radian of turning, measured)".
+fn per_radian(method: Method, model: &Model, options: &MethodOptions) -> String {
+    let name = method_name(method, model);
+    match method {
+        Method::Dopri5 | Method::Dop853 | Method::Radau5 | Method::Taylor => format!(
+            "{name} at rtol {:.0e} (about {:.1} steps per radian of turning, measured)",
+            options.rtol(),
+            steps_per_radian(method, options.rtol())
+        ),
+        _ => format!("{name} (at most 1 rad of turning per step)"),
+    }
+}
+
+fn method_name(method: Method, model: &Model) -> &'static str {
+    match method {
+        Method::Dopri5 => "DP5",
+        Method::Dop853 if matches!(model, Model::General(_)) => "DOP853 on the general top (3.3)",
+        Method::Dop853 => "DOP853",
+        Method::Radau5 => "Radau IIA 5",
+        Method::Taylor => "the Taylor method",
         _ => "the integration",
     }
 }
@@ -184,12 +250,12 @@ fn choice_name(choice: MethodChoice, model: &Model) -> &'static str {
 /// Refuses a run whose estimate exceeds [`MAX_STEPS`] (or is not finite).
 pub fn check(
     model: &Model,
-    choice: MethodChoice,
+    method: Method,
     options: &MethodOptions,
     omega0: &Vec3,
     t_last: Real,
 ) -> Result<(), TooCostly> {
-    match estimate(model, choice, options, omega0, t_last) {
+    match estimate(model, method, options, omega0, t_last) {
         Some(e) if e.steps.is_nan() || e.steps > MAX_STEPS => Err(TooCostly {
             estimate: e,
             t_last,
@@ -219,34 +285,35 @@ mod tests {
     #[test]
     fn rk4_costs_t_over_h_and_the_closed_form_nothing() {
         let top = SymmetricTop::figure();
-        let o = MethodOptions {
-            rtol: 1e-10,
-            step: 0.01,
-        };
+        let o = MethodOptions::default();
         let w = Vec3::new(0.0, 0.1, 0.2);
-        let e = estimate(&Model::Reduced(top), MethodChoice::Rk4, &o, &w, 100.0).unwrap();
+        let e = estimate(&Model::Reduced(top), Method::Rk4, &o, &w, 100.0).unwrap();
         assert_eq!(e.steps, 1e4);
-        assert!(estimate(&Model::Truncated(top), MethodChoice::Auto, &o, &w, 1e300).is_none());
-        assert!(check(&Model::Reduced(top), MethodChoice::Rk4, &o, &w, 1e6).is_err());
-        assert!(check(&Model::Reduced(top), MethodChoice::Rk4, &o, &w, 1e4).is_ok());
+        assert!(estimate(&Model::Truncated(top), Method::ClosedForm, &o, &w, 1e300).is_none());
+        assert!(check(&Model::Reduced(top), Method::Rk4, &o, &w, 1e6).is_err());
+        assert!(check(&Model::Reduced(top), Method::Rk4, &o, &w, 1e4).is_ok());
     }
 
     #[test]
     fn stiffness_of_the_reduced_model_bounds_an_explicit_methods_steps() {
-        // Where methods fail, row 3: S = 1000, t = 10, DP5 took 19378 steps.
+        // Where methods fail, row 3: S = 1000, t = 10, DP5 took 19378 steps,
+        // held by its stability limit whatever the tolerance; at rtol 1e-6
+        // the turning (2236 rad at 6.6 steps per radian) asks for fewer.
         let top = SymmetricTop::figure();
-        let o = MethodOptions {
-            rtol: 1e-10,
-            step: 0.01,
-        };
+        let o = MethodOptions::default().with_rtol(1e-6).unwrap();
         let w = Vec3::new(0.0, 100.0, 200.0);
-        let e = estimate(&Model::Reduced(top), MethodChoice::Dopri5, &o, &w, 10.0).unwrap();
+        let e = estimate(&Model::Reduced(top), Method::Dopri5, &o, &w, 10.0).unwrap();
         assert!((e.steps / 19378.0 - 1.0).abs() < 0.01, "{e:?}");
         assert!(e.what.contains("stiff"), "{e:?}");
+        // At the default rtol the turning's measured steps per radian (on
+        // tumbling tops) dominate: an upper bound, above the 19378 steps.
+        let o = MethodOptions::default();
+        let e = estimate(&Model::Reduced(top), Method::Dopri5, &o, &w, 10.0).unwrap();
+        assert!(e.steps > 19378.0 && e.what.contains("per radian"), "{e:?}");
         // A thousand times longer is refused up front, naming the stiffness.
-        let err = check(&Model::Reduced(top), MethodChoice::Dop853, &o, &w, 1e4).unwrap_err();
+        let err = check(&Model::Reduced(top), Method::Dop853, &o, &w, 1e4).unwrap_err();
         assert!(
-            err.to_string().contains("stiff") && err.to_string().contains("--method exact"),
+            err.to_string().contains("stiff") && err.to_string().contains("method exact"),
             "{err}"
         );
     }
@@ -254,28 +321,25 @@ mod tests {
     #[test]
     fn the_full_models_table_is_sized_before_it_is_allocated() {
         let top = SymmetricTop::figure();
-        let o = MethodOptions {
-            rtol: 1e-10,
-            step: 0.01,
-        };
+        let o = MethodOptions::default();
         let w = Vec3::new(0.0, 0.1, 0.2);
         // t = 1e8 tau: 4e8 points at h = tau/4, and |Omega0| t / 0.05 = 4.47e8
         // at h|Omega| = 0.05; the table takes the finer of the two.
-        let err = check(&Model::Full(top), MethodChoice::Auto, &o, &w, 1e8).unwrap_err();
+        let err = check(&Model::Full(top), Method::Physical, &o, &w, 1e8).unwrap_err();
         let expected = (w.norm() * 1e8 / 0.05).max(4e8);
         assert!((err.estimate.steps - expected).abs() < 1.0, "{err}");
         assert!(
             check(
                 &Model::Full(top),
-                MethodChoice::Auto,
+                Method::Physical,
                 &o,
                 &Vec3::new(0.0, 1e50, 1e50),
                 10.0
             )
             .is_err()
         );
-        assert!(check(&Model::Full(top), MethodChoice::Auto, &o, &w, 1e300).is_err());
-        assert!(check(&Model::Full(top), MethodChoice::Auto, &o, &w, 1000.0).is_ok());
-        assert!(check(&Model::Full(top), MethodChoice::Auto, &o, &w, Real::NAN).is_err());
+        assert!(check(&Model::Full(top), Method::Physical, &o, &w, 1e300).is_err());
+        assert!(check(&Model::Full(top), Method::Physical, &o, &w, 1000.0).is_ok());
+        assert!(check(&Model::Full(top), Method::Physical, &o, &w, Real::NAN).is_err());
     }
 }

@@ -31,26 +31,35 @@ use crate::physics::symmetric_top::SymmetricTop;
 use nalgebra::Complex;
 use thiserror::Error;
 
-/// ż/z on the slow manifold of (3.4), as a series in τ (the physics notes).
+// ANCHOR: slow_manifold_rate
+/// ż/z on the slow manifold of (3.4), as a series in τ (the physics notes,
+/// carried two orders further).
 ///
 /// Paper: Eq. (3.4) (its physical solution; the series is not in the paper).
 ///
 /// ```text
-/// Re f = −τ(u + k²) + τ³(u + k²)(3u + 5k²) + O(τ⁵)
-/// Im f = −Ω̃₃ − 2τ²k(u + k²) + O(τ⁴)
+/// Re f = −τs + τ³s(3u + 5k²) − 2τ⁵s(3k² + 4u)(7k² + 3u) + O(τ⁷)
+/// Im f = −Ω̃₃ − 2τ²ks + 14τ⁴ks² + O(τ⁶),        s = u + k²
 /// ```
 ///
-/// The first terms are the reduced model (4.12)–(4.13): it is right through
-/// O(τ); its precession rate is off at O(τ²) and its decay rate at O(τ³).
+/// Each order follows from the invariance equation
+/// τ(f² + 2uf′ Re f) = f + iΩ̃₃ + τ(u + Ω₃²) − 2iτΩ₃f, order by order in τ
+/// (the book's `auto` section derives the first three). The first terms are
+/// the reduced model (4.12)–(4.13): it is right through O(τ); its precession
+/// rate is off at O(τ²) and its decay rate at O(τ³), and each correction's
+/// next term has the opposite sign.
 pub fn slow_manifold_rate(top: &SymmetricTop, omega3: Real, u: Real) -> Complex<Real> {
     let tau = top.tau();
     let k = top.ratio() * omega3;
-    let s = u + k * k;
+    let (k2, s) = (k * k, u + k * k);
+    let (t2, t3) = (tau * tau, tau * tau * tau);
     Complex::new(
-        -tau * s + tau.powi(3) * s * (3.0 * u + 5.0 * k * k),
-        -top.omega3_tilde(omega3) - 2.0 * tau * tau * k * s,
+        -tau * s + t3 * s * (3.0 * u + 5.0 * k2)
+            - 2.0 * t3 * t2 * s * (3.0 * k2 + 4.0 * u) * (7.0 * k2 + 3.0 * u),
+        -top.omega3_tilde(omega3) - 2.0 * t2 * k * s + 14.0 * t2 * t2 * k * s * s,
     )
 }
+// ANCHOR_END: slow_manifold_rate
 
 /// The exact late-time decay time of |z| on the slow manifold, where u → 0.
 ///
@@ -69,6 +78,26 @@ pub fn late_time_decay_time(top: &SymmetricTop, omega3: Real) -> Real {
     2.0 * tau / (a - 1.0)
 }
 
+/// The slow root of linear theory: the physical solution of (3.4) near
+/// z = 0 is exactly z(t) = z(t₀) e^{f₀(t − t₀)}, up to O(τ|z|²) in the rate.
+///
+/// Paper: Eq. (3.4) (its linearisation about z = 0; not in the paper).
+///
+/// ```text
+/// f₀ = (1 − 2iτΩ₃ − √(1 − 4iτk))/(2τ) = −iΩ₃ + 2ik/(1 + √(1 − 4iτk))
+/// ```
+///
+/// The second form has no cancellation as τk → 0, where it tends to the
+/// reduced model's −iΩ̃₃ − τk²; its real part is −1/σ_phys
+/// ([`late_time_decay_time`]).
+pub fn linear_theory_rate(top: &SymmetricTop, omega3: Real) -> Complex<Real> {
+    let tau = top.tau();
+    let k = top.ratio() * omega3;
+    let i = Complex::new(0.0, 1.0);
+    let root = (Complex::new(1.0, -4.0 * tau * k)).sqrt();
+    -i * omega3 + 2.0 * i * k / (1.0 + root)
+}
+
 /// Why the physical solution could not be found.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum PhysicalError {
@@ -84,7 +113,7 @@ pub enum PhysicalError {
     /// The runaway and the slow motion are not separated: no slow manifold
     /// to shoot onto (a general top spun so fast that τ_f|Ω| is of order 1).
     #[error(
-        "(3.4) has no slow manifold to find here at t = {t:.4}: the slow motion decays at {slow:.3} per time unit, too close to the runaway's {fast:.3} (the physical solution needs the first well below the second); use a smaller --omega or --dipole, or --model reduced"
+        "(3.4) has no slow manifold to find here at t = {t:.4}: the slow motion decays at {slow:.3} per time unit, too close to the runaway's {fast:.3} (the physical solution needs the first well below the second)"
     )]
     NotSeparated {
         /// When.
@@ -145,13 +174,57 @@ fn backward(
     Ok((out, stepper.stats()))
 }
 
+/// The slow decay rate the bracket of the shoot starts from: the physical
+/// solution's own late-time rate 1/σ_phys (exact as u → 0, linear theory),
+/// and the reduced model's τΩ⊥² on top of it for the amplitude.
+///
+/// ```text
+/// ln(a/|z₀|) ≈ −T/σ_phys − ½ ln(1 + 2τΩ⊥₀² T g),   g = (1 − e^{−2T/σ_phys})/(2T/σ_phys)
+/// ```
+///
+/// (the reduced amplitude (4.16) with τk² replaced by 1/σ_phys: the two agree
+/// while τk is small, and at τk ≳ 1 the reduced model decays far too fast).
+fn guessed_log_amplitude(top: &SymmetricTop, omega0: &Vec3, span: Real) -> Real {
+    let u0 = omega0.x * omega0.x + omega0.y * omega0.y;
+    let rate = 1.0 / late_time_decay_time(top, omega0.z);
+    let s = 2.0 * rate * span;
+    let g = if s > 0.0 { -(-s).exp_m1() / s } else { 1.0 };
+    0.5 * u0.ln() - 0.5 * s - 0.5 * (2.0 * top.tau() * u0 * span * g).ln_1p()
+}
+
+/// How far beyond the last requested time the shoot starts: backward, the
+/// fast mode of (3.4) dies at (1 + α)/(2τ) and the slow one grows at
+/// (α − 1)/(2τ), α = Re √(1 − 4iτk) = √((1 + √(1 + 16τ²k²))/2) (the roots of
+/// linear theory, [`late_time_decay_time`]); their ratio falls at α/τ, and
+/// 40τ/α damps the error of the final data by e^{−40}.
+fn final_margin(top: &SymmetricTop, omega3: Real) -> Real {
+    let tau = top.tau();
+    let k = top.ratio() * omega3;
+    let alpha = ((1.0 + (1.0 + 16.0 * tau * tau * k * k).sqrt()) / 2.0).sqrt();
+    40.0 * tau / alpha
+}
+
+/// The most the slow amplitude may fall (in e-foldings) over one segment of
+/// the shoot, margin included: e^{−250} ≈ 10⁻¹⁰⁹, well inside a double,
+/// whatever the guess misses by.
+const SEGMENT_E_FOLDINGS: Real = 250.0;
+
 /// The physical solution of (3.4) through Ω₀ (symmetric top), at `times`
 /// (finite, ≥ 0, ascending).
 ///
-/// The final time T lies `margin` = 40τ beyond the last requested time, so the
-/// error of the approximate final data has decayed by e^{−40} before any
-/// sample. The final amplitude is found by bisection on ln a (|z(0)| grows
-/// monotonically with a); the result is then rotated so that z(0) = Ω₁₀ + iΩ₂₀.
+/// The final time T lies a margin beyond the last requested time
+/// ([`final_margin`], 40τ for a slow spin), so the error of the approximate
+/// final data has decayed by e^{−40} before any sample. The final amplitude is found by bisection on ln a (|z(0)| grows
+/// monotonically with a), from a bracket around the guess of
+/// [`guessed_log_amplitude`] widened by doubling steps; the result is then
+/// rotated so that z(0) = Ω₁₀ + iΩ₂₀.
+///
+/// A horizon over which the amplitude falls by more than
+/// [`SEGMENT_E_FOLDINGS`] is cut into segments, each shot from the state the
+/// one before ended in (the slow manifold is invariant, so the pieces join
+/// into one physical solution); once τ|z|² is a hundredth of rtol times the
+/// slow rate, the rest is the slow mode of linear theory
+/// ([`linear_theory_rate`]) in closed form.
 pub fn physical_solution(
     top: &SymmetricTop,
     omega0: &Vec3,
@@ -167,30 +240,101 @@ pub fn physical_solution(
             "times must be finite, >= 0 and ascending",
         ));
     }
+    let mut sol = PhysicalSolution {
+        times: times.to_vec(),
+        z: Vec::with_capacity(times.len()),
+        z_dot: Vec::with_capacity(times.len()),
+        stats: Stats::default(),
+        shots: 0,
+    };
+    let margin = final_margin(top, omega0.z);
+    let start_norm = omega0.x.hypot(omega0.y);
+    let mut start = *omega0;
+    let mut t0 = 0.0;
+    let mut next = 0;
+    while next < times.len() {
+        let z_start = start.x.hypot(start.y);
+        if z_start <= 1e-300 * start_norm || z_start == 0.0 {
+            // z ≡ 0 is the physical solution: the top spins steadily about its axis.
+            sol.z.resize(times.len(), Complex::new(0.0, 0.0));
+            sol.z_dot.resize(times.len(), Complex::new(0.0, 0.0));
+            break;
+        }
+        // Once τ|z|² is far below the slow rate, (3.4) is linear in z for the
+        // rest of the run: its physical solution is the slow mode of linear
+        // theory, in closed form, to a part in 100 of rtol.
+        let f0 = linear_theory_rate(top, omega0.z);
+        if tau * z_start * z_start <= 0.01 * rtol * (-f0.re) {
+            let z_t0 = Complex::new(start.x, start.y);
+            for &t in &times[next..] {
+                let z = z_t0 * (f0 * (t - t0)).exp();
+                sol.z.push(z);
+                sol.z_dot.push(f0 * z);
+            }
+            break;
+        }
+        // The segment: as long as the guessed fall over it and the margin
+        // stays within SEGMENT_E_FOLDINGS (the guess falls monotonically).
+        let t_last = times[times.len() - 1];
+        let fall = |span: Real| z_start.ln() - guessed_log_amplitude(top, &start, span);
+        let end = if fall(t_last - t0 + margin) <= SEGMENT_E_FOLDINGS {
+            t_last
+        } else {
+            let (mut lo, mut hi) = (0.0, t_last - t0);
+            for _ in 0..80 {
+                let mid = 0.5 * (lo + hi);
+                if fall(mid + margin) <= SEGMENT_E_FOLDINGS {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            t0 + lo.max(margin)
+        };
+        let last = times[next..].partition_point(|&t| t <= end) + next;
+        let mut local: Vec<Real> = times[next..last].iter().map(|t| t - t0).collect();
+        if last < times.len() {
+            local.push(end - t0);
+        }
+        let piece = shoot_segment(top, &start, &local, rtol)?;
+        sol.stats += piece.stats;
+        sol.shots += piece.shots;
+        let kept = last - next;
+        sol.z.extend_from_slice(&piece.z[..kept]);
+        sol.z_dot.extend_from_slice(&piece.z_dot[..kept]);
+        if last == times.len() {
+            break;
+        }
+        let z_end = piece.z[piece.z.len() - 1];
+        start = Vec3::new(z_end.re, z_end.im, omega0.z);
+        t0 = end;
+        next = last;
+    }
+    Ok(sol)
+}
+
+/// One segment of [`physical_solution`]: the physical solution through
+/// `omega0` at `times` (ascending from 0), by one shoot.
+fn shoot_segment(
+    top: &SymmetricTop,
+    omega0: &Vec3,
+    times: &[Real],
+    rtol: Real,
+) -> Result<PhysicalSolution, PhysicalError> {
     let z0 = Complex::new(omega0.x, omega0.y);
     let target = z0.norm();
     let omega3 = omega0.z;
     let t_last = times.last().copied().unwrap_or(0.0);
-    let t_final = t_last + 40.0 * tau;
+    let t_final = t_last + final_margin(top, omega3);
     let mut stats = Stats::default();
     let mut shots = 0;
-    if target == 0.0 {
-        // z ≡ 0 is the physical solution: the top spins steadily about its axis.
-        return Ok(PhysicalSolution {
-            times: times.to_vec(),
-            z: vec![Complex::new(0.0, 0.0); times.len()],
-            z_dot: vec![Complex::new(0.0, 0.0); times.len()],
-            stats,
-            shots,
-        });
-    }
     // NOTE: backward in time the slow amplitude grows, and too large a final
     // amplitude blows up before t = 0 (backward, du/dt ≈ 2τu², a finite-time
     // blow-up). Such a shot overshoots the target by definition, so it counts as
     // +∞, not as an error.
-    let mut amplitude_at_zero = |a: Real| -> Result<Real, PhysicalError> {
+    let mut amplitude_at_zero = |ln_a: Real| -> Result<Real, PhysicalError> {
         shots += 1;
-        match backward(top, omega3, t_final, a, &[0.0], rtol) {
+        match backward(top, omega3, t_final, ln_a.exp(), &[0.0], rtol) {
             Ok((out, s)) => {
                 stats += s;
                 Ok(out[0][0].hypot(out[0][1]))
@@ -201,29 +345,33 @@ pub fn physical_solution(
             Err(e) => Err(e.into()),
         }
     };
-    // NOTE: bracket ln a. The reduced model's decay over [0, T] is a good first
-    // guess; widen until the amplitude at t = 0 straddles the target.
-    let guess =
-        target * crate::physics::symmetric_top::reduced_amplitude(top, omega0, t_final).max(1e-280);
-    let (mut lo, mut hi) = (guess.ln() - 1.0, guess.ln() + 1.0);
-    let mut widen = 0;
-    while amplitude_at_zero(lo.exp())? > target {
-        lo -= 2.0;
-        widen += 1;
-        if widen > 60 {
+    // NOTE: bracket ln a around the guess, widening by doubling steps (the
+    // guess may miss by tens of e-foldings at τk ≳ 1, where the slow decay
+    // is far from the reduced model's), never below the smallest normal double.
+    let guess = guessed_log_amplitude(top, omega0, t_final);
+    let floor = Real::MIN_POSITIVE.ln();
+    let (mut lo, mut hi) = ((guess - 1.0).max(floor), (guess + 1.0).max(floor + 2.0));
+    let mut widen = 1.0;
+    while amplitude_at_zero(lo)? > target {
+        if lo <= floor {
             return Err(PhysicalError::NoConvergence("no lower bracket"));
         }
+        hi = lo;
+        lo = (lo - widen).max(floor);
+        widen *= 2.0;
     }
-    while amplitude_at_zero(hi.exp())? < target {
-        hi += 2.0;
-        widen += 1;
-        if widen > 60 {
+    widen = 1.0;
+    while amplitude_at_zero(hi)? < target {
+        lo = hi;
+        hi += widen;
+        widen *= 2.0;
+        if widen > 1e4 {
             return Err(PhysicalError::NoConvergence("no upper bracket"));
         }
     }
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
-        if amplitude_at_zero(mid.exp())? < target {
+        if amplitude_at_zero(mid)? < target {
             lo = mid;
         } else {
             hi = mid;

@@ -20,9 +20,12 @@
 //! log t.
 
 use super::{Outcome, Row, RowError};
-use crate::integrate::splitting::{Composition, FreeRigidBody, RigidBodySplitting, RigidBodyState};
+use crate::integrate::splitting::Composition;
 use crate::integrate::{AdaptiveOptions, Dop853, Dopri5, Rhs, Rk4, Stats, Stepper};
 use crate::math::{Mat3, Real, State, Vec3, hat, rot_x, rot_z};
+use crate::physics::free_top::{FreeRigidBody, RigidBodyState};
+use crate::sim::Method;
+use crate::sim::split::RigidBodySplitting;
 
 /// The principal moments of the experiment.
 pub const INERTIA: [Real; 3] = [1.0, 2.0, 3.0];
@@ -45,28 +48,16 @@ pub const ORDER_SPAN: Real = 10.0;
 /// The coarser step of the order measurement (the finer is half of it).
 pub const ORDER_STEP: Real = 0.1;
 
-/// The four methods of the row.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LongRunMethod {
-    /// Classical RK4, fixed step [`STEP`].
-    Rk4,
-    /// Dormand–Prince 5(4), rtol [`DOPRI5_RTOL`].
-    Dopri5,
-    /// The Strang splitting, step [`STEP`].
-    Strang,
-    /// Yoshida's fourth-order composition, step [`STEP`].
-    Yoshida4,
-}
-
-impl LongRunMethod {
-    /// The method as a reader would name it.
-    pub fn label(&self) -> String {
-        match self {
-            LongRunMethod::Rk4 => format!("RK4, h = {STEP}"),
-            LongRunMethod::Dopri5 => format!("DP5, rtol = {DOPRI5_RTOL:e}"),
-            LongRunMethod::Strang => format!("Strang splitting, h = {STEP}"),
-            LongRunMethod::Yoshida4 => format!("Yoshida-4 splitting, h = {STEP}"),
-        }
+/// The method of the row as a reader would name it, with its step or
+/// tolerance: RK4, DP5 and the two splittings ([`Method::Strang`],
+/// [`Method::Yoshida4`]).
+pub fn label(method: Method) -> String {
+    match method {
+        Method::Rk4 => format!("RK4, h = {STEP}"),
+        Method::Dopri5 => format!("DP5, rtol = {DOPRI5_RTOL:e}"),
+        Method::Strang => format!("Strang splitting, h = {STEP}"),
+        Method::Yoshida4 => format!("Yoshida-4 splitting, h = {STEP}"),
+        other => other.label().to_string(),
     }
 }
 
@@ -74,7 +65,7 @@ impl LongRunMethod {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Drift {
     /// The method.
-    pub method: LongRunMethod,
+    pub method: Method,
     /// max over [0, t] of |E − E₀|/E₀, at each of [`TIMES`].
     pub energy_error: [Real; 3],
     /// max over [0, t] of ||L| − |L₀||/|L₀|, at each of [`TIMES`].
@@ -212,7 +203,7 @@ pub fn log_log_slope(x: &[Real], y: &[Real]) -> Real {
     crate::math::least_squares_slope(x.iter().zip(y).map(|(a, b)| (a.ln(), b.ln())))
 }
 
-fn finish(method: LongRunMethod, worst: [Worst; 3], stats: Stats) -> Drift {
+fn finish(method: Method, worst: [Worst; 3], stats: Stats) -> Drift {
     let energy_error = worst.map(|w| w.energy);
     let l_norm_error = worst.map(|w| w.l_norm);
     let l_lab_error = worst.map(|w| w.l_lab);
@@ -231,7 +222,7 @@ fn finish(method: LongRunMethod, worst: [Worst; 3], stats: Stats) -> Drift {
 /// Run an explicit method through [`TIMES`], watching every accepted step.
 fn run_explicit<S: Stepper<12>>(
     setup: &Setup,
-    method: LongRunMethod,
+    method: Method,
     mut stepper: S,
 ) -> Result<Drift, RowError> {
     let rhs = FreeTopRhs(setup.body);
@@ -249,7 +240,7 @@ fn run_explicit<S: Stepper<12>>(
 
 fn run_splitting(
     setup: &Setup,
-    method: LongRunMethod,
+    method: Method,
     composition: Composition,
 ) -> Result<Drift, RowError> {
     let mut stepper = RigidBodySplitting::new(setup.body, composition, 0.0, setup.start, STEP)
@@ -320,10 +311,10 @@ pub fn measure() -> Result<Measurement, RowError> {
     let dopri5 = Dopri5::new(0.0, y0, opts).map_err(|e| RowError::new(4, e))?;
     let (strang_order, yoshida4_order) = observed_orders(&setup)?;
     Ok(Measurement {
-        rk4: run_explicit(&setup, LongRunMethod::Rk4, rk4)?,
-        dopri5: run_explicit(&setup, LongRunMethod::Dopri5, dopri5)?,
-        strang: run_splitting(&setup, LongRunMethod::Strang, Composition::Strang)?,
-        yoshida4: run_splitting(&setup, LongRunMethod::Yoshida4, Composition::Yoshida4)?,
+        rk4: run_explicit(&setup, Method::Rk4, rk4)?,
+        dopri5: run_explicit(&setup, Method::Dopri5, dopri5)?,
+        strang: run_splitting(&setup, Method::Strang, Composition::Strang)?,
+        yoshida4: run_splitting(&setup, Method::Yoshida4, Composition::Yoshida4)?,
         strang_order,
         yoshida4_order,
     })
@@ -358,7 +349,7 @@ fn outcome(d: &Drift) -> Outcome {
         )
     };
     Outcome {
-        method: d.method.label(),
+        method: label(d.method),
         ok: d.conserves(),
         result,
     }

@@ -165,10 +165,7 @@ fn so3_run(
 ) -> Result<(Real, u64), RowError> {
     let err = |e: crate::sim::SimError| RowError::new(2, e);
     let initial = InitialState::new(*omega0, EulerAngles::new(0.0, 0.0, 0.0)).map_err(err)?;
-    let options = MethodOptions {
-        rtol: RTOL,
-        step: STEP,
-    };
+    let options = MethodOptions::new(RTOL, STEP).map_err(|e| RowError::new(2, e))?;
     let mut sim = Simulation::new(
         Model::Truncated(*top),
         choice,

@@ -28,13 +28,12 @@
 //! every S.
 
 use super::{Outcome, Row, RowError};
-use crate::integrate::{
-    AdaptiveOptions, Dopri5, IntegrateError, Radau5, Rhs, Rk4, Stats, Stepper, reduced_split_solve,
-};
+use crate::integrate::{AdaptiveOptions, Dopri5, IntegrateError, Radau5, Rhs, Rk4, Stats, Stepper};
 use crate::math::{Real, State, Vec3};
 use crate::physics::symmetric_top::{
     SymmetricTop, reduced_ale_jacobian, reduced_ale_rhs, reduced_closed_form,
 };
+use crate::sim::split::reduced_split_solve;
 use nalgebra::{Complex, SMatrix};
 
 /// The reduced ALE (4.12)–(4.14) as a right-hand side `Ω̇ = F(Ω)` with its

@@ -19,17 +19,62 @@
 //! | `warp` | – | model time per wall-clock second | τ/s |
 
 use crate::math::{Real, Vec3};
+use crate::numbers::{fmt_exact, fmt_num, parse_number};
 use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
 use crate::physics::rigid_body::energy;
-use crate::physics::symmetric_top::{SymmetricTop, reduced_closed_form, truncated_closed_form};
-use crate::present::parse_number;
-pub use crate::present::{Method, lab_frame, paper_frame};
-use crate::sim::{InitialState, MethodOptions, Model, Sample, Simulation};
+use crate::physics::rigid_body::lab_frame;
+use crate::physics::symmetric_top::SymmetricTop;
+use crate::scene::Scene;
+use crate::scene::live::live_scene;
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, Simulation};
 use std::collections::VecDeque;
 use std::time::Duration;
 
-use super::event::Command;
+/// Everything a key can ask for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Command {
+    /// `q`, Esc or Ctrl-C: leave.
+    Quit,
+    /// Space: pause or resume.
+    TogglePause,
+    /// `.` or →: one model step of Δt while paused.
+    Step,
+    /// `+`: a faster time warp.
+    Faster,
+    /// `-`: a slower time warp.
+    Slower,
+    /// `r`: restart both models at t = 0.
+    Reset,
+    /// `[`: lower I₃/I₁.
+    RatioDown,
+    /// `]`: raise I₃/I₁.
+    RatioUp,
+    /// ↑: select the previous Ω₀ component.
+    SelectPrevious,
+    /// ↓: select the next Ω₀ component.
+    SelectNext,
+    /// Enter: edit the selected Ω₀ component.
+    StartEdit,
+    /// A character typed into the edit field.
+    Input(char),
+    /// Backspace in the edit field.
+    Backspace,
+    /// ↑ in the edit field: add 0.01.
+    NudgeUp,
+    /// ↓ in the edit field: subtract 0.01.
+    NudgeDown,
+    /// Enter in the edit field: apply the value (or refuse it).
+    Commit,
+    /// Esc in the edit field: keep the old value.
+    Cancel,
+    /// `m`: the next method (closed form, RK4, DP5, DOP853).
+    CycleMethod,
+    /// `l`: log-time charts on or off.
+    ToggleLogTime,
+    /// `?`: the help overlay on or off.
+    ToggleHelp,
+}
 
 /// One model step of the view, in units of τ: the size of every increment of
 /// model time, and what `.` or → advances while paused.
@@ -92,15 +137,23 @@ pub const STAND_IN_BELOW: Real = 1e-2;
 /// exactly [`TICK`].
 pub const MAX_LAG: Duration = Duration::from_millis(250);
 
-impl Method {
-    /// The next method of the cycle for `top`: a general top has no closed
-    /// form, so its cycle is RK4, DP5, DOP853.
-    pub fn next_for(self, top: &Top) -> Self {
-        match (self.next(), top) {
-            (Method::ClosedForm, Top::General(_)) => Method::Rk4,
-            (next, _) => next,
-        }
-    }
+/// The methods `m` cycles through: closed form, RK4, DP5, DOP853, Radau IIA 5.
+pub const METHOD_CYCLE: [MethodChoice; 5] = [
+    MethodChoice::Exact,
+    MethodChoice::Rk4,
+    MethodChoice::Dopri5,
+    MethodChoice::Dop853,
+    MethodChoice::Radau5,
+];
+
+/// The method after `method` in [`METHOD_CYCLE`] that `top` takes (a
+/// general top has no closed form, so its cycle skips it).
+pub fn next_method(method: MethodChoice, top: &Top) -> MethodChoice {
+    let at = METHOD_CYCLE.iter().position(|m| *m == method).unwrap_or(0);
+    (1..=METHOD_CYCLE.len())
+        .map(|k| METHOD_CYCLE[(at + k) % METHOD_CYCLE.len()])
+        .find(|m| top.check_method(*m).is_ok())
+        .unwrap_or(method)
 }
 
 /// The top the view shows, and so its layout.
@@ -127,6 +180,16 @@ impl Top {
         }
     }
 
+    /// Refuse a method the columns that take one do not take (the full ALE's
+    /// column always runs its physical solution), with the core's reason.
+    pub fn check_method(&self, method: MethodChoice) -> Result<(), String> {
+        self.models()
+            .iter()
+            .filter(|m| !m.is_full())
+            .try_for_each(|m| m.check_method(method))
+            .map_err(|e| e.to_string())
+    }
+
     /// The unit of time: τ for the symmetric top (Section 4's unit), "u" for
     /// a general one, whose numbers are in units where κ = 2/(3c³) = 1.
     pub fn time_unit(&self) -> &'static str {
@@ -139,7 +202,7 @@ impl Top {
 pub struct Settings {
     top: Top,
     omega0: [Real; 3],
-    method: Method,
+    method: MethodChoice,
     warp: usize,
 }
 
@@ -150,7 +213,7 @@ impl Default for Settings {
         Self {
             top: Top::Symmetric(SymmetricTop::figure()),
             omega0: [0.0, 0.1, 0.2],
-            method: Method::ClosedForm,
+            method: MethodChoice::Exact,
             warp: DEFAULT_WARP,
         }
     }
@@ -159,7 +222,12 @@ impl Default for Settings {
 impl Settings {
     /// Validate I₃/I₁, Ω₀ and the warp (one of [`WARPS`], in τ/s); the error
     /// is one line for the user.
-    pub fn new(ratio: Real, omega0: [Real; 3], method: Method, warp: Real) -> Result<Self, String> {
+    pub fn new(
+        ratio: Real,
+        omega0: [Real; 3],
+        method: MethodChoice,
+        warp: Real,
+    ) -> Result<Self, String> {
         let top = SymmetricTop::new(ratio, 1.0).map_err(|e| e.to_string())?;
         Self::validated(Top::Symmetric(top), omega0, method, warp)
     }
@@ -169,18 +237,35 @@ impl Settings {
     pub fn general(
         top: GeneralTop,
         omega0: [Real; 3],
-        method: Method,
+        method: MethodChoice,
         warp: Real,
     ) -> Result<Self, String> {
-        if method == Method::ClosedForm {
-            return Err(
-                "the general top (3.3) has no closed form: choose rk4, dopri5 or dop853".into(),
-            );
-        }
         Self::validated(Top::General(top), omega0, method, warp)
     }
 
-    fn validated(top: Top, omega0: [Real; 3], method: Method, warp: Real) -> Result<Self, String> {
+    /// The settings a top scene opens with (see [`crate::scene::live`]), at
+    /// `warp` τ/s (the default when `None`), and the line the view opens with.
+    pub fn for_scene(scene: &Scene, warp: Option<Real>) -> Result<(Self, String), String> {
+        let live = live_scene(scene)?;
+        let warp = warp.unwrap_or(WARPS[DEFAULT_WARP]);
+        let settings = match live.model {
+            Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
+                Self::general(top, live.omega0, live.method, warp)?
+            }
+            Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
+                Self::new(top.ratio(), live.omega0, live.method, warp)?
+            }
+        };
+        Ok((settings, live.note))
+    }
+
+    fn validated(
+        top: Top,
+        omega0: [Real; 3],
+        method: MethodChoice,
+        warp: Real,
+    ) -> Result<Self, String> {
+        top.check_method(method)?;
         check_omega0(omega0)?;
         let warp = WARPS.iter().position(|w| *w == warp).ok_or_else(|| {
             let list: Vec<String> = WARPS.iter().map(|w| w.to_string()).collect();
@@ -218,7 +303,7 @@ impl Settings {
     }
 
     /// The method.
-    pub fn method(&self) -> Method {
+    pub fn method(&self) -> MethodChoice {
         self.method
     }
 
@@ -318,7 +403,7 @@ pub struct Column {
 }
 
 impl Column {
-    fn new(model: Model, method: Method, omega0: [Real; 3]) -> Result<Self, String> {
+    fn new(model: Model, method: MethodChoice, omega0: [Real; 3]) -> Result<Self, String> {
         // Model no more than the view can show: the physical solution of a
         // general top differs from its reduced model by O((τ_f|Ω|)²)
         // relative, and costs work in proportion to 1/τ_f per unit of time.
@@ -329,8 +414,8 @@ impl Column {
             if small < STAND_IN_BELOW {
                 stand_in = Some(format!(
                     "τ_f|Ω₀| = {}: the physical solution is the reduced model to about {}, so the reduced model stands in",
-                    crate::present::fmt_num(small),
-                    crate::present::fmt_num(small * small)
+                    fmt_num(small),
+                    fmt_num(small * small)
                 ));
                 model = Model::GeneralReduced(top);
             }
@@ -338,13 +423,14 @@ impl Column {
         // The full ALE's physical solution has one method (backward
         // shooting, tabulated ahead chunk by chunk); `m` changes the others.
         let choice = if model.is_full() {
-            crate::sim::MethodChoice::Auto
+            MethodChoice::Auto
         } else {
-            method.choice()
+            method
         };
         let inertia = model.inertia();
-        let initial = InitialState::new(Vec3::from(omega0), lab_frame(&inertia, omega0))
-            .map_err(|e| e.to_string())?;
+        let initial =
+            InitialState::new(Vec3::from(omega0), lab_frame(&inertia, &Vec3::from(omega0)))
+                .map_err(|e| e.to_string())?;
         let sim = Simulation::new(model, choice, MethodOptions::default(), initial, None)
             .map_err(|e| e.to_string())?;
         let start = *sim.current();
@@ -470,14 +556,7 @@ impl Column {
     /// has no closed form.
     pub fn closed_form_error(&self) -> Option<Real> {
         let s = self.sim.current();
-        let exact = match self.sim.model() {
-            Model::Truncated(top) => truncated_closed_form(top, &self.omega0, s.t),
-            Model::Reduced(top) => reduced_closed_form(top, &self.omega0, s.t),
-            Model::General(_)
-            | Model::GeneralReduced(_)
-            | Model::Full(_)
-            | Model::GeneralFull(_) => return None,
-        };
+        let exact = self.sim.model().closed_form(&self.omega0, s.t)?;
         Some((s.omega_vec() - exact).norm())
     }
 }
@@ -802,12 +881,12 @@ impl App {
                 self.change(candidate, format!("I₃/I₁ = {ratio}"));
             }
             Command::CycleMethod => {
-                let method = self.settings.method.next_for(&self.settings.top);
+                let method = next_method(self.settings.method, &self.settings.top);
                 let candidate = Ok(Settings {
                     method,
                     ..self.settings
                 });
-                self.change(candidate, format!("method {}", method.name()));
+                self.change(candidate, format!("method {}", method.title()));
             }
             Command::ToggleLogTime => self.view.log_time = !self.view.log_time,
             Command::SelectPrevious => self.view.selected = (self.view.selected + 2) % 3,
@@ -924,30 +1003,6 @@ impl App {
     }
 }
 
-/// A parameter as the user would type it: the shortest text that parses
-/// back to the same double (`0.1`, `1e-200`, never 200 zeros).
-pub fn fmt_exact(x: Real) -> String {
-    let plain = format!("{x}");
-    if plain.len() <= 12 {
-        plain
-    } else {
-        format!("{x:e}")
-    }
-}
-
-/// A parameter as the header shows it: exactly as typed when that is short
-/// (`0.1`, `1.5`, `1e-3`), else to four significant digits (a real
-/// particle's I₁ = 4.634615384615384 reads `4.635`), so the header fits 80
-/// columns. The edit field still starts from [`fmt_exact`].
-pub fn fmt_param(x: Real) -> String {
-    let exact = fmt_exact(x);
-    if exact.chars().count() <= 8 {
-        exact
-    } else {
-        crate::present::fmt_num(x)
-    }
-}
-
 /// Subscript digits for Ω₁, Ω₂, Ω₃.
 pub const SUBSCRIPTS: [char; 3] = ['₁', '₂', '₃'];
 
@@ -962,25 +1017,6 @@ fn edit_hint(component: usize) -> String {
 mod tests {
     use super::*;
 
-    #[test]
-    fn header_parameters_are_exact_when_short_and_four_digits_when_long() {
-        for (x, shown) in [
-            (0.1, "0.1"),
-            (1.5, "1.5"),
-            (1e-3, "0.001"),
-            (0.4, "0.4"),
-            (4.634615384615384, "4.635"),
-            (0.216_346_153_846_153_85, "0.2163"),
-            (1.0 / 3.0, "0.3333"),
-            (6.02e23, "6.02e23"),
-            (1.234_567_891e-7, "1.235e-7"),
-        ] {
-            assert_eq!(fmt_param(x), shown, "{x}");
-            // A long value shown short still parses to within 5e-4 of itself.
-            let back: Real = fmt_param(x).parse().unwrap();
-            assert!((back - x).abs() <= 5e-4 * x.abs(), "{x}");
-        }
-    }
     use approx::assert_relative_eq;
 
     #[test]
@@ -988,7 +1024,7 @@ mod tests {
         for omega0 in [[0.0, 0.1, 0.2], [0.3, -0.2, 0.05], [0.1, 0.0, -0.4]] {
             for ratio in [0.4, 1.3, 2.0] {
                 let top = SymmetricTop::new(ratio, 1.0).unwrap();
-                let o = paper_frame(&top, omega0).to_rotation();
+                let o = lab_frame(&top.inertia(), &Vec3::from(omega0)).to_rotation();
                 let l_lab = o * top.inertia().component_mul(&Vec3::from(omega0));
                 assert_relative_eq!(l_lab.x, 0.0, epsilon = 1e-15);
                 assert_relative_eq!(l_lab.y, 0.0, epsilon = 1e-15);

@@ -4,6 +4,7 @@
 //! Keys come from `crossterm`, the same version ratatui's backend is built
 //! on (one copy in the dependency tree), so its events and ratatui's agree.
 
+pub use super::app::Command;
 use super::app::{App, Mode};
 use super::view;
 use crate::math::Real;
@@ -11,51 +12,6 @@ use crossterm::event::{self, Event, KeyCode, KeyEvent, KeyEventKind, KeyModifier
 use ratatui::{Terminal, backend::Backend};
 use std::io;
 use std::time::{Duration, Instant};
-
-/// Everything a key can ask for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Command {
-    /// `q`, Esc or Ctrl-C: leave.
-    Quit,
-    /// Space: pause or resume.
-    TogglePause,
-    /// `.` or →: one model step of Δt while paused.
-    Step,
-    /// `+`: a faster time warp.
-    Faster,
-    /// `-`: a slower time warp.
-    Slower,
-    /// `r`: restart both models at t = 0.
-    Reset,
-    /// `[`: lower I₃/I₁.
-    RatioDown,
-    /// `]`: raise I₃/I₁.
-    RatioUp,
-    /// ↑: select the previous Ω₀ component.
-    SelectPrevious,
-    /// ↓: select the next Ω₀ component.
-    SelectNext,
-    /// Enter: edit the selected Ω₀ component.
-    StartEdit,
-    /// A character typed into the edit field.
-    Input(char),
-    /// Backspace in the edit field.
-    Backspace,
-    /// ↑ in the edit field: add 0.01.
-    NudgeUp,
-    /// ↓ in the edit field: subtract 0.01.
-    NudgeDown,
-    /// Enter in the edit field: apply the value (or refuse it).
-    Commit,
-    /// Esc in the edit field: keep the old value.
-    Cancel,
-    /// `m`: the next method (closed form, RK4, DP5, DOP853).
-    CycleMethod,
-    /// `l`: log-time charts on or off.
-    ToggleLogTime,
-    /// `?`: the help overlay on or off.
-    ToggleHelp,
-}
 
 /// The command a key asks for in a mode, if any.
 pub fn command_for(key: KeyEvent, mode: &Mode) -> Option<Command> {

@@ -13,12 +13,13 @@
 pub mod markdown;
 pub mod tex;
 
-use super::app::{App, Method, Settings, WARPS};
+use super::app::{App, Settings, WARPS};
 use super::theme;
 use super::view;
 use crate::math::{Real, Vec3};
+use crate::numbers::parse_number;
 use crate::physics::general_top::GeneralTop;
-use crate::present::parse_number;
+use crate::sim::MethodChoice;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -67,9 +68,9 @@ impl Chapter {
             "section-3.md" => {
                 // An asymmetric top under the truncated ALE (3.3).
                 let top = GeneralTop::new(Vec3::new(1.0, 1.5, 2.0), Vec3::new(0.3, 0.2, 1.0)).ok();
-                match top
-                    .and_then(|t| Settings::general(t, [0.05, 0.1, 0.2], Method::Dop853, 10.0).ok())
-                {
+                match top.and_then(|t| {
+                    Settings::general(t, [0.05, 0.1, 0.2], MethodChoice::Dop853, 10.0).ok()
+                }) {
                     Some(settings) => Scene {
                         settings,
                         columns: vec![0],
@@ -89,7 +90,7 @@ impl Chapter {
                 ..both
             },
             "numerical-methods.md" | "where-methods-fail.md" => {
-                match Settings::new(0.4, [0.0, 0.1, 0.2], Method::Rk4, 100.0) {
+                match Settings::new(0.4, [0.0, 0.1, 0.2], MethodChoice::Rk4, 100.0) {
                     Ok(settings) => Scene {
                         settings,
                         columns: vec![0, 1],
@@ -99,7 +100,7 @@ impl Chapter {
                 }
             }
             "speed-accuracy.md" => {
-                match Settings::new(0.4, [0.0, 0.1, 0.2], Method::Dop853, 10.0) {
+                match Settings::new(0.4, [0.0, 0.1, 0.2], MethodChoice::Dop853, 10.0) {
                     Ok(settings) => Scene {
                         settings,
                         columns: vec![0, 1],
@@ -111,9 +112,9 @@ impl Chapter {
             "asymmetric-top.md" => {
                 // The chapter's top: three models side by side.
                 let top = GeneralTop::new(Vec3::new(1.0, 2.0, 2.5), Vec3::new(1.0, 0.5, 0.2)).ok();
-                match top
-                    .and_then(|t| Settings::general(t, [0.3, -0.2, 0.1], Method::Dop853, 10.0).ok())
-                {
+                match top.and_then(|t| {
+                    Settings::general(t, [0.3, -0.2, 0.1], MethodChoice::Dop853, 10.0).ok()
+                }) {
                     Some(settings) => Scene {
                         settings,
                         columns: vec![0, 1, 2],
@@ -190,7 +191,7 @@ pub struct Experiment {
     /// Ω₀.
     pub omega: Option<[Real; 3]>,
     /// The method.
-    pub method: Option<Method>,
+    pub method: Option<MethodChoice>,
     /// τ per second, one of [`WARPS`].
     pub warp: Option<Real>,
     /// Log time axis.
@@ -218,17 +219,12 @@ impl Experiment {
                     e.omega = Some([a, b, c]);
                 }
                 "method" => {
-                    e.method = Some(match v {
-                        "exact" => Method::ClosedForm,
-                        "rk4" => Method::Rk4,
-                        "dopri5" => Method::Dopri5,
-                        "dop853" => Method::Dop853,
-                        other => {
-                            return Err(format!(
-                                "method `{other}`: use exact, rk4, dopri5 or dop853"
-                            ));
-                        }
-                    })
+                    e.method = Some(MethodChoice::from_name(v).ok_or_else(|| {
+                        format!(
+                            "method `{v}`: use one of {}",
+                            MethodChoice::NAMES.join(", ")
+                        )
+                    })?);
                 }
                 "warp" => {
                     let w = parse_number(v)?;
@@ -975,7 +971,7 @@ impl Learn {
         ]);
         // Ω₁ and Ω₂ are drawn: they stay within Ω⊥₀.
         let perp = spec.omega0[0].hypot(spec.omega0[1]);
-        let y = crate::present::nice_ceiling(if perp > 0.0 { perp } else { scale } * 1.05);
+        let y = crate::numbers::nice_ceiling(if perp > 0.0 { perp } else { scale } * 1.05);
         let chart = Chart::new(datasets)
             .block(Block::new().title(title))
             .legend_position(None)
@@ -1083,7 +1079,9 @@ impl Learn {
                 for (a, s) in shown {
                     let (mark, style) = match s {
                         State::Passing => ("✓", theme::info()),
-                        State::Failing(_) | State::DoesNotCompile(_) => ("✗", theme::error()),
+                        State::Failing(_) | State::DoesNotCompile(_) | State::TimedOut(_) => {
+                            ("✗", theme::error())
+                        }
                         _ => ("·", theme::label()),
                     };
                     lines.push(Line::from(vec![
@@ -1110,7 +1108,9 @@ impl Learn {
                                 lines.push(Line::from(format!("  {l}")));
                             }
                         }
-                        State::DoesNotCompile(e) => lines.push(Line::from(format!("  {e}"))),
+                        State::DoesNotCompile(e) | State::TimedOut(e) => {
+                            lines.push(Line::from(format!("  {e}")))
+                        }
                         _ => lines.push(Line::from(format!(
                             "  edit {}: its todo!() is still there; saving re-grades",
                             a.file
@@ -1212,7 +1212,7 @@ fn scene_parameters(settings: &Settings) -> Vec<Span<'static>> {
     ));
     spans.push(Span::styled("  method ", theme::label()));
     spans.push(Span::styled(
-        settings.method().name().to_string(),
+        settings.method().title().to_string(),
         theme::value(),
     ));
     spans.push(Span::styled("  warp ", theme::label()));

@@ -14,9 +14,10 @@
 //! shows I and d instead of I₃/I₁, time is in the κ = 1 unit "u" instead of
 //! τ, and the I₃/I₁ keys leave the footer.
 
-use super::app::{App, Mode, SUBSCRIPTS, TICK, Top, fmt_param};
+use super::app::{App, Mode, SUBSCRIPTS, TICK, Top};
 use super::theme;
 use super::widgets::{OmegaSeries, drift, hodograph, numbers, top_in_space};
+use crate::numbers::fmt_param;
 use crate::sim::Model;
 use ratatui::Frame;
 use ratatui::layout::{Alignment, Constraint, Layout, Rect};
@@ -156,7 +157,7 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App) {
         Span::styled(format!(")/{u}"), theme::label()),
         sep(),
         Span::styled("method ", theme::label()),
-        Span::styled(settings.method().name(), theme::value()),
+        Span::styled(settings.method().title(), theme::value()),
         sep(),
         Span::styled(
             if app.view().log_time {

@@ -6,10 +6,10 @@
 //! drawing, not physics: the vectors themselves (Ω, O·e₃, L) come from the
 //! [`crate::sim::Sample`]s.
 
-use super::app::{App, Column, Method, Point, TICK, WINDOW};
+use super::app::{App, Column, Point, TICK, WINDOW};
 use super::theme;
 use crate::math::Real;
-pub use crate::present::{fmt_axis, fmt_num, nice_ceiling};
+pub use crate::numbers::{fmt_axis, fmt_num, nice_ceiling};
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
 use ratatui::symbols::Marker;
@@ -413,7 +413,7 @@ pub fn numbers(
             "— (none)"
         }
         .to_string(),
-        Some(_) if app.settings().method() == Method::ClosedForm => {
+        Some(_) if app.settings().method() == crate::sim::MethodChoice::Exact => {
             if wide { "0 (closed form)" } else { "0 (exact)" }.to_string()
         }
         Some(e) if wide => format!("|ΔΩ| = {}/{u}", fmt_num(e)),
@@ -507,25 +507,6 @@ pub fn drift(column: &Column) -> Paragraph<'static> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn numbers_are_formatted_for_reading() {
-        assert_eq!(fmt_num(0.0), "0");
-        assert_eq!(fmt_num(0.128062), "0.1281");
-        assert_eq!(fmt_num(-12.3456), "-12.35");
-        assert_eq!(fmt_num(1234.5), "1234");
-        assert_eq!(fmt_num(3.2e-14), "3.200e-14");
-        assert_eq!(fmt_num(Real::NAN), "—");
-    }
-
-    #[test]
-    fn nice_ceiling_rounds_up_to_a_round_bound() {
-        assert_eq!(nice_ceiling(0.2236 * 1.05), 0.25);
-        assert_eq!(nice_ceiling(0.2), 0.2);
-        assert_eq!(nice_ceiling(3.0), 5.0);
-        assert_eq!(nice_ceiling(0.0), 1.0);
-        assert!((nice_ceiling(7e-30) - 1e-29).abs() < 1e-40);
-    }
 
     #[test]
     fn camera_keeps_z_up_and_lengths_in_the_screen_plane() {

@@ -22,113 +22,74 @@ use super::problem::{OmegaRhs, Problem, ProblemKind};
 use super::{KnobKind, Solution, Solver, Target};
 use crate::integrate::taylor::{GeneralTruncated, SymmetricReduced, SymmetricTruncated};
 use crate::integrate::{
-    self, AdaptiveOptions, Composition, Dop853, Dopri5, IntegrateError, Radau5, ReducedFlow, Rhs,
-    Rk4, Splitting, Stepper, Taylor, TaylorRhs,
+    self, AdaptiveOptions, Composition, Dop853, Dopri5, IntegrateError, Radau5, Rhs, Rk4,
+    Splitting, Stepper, Taylor, TaylorRhs,
 };
 use crate::math::{Real, State, Vec3};
 use crate::physics::symmetric_top::{reduced_ale_rhs, reduced_closed_form_many, truncated_ale_rhs};
 use crate::sim::physical::physical_solution;
-use crate::sim::{MethodChoice, MethodOptions, Model, Simulation};
+use crate::sim::split::ReducedFlow;
+use crate::sim::{Method, MethodOptions, Model, Simulation};
 
 // ANCHOR: method_enum
-/// A numerical method of spintop, as the sweep knows it.
-///
-/// To add a method: one variant here, its name, marker and knob in the three
-/// `match`es below, where it applies in [`Method::applies_to`], and one arm in
-/// `solve_omega` (and in `solve_with_orientation` once [`crate::sim`] can run
-/// it). The sweep, the table, the charts, the CSV and the join need no change.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Method {
-    /// The closed forms of Section 4: no integration at all.
-    ClosedForm,
-    /// The reduced model's Ω from its closed form, the orientation integrated
-    /// by DOP853 along it (`spintop simulate --model reduced --method exact`).
-    ClosedFormDop853,
-    /// Classical RK4 at a fixed step.
-    Rk4,
-    /// Dormand–Prince 5(4), adaptive.
-    Dopri5,
-    /// DOP853, adaptive.
-    Dop853,
-    /// The full ALE's physical solution: DOP853 backward from the slow
-    /// manifold, shooting on the final amplitude.
-    Physical,
-    /// Radau IIA 5, implicit and L-stable, adaptive (forward-difference
-    /// Jacobian). It steps exactly onto every output time: its continuous
-    /// extension is only of order 3 and not error-controlled.
-    Radau5,
-    /// The reduced model split into its rotation and its damping, each solved
-    /// exactly (they commute, so the split is exact for any step h).
-    RotationDamping,
-    /// The Taylor series method (Jorba & Zou's order and step), on each
-    /// model's Taylor coefficients by recurrence; its dense output is the
-    /// step's own polynomial.
-    Taylor,
-    // NOTE: Strang and Yoshida-4 split the free top (τ = 0), which is not one
-    // of the four problems here; stability row 4 measures them.
+/// The methods of spintop the sweep runs ([`Method`] is the core's one type
+/// of numerical method). To add one: an entry here, its name, its knob and
+/// where it applies in the three functions below, and one arm in
+/// `solve_omega` (and in `solve_with_orientation` once [`crate::sim`] can
+/// run it). The sweep, the table, the charts, the CSV and the join need no
+/// change.
+pub const SWEPT: [Method; 9] = [
+    Method::ClosedForm,
+    Method::ClosedFormDop853,
+    Method::Rk4,
+    Method::Dopri5,
+    Method::Dop853,
+    Method::Physical,
+    Method::Radau5,
+    Method::RotationDamping,
+    Method::Taylor,
+];
+// NOTE: Strang and Yoshida-4 split the free top (τ = 0), which is not one of
+// the four problems here; stability row 4 measures them.
+
+/// A method's name in the sweep's tables and CSV files (the closed forms are
+/// `closed-form` there, as in the committed sessions).
+pub fn name(method: Method) -> &'static str {
+    match method {
+        Method::ClosedForm => "closed-form",
+        Method::ClosedFormDop853 => "closed-form+dop853",
+        other => other.label(),
+    }
 }
 // ANCHOR_END: method_enum
 
-impl Method {
-    /// Every method built so far.
-    pub const ALL: [Method; 9] = [
-        Method::ClosedForm,
-        Method::ClosedFormDop853,
-        Method::Rk4,
-        Method::Dopri5,
-        Method::Dop853,
-        Method::Physical,
-        Method::Radau5,
-        Method::RotationDamping,
-        Method::Taylor,
-    ];
-
-    /// The name in tables and CSV files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::ClosedForm => "closed-form",
-            Method::ClosedFormDop853 => "closed-form+dop853",
-            Method::Rk4 => "rk4",
-            Method::Dopri5 => "dopri5",
-            Method::Dop853 => "dop853",
-            Method::Physical => "physical",
-            Method::Radau5 => "radau5",
-            Method::RotationDamping => "rotation-damping",
-            Method::Taylor => "taylor",
-        }
+/// The knob the sweep turns.
+pub fn knob(method: Method) -> KnobKind {
+    match method {
+        Method::ClosedForm => KnobKind::None,
+        Method::Rk4 | Method::RotationDamping | Method::Strang | Method::Yoshida4 => KnobKind::Step,
+        Method::ClosedFormDop853
+        | Method::Dopri5
+        | Method::Dop853
+        | Method::Physical
+        | Method::Forward
+        | Method::Radau5
+        | Method::Taylor => KnobKind::Rtol,
     }
+}
 
-    /// The knob the sweep turns.
-    pub fn knob(self) -> KnobKind {
-        match self {
-            Method::ClosedForm => KnobKind::None,
-            Method::Rk4 | Method::RotationDamping => KnobKind::Step,
-            Method::ClosedFormDop853
-            | Method::Dopri5
-            | Method::Dop853
-            | Method::Physical
-            | Method::Radau5
-            | Method::Taylor => KnobKind::Rtol,
-        }
-    }
-
-    /// True when the method solves `target` of `problem`.
-    pub fn applies_to(self, problem: ProblemKind, target: Target) -> bool {
-        use ProblemKind as P;
-        match (self, target) {
-            (Method::ClosedForm, Target::Omega) => matches!(problem, P::Truncated | P::Reduced),
-            (Method::ClosedForm, Target::OmegaOrientation) => problem == P::Truncated,
-            (Method::ClosedFormDop853, Target::OmegaOrientation) => problem == P::Reduced,
-            (Method::ClosedFormDop853, Target::Omega) => false,
-            (Method::Rk4 | Method::Dopri5 | Method::Dop853, _) => problem != P::Full,
-            (Method::Physical, Target::Omega) => problem == P::Full,
-            (Method::Physical, Target::OmegaOrientation) => false,
-            (Method::Radau5, Target::Omega) => problem != P::Full,
-            (Method::RotationDamping, Target::Omega) => problem == P::Reduced,
-            (Method::Radau5 | Method::RotationDamping, Target::OmegaOrientation) => false,
-            (Method::Taylor, Target::Omega) => problem != P::Full,
-            (Method::Taylor, Target::OmegaOrientation) => problem != P::Full,
-        }
+/// True when `method` solves `target` of `problem` in the sweep.
+pub fn applies_to(method: Method, problem: ProblemKind, target: Target) -> bool {
+    use ProblemKind as P;
+    match (method, target) {
+        (Method::ClosedForm, Target::Omega) => matches!(problem, P::Truncated | P::Reduced),
+        (Method::ClosedForm, Target::OmegaOrientation) => problem == P::Truncated,
+        (Method::ClosedFormDop853, Target::OmegaOrientation) => problem == P::Reduced,
+        (Method::Rk4 | Method::Dopri5 | Method::Dop853 | Method::Taylor, _) => problem != P::Full,
+        (Method::Physical, Target::Omega) => problem == P::Full,
+        (Method::Radau5, Target::Omega) => problem != P::Full,
+        (Method::RotationDamping, Target::Omega) => problem == P::Reduced,
+        _ => false,
     }
 }
 
@@ -146,10 +107,10 @@ impl Spintop {
     pub fn all() -> Vec<Spintop> {
         let mut out = Vec::new();
         for target in [Target::Omega, Target::OmegaOrientation] {
-            for method in Method::ALL {
+            for method in SWEPT {
                 if ProblemKind::ALL
                     .iter()
-                    .any(|p| method.applies_to(*p, target))
+                    .any(|p| applies_to(method, *p, target))
                 {
                     out.push(Spintop { method, target });
                 }
@@ -165,7 +126,7 @@ impl Solver for Spintop {
     }
 
     fn method(&self) -> &str {
-        self.method.name()
+        name(self.method)
     }
 
     fn target(&self) -> Target {
@@ -173,11 +134,11 @@ impl Solver for Spintop {
     }
 
     fn knob(&self) -> KnobKind {
-        self.method.knob()
+        knob(self.method)
     }
 
     fn applies_to(&self, problem: &Problem) -> bool {
-        self.method.applies_to(problem.kind(), self.target)
+        applies_to(self.method, problem.kind(), self.target)
     }
 
     /// The full ALE's reference is the physical solution at rtol 1e-13: a run
@@ -206,6 +167,8 @@ enum RunError {
     Sim(#[from] crate::sim::SimError),
     #[error(transparent)]
     Physical(#[from] crate::sim::physical::PhysicalError),
+    #[error(transparent)]
+    Options(#[from] crate::sim::OptionsError),
     #[error("{0}")]
     NotApplicable(String),
 }
@@ -213,13 +176,13 @@ enum RunError {
 fn not_applicable(method: Method, problem: &Problem) -> RunError {
     RunError::NotApplicable(format!(
         "{} does not apply to the {} problem",
-        method.name(),
+        name(method),
         problem.name()
     ))
 }
 
 fn knob_value(method: Method, knob: Option<Real>) -> Result<Real, RunError> {
-    knob.ok_or_else(|| RunError::NotApplicable(format!("{} needs a knob value", method.name())))
+    knob.ok_or_else(|| RunError::NotApplicable(format!("{} needs a knob value", name(method))))
 }
 
 /// The adaptive options for `rtol` on `problem`.
@@ -366,13 +329,7 @@ fn integrate_omega<R: Rhs<3>>(
         Method::Radau5 => {
             run_stepper_onto(Radau5::new(0.0, y0, adaptive(problem, knob)?)?, rhs, times)?
         }
-        Method::ClosedForm
-        | Method::ClosedFormDop853
-        | Method::Physical
-        | Method::RotationDamping
-        | Method::Taylor => {
-            return Err(not_applicable(method, problem));
-        }
+        _ => return Err(not_applicable(method, problem)),
     })
 }
 
@@ -409,28 +366,18 @@ fn solve_with_orientation(
     problem: &Problem,
     knob: Option<Real>,
 ) -> Result<Solution, RunError> {
-    if !method.applies_to(problem.kind(), Target::OmegaOrientation) {
+    if !applies_to(method, problem.kind(), Target::OmegaOrientation) {
         return Err(not_applicable(method, problem));
     }
-    let choice = match method {
-        Method::ClosedForm | Method::ClosedFormDop853 => MethodChoice::Exact,
-        Method::Rk4 => MethodChoice::Rk4,
-        Method::Dopri5 => MethodChoice::Dopri5,
-        Method::Dop853 => MethodChoice::Dop853,
-        Method::Taylor => MethodChoice::Taylor,
-        Method::Physical | Method::Radau5 | Method::RotationDamping => {
-            return Err(not_applicable(method, problem));
-        }
+    let options = MethodOptions::default();
+    let options = match self::knob(method) {
+        KnobKind::Rtol => options.with_rtol(knob_value(method, knob)?)?,
+        KnobKind::Step => options.with_step(knob_value(method, knob)?)?,
+        KnobKind::None => options,
     };
-    let mut options = MethodOptions::default();
-    match method.knob() {
-        KnobKind::Rtol => options.rtol = knob_value(method, knob)?,
-        KnobKind::Step => options.step = knob_value(method, knob)?,
-        KnobKind::None => {}
-    }
-    let mut sim = Simulation::new(
+    let mut sim = Simulation::with_method(
         *problem.model(),
-        choice,
+        method,
         options,
         *problem.initial(),
         Some(problem.t_end()),

@@ -31,9 +31,7 @@
 use crate::integrate::{Rhs, Stats};
 use crate::math::{Mat3, Quat, Real, State, Vec3};
 use crate::physics::general_top::GeneralTop;
-use crate::physics::symmetric_top::{
-    SymmetricTop, reduced_ale_rhs, reduced_closed_form, truncated_ale_rhs, truncated_closed_form,
-};
+use crate::physics::symmetric_top::{SymmetricTop, reduced_ale_rhs, truncated_ale_rhs};
 use crate::sim::physical::physical_solution;
 use crate::sim::{InitialState, Model};
 use nalgebra::Quaternion;
@@ -254,13 +252,10 @@ impl Problem {
         }
     }
 
-    /// Ω(t) from the closed form, for the two models that have one.
+    /// Ω(t) from the closed form, for the two models that have one
+    /// ([`Model::closed_form`]).
     pub fn closed_form(&self, t: Real) -> Option<Vec3> {
-        match &self.model {
-            Model::Truncated(top) => Some(truncated_closed_form(top, &self.initial.omega, t)),
-            Model::Reduced(top) => Some(reduced_closed_form(top, &self.initial.omega, t)),
-            _ => None,
-        }
+        self.model.closed_form(&self.initial.omega, t)
     }
 
     /// The absolute tolerance that goes with `rtol` for this problem.

@@ -115,10 +115,17 @@ pub fn parse_csv(text: &str) -> Result<Vec<Row>, String> {
             if s.is_empty() {
                 return Ok(None);
             }
-            // Python writes inf and nan; Rust reads both spellings.
-            s.parse::<Real>()
-                .map(Some)
-                .map_err(|_| at(n, &format!("{} '{s}' is not a number", CSV_COLUMNS[i])))
+            // NOTE: Python writes inf and nan, and Rust reads both; a row
+            // holding one is refused, not charted as nothing (an empty cell
+            // is how a run that measured nothing says so).
+            match s.parse::<Real>() {
+                Ok(x) if x.is_finite() => Ok(Some(x)),
+                Ok(_) => Err(at(
+                    n,
+                    &format!("{} '{s}' is not a finite number", CSV_COLUMNS[i]),
+                )),
+                Err(_) => Err(at(n, &format!("{} '{s}' is not a number", CSV_COLUMNS[i]))),
+            }
         };
         let count = |i: usize| -> Result<Option<u64>, String> {
             let s = get(i);
@@ -153,25 +160,8 @@ pub fn parse_csv(text: &str) -> Result<Vec<Row>, String> {
     Ok(rows)
 }
 
-/// A number in 3 significant digits with an exponent (`1.23e-8`), or `-`.
-pub fn sci(x: Option<Real>) -> String {
-    match x {
-        Some(0.0) => "0".into(),
-        Some(v) if v.is_finite() => format!("{v:.2e}"),
-        Some(v) => v.to_string(),
-        None => "-".into(),
-    }
-}
-
-/// A duration in seconds as µs or ms, 3 significant digits, or `-`.
-pub fn duration(x: Option<Real>) -> String {
-    match x {
-        Some(s) if s < 1e-3 => format!("{:.3} µs", s * 1e6),
-        Some(s) if s < 1.0 => format!("{:.3} ms", s * 1e3),
-        Some(s) => format!("{s:.3} s"),
-        None => "-".into(),
-    }
-}
+// The table's numbers are written by the crate's one number module.
+pub use crate::numbers::{duration, sci};
 
 fn knob_text(r: &Row) -> String {
     match (r.knob, r.value) {

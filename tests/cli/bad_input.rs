@@ -758,11 +758,44 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
             "is not a course",
         ),
         (with(&["course", "grade"], &[]), "<DIR>"),
-        (with(&["course", "grade"], &["/tmp"]), "is not a course"),
         (
-            with(&["course", "grade"], &["/nonexistent-copy"]),
-            "nonexistent-copy",
+            with(&["course", "grade"], &["/tmp", "--jobs", "0"]),
+            "--jobs",
         ),
+        (
+            with(&["course", "grade"], &["/tmp", "--timeout", "0"]),
+            "--timeout",
+        ),
+        (
+            with(&["course", "grade"], &["/tmp", "--test-timeout", "nan"]),
+            "--test-timeout",
+        ),
+        (
+            with(
+                &["course", "grade"],
+                &["/tmp", "--out", "/nonexistent-dir/g.csv"],
+            ),
+            "nonexistent-dir",
+        ),
+        (
+            with(
+                &["course", "grade"],
+                &["/tmp", "/var", "--format", "gradescope"],
+            ),
+            "--out",
+        ),
+        (
+            with(
+                &["course", "export"],
+                &["--out", "/tmp/x", "--ci", "gitlab"],
+            ),
+            "possible values",
+        ),
+        (
+            with(&["course", "diagnose"], &["/nonexistent-wrong"]),
+            "nonexistent-wrong",
+        ),
+        (with(&["course"], &["--seed", "x"]), "--seed"),
         (with(&["course"], &["--format", "xml"]), "possible values"),
         (with(&["book"], &["--port", "99999"]), "--port"),
         (
@@ -873,7 +906,7 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
                 ],
                 &["--dipole", "1,0.5,0.2", "--method", "dopri5"],
             ),
-            "--model full takes --method auto",
+            "model (3.4) takes method auto",
         ),
         (
             with(
@@ -881,6 +914,16 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
                 &["--inertia", "1,2,2.5"],
             ),
             "--dipole",
+        ),
+        // The live view and plot check a method against their models by the
+        // same rule as simulate (sim::Model::check_method).
+        (
+            with(&["plot"], &["--method", "forward"]),
+            "method forward is for the full model (3.4) only",
+        ),
+        (
+            with(&["tui"], &["--method", "forward"]),
+            "method forward is for the full model (3.4) only",
         ),
         (with(&["book"], &["--port", "x"]), "--port"),
         (with(&["nosuch-command"], &[]), "unrecognized subcommand"),
@@ -916,7 +959,7 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
                 "simulate", "--model", "full", "--t-end", "1", "--method", method,
             ],
             2,
-            "--model full takes",
+            "the full model (3.4) takes method auto",
         ));
     }
     // 4. Costs checked before running: refused up front with the estimate.
@@ -1115,12 +1158,6 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
                 "1",
             ],
             "--r0",
-        ),
-        (
-            vec![
-                "simulate", "--model", "full", "--omega", "0,10,10", "--t-end", "10",
-            ],
-            "--t-end",
         ),
         (
             vec![

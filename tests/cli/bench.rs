@@ -118,6 +118,65 @@ fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
         .skip_while(|l| !l.contains("8 dop853"))
         .skip(1)
         .collect();
+    // Where: the peer's rows are spintop's DOP853 rows with the same RHS
+    // evaluations, so on the evaluations chart every 'e' must sit exactly
+    // where spintop's '8' sits when its file is charted alone (at the same
+    // width; the evaluations set the same axis). On the time chart, twice
+    // the time puts each 'e' log10(2) of a decade right of its '8' (about 4
+    // columns of this 50-column chart; the times are measured, so a marker
+    // may hide another: at least two pairs must show it).
+    let markers = |text: &str, mark: fn(char) -> bool| -> Vec<(usize, usize)> {
+        let chart = text.split_once("against RHS evaluations").unwrap().1;
+        chart
+            .lines()
+            .skip_while(|l| !l.contains("8 dop853"))
+            .skip(1)
+            .take_while(|l| l.starts_with(|c| ('\u{2800}'..='\u{28FF}').contains(&c)))
+            .filter(|l| !l.contains("1e"))
+            .enumerate()
+            .flat_map(|(row, l)| {
+                l.chars()
+                    .enumerate()
+                    .filter(move |&(_, c)| mark(c))
+                    .map(move |(col, _)| (row, col))
+            })
+            .collect()
+    };
+    let alone = spintop(&["bench", "--join", csv.to_str().unwrap(), "--width", "50"]);
+    let alone = text(&alone.stdout);
+    // (Where two methods share a point one marker hides the other.)
+    let peer = markers(&stdout, |c| c == 'e');
+    let eights = markers(&alone, |c| c == '8');
+    let any = markers(&alone, |c| c.is_ascii_alphanumeric());
+    assert_eq!(peer.len(), 4, "one marker per tolerance:\n{stdout}");
+    assert!(
+        eights.iter().all(|p| peer.contains(p)) && peer.iter().all(|p| any.contains(p)),
+        "peer {peer:?}, spintop's 8 {eights:?}\n{stdout}\n{alone}"
+    );
+    let time_lines: Vec<&str> = stdout
+        .split("against RHS evaluations")
+        .next()
+        .unwrap()
+        .lines()
+        .skip_while(|l| !l.contains("8 dop853"))
+        .skip(1)
+        .filter(|l| !l.contains("1e-"))
+        .collect();
+    let pairs = time_lines
+        .iter()
+        .filter(|line| {
+            let chars: Vec<char> = line.chars().collect();
+            chars
+                .iter()
+                .position(|&c| c == 'e')
+                .is_some_and(|e| (3..=5).any(|d| e >= d && chars[e - d] == '8'))
+        })
+        .count();
+    assert!(
+        pairs >= 2,
+        "'e' about 4 columns right of '8':\n{}",
+        time_lines.join("\n")
+    );
     assert!(
         time_chart.contains('e') && time_chart.contains('8'),
         "{stdout}"

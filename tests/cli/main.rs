@@ -7,6 +7,7 @@ mod support;
 mod bad_input;
 mod balance;
 mod bench;
+mod gate;
 mod orbit;
 mod plot;
 mod run;

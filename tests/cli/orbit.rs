@@ -87,31 +87,31 @@ fn cli_orbit_harmonic_al_is_exact_and_reports_the_roots() {
     check_samples(&v, 3);
     assert_eq!(v["method"], "exact");
     assert!(v.get("collapse_time").is_none() && v.get("first_crossing").is_none());
+    // The roots of τ₀s³ − s² − 1 = 0 (τ₀ = 0.1), checked in place: each is a
+    // root, and together they satisfy Vieta's relations (sum 1/τ₀, product
+    // 1/τ₀), so no other root is left: the runaway is 10.098067…, the
+    // physical pair −0.049034 ± 0.993924i.
     let roots = &v["roots"];
-    assert!((roots["runaway"].as_f64().unwrap() - 10.098067136087418).abs() < 1e-13);
-    assert!((roots["abraham_lorentz"][1].as_f64().unwrap() - 0.9939236556494045).abs() < 1e-15);
+    let tau0 = 0.1;
+    let runaway = roots["runaway"].as_f64().unwrap();
+    let (re, im) = (
+        roots["abraham_lorentz"][0].as_f64().unwrap(),
+        roots["abraham_lorentz"][1].as_f64().unwrap(),
+    );
+    let s = nalgebra::Complex::new(re, im);
+    assert!((tau0 * runaway.powi(3) - runaway * runaway - 1.0).abs() < 1e-12);
+    assert!((tau0 * s * s * s - s * s - 1.0).norm() < 1e-13);
+    assert!((runaway + 2.0 * re - 1.0 / tau0).abs() < 1e-12);
+    assert!((runaway * (re * re + im * im) - 1.0 / tau0).abs() < 1e-12);
+    assert!((runaway - 10.098067).abs() < 1e-6 && (im - 0.993924).abs() < 1e-6);
 }
 
+/// A forward run of (2.5) runs away: every format writes the samples before
+/// it and says that it stopped (the JSON's `stopped`, a `# stopped:` line
+/// after the table or the CSV rows), and the command exits 3 with one line.
 #[test]
 fn cli_orbit_forward_abraham_lorentz_reports_the_runaway() {
-    let v = json(&[
-        "--potential",
-        "harmonic",
-        "--tau0",
-        "0.01",
-        "--force",
-        "al-forward",
-        "--times",
-        "0,0.05,1,2",
-    ]);
-    let r = &v["runaway"];
-    let t = r["t"].as_f64().unwrap();
-    assert!(t > 0.05 && t < 0.2, "{t}");
-    let rate = r["growth_rate"].as_f64().unwrap();
-    assert!((rate / r["predicted_rate"].as_f64().unwrap() - 1.0).abs() < 5e-3);
-    check_samples(&v, 2);
-    assert_eq!(v["samples_omitted"].as_u64(), Some(2));
-    let out = spintop(&[
+    let args = [
         "orbit",
         "--potential",
         "harmonic",
@@ -120,12 +120,53 @@ fn cli_orbit_forward_abraham_lorentz_reports_the_runaway() {
         "--force",
         "al-forward",
         "--times",
-        "0,1",
-    ]);
+        "0,0.05,1,2",
+    ];
+    let run = |format: &str| {
+        let mut all = args.to_vec();
+        all.extend(["--format", format]);
+        let out = spintop(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(3), "{format}: {stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(
+            stderr.contains("runaway at t = ") && stderr.contains("2 of 4 samples omitted"),
+            "{stderr}"
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let v: Value = serde_json::from_str(&run("json")).expect("one JSON object");
+    let r = &v["runaway"];
+    let t = r["t"].as_f64().unwrap();
+    assert!(t > 0.05 && t < 0.2, "{t}");
+    let rate = r["growth_rate"].as_f64().unwrap();
+    assert!((rate / r["predicted_rate"].as_f64().unwrap() - 1.0).abs() < 5e-3);
+    check_samples(&v, 2);
+    assert_eq!(v["samples_omitted"].as_u64(), Some(2));
     assert!(
-        String::from_utf8(out.stdout)
+        v["stopped"]
+            .as_str()
             .unwrap()
-            .contains("RUNAWAY at t = ")
+            .contains("2 later sample(s) omitted")
+    );
+    let csv = run("csv");
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 4, "{csv}");
+    assert!(lines[0].starts_with("t,x,y"));
+    assert!(
+        lines[3].starts_with("# stopped: runaway at t = ")
+            && lines[3].contains("2 later sample(s) omitted"),
+        "{csv}"
+    );
+    let table = run("table");
+    assert!(table.contains("RUNAWAY at t = "), "{table}");
+    assert!(
+        table
+            .trim_end()
+            .lines()
+            .last()
+            .unwrap()
+            .starts_with("# stopped: runaway")
     );
 }
 

@@ -5,36 +5,12 @@
 //! expected (never a panic, never a second line).
 
 use crate::support;
-use support::spintop;
+use support::{Scratch, spintop};
 
 use serde_json::Value;
 use spintop::scene::Body;
 use spintop::scene::catalogue::CATALOGUE;
-use std::path::PathBuf;
 use std::process::Command;
-
-/// A scratch folder for scene files, removed when dropped.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(tag: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("spintop-scenes-{tag}-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        Self(dir)
-    }
-
-    fn write(&self, name: &str, text: &str) -> String {
-        let path = self.0.join(name);
-        std::fs::write(&path, text).unwrap();
-        path.display().to_string()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 const HEAD: &str = "[scene]\nname = \"x\"\nkind = \"top\"\ndescription = \"d\"\n\n";
 const SPHERE: &str = "[units]\nshape = \"sphere\"\nradius_nm = 50.0\ndensity_kg_m3 = 2200.0\ndipole_debye = 1e3\nspin_hz = 1e9\n";
@@ -62,6 +38,10 @@ fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
         ("molecule-zero-dipole.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n{MOLECULE}").replace("[2.33, 0.0, 0.0]", "[0.0, 0.0, 0.0]"), 9, "dipole"),
         ("ellipsoid-no-density.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n[units]\nshape = \"ellipsoid\"\nsemi_axes_nm = [150.0, 60.0, 40.0]\ndipole_vector_debye = [0.0, 3e4, 4e4]\nomega_hz = [2e8, 5e8, 1e9]\n"), 9, "density_kg_m3"),
         ("molecule-full.toml", format!("{HEAD}[top]\nmodel = \"full\"\n\n{MOLECULE}"), 7, "cannot take [units]"),
+        // The one rule of sim::Model::check_method and MethodOptions::for_choice, as the command line applies it.
+        ("full-dop853.toml", format!("{HEAD}[top]\nmodel = \"full\"\n\n[solve]\nmethod = \"dop853\"\n"), 10, "[solve] method = \"dop853\": the full model (3.4) takes method auto"),
+        ("rtol-below-double.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nrtol = 1e-15\n"), 10, "[solve] rtol 1e-15 is below what double precision can deliver"),
+        ("step-not-rk4.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nmethod = \"dop853\"\nstep = 0.1\n"), 11, "[solve] step sets the fixed step of method rk4 only"),
         ("auto-with-method.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n[solve]\nmethod = \"dop853\"\n"), 10, "model = \"auto\" chooses the model and its method together"),
         ("times-decreasing.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 5.0, 2.0]\n"), 10, "2 comes after 5"),
         ("times-and-t-end.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 1.0]\nt_end = 5.0\n"), 11, "either times"),
@@ -97,6 +77,33 @@ fn malformed_scene_files_exit_2_with_the_file_the_line_and_what_was_expected() {
         );
         assert!(err.contains(words), "{name}: expected '{words}' in {err}");
     }
+}
+
+/// A run that stops inside a scene says what to change in the scene's own
+/// keys, never in flags of the command line the scene does not have: the
+/// general top spun so fast that (3.4) has no slow manifold (the same run as
+/// `simulate` with flags names `--omega`, tests/cli/simulate.rs).
+#[test]
+fn a_numerical_failure_in_a_scene_names_the_scenes_keys() {
+    let dir = Scratch::new("keys");
+    let path = dir.write(
+        "fast.toml",
+        &format!(
+            "{HEAD}[top]\nmodel = \"full\"\ninertia = [1.0, 2.0, 2.5]\ndipole = [1.0, 0.5, 0.2]\nomega = [5.0, 3.0, 1.0]\n\n[solve]\nt_end = 10.0\n"
+        ),
+    );
+    let out = spintop(&["run", &path]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains("no slow manifold")
+            && err.contains("[top] omega")
+            && err.contains("[top] dipole")
+            && err.contains("[top] model = \"reduced\""),
+        "{err}"
+    );
+    assert!(!err.contains("--"), "a flag in a scene's advice: {err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
 }
 
 #[test]
@@ -178,7 +185,20 @@ fn run_a_real_particle_reports_units_milestones_and_the_skipped_orientation() {
     );
     let v = support::json("run", &[path]);
     let u = &v["units"];
-    assert!((u["tau_s"].as_f64().unwrap() / 2.148e-28 - 1.0).abs() < 5e-4);
+    // τ in SI units, computed here from the scene's numbers: a silica sphere
+    // of radius 50 nm and 2200 kg/m³ (I₁ = (2/5)mr²) with a dipole of 10⁷ D,
+    // τ = d²/(6πε₀I₁c³) (the Gaussian 2d²/(3I₁c³)): 2.148e-28 s.
+    let (r, rho) = (50e-9_f64, 2200.0);
+    let mass = rho * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    let i1 = 0.4 * mass * r * r;
+    let (debye, eps0, c) = (3.335_640_95e-30, 8.854_187_812_8e-12, 299_792_458.0_f64);
+    let d = 1e7 * debye;
+    let tau = d * d / (6.0 * std::f64::consts::PI * eps0 * i1 * c.powi(3));
+    assert!(
+        (u["tau_s"].as_f64().unwrap() / tau - 1.0).abs() < 1e-6,
+        "{tau:e}"
+    );
+    assert!((tau / 2.148e-28 - 1.0).abs() < 5e-4);
     assert_eq!(u["time_unit"], "yr");
     assert!(
         u["conversion"]
@@ -186,7 +206,15 @@ fn run_a_real_particle_reports_units_milestones_and_the_skipped_orientation() {
             .unwrap()
             .starts_with("tau = 2 d^2/(3 I1 c^3)")
     );
+    // Upright (tilt below 1°) in the reduced model: tan(tilt) = Ω⊥/k, and a
+    // sphere spun 45° from its dipole starts with Ω⊥₀ = k, so by (4.16)
+    // Φ² = e^{−s}/(2 − e^{−s}) with s = 2τk²t reaches x = tan²(1°) at
+    // s = ln((1 + x)/(2x)): 27.67 years (of 365.25 days).
+    let k = 2.0 * std::f64::consts::PI * 1e9 * (0.25 * std::f64::consts::PI).sin();
+    let x = 1f64.to_radians().tan().powi(2);
+    let years = ((1.0 + x) / (2.0 * x)).ln() / (2.0 * tau * k * k) / (365.25 * 86400.0);
     let upright = u["milestones"]["reduced_upright"]["unit"].as_f64().unwrap();
+    assert!((upright / years - 1.0).abs() < 1e-6, "{upright} vs {years}");
     assert!((upright - 27.67).abs() < 0.01, "{upright}");
     assert!(u["milestones"]["reduced_half_spin"].is_null(), "never");
     assert!(v["orientation_skipped"].as_str().unwrap().contains("steps"));
@@ -252,11 +280,10 @@ fn every_kind_keeps_its_commands_json_keys() {
 fn tui_opens_every_top_scene() {
     for entry in CATALOGUE {
         let scene = entry.scene().unwrap();
-        let got = spintop::cli::tui::scene_settings(&scene, None);
+        let got = spintop::tui::app::Settings::for_scene(&scene, None);
         match &scene.body {
             Body::Top(top) => {
-                let (settings, note) =
-                    got.unwrap_or_else(|e| panic!("{}: {}", entry.name, e.message()));
+                let (settings, note) = got.unwrap_or_else(|e| panic!("{}: {e}", entry.name));
                 assert_eq!(settings.omega0(), <[f64; 3]>::from(top.initial.omega));
                 assert!(note.starts_with(&format!("scene {}", entry.name)));
                 let general = top.model.name().starts_with("general");

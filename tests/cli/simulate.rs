@@ -469,6 +469,29 @@ fn simulate_ratio_3_says_why() {
 
 /// A step far beyond RK4's stability limit (τΩ²h ≫ 1) blows up: reported with
 /// the time and what to try, exit code 3, and no NaN table.
+/// The physical solution of (3.4) at fast spin, τk = 4 and τk = 10
+/// (I₃/I₁ = 2/5, Ω₃ = 10 and 25), where the shoot used to find no bracket
+/// and exit 3: late in the run |z| falls at linear theory's rate
+/// 1/σ_phys = (α − 1)/(2τ), α = √((1 + √(1 + 16τ²k²))/2) (the slow root of
+/// τf² − (1 − 2iτΩ₃)f − (iΩ̃₃ + τΩ₃²) = 0).
+#[test]
+fn eq_3_4_physical_solution_at_fast_spin_decays_at_linear_theorys_rate() {
+    for (omega3, tau_k) in [(10.0, 4.0_f64), (25.0, 10.0)] {
+        let omega = format!("0,0.1,{omega3}");
+        let v = json(&["--model", "full", "--omega", &omega, "--times", "0,2,6,10"]);
+        assert_eq!(v["method"], "physical");
+        let perp = |i: usize| v["samples"][i]["omega_perp"].as_f64().unwrap();
+        assert!((perp(0) / 0.1 - 1.0).abs() < 1e-9, "{}", perp(0));
+        let slope = -(perp(3) / perp(2)).ln() / 4.0;
+        let alpha: f64 = ((1.0 + (1.0 + 16.0 * tau_k * tau_k).sqrt()) / 2.0).sqrt();
+        let rate = (alpha - 1.0) / 2.0;
+        assert!(
+            (slope / rate - 1.0).abs() < 1e-6,
+            "tau k = {tau_k}: |z| falls at {slope}, linear theory {rate}"
+        );
+    }
+}
+
 #[test]
 fn simulate_reports_a_numerical_failure_with_its_time() {
     let out = spintop(&[

@@ -8,14 +8,14 @@
 //! integrator; the nanoparticle scenes are answered with no step at all.
 
 use approx::assert_relative_eq;
-use spintop::cli::run::{
-    Answer, OmegaOnlyOutput, PhysicalReport, Report, RigidReport, SecularOutput, TopRun, answer,
-};
-use spintop::cli::simulate::SimulateOutput;
 use spintop::math::{Mat3, Vec3};
+use spintop::output::simulate::SimulateOutput;
 use spintop::physics::central::{ChargeInField, Potential, eq_2_9_rate};
 use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::general_top::GeneralTop;
+use spintop::scene::answer::{
+    Answer, OmegaOnlyOutput, PhysicalReport, Report, RigidReport, SecularOutput, TopRun, answer,
+};
 use spintop::scene::catalogue::{CATALOGUE, find};
 use spintop::scene::{Body, Scene, parse};
 use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
@@ -30,7 +30,7 @@ fn scene(name: &str) -> Scene {
 }
 
 fn run(name: &str) -> Report {
-    answer(&scene(name)).unwrap_or_else(|e| panic!("{name}: {}", e.message()))
+    answer(&scene(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn full(r: &Report) -> &SimulateOutput {
@@ -207,10 +207,9 @@ fn figure_2_eq_4_16_omega_perp_decays_and_the_axis_comes_up_to_l() {
         EulerAngles::new(0.0, 1.25_f64.atan(), 0.0),
     )
     .unwrap();
-    let options = MethodOptions {
-        rtol: 1e-12,
-        ..MethodOptions::default()
-    };
+    let options = MethodOptions::default()
+        .with_rtol(1e-12)
+        .expect("a valid tolerance");
     let mut other = Simulation::new(
         Model::Reduced(top),
         MethodChoice::Dop853,
@@ -323,10 +322,9 @@ fn asymmetric_top_eq_3_3_agrees_with_an_independent_rk4_run() {
     let top = GeneralTop::new(Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2, 0.0, 1.0)).unwrap();
     let initial =
         InitialState::new(Vec3::new(0.1, 0.05, 0.2), EulerAngles::new(0.2, 0.9, 0.1)).unwrap();
-    let options = MethodOptions {
-        step: 0.005,
-        ..MethodOptions::default()
-    };
+    let options = MethodOptions::default()
+        .with_step(0.005)
+        .expect("a valid step");
     let mut rk4 = Simulation::new(
         Model::General(top),
         MethodChoice::Rk4,
@@ -824,7 +822,7 @@ fn formaldehyde_molecule_auto_picks_the_reduced_ale_and_loses_larmor_power() {
     let d = Vec3::new(2.33e-18, 0.0, 0.0);
     let i = moments;
     let free = |w: &Vec3| -(w.cross(&i.component_mul(w))).component_div(&i);
-    let period = o.samples[0].sample.period * tau_f;
+    let period = o.samples[0].sample.period.expect("a period") * tau_f;
     let n = 400_000;
     let t_end = 200.0 * period;
     let times: Vec<f64> = (0..=n).map(|k| t_end * k as f64 / n as f64).collect();

@@ -19,17 +19,17 @@
 //!   its time and never as a NaN state.
 
 use proptest::prelude::*;
-use spintop::integrate::splitting::{
-    Composition, FreeRigidBody, ReducedFlow, ReducedSplitting, RigidBodySplitting, RigidBodyState,
-    reduced_damping_flow, reduced_rotation_flow, reduced_split_solve, yoshida_weights,
-};
+use spintop::integrate::splitting::{Composition, yoshida_weights};
 use spintop::integrate::{AdaptiveOptions, Dop853, IntegrateError, Rhs, Stepper};
 use spintop::math::{Mat3, Real, State, Vec3, exp_so3, hat, orthonormality_error, rot_x, rot_z};
 use spintop::physics::ParamError;
+use spintop::physics::free_top::{FreeRigidBody, RigidBodyState};
 use spintop::physics::symmetric_top::{
     SymmetricTop, reduced_amplitude, reduced_closed_form, truncated_closed_form,
     truncated_orientation,
 };
+use spintop::physics::symmetric_top::{reduced_damping_flow, reduced_rotation_flow};
+use spintop::sim::split::{ReducedFlow, ReducedSplitting, RigidBodySplitting, reduced_split_solve};
 
 const EPS: Real = Real::EPSILON;
 

@@ -475,11 +475,10 @@ fn budget_and_bad_options_are_reported() {
 
 /// `auto` integrates an asymmetric top with the Taylor method exactly where
 /// the measured crossover puts it (rtol ≤ `TAYLOR_AUTO_RTOL`) and with
-/// DOP853 above; the scene planner's label and the simulation agree, and the
-/// symmetric tops keep their closed forms at any rtol.
+/// DOP853 above; a scene's plan names the same method as the simulation
+/// runs, and the symmetric tops keep their closed forms at any rtol.
 #[test]
 fn auto_uses_the_taylor_method_only_below_the_measured_crossover() {
-    use spintop::scene::plan::taylor_where_it_wins;
     use spintop::sim::{
         InitialState, MethodChoice, MethodOptions, Model, Simulation, TAYLOR_AUTO_RTOL,
     };
@@ -488,20 +487,26 @@ fn auto_uses_the_taylor_method_only_below_the_measured_crossover() {
         rotation: Mat3::identity(),
     };
     let label = |model: Model, rtol: Real| {
-        let options = MethodOptions {
-            rtol,
-            ..MethodOptions::default()
-        };
+        let options = MethodOptions::default().with_rtol(rtol).unwrap();
         Simulation::new(model, MethodChoice::Auto, options, initial, Some(10.0))
             .unwrap()
             .method()
             .label()
     };
+    let scene = |model: &str, rtol: Real| {
+        let text = format!(
+            "[scene]\nname = \"x\"\nkind = \"top\"\ndescription = \"d\"\n[top]\nmodel = \"{model}\"\ninertia = [1.0, 1.5, 0.8]\ndipole = [0.2, 0.0, 1.0]\nomega = [0.0, 0.1, 0.2]\n[solve]\nt_end = 10.0\nsamples = 11\nrtol = {rtol:e}\n"
+        );
+        spintop::scene::parse(&text, "x.toml")
+            .unwrap()
+            .chosen
+            .method
+    };
     for (rtol, want) in [
         (1e-6, "dop853"),
         (2.0 * TAYLOR_AUTO_RTOL, "dop853"),
         (TAYLOR_AUTO_RTOL, "taylor"),
-        (1e-14, "taylor"),
+        (1e-12, "taylor"),
     ] {
         for model in [
             Model::General(general_top()),
@@ -509,7 +514,7 @@ fn auto_uses_the_taylor_method_only_below_the_measured_crossover() {
         ] {
             assert_eq!(label(model, rtol), want, "{model:?} at {rtol:e}");
         }
-        assert_eq!(taylor_where_it_wins(rtol).0, want);
+        assert_eq!(scene("general", rtol), want, "scene at {rtol:e}");
         let top = SymmetricTop::figure();
         assert_eq!(label(Model::Truncated(top), rtol), "exact");
         assert_eq!(label(Model::Reduced(top), rtol), "exact+dop853");
@@ -528,10 +533,7 @@ fn simulation_with_the_taylor_method_matches_the_references() {
         ProblemKind::General,
     ] {
         let problem = Problem::new(kind).unwrap();
-        let options = MethodOptions {
-            rtol: 1e-14,
-            ..MethodOptions::default()
-        };
+        let options = MethodOptions::default().with_rtol(1e-14).unwrap();
         let mut sim = Simulation::new(
             *problem.model(),
             MethodChoice::Taylor,
@@ -567,7 +569,7 @@ fn simulation_with_the_taylor_method_matches_the_references() {
         Some(10.0),
     );
     assert!(
-        matches!(full, Err(SimError::MethodNotForModel("full"))),
+        matches!(&full, Err(SimError::Refused(r)) if r.model == "full"),
         "{full:?}"
     );
 }

@@ -30,7 +30,7 @@ fn untimed(problem: &Problem, method: Method, target: Target, knob: Option<Real>
         row.ok(),
         "{} {}: {}",
         problem.name(),
-        method.name(),
+        row.method,
         row.status
     );
     row
@@ -135,22 +135,37 @@ fn rk4_error_falls_as_h_to_the_fourth() {
     assert!((180.0..360.0).contains(&ratio), "ratio {ratio}");
 }
 
-/// The full ALE's reference (the shoot at rtol 1e-13) agrees with a looser
-/// shoot at rtol 1e-12 to well below any error the sweep reports, and with
-/// the reduced model (4.15)–(4.16), which (3.4)'s physical solution follows
-/// up to O(τ²) corrections, to a few percent.
+/// The full ALE's reference (spintop's own shoot at rtol 1e-13) agrees with
+/// the physical solution found an independent way, the invariance equation of
+/// its slow manifold integrated in ln|z|² (tests/support), to 1e-6 at all 200
+/// times, and with a looser shoot to 1e-11. Its gap to the reduced model
+/// (4.15)–(4.16) is pinned to its O(τ²) prediction: the reduced model
+/// precesses 2τ²ks too fast and decays τ³s(3u + 5k²) too fast (s = u + k²),
+/// so the physical z is the reduced one times e^{δ − iΔθ} with
+/// Δθ = 2τk ln(A₀/A) and δ = τ²[(3/2)(u₀ − u) + 5k² ln(A₀/A)]; the next
+/// terms are 7τ²s ≈ 11 % of these here, so within 20 %.
 #[test]
-fn eq_3_4_full_reference_is_converged_and_close_to_the_reduced_model() {
+fn eq_3_4_full_reference_is_the_physical_solution_and_its_gap_the_predicted_one() {
     let problem = Problem::new(ProblemKind::Full).unwrap();
     let top = SymmetricTop::new(0.4, 1.0).unwrap();
     let omega0 = problem.initial().omega;
+    let reference = &problem.reference().omega;
+    let independent: Vec<Vec3> =
+        crate::support::physical_by_invariance_equation(&top, &omega0, problem.times())
+            .iter()
+            .map(|z| Vec3::new(z.re, z.im, omega0.z))
+            .collect();
+    let diff = omega_error(reference, &independent);
+    assert!(
+        diff < 1e-6,
+        "reference vs the invariance equation: {diff:e}"
+    );
     let looser = physical_solution(&top, &omega0, problem.times(), 1e-12).unwrap();
     let looser: Vec<Vec3> = looser
         .z
         .iter()
         .map(|z| Vec3::new(z.re, z.im, omega0.z))
         .collect();
-    let reference = &problem.reference().omega;
     let diff = omega_error(reference, &looser);
     assert!(diff < 1e-11, "rtol 1e-12 vs 1e-13: {diff:e}");
     let reduced: Vec<Vec3> = problem
@@ -158,10 +173,27 @@ fn eq_3_4_full_reference_is_converged_and_close_to_the_reduced_model() {
         .iter()
         .map(|&t| reduced_closed_form(&top, &omega0, t))
         .collect();
-    let model_gap = omega_error(reference, &reduced);
+    let (tau, k) = (top.tau(), top.ratio() * omega0.z);
+    let (a0, u0) = (
+        omega0.x.hypot(omega0.y),
+        omega0.x.powi(2) + omega0.y.powi(2),
+    );
+    let predicted: Vec<Vec3> = reduced
+        .iter()
+        .map(|w| {
+            let a = w.x.hypot(w.y);
+            let lost = (a0 / a).ln();
+            let dtheta = 2.0 * tau * k * lost;
+            let delta = tau * tau * (1.5 * (u0 - a * a) + 5.0 * k * k * lost);
+            let z = nalgebra::Complex::new(w.x, w.y) * nalgebra::Complex::new(delta, -dtheta).exp();
+            Vec3::new(z.re, z.im, w.z)
+        })
+        .collect();
+    let gap = omega_error(reference, &reduced);
+    let predicted_gap = omega_error(&predicted, &reduced);
     assert!(
-        (1e-4..0.1).contains(&model_gap),
-        "full vs reduced: {model_gap:e}"
+        (gap / predicted_gap - 1.0).abs() < 0.2,
+        "full vs reduced: {gap:e}, predicted {predicted_gap:e}"
     );
 }
 
@@ -379,10 +411,38 @@ fn cost_counts_of_every_method_on_fixed_problems() {
     let entries = Spintop::all();
     let solvers: Vec<&dyn Solver> = entries.iter().map(|s| s as &dyn Solver).collect();
     let rows = sweep(&problems, &solvers, &Plan::quick().untimed(), None);
+    // The fixed-step methods' counts follow from their step alone: T/h steps,
+    // 4 evaluations each for RK4 (the end slope is reused as the next first
+    // stage; src/integrate/rk4.rs) and 2 sub-flows each for the exact
+    // rotation-damping splitting of the reduced model (Lie-Trotter with two
+    // parts; src/integrate/splitting.rs), none rejected. They are derived
+    // here; only the adaptive methods' counts are snapshotted.
+    let mut fixed = 0;
+    for r in rows.iter().filter(|r| r.knob.name() == "h") {
+        let h = r.value.unwrap();
+        let steps = (spintop::workprecision::problem::T_END / h).round() as u64;
+        let per_step = match r.method.as_str() {
+            "rk4" => 4,
+            "rotation-damping" => 2,
+            other => panic!("a fixed-step method without a derived count: {other}"),
+        };
+        assert_eq!(
+            (r.steps.unwrap(), r.rhs_evals.unwrap(), r.rejected.unwrap()),
+            (steps, per_step * steps, 0),
+            "{} {} h = {h}",
+            r.model,
+            r.method
+        );
+        fixed += 1;
+    }
+    assert_eq!(
+        fixed, 15,
+        "rk4 on the reduced and general problems, both targets, and rotation-damping, each at 3 steps"
+    );
     let mut text = String::from(
         "model     method              target             knob         evals  steps  rejected\n",
     );
-    for r in &rows {
+    for r in rows.iter().filter(|r| r.knob.name() != "h") {
         let knob = match r.value {
             Some(v) => format!("{}={v:e}", r.knob.name()),
             None => "-".into(),

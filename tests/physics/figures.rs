@@ -191,10 +191,9 @@ fn eq_4_11_figure_1_axis_keeps_its_tilt_and_precesses_on_the_clock_vartheta() {
 fn eq_4_17_figure_2_orientation_agrees_with_an_independent_integration() {
     let f = figure(FigureNumber::Two);
     let initial = InitialState::new(Vec3::from(FIGURE_OMEGA0), f.initial_euler()).unwrap();
-    let options = MethodOptions {
-        rtol: 1e-11,
-        ..MethodOptions::default()
-    };
+    let options = MethodOptions::default()
+        .with_rtol(1e-11)
+        .expect("a valid tolerance");
     let mut sim = Simulation::new(
         Model::Reduced(f.top()),
         MethodChoice::Dop853,

@@ -7,6 +7,7 @@
 //! ratio 1.007 at t = 10, 1.22 at t = 1000 for the figure parameters); forward
 //! integration leaves it at the frozen-linearisation rate 1.025.
 
+use crate::support;
 use nalgebra::Complex;
 use spintop::integrate::{AdaptiveOptions, Dop853, solve};
 use spintop::math::{State, Vec3};
@@ -90,83 +91,78 @@ fn eq_3_4_late_time_decay_is_sigma_phys() {
     assert!((s_phys - s_red - 5.0).abs() < 1e-2, "{s_phys} - {s_red}");
 }
 
-/// The exact slow manifold from its invariance equation, independently of the
-/// 4-dimensional shooting: on the manifold z̈ = (f′(u)u̇ + f²)z with u̇ = 2Re f·u,
-/// so (3.4) becomes, in s = ln u,
-///   df/ds = N(f, u)/(2τ Re f),  N = f + iΩ̃₃ + τ(u + Ω₃²) − 2iτΩ₃f − τf²,
-/// started at the slow root f(u → 0) of N(f, 0) = 0. Along the way the time
-/// spent, dt = ds/(2 Re f), is accumulated, which gives u(t) by inversion.
-/// Returns |z| at each of `times`, for |z(0)| = √u0.
+/// |z| of the physical solution by the invariance-equation route of the
+/// support module (independent of the shooting).
 fn amplitude_from_invariance_equation(
     top: &SymmetricTop,
     omega3: f64,
     u0: f64,
     times: &[f64],
 ) -> Vec<f64> {
-    let tau = top.tau();
-    let k = top.ratio() * omega3;
-    let w3t = top.omega3_tilde(omega3);
-    let i = Complex::<f64>::new(0.0, 1.0);
-    let root = ((Complex::new(1.0, 0.0) - 2.0 * i * tau * omega3)
-        - (Complex::<f64>::new(1.0, 0.0) - 4.0 * i * tau * k).sqrt())
-        / (2.0 * tau);
-    // State (Re f, Im f, elapsed) as a function of s; elapsed = ∫ ds / (−2 Re f), the
-    // time to decay from u = e^s down to u = e^s_min.
-    let rhs = |s: f64, y: &State<3>| {
-        let u = s.exp();
-        let f = Complex::new(y[0], y[1]);
-        let n =
-            f + i * w3t + tau * (u + omega3 * omega3) - 2.0 * i * tau * omega3 * f - tau * f * f;
-        let df = n / (2.0 * tau * f.re);
-        State::<3>::new(df.re, df.im, -1.0 / (2.0 * f.re))
-    };
-    let (s_min, s0) = (-40.0f64, u0.ln());
-    let grid: Vec<f64> = (1..=40_000)
-        .map(|j| s_min + (s0 - s_min) * j as f64 / 40_000.0)
-        .collect();
-    let mut stepper = Dop853::new(
-        s_min,
-        State::<3>::new(root.re, root.im, 0.0),
-        AdaptiveOptions::new(1e-12, 1e-16).unwrap(),
-    )
-    .unwrap();
-    let path = solve(&mut stepper, &rhs, &grid).unwrap();
-    let elapsed_top = path.last().unwrap()[2];
-    // t(s) = elapsed(s0) − elapsed(s), decreasing in s: find s with t(s) = time.
-    times
+    let omega0 = Vec3::new(0.0, u0.sqrt(), omega3);
+    support::physical_by_invariance_equation(top, &omega0, times)
         .iter()
-        .map(|&time| {
-            let j = path
-                .iter()
-                .position(|y| elapsed_top - y[2] <= time)
-                .expect("time within range");
-            let (ta, tb) = (elapsed_top - path[j - 1][2], elapsed_top - path[j][2]);
-            let s = grid[j - 1] + (grid[j] - grid[j - 1]) * (time - ta) / (tb - ta);
-            (0.5 * s).exp()
-        })
+        .map(|z| z.norm())
         .collect()
 }
 
-/// The amplitude ratio physical/reduced at t = 10 and t = 1000 against a value
-/// derived independently from the invariance equation (to 1%), and against the
-/// notes (1.007 and 1.22).
+/// The amplitude ratio physical/reduced at t = 10 and t = 1000 (figure
+/// parameters), three ways.
+///
+/// - The shoot against the independent invariance-equation route to 1e-6:
+///   the gap itself is 0.7 % and 22 %, so the reduced model would fail this.
+/// - The gap against its prediction from the slow-manifold series: the
+///   reduced model decays τ³s(3u + 5k²) − 2τ⁵s(3k² + 4u)(7k² + 3u) too fast
+///   (s = u + k²), so the series' own amplitude, integrated beside the
+///   reduced one (d ln A/dt = Re f(A²) and −τ(A² + k²)), predicts ln(ratio) to
+///   the series' next order: within 5 %. At leading order, without the
+///   feedback of the amplitude on its own rate, the prediction is the closed
+///   form τ²[(3/2)(u₀ − u) + 5k² ln(A₀/A)].
+/// - The notes' 1.007 and 1.22, to the digits they give.
 #[test]
 fn eq_3_4_reduced_vs_physical_amplitude_ratio_at_t_1000() {
     let (top, omega0) = figure();
     let times = [10.0, 1000.0];
     let sol = physical_solution(&top, &omega0, &times, 1e-12).unwrap();
     let independent = amplitude_from_invariance_equation(&top, omega0.z, 0.01, &times);
+    // The series beside the reduced model: (ln A_series, ln A_reduced).
+    let k = top.ratio() * omega0.z;
+    let rhs = |_t: f64, y: &State<2>| {
+        let (us, ur) = ((2.0 * y[0]).exp(), (2.0 * y[1]).exp());
+        State::<2>::new(
+            slow_manifold_rate(&top, omega0.z, us).re,
+            -top.tau() * (ur + k * k),
+        )
+    };
+    let ln_a0 = 0.1f64.ln();
+    let mut stepper = Dop853::new(
+        0.0,
+        State::<2>::new(ln_a0, ln_a0),
+        AdaptiveOptions::new(1e-12, 1e-14).unwrap(),
+    )
+    .unwrap();
+    let series = solve(&mut stepper, &rhs, &times).unwrap();
     for (i, &t) in times.iter().enumerate() {
         let reduced = 0.1 * reduced_amplitude(&top, &omega0, t);
         let ratio = sol.z[i].norm() / reduced;
         let ratio_independent = independent[i] / reduced;
         assert!(
-            (ratio / ratio_independent - 1.0).abs() < 0.01,
+            (ratio / ratio_independent - 1.0).abs() < 1e-6,
             "t = {t}: {ratio} vs {ratio_independent}"
         );
-        let notes = if t == 10.0 { 1.007 } else { 1.22 };
+        let predicted = series[i][0] - series[i][1];
         assert!(
-            (ratio - notes).abs() < 0.01 * notes,
+            (ratio.ln() / predicted - 1.0).abs() < 5e-2,
+            "t = {t}: ln ratio {} vs the series' {predicted}",
+            ratio.ln()
+        );
+        let (notes, digits) = if t == 10.0 {
+            (1.007, 5e-4)
+        } else {
+            (1.22, 5e-3)
+        };
+        assert!(
+            (ratio - notes).abs() < digits,
             "t = {t}: ratio {ratio}, notes {notes}"
         );
     }
@@ -209,15 +205,12 @@ fn eq_3_4_forward_integration_runs_away_at_the_frozen_rate() {
 #[test]
 fn eq_3_4_full_model_simulation_follows_the_physical_solution() {
     use spintop::physics::euler_angles::EulerAngles;
-    use spintop::sim::{InitialState, MethodChoice, MethodOptions, MethodUsed, Model, Simulation};
+    use spintop::sim::{InitialState, Method, MethodChoice, MethodOptions, Model, Simulation};
     let (top, omega0) = figure();
     let times = [0.0, 3.3, 47.123, 250.0, 499.9];
     let direct = physical_solution(&top, &omega0, &times, 1e-12).unwrap();
     let initial = InitialState::new(omega0, EulerAngles::new(0.1, 0.5, 0.0)).unwrap();
-    let options = MethodOptions {
-        rtol: 1e-12,
-        step: 0.01,
-    };
+    let options = MethodOptions::new(1e-12, 0.01).expect("valid options");
     let mut sim = Simulation::new(
         Model::Full(top),
         MethodChoice::Auto,
@@ -226,7 +219,7 @@ fn eq_3_4_full_model_simulation_follows_the_physical_solution() {
         Some(500.0),
     )
     .unwrap();
-    assert_eq!(sim.method(), MethodUsed::Physical);
+    assert_eq!(sim.method(), Method::Physical);
     for (i, s) in sim.run(&times).unwrap().iter().enumerate() {
         let z = direct.z[i];
         let err = ((s.omega[0] - z.re).powi(2) + (s.omega[1] - z.im).powi(2)).sqrt();

@@ -4,11 +4,13 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod auto_model;
 mod balance_laws;
 mod central_field;
 mod closed_forms;
 mod euler_angles;
 mod figures;
+mod free_top;
 mod full_ale;
 mod general_full;
 mod general_reduced;

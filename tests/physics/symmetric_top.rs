@@ -95,10 +95,7 @@ fn simulation(
     euler: EulerAngles,
     horizon: f64,
 ) -> Simulation {
-    let options = MethodOptions {
-        rtol: 1e-12,
-        step: 0.02,
-    };
+    let options = MethodOptions::new(1e-12, 0.02).expect("valid options");
     let initial = InitialState::new(omega0, euler).unwrap();
     Simulation::new(model, method, options, initial, Some(horizon)).unwrap()
 }
@@ -454,10 +451,7 @@ fn eq_4_17_reduced_orientation_agrees_between_independent_routes() {
         let err = (x.rotation_matrix() - y.rotation_matrix()).amax();
         assert!(err < 1e-8, "DOP853 routes differ by {err:e} at t = {}", x.t);
     }
-    let options = MethodOptions {
-        rtol: 1e-12,
-        step: 0.01,
-    };
+    let options = MethodOptions::new(1e-12, 0.01).expect("valid options");
     let initial = InitialState::new(omega0, euler).unwrap();
     let mut rk4 = Simulation::new(
         Model::Reduced(top),
@@ -480,10 +474,7 @@ fn sim_open_ended_run_matches_a_run_with_a_horizon() {
     let top = SymmetricTop::figure();
     let omega0 = Vec3::new(0.0, 0.1, 0.2);
     let initial = InitialState::new(omega0, EulerAngles::new(0.0, 0.3, 0.0)).unwrap();
-    let options = MethodOptions {
-        rtol: 1e-12,
-        step: 0.01,
-    };
+    let options = MethodOptions::new(1e-12, 0.01).expect("valid options");
     for method in [MethodChoice::Auto, MethodChoice::Dopri5, MethodChoice::Rk4] {
         let mut open =
             Simulation::new(Model::Reduced(top), method, options, initial, None).unwrap();

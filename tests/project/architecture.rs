@@ -1,20 +1,69 @@
-//! The direction of imports, read from the sources: the pure core never
-//! reaches up into a shell, what the shells share lives below them, and the
-//! shells stand side by side. The command line may launch another shell, but
-//! only from the one file that does so; the live view never imports the
-//! command line.
+//! The direction of imports, read from the sources: the whole order of the
+//! crate's layers, each service's allowed neighbours, shells side by side,
+//! and no circle anywhere.
 //!
-//! The rule is read from every `crate::NAME` path in every file under `src/`
-//! (in `use` lines and inline paths alike), so a new import that runs the
-//! wrong way fails here with the file, the line and the rule it breaks.
+//! ```text
+//! math, numbers → physics → integrate → sim
+//!   → {scene, stability, figure, workprecision, plot, grading, course, output, assignment}
+//!   → {cli, tui, server}
+//! ```
+//!
+//! A module may use what lies in a lower layer, a service the neighbours
+//! listed in [`NEIGHBOURS`], and a shell no other shell (the command line
+//! launches the live view and the book server from the three files in
+//! [`LAUNCHERS`]). Every path into the crate counts: `use` trees over
+//! several lines and nested braces, `super::` chains (resolved against the
+//! file's module and any inline `mod` it sits in), `self::`, and fully
+//! qualified `crate::…` paths in code. Comments and string literals do not.
+//! Among the top-level modules, and among the files of one module (say
+//! `integrate/dopri5.rs` and `integrate/explicit.rs`), no two may import each
+//! other, directly or round a longer circle.
+//!
+//! A new import that breaks a rule fails here with the file, the line and the
+//! rule; `the_checker_fails_on_each_kind_of_wrong_import` shows each kind of
+//! wrong import caught.
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-/// The shells: front ends that drive the core. Each stands beside the others.
-const SHELLS: &[&str] = &["cli", "tui", "server"];
+/// Every top-level module and its layer, bottom (0) to top (5).
+const LAYERS: &[(&str, u8)] = &[
+    ("math", 0),
+    ("numbers", 0),
+    ("physics", 1),
+    ("integrate", 2),
+    ("sim", 3),
+    ("assignment", 4),
+    ("course", 4),
+    ("figure", 4),
+    ("grading", 4),
+    ("output", 4),
+    ("plot", 4),
+    ("scene", 4),
+    ("stability", 4),
+    ("workprecision", 4),
+    ("cli", 5),
+    ("server", 5),
+    ("tui", 5),
+];
 
-/// What the shells share, below all of them and above the core.
-const SHARED: &[&str] = &["present", "course"];
+/// The layer of the shells.
+const SHELL: u8 = 5;
+
+/// What a service may use beside the layers below it (and nothing uses a
+/// service not listed here).
+const NEIGHBOURS: &[(&str, &[&str])] = &[
+    // A scene is answered by the commands' computations, and a stability
+    // scene by its row.
+    ("scene", &["output", "stability"]),
+    // The sweep's charts.
+    ("workprecision", &["plot"]),
+    // The figures as text and SVG.
+    ("plot", &["figure"]),
+    // The course grades with the graders; a grader knows the assignment types.
+    ("course", &["grading"]),
+    ("grading", &["assignment"]),
+];
 
 /// The only places one shell may reach another: (file, the shell it launches).
 const LAUNCHERS: &[(&str, &str)] = &[
@@ -23,33 +72,18 @@ const LAUNCHERS: &[(&str, &str)] = &[
     ("src/cli/book.rs", "server"),
 ];
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-enum Layer {
-    Core,
-    Shared,
-    Shell,
+fn layer(module: &str) -> Option<u8> {
+    LAYERS.iter().find(|(m, _)| *m == module).map(|(_, l)| *l)
 }
 
-fn layer(module: &str) -> Layer {
-    if SHELLS.contains(&module) {
-        Layer::Shell
-    } else if SHARED.contains(&module) {
-        Layer::Shared
-    } else {
-        Layer::Core
-    }
+fn neighbours(module: &str) -> &'static [&'static str] {
+    NEIGHBOURS
+        .iter()
+        .find(|(m, _)| *m == module)
+        .map_or(&[], |(_, n)| n)
 }
 
-/// The top-level module a file under `src/` belongs to (`src/cli/plot.rs` → `cli`).
-fn owner(root: &Path, file: &Path) -> Option<String> {
-    let rel = file.strip_prefix(root.join("src")).ok()?;
-    let first = rel.components().next()?.as_os_str().to_str()?;
-    let name = first.strip_suffix(".rs").unwrap_or(first);
-    match name {
-        "lib" | "main" => None,
-        other => Some(other.to_string()),
-    }
-}
+// ---------------------------------------------------------------- reading
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(dir).expect("src/ is readable") {
@@ -62,88 +96,520 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// Every `crate::NAME` on a line that is not a comment.
-fn crate_paths(line: &str) -> Vec<String> {
-    let code = line.trim_start();
-    if code.starts_with("//") {
-        return Vec::new();
+/// The module path of a file (`src/integrate/dopri5.rs` → `integrate::dopri5`);
+/// empty for the crate root.
+fn module_of(root: &Path, file: &Path) -> Vec<String> {
+    let rel = file.strip_prefix(root.join("src")).expect("under src/");
+    let mut parts: Vec<String> = rel
+        .iter()
+        .map(|c| c.to_string_lossy().into_owned())
+        .collect();
+    if let Some(last) = parts.last_mut() {
+        *last = last.trim_end_matches(".rs").to_string();
     }
-    let mut found = Vec::new();
-    let mut rest = code;
-    while let Some(at) = rest.find("crate::") {
-        let before = rest[..at].chars().last();
-        rest = &rest[at + "crate::".len()..];
-        // `spintop_crate::` or `my_crate::` are other names.
-        if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+    if matches!(parts.as_slice(), [only] if only == "lib" || only == "main") {
+        parts.clear();
+    }
+    if parts.last().is_some_and(|p| p == "mod") {
+        parts.pop();
+    }
+    parts
+}
+
+/// The text with comments and the insides of string and char literals
+/// blanked (lines kept), so that only code is read.
+fn code_only(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    let blank = |c: char| if c == '\n' { '\n' } else { ' ' };
+    while i < chars.len() {
+        let c = chars[i];
+        let next = chars.get(i + 1).copied();
+        if c == '/' && next == Some('/') {
+            while i < chars.len() && chars[i] != '\n' {
+                out.push(' ');
+                i += 1;
+            }
+        } else if c == '/' && next == Some('*') {
+            let mut depth = 0;
+            while i < chars.len() {
+                if chars[i] == '/' && chars.get(i + 1) == Some(&'*') {
+                    depth += 1;
+                    out.push_str("  ");
+                    i += 2;
+                } else if chars[i] == '*' && chars.get(i + 1) == Some(&'/') {
+                    depth -= 1;
+                    out.push_str("  ");
+                    i += 2;
+                    if depth == 0 {
+                        break;
+                    }
+                } else {
+                    out.push(blank(chars[i]));
+                    i += 1;
+                }
+            }
+        } else if c == 'r'
+            && (next == Some('"') || next == Some('#'))
+            && !ident_char(out.chars().last())
+        {
+            // A raw string r"…" or r#"…"#.
+            let mut j = i + 1;
+            let mut hashes = 0;
+            while chars.get(j) == Some(&'#') {
+                hashes += 1;
+                j += 1;
+            }
+            if chars.get(j) != Some(&'"') {
+                out.push(c);
+                i += 1;
+                continue;
+            }
+            let close: String = std::iter::once('"')
+                .chain(std::iter::repeat_n('#', hashes))
+                .collect();
+            let rest: String = chars[j + 1..].iter().collect();
+            let len = rest
+                .find(&close)
+                .map_or(rest.chars().count(), |at| rest[..at].chars().count());
+            out.push('"');
+            for ch in rest.chars().take(len) {
+                out.push(blank(ch));
+            }
+            out.push('"');
+            i = j + 1 + len + close.chars().count();
+        } else if c == '"' {
+            out.push('"');
+            i += 1;
+            while i < chars.len() && chars[i] != '"' {
+                if chars[i] == '\\' {
+                    out.push(' ');
+                    i += 1;
+                }
+                if i < chars.len() {
+                    out.push(blank(chars[i]));
+                    i += 1;
+                }
+            }
+            out.push('"');
+            i += 1;
+        } else if c == '\'' && chars.get(i + 2) == Some(&'\'') {
+            out.push_str("' '");
+            i += 3;
+        } else if c == '\'' && next == Some('\\') {
+            // '\n', '\u{..}': up to the closing quote.
+            out.push('\'');
+            i += 1;
+            while i < chars.len() && chars[i] != '\'' {
+                out.push(' ');
+                i += 1 + usize::from(chars[i] == '\\');
+            }
+            out.push('\'');
+            i += 1;
+        } else {
+            out.push(c);
+            i += 1;
+        }
+    }
+    out
+}
+
+fn ident_char(c: Option<char>) -> bool {
+    c.is_some_and(|c| c.is_alphanumeric() || c == '_')
+}
+
+/// A path into the crate as written, where it was written: its segments
+/// (`crate`, `super`, `self` first), the line, and the inline modules it
+/// sits in.
+#[derive(Debug, Clone)]
+struct Written {
+    segments: Vec<String>,
+    line: usize,
+    inline: Vec<String>,
+}
+
+/// The segments of one plain path (`a :: b as c` → `a`, `b`).
+fn segments(path: &str) -> Vec<String> {
+    let path = path
+        .split_whitespace()
+        .take_while(|w| *w != "as")
+        .collect::<String>();
+    path.split("::")
+        .filter(|s| !s.is_empty())
+        .map(String::from)
+        .collect()
+}
+
+/// Expand a `use` tree (`crate::{a, b::{c, d}}`) into its paths, each with
+/// the byte offset in `tree` where its last part starts (for its line).
+fn expand(tree: &str) -> Vec<(Vec<String>, usize)> {
+    expand_at(tree, 0)
+}
+
+fn expand_at(tree: &str, base: usize) -> Vec<(Vec<String>, usize)> {
+    let lead = tree.len() - tree.trim_start().len();
+    let Some(open) = tree.find('{') else {
+        return vec![(segments(tree), base + lead)];
+    };
+    let prefix = segments(&tree[..open]);
+    let close = tree.rfind('}').unwrap_or(tree.len()).max(open + 1);
+    let inner = &tree[open + 1..close];
+    // The parts of the group, split at its own commas.
+    let (mut parts, mut depth, mut start) = (Vec::new(), 0, 0);
+    for (i, c) in inner.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            ',' if depth == 0 => {
+                parts.push((start, &inner[start..i]));
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    parts.push((start, &inner[start..]));
+    let mut out = Vec::new();
+    for (at, part) in parts {
+        if part.trim().is_empty() {
             continue;
         }
-        let name: String = rest
-            .chars()
-            .take_while(|c| c.is_alphanumeric() || *c == '_')
-            .collect();
-        if !name.is_empty() {
-            found.push(name);
+        for (tail, offset) in expand_at(part, base + open + 1 + at) {
+            let mut path = prefix.clone();
+            path.extend(tail.into_iter().skip_while(|s| s == "self"));
+            out.push((path, offset));
         }
     }
-    // `use crate::{cli, tui}` names several at once.
-    if let Some(at) = code.find("crate::{") {
-        let inner = &code[at + "crate::{".len()..];
-        let inner = inner.split('}').next().unwrap_or("");
-        for part in inner.split(',') {
-            let name: String = part
-                .trim()
-                .chars()
-                .take_while(|c| c.is_alphanumeric() || *c == '_')
-                .collect();
-            if !name.is_empty() {
-                found.push(name);
+    if out.is_empty() {
+        out.push((prefix, base + lead));
+    }
+    out
+}
+
+/// Every path into the crate a file writes, in `use` trees and in code.
+fn written_paths(code: &str) -> Vec<Written> {
+    let chars: Vec<char> = code.chars().collect();
+    let mut found = Vec::new();
+    let (mut line, mut depth) = (1usize, 0usize);
+    // Inline `mod NAME {` blocks: (name, the brace depth inside it).
+    let mut inline: Vec<(String, usize)> = Vec::new();
+    let mut pending_mod: Option<String> = None;
+    let mut i = 0;
+    let word_at = |i: usize| -> String {
+        chars[i..]
+            .iter()
+            .take_while(|c| c.is_alphanumeric() || **c == '_')
+            .collect()
+    };
+    while i < chars.len() {
+        let c = chars[i];
+        let starts_word = !ident_char(if i == 0 { None } else { Some(chars[i - 1]) });
+        match c {
+            '\n' => line += 1,
+            '{' => {
+                depth += 1;
+                if let Some(name) = pending_mod.take() {
+                    inline.push((name, depth));
+                }
             }
+            '}' => {
+                if inline.last().is_some_and(|(_, d)| *d == depth) {
+                    inline.pop();
+                }
+                depth = depth.saturating_sub(1);
+            }
+            ';' => pending_mod = None,
+            _ if starts_word && (c.is_alphabetic() || c == '_') => {
+                let word = word_at(i);
+                let inline_names: Vec<String> = inline.iter().map(|(n, _)| n.clone()).collect();
+                if word == "mod" {
+                    let rest: String = chars[i + 3..].iter().collect();
+                    let name: String = rest
+                        .trim_start()
+                        .chars()
+                        .take_while(|c| c.is_alphanumeric() || *c == '_')
+                        .collect();
+                    if !name.is_empty() {
+                        pending_mod = Some(name);
+                    }
+                } else if word == "use" {
+                    // A use tree, up to its `;` (over any number of lines).
+                    let rest: String = chars[i + 3..].iter().collect();
+                    if let Some(end) = rest.find(';') {
+                        let tree = &rest[..end];
+                        for (segments, offset) in expand(tree) {
+                            if segments
+                                .first()
+                                .is_some_and(|s| s == "crate" || s == "super" || s == "self")
+                            {
+                                found.push(Written {
+                                    segments,
+                                    line: line + tree[..offset].matches('\n').count(),
+                                    inline: inline_names.clone(),
+                                });
+                            }
+                        }
+                        line += tree.matches('\n').count();
+                        i += 3 + end;
+                        continue;
+                    }
+                } else if word == "crate" || word == "super" || word == "self" {
+                    // A path in code: `crate::a::b`, `super::super::c`.
+                    let mut segments = Vec::new();
+                    let mut j = i;
+                    loop {
+                        let w = word_at(j);
+                        if w.is_empty() {
+                            break;
+                        }
+                        segments.push(w.clone());
+                        j += w.chars().count();
+                        if chars.get(j) == Some(&':') && chars.get(j + 1) == Some(&':') {
+                            j += 2;
+                        } else {
+                            break;
+                        }
+                    }
+                    if segments.len() > 1 {
+                        found.push(Written {
+                            segments,
+                            line,
+                            inline: inline_names,
+                        });
+                    }
+                    i = j;
+                    continue;
+                }
+                i += word.chars().count();
+                continue;
+            }
+            _ => {}
         }
+        i += 1;
     }
     found
 }
 
-/// Every import that runs the wrong way, as "file:line: rule".
-fn violations(root: &Path) -> Vec<String> {
+/// The module a written path reaches, as far as the file tree has modules
+/// (`crate::integrate::Rhs` → `integrate`), or `None` for the crate root.
+fn resolve(
+    file_module: &[String],
+    written: &Written,
+    modules: &BTreeSet<Vec<String>>,
+) -> Option<Vec<String>> {
+    let mut here: Vec<String> = file_module.to_vec();
+    here.extend(written.inline.iter().cloned());
+    let mut segments = written.segments.iter().peekable();
+    let mut path = match segments.next()?.as_str() {
+        "crate" => Vec::new(),
+        "self" => here.clone(),
+        _ => {
+            // `super`: one up, and one more for each further `super`.
+            let mut up = here.clone();
+            up.pop();
+            while segments.peek().is_some_and(|s| *s == "super") {
+                segments.next();
+                up.pop();
+            }
+            up
+        }
+    };
+    for s in segments {
+        if s == "self" || s == "*" {
+            continue;
+        }
+        path.push(s.clone());
+    }
+    // The longest prefix that is a module of the file tree.
+    (1..=path.len())
+        .rev()
+        .map(|n| path[..n].to_vec())
+        .find(|p| modules.contains(p))
+}
+
+/// One import between modules: from, to, the file and line.
+#[derive(Debug, Clone)]
+struct Import {
+    from: Vec<String>,
+    to: Vec<String>,
+    file: String,
+    line: usize,
+}
+
+/// Every import between two different modules of the tree under `root/src`.
+fn imports(root: &Path) -> Vec<Import> {
     let mut files = Vec::new();
     rust_files(&root.join("src"), &mut files);
     files.sort();
-    let mut bad = Vec::new();
+    let modules: BTreeSet<Vec<String>> = files
+        .iter()
+        .map(|f| module_of(root, f))
+        .filter(|m| !m.is_empty())
+        .collect();
+    let mut out = Vec::new();
     for file in &files {
-        let Some(from) = owner(root, file) else {
+        let from = module_of(root, file);
+        if from.is_empty() {
             continue;
-        };
+        }
         let rel = file
             .strip_prefix(root)
             .expect("under the root")
             .to_string_lossy()
             .replace('\\', "/");
         let text = std::fs::read_to_string(file).expect("a readable source file");
-        for (n, line) in text.lines().enumerate() {
-            for to in crate_paths(line) {
-                if to == from {
-                    continue;
-                }
-                let (lf, lt) = (layer(&from), layer(&to));
-                let rule = if lt > lf {
-                    Some(format!(
-                        "{from} ({lf:?}) imports {to} ({lt:?}): the core and what the shells share never reach up"
-                    ))
-                } else if lf == Layer::Shell && lt == Layer::Shell {
-                    let launcher = LAUNCHERS.iter().any(|(f, s)| *f == rel && *s == to);
-                    (!launcher).then(|| {
-                        format!(
-                            "the {from} shell imports the {to} shell: shells stand side by side; move what both need into a shared module"
-                        )
-                    })
-                } else {
-                    None
-                };
-                if let Some(rule) = rule {
-                    bad.push(format!("{rel}:{}: {rule}", n + 1));
-                }
+        for w in written_paths(&code_only(&text)) {
+            if let Some(to) = resolve(&from, &w, &modules)
+                && to != from
+            {
+                out.push(Import {
+                    from: from.clone(),
+                    to,
+                    file: rel.clone(),
+                    line: w.line,
+                });
             }
         }
+    }
+    out
+}
+
+// ---------------------------------------------------------------- rules
+
+/// The rule an import between top-level modules breaks, if any.
+fn rule_broken(import: &Import) -> Option<String> {
+    let (from, to) = (&import.from[0], &import.to[0]);
+    if from == to {
+        return None;
+    }
+    let (Some(lf), Some(lt)) = (layer(from), layer(to)) else {
+        let unknown = if layer(from).is_none() { from } else { to };
+        return Some(format!(
+            "{unknown} is in no layer: place it in LAYERS on purpose"
+        ));
+    };
+    if lf == SHELL && lt == SHELL {
+        let launcher = LAUNCHERS.iter().any(|(f, s)| *f == import.file && *s == to);
+        return (!launcher).then(|| {
+            format!("the {from} shell imports the {to} shell: shells stand side by side; move what both need below them")
+        });
+    }
+    if lt > lf {
+        return Some(format!(
+            "{from} (layer {lf}) imports {to} (layer {lt}): nothing reaches up"
+        ));
+    }
+    if lt == lf && !neighbours(from).contains(&to.as_str()) {
+        return Some(format!(
+            "{from} imports {to}, in its own layer ({lf}) but not one of its neighbours"
+        ));
+    }
+    None
+}
+
+/// The circles of a graph (each as its nodes, smallest first), by depth-first
+/// search over its strongly connected components.
+fn circles(edges: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
+    // Tarjan's algorithm.
+    struct State<'a> {
+        edges: &'a BTreeMap<String, BTreeSet<String>>,
+        index: BTreeMap<String, usize>,
+        low: BTreeMap<String, usize>,
+        stack: Vec<String>,
+        on_stack: BTreeSet<String>,
+        next: usize,
+        out: Vec<Vec<String>>,
+    }
+    fn visit(s: &mut State, v: &str) {
+        s.index.insert(v.to_string(), s.next);
+        s.low.insert(v.to_string(), s.next);
+        s.next += 1;
+        s.stack.push(v.to_string());
+        s.on_stack.insert(v.to_string());
+        let targets: Vec<String> = s.edges.get(v).into_iter().flatten().cloned().collect();
+        for w in targets {
+            if !s.index.contains_key(&w) {
+                visit(s, &w);
+                let low = s.low[v].min(s.low[&w]);
+                s.low.insert(v.to_string(), low);
+            } else if s.on_stack.contains(&w) {
+                let low = s.low[v].min(s.index[&w]);
+                s.low.insert(v.to_string(), low);
+            }
+        }
+        if s.low[v] == s.index[v] {
+            let mut component = Vec::new();
+            while let Some(w) = s.stack.pop() {
+                s.on_stack.remove(&w);
+                let done = w == v;
+                component.push(w);
+                if done {
+                    break;
+                }
+            }
+            if component.len() > 1 {
+                component.sort();
+                s.out.push(component);
+            }
+        }
+    }
+    let mut s = State {
+        edges,
+        index: BTreeMap::new(),
+        low: BTreeMap::new(),
+        stack: Vec::new(),
+        on_stack: BTreeSet::new(),
+        next: 0,
+        out: Vec::new(),
+    };
+    for v in edges.keys() {
+        if !s.index.contains_key(v) {
+            visit(&mut s, v);
+        }
+    }
+    s.out.sort();
+    s.out
+}
+
+/// Every import that breaks the order, and every circle, as lines.
+fn violations(root: &Path) -> Vec<String> {
+    let imports = imports(root);
+    let mut bad: Vec<String> = imports
+        .iter()
+        .filter_map(|i| rule_broken(i).map(|r| format!("{}:{}: {r}", i.file, i.line)))
+        .collect();
+    // Circles among the top-level modules, and among the files of one module.
+    let mut top: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    let mut siblings: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for i in &imports {
+        if i.from[0] != i.to[0] {
+            top.entry(i.from[0].clone())
+                .or_default()
+                .insert(i.to[0].clone());
+        } else if i.from.len() >= 2 && i.to.len() >= 2 && i.from[1] != i.to[1] {
+            siblings
+                .entry(i.from[..2].join("::"))
+                .or_default()
+                .insert(i.to[..2].join("::"));
+        }
+    }
+    for circle in circles(&top).into_iter().chain(circles(&siblings)) {
+        let lines: Vec<String> = imports
+            .iter()
+            .filter(|i| {
+                let node = |m: &Vec<String>, n: usize| m[..n.min(m.len())].join("::");
+                let n = if circle[0].contains("::") { 2 } else { 1 };
+                circle.contains(&node(&i.from, n))
+                    && circle.contains(&node(&i.to, n))
+                    && node(&i.from, n) != node(&i.to, n)
+            })
+            .map(|i| format!("{}:{}", i.file, i.line))
+            .collect();
+        bad.push(format!(
+            "an import circle: {} (imports at {})",
+            circle.join(" <-> "),
+            lines.join(", ")
+        ));
     }
     bad
 }
@@ -153,71 +619,129 @@ fn root() -> PathBuf {
 }
 
 #[test]
-fn imports_run_from_the_shells_down_to_the_core() {
+fn imports_follow_the_layers_and_run_in_no_circle() {
     let bad = violations(&root());
     assert!(
         bad.is_empty(),
-        "imports that run the wrong way:\n{}",
+        "imports that break the order:\n{}",
         bad.join("\n")
     );
 }
 
 #[test]
 fn every_top_level_module_is_placed_in_a_layer_on_purpose() {
-    // A new module under src/ is core unless listed above; this test names
-    // the modules it treats as core, so that a new shell added without being
-    // listed in SHELLS is noticed here.
     let mut files = Vec::new();
     rust_files(&root().join("src"), &mut files);
-    let mut core: Vec<String> = files
+    let mut modules: Vec<String> = files
         .iter()
-        .filter_map(|f| owner(&root(), f))
-        .filter(|m| layer(m) == Layer::Core)
+        .map(|f| module_of(&root(), f))
+        .filter_map(|m| m.first().cloned())
         .collect();
-    core.sort();
-    core.dedup();
-    let expected = [
-        "assignment",
-        "figure",
-        "grading",
-        "integrate",
-        "math",
-        "physics",
-        "plot",
-        "scene",
-        "sim",
-        "stability",
-        "workprecision",
-    ];
+    modules.sort();
+    modules.dedup();
+    let mut placed: Vec<String> = LAYERS.iter().map(|(m, _)| m.to_string()).collect();
+    placed.sort();
     assert_eq!(
-        core, expected,
-        "the core modules changed: list a new shell in SHELLS, a new shared module in SHARED, or a new core module here"
+        modules, placed,
+        "a top-level module was added or removed: place it in LAYERS (and NEIGHBOURS if a service uses it)"
     );
 }
 
+/// The checker itself can fail, on each kind of wrong import: a scratch tree
+/// with one of each, and a right import of each kind beside it.
 #[test]
-fn the_rule_catches_a_wrong_import() {
-    // The checker itself can fail: a scratch tree with a live view that
-    // imports the command line, and a core module that imports the live view.
+fn the_checker_fails_on_each_kind_of_wrong_import() {
     let dir = std::env::temp_dir().join(format!("spintop-arch-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(dir.join("src/tui")).unwrap();
-    std::fs::create_dir_all(dir.join("src/physics")).unwrap();
-    std::fs::write(
-        dir.join("src/tui/app.rs"),
-        "use crate::cli::parse_number;\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("src/physics/top.rs"),
-        "// crate::tui in a comment is fine\nfn f() { crate::tui::app::x(); }\n",
-    )
-    .unwrap();
-    std::fs::write(dir.join("src/cli.rs"), "use crate::{tui, physics};\n").unwrap();
+    let files: &[(&str, &str)] = &[
+        ("src/lib.rs", "pub mod math;\n"),
+        (
+            "src/math.rs",
+            "// crate::sim in a comment is fine\npub fn f() { let s = \"crate::tui::x\"; }\n",
+        ),
+        ("src/numbers.rs", ""),
+        // 1. A one-line `use` up the layers: physics → sim.
+        (
+            "src/physics.rs",
+            "use crate::sim::Simulation;\npub mod top;\n",
+        ),
+        // 2. A `use` tree over several lines, nested: integrate → scene (its
+        // line is the line of the item, 4).
+        (
+            "src/integrate.rs",
+            "use crate::{\n    math::Real,\n    scene::{\n        parse,\n    },\n};\n",
+        ),
+        // 3. A `super::` chain: physics/top/deep.rs reaches the crate's tui.
+        ("src/physics/top.rs", "pub mod deep;\n"),
+        (
+            "src/physics/top/deep.rs",
+            "use super::super::super::tui::app;\nuse super::super::Energy;\n",
+        ),
+        // 4. A fully qualified path in code: sim → cli.
+        (
+            "src/sim.rs",
+            "fn g() {\n    let x = crate::math::Real::default();\n    crate::cli::run(x);\n}\n",
+        ),
+        // 5. A shell importing a shell outside the launchers: tui → cli.
+        ("src/tui.rs", "pub mod app;\n"),
+        (
+            "src/tui/app.rs",
+            "use crate::cli::parse_number;\nuse crate::sim::Model;\n",
+        ),
+        ("src/cli.rs", "pub mod tui;\npub mod run;\n"),
+        ("src/cli/tui.rs", "use crate::tui::app::App;\n"),
+        // 6. A service that is not a neighbour: stability → figure.
+        (
+            "src/stability.rs",
+            "use crate::figure::Figure;\nuse crate::sim::Model;\n",
+        ),
+        ("src/figure.rs", ""),
+        // 7. A circle between two files of one module, each in `use self`.
+        ("src/scene.rs", "pub mod a;\npub mod b;\n"),
+        (
+            "src/scene/a.rs",
+            "use crate::scene::b::B;\nuse crate::output as out;\npub struct A;\n",
+        ),
+        (
+            "src/scene/b.rs",
+            "mod inner {\n    use super::super::a::A;\n}\n",
+        ),
+        // 8. A circle between two neighbours: scene ↔ output.
+        (
+            "src/output.rs",
+            "pub fn h() -> crate::scene::a::A { todo!() }\n",
+        ),
+        ("src/server.rs", ""),
+    ];
+    for (path, text) in files {
+        let path = dir.join(path);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
     let bad = violations(&dir);
     let _ = std::fs::remove_dir_all(&dir);
-    assert_eq!(bad.len(), 3, "{bad:#?}");
-    assert!(bad[0].starts_with("src/cli.rs:1: the cli shell imports the tui shell"));
-    assert!(bad[1].starts_with("src/physics/top.rs:2: physics (Core) imports tui (Shell)"));
-    assert!(bad[2].starts_with("src/tui/app.rs:1: the tui shell imports the cli shell"));
+    let expect = [
+        "src/physics.rs:1: physics (layer 1) imports sim (layer 3)",
+        "src/integrate.rs:4: integrate (layer 2) imports scene (layer 4)",
+        "src/physics/top/deep.rs:1: physics (layer 1) imports tui (layer 5)",
+        "src/sim.rs:3: sim (layer 3) imports cli (layer 5)",
+        "src/tui/app.rs:1: the tui shell imports the cli shell",
+        "src/stability.rs:1: stability imports figure, in its own layer (4) but not one of its neighbours",
+        "src/output.rs:1: output imports scene, in its own layer (4) but not one of its neighbours",
+        "an import circle: output <-> scene",
+        "an import circle: scene::a <-> scene::b",
+        // sim → cli (4. above) closes a circle through the launcher and 5.
+        "an import circle: cli <-> sim <-> tui",
+    ];
+    for e in expect {
+        assert!(
+            bad.iter().any(|b| b.starts_with(e)),
+            "not caught: {e}\ngot:\n{}",
+            bad.join("\n")
+        );
+    }
+    // And nothing else: the right imports beside them (a comment, a string,
+    // math from anywhere, super::super within physics, the launcher, sim
+    // from a service and a shell) pass.
+    assert_eq!(bad.len(), expect.len(), "{}", bad.join("\n"));
 }

@@ -11,8 +11,9 @@ use spintop::math::Vec3;
 use spintop::physics::general_top::GeneralTop;
 use spintop::physics::symmetric_top::{SymmetricTop, precession_tilt};
 use spintop::scene::catalogue;
+use spintop::sim::MethodChoice;
 use spintop::sim::Model;
-use spintop::tui::app::{App, Method, Mode, Settings, TICK, Top, WARPS};
+use spintop::tui::app::{App, Mode, Settings, TICK, Top, WARPS};
 use spintop::tui::{Command, command_for};
 use std::time::Duration;
 
@@ -284,14 +285,14 @@ fn method_cycles_closed_form_rk4_dp5_dop853_radau5() {
             app.columns()[1].sim().method().label(),
         ]
     };
-    assert_eq!(app.settings().method(), Method::ClosedForm);
+    assert_eq!(app.settings().method(), MethodChoice::Exact);
     assert_eq!(labels(&app), ["exact", "exact+dop853"]);
     let expected = [
-        (Method::Rk4, ["rk4", "rk4"]),
-        (Method::Dopri5, ["dopri5", "dopri5"]),
-        (Method::Dop853, ["dop853", "dop853"]),
-        (Method::Radau5, ["radau5", "radau5"]),
-        (Method::ClosedForm, ["exact", "exact+dop853"]),
+        (MethodChoice::Rk4, ["rk4", "rk4"]),
+        (MethodChoice::Dopri5, ["dopri5", "dopri5"]),
+        (MethodChoice::Dop853, ["dop853", "dop853"]),
+        (MethodChoice::Radau5, ["radau5", "radau5"]),
+        (MethodChoice::Exact, ["exact", "exact+dop853"]),
     ];
     for (method, label) in expected {
         app.advance_ticks(3);
@@ -342,9 +343,10 @@ fn sec4_the_columns_show_the_two_behaviours_of_the_paper() {
         assert_eq!(column.closed_form_error(), Some(0.0), "{}", column.name());
     }
 
-    let mut app =
-        App::new(Settings::new(0.4, [0.0, 0.1, 0.2], Method::Rk4, 10.0).expect("valid settings"))
-            .unwrap();
+    let mut app = App::new(
+        Settings::new(0.4, [0.0, 0.1, 0.2], MethodChoice::Rk4, 10.0).expect("valid settings"),
+    )
+    .unwrap();
     app.advance_ticks(1000);
     for column in app.columns() {
         let error = column.closed_form_error().expect("a symmetric model");
@@ -355,7 +357,7 @@ fn sec4_the_columns_show_the_two_behaviours_of_the_paper() {
 #[test]
 fn a_failing_integrator_stops_its_column_with_a_message_not_a_panic() {
     // RK4 at its fixed step 0.01τ is unstable once τΩ⊥²·0.01 is far above 2.8.
-    let settings = Settings::new(0.4, [0.0, 60.0, 0.2], Method::Rk4, 10.0).unwrap();
+    let settings = Settings::new(0.4, [0.0, 60.0, 0.2], MethodChoice::Rk4, 10.0).unwrap();
     let mut app = App::new(settings).unwrap();
     app.advance_ticks(50);
     assert!(
@@ -375,7 +377,7 @@ fn general_app() -> App {
         .scene()
         .expect("the scene parses");
     let (settings, note) =
-        spintop::cli::tui::scene_settings(&scene, None).expect("the live view opens it");
+        spintop::tui::app::Settings::for_scene(&scene, None).expect("the live view opens it");
     assert!(
         note.starts_with("scene asymmetric-top: a general top under (3.3), the reduced ALE and the physical solution of (3.4)"),
         "{note}"
@@ -392,7 +394,7 @@ fn sec3_a_general_top_scene_opens_one_column_of_eq_3_3_with_lab_z_along_l0() {
     assert_eq!(app.settings().ratio(), None);
     assert_eq!(
         app.settings().method(),
-        Method::Dop853,
+        MethodChoice::Dop853,
         "auto: nothing closed"
     );
     // Three models of the same top side by side: (3.3), the reduced ALE and
@@ -439,11 +441,11 @@ fn general_top_method_cycles_rk4_dp5_dop853_radau5_and_never_the_closed_form() {
     let mut app = general_app();
     assert_eq!(app.columns()[0].sim().method().label(), "dop853");
     let expected = [
-        (Method::Radau5, "radau5"),
-        (Method::Rk4, "rk4"),
-        (Method::Dopri5, "dopri5"),
-        (Method::Dop853, "dop853"),
-        (Method::Radau5, "radau5"),
+        (MethodChoice::Radau5, "radau5"),
+        (MethodChoice::Rk4, "rk4"),
+        (MethodChoice::Dopri5, "dopri5"),
+        (MethodChoice::Dop853, "dop853"),
+        (MethodChoice::Radau5, "radau5"),
     ];
     for (method, label) in expected {
         app.advance_ticks(3);
@@ -464,7 +466,7 @@ fn general_top_method_cycles_rk4_dp5_dop853_radau5_and_never_the_closed_form() {
     }
     // Nor can it be built with the closed form.
     let top = GeneralTop::new(Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2, 0.0, 1.0)).unwrap();
-    let refused = Settings::general(top, [0.1, 0.05, 0.2], Method::ClosedForm, 10.0);
+    let refused = Settings::general(top, [0.1, 0.05, 0.2], MethodChoice::Exact, 10.0);
     assert!(refused.is_err_and(|e| e.contains("no closed form")));
 }
 
@@ -525,7 +527,7 @@ fn general_top_pause_step_warp_reset_edit_view_help_and_quit_work() {
 #[test]
 fn sec3_general_top_with_a_tiny_dipole_keeps_energy_and_angular_momentum() {
     let top = GeneralTop::new(Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2e-6, 0.0, 1e-6)).unwrap();
-    let settings = Settings::general(top, [0.1, 0.05, 0.2], Method::Dop853, 10.0).unwrap();
+    let settings = Settings::general(top, [0.1, 0.05, 0.2], MethodChoice::Dop853, 10.0).unwrap();
     let mut app = App::new(settings).unwrap();
     let start = *app.columns()[0].current();
     let norm = |l: [f64; 3]| Vec3::from(l).norm();
@@ -570,7 +572,7 @@ fn the_edit_field_says_when_it_is_full() {
 #[test]
 fn stopped_models_stop_the_clock_and_show_their_whole_advice() {
     // τk² = 0.4²·(2000)²·… ≫ 2.8/h: RK4 blows up within a few steps.
-    let settings = Settings::new(0.4, [0.0, 1000.0, 2000.0], Method::Rk4, 10.0).unwrap();
+    let settings = Settings::new(0.4, [0.0, 1000.0, 2000.0], MethodChoice::Rk4, 10.0).unwrap();
     let mut app = App::new(settings).unwrap();
     app.advance_ticks(200);
     assert!(

@@ -13,7 +13,7 @@ use spintop::physics::general_top::GeneralTop;
 use spintop::scene::{Body, Scene, catalogue};
 use spintop::sim::{MethodChoice, Simulation};
 use spintop::tui::Command;
-use spintop::tui::app::{App, Method, Settings};
+use spintop::tui::app::{App, Settings};
 use spintop::tui::view::{self, MIN_HEIGHT, MIN_WIDTH};
 use spintop::tui::widgets::fmt_num;
 
@@ -82,9 +82,37 @@ fn log_time_view_after_a_long_run() {
     let terminal = screen(&app, 120, 40);
     let s = text(&terminal);
     assert!(s.contains("log-time view") && s.contains("log t"));
+    // The time axis spans Δt = 0.1 to t = 1000 in four decades, ticks at
+    // both ends and in the middle: on a log axis the middle is 10 (on a
+    // linear one it would be 500), halfway between the left label's start
+    // and the right label's end.
+    let ticks = s
+        .lines()
+        .find(|l| {
+            l.trim_start_matches(['"', '│'])
+                .trim_start()
+                .starts_with("0.1")
+                && l.contains("1000")
+        })
+        .expect("a tick line");
+    let panel: Vec<char> = ticks.split("││").next().unwrap().chars().collect();
+    let find = |label: &str, from: usize| {
+        let l: Vec<char> = label.chars().collect();
+        (from..=panel.len() - l.len())
+            .find(|&i| {
+                panel[i..i + l.len()] == l[..]
+                    && !panel.get(i + l.len()).is_some_and(|c| c.is_ascii_digit())
+            })
+            .unwrap_or_else(|| panic!("{label} on {ticks}"))
+    };
+    let left = find("0.1", 0);
+    let right_end = find("1000", left + 3) + 4;
+    let middle = find("10", left + 3);
+    let centre = middle as f64 + 1.0;
+    let halfway = 0.5 * (left + right_end) as f64;
     assert!(
-        s.contains("0.1") && s.contains("1000"),
-        "the axis spans Δt to t"
+        (centre - halfway).abs() <= 1.5 && middle < right_end - 4,
+        "10 at column {centre}, halfway {halfway}: {ticks}"
     );
     insta::assert_snapshot!(terminal.backend());
 }
@@ -159,7 +187,7 @@ fn asymmetric_scene() -> Scene {
 
 /// The catalogue's asymmetric top as `spintop tui asymmetric-top` opens it.
 fn general_app() -> App {
-    let (settings, note) = spintop::cli::tui::scene_settings(&asymmetric_scene(), None)
+    let (settings, note) = spintop::tui::app::Settings::for_scene(&asymmetric_scene(), None)
         .expect("the live view opens it");
     App::new(settings)
         .expect("valid settings")
@@ -256,7 +284,7 @@ fn sec3_general_top_with_a_tiny_dipole_shows_constant_energy_and_momentum() {
     let top = GeneralTop::new(Vec3::new(1.0, 1.5, 0.8), Vec3::new(0.2e-6, 0.0, 1e-6)).unwrap();
     // NOTE: not the scene's Ω₀, whose E₀ = 0.022875 sits on a rounding
     // boundary of the four digits shown, where a drift of 1e-15 flips a digit.
-    let settings = Settings::general(top, [0.1, 0.06, 0.2], Method::Dop853, 10.0).unwrap();
+    let settings = Settings::general(top, [0.1, 0.06, 0.2], MethodChoice::Dop853, 10.0).unwrap();
     let mut app = App::new(settings).unwrap();
     // τ_f|Ω₀| is about 3e-13: the physical column's backward shoot would buy
     // nothing the screen can show, so the reduced model stands in, and says so.

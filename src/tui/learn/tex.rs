@@ -704,7 +704,8 @@ impl Parser {
                 };
                 format!("{root}{}", wrap(&arg))
             }
-            "mathfrak" => {
+            // `\bfrak` is the book's bold Fraktur (book/macros.txt).
+            "mathfrak" | "bfrak" => {
                 let arg = self.argument();
                 arg.chars().map(|c| fraktur(c).unwrap_or(c)).collect()
             }
@@ -728,6 +729,12 @@ impl Parser {
             "underbrace" | "overbrace" | "boxed" | "underline" | "phantom_skip" => self.argument(),
             // The book's own macros (book/macros.txt).
             "ret" => lower("ret"),
+            // `\sub{x}` is `_{x}` (written so where a `}_` would read as
+            // Markdown emphasis).
+            "sub" => {
+                let arg = self.argument();
+                lower(&arg)
+            }
             "tag" => format!("    ({})", self.argument_raw()),
             "label" => {
                 let _ = self.argument_raw();

@@ -1,0 +1,13 @@
+//! assignment: euler_from_rotation
+//! mistake: the pole test sin(theta) < 1e-6, far too wide
+//! says: pole test is too wide
+use spintop::assignment::Mat3;
+
+pub fn euler_from_rotation(m: &Mat3) -> (f64, f64, f64) {
+    let s = m[(0, 2)].hypot(m[(1, 2)]);
+    let theta = s.atan2(m[(2, 2)]);
+    if s < 1e-6 {
+        return (m[(1, 0)].atan2(m[(0, 0)]), theta, 0.0);
+    }
+    (m[(0, 2)].atan2(-m[(1, 2)]), theta, m[(2, 0)].atan2(m[(2, 1)]))
+}

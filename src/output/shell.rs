@@ -1,0 +1,223 @@
+//! `shell`: the charge as a small shell (Appendix, (A.1)–(A.3)), a neutral
+//! delay equation solved by the method of steps and sampled at given times.
+
+use super::{Failure, Format, Output, write_aligned};
+use crate::math::Real;
+use crate::numbers::table;
+use crate::physics::central::abraham_lorentz_oscillator_roots;
+use crate::physics::shell::ShellModel;
+use crate::sim::shell::{History, ShellError, ShellSample, run_shell};
+use serde::Serialize;
+use std::io::{self, Write};
+
+/// The most RK4 steps one run may take (about a second of work).
+pub const MAX_STEPS: Real = 2e7;
+
+/// A validated `shell` request.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShellRequest {
+    /// The model.
+    pub model: ShellModel,
+    /// RK4 steps per delay.
+    pub steps: usize,
+    /// Output times.
+    pub times: Vec<Real>,
+    /// Output format.
+    pub format: Format,
+}
+
+/// The JSON output of `shell` (the contract).
+#[derive(Debug, Serialize)]
+pub struct ShellOutput {
+    /// τ₀.
+    pub tau0: Real,
+    /// δ = r₀/c.
+    pub delay: Real,
+    /// Bare mass m₀ = 1 − τ₀/δ.
+    pub m0: Real,
+    /// Electromagnetic mass m_em = τ₀/δ.
+    pub m_em: Real,
+    /// True when every characteristic root has Re s < 0.
+    pub stable: bool,
+    /// `stable`, `growing-oscillation` or `runaway`.
+    pub regime: &'static str,
+    /// The largest Re s of the characteristic roots (present when unstable).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub growth_rate: Option<Real>,
+    /// ln(m_em/|m₀|)/δ, the rate the neutral chain tends to.
+    pub chain_rate: Real,
+    /// The characteristic root that continues the Abraham–Lorentz one, [re, im].
+    pub root_near_al: [Real; 2],
+    /// The Abraham–Lorentz physical root, [re, im].
+    pub root_al: [Real; 2],
+    /// RK4 steps per delay.
+    pub steps_per_delay: usize,
+    /// One entry per output time.
+    pub samples: Vec<ShellSample>,
+}
+
+/// The one-line warning printed before an unstable run.
+pub fn instability_warning(model: &ShellModel, rate: Real) -> String {
+    let (m0, m_em) = (model.m0(), model.m_em());
+    let why = if m0 < 0.0 {
+        format!(
+            "the bare mass m0 = {} is negative (delay < tau0): the Abraham-Lorentz runaway is back",
+            table(m0)
+        )
+    } else if m0 < m_em {
+        format!(
+            "m0 = {} < m_em = {} (delay < 2 tau0): the neutral chain of roots grows",
+            table(m0),
+            table(m_em)
+        )
+    } else {
+        format!(
+            "m0 - m_em = {} is below delay^2/pi^2 = {}: the lowest chain root grows",
+            table(m0 - m_em),
+            table(model.stability_threshold())
+        )
+    };
+    format!(
+        "spintop: warning: (A.1) is unstable here: {why}; the solution grows like exp({} t) (predicted growth rate)",
+        table(rate)
+    )
+}
+
+impl Output for ShellOutput {
+    /// The table or the CSV (JSON through [`super::write`]).
+    fn write_text(&self, out: &mut dyn Write, format: Format) -> io::Result<()> {
+        let output = self;
+        let mag = |v: [Real; 2]| v[0].hypot(v[1]);
+        match format {
+            Format::Json => super::write(out, self, format),
+            Format::Csv => {
+                writeln!(
+                    out,
+                    "t,x,y,vx,vy,l,j,l_minus_j,l_schott,dx_al,dy_al,l_al,j_change,flux_exact,flux_paper"
+                )?;
+                for s in &output.samples {
+                    let row = [
+                        s.t,
+                        s.z[0],
+                        s.z[1],
+                        s.z_dot[0],
+                        s.z_dot[1],
+                        s.l,
+                        s.j,
+                        s.l_minus_j,
+                        s.l_schott,
+                        s.z_minus_z_al[0],
+                        s.z_minus_z_al[1],
+                        s.l_al,
+                        s.j_change,
+                        s.flux_exact,
+                        s.flux_paper,
+                    ];
+                    let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
+                    writeln!(out, "{}", cells.join(","))?;
+                }
+                Ok(())
+            }
+            Format::Table => {
+                writeln!(
+                    out,
+                    "# spintop shell (Eqs. (A.1)-(A.3)): tau0 = {}, delay = {}, m0 = {}, m_em = {}, m = k = 1",
+                    crate::numbers::fmt_param(output.tau0),
+                    crate::numbers::fmt_param(output.delay),
+                    table(output.m0),
+                    table(output.m_em)
+                )?;
+                let growth = output
+                    .growth_rate
+                    .map_or(String::new(), |g| format!(", growth rate {}", table(g)));
+                writeln!(
+                    out,
+                    "# regime: {}{growth}; chain rate ln(m_em/|m0|)/delay = {}",
+                    output.regime,
+                    table(output.chain_rate)
+                )?;
+                writeln!(
+                    out,
+                    "# roots: near Abraham-Lorentz {} + {} i; Abraham-Lorentz {} + {} i; {} RK4 steps per delay",
+                    table(output.root_near_al[0]),
+                    table(output.root_near_al[1]),
+                    table(output.root_al[0]),
+                    table(output.root_al[1]),
+                    output.steps_per_delay
+                )?;
+                let head = ["t", "x", "y", "L", "J", "L-J", "L_S", "|Z-Z_AL|", "L-L_AL"];
+                write_aligned(out, head, 14)?;
+                for s in &output.samples {
+                    let row = [
+                        s.t,
+                        s.z[0],
+                        s.z[1],
+                        s.l,
+                        s.j,
+                        s.l_minus_j,
+                        s.l_schott,
+                        mag(s.z_minus_z_al),
+                        s.l - s.l_al,
+                    ];
+                    write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
+                }
+                if let Some(last) = output.samples.last() {
+                    writeln!(
+                        out,
+                        "# at t = {}: J - J(0) = {}; exact flux integral {} (difference {:.1e}); paper's (A.2) {}",
+                        table(last.t),
+                        table(last.j_change),
+                        table(last.flux_exact),
+                        last.j_change - last.flux_exact,
+                        table(last.flux_paper)
+                    )?;
+                }
+                Ok(())
+            }
+        }
+    }
+
+    fn advice(&self) -> &'static str {
+        "use a shell radius and times within a few decades of 1"
+    }
+}
+
+/// Run a validated `shell` request (the instability warning is the caller's).
+pub fn shell(request: &ShellRequest) -> Result<ShellOutput, Failure> {
+    let model = request.model;
+    let growth_rate = model.growth_rate();
+    let near = model.root_near_al().ok_or_else(|| {
+        Failure::Stopped(
+            "Newton's method found no characteristic root near the Abraham-Lorentz one; try a smaller --delay"
+                .to_string(),
+        )
+    })?;
+    let s_al = abraham_lorentz_oscillator_roots(model.tau0()).0;
+    let samples = run_shell(
+        model,
+        History::abraham_lorentz(model.tau0()),
+        request.steps,
+        &request.times,
+    )
+    .map_err(|e| match e {
+        ShellError::Overflow { .. } => Failure::Stopped(format!(
+            "{e}: (A.1) is unstable here (growth rate {}); ask for earlier --times or a delay above 2 tau0",
+            growth_rate.map_or("unknown".to_string(), table)
+        )),
+        other => Failure::BadInput(other.to_string()),
+    })?;
+    Ok(ShellOutput {
+        tau0: model.tau0(),
+        delay: model.delta(),
+        m0: model.m0(),
+        m_em: model.m_em(),
+        stable: growth_rate.is_none(),
+        regime: model.regime().name(),
+        growth_rate,
+        chain_rate: model.chain_rate(),
+        root_near_al: [near.re, near.im],
+        root_al: [s_al.re, s_al.im],
+        steps_per_delay: request.steps,
+        samples,
+    })
+}

@@ -1,0 +1,311 @@
+//! `simulate`: one model of the top, sampled at given times, as a table, CSV
+//! or the JSON contract.
+
+use super::{Entry, Failure, Format, Output, Stop, sim_failure, write_aligned};
+use crate::math::{Real, Vec3};
+use crate::numbers::{fmt_time, table};
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
+use serde::Serialize;
+use std::io::{self, Write};
+
+/// A fully validated `simulate` request.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SimulateConfig {
+    /// The model.
+    pub model: Model,
+    /// The method asked for.
+    pub method: MethodChoice,
+    /// Tolerance and step.
+    pub options: MethodOptions,
+    /// Ω₀ and O(0).
+    pub initial: InitialState,
+    /// Euler angles of O(0), as given.
+    pub euler0: [Real; 3],
+    /// Output times.
+    pub times: Vec<Real>,
+    /// Output format.
+    pub format: Format,
+    /// Where the request came from (for the words of advice).
+    pub entry: Entry,
+}
+
+/// The JSON output of `simulate` (the contract).
+#[derive(Debug, Serialize)]
+pub struct SimulateOutput {
+    /// `truncated`, `reduced`, `general` or `full`.
+    pub model: &'static str,
+    /// The method used: `exact`, `exact+dop853`, `rk4`, `dopri5`, `dop853`,
+    /// `physical` or `forward`.
+    pub method: &'static str,
+    /// One sentence on what was computed how.
+    pub method_detail: &'static str,
+    /// The inputs.
+    pub parameters: Parameters,
+    /// Work done.
+    pub stats: crate::integrate::Stats,
+    /// One entry per output time.
+    pub samples: Vec<Sample>,
+    /// Full model, forward method: the runaway that stopped the run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub runaway: Option<RunawayReport>,
+    /// Output times after the runaway, not computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub samples_omitted: Option<usize>,
+}
+
+/// A runaway of (3.4) integrated forward.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct RunawayReport {
+    /// When the monitor stopped the run.
+    pub t: Real,
+    /// The measured growth rate (about 1/τ).
+    pub growth_rate: Real,
+    /// What to do instead.
+    pub advice: &'static str,
+    /// The unit of time: "tau" for the symmetric top, the kappa = 1 unit for
+    /// a general one.
+    #[serde(skip)]
+    pub unit: &'static str,
+}
+
+/// The inputs, echoed in the JSON output.
+#[derive(Debug, Serialize)]
+pub struct Parameters {
+    /// I₃/I₁ (symmetric models).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ratio: Option<Real>,
+    /// τ (symmetric models; 1 in the paper's units).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tau: Option<Real>,
+    /// Principal moments.
+    pub inertia: [Real; 3],
+    /// Body dipole (general model, κ = 1 units).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dipole: Option<[Real; 3]>,
+    /// Ω₀.
+    pub omega0: [Real; 3],
+    /// Euler angles of O(0).
+    pub euler0: [Real; 3],
+    /// Relative tolerance (adaptive methods).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rtol: Option<Real>,
+    /// Step (RK4).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub step: Option<Real>,
+}
+
+/// Run a validated `simulate` request.
+pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
+    let horizon = config.times.last().copied().unwrap_or(0.0);
+    let failure = |e| sim_failure(e, &config.model, config.method, config.entry);
+    let mut sim = Simulation::new(
+        config.model,
+        config.method,
+        config.options,
+        config.initial,
+        Some(horizon),
+    )
+    .map_err(failure)?;
+    // A forward run of the full ALE stops at its runaway: the samples before it
+    // are the answer, the runaway is reported beside them.
+    let mut samples = Vec::with_capacity(config.times.len());
+    let mut runaway = None;
+    for &t in &config.times {
+        match sim.advance_to(t) {
+            Ok(sample) => samples.push(*sample),
+            Err(SimError::Runaway(r)) => {
+                runaway = Some(RunawayReport {
+                    t: r.t,
+                    growth_rate: r.growth_rate,
+                    advice: match config.entry {
+                        Entry::CommandLine => {
+                            "integrate backward or use the reduced model (--model full --method auto gives the physical solution)"
+                        }
+                        Entry::Scene => {
+                            "integrate backward or use the reduced model ([solve] method = \"auto\" gives the physical solution)"
+                        }
+                    },
+                    unit: if matches!(config.model, Model::GeneralFull(_)) {
+                        "time unit (kappa = 1)"
+                    } else {
+                        "tau"
+                    },
+                });
+                break;
+            }
+            Err(e) => return Err(failure(e)),
+        }
+    }
+    let samples_omitted = runaway.map(|_| config.times.len() - samples.len());
+    let method = sim.method();
+    let (ratio, tau, dipole) = match &config.model {
+        Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
+            (Some(top.ratio()), Some(top.tau()), None)
+        }
+        Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
+            (None, None, Some(top.dipole().into()))
+        }
+    };
+    let integrated = method.is_integrated();
+    let rk4 = config.method == MethodChoice::Rk4;
+    Ok(SimulateOutput {
+        model: config.model.name(),
+        method: method.label(),
+        method_detail: method.detail(),
+        parameters: Parameters {
+            ratio,
+            tau,
+            inertia: config.model.inertia().into(),
+            dipole,
+            omega0: config.initial.omega.into(),
+            euler0: config.euler0,
+            rtol: (integrated && !rk4).then_some(config.options.rtol()),
+            step: rk4.then_some(config.options.step()),
+        },
+        stats: sim.stats(),
+        samples,
+        runaway,
+        samples_omitted,
+    })
+}
+
+impl Output for SimulateOutput {
+    /// The table or the CSV (JSON through [`super::write`]).
+    fn write_text(&self, out: &mut dyn Write, format: Format) -> io::Result<()> {
+        let output = self;
+        match format {
+            Format::Json => super::write(out, self, format),
+            Format::Csv => {
+                write!(
+                    out,
+                    "t,omega1,omega2,omega3,omega_perp,energy,l_lab_x,l_lab_y,l_lab_z,tilt,phi,theta,psi"
+                )?;
+                for i in 1..=3 {
+                    for j in 1..=3 {
+                        write!(out, ",r{i}{j}")?;
+                    }
+                }
+                writeln!(out)?;
+                for s in &output.samples {
+                    let mut row = vec![s.t];
+                    row.extend(s.omega);
+                    row.extend([s.omega_perp, s.energy]);
+                    row.extend(s.l_lab);
+                    row.push(s.tilt);
+                    row.extend(s.euler);
+                    row.extend(s.rotation.iter().flatten());
+                    let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
+                    writeln!(out, "{}", cells.join(","))?;
+                }
+                Ok(())
+            }
+            Format::Table => {
+                use crate::numbers::fmt_param as fp;
+                let p = &output.parameters;
+                let params = match (p.ratio, p.dipole) {
+                    (Some(ratio), _) => format!("I3/I1 = {}, tau = 1", fp(ratio)),
+                    (None, Some(d)) => format!(
+                        "I = ({}, {}, {}), d = ({}, {}, {}), kappa = 1",
+                        fp(p.inertia[0]),
+                        fp(p.inertia[1]),
+                        fp(p.inertia[2]),
+                        fp(d[0]),
+                        fp(d[1]),
+                        fp(d[2])
+                    ),
+                    (None, None) => String::new(),
+                };
+                writeln!(
+                    out,
+                    "# spintop simulate: {} model; {params}; omega0 = ({}, {}, {})",
+                    output.model,
+                    fp(p.omega0[0]),
+                    fp(p.omega0[1]),
+                    fp(p.omega0[2])
+                )?;
+                writeln!(
+                    out,
+                    "# method: {} ({})",
+                    output.method, output.method_detail
+                )?;
+                writeln!(
+                    out,
+                    "# work: {} rhs evaluations, {} steps, {} rejected",
+                    output.stats.rhs_evals, output.stats.steps, output.stats.rejected
+                )?;
+                if let Some(r) = &output.runaway {
+                    writeln!(
+                        out,
+                        "# runaway at t = {:.3}, growth rate {:.4}: {} later sample(s) omitted; {}",
+                        r.t,
+                        r.growth_rate,
+                        output.samples_omitted.unwrap_or(0),
+                        r.advice
+                    )?;
+                }
+                let head = [
+                    "t",
+                    "omega1",
+                    "omega2",
+                    "omega3",
+                    "omega_perp",
+                    "energy",
+                    "|L|",
+                    "tilt",
+                    "phi",
+                    "theta",
+                    "psi",
+                ];
+                write_aligned(out, head, 14)?;
+                for s in &output.samples {
+                    // Scaled, so that |L| does not overflow where its components do not.
+                    let l = {
+                        let v = Vec3::from(s.l_lab);
+                        let m = v.amax();
+                        if m > 0.0 { m * (v / m).norm() } else { 0.0 }
+                    };
+                    let row = [
+                        s.t,
+                        s.omega[0],
+                        s.omega[1],
+                        s.omega[2],
+                        s.omega_perp,
+                        s.energy,
+                        l,
+                        s.tilt,
+                        s.euler[0],
+                        s.euler[1],
+                        s.euler[2],
+                    ];
+                    write_aligned(out, row.iter().map(|x| table(*x)), 14)?;
+                }
+                Ok(())
+            }
+        }
+    }
+
+    fn advice(&self) -> &'static str {
+        "use smaller rates or moments (in units of 1/tau and I1)"
+    }
+
+    fn stopped(&self) -> Option<Stop> {
+        let r = self.runaway.as_ref()?;
+        let omitted = self.samples_omitted.unwrap_or(0);
+        Some(Stop {
+            line: format!(
+                "runaway at t = {}, growth rate {:.4}; {omitted} later sample(s) omitted",
+                fmt_time(r.t),
+                r.growth_rate
+            ),
+            message: format!(
+                "runaway at t = {:.3}, growing at rate {:.4} per {} (an e-folding time of {:.3}): {omitted} of {} samples omitted; {}",
+                r.t,
+                r.growth_rate,
+                r.unit,
+                1.0 / r.growth_rate,
+                self.samples.len() + omitted,
+                r.advice
+            ),
+        })
+    }
+}

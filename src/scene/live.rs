@@ -1,0 +1,93 @@
+//! What the live view opens for a scene: the model, Ω₀, the method and the
+//! line it opens with. The view runs in τ units (κ = 1 units for a general
+//! top), with the lab z axis along L₀.
+
+use super::{Body, Scene, catalogue};
+use crate::math::Real;
+use crate::sim::{MethodChoice, Model};
+
+/// A top scene as the live view opens it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LiveScene {
+    /// The scene's model: a symmetric one opens the two symmetric columns, a
+    /// general one the three general columns.
+    pub model: Model,
+    /// Ω₀, body frame.
+    pub omega0: [Real; 3],
+    /// The method of the columns that take one (the full ALE's physical
+    /// solution has its own).
+    pub method: MethodChoice,
+    /// The line the view opens with.
+    pub note: String,
+}
+
+/// The live view's start for a top scene.
+///
+/// A truncated, reduced or full scene opens the symmetric layout, the
+/// truncated and reduced models side by side, with its I₃/I₁, Ω₀ and method.
+/// An asymmetric (general) scene opens the general layout: the truncated ALE
+/// (3.3) and its neighbours with their moments and dipole, integrated by the
+/// scene's method (DOP853 for `auto`, since nothing is closed). Scenes of
+/// other kinds are refused, in one line that says what to run instead.
+pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
+    let Body::Top(top) = &scene.body else {
+        // A catalogue scene is run by its name, which works from any folder;
+        // its repository path would not.
+        let runnable = match catalogue::find(&scene.name) {
+            Some(entry) if entry.path() == scene.file => scene.name.clone(),
+            _ => scene.file.clone(),
+        };
+        return Err(format!(
+            "{}: the live view opens top scenes, and this one is kind = \"{}\"; use `spintop run {runnable}`",
+            scene.file,
+            scene.kind().name(),
+        ));
+    };
+    // The view names the method it runs: the closed forms where the model
+    // has them, else DOP853, for `auto` (and for `forward`, which is not a
+    // view: the full ALE's column always shows its physical solution).
+    let general = !top.model.has_closed_form() && !matches!(top.model, Model::Full(_));
+    let method = match top.method {
+        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward if general => {
+            MethodChoice::Dop853
+        }
+        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => MethodChoice::Exact,
+        other => other,
+    };
+    let mut note = format!("scene {}", scene.name);
+    match top.model {
+        Model::General(_) | Model::GeneralReduced(_) | Model::GeneralFull(_) => {
+            if let Some(g) = &top.general_units {
+                note.push_str(&format!(
+                    ": a real particle, τ_f = {:.2e} s, far too slow to watch in these units; `spintop run {}` gives its secular drift",
+                    g.fast_time_seconds(),
+                    scene.name
+                ));
+            } else {
+                note.push_str(&format!(
+                    ": a general top under (3.3), the reduced ALE and the physical solution of (3.4) side by side, the first two integrated by {}; time in u, the unit where κ = 1",
+                    method.title()
+                ));
+            }
+        }
+        Model::Truncated(_) | Model::Reduced(_) | Model::Full(_) => {
+            if let Some(u) = &top.units {
+                note.push_str(&format!(
+                    ": a real particle, τ = {:.2e} s, far too slow to watch in τ units; `spintop run {}` gives its times",
+                    u.tau_seconds(),
+                    scene.name
+                ));
+            } else if matches!(top.model, Model::Full(_)) {
+                note.push_str(": the full ALE (3.4) is not in this view; both symmetric models run with its I₃/I₁ and Ω₀");
+            } else {
+                note.push_str(&format!(": {}", scene.summary()));
+            }
+        }
+    }
+    Ok(LiveScene {
+        model: top.model,
+        omega0: top.initial.omega.into(),
+        method,
+        note,
+    })
+}

@@ -1,0 +1,340 @@
+//! How far the truncated and the reduced models stray from the physical
+//! solution of (3.4) over a run, estimated before it starts.
+//!
+//! The physical solution lies on the slow manifold of (3.4), Ω̇ = G₀ + G₁ +
+//! G₂ + O(τ³): G₀ is the free motion, G₀ + G₁ the reduced ALE, and G₂
+//! ([`slow_manifold_second_order`]) the first term the reduced ALE leaves
+//! out. Each estimate is that leading term carried over the run.
+//!
+//! **Symmetric top** (I₁ = I₂, d on the axis; units I₁ = 1). On the manifold
+//! ż = f(u)z with z = Ω₁ + iΩ₂, u = |z|², k = (I₃/I₁)Ω₃, s = u + k²:
+//!
+//! ```text
+//! Re f = −τs + τ³s(3u + 5k²) − …,    Im f = −Ω̃₃ − 2τ²ks + 14τ⁴ks² − …
+//! ```
+//!
+//! The reduced ALE keeps −τs and −Ω̃₃. Its precession runs 2τ²ks too fast
+//! and it decays τ³s(3u + 5k²) too fast; both act on an amplitude A = √u
+//! that falls as Ȧ = −τsA. Carried over the run, with dt = −dA/(τsA),
+//!
+//! ```text
+//! ∫ 2τ²ks A dt          = 2τ|k| (A₀ − A_T)
+//! ∫ τ³s(3u + 5k²) A dt  = τ²(A₀³ − A_T³) + 5τ²k² (A₀ − A_T)
+//! ```
+//!
+//! and their sum, over |Ω₀|, is the reduced model's estimate. It bounds the
+//! real error A(t)·|Δφ(t)| at every t ≤ T (A falls, so A(t)∫₀ᵗ rate ≤ ∫₀ᵗ
+//! rate·A), and is at most e times it (the worst case, a long run, where
+//! A(t)·2τk ln(A₀/A) peaks at A = A₀/e). The next terms of both series have
+//! the opposite sign, so the leading terms overestimate.
+//!
+//! The truncated model differs from the reduced one at first order, and both
+//! have closed forms: its estimate is the largest distance between the two
+//! over the run, plus the reduced model's own estimate (the triangle
+//! inequality).
+//!
+//! **Any other top**: no closed form, so the same leading terms are
+//! integrated along the run (see [`general_errors`]).
+//!
+//! | code name | symbol | meaning | units |
+//! |---|---|---|---|
+//! | `a0`, `a_t` | A₀, A_T | Ω⊥ at 0 and at the end (reduced model) | 1/τ |
+//! | `k` | (I₃/I₁)Ω₃ | the spin term | 1/τ |
+//! | `r` | R(t) | the truncated model's clock (4.6) | – |
+
+use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Stepper};
+use crate::math::{Real, State, Vec3};
+use crate::physics::full_ale::slow_manifold_second_order;
+use crate::physics::general_top::GeneralTop;
+use crate::physics::symmetric_top::{SymmetricTop, reduced_amplitude, truncated_clock};
+use crate::sim::secular::{Law, SecularRun, secular, swing};
+
+/// The estimated largest error of each model over a run, relative to |Ω₀|.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModelErrors {
+    /// The truncated ALE (3.3) against the physical solution of (3.4).
+    pub truncated: Real,
+    /// The reduced ALE against the physical solution of (3.4).
+    pub reduced: Real,
+    /// Nothing radiates (Ω₀ along the axis of a symmetric top, or a steady
+    /// spin about a principal axis along the dipole): every model is exact.
+    pub exact: bool,
+}
+
+impl ModelErrors {
+    const EXACT: Self = Self {
+        truncated: 0.0,
+        reduced: 0.0,
+        exact: true,
+    };
+}
+
+// ANCHOR: reduced_error
+/// The reduced model's estimated error over [0, `t`], relative to |Ω₀|:
+/// its precession and decay drifts carried over the amplitude it loses.
+///
+/// Paper: Eq. (3.4) (its slow manifold), Eq. (4.15), Eq. (4.16).
+///
+/// ```text
+/// ε_r = [(A₀ − A_T)(2τ|k| + 5τ²k²) + τ²(A₀³ − A_T³)] / |Ω₀|,   A_T = A₀Φ(T)
+/// ```
+pub fn symmetric_reduced_error(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
+    let tau = top.tau();
+    let a0 = omega0.x.hypot(omega0.y);
+    let k = top.ratio() * omega0.z;
+    // NOTE: 1 − Φ and 1 − Φ³ from ln Φ with expm1: Φ is within rounding
+    // of 1 for a short run, where the difference is all that matters.
+    let ln_phi = reduced_amplitude(top, omega0, t).ln();
+    let lost = -a0 * ln_phi.exp_m1();
+    let lost3 = -a0 * a0 * a0 * (3.0 * ln_phi).exp_m1();
+    (lost * (2.0 * tau * k.abs() + 5.0 * tau * tau * k * k) + tau * tau * lost3) / omega0.norm()
+}
+// ANCHOR_END: reduced_error
+
+/// Points of the grid on which the truncated model's distance from the
+/// reduced one is taken (geometric in t, from 10⁻⁹T to T: each point 1 % past
+/// the one before).
+const GRID: usize = 2000;
+
+/// The margin for the largest distance falling between two points of the
+/// grid: every factor is a smooth function of ln t, and moves by about 2 %
+/// or less from one point to the next.
+const GRID_MARGIN: Real = 1.05;
+
+// ANCHOR: truncated_error
+/// The truncated model's estimated error over [0, `t`], relative to |Ω₀|:
+/// its largest distance from the reduced model (both in closed form), plus
+/// the reduced model's own estimate.
+///
+/// Paper: Eq. (4.7), Eq. (4.15), Eq. (4.16).
+///
+/// ```text
+/// |Ω_trunc − Ω_red|² = Ω₃₀²(1 − 1/R)² + (A₀/R − A₀Φ)² + 4(A₀/R)(A₀Φ) sin²(Δα/2)
+/// Δα = Ω̃₃₀ (t − ϑ(t))        (the truncated precession slows with Ω₃ = Ω₃₀/R)
+/// ```
+///
+/// with sin²(Δα/2) ≤ min(Δα, 2)²/4 to take the envelope of the oscillation,
+/// the largest value over a geometric grid of times.
+pub fn symmetric_truncated_error(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
+    let a0 = omega0.x.hypot(omega0.y);
+    let precession = top.omega3_tilde(omega0.z).abs();
+    let distance = |s: Real| {
+        let clock = truncated_clock(top, a0, s);
+        // R − 1 = 2x/(1 + R) with x = τΩ⊥₀²s: no cancellation when R ≈ 1.
+        let x = top.tau() * a0 * a0 * s;
+        let r_minus_1 = 2.0 * x / (1.0 + clock.r);
+        let d3 = omega0.z.abs() * r_minus_1 / clock.r;
+        let a_trunc = a0 / clock.r;
+        let a_red = a0 * reduced_amplitude(top, omega0, s);
+        let phase = (precession * (s - clock.vartheta)).min(2.0);
+        let da = a_trunc - a_red;
+        (d3 * d3 + da * da + a_trunc * a_red * phase * phase).sqrt()
+    };
+    let worst = (0..=GRID)
+        .map(|j| distance(t * (1e-9 as Real).powf(1.0 - j as Real / GRID as Real)))
+        .fold(0.0, Real::max);
+    GRID_MARGIN * worst / omega0.norm() + symmetric_reduced_error(top, omega0, t)
+}
+// ANCHOR_END: truncated_error
+
+/// Both estimates for a symmetric top; exact when Ω₀ lies on the axis.
+pub fn symmetric_errors(top: &SymmetricTop, omega0: &Vec3, t: Real) -> ModelErrors {
+    if omega0.x == 0.0 && omega0.y == 0.0 || top.tau() == 0.0 {
+        return ModelErrors::EXACT;
+    }
+    ModelErrors {
+        truncated: symmetric_truncated_error(top, omega0, t).min(2.0),
+        reduced: symmetric_reduced_error(top, omega0, t).min(2.0),
+        exact: false,
+    }
+}
+
+/// The most steps the integrated estimate of a general top takes; a longer
+/// run is estimated over the span those steps reach and carried on from
+/// there (see [`general_errors`]).
+pub const ESTIMATE_MAX_STEPS: u64 = 200_000;
+
+/// The margin on the integrated estimates of a general top: they carry only
+/// the leading term, and the next one (O(τ_f³)) is left out.
+const GENERAL_MARGIN: Real = 2.0;
+
+/// True when nothing radiates from Ω₀ on: a steady spin about a principal
+/// axis that lies along the dipole (d × Ω₀ = 0 and Ω₀ × IΩ₀ = 0), which
+/// every model keeps for ever.
+pub fn radiates_nothing(inertia: &Vec3, dipole: &Vec3, omega0: &Vec3) -> bool {
+    let tiny = 1e-14 * omega0.norm() * dipole.norm();
+    dipole.cross(omega0).norm() <= tiny
+        && omega0.cross(&inertia.component_mul(omega0)).norm()
+            <= 1e-14 * omega0.norm_squared() * inertia.max()
+}
+
+// ANCHOR: general_errors
+/// Both estimates for any top, integrated along the run.
+///
+/// Paper: Eq. (3.3), Eq. (3.4) (its slow manifold to second order).
+///
+/// ```text
+/// Ω̇   = F₂(Ω) = G₀ + G₁ + G₂               (the physical solution to O(τ_f²))
+/// ė_r = DF_red(Ω)·e_r − G₂(Ω)               (the reduced model's error, linearised)
+/// Ω̇_t = F_trunc(Ω_t),  ė_t = DF_trunc(Ω)·e_t + F_trunc(Ω) − F₂(Ω)
+/// ```
+///
+/// The reduced model's error is e_r; the truncated model's is e_t while it
+/// is small (a few per cent of |Ω₀|) and Ω_t − Ω once it is not, plus the
+/// reduced model's (the truncated model's error is first order, e_r second).
+/// Both get a margin of 2 for the terms left out. Derivatives along e are
+/// central differences; e_r and e_t are integrated in units of their own
+/// scale (τ_f|Ω₀|)ⁿ|Ω₀|, so a tolerance relative to each holds however small
+/// it is.
+///
+/// A run longer than [`ESTIMATE_MAX_STEPS`] is estimated over the span they
+/// reach, φ_b radians, and carried on to φ as (φ/φ_b)²: the fastest an
+/// error of Ω grows over many turns (a drift of the invariants shifts the
+/// frequency, and the phase error grows as its integral).
+pub fn general_errors(top: &GeneralTop, omega0: &Vec3, t: Real) -> ModelErrors {
+    if radiates_nothing(&top.inertia(), &top.dipole(), omega0) {
+        return ModelErrors::EXACT;
+    }
+    let scale = omega0.norm();
+    let eps = crate::sim::physical::general::fast_time(top) * scale;
+    let (sigma_r, sigma_t) = (eps * eps * scale, eps * scale);
+    let second = |w: &Vec3| top.reduced_ale_rhs(w) + slow_manifold_second_order(top, w);
+    let along = |f: &dyn Fn(&Vec3) -> Vec3, at: &Vec3, e: &Vec3| -> Vec3 {
+        let n = e.norm();
+        if n == 0.0 {
+            return Vec3::zeros();
+        }
+        let h = 1e-6 * at.norm().max(1e-300) / n;
+        (f(&(at + e * h)) - f(&(at - e * h))) / (2.0 * h)
+    };
+    let reduced = |w: &Vec3| top.reduced_ale_rhs(w);
+    let truncated = |w: &Vec3| top.truncated_ale_rhs(w);
+    let part = |y: &State<12>, i: usize| Vec3::new(y[i], y[i + 1], y[i + 2]);
+    let rhs = |_t: Real, y: &State<12>| -> State<12> {
+        let (w, er, wt, et) = (part(y, 0), part(y, 3), part(y, 6), part(y, 9));
+        let f2 = second(&w);
+        let g2 = slow_manifold_second_order(top, &w);
+        let der = along(&reduced, &w, &er) - g2 / sigma_r;
+        let det = along(&truncated, &w, &et) + (truncated(&w) - f2) / sigma_t;
+        let dwt = truncated(&wt);
+        let mut out = State::<12>::zeros();
+        for (i, v) in [f2, der, dwt, det].iter().enumerate() {
+            out.fixed_rows_mut::<3>(3 * i).copy_from(v);
+        }
+        out
+    };
+    let mut y0 = State::<12>::zeros();
+    y0.fixed_rows_mut::<3>(0).copy_from(omega0);
+    y0.fixed_rows_mut::<3>(6).copy_from(omega0);
+    // NOTE: rtol 1e-8 on states of order one (the errors in their own units):
+    // the estimate needs two digits, the margin for its reach is generous.
+    let mut options = AdaptiveOptions::new(1e-8, 1e-10 * scale.min(1.0)).expect("valid tolerances");
+    options.max_steps = ESTIMATE_MAX_STEPS;
+    let mut worst = [0.0 as Real; 2];
+    let mut take = |y: &State<12>| {
+        let (w, er, wt, et) = (part(y, 0), part(y, 3), part(y, 6), part(y, 9));
+        let e_r = er.norm() * sigma_r / scale;
+        let e_t_lin = et.norm() * sigma_t / scale;
+        let e_t = if e_t_lin < 0.05 {
+            e_t_lin
+        } else {
+            (wt - w).norm() / scale
+        };
+        worst[0] = worst[0].max(e_t);
+        worst[1] = worst[1].max(e_r);
+    };
+    let reached = match Dop853::new(0.0, y0, options) {
+        Ok(mut stepper) => {
+            let mut reached = 0.0;
+            while stepper.t() < t {
+                if stepper.step(&rhs, t).is_err() {
+                    break;
+                }
+                take(stepper.y());
+                reached = stepper.t();
+            }
+            reached
+        }
+        Err(_) => 0.0,
+    };
+    // Beyond the span reached, the error grows at most like the square of
+    // the turning (the first step's span stands in when none was taken).
+    let stretch = if reached >= t {
+        1.0
+    } else {
+        let reached = reached.max(t * 1e-12).max(Real::MIN_POSITIVE);
+        (t / reached).powi(2)
+    };
+    let [e_t, e_r] = worst.map(|e| (GENERAL_MARGIN * e * stretch).min(2.0));
+    ModelErrors {
+        truncated: (e_t + e_r).min(2.0),
+        reduced: e_r,
+        exact: false,
+    }
+}
+// ANCHOR_END: general_errors
+
+/// The margin on the secular estimates: the drift differences are measured,
+/// the swings are first-order averaging's own bound.
+const SECULAR_MARGIN: Real = 1.5;
+
+// ANCHOR: secular_errors
+/// Both estimates for a run the secular model answers, where only E and |L|
+/// are reported: how far each model's invariants stray from the physical
+/// solution's, relative.
+///
+/// Beyond the paper (the secular drift of (3.3), the reduced (3.4) and the
+/// slow manifold of (3.4) to second order).
+///
+/// ```text
+/// ε_t = max |X_trunc − X₂| + swing(T_trunc − T₂),   ε_r = max |X_red − X₂| + swing(I G₂)
+/// ```
+///
+/// X is E or |L| along the secular run of each law at `times` (the
+/// second-order law, [`Law::SecondOrder`], in place of the physical
+/// solution), and the swing ([`swing`]) what the torque difference moves the
+/// invariants within one turn, which averaging leaves out. The runs are
+/// taken at a tolerance 100 times below `rtol` (at most 10⁻¹²) so that
+/// their differences stand clear of it.
+pub fn secular_errors(
+    top: &GeneralTop,
+    omega0: &Vec3,
+    times: &[Real],
+    rtol: Real,
+) -> Result<ModelErrors, IntegrateError> {
+    if radiates_nothing(&top.inertia(), &top.dipole(), omega0) {
+        return Ok(ModelErrors::EXACT);
+    }
+    let tight = (rtol * 1e-2).clamp(1e-12, 1e-4);
+    let run = |law| secular(top, law, omega0, times, tight);
+    let (trunc, red, second) = (
+        run(Law::Truncated)?,
+        run(Law::Reduced)?,
+        run(Law::SecondOrder)?,
+    );
+    let gap = |a: &SecularRun| {
+        a.samples
+            .iter()
+            .zip(&second.samples)
+            .map(|(x, y)| {
+                let e = (x.energy - y.energy).abs() / y.energy.max(Real::MIN_POSITIVE);
+                let l = (x.l_norm - y.l_norm).abs() / y.l_norm.max(Real::MIN_POSITIVE);
+                e.max(l)
+            })
+            .fold(0.0, Real::max)
+    };
+    let i = top.inertia();
+    let g2 = |w: &Vec3| i.component_mul(&slow_manifold_second_order(top, w));
+    let swing_r = swing(&i, omega0, g2);
+    let swing_t = swing(&i, omega0, |w| {
+        top.truncated_torque(w) - top.reduced_torque(w) - g2(w)
+    });
+    let reduced = (SECULAR_MARGIN * (gap(&red) + swing_r)).min(2.0);
+    let truncated = (SECULAR_MARGIN * (gap(&trunc) + swing_t)).min(2.0);
+    Ok(ModelErrors {
+        truncated: truncated.max(reduced),
+        reduced,
+        exact: false,
+    })
+}
+// ANCHOR_END: secular_errors

@@ -1,0 +1,271 @@
+//! The output gate (`src/cli/gate.rs`): every command's output passes one
+//! checked path before it is written. Read from the sources, every command
+//! listed by `spintop --help` takes the gate and nothing else to write its
+//! output with; run, a result with a non-finite number, a run that stopped
+//! early and a join of a file holding NaN each end with exit 3 or 2 and one
+//! line, never with the number printed.
+
+use crate::support::{Scratch, spintop};
+use std::path::PathBuf;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The commands `spintop --help` lists (all but `help`).
+fn commands() -> Vec<String> {
+    let out = spintop(&["--help"]);
+    let help = String::from_utf8(out.stdout).unwrap();
+    let listed: Vec<String> = help
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next().map(String::from))
+        .filter(|c| c != "help")
+        .collect();
+    assert!(listed.len() >= 14, "{help}");
+    listed
+}
+
+/// Why `source` (one command's file under `src/cli/`) could write its output
+/// around the gate, if it could: its `execute` must take `&mut Gate` and no
+/// other output, and nothing in it may reach stdout itself.
+fn writes_around_the_gate(source: &str) -> Option<String> {
+    let Some(at) = source.find("fn execute(") else {
+        return Some("it has no `fn execute(`".into());
+    };
+    let signature = &source[at..at + source[at..].find('{').unwrap_or(0)];
+    if !signature.contains("&mut Gate<'_>") {
+        return Some(format!("its execute does not take the gate: {signature}"));
+    }
+    if signature.contains("out: &mut impl Write") || signature.contains("out: &mut dyn Write") {
+        return Some(format!(
+            "its execute takes a writer of its own: {signature}"
+        ));
+    }
+    for (n, line) in source.lines().enumerate() {
+        let code = without_strings(line.trim_start());
+        if code.starts_with("//") {
+            continue;
+        }
+        let code = code.replace("stdout().is_terminal()", "");
+        let reaches = ["print!(", "println!(", "stdout()", "dbg!("]
+            .iter()
+            .any(|p| calls(&code, p));
+        if reaches {
+            return Some(format!(
+                "line {} reaches stdout itself: {}",
+                n + 1,
+                line.trim()
+            ));
+        }
+    }
+    None
+}
+
+/// `line` with the insides of its string literals blanked (a snippet that
+/// prints is text, not a call).
+fn without_strings(line: &str) -> String {
+    let mut out = String::with_capacity(line.len());
+    let (mut inside, mut escaped) = (false, false);
+    for c in line.chars() {
+        match (inside, escaped, c) {
+            (true, false, '\\') => escaped = true,
+            (true, true, _) => escaped = false,
+            (_, false, '"') => {
+                inside = !inside;
+                out.push('"');
+            }
+            (true, false, _) => {}
+            (false, _, c) => out.push(c),
+        }
+    }
+    out
+}
+
+/// True when `code` calls `name` itself (`print!(`, not `eprint!(`).
+fn calls(code: &str, name: &str) -> bool {
+    code.match_indices(name).any(|(at, _)| {
+        code[..at]
+            .chars()
+            .last()
+            .is_none_or(|c| !(c.is_alphanumeric() || c == '_'))
+    })
+}
+
+#[test]
+fn every_command_writes_its_output_through_the_gate() {
+    let dispatch = std::fs::read_to_string(root().join("src/cli.rs")).unwrap();
+    let mut bad = Vec::new();
+    for command in commands() {
+        let file = root().join(format!("src/cli/{command}.rs"));
+        let source = std::fs::read_to_string(&file)
+            .unwrap_or_else(|e| panic!("{command}: {}: {e}", file.display()));
+        if let Some(why) = writes_around_the_gate(&source) {
+            bad.push(format!("{command}: {why}"));
+        }
+        // And the dispatcher hands it the gate, not stdout.
+        if !dispatch.contains(&format!("{command}::execute(args, out")) {
+            bad.push(format!("{command}: src/cli.rs does not hand it the gate"));
+        }
+    }
+    assert!(
+        bad.is_empty(),
+        "commands that can skip the gate:\n{}",
+        bad.join("\n")
+    );
+}
+
+#[test]
+fn the_gate_check_fails_on_each_way_around_it() {
+    let good = "pub(crate) fn execute(args: A, out: &mut Gate<'_>) -> R {\n    writeln!(out, \"x\")?;\n    eprint!(\"progress\");\n    let code = \"fn main() { println!(1) }\";\n    if !io::stdout().is_terminal() {}\n}\n";
+    assert_eq!(writes_around_the_gate(good), None);
+    for bad in [
+        "pub(crate) fn execute(args: A, out: &mut impl Write) -> R {\n}\n",
+        "pub(crate) fn execute(args: A, out: &mut Gate<'_>) -> R {\n    println!(\"{}\", x);\n}\n",
+        "pub(crate) fn execute(args: A, out: &mut Gate<'_>) -> R {\n    let mut s = std::io::stdout();\n}\n",
+        "pub(crate) fn execute(args: A, out: &mut Gate<'_>) -> R {\n    dbg!(x);\n}\n",
+        "pub(crate) fn run(args: A) -> R {\n}\n",
+    ] {
+        assert!(writes_around_the_gate(bad).is_some(), "{bad}");
+    }
+}
+
+/// A result holding a number that is not finite is refused whole, with the
+/// place it sits, exit 3 and one line; no NaN, inf or null reaches stdout.
+#[test]
+fn a_non_finite_result_is_refused_with_exit_3_and_nothing_written() {
+    for format in ["json", "csv", "table"] {
+        let args = [
+            "balance",
+            "--dipole",
+            "precessing",
+            "--rate",
+            "1e120",
+            "--times",
+            "0",
+            "--format",
+            format,
+        ];
+        let out = spintop(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(3), "{args:?}: {stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(stderr.contains("not a finite number at "), "{stderr}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+}
+
+/// A forward run of (3.4) that runs away says so in every format, CSV
+/// included, and exits 3.
+#[test]
+fn a_run_that_stopped_says_so_in_every_format() {
+    for format in ["table", "csv", "json"] {
+        let out = spintop(&[
+            "simulate", "--model", "full", "--method", "forward", "--times", "0,1,2,50",
+            "--format", format,
+        ]);
+        assert_eq!(out.status.code(), Some(3), "{format}");
+        let stdout = String::from_utf8(out.stdout).unwrap();
+        let said = match format {
+            "json" => serde_json::from_str::<serde_json::Value>(&stdout).unwrap()["stopped"]
+                .as_str()
+                .is_some_and(|s| s.starts_with("runaway at t = ")),
+            _ => stdout
+                .lines()
+                .last()
+                .is_some_and(|l| l.starts_with("# stopped: runaway at t = ")),
+        };
+        assert!(said, "{format}: {stdout}");
+    }
+}
+
+/// `bench --join` reads the rows of other sessions; a row whose error is NaN
+/// or whose time is infinite is refused with the file and the line, exit 2,
+/// before anything is drawn.
+#[test]
+fn bench_join_refuses_a_non_finite_row_with_the_file_and_the_line() {
+    let dir = Scratch::new("gate-join");
+    let head = "source,model,method,target,knob,value,omega_error,orientation_error,rhs_evals,steps,rejected,time_s,repeats,status\n";
+    let good = "scipy,reduced,DOP853,omega,rtol,0.001,0.0007,,242,17,0,0.0017,5,ok\n";
+    for (name, bad, column) in [
+        (
+            "nan-error.csv",
+            "scipy,reduced,DOP853,omega,rtol,1e-6,nan,,242,17,0,0.0017,5,ok\n",
+            "omega_error",
+        ),
+        (
+            "inf-time.csv",
+            "scipy,reduced,DOP853,omega,rtol,1e-6,1e-7,,242,17,0,inf,5,ok\n",
+            "time_s",
+        ),
+        (
+            "neg-inf-knob.csv",
+            "scipy,reduced,DOP853,omega,rtol,-inf,1e-7,,242,17,0,0.1,5,ok\n",
+            "value",
+        ),
+    ] {
+        let path = dir.write(name, &format!("{head}{good}{bad}"));
+        let out = spintop(&["bench", "--join", &path]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
+        assert!(out.stdout.is_empty(), "{name}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(
+            stderr.contains(&path)
+                && stderr.contains("line 3")
+                && stderr.contains(column)
+                && stderr.contains("not a finite number"),
+            "{name}: {stderr}"
+        );
+    }
+}
+
+/// A cylinder 300 decades longer than wide passes every size check, but its
+/// I₃/I₁ underflows to 0: the scene is refused as bad input, never a panic.
+#[test]
+fn a_particle_whose_moment_ratio_underflows_is_a_scene_error() {
+    let dir = Scratch::new("gate-particle");
+    let text = "[scene]\nname = \"needle\"\nkind = \"top\"\ndescription = \"A needle.\"\n\n[top]\nmodel = \"auto\"\n\n[units]\nshape = \"cylinder\"\nradius_nm = 1e-150\nlength_nm = 1e150\ndensity_kg_m3 = 2200.0\ndipole_debye = 1e3\nspin_hz = 1e9\n";
+    let path = dir.write("needle.toml", text);
+    for args in [vec!["run", path.as_str()], vec!["tui", path.as_str()]] {
+        let out = spintop(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(
+            stderr.contains(&format!("{path}:9: [units]")) && stderr.contains("I3/I1 of the shape"),
+            "{stderr}"
+        );
+    }
+}
+
+/// A quantity that stops existing is absent, not a non-finite number: the
+/// tumbling nanoellipsoid ends turning about one axis, where the free motion
+/// has no period. Its scene passes the gate in every format: no `period` in
+/// those JSON samples (never `null`), an empty CSV cell, `none` in the table.
+#[test]
+fn a_period_that_ends_is_absent_and_passes_the_gate() {
+    let run = |format: &str| {
+        let out = spintop(&["run", "nanoellipsoid-tumbling", "--format", format]);
+        assert!(
+            out.status.success(),
+            "{format}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let json = run("json");
+    assert!(!json.contains("null"), "{json}");
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let samples = v["samples"].as_array().unwrap();
+    assert!(samples.iter().any(|s| s.get("period").is_none()));
+    assert!(
+        samples
+            .iter()
+            .any(|s| s["period"].as_f64().is_some_and(f64::is_finite))
+    );
+    assert!(run("csv").lines().any(|l| l.ends_with(',')));
+    assert!(run("table").contains("none"));
+}
