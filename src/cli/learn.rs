@@ -8,9 +8,10 @@
 
 use super::gate::Gate;
 use super::{CliError, bad};
-use crate::tui::learn::{self, Learn, Progress};
+use crate::tui::learn::{Learn, Progress};
+use crate::tui::session::{self, Session};
 use clap::Args;
-use std::io::{self, IsTerminal, Write};
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
 /// The raw arguments of `learn`.
@@ -71,15 +72,6 @@ fn read_progress(path: &Path) -> Progress {
         .unwrap_or_default()
 }
 
-/// Restores the terminal when dropped.
-struct Restore;
-
-impl Drop for Restore {
-    fn drop(&mut self) {
-        ratatui::restore();
-    }
-}
-
 /// Runs `spintop learn`.
 pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let repo = repository();
@@ -116,34 +108,34 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
     } else {
         progress.last.clone()
     });
-    let mut session = match Learn::open(&book, start.as_deref()) {
+    // The scenes run on threads of their own: the screen never waits on them.
+    let mut session = match Learn::open_in_background(&book, start.as_deref()) {
         Ok(s) => s,
         // A stale "last chapter" in the progress file falls back to the preface.
-        Err(_) if args.chapter.is_none() => Learn::open(&book, None).map_err(bad)?,
+        Err(_) if args.chapter.is_none() => Learn::open_in_background(&book, None).map_err(bad)?,
         Err(e) => return Err(bad(e)),
     };
-    session.mark_visited(&progress.opened);
+    session.restore(&progress);
     if args.list {
         return list(&mut session, &progress, out);
     }
-    if !io::stdout().is_terminal() {
-        return Err(bad(
-            "spintop learn needs a terminal, but stdout is not one; `spintop learn --list` prints the course as text",
-        ));
-    }
-    crate::tui::signals::check_terminal_capable().map_err(|e| {
+    session::check().map_err(|e| {
         bad(format!(
-            "{e}; `spintop learn --list` prints the course as text"
+            "spintop learn {e}; `spintop learn --list` prints the course as text"
         ))
     })?;
-    if let Some(dir) = course {
-        session.watch_course(&dir);
+    match course {
+        Some(dir) => session.watch_course(&dir),
+        None if args.no_grading => session.grading_off(
+            "--no-grading turned the grader off; run spintop learn without it to grade the \
+             assignments beside the book, or `spintop course` to grade them once",
+        ),
+        None => session.grading_off(
+            "there is no lessons/ crate here to grade; a copy made by `spintop course export` \
+             is graded with --course DIR",
+        ),
     }
-    let signal = {
-        let _restore = Restore;
-        let mut terminal = ratatui::try_init()?;
-        learn::run(&mut terminal, &mut session)?
-    };
+    let signal = Session::start(true)?.run(&mut session, None)?.signal;
     let progress = Progress::of(&session);
     if let Some(dir) = progress_path.parent() {
         // Progress is a convenience: failing to save it is reported, not fatal.
@@ -201,13 +193,21 @@ fn list(session: &mut Learn, progress: &Progress, out: &mut impl Write) -> Resul
             1 => "; 1 experiment".into(),
             n => format!("; {n} experiments"),
         };
-        writeln!(out, "           scene: {}{experiments}", c.scene().about)?;
+        writeln!(out, "           {}{experiments}", scene_line(&c.scene()))?;
     }
     writeln!(
         out,
         "open one with: spintop learn --chapter 4.2 (a section) or --chapter numerical-methods (a file)"
     )?;
     Ok(())
+}
+
+/// "scene: …", or "no scene: why".
+fn scene_line(scene: &crate::tui::learn::scene::Scene) -> String {
+    match scene.spec {
+        crate::tui::learn::scene::Spec::None => scene.describe(),
+        _ => format!("scene: {}", scene.about),
+    }
 }
 
 fn experiments_of(session: &Learn, index: usize) -> Result<usize, CliError> {

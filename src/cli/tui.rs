@@ -1,17 +1,17 @@
 //! `spintop tui` (and `spintop` with no arguments): the live view.
 //!
 //! Validates the starting parameters, refuses to start when stdout is not a
-//! terminal (pointing at the text commands instead), and always restores the
-//! terminal: on quit, on error, and on panic (`ratatui::init` installs a hook).
+//! terminal (pointing at the text commands instead), and runs the view in a
+//! [`crate::tui::session::Session`], which always restores the terminal.
 
 use super::gate::Gate;
 use super::{CliError, bad, parse_number, parse_vec3};
 use crate::math::Real;
 use crate::sim::MethodChoice;
 use crate::tui::app::{App, Settings, WARPS};
-use crate::tui::event;
+use crate::tui::session::{self, Session};
 use clap::Args;
-use std::io::{self, IsTerminal, Write};
+use std::io::Write;
 use std::time::Duration;
 
 /// The raw arguments of `tui`, before validation.
@@ -56,16 +56,6 @@ impl TuiArgs {
     }
 }
 
-/// Restores the terminal when dropped, so that every way out of the loop
-/// (quit, an I/O error, an early return) leaves the shell usable.
-struct Restore;
-
-impl Drop for Restore {
-    fn drop(&mut self) {
-        ratatui::restore();
-    }
-}
-
 /// Validate, check for a terminal, run the live view, restore the terminal.
 pub(crate) fn execute(args: TuiArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let (settings, note) = args.settings()?;
@@ -75,26 +65,17 @@ pub(crate) fn execute(args: TuiArgs, out: &mut Gate<'_>) -> Result<(), CliError>
         }
         s => s.map(Duration::from_secs_f64),
     };
-    if !io::stdout().is_terminal() {
-        return Err(bad(
-            "the live view needs a terminal, but stdout is not one; for text output use \
-             `spintop simulate` (numbers) or `spintop plot` (ASCII charts)",
-        ));
-    }
-    crate::tui::signals::check_terminal_capable().map_err(|e| {
+    session::check().map_err(|e| {
         bad(format!(
-            "{e}; for text output use `spintop simulate` (numbers) or `spintop plot` (ASCII charts)"
+            "the live view {e}; for text output use \
+             `spintop simulate` (numbers) or `spintop plot` (ASCII charts)"
         ))
     })?;
-    let mut app = App::new(settings).map_err(bad)?;
+    let mut app = App::new(settings).map_err(bad)?.in_background();
     if let Some(note) = note {
         app = app.with_message(note);
     }
-    let report = {
-        let _restore = Restore;
-        let mut terminal = ratatui::try_init()?;
-        event::run(&mut terminal, &mut app, limit)?
-    };
+    let report = Session::start(false)?.run(&mut app, limit)?;
     if let Some(signal) = report.signal {
         return Err(CliError::Signal(signal, crate::tui::signals::name(signal)));
     }

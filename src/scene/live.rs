@@ -23,8 +23,9 @@ pub struct LiveScene {
 
 /// The live view's start for a top scene.
 ///
-/// A truncated, reduced or full scene opens the symmetric layout, the
-/// truncated and reduced models side by side, with its I₃/I₁, Ω₀ and method.
+/// A truncated or reduced scene opens the symmetric layout, the truncated
+/// and reduced models side by side, with its I₃/I₁, Ω₀ and method; a full
+/// scene opens the full ALE's physical solution beside its forward run.
 /// An asymmetric (general) scene opens the general layout: the truncated ALE
 /// (3.3) and its neighbours with their moments and dipole, integrated by the
 /// scene's method (DOP853 for `auto`, since nothing is closed). Scenes of
@@ -78,7 +79,7 @@ pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
                     scene.name
                 ));
             } else if matches!(top.model, Model::Full(_)) {
-                note.push_str(": the full ALE (3.4) is not in this view; both symmetric models run with its I₃/I₁ and Ω₀");
+                note.push_str(": the full ALE (3.4), its physical solution beside the same equation integrated forward, which runs away");
             } else {
                 note.push_str(&format!(": {}", scene.summary()));
             }

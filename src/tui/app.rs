@@ -1,14 +1,19 @@
 //! The state of the live view and the one function that changes it.
 //!
-//! [`App`] owns the [`Simulation`]s of one [`Top`]: for a symmetric top two
-//! started from the same parameters (the truncated model on the left, the
-//! reduced one on the right); for a general (asymmetric) top one, the
-//! truncated ALE (3.3), which has no closed form and is integrated. It also
-//! owns what the view shows, and the mode. Keys become [`Command`]s;
-//! [`App::apply`] is the only place a command changes anything. Wall-clock
-//! time enters through [`App::advance_wall`], which turns it into a whole
-//! number of fixed model steps of [`TICK`] (never one model step per frame),
-//! so the models do not depend on the frame rate.
+//! [`App`] shows the models of one [`Top`] side by side: for a symmetric top
+//! the truncated model (left) and the reduced one (right), started from the
+//! same parameters; for the full ALE (3.4) its physical solution beside its
+//! forward run, which runs away; for a general (asymmetric) top the truncated
+//! ALE (3.3), the reduced ALE and the physical solution of (3.4). It owns
+//! what the view shows of each model (a [`Column`]), what the view shows, and
+//! the mode; the models themselves are stepped by a [`Stepper`], on a thread
+//! of their own in the terminal, so that no key waits on them. Keys become
+//! [`Command`]s; [`App::apply`] is the only place a command changes
+//! anything. Wall-clock time enters through [`App::advance_wall`], which
+//! turns it into a whole number of fixed model steps of [`TICK`] (never one
+//! model step per frame), so the models do not depend on the frame rate.
+//! Settings whose work the view cannot draw live are refused when they are
+//! entered ([`LIVE_STEPS_PER_SECOND`]), never started.
 //!
 //! | code name | symbol | meaning | units |
 //! |---|---|---|---|
@@ -18,8 +23,9 @@
 //! | [`TICK`] | Δt | one model step of the view | τ |
 //! | `warp` | – | model time per wall-clock second | τ/s |
 
+use crate::integrate::Stats;
 use crate::math::{Real, Vec3};
-use crate::numbers::{fmt_exact, fmt_num, parse_number};
+use crate::numbers::{fmt_exact, parse_number};
 use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
 use crate::physics::rigid_body::energy;
@@ -27,11 +33,14 @@ use crate::physics::rigid_body::lab_frame;
 use crate::physics::symmetric_top::SymmetricTop;
 use crate::scene::Scene;
 use crate::scene::live::live_scene;
-use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, Simulation};
+use crate::sim::{InitialState, Method, MethodChoice, MethodOptions, Model, Sample, SimError};
 use std::collections::VecDeque;
 use std::time::Duration;
 
-/// Everything a key can ask for.
+use super::stepper::{Plan, Progress, Report, Stepper, Stopped};
+
+/// Everything a key can ask of the live view (and of the scene beside a
+/// chapter of `spintop learn`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Command {
     /// `q`, Esc or Ctrl-C: leave.
@@ -44,7 +53,7 @@ pub enum Command {
     Faster,
     /// `-`: a slower time warp.
     Slower,
-    /// `r`: restart both models at t = 0.
+    /// `r`: restart every model at t = 0.
     Reset,
     /// `[`: lower I₃/I₁.
     RatioDown,
@@ -68,12 +77,16 @@ pub enum Command {
     Commit,
     /// Esc in the edit field: keep the old value.
     Cancel,
-    /// `m`: the next method (closed form, RK4, DP5, DOP853).
+    /// `m`: the next method (closed form, RK4, DP5, DOP853, Radau5).
     CycleMethod,
     /// `l`: log-time charts on or off.
     ToggleLogTime,
     /// `?`: the help overlay on or off.
     ToggleHelp,
+    /// Tab: the next model, where the screen shows one at a time.
+    NextModel,
+    /// The terminal's size changed (columns, rows).
+    Resize(u16, u16),
 }
 
 /// One model step of the view, in units of τ: the size of every increment of
@@ -137,6 +150,22 @@ pub const STAND_IN_BELOW: Real = 1e-2;
 /// exactly [`TICK`].
 pub const MAX_LAG: Duration = Duration::from_millis(250);
 
+/// The most model steps per wall-clock second the view takes on: settings
+/// whose estimated work (the core's [`crate::sim::cost::estimate`], summed
+/// over the columns) is above it are refused when they are entered, with the
+/// reason and a cheaper way, instead of being started.
+///
+/// NOTE: about what one core of a laptop steps per second in a release build
+/// (a DOP853 step of the coupled Ω and orientation state takes about a
+/// microsecond). Below it the models run on their own thread and the view
+/// shows how far they lag when the machine is slower; far above it (Ω₃₀ = 10⁹
+/// asks for 10¹⁰ steps per second) no machine would draw anything.
+pub const LIVE_STEPS_PER_SECOND: Real = 1e6;
+
+/// How far the forward run of the full ALE is tabulated, in τ: it runs away
+/// within a few τ; this is the chart's window, where it would show no more.
+pub const FORWARD_HORIZON: Real = WINDOW;
+
 /// The methods `m` cycles through: closed form, RK4, DP5, DOP853, Radau IIA 5.
 pub const METHOD_CYCLE: [MethodChoice; 5] = [
     MethodChoice::Exact,
@@ -147,9 +176,13 @@ pub const METHOD_CYCLE: [MethodChoice; 5] = [
 ];
 
 /// The method after `method` in [`METHOD_CYCLE`] that `top` takes (a
-/// general top has no closed form, so its cycle skips it).
+/// general top has no closed form, so its cycle skips it); `method` itself
+/// when no column takes a method (the full ALE's two columns).
 pub fn next_method(method: MethodChoice, top: &Top) -> MethodChoice {
     let at = METHOD_CYCLE.iter().position(|m| *m == method).unwrap_or(0);
+    if !top.takes_a_method() {
+        return method;
+    }
     (1..=METHOD_CYCLE.len())
         .map(|k| METHOD_CYCLE[(at + k) % METHOD_CYCLE.len()])
         .find(|m| top.check_method(*m).is_ok())
@@ -162,38 +195,134 @@ pub enum Top {
     /// A symmetric top: its truncated (4.2)–(4.4) and reduced (4.12)–(4.14)
     /// models side by side, each with its closed form.
     Symmetric(SymmetricTop),
+    /// A symmetric top under the full ALE (3.4): its physical solution beside
+    /// the same equation integrated forward, which runs away.
+    Full(SymmetricTop),
     /// Any top: the truncated ALE (3.3), the reduced ALE and the physical
     /// solution of the full ALE (3.4), side by side (no closed forms).
     General(GeneralTop),
 }
 
+/// One column of a layout: its model, the method it always runs (`None`:
+/// the one chosen with `m`) and the last time it can reach.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Slot {
+    model: Model,
+    fixed: Option<MethodChoice>,
+    horizon: Option<Real>,
+}
+
 impl Top {
-    /// The models the view runs, one per column.
-    fn models(&self) -> Vec<Model> {
+    /// The columns, left to right.
+    fn slots(&self) -> Vec<Slot> {
+        let slot = |model, fixed, horizon| Slot {
+            model,
+            fixed,
+            horizon,
+        };
         match *self {
-            Top::Symmetric(top) => vec![Model::Truncated(top), Model::Reduced(top)],
+            Top::Symmetric(top) => vec![
+                slot(Model::Truncated(top), None, None),
+                slot(Model::Reduced(top), None, None),
+            ],
+            Top::Full(top) => vec![
+                slot(Model::Full(top), Some(MethodChoice::Auto), None),
+                slot(
+                    Model::Full(top),
+                    Some(MethodChoice::Forward),
+                    Some(FORWARD_HORIZON),
+                ),
+            ],
+            // The full ALE's physical solution has one method (backward
+            // shooting, tabulated ahead chunk by chunk).
             Top::General(top) => vec![
-                Model::General(top),
-                Model::GeneralReduced(top),
-                Model::GeneralFull(top),
+                slot(Model::General(top), None, None),
+                slot(Model::GeneralReduced(top), None, None),
+                slot(Model::GeneralFull(top), Some(MethodChoice::Auto), None),
             ],
         }
     }
 
-    /// Refuse a method the columns that take one do not take (the full ALE's
-    /// column always runs its physical solution), with the core's reason.
+    /// True when some column runs the method chosen with `m`.
+    pub fn takes_a_method(&self) -> bool {
+        self.slots().iter().any(|s| s.fixed.is_none())
+    }
+
+    /// Refuse a method the columns that take one do not take, with the
+    /// core's reason.
     pub fn check_method(&self, method: MethodChoice) -> Result<(), String> {
-        self.models()
+        self.slots()
             .iter()
-            .filter(|m| !m.is_full())
-            .try_for_each(|m| m.check_method(method))
+            .filter(|s| s.fixed.is_none())
+            .try_for_each(|s| s.model.check_method(method))
             .map_err(|e| e.to_string())
     }
 
-    /// The unit of time: τ for the symmetric top (Section 4's unit), "u" for
-    /// a general one, whose numbers are in units where κ = 2/(3c³) = 1.
+    /// The unit of time: τ for a symmetric top (Section 4's unit), "u" for a
+    /// general one, whose numbers are in units where κ = 2/(3c³) = 1.
     pub fn time_unit(&self) -> &'static str {
-        self.models()[0].time_unit()
+        self.slots()[0].model.time_unit()
+    }
+
+    /// I₃/I₁ of a symmetric top; `None` for a general one.
+    pub fn ratio(&self) -> Option<Real> {
+        match self {
+            Top::Symmetric(top) | Top::Full(top) => Some(top.ratio()),
+            Top::General(_) => None,
+        }
+    }
+
+    /// The same layout for a symmetric top of another I₃/I₁.
+    fn with_ratio(&self, ratio: Real) -> Result<Top, String> {
+        let top = SymmetricTop::new(ratio, 1.0).map_err(|e| e.to_string())?;
+        match self {
+            Top::Full(_) => Ok(Top::Full(top)),
+            _ => Ok(Top::Symmetric(top)),
+        }
+    }
+
+    /// How each column runs from `omega0` by `method`, and why a column
+    /// runs a lighter model than its title's, if it does.
+    fn plans(
+        &self,
+        method: MethodChoice,
+        omega0: [Real; 3],
+    ) -> Result<Vec<(Plan, Option<String>)>, String> {
+        self.slots()
+            .into_iter()
+            .map(|slot| {
+                // Model no more than the view can show: the physical solution
+                // of a general top differs from its reduced model by
+                // O((τ_f|Ω|)²) relative, and costs work in proportion to 1/τ_f
+                // per unit of time.
+                let mut stand_in = None;
+                let mut model = slot.model;
+                let mut fixed = slot.fixed;
+                if let Model::GeneralFull(top) = model {
+                    let small = crate::sim::physical::general::fast_time(&top)
+                        * Vec3::from(omega0).norm();
+                    if small < STAND_IN_BELOW {
+                        stand_in = Some(format!(
+                            "τ_f|Ω₀| = {}: the physical solution is the reduced model to about {}, so the reduced model stands in",
+                            crate::numbers::fmt_num(small),
+                            crate::numbers::fmt_num(small * small)
+                        ));
+                        model = Model::GeneralReduced(top);
+                        fixed = None;
+                    }
+                }
+                let initial =
+                    InitialState::new(Vec3::from(omega0), lab_frame(&model.inertia(), &Vec3::from(omega0)))
+                        .map_err(|e| e.to_string())?;
+                let plan = Plan {
+                    model,
+                    choice: fixed.unwrap_or(method),
+                    initial,
+                    horizon: slot.horizon,
+                };
+                Ok((plan, stand_in))
+            })
+            .collect()
     }
 }
 
@@ -220,8 +349,8 @@ impl Default for Settings {
 }
 
 impl Settings {
-    /// Validate I₃/I₁, Ω₀ and the warp (one of [`WARPS`], in τ/s); the error
-    /// is one line for the user.
+    /// Validate I₃/I₁, Ω₀ and the warp (one of [`WARPS`], in τ/s), and that
+    /// the view can step the models live; the error is one line for the user.
     pub fn new(
         ratio: Real,
         omega0: [Real; 3],
@@ -232,8 +361,9 @@ impl Settings {
         Self::validated(Top::Symmetric(top), omega0, method, warp)
     }
 
-    /// Validate the settings of a general top (one column, the truncated ALE
-    /// (3.3)): Ω₀, an integrator (it has no closed form) and the warp.
+    /// Validate the settings of a general top (three columns: the truncated
+    /// ALE (3.3), the reduced ALE, the physical solution of (3.4)): Ω₀, an
+    /// integrator (it has no closed form) and the warp.
     pub fn general(
         top: GeneralTop,
         omega0: [Real; 3],
@@ -241,6 +371,13 @@ impl Settings {
         warp: Real,
     ) -> Result<Self, String> {
         Self::validated(Top::General(top), omega0, method, warp)
+    }
+
+    /// Validate the settings of a symmetric top under the full ALE (3.4):
+    /// its physical solution beside its forward run.
+    pub fn full(ratio: Real, omega0: [Real; 3], warp: Real) -> Result<Self, String> {
+        let top = SymmetricTop::new(ratio, 1.0).map_err(|e| e.to_string())?;
+        Self::validated(Top::Full(top), omega0, MethodChoice::Auto, warp)
     }
 
     /// The settings a top scene opens with (see [`crate::scene::live`]), at
@@ -252,7 +389,8 @@ impl Settings {
             Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
                 Self::general(top, live.omega0, live.method, warp)?
             }
-            Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
+            Model::Full(top) => Self::full(top.ratio(), live.omega0, warp)?,
+            Model::Truncated(top) | Model::Reduced(top) => {
                 Self::new(top.ratio(), live.omega0, live.method, warp)?
             }
         };
@@ -271,12 +409,86 @@ impl Settings {
             let list: Vec<String> = WARPS.iter().map(|w| w.to_string()).collect();
             format!("--warp must be one of {} (tau per second)", list.join(", "))
         })?;
-        Ok(Self {
+        let settings = Self {
             top,
             omega0,
             method,
             warp,
-        })
+        };
+        settings.check_live()?;
+        Ok(settings)
+    }
+
+    /// The same settings at warp `WARPS[index]`, if the view can step them live.
+    fn at_warp(&self, index: usize) -> Result<Self, String> {
+        let settings = Self {
+            warp: index,
+            ..*self
+        };
+        settings.check_live()?;
+        Ok(settings)
+    }
+
+    /// Refuse settings whose models the view cannot step live (see
+    /// [`LIVE_STEPS_PER_SECOND`]), saying what costs so much and what
+    /// would not.
+    fn check_live(&self) -> Result<(), String> {
+        let (total, costliest) = self.live_cost()?;
+        if total <= LIVE_STEPS_PER_SECOND {
+            return Ok(());
+        }
+        let u = self.top.time_unit();
+        let what = costliest.map_or("the models".to_string(), |e| e.what);
+        let warp = self.warp();
+        // The work per second is proportional to the warp (or grows more
+        // slowly): a slower warp that fits is named first.
+        let slower = WARPS[..self.warp]
+            .iter()
+            .rev()
+            .find(|w| total * **w / warp <= LIVE_STEPS_PER_SECOND);
+        let cheaper = match slower {
+            Some(w) => format!("at {w} {u}/s or slower it runs live (- slows down)"),
+            None if self.top.ratio().is_some()
+                && self.method != MethodChoice::Exact
+                && self.top.takes_a_method() =>
+            {
+                "the closed forms (m) take no steps, and a smaller |Ω₀| costs less".to_string()
+            }
+            None => "a smaller |Ω₀| costs less (the steps grow with it)".to_string(),
+        };
+        Err(format!(
+            "{what} needs about {} steps a second at {warp} {u}/s, the view {LIVE_STEPS_PER_SECOND:.0e}; {cheaper}",
+            crate::numbers::fmt_count(total),
+        ))
+    }
+
+    /// The steps per wall-clock second of every column (a column with a
+    /// horizon is tabulated once: its whole cost counts), and the costliest
+    /// column's estimate.
+    fn live_cost(&self) -> Result<(Real, Option<crate::sim::cost::Estimate>), String> {
+        let omega0 = Vec3::from(self.omega0);
+        let mut total = 0.0;
+        let mut costliest: Option<crate::sim::cost::Estimate> = None;
+        for (plan, _) in self.top.plans(self.method, self.omega0)? {
+            let method = plan.model.method(plan.choice).map_err(|e| e.to_string())?;
+            let t = plan.horizon.unwrap_or(self.warp());
+            let options = MethodOptions::default();
+            let Some(e) = crate::sim::cost::estimate(&plan.model, method, &options, &omega0, t)
+            else {
+                continue;
+            };
+            // NaN (an overflowing estimate) counts as too much.
+            let steps = if e.steps.is_nan() {
+                Real::INFINITY
+            } else {
+                e.steps
+            };
+            total += steps;
+            if costliest.as_ref().is_none_or(|c| c.steps < steps) {
+                costliest = Some(crate::sim::cost::Estimate { steps, ..e });
+            }
+        }
+        Ok((total, costliest))
     }
 
     /// The top.
@@ -284,17 +496,14 @@ impl Settings {
         &self.top
     }
 
-    /// True for a general top (one column, no closed form).
+    /// True for a general top (three columns, no closed form).
     pub fn is_general(&self) -> bool {
         matches!(self.top, Top::General(_))
     }
 
     /// I₃/I₁ of a symmetric top; `None` for a general one.
     pub fn ratio(&self) -> Option<Real> {
-        match self.top {
-            Top::Symmetric(top) => Some(top.ratio()),
-            Top::General(_) => None,
-        }
+        self.top.ratio()
     }
 
     /// Ω₀, body frame, in 1/τ.
@@ -351,6 +560,23 @@ pub struct View {
     pub log_time: bool,
     /// The Ω₀ component that ↑/↓ selected and Enter edits (0, 1, 2).
     pub selected: usize,
+    /// The model shown where the screen has room for one at a time.
+    pub shown: usize,
+    /// The terminal's size (columns, rows), as last reported.
+    pub size: (u16, u16),
+}
+
+/// The smallest terminal the live view fits, in columns.
+pub const MIN_WIDTH: u16 = 80;
+/// The smallest terminal the live view fits, in rows.
+pub const MIN_HEIGHT: u16 = 24;
+
+impl View {
+    /// True when the terminal is smaller than the layout needs: only quit is
+    /// taken then (nothing else would be seen).
+    pub fn too_small(&self) -> bool {
+        self.size.0 < MIN_WIDTH || self.size.1 < MIN_HEIGHT
+    }
 }
 
 /// A one-line message under the header.
@@ -383,13 +609,17 @@ impl From<&Sample> for Point {
     }
 }
 
-/// One model with its history: one column of the screen.
+/// One model as the view shows it: its latest sample and its history (the
+/// model itself is stepped by the [`Stepper`]).
 #[derive(Clone, Debug)]
 pub struct Column {
-    sim: Simulation,
-    omega0: Vec3,
+    plan: Plan,
+    method: Method,
     scale: Real,
     start: Sample,
+    current: Sample,
+    stats: Stats,
+    last_step: Real,
     recent: VecDeque<Point>,
     log: Vec<Point>,
     next_log_t: Real,
@@ -403,42 +633,19 @@ pub struct Column {
 }
 
 impl Column {
-    fn new(model: Model, method: MethodChoice, omega0: [Real; 3]) -> Result<Self, String> {
-        // Model no more than the view can show: the physical solution of a
-        // general top differs from its reduced model by O((τ_f|Ω|)²)
-        // relative, and costs work in proportion to 1/τ_f per unit of time.
-        let mut stand_in = None;
-        let mut model = model;
-        if let Model::GeneralFull(top) = model {
-            let small = crate::sim::physical::general::fast_time(&top) * Vec3::from(omega0).norm();
-            if small < STAND_IN_BELOW {
-                stand_in = Some(format!(
-                    "τ_f|Ω₀| = {}: the physical solution is the reduced model to about {}, so the reduced model stands in",
-                    fmt_num(small),
-                    fmt_num(small * small)
-                ));
-                model = Model::GeneralReduced(top);
-            }
-        }
-        // The full ALE's physical solution has one method (backward
-        // shooting, tabulated ahead chunk by chunk); `m` changes the others.
-        let choice = if model.is_full() {
-            MethodChoice::Auto
-        } else {
-            method
-        };
-        let inertia = model.inertia();
-        let initial =
-            InitialState::new(Vec3::from(omega0), lab_frame(&inertia, &Vec3::from(omega0)))
-                .map_err(|e| e.to_string())?;
-        let sim = Simulation::new(model, choice, MethodOptions::default(), initial, None)
-            .map_err(|e| e.to_string())?;
-        let start = *sim.current();
+    fn new(plan: Plan, stand_in: Option<String>) -> Result<Self, String> {
+        let model = plan.model;
+        let method = model.method(plan.choice).map_err(|e| e.to_string())?;
+        let initial = plan.initial;
+        let start = Sample::new(0.0, &model.inertia(), &initial.rotation, &initial.omega);
         let mut column = Self {
-            scale: plot_scale(&model, omega0),
+            scale: plot_scale(&model, initial.omega.into()),
+            method,
             start,
-            sim,
-            omega0: Vec3::from(omega0),
+            current: start,
+            stats: Stats::default(),
+            last_step: 0.0,
+            plan,
             recent: VecDeque::with_capacity((WINDOW / TICK) as usize / RECENT_STRIDE as usize + 2),
             log: Vec::new(),
             next_log_t: TICK,
@@ -453,22 +660,39 @@ impl Column {
         Ok(column)
     }
 
-    /// Advance to tick `k` (t = k·Δt); a failure stops this column only.
-    fn advance(&mut self, k: u64, t: Real) {
+    /// Take tick `k`'s outcome; a failure stops this column only.
+    fn take(&mut self, k: u64, outcome: Result<Progress, Stopped>) {
         if self.failure.is_some() {
             return;
         }
-        match self.sim.advance_to(t) {
-            Ok(sample) => {
-                let sample = *sample;
-                self.record(k, &sample);
+        match outcome {
+            Ok(p) => {
+                self.current = p.sample;
+                self.stats = p.stats;
+                self.last_step = p.last_step;
+                self.record(k, &p.sample);
             }
-            Err(e) => {
+            // The forward run is there to run away: said as what it shows.
+            Err(Stopped::Sim(SimError::Runaway(r))) if self.is_forward() => {
                 self.failure = Some(format!(
-                    "{e}; m switches the method, r restarts, a smaller Ω₀ helps"
-                ))
+                    "ran away at t = {:.3}: it leaves the physical solution at {}/τ, an e-folding time of {}τ, as (3.4) does forward from any start",
+                    r.t,
+                    crate::numbers::fmt_num(r.growth_rate),
+                    crate::numbers::fmt_num(1.0 / r.growth_rate)
+                ));
             }
+            Err(e) => self.stop(e.to_string()),
         }
+    }
+
+    /// Stop with the reason and what to do about it.
+    fn stop(&mut self, why: String) {
+        self.failure = Some(if self.is_forward() {
+            // The forward run is there to run away: the reason says it all.
+            why
+        } else {
+            format!("{why}; m switches the method, r restarts, a smaller Ω₀ helps")
+        });
     }
 
     fn record(&mut self, k: u64, s: &Sample) {
@@ -488,14 +712,58 @@ impl Column {
         push_trail(&mut self.axis_trail, axis_of(s), TRAIL_SPACING);
     }
 
-    /// The simulation.
-    pub fn sim(&self) -> &Simulation {
-        &self.sim
+    /// Its name, its equations and their gist, for its title: ("reduced",
+    /// "(4.12)–(4.14)", "Schott term kept").
+    pub fn title(&self) -> (&'static str, &'static str, &'static str) {
+        match (self.plan.model, self.method) {
+            (Model::Truncated(_), _) => ("truncated", "(4.2)–(4.4)", "no Schott term"),
+            (Model::Reduced(_), _) => ("reduced", "(4.12)–(4.14)", "Schott term kept"),
+            (Model::GeneralReduced(_), _) => {
+                ("reduced", "(3.4)", "Schott term kept, runaways removed")
+            }
+            (Model::Full(_) | Model::GeneralFull(_), Method::Forward) => {
+                ("forward", "(3.4)", "the same start, integrated forward")
+            }
+            (Model::GeneralFull(_) | Model::Full(_), _) => {
+                ("physical", "(3.4)", "its non-runaway solution, Ω̈ kept")
+            }
+            (Model::General(_), _) => ("truncated", "(3.3)", "no Schott term"),
+        }
+    }
+
+    /// The model this column runs.
+    pub fn model(&self) -> &Model {
+        &self.plan.model
+    }
+
+    /// The method it runs.
+    pub fn method(&self) -> Method {
+        self.method
+    }
+
+    /// True for the forward run of the full ALE, which is there to run away.
+    pub fn is_forward(&self) -> bool {
+        self.method == Method::Forward
+    }
+
+    /// The start.
+    pub fn initial(&self) -> &InitialState {
+        &self.plan.initial
+    }
+
+    /// The work done so far (zero for the closed forms).
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// The last accepted step (0 for a closed form, or before the first).
+    pub fn last_step(&self) -> Real {
+        self.last_step
     }
 
     /// The latest sample.
     pub fn current(&self) -> &Sample {
-        self.sim.current()
+        &self.current
     }
 
     /// The sample at t = 0.
@@ -506,12 +774,12 @@ impl Column {
     /// The unit of time of this model's numbers: τ for the symmetric top,
     /// "u" (κ = 1 units) for a general one.
     pub fn time_unit(&self) -> &'static str {
-        self.sim.model().time_unit()
+        self.plan.model.time_unit()
     }
 
-    /// `truncated`, `reduced` or `general`.
+    /// `truncated`, `reduced`, `general`, …
     pub fn name(&self) -> &'static str {
-        self.sim.model().name()
+        self.plan.model.name()
     }
 
     /// Points of the last [`WINDOW`] (one in [`RECENT_STRIDE`] ticks), oldest first.
@@ -552,11 +820,10 @@ impl Column {
     }
 
     /// |Ω − Ω_closed form| at the current time, in 1/τ, from the core's closed
-    /// forms (4.7) and (4.15)–(4.16); `None` for the general top (3.3), which
-    /// has no closed form.
+    /// forms (4.7) and (4.15)–(4.16); `None` for a model with no closed form.
     pub fn closed_form_error(&self) -> Option<Real> {
-        let s = self.sim.current();
-        let exact = self.sim.model().closed_form(&self.omega0, s.t)?;
+        let s = &self.current;
+        let exact = self.plan.model.closed_form(&self.plan.initial.omega, s.t)?;
         Some((s.omega_vec() - exact).norm())
     }
 }
@@ -605,45 +872,104 @@ fn push_trail(trail: &mut VecDeque<[Real; 3]>, p: [Real; 3], spacing: Real) {
     }
 }
 
+/// How fast the models actually went, measured over about a second of wall time.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Pace {
+    wall: Duration,
+    ticks: u64,
+    /// Model time per wall-clock second over the last full window, once the
+    /// models lagged the clock in it.
+    behind: Option<Real>,
+    lagged: bool,
+}
+
 /// The whole state of the live view.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct App {
     settings: Settings,
     columns: Vec<Column>,
     view: View,
     mode: Mode,
     paused: bool,
+    /// Ticks done (the models' time is ticks·Δt).
     ticks: u64,
+    /// Ticks asked of the stepper.
+    requested: u64,
     /// Model time owed, in thousandths of τ times nanoseconds of wall time.
     backlog: u128,
     message: Option<Message>,
+    stepper: Stepper,
+    pace: Pace,
 }
 
 impl App {
-    /// Start the models of `settings` at t = 0, running.
+    /// Start the models of `settings` at t = 0, running, stepped on this
+    /// thread whenever asked (see [`App::in_background`]).
     pub fn new(settings: Settings) -> Result<Self, String> {
-        Ok(Self {
-            columns: Self::columns_for(&settings)?,
+        Self::start(settings, false)
+    }
+
+    /// [`App::new`] with the models built and stepped on a thread of their
+    /// own from the start.
+    pub fn background(settings: Settings) -> Result<Self, String> {
+        Self::start(settings, true)
+    }
+
+    fn start(settings: Settings, background: bool) -> Result<Self, String> {
+        let (columns, stepper) = Self::columns_for(&settings, background)?;
+        let mut app = Self {
+            columns,
             settings,
             view: View {
                 log_time: false,
                 selected: 0,
+                shown: 0,
+                size: (MIN_WIDTH, MIN_HEIGHT),
             },
             mode: Mode::Normal,
             paused: false,
             ticks: 0,
+            requested: 0,
             backlog: 0,
             message: None,
-        })
+            stepper,
+            pace: Pace::default(),
+        };
+        app.absorb();
+        Ok(app)
     }
 
-    fn columns_for(settings: &Settings) -> Result<Vec<Column>, String> {
-        settings
-            .top
-            .models()
-            .into_iter()
-            .map(|model| Column::new(model, settings.method, settings.omega0))
-            .collect()
+    /// The same view with its models stepped on a thread of their own, so
+    /// that drawing and keys never wait for them (the terminal loop's way).
+    pub fn in_background(mut self) -> Self {
+        self.absorb();
+        let stepper = std::mem::replace(&mut self.stepper, Stepper::new(Vec::new(), TICK, false));
+        let (stepper, left) = stepper.into_background();
+        self.stepper = stepper;
+        self.take(left);
+        self
+    }
+
+    /// True when the models run on a thread of their own.
+    pub fn is_background(&self) -> bool {
+        self.stepper.is_background()
+    }
+
+    fn columns_for(
+        settings: &Settings,
+        background: bool,
+    ) -> Result<(Vec<Column>, Stepper), String> {
+        let plans = settings.top.plans(settings.method, settings.omega0)?;
+        let columns = plans
+            .iter()
+            .map(|(plan, stand_in)| Column::new(plan.clone(), stand_in.clone()))
+            .collect::<Result<Vec<_>, _>>()?;
+        let stepper = Stepper::new(
+            plans.into_iter().map(|(p, _)| p).collect(),
+            TICK,
+            background,
+        );
+        Ok((columns, stepper))
     }
 
     /// Show `text` under the header until the first key (how a scene opens).
@@ -658,14 +984,15 @@ impl App {
     }
 
     /// The columns: truncated (0) and reduced (1) for a symmetric top;
-    /// truncated (3.3), reduced and physical (3.4) for a general top.
+    /// physical (0) and forward (1) for the full ALE; truncated (3.3),
+    /// reduced and physical (3.4) for a general top.
     pub fn columns(&self) -> &[Column] {
         &self.columns
     }
 
-    /// "both models" or "the model": what a restart restarts.
+    /// "both models" or "all three models": what a restart restarts.
     fn restarted(&self) -> &'static str {
-        if self.settings.is_general() {
+        if self.columns.len() == 3 {
             "all three models restarted"
         } else {
             "both models restarted"
@@ -707,10 +1034,18 @@ impl App {
         self.ticks as Real * TICK
     }
 
+    /// The model time per wall-clock second the models actually reached over
+    /// the last second, when they fell behind the warp (a slow machine, a
+    /// costly method); `None` while they keep up.
+    pub fn behind(&self) -> Option<Real> {
+        self.pace.behind
+    }
+
     /// Turn elapsed wall-clock time into whole model steps: the time is
     /// accumulated (times the warp) into a backlog, and every whole [`TICK`]
-    /// of it is stepped. Returns the number of steps taken. Nothing happens
-    /// while paused.
+    /// of it is asked of the models. Returns the number of steps asked for.
+    /// Nothing happens while paused. Stepped inline, they are done on return;
+    /// in the background, what is done by now is taken.
     ///
     /// NOTE: the backlog is kept in integers (nanoseconds × thousandths of
     /// τ per second), so the number of steps after a total wall time W is
@@ -719,6 +1054,7 @@ impl App {
     pub fn advance_wall(&mut self, elapsed: Duration) -> u64 {
         if self.paused {
             self.backlog = 0;
+            self.absorb();
             return 0;
         }
         let warp = (self.settings.warp() * 1000.0).round() as u128;
@@ -729,23 +1065,72 @@ impl App {
         self.backlog = (self.backlog + elapsed.as_nanos() * warp).min(cap);
         let n = (self.backlog / per_tick) as u64;
         self.backlog %= per_tick;
-        self.advance_ticks(n);
+        let before = self.ticks;
+        self.ask(n, (cap / per_tick) as u64);
+        self.measure(elapsed, self.ticks - before);
         n
     }
 
-    /// Advance every model by `n` model steps of [`TICK`].
-    /// Once every model has stopped (a numerical failure), the clock stops
-    /// with them: the header's t is the time they stopped at.
+    /// Advance every model by `n` model steps of [`TICK`] (done on return
+    /// when stepped inline). Once every model has stopped (a numerical
+    /// failure), the clock stops with them: the header's t is the time they
+    /// stopped at.
     pub fn advance_ticks(&mut self, n: u64) {
-        for _ in 0..n {
-            if self.columns.iter().all(|c| c.failure().is_some()) {
-                self.backlog = 0;
-                break;
-            }
-            self.ticks += 1;
-            let t = self.time();
-            for column in &mut self.columns {
-                column.advance(self.ticks, t);
+        self.ask(n, u64::MAX);
+    }
+
+    /// Ask for `n` more ticks, never more than `lag` ahead of what is done
+    /// (work the models are behind on is dropped, not queued for ever).
+    fn ask(&mut self, n: u64, lag: u64) {
+        let want = self.requested.max(self.ticks).saturating_add(n);
+        let limit = self.ticks.saturating_add(lag);
+        self.pace.lagged |= want > limit;
+        self.requested = want.min(limit);
+        self.stepper.request(self.requested);
+        self.absorb();
+    }
+
+    fn measure(&mut self, elapsed: Duration, ticks: u64) {
+        self.pace.wall += elapsed;
+        self.pace.ticks += ticks;
+        if self.pace.wall >= Duration::from_secs(1) {
+            let rate = self.pace.ticks as Real * TICK / self.pace.wall.as_secs_f64();
+            self.pace = Pace {
+                behind: self.pace.lagged.then_some(rate),
+                ..Pace::default()
+            };
+        }
+    }
+
+    /// Take what the models did since the last call.
+    fn absorb(&mut self) {
+        let reports = self.stepper.collect();
+        self.take(reports);
+    }
+
+    fn take(&mut self, reports: Vec<Report>) {
+        for report in reports {
+            match report {
+                Report::NotBuilt(i, why) => {
+                    if let Some(c) = self.columns.get_mut(i) {
+                        c.stop(why);
+                    }
+                }
+                Report::Tick(tick) => {
+                    for (column, outcome) in self.columns.iter_mut().zip(tick.outcomes) {
+                        if let Some(outcome) = outcome {
+                            column.take(tick.k, outcome);
+                        }
+                    }
+                    self.ticks = tick.k;
+                }
+                Report::Lost => {
+                    for c in &mut self.columns {
+                        if c.failure.is_none() {
+                            c.stop("the models' thread stopped unexpectedly".into());
+                        }
+                    }
+                }
             }
         }
     }
@@ -754,14 +1139,21 @@ impl App {
     fn restart(&mut self) {
         // Settings are validated before they are stored, so this cannot fail;
         // if it ever did, the old models keep running and the reason is shown.
-        match Self::columns_for(&self.settings) {
-            Ok(columns) => {
-                self.columns = columns;
-                self.ticks = 0;
-                self.backlog = 0;
-            }
+        match Self::columns_for(&self.settings, self.is_background()) {
+            Ok((columns, stepper)) => self.replace(columns, stepper),
             Err(e) => self.refuse(e),
         }
+    }
+
+    fn replace(&mut self, columns: Vec<Column>, stepper: Stepper) {
+        self.columns = columns;
+        self.stepper = stepper;
+        self.ticks = 0;
+        self.requested = 0;
+        self.backlog = 0;
+        self.pace = Pace::default();
+        self.view.shown = self.view.shown.min(self.columns.len().saturating_sub(1));
+        self.absorb();
     }
 
     fn inform(&mut self, text: impl Into<String>) {
@@ -781,12 +1173,11 @@ impl App {
     /// Try new settings: on success restart the models, else keep the old
     /// ones and say why.
     fn change(&mut self, candidate: Result<Settings, String>, what: String) -> bool {
-        match candidate.and_then(|s| Self::columns_for(&s).map(|c| (s, c))) {
-            Ok((settings, columns)) => {
+        let background = self.is_background();
+        match candidate.and_then(|s| Self::columns_for(&s, background).map(|c| (s, c))) {
+            Ok((settings, (columns, stepper))) => {
                 self.settings = settings;
-                self.columns = columns;
-                self.ticks = 0;
-                self.backlog = 0;
+                self.replace(columns, stepper);
                 let restarted = self.restarted();
                 self.inform(format!("{what}: {restarted}"));
                 true
@@ -800,8 +1191,13 @@ impl App {
 
     /// Apply one command: the only place the state changes (besides the clock).
     pub fn apply(&mut self, command: Command) {
+        if let Command::Resize(w, h) = command {
+            self.view.size = (w, h);
+            return;
+        }
         self.message = None;
         match command {
+            Command::Resize(..) => {}
             Command::Quit => self.mode = Mode::Quitting,
             Command::ToggleHelp => {
                 self.mode = match self.mode {
@@ -813,10 +1209,16 @@ impl App {
                 self.paused = !self.paused;
                 self.backlog = 0;
                 if self.paused {
+                    // Nothing more than what is done: the clock stops now.
+                    self.requested = self.ticks;
+                    self.stepper.request(self.ticks);
                     let u = self.settings.top().time_unit();
                     self.inform(format!(
-                        "paused: . or → steps Δt = {TICK}{u}, space resumes"
+                        "paused at t = {:.2}{u}: . or → steps Δt = {TICK}{u}, space resumes",
+                        self.time()
                     ));
+                } else {
+                    self.inform("running");
                 }
             }
             Command::Step => {
@@ -836,14 +1238,16 @@ impl App {
                 } else {
                     self.settings.warp.checked_sub(1)
                 };
-                match next {
-                    Some(i) => {
-                        self.settings.warp = i;
+                let u = self.settings.top().time_unit();
+                match next.map(|i| self.settings.at_warp(i)) {
+                    Some(Ok(settings)) => {
+                        self.settings = settings;
                         self.backlog = 0;
-                        self.inform(format!("warp {} τ/s", WARPS[i]));
+                        self.inform(format!("warp {} {u}/s", settings.warp()));
                     }
+                    Some(Err(e)) => self.refuse(format!("refused: {e}")),
                     None => self.refuse(format!(
-                        "the warp is already at its {} ({} τ/s)",
+                        "the warp is already at its {} ({} {u}/s)",
                         if faster { "fastest" } else { "slowest" },
                         self.settings.warp()
                     )),
@@ -872,23 +1276,41 @@ impl App {
                 let grid = (ratio / RATIO_STEP).round() + sign;
                 let ratio = grid * RATIO_STEP;
                 let ratio = (ratio * 1e12).round() / 1e12;
-                let candidate = SymmetricTop::new(ratio, 1.0)
-                    .map(|top| Settings {
-                        top: Top::Symmetric(top),
+                let candidate = self.settings.top.with_ratio(ratio).and_then(|top| {
+                    let s = Settings {
+                        top,
                         ..self.settings
-                    })
-                    .map_err(|e| e.to_string());
+                    };
+                    s.check_live().map(|()| s)
+                });
                 self.change(candidate, format!("I₃/I₁ = {ratio}"));
             }
             Command::CycleMethod => {
+                if !self.settings.top.takes_a_method() {
+                    self.refuse(
+                        "m has nothing to change here: one column is the physical solution, \
+                         the other the forward run, each with its own method",
+                    );
+                    return;
+                }
                 let method = next_method(self.settings.method, &self.settings.top);
-                let candidate = Ok(Settings {
+                let candidate = Settings {
                     method,
                     ..self.settings
-                });
+                };
+                let candidate = candidate.check_live().map(|()| candidate);
                 self.change(candidate, format!("method {}", method.title()));
             }
             Command::ToggleLogTime => self.view.log_time = !self.view.log_time,
+            Command::NextModel => {
+                let n = self.columns.len().max(1);
+                self.view.shown = (self.view.shown + 1) % n;
+                let (name, equations, gist) = self.columns[self.view.shown].title();
+                self.inform(format!(
+                    "model {} of {n}: {name} {equations}, {gist}",
+                    self.view.shown + 1
+                ));
+            }
             Command::SelectPrevious => self.view.selected = (self.view.selected + 2) % 3,
             Command::SelectNext => self.view.selected = (self.view.selected + 1) % 3,
             Command::StartEdit => {
@@ -982,10 +1404,12 @@ impl App {
                     let candidate = value.and_then(|x| {
                         let mut omega0 = self.settings.omega0;
                         omega0[component] = x;
-                        check_omega0(omega0).map(|_| Settings {
+                        check_omega0(omega0)?;
+                        let s = Settings {
                             omega0,
                             ..self.settings
-                        })
+                        };
+                        s.check_live().map(|()| s)
                     });
                     let what = format!("Ω{}₀ = {}", SUBSCRIPTS[component], buffer.trim());
                     if self.change(candidate, what) {
@@ -1049,7 +1473,7 @@ mod tests {
     fn wall_clock_becomes_whole_ticks_at_any_frame_rate() {
         // 0.2 s at 10 τ/s is 20 ticks, in one frame or in six uneven ones.
         let mut one = App::new(Settings::default()).unwrap();
-        let mut many = one.clone();
+        let mut many = App::new(Settings::default()).unwrap();
         one.advance_wall(Duration::from_millis(200));
         for ms in [33, 34, 33, 50, 17, 33] {
             many.advance_wall(Duration::from_millis(ms));

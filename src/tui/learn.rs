@@ -1,31 +1,35 @@
-//! `spintop learn`: the book's chapters in the terminal, each beside its live
-//! scene.
+//! `spintop learn`: the book's chapters in the terminal, each beside its own
+//! scene, read as easily as in `less`.
 //!
 //! The text is the book itself: `book/src/SUMMARY.md` gives the chapters and
 //! their order, and each chapter's Markdown is read from `book/src` at run
 //! time (one source, no copies) and rendered by [`markdown`], with every
-//! equation turned into Unicode by [`tex`]. The scene is the live view's own
-//! [`App`], drawn by the live view's own column widget, so a chapter's chart
-//! is exactly what `spintop` shows. A chapter's experiments are
+//! equation turned into Unicode by [`tex`] and the paper's Figures 1 and 2
+//! drawn in place by [`figures`]. The scene is the chapter's own
+//! ([`scene::Scene::of`]): the live view's models for the chapters about the
+//! top, drawn by the live view's own column widget; the charge in a field for
+//! Section 2; the shell model for the appendix. A chapter's experiments are
 //! `<!-- spintop: key=value … -->` comments in its Markdown (mdBook drops
 //! them); `x` applies the next one to the scene and scrolls the text to it.
+//!
+//! The shape is the live view's: [`Learn`] is the state, keys become a
+//! [`Command`] ([`event`]), [`Learn::apply`] is the one place the state
+//! changes, and [`view`] draws it without changing anything.
 
+pub mod event;
+pub mod figures;
 pub mod markdown;
+pub mod scene;
 pub mod tex;
+pub mod view;
 
-use super::app::{App, Settings, WARPS};
-use super::theme;
-use super::view;
-use crate::math::{Real, Vec3};
+use super::app::{Settings, Top, WARPS};
+use crate::math::Real;
 use crate::numbers::parse_number;
-use crate::physics::general_top::GeneralTop;
 use crate::sim::MethodChoice;
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
-use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::{Modifier, Style};
-use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, BorderType, Clear, List, ListItem, ListState, Paragraph, Wrap};
+use scene::{SceneKey, Spec, Stage};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -55,89 +59,10 @@ impl Chapter {
         })
     }
 
-    /// The chapter's scene: the live view's settings, which of its columns
-    /// to show, and a one-line description.
-    pub fn scene(&self) -> Scene {
-        let figure = Settings::default();
-        let both = Scene {
-            settings: figure,
-            columns: vec![0, 1],
-            about: "the paper's top, I₃/I₁ = 2/5: truncated and reduced side by side",
-        };
-        match self.file.as_str() {
-            "section-3.md" => {
-                // An asymmetric top under the truncated ALE (3.3).
-                let top = GeneralTop::new(Vec3::new(1.0, 1.5, 2.0), Vec3::new(0.3, 0.2, 1.0)).ok();
-                match top.and_then(|t| {
-                    Settings::general(t, [0.05, 0.1, 0.2], MethodChoice::Dop853, 10.0).ok()
-                }) {
-                    Some(settings) => Scene {
-                        settings,
-                        columns: vec![0],
-                        about: "an asymmetric top under the truncated ALE (3.3), DOP853",
-                    },
-                    None => both,
-                }
-            }
-            "section-4-1.md" => Scene {
-                columns: vec![0],
-                about: "the truncated top (4.2)–(4.4) at I₃/I₁ = 2/5",
-                ..both
-            },
-            "section-4-2.md" => Scene {
-                columns: vec![1],
-                about: "the reduced top (4.12)–(4.14) at I₃/I₁ = 2/5",
-                ..both
-            },
-            "numerical-methods.md" | "where-methods-fail.md" => {
-                match Settings::new(0.4, [0.0, 0.1, 0.2], MethodChoice::Rk4, 100.0) {
-                    Ok(settings) => Scene {
-                        settings,
-                        columns: vec![0, 1],
-                        about: "both models under fixed-step RK4 at 100 τ/s: press x to break it",
-                    },
-                    Err(_) => both,
-                }
-            }
-            "speed-accuracy.md" => {
-                match Settings::new(0.4, [0.0, 0.1, 0.2], MethodChoice::Dop853, 10.0) {
-                    Ok(settings) => Scene {
-                        settings,
-                        columns: vec![0, 1],
-                        about: "both models by DOP853 beside their closed forms",
-                    },
-                    Err(_) => both,
-                }
-            }
-            "asymmetric-top.md" => {
-                // The chapter's top: three models side by side.
-                let top = GeneralTop::new(Vec3::new(1.0, 2.0, 2.5), Vec3::new(1.0, 0.5, 0.2)).ok();
-                match top.and_then(|t| {
-                    Settings::general(t, [0.3, -0.2, 0.1], MethodChoice::Dop853, 10.0).ok()
-                }) {
-                    Some(settings) => Scene {
-                        settings,
-                        columns: vec![0, 1, 2],
-                        about: "I = (1, 2, 2.5), d = (1, 0.5, 0.2): (3.3), reduced and physical (3.4), in u",
-                    },
-                    None => both,
-                }
-            }
-            _ => both,
-        }
+    /// The chapter's scene (see [`scene::Scene::of`]).
+    pub fn scene(&self) -> scene::Scene {
+        scene::Scene::of(&self.file)
     }
-}
-
-/// What a chapter shows on the right.
-#[derive(Debug, Clone)]
-pub struct Scene {
-    /// The live view's settings.
-    pub settings: Settings,
-    /// The live view's columns to draw (0 truncated, 1 reduced; for a general
-    /// top 0 truncated (3.3), 1 reduced, 2 physical (3.4)).
-    pub columns: Vec<usize>,
-    /// One line about it, for the header.
-    pub about: &'static str,
 }
 
 /// Reads `SUMMARY.md`: the chapters in book order, with their parts.
@@ -181,6 +106,30 @@ pub fn find_chapter(chapters: &[Chapter], wanted: &str) -> Option<usize> {
             || c.file == w
             || c.file.strip_suffix(".md") == Some(w)
     })
+}
+
+/// The headings of a chapter's Markdown (`## …` and `### …`, outside code),
+/// as (level, text), for the contents.
+pub fn headings(markdown: &str) -> Vec<(u8, String)> {
+    let mut fence = false;
+    let mut out = Vec::new();
+    for line in markdown.lines() {
+        let t = line.trim_start();
+        if t.starts_with("```") {
+            fence = !fence;
+            continue;
+        }
+        if fence {
+            continue;
+        }
+        for (prefix, level) in [("### ", 3), ("## ", 2)] {
+            if let Some(h) = t.strip_prefix(prefix) {
+                out.push((level, markdown::plain_inline(h.trim())));
+                break;
+            }
+        }
+    }
+    out
 }
 
 /// One experiment, parsed from `<!-- spintop: ratio=1.5 method=rk4 -->`.
@@ -250,63 +199,216 @@ impl Experiment {
         Ok(e)
     }
 
-    /// The settings this experiment makes of `base`.
+    /// The settings this experiment makes of `base` (the chapter's own: an
+    /// experiment never inherits an earlier one's changes).
     pub fn apply(&self, base: &Settings) -> Result<Settings, String> {
         let omega = self.omega.unwrap_or(base.omega0());
         let method = self.method.unwrap_or(base.method());
         let warp = self.warp.unwrap_or(base.warp());
         match base.top() {
-            super::app::Top::General(top) => {
+            Top::General(top) => {
                 if self.ratio.is_some() {
                     return Err("this scene is a general top: ratio does not apply".into());
                 }
                 Settings::general(*top, omega, method, warp)
             }
-            super::app::Top::Symmetric(_) => Settings::new(
-                self.ratio.or(base.ratio()).unwrap_or(0.4),
-                omega,
-                method,
-                warp,
-            ),
+            Top::Full(top) => Settings::full(self.ratio.unwrap_or(top.ratio()), omega, warp),
+            Top::Symmetric(top) => {
+                Settings::new(self.ratio.unwrap_or(top.ratio()), omega, method, warp)
+            }
         }
     }
 }
 
 /// What the keys do now.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Mode {
     /// Reading, scene beside the text (or text alone on a narrow screen).
     Read,
     /// The scene full screen.
     Scene,
-    /// The table of contents, with the highlighted chapter.
+    /// The contents: chapters and their headings, one highlighted.
     Contents(usize),
     /// The help overlay.
     Help,
     /// The course: every assignment with its state.
     Course,
+    /// Typing a word to search for.
+    Search(String),
+}
+
+/// Everything a key (or the mouse wheel, or a resize) asks of `spintop learn`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Command {
+    /// `q` or Ctrl-C.
+    Quit,
+    /// The terminal's size (columns, rows).
+    Resize(u16, u16),
+    /// Scroll by this many lines (↓ j: 1, ↑ k: −1, the wheel: ±3).
+    Scroll(i64),
+    /// Space, PgDn, f: a page down.
+    PageDown,
+    /// b, PgUp: a page up.
+    PageUp,
+    /// g, Home.
+    Top,
+    /// G, End.
+    End,
+    /// →: the next chapter.
+    NextChapter,
+    /// ←: the previous chapter.
+    PreviousChapter,
+    /// c: the contents.
+    Contents,
+    /// ↑ in the contents.
+    ContentsUp,
+    /// ↓ in the contents.
+    ContentsDown,
+    /// Enter in the contents: open the chapter or heading.
+    ContentsOpen,
+    /// ?: the help.
+    Help,
+    /// a: the course panel.
+    Course,
+    /// h: the next hint rung.
+    Hint,
+    /// Esc, or any key that closes an overlay: back to reading.
+    Close,
+    /// x: the next experiment.
+    Experiment,
+    /// Tab: the scene full screen, or back.
+    ToggleScene,
+    /// o: library source unfolded, or folded back to one line.
+    ToggleFolds,
+    /// /: start typing a search.
+    SearchStart,
+    /// A character of the search.
+    SearchInput(char),
+    /// Backspace in the search.
+    SearchBackspace,
+    /// Enter: search.
+    SearchCommit,
+    /// n: the next match.
+    SearchNext,
+    /// N: the previous match.
+    SearchPrevious,
+    /// A key for the scene.
+    Scene(SceneKey),
+}
+
+/// A search and what it found: (line, byte range in the line's text).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Search {
+    /// The word searched for.
+    pub query: String,
+    /// Every match, in reading order.
+    pub matches: Vec<(usize, std::ops::Range<usize>)>,
+    /// The match last jumped to.
+    pub at: usize,
+}
+
+/// One line of the contents: a chapter, or one of its headings.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Entry {
+    /// The chapter.
+    pub chapter: usize,
+    /// The heading (level, text), or `None` for the chapter itself.
+    pub heading: Option<(u8, String)>,
+}
+
+/// Where the screen's parts are, for a terminal of one size: the apply step
+/// (rendering width, page height) and the drawing use the same.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Panes {
+    /// The header line.
+    pub header: Rect,
+    /// The text's frame, if the text is shown.
+    pub text: Option<Rect>,
+    /// The scene, if shown.
+    pub scene: Option<Rect>,
+    /// The status line.
+    pub status: Rect,
+    /// The keys.
+    pub footer: Rect,
+}
+
+/// The smallest terminal `spintop learn` draws in.
+pub const MIN_SIZE: (u16, u16) = (40, 10);
+
+/// From this width the scene stands beside the text.
+pub const SIDE_BY_SIDE: u16 = 120;
+
+/// The panes of a `size` terminal with the scene full screen (`scene_full`)
+/// or not, and whether the chapter has a scene to put beside the text.
+pub fn panes(size: (u16, u16), scene_full: bool, has_scene: bool) -> Panes {
+    let area = Rect::new(0, 0, size.0, size.1);
+    let [header, body, status, footer] = Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Fill(1),
+        Constraint::Length(1),
+        Constraint::Length(1),
+    ])
+    .areas(area);
+    let (text, scene) = if scene_full {
+        (None, Some(body))
+    } else if body.width >= SIDE_BY_SIDE && has_scene {
+        let [left, right] =
+            Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)])
+                .areas(body);
+        (Some(left), Some(right))
+    } else {
+        (Some(body), None)
+    };
+    Panes {
+        header,
+        text,
+        scene,
+        status,
+        footer,
+    }
+}
+
+/// The text's lines area inside its frame (the right column is the
+/// position mark).
+pub fn text_inner(frame: Rect) -> Rect {
+    let inner = Rect {
+        x: frame.x + 1,
+        y: frame.y + 1,
+        width: frame.width.saturating_sub(2),
+        height: frame.height.saturating_sub(2),
+    };
+    Rect {
+        width: inner.width.saturating_sub(1).max(20),
+        ..inner
+    }
 }
 
 /// The state of `spintop learn`.
 pub struct Learn {
     book: PathBuf,
     chapters: Vec<Chapter>,
+    contents: Vec<Entry>,
     current: usize,
     source: String,
     rendered: markdown::Rendered,
-    width: u16,
+    size: (u16, u16),
     scroll: usize,
-    page: usize,
+    /// Where each chapter was left: (first line shown, lines at the time).
+    positions: Vec<Option<(usize, usize)>>,
     next_experiment: usize,
-    scene: App,
-    scene_info: Scene,
+    stage: Stage,
+    scene_info: scene::Scene,
+    background: bool,
+    unfolded: bool,
     mode: Mode,
+    search: Option<Search>,
     message: Option<(String, bool)>,
     visited: Vec<bool>,
     quit: bool,
-    too_small: bool,
     /// The course's grader, watching the student's files, if started.
     watch: Option<crate::course::Watch>,
+    /// Why nothing is graded, when grading was turned off.
+    grading_off: Option<String>,
     /// The last grading, and whether one is running.
     course: Option<crate::course::Status>,
     grading: bool,
@@ -329,23 +431,21 @@ pub type ProbeReport = (
     Result<crate::course::Probed, String>,
 );
 
-/// The keys, for the footer and the help.
-const KEYS: [(&str, &str); 10] = [
-    ("?", "help"),
-    ("q", "quit"),
-    ("↑↓ PgUp PgDn", "scroll"),
-    ("← →", "chapter"),
-    ("c", "contents"),
-    ("a", "assignments"),
-    ("h", "hint"),
-    ("x", "try the next experiment"),
-    ("space", "pause scene"),
-    ("Tab", "scene full screen"),
-];
-
 impl Learn {
-    /// Opens the book at `book` (the `book/src` folder) on chapter `start`.
+    /// Opens the book at `book` (the `book/src` folder) on chapter `start`,
+    /// its scenes stepped on this thread whenever asked (the tests' way).
     pub fn open(book: &Path, start: Option<&str>) -> Result<Self, String> {
+        Self::open_with(book, start, false)
+    }
+
+    /// [`Learn::open`] with every scene's models and computations on
+    /// threads of their own (the terminal's way: no key waits on them).
+    pub fn open_in_background(book: &Path, start: Option<&str>) -> Result<Self, String> {
+        figures::compute_in_background();
+        Self::open_with(book, start, true)
+    }
+
+    fn open_with(book: &Path, start: Option<&str>, background: bool) -> Result<Self, String> {
         let summary = std::fs::read_to_string(book.join("SUMMARY.md"))
             .map_err(|e| format!("cannot read {}: {e}", book.join("SUMMARY.md").display()))?;
         let chapters = chapters(&summary);
@@ -366,27 +466,43 @@ impl Learn {
                 )
             })?,
         };
+        let mut contents = Vec::new();
+        for (i, c) in chapters.iter().enumerate() {
+            contents.push(Entry {
+                chapter: i,
+                heading: None,
+            });
+            let text = std::fs::read_to_string(book.join(&c.file)).unwrap_or_default();
+            contents.extend(headings(&text).into_iter().map(|h| Entry {
+                chapter: i,
+                heading: Some(h),
+            }));
+        }
         let scene_info = chapters[current].scene();
-        let scene = App::new(scene_info.settings).map_err(|e| e.to_string())?;
         let visited = vec![false; chapters.len()];
+        let positions = vec![None; chapters.len()];
         let mut learn = Learn {
             book: book.to_path_buf(),
             chapters,
+            contents,
             current,
             source: String::new(),
             rendered: markdown::Rendered::default(),
-            width: 0,
+            size: (80, 24),
             scroll: 0,
-            page: 20,
+            positions,
             next_experiment: 0,
-            scene,
+            stage: Stage::None,
             scene_info,
+            background,
+            unfolded: false,
             mode: Mode::Read,
+            search: None,
             message: None,
             visited,
             quit: false,
-            too_small: false,
             watch: None,
+            grading_off: None,
             course: None,
             grading: false,
             course_error: None,
@@ -405,19 +521,44 @@ impl Learn {
         &self.chapters
     }
 
+    /// The contents: every chapter and its headings.
+    pub fn contents(&self) -> &[Entry] {
+        &self.contents
+    }
+
     /// The chapter shown.
     pub fn current(&self) -> usize {
         self.current
     }
 
-    /// The scene's state.
-    pub fn scene(&self) -> &App {
-        &self.scene
+    /// The scene running.
+    pub fn stage(&self) -> &Stage {
+        &self.stage
+    }
+
+    /// The chapter's scene.
+    pub fn scene_info(&self) -> &scene::Scene {
+        &self.scene_info
+    }
+
+    /// The scene's live-view state, when the scene is the live view's.
+    pub fn scene(&self) -> Option<&super::app::App> {
+        self.stage.app()
     }
 
     /// The mode.
-    pub fn mode(&self) -> Mode {
-        self.mode
+    pub fn mode(&self) -> &Mode {
+        &self.mode
+    }
+
+    /// The search, if one was made.
+    pub fn search(&self) -> Option<&Search> {
+        self.search.as_ref()
+    }
+
+    /// The line in the status bar, and whether it is a refusal.
+    pub fn message(&self) -> Option<&(String, bool)> {
+        self.message.as_ref()
     }
 
     /// True once quit was asked for.
@@ -425,9 +566,69 @@ impl Learn {
         self.quit
     }
 
-    /// The chapters opened in this session.
+    /// The chapters opened in this session (or an earlier one).
     pub fn visited(&self) -> &[bool] {
         &self.visited
+    }
+
+    /// The terminal's size.
+    pub fn size(&self) -> (u16, u16) {
+        self.size
+    }
+
+    /// The chapter rendered at the text's width.
+    pub fn rendered(&self) -> &markdown::Rendered {
+        &self.rendered
+    }
+
+    /// True when library source is shown whole (`o`), not folded.
+    pub fn unfolded(&self) -> bool {
+        self.unfolded
+    }
+
+    /// The first line of the text shown.
+    pub fn scroll(&self) -> usize {
+        self.scroll
+    }
+
+    /// True on a terminal too small to draw in: only quit is taken.
+    pub fn too_small(&self) -> bool {
+        self.size.0 < MIN_SIZE.0 || self.size.1 < MIN_SIZE.1
+    }
+
+    /// The panes at the current size and mode.
+    pub fn panes(&self) -> Panes {
+        panes(
+            self.size,
+            self.mode == Mode::Scene,
+            !matches!(self.stage, Stage::None),
+        )
+    }
+
+    /// The text's width and height in lines (as in Read mode, also while
+    /// the scene is full screen, so that coming back finds the same lines).
+    fn text_geometry(&self) -> (u16, usize) {
+        let panes = panes(self.size, false, !matches!(self.stage, Stage::None));
+        let inner = text_inner(panes.text.unwrap_or(panes.header));
+        (inner.width, usize::from(inner.height).max(1))
+    }
+
+    fn page(&self) -> usize {
+        self.text_geometry().1
+    }
+
+    /// Marks chapters as visited and restores where each was left
+    /// (progress from an earlier session).
+    pub fn restore(&mut self, progress: &Progress) {
+        for (i, c) in self.chapters.iter().enumerate() {
+            if progress.opened.contains(&c.file) {
+                self.visited[i] = true;
+            }
+            if let Some(p) = progress.positions.get(&c.file) {
+                self.positions[i] = Some(*p);
+            }
+        }
+        self.restore_position();
     }
 
     /// Marks chapters as visited (progress restored from an earlier session).
@@ -439,9 +640,23 @@ impl Learn {
         }
     }
 
-    /// The first line of the text shown.
-    pub fn scroll(&self) -> usize {
-        self.scroll
+    /// Says why nothing is graded in this session (`--no-grading`).
+    pub fn grading_off(&mut self, why: impl Into<String>) {
+        self.grading_off = Some(why.into());
+    }
+
+    fn remember_position(&mut self) {
+        self.positions[self.current] = Some((self.scroll, self.rendered.lines.len().max(1)));
+    }
+
+    fn restore_position(&mut self) {
+        self.scroll = match self.positions[self.current] {
+            // At the width it was left at, the very line; else the same
+            // fraction of the chapter.
+            Some((line, total)) => line * self.rendered.lines.len().max(1) / total.max(1),
+            None => 0,
+        };
+        self.clamp_scroll();
     }
 
     fn load(&mut self, index: usize) -> Result<(), String> {
@@ -453,34 +668,53 @@ impl Learn {
         self.source = markdown::resolve_includes(&text, &dir);
         self.current = index;
         self.visited[index] = true;
-        self.width = 0;
-        self.scroll = 0;
         self.next_experiment = 0;
+        self.search = None;
         let info = chapter.scene();
-        if info.settings != self.scene_info.settings || info.columns != self.scene_info.columns {
-            self.scene = App::new(info.settings)?;
+        if info != self.scene_info || matches!(self.stage, Stage::None) {
+            self.stage = Stage::start(&info.spec, self.background)?;
+            self.stage.resize(self.size.0, self.size.1);
         }
         self.scene_info = info;
+        self.render();
+        self.restore_position();
         Ok(())
     }
 
-    /// The chapter rendered at `width` (cached until the width changes).
-    pub fn rendered(&mut self, width: u16) -> &markdown::Rendered {
-        if width != self.width {
-            // Keep the reader at the same place in the text across a resize.
-            let fraction = if self.rendered.lines.is_empty() {
-                0.0
-            } else {
-                self.scroll as f64 / self.rendered.lines.len() as f64
-            };
-            self.rendered = markdown::render(&self.source, width);
-            self.width = width;
-            self.scroll = (fraction * self.rendered.lines.len() as f64) as usize;
+    /// Render the chapter at the text's width, keeping the reader on the
+    /// same place in the text.
+    fn render(&mut self) {
+        let fraction = if self.rendered.lines.is_empty() {
+            0.0
+        } else {
+            self.scroll as f64 / self.rendered.lines.len() as f64
+        };
+        let (width, _) = self.text_geometry();
+        self.rendered = markdown::render_with(
+            &self.source,
+            width,
+            markdown::Options {
+                unfold: self.unfolded,
+                figures_later: self.background,
+            },
+        );
+        self.scroll = (fraction * self.rendered.lines.len() as f64).round() as usize;
+        self.clamp_scroll();
+        if let Some(query) = self.search.as_ref().map(|s| s.query.clone()) {
+            self.find(&query);
         }
-        &self.rendered
+    }
+
+    fn max_scroll(&self) -> usize {
+        self.rendered.lines.len().saturating_sub(self.page())
+    }
+
+    fn clamp_scroll(&mut self) {
+        self.scroll = self.scroll.min(self.max_scroll());
     }
 
     fn go(&mut self, index: usize) {
+        self.remember_position();
         match self.load(index) {
             Ok(()) => self.message = None,
             Err(e) => self.message = Some((e, true)),
@@ -518,51 +752,100 @@ impl Learn {
         self.yours = Some(report);
     }
 
-    fn max_scroll(&self) -> usize {
-        self.rendered.lines.len().saturating_sub(self.page.max(1))
+    /// The student's function of time of this chapter against the reference,
+    /// when it has been sampled.
+    pub fn yours(
+        &self,
+    ) -> Option<(
+        &crate::course::ProbeSpec,
+        &Result<crate::course::Probed, String>,
+    )> {
+        let (spec, probed) = self.yours.as_ref()?;
+        let here = crate::course::ProbeSpec::for_chapter(&self.chapters[self.current].title)?;
+        (*spec == here).then_some((spec, probed))
     }
 
-    /// Runs the chapter's next experiment on the scene and scrolls to it.
-    pub fn next_experiment(&mut self) {
-        if self.width == 0 {
-            self.rendered(80);
-        }
+    /// Runs the chapter's next experiment on the scene (from the chapter's
+    /// own values) and scrolls to it.
+    fn next_experiment(&mut self) {
         let experiments = &self.rendered.experiments;
         if experiments.is_empty() {
             self.message = Some((
-                "this chapter has no experiments; its scene runs with the chapter's parameters"
-                    .into(),
-                false,
+                match self.scene_info.spec {
+                    Spec::None => format!("this chapter has no experiments ({})", self.scene_info.describe()),
+                    _ => "this chapter has no experiments; its scene runs with the chapter's own values"
+                        .into(),
+                },
+                true,
             ));
             return;
         }
         let k = self.next_experiment % experiments.len();
         let (line, text) = experiments[k].clone();
+        let n = experiments.len();
         self.next_experiment = k + 1;
-        self.scroll = line.saturating_sub(2).min(self.max_scroll());
+        self.scroll = line.saturating_sub(2);
+        self.clamp_scroll();
+        let Spec::Top {
+            settings: base,
+            log_time,
+            ..
+        } = &self.scene_info.spec
+        else {
+            self.message = Some((
+                format!(
+                    "experiment `{text}` is for the live view, and this chapter's scene is not one"
+                ),
+                true,
+            ));
+            return;
+        };
         let result = Experiment::parse(&text).and_then(|e| {
-            let settings = e.apply(self.scene.settings())?;
-            let mut app = App::new(settings)?;
-            if e.log_time == Some(true) {
-                app.apply(super::Command::ToggleLogTime);
-            }
-            Ok(app)
+            let settings = e.apply(base)?;
+            let spec = Spec::Top {
+                settings,
+                columns: Vec::new(),
+                log_time: e.log_time.unwrap_or(*log_time),
+            };
+            Stage::start(&spec, self.background)
         });
+        let shown = self.panes().scene.is_some();
         match result {
-            Ok(app) => {
-                self.scene = app;
+            Ok(stage) => {
+                self.stage = stage;
+                self.stage.resize(self.size.0, self.size.1);
+                let caption = text
+                    .split_once('|')
+                    .map_or(text.as_str(), |(s, _)| s)
+                    .trim();
                 self.message = Some((
-                    format!("experiment {} of {}: {text}", k + 1, experiments.len()),
+                    format!(
+                        "experiment {} of {n} applied: {caption}{}",
+                        k + 1,
+                        if shown { "" } else { " (Tab shows the scene)" }
+                    ),
                     false,
                 ));
             }
-            Err(e) => self.message = Some((format!("experiment `{text}`: {e}"), true)),
+            Err(e) => {
+                self.message = Some((format!("experiment {} of {n} refused: {e}", k + 1), true))
+            }
         }
     }
 
     /// Steps the scene by wall-clock time, and takes the course grader's news.
     pub fn advance(&mut self, elapsed: Duration) {
-        self.scene.advance_wall(elapsed);
+        self.stage.advance(elapsed);
+        if self.rendered.figures_pending
+            && [
+                crate::figure::FigureNumber::One,
+                crate::figure::FigureNumber::Two,
+            ]
+            .into_iter()
+            .all(figures::ready)
+        {
+            self.render();
+        }
         let reports = self.watch.as_ref().map(|w| w.poll()).unwrap_or_default();
         for report in reports {
             self.course_report(report);
@@ -600,7 +883,7 @@ impl Learn {
 
     /// The next hint rung (`h`): for [`Self::hint_target`], kept in the
     /// course's progress file when the course is being graded.
-    pub fn next_hint(&mut self) {
+    fn next_hint(&mut self) {
         use crate::course;
         let Some(a) = self.hint_target() else {
             self.hint = None;
@@ -651,603 +934,247 @@ impl Learn {
         self.course.as_ref()
     }
 
-    /// Applies one key.
-    pub fn key(&mut self, key: KeyEvent) {
-        if key.modifiers.contains(KeyModifiers::CONTROL) && key.code == KeyCode::Char('c') {
-            self.quit = true;
-            return;
+    /// True while a grading runs.
+    pub fn grading(&self) -> bool {
+        self.grading
+    }
+
+    /// Why the grader could not run, if it could not.
+    pub fn course_error(&self) -> Option<&str> {
+        self.course_error.as_deref()
+    }
+
+    /// Why nothing is graded in this session, if grading is off.
+    pub fn grading_off_reason(&self) -> Option<&str> {
+        self.grading_off.as_deref()
+    }
+
+    /// Apply one command: the only place the state changes (besides the
+    /// clock and the grader's news).
+    pub fn apply(&mut self, command: Command) {
+        if !matches!(command, Command::Resize(..) | Command::Scroll(_)) {
+            self.message = None;
         }
-        // On the "please enlarge" screen only quit is taken.
-        if self.too_small {
-            if matches!(key.code, KeyCode::Char('q') | KeyCode::Esc) {
-                self.quit = true;
+        match command {
+            Command::Quit => self.quit = true,
+            Command::Resize(w, h) => {
+                self.size = (w, h);
+                self.stage.resize(w, h);
+                self.render();
             }
-            return;
-        }
-        match self.mode {
-            Mode::Course if key.code == KeyCode::Char('h') => self.next_hint(),
-            Mode::Help | Mode::Course => {
-                if matches!(key.code, KeyCode::Char('q')) {
-                    self.quit = true;
-                }
-                self.mode = Mode::Read;
+            Command::Scroll(n) => {
+                self.scroll = self.scroll.saturating_add_signed(n as isize);
+                self.clamp_scroll();
             }
-            Mode::Contents(sel) => match key.code {
-                KeyCode::Up | KeyCode::Char('k') => {
-                    self.mode = Mode::Contents(sel.saturating_sub(1))
-                }
-                KeyCode::Down | KeyCode::Char('j') => {
-                    self.mode = Mode::Contents((sel + 1).min(self.chapters.len() - 1))
-                }
-                KeyCode::Enter => {
-                    self.mode = Mode::Read;
-                    self.go(sel);
-                }
-                KeyCode::Char('q') => self.quit = true,
-                _ => self.mode = Mode::Read,
-            },
-            Mode::Read | Mode::Scene => match key.code {
-                KeyCode::Char('q') | KeyCode::Esc if self.mode == Mode::Read => self.quit = true,
-                KeyCode::Esc | KeyCode::Tab if self.mode == Mode::Scene => self.mode = Mode::Read,
-                KeyCode::Tab => self.mode = Mode::Scene,
-                KeyCode::Char('q') => self.quit = true,
-                KeyCode::Char('?') => self.mode = Mode::Help,
-                KeyCode::Char('c') => self.mode = Mode::Contents(self.current),
-                KeyCode::Char('a') => self.mode = Mode::Course,
-                KeyCode::Char('h') => self.next_hint(),
-                KeyCode::Down | KeyCode::Char('j') => {
-                    self.scroll = (self.scroll + 1).min(self.max_scroll())
-                }
-                KeyCode::Up | KeyCode::Char('k') => self.scroll = self.scroll.saturating_sub(1),
-                KeyCode::PageDown | KeyCode::Char('f') => {
-                    self.scroll =
-                        (self.scroll + self.page.saturating_sub(2).max(1)).min(self.max_scroll())
-                }
-                KeyCode::PageUp | KeyCode::Char('b') => {
-                    self.scroll = self
-                        .scroll
-                        .saturating_sub(self.page.saturating_sub(2).max(1))
-                }
-                KeyCode::Home | KeyCode::Char('g') => self.scroll = 0,
-                KeyCode::End | KeyCode::Char('G') => self.scroll = self.max_scroll(),
-                KeyCode::Right | KeyCode::Char('n') if self.current + 1 < self.chapters.len() => {
-                    self.go(self.current + 1)
-                }
-                KeyCode::Left | KeyCode::Char('p') if self.current > 0 => self.go(self.current - 1),
-                KeyCode::Char('x') => self.next_experiment(),
-                KeyCode::Char(' ') => self.scene.apply(super::Command::TogglePause),
-                KeyCode::Char('r') => self.scene.apply(super::Command::Reset),
-                KeyCode::Char('l') => self.scene.apply(super::Command::ToggleLogTime),
-                KeyCode::Char('+') => self.scene.apply(super::Command::Faster),
-                KeyCode::Char('-') => self.scene.apply(super::Command::Slower),
-                _ => {}
-            },
-        }
-    }
-
-    /// Draws the screen.
-    pub fn draw(&mut self, frame: &mut Frame) {
-        let area = frame.area();
-        self.too_small = area.width < 40 || area.height < 10;
-        if self.too_small {
-            let p = Paragraph::new(vec![
-                Line::from(Span::styled("Please enlarge the terminal", theme::error())),
-                Line::from(format!(
-                    "spintop learn needs 40×10; this one is {}×{}. q quits.",
-                    area.width, area.height
-                )),
-            ])
-            .wrap(ratatui::widgets::Wrap { trim: true });
-            frame.render_widget(p, area);
-            return;
-        }
-        let [header, body, footer] = Layout::vertical([
-            Constraint::Length(1),
-            Constraint::Fill(1),
-            Constraint::Length(1),
-        ])
-        .areas(area);
-        self.draw_header(frame, header);
-        let side_by_side = body.width >= 120 && self.mode != Mode::Scene;
-        if self.mode == Mode::Scene {
-            self.draw_scene(frame, body);
-        } else if side_by_side {
-            let [left, right] =
-                Layout::horizontal([Constraint::Percentage(52), Constraint::Percentage(48)])
-                    .areas(body);
-            self.draw_text(frame, left);
-            self.draw_scene(frame, right);
-        } else {
-            self.draw_text(frame, body);
-        }
-        self.draw_footer(frame, footer, side_by_side);
-        match self.mode {
-            Mode::Help => self.draw_help(frame, area),
-            Mode::Course => self.draw_course(frame, area),
-            Mode::Contents(sel) => self.draw_contents(frame, area, sel),
-            _ => {}
-        }
-    }
-
-    fn draw_header(&self, frame: &mut Frame, area: Rect) {
-        let chapter = &self.chapters[self.current];
-        let seen = self.visited.iter().filter(|v| **v).count();
-        let course = match (&self.course, self.grading, &self.course_error) {
-            (_, _, Some(_)) => " course: cannot grade ".to_string(),
-            (Some(s), true, _) => format!(
-                " course {} of {} {} grading… ",
-                s.passing(),
-                s.states.len(),
-                progress_bar(s.passing(), s.states.len(), 10)
-            ),
-            (None, true, _) => " course: grading… ".to_string(),
-            (Some(s), false, _) => format!(
-                " course {} of {} {} (a) ",
-                s.passing(),
-                s.states.len(),
-                progress_bar(s.passing(), s.states.len(), 10)
-            ),
-            (None, false, None) => String::new(),
-        };
-        let line = Line::from(vec![
-            Span::styled(" spintop learn ", theme::status(false)),
-            Span::styled(course, theme::key()),
-            Span::styled(format!(" {} ", chapter.title), theme::title()),
-            Span::styled(
-                format!(
-                    "│ chapter {} of {} │ {} opened │ scene t = {:.1}{}",
-                    self.current + 1,
-                    self.chapters.len(),
-                    seen,
-                    self.scene.time(),
-                    self.scene.settings().top().time_unit()
-                ),
-                theme::label(),
-            ),
-        ]);
-        frame.render_widget(Paragraph::new(line), area);
-    }
-
-    fn draw_text(&mut self, frame: &mut Frame, area: Rect) {
-        let block = Block::bordered()
-            .border_type(BorderType::Rounded)
-            .border_style(theme::frame())
-            .title(Span::styled(
-                format!(" {} ", self.chapters[self.current].file),
-                theme::label(),
-            ));
-        let inner = block.inner(area);
-        frame.render_widget(block, area);
-        let width = inner.width.saturating_sub(1).max(20);
-        self.page = usize::from(inner.height);
-        let total = self.rendered(width).lines.len();
-        self.scroll = self.scroll.min(self.max_scroll());
-        let end = (self.scroll + usize::from(inner.height)).min(total);
-        let lines: Vec<Line> = self.rendered.lines[self.scroll..end].to_vec();
-        frame.render_widget(Paragraph::new(lines), inner);
-        if total > usize::from(inner.height) && inner.height > 0 {
-            // A one-column position mark on the right edge.
-            let pos = self.scroll * usize::from(inner.height - 1) / self.max_scroll().max(1);
-            let mark = Rect {
-                x: area.x + area.width - 1,
-                y: inner.y + pos as u16,
-                width: 1,
-                height: 1,
-            };
-            frame.render_widget(Paragraph::new(Span::styled("┃", theme::key())), mark);
-        }
-    }
-
-    fn draw_scene(&self, frame: &mut Frame, area: Rect) {
-        let [about, params, rest] = Layout::vertical([
-            Constraint::Length(1),
-            Constraint::Length(1),
-            Constraint::Fill(1),
-        ])
-        .areas(area);
-        let text = match &self.message {
-            Some((m, true)) => Span::styled(format!(" {m}"), theme::error()),
-            Some((m, false)) => Span::styled(format!(" {m}"), theme::info()),
-            None => Span::styled(format!(" scene: {}", self.scene_info.about), theme::label()),
-        };
-        frame.render_widget(Paragraph::new(Line::from(text)), about);
-        frame.render_widget(
-            Paragraph::new(Line::from(scene_parameters(self.scene.settings()))),
-            params,
-        );
-        let columns: Vec<usize> = self
-            .scene_info
-            .columns
-            .iter()
-            .copied()
-            .filter(|c| *c < self.scene.columns().len())
-            .collect();
-        // The student's function of time, when there is one, below the scene.
-        let rest = if self.yours().is_some() && rest.height >= 20 {
-            let [scene, yours] =
-                Layout::vertical([Constraint::Fill(2), Constraint::Fill(1)]).areas(rest);
-            self.draw_yours(frame, yours);
-            scene
-        } else {
-            rest
-        };
-        // Two columns stacked need height; otherwise the first alone.
-        let shown = if rest.height >= 44 || (rest.width >= 160 && columns.len() > 1) {
-            columns.len()
-        } else {
-            1
-        };
-        let parts = if rest.width >= 160 {
-            Layout::horizontal((0..shown).map(|_| Constraint::Ratio(1, shown as u32))).split(rest)
-        } else {
-            Layout::vertical((0..shown).map(|_| Constraint::Ratio(1, shown as u32))).split(rest)
-        };
-        for (part, c) in parts.iter().zip(columns.iter()) {
-            view::draw_column(frame, *part, &self.scene, *c);
-        }
-    }
-
-    /// The student's function of time of this chapter against the reference,
-    /// when it has been sampled.
-    fn yours(
-        &self,
-    ) -> Option<(
-        &crate::course::ProbeSpec,
-        &Result<crate::course::Probed, String>,
-    )> {
-        let (spec, probed) = self.yours.as_ref()?;
-        let here = crate::course::ProbeSpec::for_chapter(&self.chapters[self.current].title)?;
-        (*spec == here).then_some((spec, probed))
-    }
-
-    fn draw_yours(&self, frame: &mut Frame, area: Rect) {
-        use crate::course::Probed;
-        use ratatui::widgets::{Axis, Chart, Dataset, GraphType};
-        let Some((spec, probed)) = self.yours() else {
-            return;
-        };
-        let samples = match probed {
-            Ok(Probed::Samples(s)) => s,
-            Ok(Probed::Panicked(m)) => {
-                let line = format!(" yours: {} panics: {m}", spec.function);
-                frame.render_widget(Paragraph::new(Span::styled(line, theme::error())), area);
-                return;
+            Command::PageDown => {
+                self.scroll += self.page().saturating_sub(2).max(1);
+                self.clamp_scroll();
             }
-            Err(e) => {
-                let line = format!(" yours: {} could not be sampled: {e}", spec.function);
-                frame.render_widget(Paragraph::new(Span::styled(line, theme::error())), area);
-                return;
+            Command::PageUp => {
+                self.scroll = self
+                    .scroll
+                    .saturating_sub(self.page().saturating_sub(2).max(1));
             }
-        };
-        let reference: Vec<(f64, [f64; 3])> = samples
-            .iter()
-            .map(|(t, _)| (*t, reference_omega(spec, *t)))
-            .collect();
-        let worst = samples
-            .iter()
-            .zip(&reference)
-            .map(|((_, a), (_, b))| (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max))
-            .fold(
-                0.0,
-                |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
-            );
-        let scale = spec.omega0.iter().fold(0.0f64, |m, w| m.max(w.abs()));
-        let agrees = worst <= 1e-9 * scale.max(1e-300);
-        let curve = |data: &[(f64, [f64; 3])], i: usize| -> Vec<(f64, f64)> {
-            data.iter().map(|(t, w)| (*t, w[i])).collect()
-        };
-        let series = [
-            (curve(&reference, 0), theme::frame()),
-            (curve(&reference, 1), theme::frame()),
-            (curve(samples, 0), Style::new().fg(theme::OMEGA[0])),
-            (curve(samples, 1), Style::new().fg(theme::OMEGA[1])),
-        ];
-        let datasets = series
-            .iter()
-            .map(|(data, style)| {
-                Dataset::default()
-                    .marker(ratatui::symbols::Marker::Braille)
-                    .graph_type(GraphType::Line)
-                    .style(*style)
-                    .data(data)
-            })
-            .collect();
-        let equation = if spec.function == "truncated_closed_form" {
-            "(4.7)"
-        } else {
-            "(4.15)-(4.16)"
-        };
-        let verdict = if agrees {
-            Span::styled(format!("agrees ✓ ({worst:.0e})"), theme::info())
-        } else {
-            Span::styled(format!("off by {worst:.1e} ✗"), theme::error())
-        };
-        let title = Line::from(vec![
-            Span::styled(format!(" yours: {} ", spec.function), theme::title()),
-            Span::styled("━Ω₁ ", Style::new().fg(theme::OMEGA[0])),
-            Span::styled("━Ω₂ ", Style::new().fg(theme::OMEGA[1])),
-            Span::styled(format!("vs {equation} grey │ "), theme::label()),
-            verdict,
-        ]);
-        // Ω₁ and Ω₂ are drawn: they stay within Ω⊥₀.
-        let perp = spec.omega0[0].hypot(spec.omega0[1]);
-        let y = crate::numbers::nice_ceiling(if perp > 0.0 { perp } else { scale } * 1.05);
-        let chart = Chart::new(datasets)
-            .block(Block::new().title(title))
-            .legend_position(None)
-            .x_axis(
-                Axis::default()
-                    .style(theme::frame())
-                    .bounds([0.0, spec.t_end])
-                    .labels(["0".to_string(), format!("{:.0} t/τ", spec.t_end)]),
-            )
-            .y_axis(
-                Axis::default()
-                    .style(theme::frame())
-                    .bounds([-y, y])
-                    .labels([format!("{}", -y), "0".into(), format!("{y}")]),
-            );
-        frame.render_widget(chart, area);
-    }
-
-    fn draw_footer(&self, frame: &mut Frame, area: Rect, side_by_side: bool) {
-        let mut spans = Vec::new();
-        for (k, what) in KEYS {
-            if k == "Tab" && side_by_side {
-                continue;
-            }
-            spans.push(Span::styled(format!(" {k}"), theme::key()));
-            spans.push(Span::styled(format!(" {what} "), theme::label()));
-        }
-        frame.render_widget(Paragraph::new(Line::from(spans)), area);
-    }
-
-    fn draw_help(&self, frame: &mut Frame, area: Rect) {
-        let mut lines = vec![
-            Line::from(Span::styled("spintop learn", theme::title())),
-            Line::from(""),
-            Line::from("The book's chapters, each beside the scene it is about."),
-            Line::from("Places marked ▶ try this are experiments: x runs the next one."),
-            Line::from(""),
-        ];
-        for (k, what) in KEYS {
-            lines.push(Line::from(vec![
-                Span::styled(format!("{k:>14}  "), theme::key()),
-                Span::raw(what),
-            ]));
-        }
-        for (k, what) in [
-            ("r l + -", "reset, log time, warp of the scene"),
-            ("g G", "top, end of the chapter"),
-        ] {
-            lines.push(Line::from(vec![
-                Span::styled(format!("{k:>14}  "), theme::key()),
-                Span::raw(what),
-            ]));
-        }
-        lines.push(Line::from(""));
-        lines.push(Line::from("any key closes this help"));
-        let popup = centered(area, 64, lines.len() as u16 + 2);
-        frame.render_widget(Clear, popup);
-        frame.render_widget(
-            Paragraph::new(lines).block(
-                Block::bordered()
-                    .border_type(BorderType::Rounded)
-                    .title(" help "),
-            ),
-            popup,
-        );
-    }
-
-    fn draw_course(&self, frame: &mut Frame, area: Rect) {
-        use crate::course::State;
-        let mut lines = Vec::new();
-        match (&self.course, &self.course_error) {
-            (_, Some(e)) => lines.push(Line::from(Span::styled(e.clone(), theme::error()))),
-            (None, None) => lines.push(Line::from(if self.grading {
-                "grading (cargo test -p spintop-lessons)…"
-            } else {
-                "not graded: run spintop learn from the repository"
-            })),
-            (Some(status), None) => {
-                lines.push(Line::from(Span::styled(
-                    format!(
-                        "{} {} of {} passing{}",
-                        progress_bar(status.passing(), status.states.len(), 22),
-                        status.passing(),
-                        status.states.len(),
-                        if self.grading { "  (grading…)" } else { "" }
-                    ),
-                    theme::title(),
-                )));
-                // This chapter's assignments; the whole course where it has none.
-                let title = &self.chapters[self.current].title;
-                let mine: Vec<_> = status
-                    .states
-                    .iter()
-                    .filter(|(a, _)| title.starts_with(a.chapter))
-                    .collect();
-                let shown = if mine.is_empty() {
-                    status.states.iter().collect()
+            Command::Top => self.scroll = 0,
+            Command::End => self.scroll = self.max_scroll(),
+            Command::NextChapter => {
+                if self.current + 1 < self.chapters.len() {
+                    self.go(self.current + 1);
                 } else {
-                    lines.push(Line::from(Span::styled(
-                        format!("this chapter ({}):", mine.len()),
-                        theme::label(),
-                    )));
-                    mine
-                };
-                for (a, s) in shown {
-                    let (mark, style) = match s {
-                        State::Passing => ("✓", theme::info()),
-                        State::Failing(_) | State::DoesNotCompile(_) | State::TimedOut(_) => {
-                            ("✗", theme::error())
-                        }
-                        _ => ("·", theme::label()),
-                    };
-                    lines.push(Line::from(vec![
-                        Span::styled(format!(" {mark} "), style),
-                        Span::raw(format!(
-                            "{:<14} {:<24} {:<24} ",
-                            a.equation, a.function, a.file
-                        )),
-                        Span::styled(s.word(), style),
-                    ]));
+                    self.message = Some(("this is the last chapter".into(), false));
                 }
-                let target = self.hint_target();
-                if let Some((a, s)) = target
-                    .and_then(|t| status.states.iter().find(|(a, _)| a.function == t.function))
-                {
-                    lines.push(Line::from(""));
-                    lines.push(Line::from(Span::styled(
-                        format!("next: {} {} ({})", a.equation, a.function, a.chapter),
-                        theme::title(),
-                    )));
-                    match s {
-                        State::Failing(report) => {
-                            for l in report.lines().take(8) {
-                                lines.push(Line::from(format!("  {l}")));
-                            }
-                        }
-                        State::DoesNotCompile(e) | State::TimedOut(e) => {
-                            lines.push(Line::from(format!("  {e}")))
-                        }
-                        _ => lines.push(Line::from(format!(
-                            "  edit {}: its todo!() is still there; saving re-grades",
-                            a.file
-                        ))),
+            }
+            Command::PreviousChapter => {
+                if self.current > 0 {
+                    self.go(self.current - 1);
+                } else {
+                    self.message = Some(("this is the first chapter".into(), false));
+                }
+            }
+            Command::Contents => {
+                let at = self
+                    .contents
+                    .iter()
+                    .position(|e| e.chapter == self.current)
+                    .unwrap_or(0);
+                self.mode = Mode::Contents(at);
+            }
+            Command::ContentsUp => {
+                if let Mode::Contents(sel) = self.mode {
+                    self.mode = Mode::Contents(sel.saturating_sub(1));
+                }
+            }
+            Command::ContentsDown => {
+                if let Mode::Contents(sel) = self.mode {
+                    self.mode = Mode::Contents((sel + 1).min(self.contents.len() - 1));
+                }
+            }
+            Command::ContentsOpen => {
+                if let Mode::Contents(sel) = self.mode {
+                    self.mode = Mode::Read;
+                    let entry = self.contents[sel].clone();
+                    if entry.chapter != self.current {
+                        self.go(entry.chapter);
+                    }
+                    if let Some((_, text)) = entry.heading
+                        && let Some((line, ..)) =
+                            self.rendered.headings.iter().find(|(_, _, h)| *h == text)
+                    {
+                        self.scroll = *line;
+                        self.clamp_scroll();
                     }
                 }
             }
-        }
-        if let Some(h) = &self.hint
-            && self
-                .hint_target()
-                .is_some_and(|t| t.function == h.assignment.function)
-        {
-            let label = h.label();
-            lines.push(Line::from(Span::styled(
-                format!(
-                    "hint {} of {} ({label}) for {}:",
-                    h.rung,
-                    h.assignment.hints.len(),
-                    h.assignment.function
-                ),
-                theme::title(),
-            )));
-            lines.push(Line::from(format!("  {}", h.text)));
-        }
-        lines.push(Line::from(""));
-        lines.push(Line::from(Span::styled(
-            "saving a file under lessons/src re-grades it; h: a hint (one rung per press); any other key closes",
-            theme::label(),
-        )));
-        // Rows once wrapped to the popup's inner width.
-        let inner = usize::from(area.width.min(100).saturating_sub(2)).max(1);
-        let rows: usize = lines.iter().map(|l| l.width().max(1).div_ceil(inner)).sum();
-        let popup = centered(area, 100, rows as u16 + 2);
-        frame.render_widget(Clear, popup);
-        frame.render_widget(
-            Paragraph::new(lines).wrap(Wrap { trim: false }).block(
-                Block::bordered()
-                    .border_type(BorderType::Rounded)
-                    .title(" course "),
-            ),
-            popup,
-        );
-    }
-
-    fn draw_contents(&self, frame: &mut Frame, area: Rect, selected: usize) {
-        let mut items = Vec::new();
-        let mut part = None;
-        let mut row_of = Vec::new();
-        for (i, c) in self.chapters.iter().enumerate() {
-            if c.part != part {
-                part = c.part.clone();
-                if let Some(p) = &part {
-                    items.push(ListItem::new(Line::from(Span::styled(
-                        p.clone(),
-                        theme::label(),
-                    ))));
+            Command::Help => self.mode = Mode::Help,
+            Command::Course => self.mode = Mode::Course,
+            Command::Hint => self.next_hint(),
+            Command::Close => {
+                self.mode = match self.mode {
+                    // Esc in the full-screen scene goes back to the text.
+                    Mode::Read => {
+                        if self.search.take().is_none() {
+                            self.message = Some(("q quits".into(), false));
+                        }
+                        Mode::Read
+                    }
+                    _ => Mode::Read,
                 }
             }
-            row_of.push(items.len());
-            let mark = if self.visited[i] { "✓" } else { " " };
-            let section = c
-                .section()
-                .map(|s| format!("§{s:<4}"))
-                .unwrap_or_else(|| "     ".into());
-            items.push(ListItem::new(format!(" {mark} {section} {}", c.title)));
+            Command::Experiment => self.next_experiment(),
+            Command::ToggleScene => {
+                if self.mode == Mode::Scene {
+                    self.mode = Mode::Read;
+                } else if matches!(self.stage, Stage::None) {
+                    self.message = Some((self.scene_info.describe(), false));
+                } else {
+                    self.mode = Mode::Scene;
+                }
+            }
+            Command::ToggleFolds => {
+                self.unfolded = !self.unfolded;
+                self.render();
+                self.message = Some((
+                    if self.unfolded {
+                        "library source shown whole; o folds it again"
+                    } else {
+                        "library source folded to one line each; o shows it"
+                    }
+                    .into(),
+                    false,
+                ));
+            }
+            Command::SearchStart => {
+                let query = self.search.as_ref().map(|s| s.query.clone());
+                self.mode = Mode::Search(query.unwrap_or_default());
+            }
+            Command::SearchInput(c) => {
+                if let Mode::Search(q) = &mut self.mode
+                    && q.chars().count() < 64
+                {
+                    q.push(c);
+                }
+            }
+            Command::SearchBackspace => {
+                if let Mode::Search(q) = &mut self.mode {
+                    q.pop();
+                }
+            }
+            Command::SearchCommit => {
+                if let Mode::Search(q) = std::mem::replace(&mut self.mode, Mode::Read) {
+                    if q.trim().is_empty() {
+                        self.search = None;
+                    } else {
+                        self.find(&q);
+                        self.jump(true, true);
+                    }
+                }
+            }
+            Command::SearchNext | Command::SearchPrevious => {
+                if self.search.is_none() {
+                    self.message = Some((
+                        "/ searches; then n and N go to the next and previous match".into(),
+                        false,
+                    ));
+                } else {
+                    self.jump(command == Command::SearchNext, false);
+                }
+            }
+            Command::Scene(key) => {
+                let (text, refused) = self.stage.key(key);
+                if !text.is_empty() {
+                    self.message = Some((text, refused));
+                }
+            }
         }
-        let height = (items.len() as u16 + 2).min(area.height);
-        let popup = centered(area, 72, height);
-        let mut state = ListState::default().with_selected(row_of.get(selected).copied());
-        frame.render_widget(Clear, popup);
-        frame.render_stateful_widget(
-            List::new(items)
-                .highlight_style(Style::new().add_modifier(Modifier::REVERSED))
-                .block(
-                    Block::bordered()
-                        .border_type(BorderType::Rounded)
-                        .title(" contents: ↑↓ Enter "),
-                ),
-            popup,
-            &mut state,
-        );
     }
-}
 
-/// The scene's parameters, one line: what an experiment changes.
-fn scene_parameters(settings: &Settings) -> Vec<Span<'static>> {
-    let w = settings.omega0();
-    let mut spans = vec![Span::raw(" ")];
-    if let Some(r) = settings.ratio() {
-        spans.push(Span::styled("I₃/I₁ = ", theme::label()));
-        spans.push(Span::styled(format!("{r}"), theme::value()));
-        spans.push(Span::styled("  ", theme::label()));
+    /// Every match of `query` (case-insensitive) in the rendered text.
+    fn find(&mut self, query: &str) {
+        let needle = query.to_lowercase();
+        let mut matches = Vec::new();
+        for (i, line) in self.rendered.lines.iter().enumerate() {
+            let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
+            let lower = text.to_lowercase();
+            // Lower-casing keeps byte offsets for the text this book holds
+            // (ASCII and Greek letters of the same length); where it would
+            // not, the match is skipped rather than misplaced.
+            if lower.len() != text.len() {
+                continue;
+            }
+            let mut from = 0;
+            while let Some(at) = lower[from..].find(&needle) {
+                let start = from + at;
+                matches.push((i, start..start + needle.len()));
+                from = start + needle.len().max(1);
+            }
+        }
+        let at = self
+            .search
+            .as_ref()
+            .filter(|s| s.query == query)
+            .map_or(0, |s| s.at);
+        self.search = Some(Search {
+            query: query.to_string(),
+            at: at.min(matches.len().saturating_sub(1)),
+            matches,
+        });
     }
-    spans.push(Span::styled("Ω₀ = ", theme::label()));
-    spans.push(Span::styled(
-        format!("({}, {}, {})", w[0], w[1], w[2]),
-        theme::value(),
-    ));
-    spans.push(Span::styled("  method ", theme::label()));
-    spans.push(Span::styled(
-        settings.method().title().to_string(),
-        theme::value(),
-    ));
-    spans.push(Span::styled("  warp ", theme::label()));
-    spans.push(Span::styled(
-        format!("{} {}/s", settings.warp(), settings.top().time_unit()),
-        theme::value(),
-    ));
-    spans
-}
 
-fn centered(area: Rect, width: u16, height: u16) -> Rect {
-    let w = width.min(area.width);
-    let h = height.min(area.height);
-    Rect {
-        x: area.x + (area.width - w) / 2,
-        y: area.y + (area.height - h) / 2,
-        width: w,
-        height: h,
+    /// Go to the next (or previous) match from the top of the page (`first`:
+    /// the first one at or below it).
+    fn jump(&mut self, forward: bool, first: bool) {
+        let Some(search) = &mut self.search else {
+            return;
+        };
+        let n = search.matches.len();
+        if n == 0 {
+            self.message = Some((format!("“{}” is not in this chapter", search.query), true));
+            return;
+        }
+        let top = self.scroll;
+        let current = search.matches.get(search.at).map(|m| m.0);
+        search.at = if first {
+            search.matches.iter().position(|m| m.0 >= top).unwrap_or(0)
+        } else if forward {
+            let after = current.unwrap_or(top);
+            search
+                .matches
+                .iter()
+                .enumerate()
+                .position(|(k, m)| m.0 > after || (m.0 == after && k > search.at))
+                .unwrap_or(0)
+        } else if search.at == 0 {
+            n - 1
+        } else {
+            search.at - 1
+        };
+        let line = search.matches[search.at].0;
+        let text = format!("“{}”: match {} of {n}", search.query, search.at + 1);
+        // The match a third of the way down the page, as less puts it.
+        self.scroll = line.saturating_sub(self.page() / 3);
+        self.clamp_scroll();
+        self.message = Some((text, false));
     }
-}
-
-/// Ω(t) of the probe's model by spintop's own closed form, the reference
-/// the student's function is drawn against.
-fn reference_omega(spec: &crate::course::ProbeSpec, t: f64) -> [f64; 3] {
-    use crate::physics::symmetric_top::{self as sym, SymmetricTop};
-    let Ok(top) = SymmetricTop::new(spec.ratio, spec.tau) else {
-        return [f64::NAN; 3];
-    };
-    let w0 = crate::math::Vec3::from(spec.omega0);
-    let w = if spec.function == "truncated_closed_form" {
-        sym::truncated_closed_form(&top, &w0, t)
-    } else {
-        sym::reduced_closed_form(&top, &w0, t)
-    };
-    [w.x, w.y, w.z]
 }
 
 /// A progress bar of `width` cells for `k` of `n`: ▰ done, ▱ to do.
@@ -1256,18 +1183,34 @@ pub fn progress_bar(k: usize, n: usize, width: usize) -> String {
     format!("{}{}", "▰".repeat(done), "▱".repeat(width - done))
 }
 
-/// The progress file's content: the chapters opened so far and the last one.
+/// The progress file's content: the chapters opened so far, the last one,
+/// and where each was left.
 #[derive(Debug, Default, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Progress {
     /// File names of the chapters opened.
     pub opened: Vec<String>,
     /// The chapter open when the session ended.
     pub last: Option<String>,
+    /// Where each chapter was left: (first line shown, lines of the chapter
+    /// at the width it was read at).
+    #[serde(default)]
+    pub positions: BTreeMap<String, (usize, usize)>,
 }
 
 impl Progress {
     /// Progress from a session.
     pub fn of(learn: &Learn) -> Self {
+        let mut positions = BTreeMap::new();
+        for (i, c) in learn.chapters.iter().enumerate() {
+            let here = if i == learn.current {
+                Some((learn.scroll, learn.rendered.lines.len().max(1)))
+            } else {
+                learn.positions[i]
+            };
+            if let Some(p) = here {
+                positions.insert(c.file.clone(), p);
+            }
+        }
         Progress {
             opened: learn
                 .chapters
@@ -1277,49 +1220,7 @@ impl Progress {
                 .map(|(c, _)| c.file.clone())
                 .collect(),
             last: Some(learn.chapters[learn.current].file.clone()),
+            positions,
         }
     }
-}
-
-/// Runs `spintop learn` on a terminal until quit.
-/// Returns the signal that ended it, if one did (see [`super::signals`]).
-pub fn run<B: ratatui::backend::Backend>(
-    terminal: &mut ratatui::Terminal<B>,
-    learn: &mut Learn,
-) -> std::io::Result<Option<i32>>
-where
-    B::Error: Send + Sync + 'static,
-{
-    use crossterm::event::{self, Event, KeyEventKind};
-    use std::time::Instant;
-    let signals = super::signals::Signals::install()?;
-    let frame_time = Duration::from_millis(33);
-    let mut last = Instant::now();
-    while !learn.should_quit() && signals.received().is_none() {
-        let now = Instant::now();
-        learn.advance(now - last);
-        last = now;
-        terminal
-            .draw(|f| learn.draw(f))
-            .map_err(std::io::Error::other)?;
-        let deadline = Instant::now() + frame_time;
-        loop {
-            let timeout = deadline.saturating_duration_since(Instant::now());
-            if timeout.is_zero() || !super::signals::poll(timeout)? {
-                break;
-            }
-            if let Event::Key(key) = event::read()?
-                && key.kind != KeyEventKind::Release
-            {
-                learn.key(key);
-                if learn.should_quit() {
-                    break;
-                }
-            }
-            if signals.received().is_some() {
-                break;
-            }
-        }
-    }
-    Ok(signals.received())
 }

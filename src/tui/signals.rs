@@ -130,7 +130,10 @@ fn restore_from_another_thread() {
     #[cfg(unix)]
     if let Ok(mut tty) = std::fs::OpenOptions::new().write(true).open("/dev/tty") {
         use std::io::Write;
-        let _ = tty.write_all(b"\x1b[?1049l\x1b[?25h");
+        // Leave the alternate screen, show the cursor, release the mouse.
+        let _ = tty.write_all(
+            b"\x1b[?1049l\x1b[?25h\x1b[?1000l\x1b[?1002l\x1b[?1003l\x1b[?1006l\x1b[?1015l",
+        );
         let _ = tty.flush();
     }
 }

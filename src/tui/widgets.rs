@@ -61,16 +61,16 @@ impl OmegaSeries {
         };
         let x = |p: &Point| if log_time { p.t.log10() } else { p.t };
         let curve = |f: &dyn Fn(&Point) -> f64| points.iter().map(|p| (x(p), f(p))).collect();
-        // NOTE: the symmetric models reach their scale (Ω⊥₀ or |Ω₃₀|), so the
-        // axis gets 5% of room above it. The general top's scale is a bound it
-        // reaches only with all its energy on one axis; room above it would
-        // often double the axis for nothing (0.239 → 0.5 for the scene).
-        let room = if column.sim().model().has_closed_form() {
-            1.05
-        } else {
-            1.0
-        };
-        let y = nice_ceiling(column.scale() * room);
+        // NOTE: the axis follows the curves shown, with 5% of room above
+        // their largest value (a truncated top at Ω ≈ 0.02 is not drawn flat
+        // on a ±0.2 axis); it is never larger than the column's scale, a
+        // bound on every component at all times, so it only ever narrows as
+        // the top slows down.
+        let biggest = points
+            .iter()
+            .flat_map(|p| p.omega.iter().chain([&p.omega_perp]))
+            .fold(0.0, |m: Real, w| m.max(w.abs()));
+        let y = nice_ceiling(biggest.min(column.scale()) * 1.05);
         Self {
             curves: [
                 curve(&|p| p.omega[0]),
@@ -85,8 +85,10 @@ impl OmegaSeries {
         }
     }
 
-    /// The chart: Braille lines, labelled axes, the curve names in the title.
-    pub fn chart(&self) -> Chart<'_> {
+    /// The chart, for an area `rows` high: Braille lines, labelled axes, the
+    /// curve names in the title. A short chart labels only the ends of its y
+    /// axis (three labels on two rows would print over each other).
+    pub fn chart(&self, rows: u16) -> Chart<'_> {
         let names = ["Ω₁", "Ω₂", "Ω₃", "Ω⊥"];
         let datasets = self
             .curves
@@ -148,9 +150,13 @@ impl OmegaSeries {
                     .style(theme::frame())
                     .bounds(self.y_bounds)
                     .labels(
-                        [fmt_axis(ylo), "0".into(), fmt_axis(yhi)]
-                            .into_iter()
-                            .map(|l| Span::styled(l, theme::label())),
+                        if rows >= 7 {
+                            vec![fmt_axis(ylo), "0".into(), fmt_axis(yhi)]
+                        } else {
+                            vec![fmt_axis(ylo), fmt_axis(yhi)]
+                        }
+                        .into_iter()
+                        .map(|l| Span::styled(l, theme::label())),
                     ),
             )
     }
@@ -230,7 +236,7 @@ fn segment(ctx: &mut Context, cam: &Camera, a: [f64; 3], b: [f64; 3], color: Col
 pub fn hodograph(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut Context<'_>)> {
     let cam = body_camera();
     let scale = column.scale();
-    let down = column.sim().initial().omega.z < 0.0;
+    let down = column.initial().omega.z < 0.0;
     let y = if down { [-1.25, 0.6] } else { [-0.6, 1.25] };
     let scaled = |p: &[f64; 3]| [p[0] / scale, p[1] / scale, p[2] / scale];
     let trail: Vec<(f64, f64)> = column
@@ -359,6 +365,25 @@ fn padded(label: &str, width: usize) -> String {
     format!("{label}{}", " ".repeat(width.saturating_sub(used)))
 }
 
+/// A block of numbers and the width it needs: the layout drops a whole
+/// block before it cuts a number in one.
+pub struct NumberBlock {
+    /// The lines.
+    pub paragraph: Paragraph<'static>,
+    /// The widest line, in columns.
+    pub width: u16,
+}
+
+impl NumberBlock {
+    fn new(lines: Vec<Line<'static>>) -> Self {
+        let width = lines.iter().map(Line::width).max().unwrap_or(0);
+        Self {
+            paragraph: Paragraph::new(lines),
+            width: u16::try_from(width).unwrap_or(u16::MAX),
+        }
+    }
+}
+
 /// The live numbers of a column, as two side-by-side blocks of five lines and
 /// a last full-width line (Ω now, or why the model stopped). `wide` selects
 /// the long labels.
@@ -366,12 +391,13 @@ pub fn numbers(
     app: &App,
     column: &Column,
     wide: bool,
-) -> (Paragraph<'static>, Paragraph<'static>, Paragraph<'static>) {
+) -> (NumberBlock, NumberBlock, Paragraph<'static>) {
     let s = column.current();
-    let sim = column.sim();
     let u = column.time_unit();
     // Labels on the left are short, on the right long ("RHS evals").
-    let (left_width, width) = if wide { (6, 10) } else { (6, 7) };
+    // NOTE: the narrow labels leave the longest pair of values (a tilt or a
+    // rate in exponent form beside "exact+dop853") room in 38 columns.
+    let (left_width, width) = if wide { (6, 10) } else { (5, 7) };
     let pair_in = |label: &str, value: String, width: usize| {
         Line::from(vec![
             Span::styled(padded(label, width), theme::label()),
@@ -402,7 +428,7 @@ pub fn numbers(
         left_pair("tilt", tilt),
         left_pair("φ̇", phi_dot),
     ];
-    let step = sim.last_step();
+    let step = column.last_step();
     // NOTE: |Ω − Ω_closed form| at the same t, from the core's (4.7) and
     // (4.15)–(4.16); zero by construction when Ω is the closed form.
     // The general top (3.3) has nothing to compare with: "—".
@@ -421,7 +447,7 @@ pub fn numbers(
     };
     let right = vec![
         pair("ψ̇", psi_dot),
-        pair("method", sim.method().label().to_string()),
+        pair("method", column.method().label().to_string()),
         pair(
             "step",
             if step > 0.0 {
@@ -432,11 +458,14 @@ pub fn numbers(
         ),
         pair(
             if wide { "RHS evals" } else { "evals" },
-            sim.stats().rhs_evals.to_string(),
+            column.stats().rhs_evals.to_string(),
         ),
         pair("error", error),
     ];
     let last = match column.failure() {
+        Some(why) if column.is_forward() => {
+            Line::from(Span::styled(why.to_string(), theme::error()))
+        }
         Some(why) => Line::from(Span::styled(format!("stopped: {why}"), theme::error())),
         None => {
             let [o1, o2, o3] = s.omega;
@@ -456,8 +485,8 @@ pub fn numbers(
         }
     };
     (
-        Paragraph::new(left),
-        Paragraph::new(right),
+        NumberBlock::new(left),
+        NumberBlock::new(right),
         // A failure's advice is shown whole, wrapped, never cut at the edge.
         Paragraph::new(last).wrap(ratatui::widgets::Wrap { trim: true }),
     )
@@ -467,7 +496,7 @@ pub fn numbers(
 /// model with no closed form: E/E₀, |L|/|L₀| and the angle L has turned
 /// through (the radiation torque of (3.3) need not be along L). With a tiny
 /// dipole the top is free, and the first two stay 1.
-pub fn drift(column: &Column) -> Paragraph<'static> {
+pub fn drift(column: &Column) -> NumberBlock {
     let (s, s0) = (column.current(), column.start());
     let norm = |v: [Real; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     let ratio = |a: Real, b: Real| if b > 0.0 { a / b } else { Real::NAN };
@@ -489,7 +518,7 @@ pub fn drift(column: &Column) -> Paragraph<'static> {
             Span::styled(value, theme::value()),
         ])
     };
-    Paragraph::new(vec![
+    NumberBlock::new(vec![
         Line::from(Span::styled("since t = 0", theme::label())),
         pair("E/E₀", fmt_num(ratio(s.energy, s0.energy))),
         pair("|L|/|L₀|", fmt_num(ratio(norm(l), norm(l0)))),

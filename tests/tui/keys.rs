@@ -98,7 +98,7 @@ fn edit_mode_takes_numbers_arrows_enter_and_esc() {
         (KeyCode::Char('-'), Some(Input('-'))),
         (KeyCode::Char('e'), Some(Input('e'))),
         (KeyCode::Char('.'), Some(Input('.'))),
-        (KeyCode::Char('q'), None),
+        (KeyCode::Char('q'), Some(Quit)),
         (KeyCode::Char(' '), None),
         (KeyCode::Backspace, Some(Backspace)),
         (KeyCode::Up, Some(NudgeUp)),
@@ -232,7 +232,7 @@ fn an_omega0_edit_is_applied_refused_or_cancelled() {
     assert_eq!(app.mode(), &Mode::Normal);
     assert_eq!(app.settings().omega0(), [0.0, 0.1, 0.21]);
     for column in app.columns() {
-        assert_eq!(column.sim().initial().omega, Vec3::new(0.0, 0.1, 0.21));
+        assert_eq!(column.initial().omega, Vec3::new(0.0, 0.1, 0.21));
     }
 
     // Garbage, an empty field and an out-of-range value are refused in place.
@@ -281,8 +281,8 @@ fn method_cycles_closed_form_rk4_dp5_dop853_radau5() {
     let mut app = app();
     let labels = |app: &App| {
         [
-            app.columns()[0].sim().method().label(),
-            app.columns()[1].sim().method().label(),
+            app.columns()[0].method().label(),
+            app.columns()[1].method().label(),
         ]
     };
     assert_eq!(app.settings().method(), MethodChoice::Exact);
@@ -403,10 +403,10 @@ fn sec3_a_general_top_scene_opens_one_column_of_eq_3_3_with_lab_z_along_l0() {
         panic!("three columns, got {}", app.columns().len())
     };
     assert_eq!(truncated.name(), "general");
-    assert!(matches!(truncated.sim().model(), Model::General(_)));
-    assert!(matches!(reduced.sim().model(), Model::GeneralReduced(_)));
-    assert!(matches!(physical.sim().model(), Model::GeneralFull(_)));
-    assert_eq!(physical.sim().method().label(), "physical");
+    assert!(matches!(truncated.model(), Model::General(_)));
+    assert!(matches!(reduced.model(), Model::GeneralReduced(_)));
+    assert!(matches!(physical.model(), Model::GeneralFull(_)));
+    assert_eq!(physical.method().label(), "physical");
     for column in app.columns() {
         assert_eq!(column.closed_form_error(), None);
         assert_eq!(column.time_unit(), "u");
@@ -439,7 +439,7 @@ fn general_top_refuses_the_ratio_keys_and_keeps_running() {
 #[test]
 fn general_top_method_cycles_rk4_dp5_dop853_radau5_and_never_the_closed_form() {
     let mut app = general_app();
-    assert_eq!(app.columns()[0].sim().method().label(), "dop853");
+    assert_eq!(app.columns()[0].method().label(), "dop853");
     let expected = [
         (MethodChoice::Radau5, "radau5"),
         (MethodChoice::Rk4, "rk4"),
@@ -454,9 +454,9 @@ fn general_top_method_cycles_rk4_dp5_dop853_radau5_and_never_the_closed_form() {
         assert_eq!(app.columns().len(), 3);
         // (3.3) and the reduced model take the method; the physical column
         // keeps its backward shoot.
-        assert_eq!(app.columns()[0].sim().method().label(), label);
-        assert_eq!(app.columns()[1].sim().method().label(), label);
-        assert_eq!(app.columns()[2].sim().method().label(), "physical");
+        assert_eq!(app.columns()[0].method().label(), label);
+        assert_eq!(app.columns()[1].method().label(), label);
+        assert_eq!(app.columns()[2].method().label(), "physical");
         assert_eq!(app.ticks(), 0);
         let message = app.message().expect("the change is confirmed");
         assert!(
@@ -504,10 +504,7 @@ fn general_top_pause_step_warp_reset_edit_view_help_and_quit_work() {
     assert_eq!(app.mode(), &Mode::Normal);
     assert_eq!(app.settings().omega0(), [0.3, 0.05, 0.2]);
     assert!(matches!(app.settings().top(), Top::General(_)));
-    assert_eq!(
-        app.columns()[0].sim().initial().omega,
-        Vec3::new(0.3, 0.05, 0.2)
-    );
+    assert_eq!(app.columns()[0].initial().omega, Vec3::new(0.3, 0.05, 0.2));
     // The frame follows the new L₀.
     let l = Vec3::from(app.columns()[0].current().l_lab);
     assert!(l.x.abs() < 1e-15 && l.y.abs() < 1e-15 && l.z > 0.0, "{l}");

@@ -7,10 +7,11 @@
 //! comment in the book must parse and apply to its chapter's scene. Two
 //! screens of Section 4.2 are pinned by insta snapshots (reviewed by hand).
 
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use ratatui::{Terminal, backend::TestBackend};
 use spintop::tui::learn::markdown::{self, code_style};
-use spintop::tui::learn::{Experiment, Learn, Mode, find_chapter};
+use spintop::tui::learn::scene::Spec;
+use spintop::tui::learn::{Command, Experiment, Learn, Mode, find_chapter};
 use std::path::{Path, PathBuf};
 
 fn book() -> PathBuf {
@@ -19,16 +20,35 @@ fn book() -> PathBuf {
         .join("src")
 }
 
+/// Draw at `width`×`height`, as the terminal loop does: the size first.
 fn draw(learn: &mut Learn, width: u16, height: u16) -> String {
+    if learn.size() != (width, height) {
+        learn.apply(Command::Resize(width, height));
+    }
     let mut terminal = Terminal::new(TestBackend::new(width, height)).expect("a test terminal");
     terminal
-        .draw(|f| learn.draw(f))
+        .draw(|f| spintop::tui::learn::view::draw(f, learn))
         .expect("drawing never fails on a TestBackend");
     terminal.backend().to_string()
 }
 
 fn key(code: KeyCode) -> KeyEvent {
     KeyEvent::new(code, KeyModifiers::NONE)
+}
+
+/// A key, as the terminal loop applies it.
+fn press(learn: &mut Learn, code: KeyCode) {
+    if let Some(command) = learn.command_for(&Event::Key(key(code))) {
+        learn.apply(command);
+    }
+}
+
+/// The live-view settings of a chapter's scene, if it has them.
+fn top_settings(spec: &Spec) -> Option<spintop::tui::Settings> {
+    match spec {
+        Spec::Top { settings, .. } => Some(*settings),
+        _ => None,
+    }
 }
 
 /// Marks of text that was not rendered: raw TeX, mdBook directives, Markdown.
@@ -119,38 +139,222 @@ fn every_chapter_renders_with_no_raw_tex_or_markup_outside_code() {
     }
 }
 
+/// The named functions an equation writes upright, set off by spaces.
+const NAMED_FUNCTIONS: [&str; 7] = ["sin", "cos", "tan", "cot", "ln", "exp", "log"];
+
+/// Where an equation's text glues a named function to its neighbour:
+/// `Rsin α`, `φ̇sin θ`, `sinα` (`sin²θ`, `sin(α)` and `ln(m)` are fine, and
+/// so are words that only contain a name: `cosh`, `arcsin`, `using`).
+fn glued_function(math: &str) -> Option<String> {
+    let chars: Vec<char> = math.chars().collect();
+    let operand = |c: char| {
+        c.is_alphanumeric()
+            || matches!(c as u32, 0x300..=0x36F | 0x20D0..=0x20FF)
+            || "₀₁₂₃₄₅₆₇₈₉²³⁻¹ₑₘ)]}|".contains(c)
+    };
+    let mut i = 0;
+    while i < chars.len() {
+        if !chars[i].is_ascii_alphabetic() {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < chars.len() && chars[i].is_ascii_alphabetic() {
+            i += 1;
+        }
+        let word: String = chars[start..i].iter().collect();
+        let context = || -> String {
+            chars[start.saturating_sub(6)..(i + 6).min(chars.len())]
+                .iter()
+                .collect()
+        };
+        for f in NAMED_FUNCTIONS {
+            if word == f {
+                let before = start > 0 && operand(chars[start - 1]);
+                let after = chars.get(i).is_some_and(|c| c.is_alphabetic());
+                if before || after {
+                    return Some(context());
+                }
+            } else if let Some(prefix) = word.strip_suffix(f)
+                && (1..=2).contains(&prefix.len())
+                && prefix != "arc"
+            {
+                // A one- or two-letter factor glued on: Rsin, kcos.
+                return Some(context());
+            }
+        }
+    }
+    None
+}
+
+#[test]
+fn the_named_function_check_finds_glued_names() {
+    assert!(glued_function("Ω₂₀/Rsin α").is_some());
+    assert!(glued_function("φ̇sin θ").is_some());
+    assert!(glued_function("sinα").is_some());
+    for fine in [
+        "(Ω₂₀/R) sin α",
+        "sin²θ",
+        "ln(m/m₀)",
+        "cosh x",
+        "arcsin x",
+        "arctan(1/3)",
+    ] {
+        assert_eq!(glued_function(fine), None, "{fine}");
+    }
+}
+
+/// Every page of every chapter, drawn at 80×24 and 160×48: no raw TeX, no
+/// mdBook directive and no Markdown markup outside code, and no equation
+/// with a named function glued to its neighbour.
 #[test]
 fn every_page_of_every_chapter_draws_at_both_sizes() {
+    let code = code_style().fg;
+    let math = markdown::math_style().fg;
     for (w, h) in [(80u16, 24u16), (160, 48)] {
         let mut learn = Learn::open(&book(), None).expect("the book opens");
         let n = learn.chapters().len();
         for i in 0..n {
+            let file = learn.chapters()[i].file.clone();
             let shown = draw(&mut learn, w, h);
             assert!(
                 shown.contains(&learn.chapters()[i].title),
-                "{}: title not in the header",
-                learn.chapters()[i].file
+                "{file}: title not in the header"
             );
-            // Scroll to the end page by page; the screen must stay clean.
+            // Scroll to the end page by page; every page must be clean.
             for _ in 0..400 {
                 let before = learn.scroll();
-                learn.key(key(KeyCode::PageDown));
-                let page = draw(&mut learn, w, h);
-                for line in page.lines() {
+                learn.apply(Command::Resize(w, h));
+                let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
+                terminal
+                    .draw(|f| spintop::tui::learn::view::draw(f, &learn))
+                    .unwrap();
+                let buffer = terminal.backend().buffer();
+                for y in 0..h {
+                    let cells: Vec<_> = (0..w).map(|x| &buffer[(x, y)]).collect();
+                    let all: String = cells.iter().map(|c| c.symbol()).collect();
                     assert!(
-                        !line.contains("{{#") && !line.contains("$$"),
-                        "{}: {line}",
-                        learn.chapters()[i].file
+                        !all.contains("{{#") && !all.contains("$$"),
+                        "{file} at {w}×{h}: {all}"
                     );
+                    let prose: String = cells
+                        .iter()
+                        .filter(|c| c.fg != code.unwrap_or_default())
+                        .map(|c| c.symbol())
+                        .collect();
+                    if let Some(what) = unrendered(&prose) {
+                        panic!("{file} at {w}×{h}: {what} on screen: {prose:?}");
+                    }
+                    let equations: String = cells
+                        .iter()
+                        .map(|c| {
+                            if c.fg == math.unwrap_or_default() {
+                                c.symbol()
+                            } else {
+                                "\u{1}"
+                            }
+                        })
+                        .collect();
+                    for equation in equations.split('\u{1}').filter(|e| !e.trim().is_empty()) {
+                        if let Some(glued) = glued_function(equation) {
+                            panic!("{file} at {w}×{h}: a named function glued in `{glued}`: {all}");
+                        }
+                    }
                 }
+                press(&mut learn, KeyCode::PageDown);
                 if learn.scroll() == before {
                     break;
                 }
             }
-            learn.key(key(KeyCode::Right));
+            press(&mut learn, KeyCode::Right);
         }
         assert_eq!(learn.current(), n - 1, "→ walks through every chapter");
     }
+}
+
+/// True when the break between a wrapped line `before` and its continuation
+/// `rest` cut a token: both sides are parts of a name or a number, and the
+/// source has them joined with no space between.
+pub fn cuts_a_token(before: &str, rest: &str, source: &str) -> bool {
+    let token = |c: char| c.is_alphanumeric() || c == '_' || c == '.';
+    let before = before.trim_end();
+    let rest = rest.trim_start();
+    let (Some(a), Some(b)) = (before.chars().last(), rest.chars().next()) else {
+        return false;
+    };
+    if !(token(a) && token(b)) {
+        return false;
+    }
+    let tail: String = {
+        let v: Vec<char> = before.chars().collect();
+        v[v.len().saturating_sub(8)..].iter().collect()
+    };
+    let head: String = rest.chars().take(8).collect();
+    source.contains(&format!("{tail}{head}"))
+}
+
+/// Code and program output are wrapped between tokens, with the rest of a
+/// line marked ↪, never inside a name or a number, at the text widths of
+/// 80×24 and 160×48, over every code block of the book, library source
+/// unfolded.
+#[test]
+fn code_is_wrapped_between_tokens_in_every_chapter() {
+    let learn = Learn::open(&book(), None).expect("the book opens");
+    let mut wrapped = 0;
+    for chapter in learn.chapters() {
+        let source = std::fs::read_to_string(book().join(&chapter.file)).unwrap();
+        let source = markdown::resolve_includes(&source, &book());
+        for width in [76u16, 80] {
+            let options = markdown::Options {
+                unfold: true,
+                ..Default::default()
+            };
+            let r = markdown::render_with(&source, width, options);
+            let text: Vec<String> = r
+                .lines
+                .iter()
+                .map(|l| l.spans.iter().map(|s| s.content.as_ref()).collect())
+                .collect();
+            for (k, line) in text.iter().enumerate().skip(1) {
+                let Some(rest) = line.trim_start().strip_prefix(markdown::CONTINUATION) else {
+                    continue;
+                };
+                wrapped += 1;
+                assert!(
+                    !cuts_a_token(&text[k - 1], rest, &source),
+                    "{} at {width}: a token is cut:\n{}\n{line}",
+                    chapter.file,
+                    text[k - 1]
+                );
+                assert!(line.chars().count() <= usize::from(width), "{line}");
+            }
+        }
+    }
+    assert!(
+        wrapped > 10,
+        "only {wrapped} wrapped lines: the test sees too little"
+    );
+}
+
+/// The library's source excerpts are folded to one line by default, and
+/// `o` shows them whole (and folds them again).
+#[test]
+fn library_source_is_folded_until_o() {
+    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    draw(&mut learn, 80, 24);
+    let folded = learn.rendered().lines.len();
+    let text = markdown::plain(&learn.rendered().lines);
+    assert!(
+        text.contains("▸ src/physics/central.rs:abraham_lorentz"),
+        "{text}"
+    );
+    assert!(!text.contains("pub fn abraham_lorentz_rhs"), "folded");
+    press(&mut learn, KeyCode::Char('o'));
+    let text = markdown::plain(&learn.rendered().lines);
+    assert!(text.contains("pub fn abraham_lorentz_rhs"), "unfolded");
+    assert!(learn.rendered().lines.len() > folded + 100);
+    press(&mut learn, KeyCode::Char('o'));
+    assert_eq!(learn.rendered().lines.len(), folded);
 }
 
 #[test]
@@ -164,7 +368,10 @@ fn every_experiment_in_the_book_applies_to_its_chapters_scene() {
         for (_, text) in &rendered.experiments {
             let e = Experiment::parse(text)
                 .unwrap_or_else(|err| panic!("{}: `{text}`: {err}", chapter.file));
-            e.apply(&scene.settings)
+            let base = top_settings(&scene.spec).unwrap_or_else(|| {
+                panic!("{}: an experiment, but no live-view scene", chapter.file)
+            });
+            e.apply(&base)
                 .unwrap_or_else(|err| panic!("{}: `{text}`: {err}", chapter.file));
             total += 1;
         }
@@ -176,9 +383,9 @@ fn every_experiment_in_the_book_applies_to_its_chapters_scene() {
 fn the_experiment_key_changes_the_scene_and_scrolls_to_the_experiment() {
     let mut learn = Learn::open(&book(), Some("4.2")).expect("chapter 4.2 opens");
     draw(&mut learn, 160, 48);
-    let before = *learn.scene().settings();
-    learn.key(key(KeyCode::Char('x')));
-    let after = *learn.scene().settings();
+    let before = *learn.scene().unwrap().settings();
+    press(&mut learn, KeyCode::Char('x'));
+    let after = *learn.scene().unwrap().settings();
     assert_ne!(before, after, "x must change the scene's parameters");
     assert!(learn.scroll() > 0, "x scrolls the text to the experiment");
     let shown = draw(&mut learn, 160, 48);
@@ -205,15 +412,35 @@ fn chapters_are_found_by_section_or_file_name_and_contents_jump() {
             .is_some_and(|e| e.contains("4.2"))
     );
 
+    // The contents list every chapter and its sections; Enter on a section
+    // opens its chapter with the section's heading at the top of the page.
     let mut learn = Learn::open(&book(), None).unwrap();
-    learn.key(key(KeyCode::Char('c')));
-    assert_eq!(learn.mode(), Mode::Contents(0));
-    for _ in 0..3 {
-        learn.key(key(KeyCode::Down));
+    draw(&mut learn, 80, 24);
+    press(&mut learn, KeyCode::Char('c'));
+    assert_eq!(learn.mode(), &Mode::Contents(0));
+    let wanted = learn
+        .contents()
+        .iter()
+        .position(|e| {
+            e.heading
+                .as_ref()
+                .is_some_and(|(_, h)| h.starts_with("The Coulomb collapse"))
+        })
+        .expect("Section 2's sections are in the contents");
+    let chapter = learn.contents()[wanted].chapter;
+    assert_eq!(learn.chapters()[chapter].file, "section-2.md");
+    for _ in 0..wanted {
+        press(&mut learn, KeyCode::Down);
     }
-    learn.key(key(KeyCode::Enter));
-    assert_eq!(learn.current(), 3);
-    assert_eq!(learn.mode(), Mode::Read);
+    press(&mut learn, KeyCode::Enter);
+    assert_eq!(learn.current(), chapter);
+    assert_eq!(learn.mode(), &Mode::Read);
+    let shown = draw(&mut learn, 80, 24);
+    let first_text_line = shown.lines().nth(2).unwrap_or_default();
+    assert!(
+        first_text_line.contains("The Coulomb collapse"),
+        "the section's heading opens the page:\n{shown}"
+    );
 }
 
 #[test]
@@ -255,7 +482,7 @@ fn the_course_panel_shows_the_graders_verdicts() {
     learn.course_report(Report::Graded(status));
     let shown = draw(&mut learn, 160, 48);
     assert!(shown.contains("course 2 of 22 ▰▱▱▱▱▱▱▱▱▱"), "{shown}");
-    learn.key(key(KeyCode::Char('a')));
+    press(&mut learn, KeyCode::Char('a'));
     let shown = draw(&mut learn, 160, 48);
     for text in [
         "2 of 22 passing",
@@ -291,7 +518,7 @@ fn h_climbs_the_hint_ladder_of_the_chapters_next_assignment() {
     );
     let formula = target.hints[2];
     for rung in 1..=3 {
-        learn.key(key(KeyCode::Char('h')));
+        press(&mut learn, KeyCode::Char('h'));
         assert_eq!(learn.hint().unwrap().rung, rung);
         let shown = draw(&mut learn, 160, 48);
         assert!(shown.contains(&format!("hint {rung} of 3")), "{shown}");
@@ -299,9 +526,9 @@ fn h_climbs_the_hint_ladder_of_the_chapters_next_assignment() {
         assert!(formula.starts_with("sigma = I1^2"));
     }
     // Another press stays on the last rung; any other key closes the panel.
-    learn.key(key(KeyCode::Char('h')));
+    press(&mut learn, KeyCode::Char('h'));
     assert_eq!(learn.hint().unwrap().rung, 3);
-    learn.key(key(KeyCode::Char('j')));
+    press(&mut learn, KeyCode::Char('j'));
     assert!(!draw(&mut learn, 160, 48).contains("hint 3 of 3"));
 }
 
@@ -352,6 +579,6 @@ fn the_students_function_of_time_is_drawn_against_the_reference() {
     // A stub says so instead of a chart; another chapter shows nothing.
     learn.probe_report((spec, Ok(Probed::Panicked("not yet implemented".into()))));
     assert!(draw(&mut learn, 160, 48).contains("reduced_closed_form panics: not yet implemented"));
-    learn.key(key(KeyCode::Left));
+    press(&mut learn, KeyCode::Left);
     assert!(!draw(&mut learn, 160, 48).contains("yours:"));
 }

@@ -14,7 +14,8 @@ use spintop::scene::{Body, Scene, catalogue};
 use spintop::sim::{MethodChoice, Simulation};
 use spintop::tui::Command;
 use spintop::tui::app::{App, Settings};
-use spintop::tui::view::{self, MIN_HEIGHT, MIN_WIDTH};
+use spintop::tui::app::{MIN_HEIGHT, MIN_WIDTH};
+use spintop::tui::view;
 use spintop::tui::widgets::fmt_num;
 
 /// Draw `app` on a `width`×`height` test terminal and return the screen.
@@ -213,7 +214,7 @@ fn general_top_screen_after_600_steps() {
     assert!(s.contains("t = 60.00u"), "{s}");
     assert!(s.contains("scene asymmetric-top: a general top under (3.3), the reduced ALE and the physical solution of (3.4) side by side"));
     assert!(s.contains("truncated (3.3)") && !s.contains("truncated (4.2)"));
-    assert!(s.contains("reduced (3.4) reduced") && s.contains("physical (3.4)"));
+    assert!(s.contains("reduced (3.4): Schott term kept") && s.contains("physical (3.4)"));
     assert!(
         !s.contains('τ'),
         "time is in u, the kappa = 1 unit, not tau:\n{s}"
@@ -290,7 +291,7 @@ fn sec3_general_top_with_a_tiny_dipole_shows_constant_energy_and_momentum() {
     // nothing the screen can show, so the reduced model stands in, and says so.
     assert!(app.columns()[2].stand_in().is_some());
     assert!(matches!(
-        app.columns()[2].sim().model(),
+        app.columns()[2].model(),
         spintop::sim::Model::GeneralReduced(_)
     ));
     let at_start = text(&screen(&app, 300, 40));

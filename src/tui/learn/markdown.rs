@@ -11,7 +11,7 @@
 //! mdBook drops) mark the chapter's experiments.
 
 use super::tex;
-use pulldown_cmark::{Alignment, CodeBlockKind, Event, HeadingLevel, Options, Parser, Tag, TagEnd};
+use pulldown_cmark::{Alignment, CodeBlockKind, Event, HeadingLevel, Parser, Tag, TagEnd};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use std::path::Path;
@@ -28,6 +28,8 @@ pub struct Rendered {
     pub experiments: Vec<(usize, String)>,
     /// TeX commands the converter did not know (a test keeps this empty).
     pub unknown_tex: Vec<String>,
+    /// A figure is still being computed: render again once it is there.
+    pub figures_pending: bool,
 }
 
 /// Resolves mdBook's `{{#include path}}` and `{{#include path:anchor}}`
@@ -52,7 +54,29 @@ pub fn resolve_includes(source: &str, dir: &Path) -> String {
     out
 }
 
+/// The first line of an included excerpt of the library's own source (a
+/// file under `src/`), which [`render_with`] folds to one line: the marker,
+/// then `path:anchor`. No source line starts with this control character.
+const FOLD: &str = "\u{1}library ";
+
 fn include(spec: &str, dir: &Path) -> String {
+    let body = include_body(spec, dir);
+    // The library's source (`../../src/…`), not a lesson or a program's output.
+    let library = spec.split(['/', '\\']).any(|part| part == "src")
+        && !spec.contains("lessons/")
+        && spec
+            .rsplit_once(':')
+            .map_or(spec, |(p, _)| p)
+            .ends_with(".rs");
+    if library {
+        let shown = spec.trim_start_matches("../").trim_start_matches("../");
+        format!("{FOLD}{shown}\n{body}")
+    } else {
+        body
+    }
+}
+
+fn include_body(spec: &str, dir: &Path) -> String {
     let (path, anchor) = match spec.rsplit_once(':') {
         Some((p, a)) if !a.is_empty() && !a.contains('/') => (p, Some(a)),
         _ => (spec, None),
@@ -151,6 +175,11 @@ mod style {
     pub fn rule() -> Style {
         Style::new().fg(Color::DarkGray)
     }
+    pub fn fold() -> Style {
+        Style::new()
+            .fg(Color::DarkGray)
+            .add_modifier(Modifier::ITALIC)
+    }
     pub fn experiment() -> Style {
         Style::new()
             .fg(Color::Black)
@@ -167,6 +196,9 @@ struct Piece {
 }
 
 struct Renderer {
+    options: Options,
+    /// The image being read: its file and the alt text so far.
+    image: Option<(String, String)>,
     width: usize,
     out: Rendered,
     /// The inline pieces of the paragraph being built.
@@ -191,16 +223,34 @@ struct Table {
     row: Vec<String>,
 }
 
+/// How a chapter is rendered, beyond its width.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Options {
+    /// Show the library's source excerpts whole instead of one line each.
+    pub unfold: bool,
+    /// Figures still being computed get a line saying so instead of waiting
+    /// for them (the terminal's way; a test draws them at once).
+    pub figures_later: bool,
+}
+
 /// Renders one chapter (`source` already with includes resolved) at `width`
-/// columns (at least 20).
+/// columns (at least 20), library source folded.
 pub fn render(source: &str, width: u16) -> Rendered {
+    render_with(source, width, Options::default())
+}
+
+/// [`render`] with `options`.
+pub fn render_with(source: &str, width: u16, options: Options) -> Rendered {
+    let settings = options;
     let source = normalise_math_delimiters(source);
-    let mut options = Options::empty();
-    options.insert(Options::ENABLE_TABLES);
-    options.insert(Options::ENABLE_MATH);
-    options.insert(Options::ENABLE_STRIKETHROUGH);
-    options.insert(Options::ENABLE_FOOTNOTES);
+    let mut options = pulldown_cmark::Options::empty();
+    options.insert(pulldown_cmark::Options::ENABLE_TABLES);
+    options.insert(pulldown_cmark::Options::ENABLE_MATH);
+    options.insert(pulldown_cmark::Options::ENABLE_STRIKETHROUGH);
+    options.insert(pulldown_cmark::Options::ENABLE_FOOTNOTES);
     let mut r = Renderer {
+        options: settings,
+        image: None,
         width: usize::from(width.max(20)),
         out: Rendered::default(),
         pieces: Vec::new(),
@@ -249,9 +299,14 @@ impl Renderer {
             t.cell.push_str(text);
             return;
         }
-        // Split into words and single spaces so that wrapping can break there.
+        // Split into words and single spaces so that wrapping can break there;
+        // a named function stays on the line of its argument (cos θ).
         let mut word = String::new();
         for c in text.chars() {
+            if (c == ' ' || c == '\n') && is_function_word(&word) {
+                word.push(NBSP);
+                continue;
+            }
             if c == ' ' || c == '\n' {
                 if !word.is_empty() {
                     self.pieces.push(Piece {
@@ -293,28 +348,41 @@ impl Renderer {
         let mut prefix = self.line_prefix(first);
         let mut line: Vec<Span<'static>> = vec![Span::raw(prefix.clone())];
         let mut used = prefix.width();
-        for piece in pieces {
-            let w = piece.text.width();
+        let room = self.width.saturating_sub(prefix.width()).max(1);
+        // Words: the pieces between spaces, kept together (a code span and
+        // the comma after it are one word; the line breaks at spaces only).
+        let mut words: Vec<Vec<Piece>> = Vec::new();
+        let mut spaces: Vec<Option<Style>> = Vec::new();
+        let mut pending_space = None;
+        for piece in split_too_long(pieces, room) {
             if piece.text == " " {
-                if used > prefix.width() {
-                    line.push(Span::styled(" ", piece.style));
-                    used += 1;
-                }
+                pending_space = Some(piece.style);
                 continue;
             }
-            if used + w > self.width && used > prefix.width() {
-                // Drop a trailing space before breaking.
-                if line.last().is_some_and(|s| s.content == " ") {
-                    line.pop();
-                }
+            if words.is_empty() || pending_space.is_some() {
+                spaces.push(pending_space.take());
+                words.push(vec![piece]);
+            } else if let Some(word) = words.last_mut() {
+                word.push(piece);
+            }
+        }
+        for (word, space) in words.into_iter().zip(spaces) {
+            let w: usize = word.iter().map(|p| p.text.width()).sum();
+            let gap = usize::from(space.is_some() && used > prefix.width());
+            if used + gap + w > self.width && used > prefix.width() {
                 self.out.lines.push(Line::from(std::mem::take(&mut line)));
                 first = false;
                 prefix = self.line_prefix(first);
                 line.push(Span::raw(prefix.clone()));
                 used = prefix.width();
+            } else if gap == 1 {
+                line.push(Span::styled(" ", space.unwrap_or_default()));
+                used += 1;
             }
-            used += w;
-            line.push(Span::styled(piece.text, piece.style));
+            for piece in word {
+                used += piece.text.width();
+                line.push(Span::styled(piece.text, piece.style));
+            }
         }
         let _ = first;
         self.out.lines.push(Line::from(line));
@@ -326,9 +394,24 @@ impl Renderer {
         self.out.unknown_tex.extend(converted.unknown);
         let indent = format!("{}    ", self.prefix.concat());
         for row in converted.text.lines() {
-            // Long rows are broken at spaces like prose, with a deeper indent.
+            // Long rows are broken between terms like prose, with a deeper
+            // indent: never inside a parenthesis, so never inside a
+            // fraction's bracket (a group wider than the line is broken at
+            // its own spaces).
             let mut current = indent.clone();
-            for word in row.split(' ') {
+            let room = self.width.saturating_sub(indent.width() + 2).max(1);
+            let groups = unbreakable_groups(row);
+            let words: Vec<String> = groups
+                .split(' ')
+                .flat_map(|g| {
+                    if g.width() > room {
+                        g.split(NBSP).map(str::to_string).collect::<Vec<_>>()
+                    } else {
+                        vec![g.replace(NBSP, " ")]
+                    }
+                })
+                .collect();
+            for word in words.iter().map(String::as_str) {
                 if current.width() + word.width() + 1 > self.width && !current.trim().is_empty() {
                     self.out
                         .lines
@@ -353,20 +436,32 @@ impl Renderer {
             Event::Text(t) => {
                 if let Some((_, code)) = self.code.as_mut() {
                     code.push_str(&t);
+                } else if let Some((_, alt)) = self.image.as_mut() {
+                    alt.push_str(&t);
                 } else {
                     let s = self.style();
-                    self.text(&t, s);
+                    self.text(&prose_subscripts(&t), s);
                 }
             }
             Event::Code(t) => {
+                if let Some((_, alt)) = self.image.as_mut() {
+                    alt.push_str(&t);
+                    return;
+                }
                 let s = self.style().patch(style::code());
                 self.text(&t, s);
             }
             Event::InlineMath(t) => {
                 let c = tex::to_unicode(&t);
                 self.out.unknown_tex.extend(c.unknown);
+                if let Some((_, alt)) = self.image.as_mut() {
+                    alt.push_str(&c.text);
+                    return;
+                }
                 let s = self.style().patch(style::math());
-                self.text(&c.text.replace('\n', " "), s);
+                // An equation in a sentence breaks only between its terms,
+                // never inside a parenthesis (or a fraction's bracket).
+                self.text(&unbreakable_groups(&c.text.replace('\n', " ")), s);
             }
             Event::DisplayMath(t) => {
                 let t = t.to_string();
@@ -375,6 +470,10 @@ impl Renderer {
             }
             Event::Html(h) | Event::InlineHtml(h) => self.html(&h),
             Event::SoftBreak => {
+                if let Some((_, alt)) = self.image.as_mut() {
+                    alt.push(' ');
+                    return;
+                }
                 let s = self.style();
                 self.text(" ", s);
             }
@@ -437,6 +536,23 @@ impl Renderer {
             self.pieces = pieces;
             self.flush();
             self.blank();
+        }
+        // An <img> (side-by-side figures in raw HTML) is drawn as a Markdown image is.
+        let mut rest = h;
+        while let Some(at) = rest.find("<img ") {
+            let tag = &rest[at..rest[at..].find('>').map_or(rest.len(), |e| at + e)];
+            let attr = |name: &str| {
+                let key = format!("{name}=\"");
+                tag.find(&key).and_then(|i| {
+                    let v = &tag[i + key.len()..];
+                    v.find('"').map(|e| v[..e].to_string())
+                })
+            };
+            if let Some(src) = attr("src") {
+                self.flush();
+                self.figure(&src, &attr("alt").unwrap_or_default());
+            }
+            rest = &rest[at + 5..];
         }
         // A collapsible block's <summary> becomes a line of its own, ▸ first
         // (the terminal shows the block open).
@@ -511,7 +627,10 @@ impl Renderer {
             Tag::Strong => self.push_style(Style::new().add_modifier(Modifier::BOLD)),
             Tag::Strikethrough => self.push_style(Style::new().add_modifier(Modifier::CROSSED_OUT)),
             Tag::Link { .. } => self.push_style(style::link()),
-            Tag::Image { .. } => self.push_style(style::link()),
+            Tag::Image { dest_url, .. } => {
+                self.flush();
+                self.image = Some((dest_url.to_string(), String::new()));
+            }
             Tag::Table(align) => {
                 self.flush();
                 self.table = Some(Table {
@@ -573,11 +692,14 @@ impl Renderer {
                 }
             }
             TagEnd::Item => self.flush(),
-            TagEnd::Emphasis
-            | TagEnd::Strong
-            | TagEnd::Strikethrough
-            | TagEnd::Link
-            | TagEnd::Image => self.pop_style(),
+            TagEnd::Image => {
+                if let Some((path, alt)) = self.image.take() {
+                    self.figure(&path, &alt);
+                }
+            }
+            TagEnd::Emphasis | TagEnd::Strong | TagEnd::Strikethrough | TagEnd::Link => {
+                self.pop_style()
+            }
             TagEnd::TableCell => {
                 if let Some(t) = self.table.as_mut() {
                     let cell = std::mem::take(&mut t.cell);
@@ -599,37 +721,122 @@ impl Renderer {
         }
     }
 
+    /// An image: Figures 1 and 2 drawn in place with their caption; any
+    /// other diagram one line naming it and where to see it.
+    fn figure(&mut self, path: &str, alt: &str) {
+        self.flush();
+        self.blank();
+        let caption = without_colours(alt);
+        if let Some(number) = super::figures::number_of(path) {
+            let width = u16::try_from(self.width).unwrap_or(u16::MAX);
+            if self.options.figures_later && !super::figures::ready(number) {
+                self.out.figures_pending = true;
+            }
+            self.out.lines.extend(super::figures::lines(
+                number,
+                width,
+                !self.options.figures_later,
+            ));
+            self.pieces = caption
+                .split_whitespace()
+                .flat_map(|w| {
+                    [
+                        Piece {
+                            text: w.to_string(),
+                            style: style::quote(),
+                        },
+                        Piece {
+                            text: " ".into(),
+                            style: style::quote(),
+                        },
+                    ]
+                })
+                .collect();
+            self.flush();
+        } else {
+            // The first sentence names it; the file is in the book.
+            let name = caption
+                .split_once(". ")
+                .map_or(caption.as_str(), |(first, _)| first)
+                .trim_end_matches('.');
+            let file = path.rsplit('/').next().unwrap_or(path);
+            let mut pieces = vec![Piece {
+                text: "▣ diagram:".into(),
+                style: style::heading(4),
+            }];
+            for w in name.split_whitespace() {
+                pieces.push(Piece {
+                    text: " ".into(),
+                    style: style::quote(),
+                });
+                pieces.push(Piece {
+                    text: w.to_string(),
+                    style: style::quote(),
+                });
+            }
+            for w in format!(" (book/src/figures/{file}; `spintop book` shows it)").split(' ') {
+                if w.is_empty() {
+                    continue;
+                }
+                pieces.push(Piece {
+                    text: " ".into(),
+                    style: style::quote(),
+                });
+                pieces.push(Piece {
+                    text: w.to_string(),
+                    style: style::code(),
+                });
+            }
+            self.pieces = pieces;
+            self.flush();
+        }
+        self.blank();
+    }
+
     fn code_block(&mut self, lang: &str, code: &str) {
         let is_rust = lang.is_empty() || lang.split(',').next().is_some_and(|l| l.trim() == "rust");
         let indent = format!("{}  ", self.prefix.concat());
         let usable = self.width.saturating_sub(indent.width()).max(10);
-        for line in code.trim_end_matches('\n').lines() {
+        let mut code = code.trim_end_matches('\n');
+        // The library's own source: one line unless unfolded (`o`).
+        if let Some(rest) = code.strip_prefix(FOLD) {
+            let (name, body) = rest.split_once('\n').unwrap_or((rest, ""));
+            let lines = body.lines().count();
+            let mark = if self.options.unfold { "▾" } else { "▸" };
+            let head = format!(
+                "{mark} {name}: {lines} lines of library source{}",
+                if self.options.unfold {
+                    ""
+                } else {
+                    " (o shows them)"
+                }
+            );
+            for line in wrap_code(&head, usable) {
+                self.out.lines.push(Line::from(vec![
+                    Span::raw(indent.clone()),
+                    Span::styled(line, style::fold()),
+                ]));
+            }
+            if !self.options.unfold {
+                self.blank();
+                return;
+            }
+            code = body;
+        }
+        for line in code.lines() {
             // rustdoc's hidden lines: `# code` and a lone `#`.
             if is_rust && (line.trim() == "#" || line.trim_start().starts_with("# ")) {
                 continue;
             }
             let line = line.replace('\t', "    ");
-            // Hard-wrap long lines; code keeps its own spacing.
-            let mut rest: &str = &line;
-            loop {
-                let mut cut = rest.len();
-                let mut w = 0;
-                for (i, c) in rest.char_indices() {
-                    w += UnicodeWidthStr::width(c.encode_utf8(&mut [0; 4]) as &str);
-                    if w > usable {
-                        cut = i;
-                        break;
-                    }
+            // Long lines are wrapped between tokens, the rest marked ↪.
+            for (k, part) in wrap_code(&line, usable).into_iter().enumerate() {
+                let mut spans = vec![Span::raw(indent.clone())];
+                if k > 0 {
+                    spans.push(Span::styled(CONTINUATION, style::rule()));
                 }
-                let (head, tail) = rest.split_at(cut);
-                self.out.lines.push(Line::from(vec![
-                    Span::raw(indent.clone()),
-                    Span::styled(head.to_string(), style::code()),
-                ]));
-                if tail.is_empty() {
-                    break;
-                }
-                rest = tail;
+                spans.push(Span::styled(part, style::code()));
+                self.out.lines.push(Line::from(spans));
             }
         }
         self.blank();
@@ -740,9 +947,216 @@ fn wrap_plain(text: &str, width: usize) -> Vec<String> {
     lines
 }
 
+/// The mark that starts the continuation of a wrapped line of code.
+pub const CONTINUATION: &str = "↪ ";
+
+/// True for a character inside a token of code or output: a name, a number
+/// (with its point and exponent) or a string of them.
+fn token_char(c: char) -> bool {
+    c.is_alphanumeric() || c == '_' || c == '.' || c == '\''
+}
+
+/// A line of code or program output cut into pieces of at most `width`
+/// columns (the first) and `width − 2` (the rest, after [`CONTINUATION`]),
+/// between tokens: at a space when there is one, else after punctuation,
+/// never inside a name or a number (`1.5e-3` is one token). Only a token
+/// longer than a whole line is cut.
+pub fn wrap_code(line: &str, width: usize) -> Vec<String> {
+    let width = width.max(4);
+    let chars: Vec<char> = line.chars().collect();
+    // May the line break before chars[i]?
+    let breakable = |i: usize| -> bool {
+        if i == 0 || i >= chars.len() {
+            return false;
+        }
+        let (a, b) = (chars[i - 1], chars[i]);
+        // An exponent's sign belongs to its number: 1e-3, 2.5E+8.
+        let exponent = |k: usize| {
+            k >= 2
+                && matches!(chars[k], '-' | '+')
+                && matches!(chars[k - 1], 'e' | 'E')
+                && chars[k - 2].is_ascii_digit()
+                && chars.get(k + 1).is_some_and(char::is_ascii_digit)
+        };
+        if exponent(i) || exponent(i - 1) {
+            return false;
+        }
+        !(token_char(a) && token_char(b))
+    };
+    let mut out = Vec::new();
+    let mut start = 0;
+    let mut first = true;
+    while start < chars.len() {
+        let room = if first { width } else { width - 2 };
+        let mut used = 0;
+        let mut end = start;
+        while end < chars.len() {
+            let w = UnicodeWidthStr::width(chars[end].encode_utf8(&mut [0; 4]) as &str);
+            if used + w > room {
+                break;
+            }
+            used += w;
+            end += 1;
+        }
+        if end < chars.len() {
+            // Prefer the last space, then the last token boundary.
+            let space = (start + 1..=end)
+                .rev()
+                .find(|&i| chars[i - 1] == ' ' && chars.get(i).is_some_and(|c| *c != ' '));
+            let boundary = (start + 1..=end).rev().find(|&i| breakable(i));
+            end = space.or(boundary).unwrap_or(end.max(start + 1));
+        }
+        let piece: String = chars[start..end].iter().collect();
+        out.push(if first {
+            piece.trim_end().to_string()
+        } else {
+            piece.trim().to_string()
+        });
+        start = end;
+        while start < chars.len() && chars[start] == ' ' && !first {
+            start += 1;
+        }
+        first = false;
+        while start < chars.len() && chars[start] == ' ' {
+            start += 1;
+        }
+    }
+    if out.is_empty() {
+        out.push(String::new());
+    }
+    out
+}
+
+/// `sin`, `cos²`, `ln`, … written in prose: kept with the word after it.
+fn is_function_word(word: &str) -> bool {
+    let w = word.trim_end_matches(|c: char| "²³⁻¹".contains(c));
+    let last = w.rsplit(NBSP).next().unwrap_or(w);
+    matches!(last, "sin" | "cos" | "tan" | "cot" | "ln" | "exp" | "log")
+}
+
+/// The no-break space that holds an equation's group together in prose.
+const NBSP: char = '\u{a0}';
+
+/// `text` with the spaces inside parentheses, brackets and braces made
+/// no-break, so that wrapping breaks an equation only between its terms.
+fn unbreakable_groups(text: &str) -> String {
+    let mut depth = 0i32;
+    text.chars()
+        .map(|c| {
+            match c {
+                '(' | '[' | '{' | '⟨' => depth += 1,
+                ')' | ']' | '}' | '⟩' => depth = (depth - 1).max(0),
+                _ => {}
+            }
+            if c == ' ' && depth > 0 { NBSP } else { c }
+        })
+        .collect()
+}
+
+/// Pieces that are wider than `room` (an unbreakable group of an equation)
+/// split again at their no-break spaces, so no line is wider than the text.
+fn split_too_long(pieces: Vec<Piece>, room: usize) -> Vec<Piece> {
+    let mut out = Vec::with_capacity(pieces.len());
+    for piece in pieces {
+        if piece.text.width() > room && piece.text.contains(NBSP) {
+            for (k, part) in piece.text.split(NBSP).enumerate() {
+                if k > 0 {
+                    out.push(Piece {
+                        text: " ".into(),
+                        style: piece.style,
+                    });
+                }
+                out.push(Piece {
+                    text: part.to_string(),
+                    style: piece.style,
+                });
+            }
+        } else {
+            out.push(piece);
+        }
+    }
+    out
+}
+
+/// Prose's `m_em`, `t_c`, `Z_AL`-style names written as the equations write
+/// them (`mₑₘ`, `t_c` where a letter has no subscript form stays as it is),
+/// so prose and equations use one notation.
+pub fn prose_subscripts(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if c == '_'
+            && i >= 1
+            && chars[i - 1].is_alphabetic()
+            && (i < 2 || !chars[i - 2].is_alphanumeric())
+        {
+            let end = (i + 1..chars.len())
+                .find(|&k| !chars[k].is_alphanumeric())
+                .unwrap_or(chars.len());
+            // One letter stays (R_x beside R_z, whose z has no subscript
+            // form); digits and names of two or three letters (m_em) turn.
+            let len = end - i - 1;
+            let digits = chars[i + 1..end].iter().all(char::is_ascii_digit);
+            let sub: Option<String> = ((2..=3).contains(&len) || (1..=3).contains(&len) && digits)
+                .then(|| {
+                    chars[i + 1..end]
+                        .iter()
+                        .map(|c| super::tex::subscript(*c))
+                        .collect()
+                })
+                .flatten();
+            if let Some(sub) = sub {
+                out.push_str(&sub);
+                i = end;
+                continue;
+            }
+        }
+        out.push(c);
+        i += 1;
+    }
+    out
+}
+
+/// A caption without the colours the terminal does not show as the book
+/// does: "(blue)", "(red)" and the like are left out.
+pub fn without_colours(text: &str) -> String {
+    const COLOURS: [&str; 8] = [
+        "blue", "red", "green", "grey", "gray", "orange", "black", "pale",
+    ];
+    let mut out = text.to_string();
+    for c in COLOURS {
+        out = out.replace(&format!(" ({c})"), "");
+    }
+    out
+}
+
+/// A heading's Markdown as plain text (emphasis, code and links as their
+/// words, math as Unicode), for the contents and the search.
+pub fn plain_inline(markdown: &str) -> String {
+    let mut options = pulldown_cmark::Options::empty();
+    options.insert(pulldown_cmark::Options::ENABLE_MATH);
+    let mut out = String::new();
+    for event in Parser::new_ext(&normalise_math_delimiters(markdown), options) {
+        match event {
+            Event::Text(t) | Event::Code(t) => out.push_str(&prose_subscripts(&t)),
+            Event::InlineMath(t) | Event::DisplayMath(t) => out.push_str(&tex::to_unicode(&t).text),
+            Event::SoftBreak | Event::HardBreak => out.push(' '),
+            _ => {}
+        }
+    }
+    out.trim().to_string()
+}
+
 /// The style of code (spans in it may hold backslashes legitimately).
 pub fn code_style() -> Style {
     style::code()
+}
+
+/// The style of math, inline and displayed.
+pub fn math_style() -> Style {
+    style::math()
 }
 
 /// The plain text of rendered lines (for tests and `--list`).

@@ -549,12 +549,58 @@ impl Parser {
                     out.push_str(&script);
                 }
                 _ => {
+                    // A named function is set off from a factor before it:
+                    // R sin α, φ̇ sin θ sin ψ, never Rsin α.
+                    if let Token::Command(name) = &token
+                        && is_named_function(name)
+                        && ends_with_operand(&out)
+                        && !out.ends_with(' ')
+                    {
+                        out.push(' ');
+                    }
                     let atom = self.atom();
                     push_spaced(&mut out, &atom);
                 }
             }
         }
         out
+    }
+
+    /// True when the next token (past spaces) starts a factor that would
+    /// multiply what came before: a letter, a number, a bracket, a named
+    /// function, an accent, a font, a fraction, a root.
+    fn next_is_factor(&self) -> bool {
+        let mut k = self.pos;
+        // Past spaces, and the thin spaces TeX puts between factors.
+        while matches!(self.tokens.get(k), Some(Token::Space))
+            || matches!(self.tokens.get(k), Some(Token::Command(n)) if matches!(n.as_str(), "," | ":" | ";" | "!"))
+        {
+            k += 1;
+        }
+        match self.tokens.get(k) {
+            Some(Token::Char(c)) => c.is_alphanumeric() || matches!(c, '(' | '['),
+            Some(Token::Open) => true,
+            Some(Token::Command(name)) => {
+                accent(name).is_some()
+                    || is_plain_font(name)
+                    || matches!(
+                        name.as_str(),
+                        "frac"
+                            | "dfrac"
+                            | "tfrac"
+                            | "sqrt"
+                            | "left"
+                            | "mathfrak"
+                            | "mathcal"
+                            | "mathbb"
+                            | "partial"
+                            | "nabla"
+                    )
+                    || symbol(name)
+                        .is_some_and(|s| s.chars().next().is_some_and(char::is_alphabetic))
+            }
+            _ => false,
+        }
     }
 
     /// One argument: a braced group, a command, or a single character.
@@ -677,9 +723,27 @@ impl Parser {
             "frac" | "dfrac" | "tfrac" | "cfrac" => {
                 let num = self.argument();
                 let den = self.argument();
+                // d/dt and dφ/dϑ as written, without brackets; d/dt keeps a
+                // space before what it acts on.
+                if is_differential(&den) && (is_differential(&num) || is_d(&num)) {
+                    let text = format!("{}/{}", num.trim(), den.trim());
+                    return match (is_d(&num), self.next_is_factor()) {
+                        (true, true) => format!("{text} "),
+                        // dV/dr r/r would read as one fraction: (dV/dr) r/r.
+                        (false, true) => format!("({text}) "),
+                        _ => text,
+                    };
+                }
                 // A denominator of more than one symbol is bracketed: 2/(3c³),
                 // never 2/3c³, which reads as (2/3)c³.
-                format!("{}/{}", wrap(&num), wrap_denominator(&den))
+                let text = format!("{}/{}", wrap(&num), wrap_denominator(&den));
+                // A fraction followed by a factor is bracketed as a whole:
+                // (Ω₂₀/R) sin α, never Ω₂₀/R sin α.
+                if self.next_is_factor() {
+                    format!("({text})")
+                } else {
+                    text
+                }
             }
             "sqrt" => {
                 let mut index = String::new();
@@ -858,18 +922,58 @@ fn wrap(s: &str) -> String {
     }
 }
 
+/// A denominator, bracketed unless it is one symbol, a number, already
+/// bracketed, or one named function of one symbol (`sin θ`): a product or a
+/// sum under a slash is always bracketed.
 fn wrap_denominator(s: &str) -> String {
     let t = s.trim();
-    let symbols = t
-        .chars()
-        .filter(|c| !is_combining(*c) && !superscript_char(*c) && !subscript_char(*c))
-        .count();
     let number = t.chars().all(|c| c.is_ascii_digit() || c == '.');
-    if symbols <= 1 || number || (t.starts_with('(') && t.ends_with(')') && balanced_outer(t)) {
+    let function_of_symbol = t.split_once(' ').is_some_and(|(f, arg)| {
+        NAMED_FUNCTIONS.contains(&f.trim_end_matches(superscript_char)) && symbol_count(arg) == 1
+    });
+    if symbol_count(t) <= 1
+        || number
+        || function_of_symbol
+        || (t.starts_with('(') && t.ends_with(')') && balanced_outer(t))
+    {
         t.to_string()
     } else {
         format!("({t})")
     }
+}
+
+/// Symbols of `s`, not counting accents, sub- and superscripts.
+fn symbol_count(s: &str) -> usize {
+    s.trim()
+        .chars()
+        .filter(|c| !is_combining(*c) && !superscript_char(*c) && !subscript_char(*c))
+        .count()
+}
+
+/// `d`, `d²`, `∂`: the operator of a derivative's numerator.
+fn is_d(s: &str) -> bool {
+    matches!(s.trim(), "d" | "d²" | "d³" | "∂" | "∂²")
+}
+
+/// A differential: d or ∂ (with a power) and one symbol, `dt`, `dϑ`, `dt²`.
+fn is_differential(s: &str) -> bool {
+    let t = s.trim();
+    let rest = t
+        .strip_prefix('d')
+        .or_else(|| t.strip_prefix('∂'))
+        .map(|r| r.trim_start_matches(superscript_char).trim());
+    rest.is_some_and(|r| symbol_count(r) == 1)
+}
+
+/// The named functions, upright in TeX, set off by spaces here.
+const NAMED_FUNCTIONS: [&str; 24] = [
+    "sin", "cos", "tan", "cot", "sinh", "cosh", "tanh", "arcsin", "arccos", "arctan", "exp", "ln",
+    "log", "det", "dim", "max", "min", "sup", "inf", "lim", "sgn", "Re", "Im", "tr",
+];
+
+/// True for the command of a named function (`\sin`, `\ln`, …).
+fn is_named_function(name: &str) -> bool {
+    NAMED_FUNCTIONS.contains(&name)
 }
 
 fn balanced_outer(t: &str) -> bool {
@@ -979,6 +1083,33 @@ mod tests {
         assert_eq!(u(r"\sin\tilde\Omega_3 t"), "sin Ω̃₃t");
         assert_eq!(u(r"\sin(\alpha)"), "sin(α)");
         assert_eq!(u(r"\cos^2\theta"), "cos²θ");
+    }
+
+    #[test]
+    fn named_functions_are_set_off_from_the_factors_around_them() {
+        assert_eq!(u(r"\dot\varphi\sin\theta\sin\psi"), "φ\u{307} sin θ sin ψ");
+        assert_eq!(u(r"R\sin\alpha"), "R sin α");
+        assert_eq!(u(r"(\Omega_1\sin\psi)/\sin\theta"), "(Ω₁ sin ψ)/sin θ");
+        assert_eq!(u(r"\ln(m/m_0)"), "ln(m/m₀)");
+    }
+
+    #[test]
+    fn a_fraction_before_a_factor_is_bracketed_and_a_derivative_is_not() {
+        assert_eq!(u(r"\frac{\Omega_{20}}{R}\sin\alpha"), "(Ω₂₀/R) sin α");
+        assert_eq!(u(r"\frac{a}{R\sin\alpha}"), "a/(R sin α)");
+        assert_eq!(
+            u(r"\frac{\Omega_{20}\cos\tilde\psi}{\sin\theta}"),
+            "(Ω₂₀ cos ψ\u{303})/sin θ"
+        );
+        assert_eq!(u(r"\frac{dL}{dt}"), "dL/dt");
+        assert_eq!(u(r"\frac{d\varphi}{d\vartheta}"), "dφ/dϑ");
+        assert_eq!(u(r"\frac{d}{dt}(x)"), "d/dt (x)");
+        assert_eq!(u(r"-\frac{dV}{dr}\frac{\mathbf r}{r}"), "−(dV/dr) r/r");
+        assert_eq!(u(r"\frac{2}{3c^3}"), "2/(3c³)");
+        assert_eq!(
+            u(r"\frac{\Omega_{20}}{\sin\theta}\,\vartheta"),
+            "(Ω₂₀/sin θ) ϑ"
+        );
     }
 
     #[test]

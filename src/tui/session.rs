@@ -1,0 +1,221 @@
+//! The terminal of both views (`spintop tui` and `spintop learn`): checked,
+//! set up, run, and always restored.
+//!
+//! One loop serves both: a [`Screen`] turns terminal events into its own
+//! commands, applies them, advances by the wall clock and draws; the loop
+//! paces frames, reads events in between and ends on quit or on a signal.
+//! [`Session`] owns the terminal and restores it when dropped, so that every
+//! way out (quit, an I/O error, an early return, a panic) leaves the shell
+//! usable.
+
+use crate::math::Real;
+use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, Event};
+use ratatui::{DefaultTerminal, Frame, Terminal, backend::Backend};
+use std::io::{self, IsTerminal};
+use std::time::{Duration, Instant};
+
+/// A view the loop can run: its commands, how events become them, and its
+/// drawing, which only reads.
+pub trait Screen {
+    /// What a key (or a resize, or the mouse wheel) asks for.
+    type Command;
+    /// The command an event asks for now, if any.
+    fn command(&self, event: &Event) -> Option<Self::Command>;
+    /// Apply one command: the only place the screen's state changes.
+    fn apply(&mut self, command: Self::Command);
+    /// Let wall-clock time pass (the models step by it).
+    fn advance(&mut self, elapsed: Duration);
+    /// Draw the state.
+    fn draw(&self, frame: &mut Frame);
+    /// True once quit was asked for.
+    fn should_quit(&self) -> bool;
+}
+
+/// The redraw interval: about 30 frames per second.
+pub const FRAME: Duration = Duration::from_nanos(1_000_000_000 / 30);
+
+/// What a run of the loop did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoopReport {
+    /// Frames drawn.
+    pub frames: u64,
+    /// Wall-clock time of the loop.
+    pub wall: Duration,
+    /// CPU time of the process during the loop (user + system), where the
+    /// platform reports it.
+    pub cpu: Option<Duration>,
+    /// The signal that ended the loop (SIGTERM, SIGINT, SIGHUP, SIGQUIT), if
+    /// one did.
+    pub signal: Option<i32>,
+}
+
+impl LoopReport {
+    /// Frames per wall-clock second.
+    pub fn fps(&self) -> Real {
+        self.frames as Real / self.wall.as_secs_f64()
+    }
+
+    /// CPU time as a fraction of one core.
+    pub fn cpu_share(&self) -> Option<Real> {
+        self.cpu.map(|c| c.as_secs_f64() / self.wall.as_secs_f64())
+    }
+}
+
+/// The CPU time (user + system) this process has used, from `/proc/self/stat`.
+///
+/// NOTE: fields 14 and 15 of `/proc/self/stat` count clock ticks of USER_HZ,
+/// which Linux fixes at 100 for user space on every architecture; reading the
+/// file keeps the crate free of `unsafe` (`getrusage` would need libc).
+pub fn process_cpu_time() -> Option<Duration> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The command name (field 2) is in parentheses and may hold spaces.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // `rest` starts at field 3, so utime (14) and stime (15) are at 11 and 12.
+    let utime: u64 = fields.get(11)?.parse().ok()?;
+    let stime: u64 = fields.get(12)?.parse().ok()?;
+    Some(Duration::from_millis((utime + stime) * 10))
+}
+
+/// Why the full-screen views cannot start here, if they cannot: stdout is
+/// not a terminal, or the terminal cannot draw them (`TERM=dumb`). The
+/// reason reads after the view's name: "the live view needs a terminal, …".
+pub fn check() -> Result<(), String> {
+    if !io::stdout().is_terminal() {
+        return Err("needs a terminal, but stdout is not one".into());
+    }
+    super::signals::check_terminal_capable()
+        .map_err(|e| format!("needs a terminal that can draw it ({e})"))
+}
+
+/// The terminal, in raw mode on the alternate screen until dropped.
+pub struct Session {
+    terminal: DefaultTerminal,
+    mouse: bool,
+}
+
+impl Session {
+    /// Take over the terminal (raw mode, alternate screen; the mouse wheel
+    /// too when `mouse`). A panic restores it as well (ratatui's hook, and
+    /// the mouse released first).
+    pub fn start(mouse: bool) -> io::Result<Self> {
+        let terminal = ratatui::try_init()?;
+        let session = Self { terminal, mouse };
+        if mouse {
+            crossterm::execute!(io::stdout(), EnableMouseCapture)?;
+            let hook = std::panic::take_hook();
+            std::panic::set_hook(Box::new(move |info| {
+                let _ = crossterm::execute!(io::stdout(), DisableMouseCapture);
+                hook(info);
+            }));
+        }
+        Ok(session)
+    }
+
+    /// Run `screen` until it quits, a signal arrives, or `limit` has passed.
+    pub fn run<S: Screen>(
+        &mut self,
+        screen: &mut S,
+        limit: Option<Duration>,
+    ) -> io::Result<LoopReport> {
+        run(&mut self.terminal, screen, limit)
+    }
+}
+
+impl Drop for Session {
+    fn drop(&mut self) {
+        if self.mouse {
+            let _ = crossterm::execute!(io::stdout(), DisableMouseCapture);
+        }
+        ratatui::restore();
+    }
+}
+
+/// Run `screen` on `terminal` until it quits (or for `limit`, for the
+/// benchmark): draw about 30 times a second, let the wall clock pass, and
+/// apply the events in between. The screen learns its size before the
+/// first frame, and again at every resize.
+pub fn run<B: Backend, S: Screen>(
+    terminal: &mut Terminal<B>,
+    screen: &mut S,
+    limit: Option<Duration>,
+) -> io::Result<LoopReport>
+where
+    B::Error: Send + Sync + 'static,
+{
+    let signals = super::signals::Signals::install()?;
+    let start = Instant::now();
+    let cpu_start = process_cpu_time();
+    let mut last = start;
+    let mut next_frame = start;
+    let mut frames = 0;
+    let size = terminal.size().map_err(io::Error::other)?;
+    if let Some(c) = screen.command(&Event::Resize(size.width, size.height)) {
+        screen.apply(c);
+    }
+    while !screen.should_quit() && signals.received().is_none() {
+        let now = Instant::now();
+        if limit.is_some_and(|l| now - start >= l) {
+            break;
+        }
+        screen.advance(now - last);
+        last = now;
+        terminal
+            .draw(|frame| screen.draw(frame))
+            .map_err(io::Error::other)?;
+        frames += 1;
+        next_frame += FRAME;
+        if next_frame < Instant::now() {
+            // Behind schedule (a slow terminal): do not try to catch up frames.
+            next_frame = Instant::now() + FRAME;
+        }
+        // Handle events until the next frame is due.
+        loop {
+            let timeout = next_frame.saturating_duration_since(Instant::now());
+            if timeout.is_zero() || !super::signals::poll(timeout)? {
+                break;
+            }
+            let event = event::read()?;
+            if let Some(command) = screen.command(&event) {
+                screen.apply(command);
+            }
+            if screen.should_quit() || signals.received().is_some() {
+                break;
+            }
+        }
+    }
+    let wall = start.elapsed();
+    let cpu = process_cpu_time()
+        .zip(cpu_start)
+        .map(|(end, begin)| end.saturating_sub(begin));
+    Ok(LoopReport {
+        frames,
+        wall,
+        cpu,
+        signal: signals.received(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cpu_time_is_read_on_linux() {
+        if cfg!(target_os = "linux") {
+            // Busy-wait until the counter moves by 20 ms (or give up after 10 s
+            // of wall time, which would mean the counter is stuck).
+            let a = process_cpu_time().expect("/proc/self/stat is readable");
+            let t = Instant::now();
+            let mut x = 0u64;
+            let mut b = a;
+            while b < a + Duration::from_millis(20) && t.elapsed() < Duration::from_secs(10) {
+                for _ in 0..100_000 {
+                    x = x.wrapping_add(std::hint::black_box(1));
+                }
+                b = process_cpu_time().unwrap();
+            }
+            assert!(b >= a + Duration::from_millis(20), "{a:?} -> {b:?} ({x})");
+        }
+    }
+}
