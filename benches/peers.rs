@@ -743,6 +743,18 @@ fn spread_of_runs(files: &[String]) -> Result<(), String> {
                 );
             }
         };
+        // Each peer over spintop's DOP853 (the same method: the historical
+        // ratio), round by round.
+        for peer in names.iter().filter(|n| !n.starts_with("spintop ")) {
+            let per_run: Vec<Real> = runs
+                .iter()
+                .filter_map(|run| {
+                    let (p, d) = (of(run, peer)?, of(run, "spintop dop853")?);
+                    median(p.iter().zip(&d).map(|(a, b)| a / b).collect())
+                })
+                .collect();
+            report_ratio(format!("{peer} / spintop dop853"), per_run);
+        }
         // Each peer over spintop's best, round by round.
         for peer in names.iter().filter(|n| !n.starts_with("spintop ")) {
             let per_run: Vec<Real> = runs

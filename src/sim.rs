@@ -211,7 +211,7 @@ pub enum MethodChoice {
     #[cfg_attr(
         feature = "app",
         value(
-            help = "Closed forms where they exist, DOP853 for the rest (Taylor at rtol <= 1e-9)"
+            help = "Closed forms where they exist, DOP853 for the rest (Taylor at rtol <= 1e-10)"
         )
     )]
     Auto,
@@ -407,15 +407,17 @@ impl Method {
 /// `auto` integrates a top without a closed form with the Taylor method at
 /// this rtol and below, with DOP853 above.
 ///
-/// NOTE: measured, not guessed (benches/README.md, "The Taylor method"): Ω
-/// and the orientation together, as a simulation computes them, on the
-/// general problem of `spintop bench`. From rtol 1e-10 down the Taylor
-/// method takes less time than DOP853 at every tolerance, and at matched
-/// error too; at 1e-8 and looser the two are within noise of each other or
-/// DOP853 is ahead, and there DOP853 is kept: its embedded error estimate
-/// checks every step, where the series' step rests on an estimate of its
-/// radius of convergence.
-pub const TAYLOR_AUTO_RTOL: Real = 1e-9;
+/// NOTE: measured, not guessed (`cargo bench -p spintop-benches --bench
+/// crossover`, `benches/results/crossover-2026-11-26.csv`, and
+/// benches/README.md): Ω and the orientation together, as a simulation
+/// computes them, on three asymmetric tops under both general models, with
+/// 5 and with 1000 outputs. At rtol 1e-10 and below the Taylor method was
+/// the faster in all twelve cases (1.2–1.7× at 1e-10, 1.6–2.4× at 1e-12); at
+/// 1e-9 and looser DOP853 was the faster in some (by up to 1.3× at 1e-6, on
+/// a top with few outputs), so there `auto` keeps DOP853, whose embedded
+/// error estimate checks every step. `tests/numerics/taylor.rs` holds this
+/// constant to that file.
+pub const TAYLOR_AUTO_RTOL: Real = 1e-10;
 
 /// The integrator `auto` steps a model without a closed form with at `rtol`:
 /// the Taylor method at and below [`TAYLOR_AUTO_RTOL`], DOP853 above (the

@@ -7,7 +7,7 @@
 //! |---|---|---|
 //! | truncated | closed form (4.7) | closed form (4.9), or skipped when its phase outgrows a double |
 //! | reduced | closed form (4.15)–(4.16) | Q′ = QΩ̂(t) alone on SO(3), or skipped when that would take too many steps |
-//! | general | DOP853, or the Taylor method at rtol ≤ 1e-9 ([`crate::sim::auto_integrator`]) | the same method, with Ω |
+//! | general | DOP853, or the Taylor method at rtol ≤ 1e-10 ([`crate::sim::auto_integrator`]) | the same method, with Ω |
 //! | full | physical solution of (3.4), backward shooting | driven by it |
 //!
 //! A span that would need more steps than [`MAX_STEPS`] is refused for the

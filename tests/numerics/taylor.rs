@@ -149,6 +149,50 @@ fn order_follows_jorba_and_zou() {
     }
 }
 
+/// `y' = −λy` by recurrence: `f_k = −λ y_k`.
+#[derive(Clone, Copy)]
+struct Decay(Real);
+
+impl TaylorRhs<1> for Decay {
+    type Aux = ();
+    fn aux(&self) {}
+    fn coefficient(&self, _: &mut (), y: &[Series], k: usize) -> [Real; 1] {
+        [-self.0 * y[0][k]]
+    }
+}
+
+/// On a decay at rate λ the method's step is `decay_step(rtol)/λ` whatever
+/// the size of y (the step the cost estimate holds a stiff top to): over
+/// T = 100/λ it takes ⌈100/decay_step⌉ steps, at rtol 1e-8 (order 11, about
+/// 0.6/λ) and 1e-14 (order 18, about 1/λ), and the answer is e^(−100)
+/// within rtol.
+#[test]
+fn a_decay_holds_the_step_to_decay_step_over_its_rate() {
+    use spintop::integrate::taylor::decay_step;
+    let lambda = 40.0;
+    let t_end = 100.0 / lambda;
+    for (rtol, near) in [(1e-8, 0.6), (1e-14, 1.0)] {
+        let h = decay_step(rtol);
+        assert!((h - near).abs() < 0.1, "{rtol:e}: {h}");
+        let mut t = Taylor::new(Decay(lambda), 0.0, State::<1>::new(1.0), opts(rtol, 0.0)).unwrap();
+        while t.t() < t_end {
+            t.advance(t_end).unwrap();
+        }
+        let expected = (100.0 / h).ceil() as u64;
+        let steps = t.stats().steps;
+        assert!(
+            steps.abs_diff(expected) <= 1,
+            "{rtol:e}: {steps} against {expected}"
+        );
+        let exact = (-100.0 as Real).exp();
+        assert!(
+            (t.y()[0] / exact - 1.0).abs() < 100.0 * rtol,
+            "{rtol:e}: {}",
+            t.y()[0]
+        );
+    }
+}
+
 /// With the order fixed by the tolerance and the step capped well below the
 /// series' own, halving the cap divides the error at T = 20 by 2ᵖ (the
 /// reduced model against its closed form (4.15)–(4.16)).
@@ -519,6 +563,51 @@ fn auto_uses_the_taylor_method_only_below_the_measured_crossover() {
         assert_eq!(label(Model::Truncated(top), rtol), "exact");
         assert_eq!(label(Model::Reduced(top), rtol), "exact+dop853");
     }
+}
+
+/// The rule `auto` follows (`sim::auto_integrator`) is the measured
+/// crossover: at every rtol of the committed run of `cargo bench -p
+/// spintop-benches --bench crossover` (Ω and the orientation of three
+/// asymmetric tops, both general models, 5 and 1000 outputs), `auto` takes
+/// the Taylor method exactly where its median time was below DOP853's in
+/// every case, and DOP853 where it was not.
+#[test]
+fn auto_rule_is_the_measured_crossover() {
+    use spintop::sim::{Method, auto_integrator};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("benches/results/crossover-2026-11-26.csv");
+    let text = std::fs::read_to_string(&path).unwrap();
+    // rtol -> (cases, cases where the Taylor method was the faster)
+    let mut by_rtol: Vec<(Real, usize, usize)> = Vec::new();
+    for line in text.lines().filter(|l| !l.starts_with('#')).skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        let rtol: Real = cells[3].parse().unwrap();
+        let ratio: Real = cells[6].parse().unwrap();
+        let at = match by_rtol.iter().position(|r| r.0 == rtol) {
+            Some(i) => i,
+            None => {
+                by_rtol.push((rtol, 0, 0));
+                by_rtol.len() - 1
+            }
+        };
+        by_rtol[at].1 += 1;
+        by_rtol[at].2 += usize::from(ratio > 1.0);
+    }
+    assert!(by_rtol.len() >= 6, "{by_rtol:?}");
+    let mut both = [false; 2];
+    for (rtol, cases, taylor_faster) in by_rtol {
+        assert_eq!(cases, 12, "rtol {rtol:e}");
+        let wins_everywhere = taylor_faster == cases;
+        let chosen = auto_integrator(rtol);
+        assert_eq!(
+            chosen == Method::Taylor,
+            wins_everywhere,
+            "rtol {rtol:e}: auto takes {chosen:?}, the Taylor method was the faster in {taylor_faster} of {cases} cases"
+        );
+        both[usize::from(wins_everywhere)] = true;
+    }
+    // The run holds both sides of the crossover, so the rule is pinned.
+    assert_eq!(both, [true, true]);
 }
 
 /// The simulation's Taylor engine (Ω and the orientation quaternion) against
