@@ -519,6 +519,70 @@ pub fn join_table(rows: &[Row]) -> String {
     out
 }
 
+/// The methods the book's work-precision figure draws, (source, method): the
+/// Taylor method, spintop's two explicit pairs, and each compiled peer's best
+/// Runge–Kutta method (`ode_solvers`' Dop853 with its extrapolated last value
+/// replaced, its own accuracy). `spintop bench --join` charts everything.
+pub const FIGURE_METHODS: [(&str, &str); 6] = [
+    ("spintop", "taylor"),
+    ("spintop", "dop853"),
+    ("spintop", "dopri5"),
+    ("ode_solvers", "Dop853 (t<200)"),
+    ("differential-equations", "rkv988e"),
+    ("diffsol", "tsit45"),
+];
+
+/// The book's work-precision figure from the rows of a peers run (`cargo
+/// bench -p spintop-benches --bench peers -- --out FILE.csv`): one panel per
+/// first-order problem, log₁₀ of the median time of one solve against log₁₀
+/// of its error, one curve per method of [`FIGURE_METHODS`]. `None` when no
+/// row has both numbers.
+pub fn work_precision_figure(rows: &[Row]) -> Option<String> {
+    let mut panels = Vec::new();
+    for model in ["truncated", "reduced", "general"] {
+        let mut curves = Vec::new();
+        for (source, method) in FIGURE_METHODS {
+            let mut points: Vec<(Real, Real)> = rows
+                .iter()
+                .filter(|r| r.ok() && r.target == Target::Omega && r.model == model)
+                .filter(|r| r.source == source && r.method == method)
+                .filter_map(|r| {
+                    let err = r.omega_error?.max(ERROR_FLOOR);
+                    Some((err.log10(), (r.time_s? * 1e6).log10()))
+                })
+                .collect();
+            if points.is_empty() {
+                continue;
+            }
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let label = if source == "spintop" {
+                method.to_string()
+            } else {
+                format!("{source} {method}")
+            };
+            curves.push((label, points));
+        }
+        if !curves.is_empty() {
+            panels.push(crate::plot::panels::Panel {
+                caption: format!("{model} model"),
+                x_label: "log10 max relative error of Omega".into(),
+                y_label: "log10 time of one solve [us]".into(),
+                curves,
+            });
+        }
+    }
+    if panels.is_empty() {
+        return None;
+    }
+    // The curves fall from the upper left (tight errors, slow) to the lower
+    // right: the upper right corner is free for the legend.
+    Some(crate::plot::panels::panels_svg_legend(
+        "Work against precision, T = 200 tau, 200 outputs: the time of one solve against its error",
+        &panels,
+        plotters::prelude::SeriesLabelPosition::UpperRight,
+    ))
+}
+
 /// The book's cost-against-horizon chart from the medians of `cargo bench -p
 /// spintop-benches --bench solves -- "cost vs horizon"`, as CSV rows `method,t_end,median_us`
 /// (lines starting with `#` are comments): log₁₀ of the time against log₁₀ T,
