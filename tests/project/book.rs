@@ -58,6 +58,26 @@ fn book_src() -> PathBuf {
     root().join("book/src")
 }
 
+/// A figure the book embeds is what code draws now: `fresh` is written to
+/// `book/src/NAME` under `UPDATE_BOOK=1`, must equal the file otherwise, and
+/// `chapter` must embed it. Returns the chapter's text.
+fn figure_is_current(name: &str, fresh: &str, chapter: &str, drawn_by: &str) -> String {
+    let shown = book_src().join(name);
+    if std::env::var_os("UPDATE_BOOK").is_some() {
+        fs::write(&shown, fresh).unwrap();
+    }
+    assert!(
+        fs::read_to_string(&shown).unwrap_or_default() == fresh,
+        "the book's {name} is not what {drawn_by} draws now; run UPDATE_BOOK=1 cargo test --test project"
+    );
+    let text = fs::read_to_string(book_src().join(chapter)).unwrap();
+    assert!(
+        text.contains(&format!("]({name})")),
+        "{chapter} embeds {name}"
+    );
+    text
+}
+
 /// Chapter files linked from SUMMARY.md (drafts, `[Title]()`, have no file).
 fn summary_chapters() -> Vec<String> {
     let summary = fs::read_to_string(book_src().join("SUMMARY.md")).expect("SUMMARY.md");
@@ -278,19 +298,11 @@ fn book_figures_are_what_spintop_figure_draws_now() {
 #[test]
 fn book_asymmetric_energy_figure_is_what_the_lesson_draws_now() {
     let fresh = asymmetric::energy_figure();
-    let name = "figures/asymmetric-energy.svg";
-    let shown = book_src().join(name);
-    if std::env::var_os("UPDATE_BOOK").is_some() {
-        fs::write(&shown, &fresh).unwrap();
-    }
-    assert!(
-        fs::read_to_string(&shown).unwrap_or_default() == fresh,
-        "the book's {name} is not what the asymmetric_top lesson draws now; run UPDATE_BOOK=1 cargo test --test project"
-    );
-    let chapter = fs::read_to_string(book_src().join("asymmetric-top.md")).unwrap();
-    assert!(
-        chapter.contains(&format!("]({name})")),
-        "the chapter embeds {name}"
+    figure_is_current(
+        "figures/asymmetric-energy.svg",
+        &fresh,
+        "asymmetric-top.md",
+        "the asymmetric_top lesson",
     );
     assert!(fresh.contains("dE/dt") && fresh.starts_with("<svg"));
 }
@@ -1131,19 +1143,11 @@ fn book_cost_horizon_figure_is_drawn_from_the_committed_medians() {
     )
     .unwrap();
     let fresh = spintop::workprecision::report::horizon_figure(&csv).expect("the medians parse");
-    let name = "figures/cost-horizon.svg";
-    let shown = book_src().join(name);
-    if std::env::var_os("UPDATE_BOOK").is_some() {
-        fs::write(&shown, &fresh).unwrap();
-    }
-    assert!(
-        fs::read_to_string(&shown).unwrap_or_default() == fresh,
-        "the book's {name} is not what horizon_figure draws from the CSV; run UPDATE_BOOK=1 cargo test --test project"
-    );
-    let chapter = fs::read_to_string(book_src().join("speed-accuracy.md")).unwrap();
-    assert!(
-        chapter.contains(&format!("]({name})")),
-        "the chapter embeds {name}"
+    figure_is_current(
+        "figures/cost-horizon.svg",
+        &fresh,
+        "speed-accuracy.md",
+        "horizon_figure (from the CSV)",
     );
     // The closed form's cost does not grow with T; DOP853's does.
     let rows: Vec<(String, f64, f64)> = csv
@@ -1185,22 +1189,14 @@ fn book_cost_horizon_figure_is_drawn_from_the_committed_medians() {
 #[test]
 fn book_work_precision_figure_is_drawn_from_the_committed_peers_run() {
     use spintop::workprecision::{Target, report};
-    let name = "figures/work-precision.svg";
     let read = |file: &str| fs::read_to_string(root().join(file)).unwrap();
     let rows = report::parse_csv(&read(TAYLOR_PEERS_RUN)).expect("the run parses");
     let fresh = report::work_precision_figure(&rows).expect("rows to draw");
-    let shown = book_src().join(name);
-    if std::env::var_os("UPDATE_BOOK").is_some() {
-        fs::write(&shown, &fresh).unwrap();
-    }
-    assert!(
-        fs::read_to_string(&shown).unwrap_or_default() == fresh,
-        "the book's {name} is not what work_precision_figure draws from {TAYLOR_PEERS_RUN}; run UPDATE_BOOK=1 cargo test --test project"
-    );
-    let chapter = fs::read_to_string(book_src().join("speed-accuracy.md")).unwrap();
-    assert!(
-        chapter.contains(&format!("]({name})")),
-        "the chapter embeds {name}"
+    let chapter = figure_is_current(
+        "figures/work-precision.svg",
+        &fresh,
+        "speed-accuracy.md",
+        &format!("work_precision_figure (from {TAYLOR_PEERS_RUN})"),
     );
     // The claims are read across line breaks.
     let chapter = chapter.split_whitespace().collect::<Vec<_>>().join(" ");
