@@ -142,11 +142,17 @@ impl Solver for Spintop {
     }
 
     /// The full ALE's reference is the physical solution at rtol 1e-13: a run
-    /// at that tolerance or tighter would be measured against itself.
+    /// at that tolerance or tighter would be measured against itself. Ω and
+    /// O(t) go through a [`Simulation`], which takes no rtol below
+    /// [`crate::sim::MIN_RTOL`] (the sweep's 1e-15 is for Ω alone).
     fn accepts(&self, problem: &Problem, knob: Option<Real>) -> bool {
-        !(self.method == Method::Physical
+        let rtol = knob.filter(|_| self::knob(self.method) == KnobKind::Rtol);
+        let reference = self.method == Method::Physical
             && problem.kind() == ProblemKind::Full
-            && knob.is_some_and(|rtol| rtol <= super::problem::FULL_REFERENCE_RTOL))
+            && rtol.is_some_and(|r| r <= super::problem::FULL_REFERENCE_RTOL);
+        let simulated = self.target == Target::OmegaOrientation
+            && rtol.is_some_and(|r| r < crate::sim::MIN_RTOL);
+        !(reference || simulated)
     }
 
     fn solve(&self, problem: &Problem, knob: Option<Real>) -> Result<Solution, String> {
