@@ -10,7 +10,8 @@
 //! one step, so its first stage is cached (FSAL) as it is in a run.
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
-use spintop::integrate::{AdaptiveOptions, Dop853, Dopri5, Rk4, Stepper};
+use spintop::integrate::taylor::{GeneralTruncated, SymmetricReduced};
+use spintop::integrate::{AdaptiveOptions, Dop853, Dopri5, Rk4, Stepper, Taylor};
 use spintop::math::{Mat3, State, Vec3};
 use spintop::physics::full_ale::{general_full_ale_rhs, symmetric_full_ale_rhs};
 use spintop::physics::general_top::GeneralTop;
@@ -93,6 +94,41 @@ fn step(c: &mut Criterion) {
             BatchSize::SmallInput,
         )
     });
+    g.finish();
+    // One Taylor step: the series to order p by recurrence, the step size
+    // from its last two coefficients, the polynomial at the step's end.
+    let general = GeneralTop::new(Vec3::from(GENERAL_INERTIA), Vec3::from(GENERAL_DIPOLE))
+        .expect("the general top");
+    let mut g = c.benchmark_group("taylor step");
+    for rtol in [1e-8, 1e-14] {
+        let opts = AdaptiveOptions::new(rtol, 1e-6 * rtol * y0.norm()).expect("valid tolerances");
+        let reduced = Taylor::new(SymmetricReduced(top), 0.0, y0, opts).expect("a stepper");
+        let p = reduced.order();
+        g.bench_function(
+            format!("reduced (4.12)-(4.14), rtol {rtol:e}, order {p}"),
+            |b| {
+                b.iter_batched(
+                    || reduced.clone(),
+                    |mut s| {
+                        s.advance(1e9).expect("a step");
+                        s
+                    },
+                    BatchSize::SmallInput,
+                )
+            },
+        );
+        let general = Taylor::new(GeneralTruncated(general), 0.0, y0, opts).expect("a stepper");
+        g.bench_function(format!("general (3.3), rtol {rtol:e}, order {p}"), |b| {
+            b.iter_batched(
+                || general.clone(),
+                |mut s| {
+                    s.advance(1e9).expect("a step");
+                    s
+                },
+                BatchSize::SmallInput,
+            )
+        });
+    }
     g.finish();
 }
 

@@ -21,11 +21,27 @@
 //! whose answer is wrong there (or that fails) is left out of the timings,
 //! and the bench prints why.
 //!
+//! The sweep's times are then taken again as the head-to-head takes them
+//! (`retime`: five interleaved rounds, each sample the fastest of 5
+//! back-to-back solves, the median over the rounds): a batched median is cut
+//! by other processes on a shared machine, a single short solve mostly is
+//! not. The table, the join and `--out` carry those times.
+//!
 //! After the sweep, a head-to-head round times every method at the two
-//! tolerances that bracket the matched errors 1e-8 and 1e-12, interleaved
-//! (one sample of each method in turn, rotating the order, 15 rounds), and
-//! prints each peer's time over spintop's at matched error as the median over
-//! the rounds with its spread (smallest and largest).
+//! tolerances that bracket each matched error (1e-8, 1e-10, 1e-12, 1e-14),
+//! interleaved (one sample of each method in turn, rotating the order, 15
+//! rounds; a sample is the fastest of 5 back-to-back solves), and prints each
+//! peer's time over spintop's best at matched error as the median over the
+//! rounds with its spread (smallest and largest), then the best Runge–Kutta
+//! method of any crate (spintop's DOP853 included) over spintop's Taylor
+//! method, the same way. `--h2h-out FILE.csv` keeps every round's times;
+//! `--spread A.csv B.csv …` reads several such files (runs on other days or
+//! loads) and reports each ratio's spread across the runs:
+//!
+//! ```sh
+//! cargo bench -p spintop-benches --bench peers -- --out peers.csv --h2h-out h2h-1.csv
+//! cargo bench -p spintop-benches --bench peers -- --spread h2h-1.csv h2h-2.csv h2h-3.csv
+//! ```
 //!
 //! Only the first-order problems (truncated, reduced, general) run: the full
 //! ALE's physical solution needs a backward shoot that no peer offers.
@@ -433,32 +449,97 @@ struct Entry<'a> {
     solver: &'a dyn Solver,
     problem: &'a Problem,
     error_index: usize,
-    rtols: [Real; 2],
+    /// The two tolerances that bracket the matched error, with their errors
+    /// (deterministic: computed once).
+    rtols: [(Real, Real); 2],
     /// The time at matched error in each round.
     times: Vec<Real>,
 }
 
-/// The time of one solve at `rtol`, from one sample of at least 2 ms, and its error.
-fn sample(solver: &dyn Solver, problem: &Problem, rtol: Real) -> Option<(Real, Real)> {
-    let timing = spintop::workprecision::Timing {
-        repeats: 1,
-        min_sample: 2e-3,
-    };
-    let row = spintop::workprecision::measure(
-        problem,
-        solver,
-        Some(rtol),
-        Some((&mut WallClock, timing)),
-    );
-    Some((row.time_s?, row.omega_error?))
+/// Back-to-back solves per sample: a sample is the fastest of them.
+///
+/// NOTE: the least disturbed of a few single solves, not the mean of a long
+/// batch: on a shared machine a batch of milliseconds is cut by other
+/// processes' time slices, while a single solve of tens of microseconds
+/// mostly runs whole; its fastest repetition is the solve's own cost. The
+/// work of a solve does not vary, so this favours no method.
+const SOLVES_PER_SAMPLE: usize = 5;
+
+/// The time of one solve at `knob`: the fastest of [`SOLVES_PER_SAMPLE`].
+fn sample(solver: &dyn Solver, problem: &Problem, knob: Option<Real>) -> Real {
+    (0..SOLVES_PER_SAMPLE)
+        .map(|_| {
+            let start = Instant::now();
+            std::hint::black_box(solver.solve(std::hint::black_box(problem), knob)).ok();
+            start.elapsed().as_secs_f64()
+        })
+        .fold(Real::INFINITY, Real::min)
+}
+
+/// Rounds of [`retime`].
+const RETIME_ROUNDS: usize = 5;
+
+/// The sweep's times again, the way the head-to-head takes them: every row
+/// that ran is timed in [`RETIME_ROUNDS`] interleaved rounds, a sample the
+/// fastest of [`SOLVES_PER_SAMPLE`] back-to-back solves, and its time is the
+/// median over the rounds (`repeats` says how many).
+///
+/// NOTE: the sweep's own time is the median of batches of at least 2 ms; on
+/// a shared machine such a batch is cut by other processes' time slices,
+/// and under a load of 10 or more a curve of the sweep jumps by 10× from one
+/// tolerance to the next. A single solve of tens of microseconds mostly runs
+/// whole, and the work of a solve does not vary, so its fastest repetition
+/// is its own cost. The rows written with `--out` (and the book's figure)
+/// carry these times.
+fn retime(rows: &mut [Row], problems: &[Problem], solvers: &[&dyn Solver]) {
+    let mut jobs: Vec<(usize, &dyn Solver, &Problem, Vec<Real>)> = Vec::new();
+    for (i, row) in rows.iter().enumerate() {
+        if !row.ok() || row.time_s.is_none() {
+            continue;
+        }
+        let solver = solvers.iter().find(|s| {
+            s.source() == row.source
+                && s.method() == row.method
+                && s.target() == row.target
+                && s.knob() == row.knob
+        });
+        let problem = problems.iter().find(|p| p.name() == row.model);
+        if let (Some(&solver), Some(problem)) = (solver, problem) {
+            jobs.push((i, solver, problem, Vec::new()));
+        }
+    }
+    let n = jobs.len();
+    for round in 0..RETIME_ROUNDS {
+        for k in 0..n {
+            let (i, solver, problem, times) = &mut jobs[(k + round * 7) % n];
+            times.push(sample(*solver, problem, rows[*i].value));
+        }
+    }
+    for (i, _, _, times) in jobs {
+        rows[i].time_s = median(times);
+        rows[i].repeats = RETIME_ROUNDS as u32;
+    }
 }
 
 const ROUNDS: usize = 15;
 
-/// Every method at both matched errors, one sample each per round, the
+/// True for the Taylor method (spintop's), which the goal compares with
+/// every Runge–Kutta method of every crate.
+fn is_taylor(e: &Entry) -> bool {
+    e.solver.source() == "spintop" && e.solver.method() == "taylor"
+}
+
+/// Every method at every matched error, one sample each per round, the
 /// order rotating from round to round; prints each peer's time over
-/// spintop's best adaptive integrator's in the same round.
-fn head_to_head(rows: &[Row], problems: &[Problem], solvers: &[&dyn Solver], rounds: usize) {
+/// spintop's best adaptive integrator's in the same round, and the best
+/// Runge–Kutta method's (any crate's) over the Taylor method's. Returns the
+/// per-round rows `model,error,source,method,round,time_s` for `--h2h-out`.
+fn head_to_head(
+    rows: &[Row],
+    problems: &[Problem],
+    solvers: &[&dyn Solver],
+    rounds: usize,
+) -> String {
     let mut entries: Vec<Entry> = Vec::new();
     for problem in problems {
         for (error_index, &error) in report::MATCHED_ERRORS.iter().enumerate() {
@@ -476,11 +557,16 @@ fn head_to_head(rows: &[Row], problems: &[Problem], solvers: &[&dyn Solver], rou
                     solver.method(),
                     error,
                 ) {
+                    let with_error = |rtol: Real| {
+                        let row =
+                            spintop::workprecision::measure(problem, solver, Some(rtol), None);
+                        (rtol, row.omega_error.unwrap_or(Real::NAN))
+                    };
                     entries.push(Entry {
                         solver,
                         problem,
                         error_index,
-                        rtols,
+                        rtols: [with_error(rtols[0]), with_error(rtols[1])],
                         times: Vec::new(),
                     });
                 }
@@ -495,7 +581,7 @@ fn head_to_head(rows: &[Row], problems: &[Problem], solvers: &[&dyn Solver], rou
             let mut points: Vec<(Real, Real)> = entry
                 .rtols
                 .iter()
-                .filter_map(|&rtol| sample(entry.solver, entry.problem, rtol))
+                .map(|&(rtol, err)| (sample(entry.solver, entry.problem, Some(rtol)), err))
                 .collect();
             points.sort_by(|a, b| a.0.total_cmp(&b.0));
             entry
@@ -504,12 +590,13 @@ fn head_to_head(rows: &[Row], problems: &[Problem], solvers: &[&dyn Solver], rou
         }
     }
     println!(
-        "\n# head to head at matched error: {rounds} interleaved rounds; each peer's time over spintop's best adaptive integrator in the same round, median [smallest, largest]"
+        "\n# head to head at matched error: {rounds} interleaved rounds (a sample is the fastest of {SOLVES_PER_SAMPLE} back-to-back solves); each peer's time over spintop's best adaptive integrator in the same round, median [smallest, largest]"
     );
     println!(
         "{:<9} {:>5}  {:<34} {:>10}  {:<18} {:>10}  ratio",
         "model", "error", "peer", "time", "spintop best", "time"
     );
+    let mut goal_lines = Vec::new();
     for problem in problems {
         for (i, &error) in report::MATCHED_ERRORS.iter().enumerate() {
             let here = |e: &&Entry| e.problem.name() == problem.name() && e.error_index == i;
@@ -520,47 +607,110 @@ fn head_to_head(rows: &[Row], problems: &[Problem], solvers: &[&dyn Solver], rou
                 .collect();
             // spintop's best in each round, and which method it was most often.
             let best: Vec<(Real, &str)> = (0..rounds)
-                .map(|r| {
-                    ours.iter()
-                        .map(|e| (e.times[r], e.solver.method()))
-                        .filter(|(t, _)| t.is_finite())
-                        .fold((Real::INFINITY, ""), |a, b| if b.0 < a.0 { b } else { a })
-                })
+                .map(|r| fastest(ours.iter().copied(), r))
                 .collect();
             let Some(best_median) = median(best.iter().map(|b| b.0).collect()) else {
                 continue;
             };
-            let mut names: Vec<&str> = best.iter().map(|b| b.1).collect();
-            names.sort_unstable();
-            let best_name = names
-                .iter()
-                .max_by_key(|m| names.iter().filter(|x| x == m).count())
-                .copied()
-                .unwrap_or("");
+            let best_name = most_often(&best);
             for peer in entries
                 .iter()
                 .filter(here)
                 .filter(|e| e.solver.source() != "spintop")
             {
                 let ratios: Vec<Real> = (0..rounds).map(|r| peer.times[r] / best[r].0).collect();
-                let (Some(time), Some(ratio)) =
-                    (median(peer.times.clone()), median(ratios.clone()))
-                else {
+                let Some(time) = median(peer.times.clone()) else {
                     continue;
                 };
-                let lo = ratios.iter().copied().fold(Real::INFINITY, Real::min);
-                let hi = ratios.iter().copied().fold(0.0, Real::max);
                 println!(
-                    "{:<9} {:>5.0e}  {:<34} {:>10}  {:<18} {:>10}  {ratio:.2} [{lo:.2}, {hi:.2}]",
+                    "{:<9} {:>5.0e}  {:<34} {:>10}  {:<18} {:>10}  {}",
                     problem.name(),
                     error,
                     format!("{} {}", peer.solver.source(), peer.solver.method()),
                     report::duration(Some(time)),
                     best_name,
                     report::duration(Some(best_median)),
+                    spread(&ratios),
                 );
             }
+            // The goal: the best Runge–Kutta method of any crate over the
+            // Taylor method, round by round.
+            let taylor: Vec<&Entry> = entries
+                .iter()
+                .filter(here)
+                .filter(|e| is_taylor(e))
+                .collect();
+            let rk: Vec<&Entry> = entries
+                .iter()
+                .filter(here)
+                .filter(|e| !is_taylor(e))
+                .collect();
+            if let (Some(t), false) = (taylor.first(), rk.is_empty()) {
+                let best_rk: Vec<(Real, &str)> = (0..rounds)
+                    .map(|r| fastest(rk.iter().copied(), r))
+                    .collect();
+                let ratios: Vec<Real> = (0..rounds).map(|r| best_rk[r].0 / t.times[r]).collect();
+                goal_lines.push(format!(
+                    "{:<9} {:>5.0e}  taylor {:>10}  best Runge-Kutta {:<34} {:>10}  {}",
+                    problem.name(),
+                    error,
+                    report::duration(median(t.times.clone())),
+                    most_often(&best_rk),
+                    report::duration(median(best_rk.iter().map(|b| b.0).collect())),
+                    spread(&ratios),
+                ));
+            }
         }
+    }
+    println!(
+        "\n# the Taylor method against the best Runge-Kutta method of any crate (spintop's included), same rounds: the best RK time over Taylor's, median [smallest, largest]"
+    );
+    for line in goal_lines {
+        println!("{line}");
+    }
+    let mut csv = String::from("model,error,source,method,round,time_s\n");
+    for e in &entries {
+        for (r, t) in e.times.iter().enumerate() {
+            csv.push_str(&format!(
+                "{},{:e},{},{},{r},{t:e}\n",
+                e.problem.name(),
+                report::MATCHED_ERRORS[e.error_index],
+                e.solver.source(),
+                e.solver.method()
+            ));
+        }
+    }
+    csv
+}
+
+/// The fastest entry in round `r`, and its name (`source method`, or the
+/// method alone for spintop's).
+fn fastest<'a>(entries: impl Iterator<Item = &'a Entry<'a>>, r: usize) -> (Real, &'a str) {
+    entries
+        .map(|e| (e.times[r], e.solver.method()))
+        .filter(|(t, _)| t.is_finite())
+        .fold((Real::INFINITY, ""), |a, b| if b.0 < a.0 { b } else { a })
+}
+
+/// The name that is fastest in most rounds.
+fn most_often<'a>(best: &[(Real, &'a str)]) -> &'a str {
+    let mut names: Vec<&str> = best.iter().map(|b| b.1).collect();
+    names.sort_unstable();
+    names
+        .iter()
+        .max_by_key(|m| names.iter().filter(|x| x == m).count())
+        .copied()
+        .unwrap_or("")
+}
+
+/// `median [smallest, largest]` of the finite values.
+fn spread(xs: &[Real]) -> String {
+    let finite: Vec<Real> = xs.iter().copied().filter(|x| x.is_finite()).collect();
+    let lo = finite.iter().copied().fold(Real::INFINITY, Real::min);
+    let hi = finite.iter().copied().fold(0.0, Real::max);
+    match median(finite) {
+        Some(m) => format!("{m:.2} [{lo:.2}, {hi:.2}]"),
+        None => "-".into(),
     }
 }
 
@@ -570,21 +720,173 @@ fn median(mut xs: Vec<Real>) -> Option<Real> {
     spintop::workprecision::median(&mut xs)
 }
 
+/// The machine's load averages (1, 5, 15 minutes), for the record.
+fn load() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "unknown".into())
+}
+
+/// `--spread FILE…`: several runs' `--h2h-out` files side by side. For each
+/// problem and matched error, each peer's ratio to spintop's best and the
+/// best Runge–Kutta method's ratio to the Taylor method, as the median over
+/// the rounds of each run, then across the runs: median [smallest, largest]
+/// of the runs' medians, called stable when the largest run's median is
+/// within 10 % of the smallest's. Each peer is given over spintop's DOP853
+/// (the same method) and over spintop's best method in the same round.
+fn spread_of_runs(files: &[String]) -> Result<(), String> {
+    // (model, error, source method) -> per run: per round times
+    type Key = (String, String, String);
+    let mut runs: Vec<std::collections::BTreeMap<Key, Vec<Real>>> = Vec::new();
+    for f in files {
+        let text = std::fs::read_to_string(f).map_err(|e| format!("{f}: {e}"))?;
+        let mut map: std::collections::BTreeMap<Key, Vec<Real>> = Default::default();
+        for (n, line) in text.lines().enumerate().skip(1) {
+            let c: Vec<&str> = line.split(',').collect();
+            if c.len() != 6 {
+                return Err(format!("{f}:{}: expected 6 fields", n + 1));
+            }
+            let t: Real = c[5].parse().map_err(|_| format!("{f}:{}: time", n + 1))?;
+            map.entry((c[0].into(), c[1].into(), format!("{} {}", c[2], c[3])))
+                .or_default()
+                .push(t);
+        }
+        runs.push(map);
+    }
+    let mut groups: Vec<(String, String)> = Vec::new();
+    for run in &runs {
+        for (m, e, _) in run.keys() {
+            if !groups.contains(&(m.clone(), e.clone())) {
+                groups.push((m.clone(), e.clone()));
+            }
+        }
+    }
+    println!(
+        "# {} runs: per ratio, the median of each run (over its rounds), then across runs: median [smallest, largest]; 'stable' when the runs' medians differ by less than 10 %",
+        runs.len()
+    );
+    for (model, error) in groups {
+        let mut names: Vec<String> = Vec::new();
+        for run in &runs {
+            for (m, e, name) in run.keys() {
+                if *m == model && *e == error && !names.contains(name) {
+                    names.push(name.clone());
+                }
+            }
+        }
+        let of = |run: &std::collections::BTreeMap<Key, Vec<Real>>, name: &str| {
+            run.get(&(model.clone(), error.clone(), name.to_string()))
+                .cloned()
+        };
+        let spintop: Vec<&String> = names.iter().filter(|n| n.starts_with("spintop ")).collect();
+        let report_ratio = |label: String, per_run: Vec<Real>| {
+            let lo = per_run.iter().copied().fold(Real::INFINITY, Real::min);
+            let hi = per_run.iter().copied().fold(0.0, Real::max);
+            if let Some(m) = median(per_run.clone()) {
+                let stable = if hi / lo < 1.1 {
+                    "stable"
+                } else {
+                    "within noise"
+                };
+                let each: Vec<String> = per_run.iter().map(|r| format!("{r:.2}")).collect();
+                println!(
+                    "{model:<9} {error:>6}  {label:<60} {m:.2} [{lo:.2}, {hi:.2}]  {stable}  (runs: {})",
+                    each.join(" ")
+                );
+            }
+        };
+        // Each peer over spintop's DOP853 (the same method: the historical
+        // ratio), round by round.
+        for peer in names.iter().filter(|n| !n.starts_with("spintop ")) {
+            let per_run: Vec<Real> = runs
+                .iter()
+                .filter_map(|run| {
+                    let (p, d) = (of(run, peer)?, of(run, "spintop dop853")?);
+                    median(p.iter().zip(&d).map(|(a, b)| a / b).collect())
+                })
+                .collect();
+            report_ratio(format!("{peer} / spintop dop853"), per_run);
+        }
+        // Each peer over spintop's best, round by round.
+        for peer in names.iter().filter(|n| !n.starts_with("spintop ")) {
+            let per_run: Vec<Real> = runs
+                .iter()
+                .filter_map(|run| {
+                    let p = of(run, peer)?;
+                    let ratios: Vec<Real> = (0..p.len())
+                        .map(|r| {
+                            let best = spintop
+                                .iter()
+                                .filter_map(|s| of(run, s).and_then(|t| t.get(r).copied()))
+                                .filter(|t| t.is_finite())
+                                .fold(Real::INFINITY, Real::min);
+                            p[r] / best
+                        })
+                        .collect();
+                    median(ratios)
+                })
+                .collect();
+            report_ratio(format!("{peer} / spintop's best"), per_run);
+        }
+        // The best Runge–Kutta method of any crate over the Taylor method.
+        let per_run: Vec<Real> = runs
+            .iter()
+            .filter_map(|run| {
+                let t = of(run, "spintop taylor")?;
+                let ratios: Vec<Real> = (0..t.len())
+                    .map(|r| {
+                        let best = names
+                            .iter()
+                            .filter(|n| *n != "spintop taylor")
+                            .filter_map(|n| of(run, n).and_then(|x| x.get(r).copied()))
+                            .filter(|x| x.is_finite())
+                            .fold(Real::INFINITY, Real::min);
+                        best / t[r]
+                    })
+                    .collect();
+                median(ratios)
+            })
+            .collect();
+        report_ratio(
+            "best Runge-Kutta (any crate) / spintop taylor".into(),
+            per_run,
+        );
+    }
+    Ok(())
+}
+
 fn main() {
     // `cargo bench` passes `--bench`; everything else is ours.
     let args: Vec<String> = std::env::args().skip(1).collect();
     let quick = args.iter().any(|a| a == "--quick");
-    let out = args
-        .iter()
-        .position(|a| a == "--out")
-        .and_then(|i| args.get(i + 1))
-        .cloned();
-    if let Some(bad) = args
-        .iter()
-        .find(|a| a.starts_with("--") && !["--bench", "--quick", "--out"].contains(&a.as_str()))
-    {
-        eprintln!("peers: unknown option {bad} (use --quick, --out FILE.csv)");
+    let value = |name: &str| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1))
+            .cloned()
+    };
+    let out = value("--out");
+    let h2h_out = value("--h2h-out");
+    if let Some(bad) = args.iter().find(|a| {
+        a.starts_with("--")
+            && !["--bench", "--quick", "--out", "--h2h-out", "--spread"].contains(&a.as_str())
+    }) {
+        eprintln!(
+            "peers: unknown option {bad} (use --quick, --out FILE.csv, --h2h-out FILE.csv, --spread FILE.csv...)"
+        );
         std::process::exit(2);
+    }
+    if let Some(i) = args.iter().position(|a| a == "--spread") {
+        let files: Vec<String> = args[i + 1..]
+            .iter()
+            .filter(|a| !a.starts_with("--"))
+            .cloned()
+            .collect();
+        if let Err(e) = spread_of_runs(&files) {
+            eprintln!("peers: {e}");
+            std::process::exit(2);
+        }
+        return;
     }
     let problems: Vec<Problem> = [
         ProblemKind::Truncated,
@@ -615,6 +917,7 @@ fn main() {
     println!(
         "# peers: spintop, ode_solvers 0.6.2, differential-equations 0.7.0 and diffsol 0.18.0 on the same problems, same references, one process"
     );
+    println!("# load average at the start (1, 5, 15 min): {}", load());
     println!(
         "# correctness first: every peer at rtol {CHECK_RTOL:.0e} against each problem's reference"
     );
@@ -639,11 +942,19 @@ fn main() {
     }
     let mut solvers: Vec<&dyn Solver> = ours.iter().map(|s| s as &dyn Solver).collect();
     solvers.extend(checked.iter().map(|p| p as &dyn Solver));
-    let rows = spintop::workprecision::sweep(&problems, &solvers, &plan, Some(&mut WallClock));
+    let mut rows = spintop::workprecision::sweep(&problems, &solvers, &plan, Some(&mut WallClock));
+    retime(&mut rows, &problems, &solvers);
 
     print!("{}", report::table(&rows));
     print!("{}", report::join_table(&rows));
-    head_to_head(&rows, &problems, &solvers, if quick { 5 } else { ROUNDS });
+    let per_round = head_to_head(&rows, &problems, &solvers, if quick { 5 } else { ROUNDS });
+    println!("# load average at the end (1, 5, 15 min): {}", load());
+    if let Some(path) = &h2h_out
+        && let Err(e) = std::fs::write(path, per_round)
+    {
+        eprintln!("peers: cannot write {path}: {e}");
+        std::process::exit(1);
+    }
     println!("\n# ode_solvers' value at the final time (dense output every 1 tau to x_end = 200):");
     for problem in &problems {
         for peer in peers

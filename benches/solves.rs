@@ -1,6 +1,7 @@
 //! Whole solves, one criterion benchmark each: the work-precision problems
-//! (T = 200τ, 200 output points) by DOP853 and Dormand–Prince 5(4) at rtol
-//! 1e-8 and 1e-12, and by the closed forms.
+//! (T = 200τ, 200 output points) by DOP853, Dormand–Prince 5(4) and the
+//! Taylor method at rtol 1e-8 and 1e-12 (DOP853 and Taylor also at 1e-14),
+//! and by the closed forms.
 //!
 //! ```sh
 //! cargo bench -p spintop-benches --bench solves
@@ -26,12 +27,17 @@ fn solves(c: &mut Criterion) {
     for kind in [ProblemKind::Reduced, ProblemKind::General] {
         let problem = Problem::new(kind).expect("the problem and its reference");
         let mut g = c.benchmark_group(format!("solve {} T=200", kind.name()));
-        for method in [Method::Dop853, Method::Dopri5] {
+        for method in [Method::Dop853, Method::Dopri5, Method::Taylor] {
             let entry = Spintop {
                 method,
                 target: Target::Omega,
             };
-            for rtol in [1e-8, 1e-12] {
+            let rtols: &[Real] = if method == Method::Dopri5 {
+                &[1e-8, 1e-12]
+            } else {
+                &[1e-8, 1e-12, 1e-14]
+            };
+            for &rtol in rtols {
                 g.bench_function(format!("{} rtol {rtol:e}", entry.method()), |b| {
                     b.iter(|| {
                         entry

@@ -27,7 +27,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
     )?;
 
     // ANCHOR: sweep
-    // Every spintop method on the reduced problem, over six decades of
+    // Every spintop method on the reduced problem, over thirteen decades of
     // tolerance and seven halvings of the RK4 step, counted but not timed.
     let problem = Problem::new(ProblemKind::Reduced).expect("the stored reference");
     let entries: Vec<Spintop> = [
@@ -35,6 +35,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         Method::Rk4,
         Method::Dopri5,
         Method::Dop853,
+        Method::Taylor,
     ]
     .into_iter()
     .map(|method| Spintop {
@@ -44,7 +45,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
     .collect();
     let solvers: Vec<&dyn Solver> = entries.iter().map(|s| s as &dyn Solver).collect();
     let plan = Plan {
-        rtols: (3..=13).map(|k| (10.0 as Real).powi(-k)).collect(),
+        rtols: (3..=15).map(|k| (10.0 as Real).powi(-k)).collect(),
         steps: (0..=6).map(|k| (0.5 as Real).powi(k)).collect(),
         timing: None,
     };
@@ -57,28 +58,27 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: cost_at_matched_error
     // The right-hand-side evaluations each method needs for a given error,
     // read off its curve; and how steeply its error falls with more work.
+    // (The Taylor method evaluates no right-hand side: its count is the
+    // arithmetic of its recurrences, p(p+1)/2 evaluations' worth a step.)
     writeln!(
         out,
         "\nRHS evaluations needed for a max relative error of Omega of"
     )?;
     writeln!(
         out,
-        "{:<8} {:>9} {:>9} {:>9}   slope of log(error) against log(evaluations)",
-        "method", "1e-6", "1e-9", "1e-12"
+        "{:<8} {:>9} {:>9} {:>9} {:>9}   slope of log(error) against log(evaluations)",
+        "method", "1e-6", "1e-9", "1e-12", "1e-14"
     )?;
-    for method in ["rk4", "dopri5", "dop853"] {
-        let points: Vec<(Real, Real)> = rows
-            .iter()
-            .filter(|r| r.method == method)
-            .filter_map(|r| Some((r.rhs_evals? as Real, r.omega_error?)))
-            .collect();
+    for method in ["rk4", "dopri5", "dop853", "taylor"] {
+        let points = evals_and_errors(&rows, method);
         let need = |e: Real| cost_at(&points, e).map_or("-".to_string(), |n| format!("{n:.0}"));
         writeln!(
             out,
-            "{method:<8} {:>9} {:>9} {:>9}   {:.1}",
+            "{method:<8} {:>9} {:>9} {:>9} {:>9}   {:.1}",
             need(1e-6),
             need(1e-9),
             need(1e-12),
+            need(1e-14),
             slope(&points)
         )?;
     }
@@ -95,7 +95,70 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         )?;
     }
 
+    digits(out, &rows)?;
     stiffness(out)
+}
+
+/// (evaluations, error) of one method's rows.
+fn evals_and_errors(rows: &[Row], method: &str) -> Vec<(Real, Real)> {
+    rows.iter()
+        .filter(|r| r.method == method)
+        .filter_map(|r| Some((r.rhs_evals? as Real, r.omega_error?)))
+        .collect()
+}
+
+/// What one more digit costs: DOP853's price per digit is fixed by its
+/// order, the Taylor method's falls as its order rises with the digits.
+fn digits(out: &mut dyn Write, rows: &[Row]) -> io::Result<()> {
+    // ANCHOR: digits
+    // Going down the ladder of tolerances, the work of each row over the
+    // row before, per decade of error gained: the price of one more digit.
+    writeln!(
+        out,
+        "\nThe price of one more digit: work ratio per tenfold smaller error, row to row"
+    )?;
+    writeln!(
+        out,
+        "{:>7} | {:>6} {:>6} {:>9} {:>9} {:>6} | {:>6} {:>9} {:>9} {:>6}",
+        "rtol", "order", "steps", "evals", "error", "digit", "steps", "evals", "error", "digit"
+    )?;
+    writeln!(
+        out,
+        "{:>7} | {:^40} | {:^33}",
+        "", "Taylor (order grows with the digits)", "DOP853 (order 8)"
+    )?;
+    let of = |method: &str| -> Vec<&Row> { rows.iter().filter(|r| r.method == method).collect() };
+    let (taylor, dop853) = (of("taylor"), of("dop853"));
+    let per_digit = |a: &Row, b: &Row| -> Option<Real> {
+        let work = b.rhs_evals? as Real / a.rhs_evals? as Real;
+        let gained = (a.omega_error? / b.omega_error?).log10();
+        (gained > 0.3).then(|| work.powf(1.0 / gained))
+    };
+    let show = |x: Option<Real>| x.map_or("-".to_string(), |v| format!("{v:.2}"));
+    for i in 0..taylor.len().min(dop853.len()) {
+        let (t, d) = (taylor[i], dop853[i]);
+        let rtol = t.value.unwrap_or(Real::NAN);
+        let order = spintop::integrate::taylor::taylor_order(rtol);
+        let (tp, dp) = if i > 0 {
+            (per_digit(taylor[i - 1], t), per_digit(dop853[i - 1], d))
+        } else {
+            (None, None)
+        };
+        writeln!(
+            out,
+            "{rtol:>7.0e} | {order:>6} {:>6} {:>9} {:>9.1e} {:>6} | {:>6} {:>9} {:>9.1e} {:>6}",
+            t.steps.unwrap_or(0),
+            t.rhs_evals.unwrap_or(0),
+            t.omega_error.unwrap_or(Real::NAN),
+            show(tp),
+            d.steps.unwrap_or(0),
+            d.rhs_evals.unwrap_or(0),
+            d.omega_error.unwrap_or(Real::NAN),
+            show(dp),
+        )?;
+    }
+    // ANCHOR_END: digits
+    Ok(())
 }
 
 /// Least-squares slope of log10(error) against log10(cost), over the points

@@ -9,7 +9,7 @@
 //! |---|---|---|
 //! | truncated (4.2)–(4.4) | closed form (4.7) | closed form, Rot(n_L, |L₀|ϑ)·O₀·R_z(Ω̃₃₀ϑ) |
 //! | reduced (4.12)–(4.14) | closed form (4.15)–(4.16) | O = Q·R_z(Ω̃₃t): the precession exact, Q by DOP853 on SO(3), driven by the closed form |
-//! | general (3.3) | DOP853 | DOP853 on SO(3), in the same state |
+//! | general (3.3) | DOP853, or the Taylor method at rtol ≤ [`TAYLOR_AUTO_RTOL`] | the same method, in the same state (the Taylor method carries a unit quaternion) |
 //!
 //! Orientations are integrated on the group: the state carries a small rotation
 //! vector σ with `O = O_base exp(σ̂)` and `dσ/dt = J_r⁻¹(σ) Ω`
@@ -17,8 +17,12 @@
 //! before it grows large, so O is only ever changed by multiplying rotations and
 //! stays orthonormal to rounding.
 
+use crate::integrate::taylor::{
+    GeneralReduced, GeneralTruncated, SymmetricReduced, SymmetricTruncated, TaylorRhs,
+    WithOrientation,
+};
 use crate::integrate::{
-    AdaptiveOptions, Dop853, Dopri5, IntegrateError, Radau5, Rhs, Rk4, Stats, Stepper,
+    AdaptiveOptions, Dop853, Dopri5, IntegrateError, Radau5, Rhs, Rk4, Stats, Stepper, Taylor,
 };
 use crate::math::{Mat3, Quat, Real, State, Vec3, all_finite, dexpinv_right, exp_so3, rot_z};
 use crate::physics::ParamError;
@@ -107,11 +111,17 @@ impl Model {
     }
 
     // ANCHOR: auto_choice
-    /// The method a choice runs on this model: `auto` takes the closed forms
-    /// where they exist, the physical solution for the full ALE and DOP853
-    /// for the rest. A choice the model does not take is refused, with what
-    /// it takes. This is the one step from a user's choice to a method.
-    pub fn method(&self, choice: MethodChoice) -> Result<Method, MethodRefused> {
+    /// The method a choice runs on this model at these options: `auto` takes
+    /// the closed forms where they exist, the physical solution for the full
+    /// ALE, and for the rest DOP853, or the Taylor method where the measured
+    /// crossover says it is faster ([`auto_integrator`]). A choice the model
+    /// does not take is refused, with what it takes. This is the one step
+    /// from a user's choice to a method.
+    pub fn method(
+        &self,
+        choice: MethodChoice,
+        options: &MethodOptions,
+    ) -> Result<Method, MethodRefused> {
         use MethodChoice as C;
         let refused = MethodRefused {
             model: self.name(),
@@ -124,18 +134,21 @@ impl Model {
             (Model::Truncated(_), C::Auto | C::Exact) => Method::ClosedForm,
             (Model::Reduced(_), C::Auto | C::Exact) => Method::ClosedFormDop853,
             (_, C::Exact) => return Err(refused),
-            (_, C::Auto | C::Dop853) => Method::Dop853,
+            (_, C::Auto) => auto_integrator(options.rtol),
+            (_, C::Dop853) => Method::Dop853,
             (_, C::Rk4) => Method::Rk4,
             (_, C::Dopri5) => Method::Dopri5,
             (_, C::Radau5) => Method::Radau5,
+            (_, C::Taylor) => Method::Taylor,
         })
     }
     // ANCHOR_END: auto_choice
 
     /// Refuse a choice this model does not take (see [`Model::method`]):
     /// every entry point (the command line, scenes, the live view) asks here.
+    /// Whether a model takes a choice does not depend on the tolerance.
     pub fn check_method(&self, choice: MethodChoice) -> Result<(), MethodRefused> {
-        self.method(choice).map(|_| ())
+        self.method(choice, &MethodOptions::default()).map(|_| ())
     }
 
     /// The principal moments.
@@ -194,10 +207,13 @@ enum FirstOrder {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "app", derive(clap::ValueEnum))]
 pub enum MethodChoice {
-    /// Closed forms where they exist, DOP853 for the rest.
+    /// Closed forms where they exist, DOP853 for the rest (the Taylor
+    /// method at rtol ≤ [`TAYLOR_AUTO_RTOL`]).
     #[cfg_attr(
         feature = "app",
-        value(help = "Closed forms where they exist, DOP853 for the rest")
+        value(
+            help = "Closed forms where they exist, DOP853 for the rest (Taylor at rtol <= 1e-10)"
+        )
     )]
     Auto,
     /// Closed forms only (refused for a model without one); the reduced
@@ -223,6 +239,15 @@ pub enum MethodChoice {
         value(help = "Radau IIA 5, implicit and L-stable, adaptive (--rtol): for stiff tops")
     )]
     Radau5,
+    /// The Taylor series method of variable order on Ω and the orientation
+    /// (a unit quaternion) together: the fastest at tight tolerances.
+    #[cfg_attr(
+        feature = "app",
+        value(
+            help = "Taylor series of variable order, adaptive (--rtol): the fastest at tight tolerances"
+        )
+    )]
+    Taylor,
     /// Full ALE only: integrate (3.4) forward, which runs away.
     #[cfg_attr(
         feature = "app",
@@ -233,20 +258,21 @@ pub enum MethodChoice {
 
 impl MethodChoice {
     /// Every choice, in the order of [`MethodChoice::NAMES`].
-    pub const ALL: [MethodChoice; 7] = [
+    pub const ALL: [MethodChoice; 8] = [
         MethodChoice::Auto,
         MethodChoice::Exact,
         MethodChoice::Rk4,
         MethodChoice::Dopri5,
         MethodChoice::Dop853,
         MethodChoice::Radau5,
+        MethodChoice::Taylor,
         MethodChoice::Forward,
     ];
 
     /// The names the user types (`--method NAME`, `method = "NAME"`), in the
     /// order of [`MethodChoice::ALL`].
-    pub const NAMES: [&'static str; 7] = [
-        "auto", "exact", "rk4", "dopri5", "dop853", "radau5", "forward",
+    pub const NAMES: [&'static str; 8] = [
+        "auto", "exact", "rk4", "dopri5", "dop853", "radau5", "taylor", "forward",
     ];
 
     /// The name the user types: `auto`, `exact`, `rk4`, …
@@ -263,7 +289,7 @@ impl MethodChoice {
     }
 
     /// The short title a screen shows: `closed form`, `RK4`, `DP5`, `DOP853`,
-    /// `Radau5`.
+    /// `Radau5`, `Taylor`.
     pub fn title(self) -> &'static str {
         match self {
             MethodChoice::Auto => "auto",
@@ -272,6 +298,7 @@ impl MethodChoice {
             MethodChoice::Dopri5 => "DP5",
             MethodChoice::Dop853 => "DOP853",
             MethodChoice::Radau5 => "Radau5",
+            MethodChoice::Taylor => "Taylor",
             MethodChoice::Forward => "forward",
         }
     }
@@ -279,7 +306,7 @@ impl MethodChoice {
 
 /// A numerical method of the core: what a simulation reports it ran, what the
 /// work-precision sweep and the stability rows compare. A [`Simulation`]
-/// runs the first eight; the splittings are run by
+/// runs the first nine; the splittings are run by
 /// [`crate::integrate::splitting`] directly.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Method {
@@ -300,6 +327,10 @@ pub enum Method {
     Physical,
     /// The full ALE integrated forward (it runs away), O driven by it.
     Forward,
+    /// The Taylor series method of variable order (Jorba & Zou's order and
+    /// step, coefficients by recurrence), on Ω and the orientation
+    /// quaternion together.
+    Taylor,
     /// The reduced model split into its rotation and its damping, each solved
     /// exactly (they commute, so the split is exact for any step).
     RotationDamping,
@@ -322,6 +353,7 @@ impl Method {
             Method::Radau5 => "radau5",
             Method::Physical => "physical",
             Method::Forward => "forward",
+            Method::Taylor => "taylor",
             Method::RotationDamping => "rotation-damping",
             Method::Strang => "strang",
             Method::Yoshida4 => "yoshida4",
@@ -353,6 +385,9 @@ impl Method {
             Method::Forward => {
                 "(3.4) integrated forward by DOP853 from the reduced model's slope, with a runaway monitor; orientation by DOP853 on SO(3)"
             }
+            Method::Taylor => {
+                "omega and the orientation quaternion integrated together by the Taylor series method (order and step of Jorba and Zou)"
+            }
             Method::RotationDamping => {
                 "omega by the reduced model split into its rotation and its damping, each exact"
             }
@@ -368,6 +403,34 @@ impl Method {
         !matches!(self, Method::ClosedForm)
     }
 }
+
+// ANCHOR: taylor_auto_rule
+/// `auto` integrates a top without a closed form with the Taylor method at
+/// this rtol and below, with DOP853 above.
+///
+/// NOTE: measured, not guessed (`cargo bench -p spintop-benches --bench
+/// crossover`, `benches/results/crossover-2026-11-26.csv`, and
+/// benches/README.md): Ω and the orientation together, as a simulation
+/// computes them, on three asymmetric tops under both general models, with
+/// 5 and with 1000 outputs. At rtol 1e-10 and below the Taylor method was
+/// the faster in all twelve cases (1.2–1.7× at 1e-10, 1.6–2.4× at 1e-12); at
+/// 1e-9 and looser DOP853 was the faster in some (by up to 1.3× at 1e-6, on
+/// a top with few outputs), so there `auto` keeps DOP853, whose embedded
+/// error estimate checks every step. `tests/numerics/taylor.rs` holds this
+/// constant to that file.
+pub const TAYLOR_AUTO_RTOL: Real = 1e-10;
+
+/// The integrator `auto` steps a model without a closed form with at `rtol`:
+/// the Taylor method at and below [`TAYLOR_AUTO_RTOL`], DOP853 above (the
+/// rule [`Model::method`] follows, and the scene planner counts steps by).
+pub fn auto_integrator(rtol: Real) -> Method {
+    if rtol <= TAYLOR_AUTO_RTOL {
+        Method::Taylor
+    } else {
+        Method::Dop853
+    }
+}
+// ANCHOR_END: taylor_auto_rule
 
 /// A method the model does not take, and what it takes instead.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -388,9 +451,9 @@ impl std::fmt::Display for MethodRefused {
             ),
             (_, MethodChoice::Forward) => {
                 let takes = if model.starts_with("general") {
-                    "auto, rk4, dopri5, dop853 or radau5"
+                    "auto, rk4, dopri5, dop853, radau5 or taylor"
                 } else {
-                    "auto, exact, rk4, dopri5, dop853 or radau5"
+                    "auto, exact, rk4, dopri5, dop853, radau5 or taylor"
                 };
                 write!(
                     f,
@@ -399,7 +462,7 @@ impl std::fmt::Display for MethodRefused {
             }
             _ => write!(
                 f,
-                "the {model} model has no closed form; it takes method auto (DOP853), dop853, dopri5, radau5 or rk4, not {method}"
+                "the {model} model has no closed form; it takes method auto (DOP853, or Taylor at rtol <= {TAYLOR_AUTO_RTOL:.0e}), taylor, dop853, dopri5, radau5 or rk4, not {method}"
             ),
         }
     }
@@ -895,6 +958,97 @@ enum Engine {
     /// Full ALE: Ω from a table (the physical solution, or a forward run up to
     /// its runaway), σ integrated along it.
     Table(Box<physical::OmegaTable>, TableKind, Stats, Box<OnGroup<3>>),
+    /// Ω and the orientation quaternion by the Taylor method.
+    Taylor(Box<TaylorRun>),
+}
+
+/// The Taylor method on (Ω, q), with one model's recurrences.
+///
+/// NOTE: a unit quaternion, not σ on the group as the Runge–Kutta methods
+/// carry: q̇ = ½ q ⊗ (0, Ω) is a polynomial in (q, Ω), so the series takes it
+/// as it takes Ω, and its linearity means rounding only scales q, which is
+/// normalised as it is read.
+// NOTE: the variants differ by their auxiliary series (a few kB); the whole
+// enum is boxed once in `Engine`, so boxing each variant would buy nothing.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug)]
+enum TaylorRun {
+    Truncated(Taylor<7, WithOrientation<SymmetricTruncated>>),
+    Reduced(Taylor<7, WithOrientation<SymmetricReduced>>),
+    General(Taylor<7, WithOrientation<GeneralTruncated>>),
+    GeneralReduced(Taylor<7, WithOrientation<GeneralReduced>>),
+}
+
+macro_rules! taylor_dispatch {
+    ($self:expr, $s:ident => $body:expr) => {
+        match $self {
+            TaylorRun::Truncated($s) => $body,
+            TaylorRun::Reduced($s) => $body,
+            TaylorRun::General($s) => $body,
+            TaylorRun::GeneralReduced($s) => $body,
+        }
+    };
+}
+
+impl TaylorRun {
+    /// At Ω₀ and O(0) = `base`, with the tolerances of the other integrators.
+    fn new(
+        dynamics: FirstOrder,
+        initial: &InitialState,
+        base: &Quat,
+        options: &MethodOptions,
+    ) -> Result<Self, IntegrateError> {
+        let mut y0 = State::<7>::zeros();
+        y0.fixed_rows_mut::<3>(0).copy_from(&initial.omega);
+        let q = base.quaternion();
+        y0.fixed_rows_mut::<4>(3)
+            .copy_from(&nalgebra::Vector4::new(q.w, q.i, q.j, q.k));
+        // The same absolute tolerance as `AnyStepper::new`: relative control
+        // for a top of any speed.
+        let atol = (1e-6 * options.rtol * initial.omega.norm()).max(1e-300);
+        let opts = AdaptiveOptions::new(options.rtol, atol)?;
+        fn build<M: TaylorRhs<3>>(
+            m: M,
+            y0: State<7>,
+            opts: AdaptiveOptions,
+        ) -> Result<Taylor<7, WithOrientation<M>>, IntegrateError> {
+            Taylor::new(WithOrientation(m), 0.0, y0, opts)
+        }
+        Ok(match dynamics {
+            FirstOrder::Truncated(top) => {
+                TaylorRun::Truncated(build(SymmetricTruncated(top), y0, opts)?)
+            }
+            FirstOrder::Reduced(top) => TaylorRun::Reduced(build(SymmetricReduced(top), y0, opts)?),
+            FirstOrder::General(top) => TaylorRun::General(build(GeneralTruncated(top), y0, opts)?),
+            FirstOrder::GeneralReduced(top) => {
+                TaylorRun::GeneralReduced(build(GeneralReduced(top), y0, opts)?)
+            }
+        })
+    }
+
+    fn stats(&self) -> Stats {
+        taylor_dispatch!(self, s => s.stats())
+    }
+
+    fn last_step(&self) -> Real {
+        taylor_dispatch!(self, s => s.last_step())
+    }
+
+    /// Step until `t` lies in the last step (toward `horizon`), then read Ω
+    /// and O there from the step's polynomial.
+    fn advance(&mut self, t: Real, horizon: Real) -> Result<(Vec3, Mat3), IntegrateError> {
+        let y = taylor_dispatch!(self, s => {
+            while s.t() < t {
+                s.advance(horizon)?;
+            }
+            s.value_at(t)
+        });
+        let q = Quat::from_quaternion(nalgebra::Quaternion::new(y[3], y[4], y[5], y[6]));
+        Ok((
+            Vec3::new(y[0], y[1], y[2]),
+            q.to_rotation_matrix().into_inner(),
+        ))
+    }
 }
 
 /// Where a full-ALE table came from.
@@ -967,7 +1121,7 @@ impl Simulation {
         initial: InitialState,
         horizon: Option<Real>,
     ) -> Result<Self, SimError> {
-        let method = model.method(choice)?;
+        let method = model.method(choice, &options)?;
         Self::with_method(model, method, options, initial, horizon)
     }
 
@@ -1065,6 +1219,9 @@ impl Simulation {
             (Method::Rk4 | Method::Dopri5 | Method::Dop853 | Method::Radau5, Some(d)) => {
                 on_group(d)?
             }
+            (Method::Taylor, Some(d)) => {
+                Engine::Taylor(Box::new(TaylorRun::new(d, &initial, &base, &options)?))
+            }
             _ => return Err(not_for_model()),
         };
         let current = Sample::new(0.0, &model.inertia(), &initial.rotation, &initial.omega);
@@ -1096,6 +1253,7 @@ impl Simulation {
             Engine::Coupled(which, ..) => *which,
             Engine::Table(_, TableKind::Physical, ..) => Method::Physical,
             Engine::Table(_, TableKind::Forward(_), ..) => Method::Forward,
+            Engine::Taylor(_) => Method::Taylor,
         }
     }
 
@@ -1115,6 +1273,7 @@ impl Simulation {
                 total
             }
             Engine::Coupled(_, _, g) => g.stepper.stats(),
+            Engine::Taylor(run) => run.stats(),
         }
     }
 
@@ -1124,6 +1283,7 @@ impl Simulation {
             Engine::ClosedForm(_) => 0.0,
             Engine::ReducedOrientation(_, g) | Engine::Table(_, _, _, g) => g.stepper.last_step(),
             Engine::Coupled(_, _, g) => g.stepper.last_step(),
+            Engine::Taylor(run) => run.last_step(),
         }
     }
 
@@ -1169,6 +1329,7 @@ impl Simulation {
                 };
                 (y.fixed_rows::<3>(0).into_owned(), rotation)
             }
+            Engine::Taylor(run) => run.advance(t, self.horizon)?,
             Engine::Table(table, kind, built, g) => {
                 if let TableKind::Forward(Some(runaway)) = kind
                     && t > runaway.t
@@ -1253,7 +1414,7 @@ mod method_rule_tests {
             for choice in MethodChoice::ALL {
                 let built =
                     Simulation::new(model, choice, MethodOptions::default(), initial, Some(1.0));
-                match model.method(choice) {
+                match model.method(choice, &MethodOptions::default()) {
                     Ok(method) => {
                         let mut sim = built.unwrap_or_else(|e| {
                             panic!("{} by {}: {e}", model.name(), choice.name())
@@ -1271,17 +1432,28 @@ mod method_rule_tests {
         }
     }
 
+    /// `auto` takes the closed forms where they exist and the physical
+    /// solution for the full ALE at any tolerance; for the asymmetric tops
+    /// DOP853 above [`TAYLOR_AUTO_RTOL`] and the Taylor method at and below
+    /// it.
     #[test]
     fn auto_takes_the_closed_forms_where_they_exist() {
-        for model in models() {
-            let method = model.method(MethodChoice::Auto).unwrap();
+        let rtols = [1e-3, 1e-8, 2.0 * TAYLOR_AUTO_RTOL, TAYLOR_AUTO_RTOL, 1e-14];
+        for (model, rtol) in models().into_iter().flat_map(|m| rtols.map(|r| (m, r))) {
+            let options = MethodOptions::default().with_rtol(rtol).unwrap();
+            let method = model.method(MethodChoice::Auto, &options).unwrap();
+            let integrated = if rtol <= TAYLOR_AUTO_RTOL {
+                Method::Taylor
+            } else {
+                Method::Dop853
+            };
             let expected = match model {
                 Model::Truncated(_) => Method::ClosedForm,
                 Model::Reduced(_) => Method::ClosedFormDop853,
                 Model::Full(_) | Model::GeneralFull(_) => Method::Physical,
-                Model::General(_) | Model::GeneralReduced(_) => Method::Dop853,
+                Model::General(_) | Model::GeneralReduced(_) => integrated,
             };
-            assert_eq!(method, expected, "{}", model.name());
+            assert_eq!(method, expected, "{} at {rtol:e}", model.name());
             assert_eq!(
                 model.closed_form(&Vec3::new(0.0, 0.1, 0.2), 1.0).is_some(),
                 model.has_closed_form()

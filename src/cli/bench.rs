@@ -96,7 +96,7 @@ pub struct BenchArgs {
     /// Height of each chart, in lines (4 to 100).
     #[arg(long, default_value_t = 18, allow_hyphen_values = true)]
     height: u32,
-    /// Instead of a sweep: join CSV files of earlier runs, chart every source's methods for one problem (--chart), and print each method's time at matched error 1e-8 and 1e-12, with ratios.
+    /// Instead of a sweep: join CSV files of earlier runs, chart every source's methods for one problem (--chart), and print each method's time at matched error 1e-8, 1e-10, 1e-12 and 1e-14, with ratios.
     #[arg(long, value_name = "CSV", num_args = 1..,
           conflicts_with_all = ["quick", "repeats", "out"])]
     join: Option<Vec<PathBuf>>,
@@ -328,7 +328,8 @@ fn summary(rows: &[Row]) -> Vec<String> {
             r.model == model && r.method == "closed-form" && r.target == Target::Omega && r.ok()
         });
         if let Some(c) = closed {
-            let at_12 = report::best(&matched, model, "spintop", 1).and_then(|b| b.time[1]);
+            let at_12 = report::matched_index(1e-12)
+                .and_then(|i| report::best(&matched, model, "spintop", i).and_then(|b| b.time[i]));
             if let (Some(tc), Some(ti)) = (c.time_s, at_12) {
                 parts.push(format!(
                     "closed form {} (error {}), {:.0}x faster than the best integrator at 1e-12",

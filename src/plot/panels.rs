@@ -22,16 +22,26 @@ pub struct Panel {
 /// Pixels per panel.
 const PANEL: (u32, u32) = (560, 420);
 
-/// The curve colours, in order.
-const COLORS: [RGBColor; 4] = [
+/// The curve colours, in order (six, so that a panel of six curves has no
+/// two alike).
+const COLORS: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
     RGBColor(120, 120, 120),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
 ];
 
-/// The panels side by side under `title`, as an SVG document.
+/// The panels side by side under `title`, as an SVG document, each legend
+/// at the middle of the right edge.
 pub fn panels_svg(title: &str, panels: &[Panel]) -> String {
+    panels_svg_legend(title, panels, SeriesLabelPosition::MiddleRight)
+}
+
+/// [`panels_svg`] with each panel's legend at `legend` (where its curves
+/// leave room).
+pub fn panels_svg_legend(title: &str, panels: &[Panel], legend: SeriesLabelPosition) -> String {
     let n = panels.len().max(1) as u32;
     let size = (PANEL.0 * n, PANEL.1 + 40);
     let mut buffer = String::new();
@@ -39,7 +49,7 @@ pub fn panels_svg(title: &str, panels: &[Panel]) -> String {
         let root = SVGBackend::with_string(&mut buffer, size).into_drawing_area();
         // NOTE: drawing into a String cannot fail for I/O reasons; an error
         // here would be a plotting bug, so it panics (as figure::svg does).
-        draw(title, panels, &root).expect("plotters draws into a string");
+        draw(title, panels, legend, &root).expect("plotters draws into a string");
         root.present().expect("plotters draws into a string");
     }
     buffer
@@ -62,7 +72,7 @@ fn range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     (lo - pad)..(hi + pad)
 }
 
-fn draw(title: &str, panels: &[Panel], root: &Area) -> DrawResult {
+fn draw(title: &str, panels: &[Panel], legend: SeriesLabelPosition, root: &Area) -> DrawResult {
     root.fill(&WHITE)?;
     let (head, body) = root.split_vertically(40);
     head.draw(&Text::new(
@@ -111,6 +121,7 @@ fn draw(title: &str, panels: &[Panel], root: &Area) -> DrawResult {
         }
         chart
             .configure_series_labels()
+            .position(legend.clone())
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK.mix(0.3))
             .label_font(("sans-serif", 12))

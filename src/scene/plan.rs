@@ -7,7 +7,7 @@
 //! |---|---|---|
 //! | truncated | closed form (4.7) | closed form (4.9), or skipped when its phase outgrows a double |
 //! | reduced | closed form (4.15)–(4.16) | Q′ = QΩ̂(t) alone on SO(3), or skipped when that would take too many steps |
-//! | general | DOP853 | DOP853 with Ω |
+//! | general | DOP853, or the Taylor method at rtol ≤ 1e-10 ([`crate::sim::auto_integrator`]) | the same method, with Ω |
 //! | full | physical solution of (3.4), backward shooting | driven by it |
 //!
 //! A span that would need more steps than [`MAX_STEPS`] is refused for the
@@ -27,7 +27,9 @@ use crate::sim::accuracy::{general_errors, secular_errors, symmetric_errors};
 use crate::sim::cost::{TIGHTEST_RTOL, stepping_error, steps_per_radian, tolerance_for};
 use crate::sim::orbit::{Force, OrbitConfig};
 use crate::sim::secular::{Law, averaging_error};
-use crate::sim::{InitialState, Method, MethodChoice, MethodOptions, Model, Sample};
+use crate::sim::{
+    InitialState, Method, MethodChoice, MethodOptions, Model, Sample, auto_integrator,
+};
 use serde::Serialize;
 
 /// The most steps any integration of a scene may take (the integrators' own cap).
@@ -115,8 +117,22 @@ pub use crate::sim::cost::turning_angle;
 /// method a choice runs is [`Model::method`]'s to say; a refused choice,
 /// which the scene's validation has already turned away, is labelled by its
 /// name).
-fn label(model: &Model, method: MethodChoice) -> &'static str {
-    model.method(method).map_or(method.name(), |m| m.label())
+fn label(model: &Model, method: MethodChoice, options: &MethodOptions) -> &'static str {
+    model
+        .method(method, options)
+        .map_or(method.name(), |m| m.label())
+}
+
+/// How a scene's reason names the integrator `auto` steps an asymmetric top
+/// with.
+fn integrator_words(method: Method) -> String {
+    match method {
+        Method::Taylor => format!(
+            "the Taylor series method (orientation as a unit quaternion; at rtol <= {:.0e} it is faster than DOP853, measured)",
+            crate::sim::TAYLOR_AUTO_RTOL
+        ),
+        _ => "DOP853 (orientation on SO(3))".to_string(),
+    }
 }
 
 fn reduced_tau_k(top: &SymmetricTop, omega0: &Vec3) -> Real {
@@ -138,9 +154,10 @@ pub fn radiation_share(model: &Model, omega0: &Vec3) -> Real {
 /// How a general top's run is answered when its method is `auto`.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) enum GeneralPath {
-    /// DOP853 on Ω and the orientation, at this integrator tolerance (at
-    /// most the scene's, tightened so that the error over the run stays
-    /// within it), taking about this many steps.
+    /// `auto`'s integrator on Ω and the orientation (DOP853, or the Taylor
+    /// method: [`crate::sim::auto_integrator`]), at this integrator
+    /// tolerance (at most the scene's, tightened so that the error over the
+    /// run stays within it), taking about this many steps.
     Stepped {
         /// The integrator's tolerance.
         rtol: Real,
@@ -164,7 +181,7 @@ pub(super) enum GeneralPath {
 /// for instead.
 pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Real) -> GeneralPath {
     let angle = turning_angle(model, omega0, t_last);
-    let per_radian = |r: Real| steps_per_radian(Method::Dop853, r);
+    let per_radian = |r: Real| steps_per_radian(auto_integrator(r), r);
     let stepped = tolerance_for(rtol, angle).map(|r| (r, angle * per_radian(r)));
     if let Some((r, steps)) = stepped
         && steps <= MAX_STEPS
@@ -381,7 +398,7 @@ pub(super) fn plan_top(
             ));
         }
     }
-    let auto = label(model, MethodChoice::Auto);
+    let auto = label(model, MethodChoice::Auto, options);
     let closed = model.has_closed_form();
     let too_many = |steps: Real, what: &str| -> String {
         let hint = if closed {
@@ -528,11 +545,13 @@ pub(super) fn plan_top(
                     } else {
                         String::new()
                     };
+                    let integrator = auto_integrator(rtol);
                     TopPlan {
                         chosen: Chosen::new(
-                            "dop853",
+                            integrator.label(),
                             format!(
-                                "the asymmetric top ({equations}) has no closed form: omega and the orientation are integrated together by DOP853 (orientation on SO(3)){tighter}, about {steps:.1e} steps"
+                                "the asymmetric top ({equations}) has no closed form: omega and the orientation are integrated together by {}{tighter}, about {steps:.1e} steps",
+                                integrator_words(integrator)
                             ),
                         ),
                         orientation: Orientation::Computed,
@@ -571,9 +590,15 @@ pub(super) fn plan_top(
                 }
             }
         }
-        (_, MethodChoice::Dopri5 | MethodChoice::Dop853 | MethodChoice::Radau5) => {
-            let name = label(model, method);
-            let resolved = model.method(method).ok();
+        (
+            _,
+            MethodChoice::Dopri5
+            | MethodChoice::Dop853
+            | MethodChoice::Radau5
+            | MethodChoice::Taylor,
+        ) => {
+            let name = label(model, method, options);
+            let resolved = model.method(method, options).ok();
             let estimate = resolved
                 .and_then(|m| crate::sim::cost::estimate(model, m, options, &omega0, t_last));
             if let Some(e) = &estimate

@@ -52,7 +52,7 @@ pub struct TopScene {
 /// The model names of `[top] model`.
 pub const MODELS: [&str; 5] = ["truncated", "reduced", "general", "full", "auto"];
 /// The method names of `[solve] method` (see [`MethodChoice::NAMES`]).
-pub const METHODS: [&str; 7] = MethodChoice::NAMES;
+pub const METHODS: [&str; MethodChoice::NAMES.len()] = MethodChoice::NAMES;
 pub(super) fn top_scene(
     ctx: &Ctx,
     raw: &RawTop,

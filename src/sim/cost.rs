@@ -18,21 +18,23 @@ pub const MAX_STEPS: Real = crate::integrate::DEFAULT_MAX_STEPS as Real;
 pub const FULL_TURN_PER_STEP: Real = 0.05;
 
 // ANCHOR: steps_per_radian
-/// Steps (accepted and rejected) DP5, DOP853 and Radau IIA 5 take per radian
-/// the body turns, at each tolerance: the most any of six free tops took
-/// (asymmetric, elongated, near the separatrix, symmetric), Ω and the
-/// orientation stepped together, with 10 % to spare (30 % for Radau IIA 5,
-/// measured on fewer turns). `tests/numerics/cost.rs` measures them again.
-const STEPS_PER_RADIAN: [(Real, [Real; 3]); 8] = [
-    //  rtol    DP5   DOP853 Radau5
-    (1e-4, [3.2, 1.0, 3.5]),
-    (1e-6, [6.6, 1.1, 7.8]),
-    (1e-8, [16.0, 2.3, 18.0]),
-    (1e-10, [41.0, 4.0, 37.0]),
-    (1e-11, [64.0, 5.4, 54.0]),
-    (1e-12, [100.0, 6.9, 78.0]),
-    (1e-13, [155.0, 9.0, 113.0]),
-    (1e-14, [242.0, 12.6, 165.0]),
+/// Steps (accepted and rejected) DP5, DOP853, Radau IIA 5 and the Taylor
+/// method take per radian the body turns, at each tolerance: the most any of
+/// six free tops took (asymmetric, elongated, near the separatrix,
+/// symmetric), Ω and the orientation stepped together, with 10 % to spare
+/// (30 % for Radau IIA 5, measured on fewer turns; the Taylor method's on
+/// the three asymmetric tops of `tests/numerics/cost.rs`, which measures
+/// them all again).
+const STEPS_PER_RADIAN: [(Real, [Real; 4]); 8] = [
+    //  rtol    DP5   DOP853 Radau5 Taylor
+    (1e-4, [3.2, 1.0, 3.5, 2.0]),
+    (1e-6, [6.6, 1.1, 7.8, 2.0]),
+    (1e-8, [16.0, 2.3, 18.0, 1.9]),
+    (1e-10, [41.0, 4.0, 37.0, 1.9]),
+    (1e-11, [64.0, 5.4, 54.0, 1.9]),
+    (1e-12, [100.0, 6.9, 78.0, 1.9]),
+    (1e-13, [155.0, 9.0, 113.0, 1.9]),
+    (1e-14, [242.0, 12.6, 165.0, 1.9]),
 ];
 // ANCHOR_END: steps_per_radian
 
@@ -45,6 +47,7 @@ pub fn steps_per_radian(method: Method, rtol: Real) -> Real {
         Method::Dopri5 => 0,
         Method::Dop853 => 1,
         Method::Radau5 => 2,
+        Method::Taylor => 3,
         _ => return 1.0,
     };
     let x = rtol.clamp(1e-14, 1e-4).log10();
@@ -182,16 +185,22 @@ pub fn estimate(
             "the full ALE (3.4)'s physical solution (a table with hOmega <= 0.05 and h <= tau/4)"
                 .into(),
         ),
-        (Model::Reduced(top), Method::Dopri5 | Method::Dop853) => {
+        (Model::Reduced(top), Method::Dopri5 | Method::Dop853 | Method::Taylor) => {
             let turning = angle * steps_per_radian(method, options.rtol());
             // The reduced model's damping rate never falls below tau k^2
             // (k = (I3/I1) Omega3 is constant), and an explicit method's step
             // cannot exceed its stability limit over that rate: about 3.3/λ
             // for DP5 and 6/λ for DOP853 (the where-methods-fail chapter
             // measures 19378 DP5 steps at S = 1000, t = 10; this gives 19393).
+            // The Taylor method's is its series' stability interval, 5.45/λ
+            // at rtol 1e-8 to 8.1/λ at 1e-14.
             let k = top.ratio() * omega0.z;
             let rate = top.tau() * k * k;
-            let limit = if method == Method::Dopri5 { 3.3 } else { 6.0 };
+            let limit = match method {
+                Method::Dopri5 => 3.3,
+                Method::Taylor => crate::integrate::taylor::stability_interval(options.rtol()),
+                _ => 6.0,
+            };
             let stiff = t_last * rate / limit;
             if stiff > turning {
                 Some(Estimate {
@@ -218,7 +227,7 @@ pub fn estimate(
 fn per_radian(method: Method, model: &Model, options: &MethodOptions) -> String {
     let name = method_name(method, model);
     match method {
-        Method::Dopri5 | Method::Dop853 | Method::Radau5 => format!(
+        Method::Dopri5 | Method::Dop853 | Method::Radau5 | Method::Taylor => format!(
             "{name} at rtol {:.0e} (about {:.1} steps per radian of turning, measured)",
             options.rtol(),
             steps_per_radian(method, options.rtol())
@@ -233,6 +242,7 @@ fn method_name(method: Method, model: &Model) -> &'static str {
         Method::Dop853 if matches!(model, Model::General(_)) => "DOP853 on the general top (3.3)",
         Method::Dop853 => "DOP853",
         Method::Radau5 => "Radau IIA 5",
+        Method::Taylor => "the Taylor method",
         _ => "the integration",
     }
 }

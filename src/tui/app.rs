@@ -470,9 +470,13 @@ impl Settings {
         let mut total = 0.0;
         let mut costliest: Option<crate::sim::cost::Estimate> = None;
         for (plan, _) in self.top.plans(self.method, self.omega0)? {
-            let method = plan.model.method(plan.choice).map_err(|e| e.to_string())?;
-            let t = plan.horizon.unwrap_or(self.warp());
+            // The options the view's simulations run with (`tui::stepper`).
             let options = MethodOptions::default();
+            let method = plan
+                .model
+                .method(plan.choice, &options)
+                .map_err(|e| e.to_string())?;
+            let t = plan.horizon.unwrap_or(self.warp());
             let Some(e) = crate::sim::cost::estimate(&plan.model, method, &options, &omega0, t)
             else {
                 continue;
@@ -635,7 +639,9 @@ pub struct Column {
 impl Column {
     fn new(plan: Plan, stand_in: Option<String>) -> Result<Self, String> {
         let model = plan.model;
-        let method = model.method(plan.choice).map_err(|e| e.to_string())?;
+        let method = model
+            .method(plan.choice, &MethodOptions::default())
+            .map_err(|e| e.to_string())?;
         let initial = plan.initial;
         let start = Sample::new(0.0, &model.inertia(), &initial.rotation, &initial.omega);
         let mut column = Self {

@@ -10,6 +10,7 @@
 //! | [`Method::Physical`] | rtol | full ALE (3.4): backward DOP853 + shooting | – |
 //! | [`Method::Radau5`] | rtol | truncated, reduced, general | – |
 //! | [`Method::RotationDamping`] | step h | reduced: exact rotation ∘ damping splitting | – |
+//! | [`Method::Taylor`] | rtol | truncated, reduced, general (each model's own recurrences) | the same, with the orientation quaternion |
 //!
 //! "Ω alone" integrates Ω̇ = F(Ω), the three equations a student would hand to
 //! SciPy, through [`crate::integrate::solve`]: this is the row the peers are
@@ -19,9 +20,10 @@
 
 use super::problem::{OmegaRhs, Problem, ProblemKind};
 use super::{KnobKind, Solution, Solver, Target};
+use crate::integrate::taylor::{GeneralTruncated, SymmetricReduced, SymmetricTruncated};
 use crate::integrate::{
     self, AdaptiveOptions, Composition, Dop853, Dopri5, IntegrateError, Radau5, Rhs, Rk4,
-    Splitting, Stepper,
+    Splitting, Stepper, Taylor, TaylorRhs,
 };
 use crate::math::{Real, State, Vec3};
 use crate::physics::symmetric_top::{reduced_ale_rhs, reduced_closed_form_many, truncated_ale_rhs};
@@ -36,7 +38,7 @@ use crate::sim::{Method, MethodOptions, Model, Simulation};
 /// `solve_omega` (and in `solve_with_orientation` once [`crate::sim`] can
 /// run it). The sweep, the table, the charts, the CSV and the join need no
 /// change.
-pub const SWEPT: [Method; 8] = [
+pub const SWEPT: [Method; 9] = [
     Method::ClosedForm,
     Method::ClosedFormDop853,
     Method::Rk4,
@@ -45,6 +47,7 @@ pub const SWEPT: [Method; 8] = [
     Method::Physical,
     Method::Radau5,
     Method::RotationDamping,
+    Method::Taylor,
 ];
 // NOTE: Strang and Yoshida-4 split the free top (τ = 0), which is not one of
 // the four problems here; stability row 4 measures them.
@@ -70,7 +73,8 @@ pub fn knob(method: Method) -> KnobKind {
         | Method::Dop853
         | Method::Physical
         | Method::Forward
-        | Method::Radau5 => KnobKind::Rtol,
+        | Method::Radau5
+        | Method::Taylor => KnobKind::Rtol,
     }
 }
 
@@ -81,7 +85,7 @@ pub fn applies_to(method: Method, problem: ProblemKind, target: Target) -> bool 
         (Method::ClosedForm, Target::Omega) => matches!(problem, P::Truncated | P::Reduced),
         (Method::ClosedForm, Target::OmegaOrientation) => problem == P::Truncated,
         (Method::ClosedFormDop853, Target::OmegaOrientation) => problem == P::Reduced,
-        (Method::Rk4 | Method::Dopri5 | Method::Dop853, _) => problem != P::Full,
+        (Method::Rk4 | Method::Dopri5 | Method::Dop853 | Method::Taylor, _) => problem != P::Full,
         (Method::Physical, Target::Omega) => problem == P::Full,
         (Method::Radau5, Target::Omega) => problem != P::Full,
         (Method::RotationDamping, Target::Omega) => problem == P::Reduced,
@@ -138,11 +142,17 @@ impl Solver for Spintop {
     }
 
     /// The full ALE's reference is the physical solution at rtol 1e-13: a run
-    /// at that tolerance or tighter would be measured against itself.
+    /// at that tolerance or tighter would be measured against itself. Ω and
+    /// O(t) go through a [`Simulation`], which takes no rtol below
+    /// [`crate::sim::MIN_RTOL`] (the sweep's 1e-15 is for Ω alone).
     fn accepts(&self, problem: &Problem, knob: Option<Real>) -> bool {
-        !(self.method == Method::Physical
+        let rtol = knob.filter(|_| self::knob(self.method) == KnobKind::Rtol);
+        let reference = self.method == Method::Physical
             && problem.kind() == ProblemKind::Full
-            && knob.is_some_and(|rtol| rtol <= super::problem::FULL_REFERENCE_RTOL))
+            && rtol.is_some_and(|r| r <= super::problem::FULL_REFERENCE_RTOL);
+        let simulated = self.target == Target::OmegaOrientation
+            && rtol.is_some_and(|r| r < crate::sim::MIN_RTOL);
+        !(reference || simulated)
     }
 
     fn solve(&self, problem: &Problem, knob: Option<Real>) -> Result<Solution, String> {
@@ -287,6 +297,9 @@ fn solve_omega(
         .omega_rhs()
         .ok_or_else(|| not_applicable(method, problem))?;
     let knob = knob_value(method, knob)?;
+    if method == Method::Taylor {
+        return taylor_omega(problem, rhs, knob, y0, times);
+    }
     // NOTE: the model is chosen here, once per solve: each arm hands the
     // stepper a right-hand side of its own type, so the step loop is
     // monomorphic in it and no evaluation matches on the model.
@@ -325,6 +338,33 @@ fn integrate_omega<R: Rhs<3>>(
         _ => return Err(not_applicable(method, problem)),
     })
 }
+
+// ANCHOR: taylor_omega
+/// Ω alone by the Taylor method: each model hands the stepper its own
+/// recurrences (the [`Rhs`] view is what [`integrate::solve`] is given).
+fn taylor_omega(
+    problem: &Problem,
+    rhs: OmegaRhs,
+    rtol: Real,
+    y0: Vec3,
+    times: &[Real],
+) -> Result<Solution, RunError> {
+    fn run<S: TaylorRhs<3> + Rhs<3> + Copy>(
+        system: S,
+        y0: Vec3,
+        opts: AdaptiveOptions,
+        times: &[Real],
+    ) -> Result<Solution, IntegrateError> {
+        run_stepper(Taylor::new(system, 0.0, y0, opts)?, &system, times)
+    }
+    let opts = adaptive(problem, rtol)?;
+    Ok(match rhs {
+        OmegaRhs::Truncated(top) => run(SymmetricTruncated(top), y0, opts, times)?,
+        OmegaRhs::Reduced(top) => run(SymmetricReduced(top), y0, opts, times)?,
+        OmegaRhs::General(top) => run(GeneralTruncated(top), y0, opts, times)?,
+    })
+}
+// ANCHOR_END: taylor_omega
 
 /// Ω and O(t), the way `spintop simulate` computes them.
 fn solve_with_orientation(

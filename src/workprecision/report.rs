@@ -35,8 +35,15 @@ pub const CSV_COLUMNS: [&str; 14] = [
     "status",
 ];
 
-/// The matched errors of the join.
-pub const MATCHED_ERRORS: [Real; 2] = [1e-8, 1e-12];
+/// The matched errors of the join: where a student's question usually sits
+/// (1e-8), and down to the last digits a double holds (1e-14), where the
+/// methods part ways.
+pub const MATCHED_ERRORS: [Real; 4] = [1e-8, 1e-10, 1e-12, 1e-14];
+
+/// The index of `error` in [`MATCHED_ERRORS`].
+pub fn matched_index(error: Real) -> Option<usize> {
+    MATCHED_ERRORS.iter().position(|&e| e == error)
+}
 
 fn cell<T: ToString>(x: Option<T>) -> String {
     x.map(|v| v.to_string()).unwrap_or_default()
@@ -263,6 +270,7 @@ pub fn marker(source: &str, method: &str) -> char {
         ("spintop", "rk4") => '4',
         ("spintop", "dopri5") => '5',
         ("spintop", "dop853") => '8',
+        ("spintop", "taylor") => 't',
         ("spintop", "physical") => 'P',
         // Reserved for the methods being added (see `Method`).
         ("spintop", "radau5") => 'I',
@@ -401,9 +409,9 @@ pub struct Matched {
     /// The method.
     pub method: String,
     /// Wall time at each of [`MATCHED_ERRORS`].
-    pub time: [Option<Real>; 2],
+    pub time: [Option<Real>; MATCHED_ERRORS.len()],
     /// RHS evaluations at each of [`MATCHED_ERRORS`].
-    pub evals: [Option<Real>; 2],
+    pub evals: [Option<Real>; MATCHED_ERRORS.len()],
 }
 
 /// Every (problem, source, method) of the [`Target::Omega`] rows, with its
@@ -461,8 +469,8 @@ pub fn best<'a>(m: &'a [Matched], model: &str, source: &str, i: usize) -> Option
 }
 
 /// The side-by-side table of a join: every method's time and evaluations at
-/// error 1e-8 and 1e-12, and per problem each source's best against spintop's
-/// best (how many times longer it takes).
+/// each of [`MATCHED_ERRORS`], and per problem each source's best against
+/// spintop's best (how many times longer it takes).
 pub fn join_table(rows: &[Row]) -> String {
     let m = matched(rows);
     let mut out = String::new();
@@ -484,22 +492,23 @@ pub fn join_table(rows: &[Row]) -> String {
             out,
             "\n[{model}] cost at matched max relative error of Ω (interpolated in log-log; - = not reached)"
         );
-        let _ = writeln!(
-            out,
-            "{:<12} {:<20} {:>12} {:>12} {:>10} {:>10}",
-            "source", "method", "time @1e-8", "time @1e-12", "evals 1e-8", "evals 1e-12"
-        );
+        let mut head = format!("{:<12} {:<20}", "source", "method");
+        for e in MATCHED_ERRORS {
+            let _ = write!(head, " {:>12}", format!("time @{e:.0e}"));
+        }
+        for e in MATCHED_ERRORS {
+            let _ = write!(head, " {:>11}", format!("evals {e:.0e}"));
+        }
+        let _ = writeln!(out, "{head}");
         for x in m.iter().filter(|x| x.model == model) {
-            let _ = writeln!(
-                out,
-                "{:<12} {:<20} {:>12} {:>12} {:>10} {:>10}",
-                x.source,
-                x.method,
-                duration(x.time[0]),
-                duration(x.time[1]),
-                fmt_evals(x.evals[0]),
-                fmt_evals(x.evals[1]),
-            );
+            let mut line = format!("{:<12} {:<20}", x.source, x.method);
+            for t in x.time {
+                let _ = write!(line, " {:>12}", duration(t));
+            }
+            for e in x.evals {
+                let _ = write!(line, " {:>11}", fmt_evals(e));
+            }
+            let _ = writeln!(out, "{line}");
         }
         for (i, e) in MATCHED_ERRORS.iter().enumerate() {
             let Some(ours) = best(&m, model, "spintop", i) else {
@@ -525,6 +534,70 @@ pub fn join_table(rows: &[Row]) -> String {
         }
     }
     out
+}
+
+/// The methods the book's work-precision figure draws, (source, method): the
+/// Taylor method, spintop's two explicit pairs, and each compiled peer's best
+/// Runge–Kutta method (`ode_solvers`' Dop853 with its extrapolated last value
+/// replaced, its own accuracy). `spintop bench --join` charts everything.
+pub const FIGURE_METHODS: [(&str, &str); 6] = [
+    ("spintop", "taylor"),
+    ("spintop", "dop853"),
+    ("spintop", "dopri5"),
+    ("ode_solvers", "Dop853 (t<200)"),
+    ("differential-equations", "rkv988e"),
+    ("diffsol", "tsit45"),
+];
+
+/// The book's work-precision figure from the rows of a peers run (`cargo
+/// bench -p spintop-benches --bench peers -- --out FILE.csv`): one panel per
+/// first-order problem, log₁₀ of the median time of one solve against log₁₀
+/// of its error, one curve per method of [`FIGURE_METHODS`]. `None` when no
+/// row has both numbers.
+pub fn work_precision_figure(rows: &[Row]) -> Option<String> {
+    let mut panels = Vec::new();
+    for model in ["truncated", "reduced", "general"] {
+        let mut curves = Vec::new();
+        for (source, method) in FIGURE_METHODS {
+            let mut points: Vec<(Real, Real)> = rows
+                .iter()
+                .filter(|r| r.ok() && r.target == Target::Omega && r.model == model)
+                .filter(|r| r.source == source && r.method == method)
+                .filter_map(|r| {
+                    let err = r.omega_error?.max(ERROR_FLOOR);
+                    Some((err.log10(), (r.time_s? * 1e6).log10()))
+                })
+                .collect();
+            if points.is_empty() {
+                continue;
+            }
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let label = if source == "spintop" {
+                method.to_string()
+            } else {
+                format!("{source} {method}")
+            };
+            curves.push((label, points));
+        }
+        if !curves.is_empty() {
+            panels.push(crate::plot::panels::Panel {
+                caption: format!("{model} model"),
+                x_label: "log10 max relative error of Omega".into(),
+                y_label: "log10 time of one solve [us]".into(),
+                curves,
+            });
+        }
+    }
+    if panels.is_empty() {
+        return None;
+    }
+    // The curves fall from the upper left (tight errors, slow) to the lower
+    // right: the upper right corner is free for the legend.
+    Some(crate::plot::panels::panels_svg_legend(
+        "Work against precision, T = 200 tau, 200 outputs: the time of one solve against its error",
+        &panels,
+        plotters::prelude::SeriesLabelPosition::UpperRight,
+    ))
 }
 
 /// The book's cost-against-horizon chart from the medians of `cargo bench -p

@@ -49,6 +49,7 @@ fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
         "closed-form+dop853",
         "radau5",
         "rotation-damping",
+        "taylor",
     ] {
         assert!(stdout.contains(method), "{method} missing:\n{stdout}");
     }

@@ -32,7 +32,8 @@ fn simulate_json_follows_the_contract_for_every_model() {
                 "0.2,0,1",
             ],
             "general",
-            "dop853",
+            // auto at the default rtol 1e-10: below the measured crossover.
+            "taylor",
         ),
         (
             &["--model", "truncated", "--method", "rk4", "--step", "0.05"],
@@ -191,6 +192,51 @@ fn eq_4_15_radau5_through_the_cli_agrees_with_the_closed_form() {
             }
         }
     }
+}
+
+/// `--method taylor` on the reduced model agrees with the closed form
+/// (4.15)-(4.16) for Omega and with the closed form's orientation (integrated
+/// by DOP853 at 1e-12), through the CLI; `auto` on the general top picks the
+/// Taylor method at a tight rtol and says so.
+#[test]
+fn eq_4_15_taylor_through_the_cli_agrees_with_the_closed_form() {
+    let times = ["--times", "10,50,100"];
+    let exact = json(&["--model", "reduced", "--rtol", "1e-12", times[0], times[1]]);
+    let taylor = json(&[
+        "--model", "reduced", "--method", "taylor", "--rtol", "1e-12", times[0], times[1],
+    ]);
+    assert_eq!(taylor["method"], "taylor");
+    for k in 0..3 {
+        let a = vec_of(&exact["samples"][k]["omega"], 3);
+        let b = vec_of(&taylor["samples"][k]["omega"], 3);
+        for i in 0..3 {
+            assert!((a[i] - b[i]).abs() < 1e-13, "t #{k}: {a:?} vs {b:?}");
+        }
+        for row in 0..3 {
+            let a = vec_of(&exact["samples"][k]["rotation"][row], 3);
+            let b = vec_of(&taylor["samples"][k]["rotation"][row], 3);
+            for i in 0..3 {
+                assert!((a[i] - b[i]).abs() < 1e-10, "t #{k}: {a:?} vs {b:?}");
+            }
+        }
+    }
+    let general = |rtol: &str| {
+        json(&[
+            "--model",
+            "general",
+            "--inertia",
+            "1,1.5,0.8",
+            "--dipole",
+            "0.2,0,1",
+            "--rtol",
+            rtol,
+            "--times",
+            "10",
+        ])["method"]
+            .clone()
+    };
+    assert_eq!(general("1e-12"), "taylor");
+    assert_eq!(general("1e-6"), "dop853");
 }
 
 /// `--model full --inertia --dipole`: the physical solution of (3.4) for any

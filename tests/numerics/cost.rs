@@ -61,9 +61,9 @@ fn run(
     (out, stats.steps + stats.rejected)
 }
 
-/// Over 300 rad of turning, DP5, DOP853 and Radau IIA 5 (Ω and the
-/// orientation together) take no more steps per radian than the planner
-/// counts, and no fewer than a third of them.
+/// Over 300 rad of turning, DP5, DOP853, Radau IIA 5 and the Taylor method
+/// (Ω and the orientation together) take no more steps per radian than the
+/// planner counts, and no fewer than a third of them.
 #[test]
 fn the_planners_steps_per_radian_bound_the_measured_ones_within_a_factor_3() {
     let mut report = Vec::new();
@@ -78,6 +78,11 @@ fn the_planners_steps_per_radian_bound_the_measured_ones_within_a_factor_3() {
             ),
             (MethodChoice::Dopri5, Method::Dopri5, &[1e-6, 1e-10][..]),
             (MethodChoice::Radau5, Method::Radau5, &[1e-6, 1e-10][..]),
+            (
+                MethodChoice::Taylor,
+                Method::Taylor,
+                &[1e-4, 1e-8, 1e-10, 1e-14][..],
+            ),
         ] {
             for &rtol in rtols {
                 let (_, steps) = run(model, choice, rtol, omega0, &[t_end]);
@@ -97,10 +102,13 @@ fn the_planners_steps_per_radian_bound_the_measured_ones_within_a_factor_3() {
     }
 }
 
-/// DOP853's error of Ω (relative) and of the orientation (radians) after φ
-/// radians at tolerance r, against a run at rtol 1e-13: within the planner's
-/// r(1 + 5e-3 φ²), and growing with the turning (more than tenfold from 30
-/// to 1000 rad), so the law is not a bound that nothing reaches.
+/// DOP853's and the Taylor method's error of Ω (relative) and of the
+/// orientation (radians) after φ radians at tolerance r, against a run of
+/// the other method at rtol 1e-13 (neither is measured against itself):
+/// within the planner's r(1 + 5e-3 φ²), which `auto` tightens its tolerance
+/// by whichever of the two it steps with; and DOP853's grows with the
+/// turning (more than tenfold from 30 to 1000 rad), so the law is not a
+/// bound that nothing reaches.
 #[test]
 fn the_integrators_error_grows_with_the_turning_within_the_planners_law() {
     for (top, omega0) in tops().into_iter().take(2) {
@@ -108,26 +116,34 @@ fn the_integrators_error_grows_with_the_turning_within_the_planners_law() {
         let rate = turning_angle(&model, &omega0, 1.0);
         let angles = [30.0, 1000.0];
         let times: Vec<Real> = angles.iter().map(|a| a / rate).collect();
-        let (reference, _) = run(model, MethodChoice::Dop853, 1e-13, omega0, &times);
-        for rtol in [1e-8, 1e-10] {
-            let (out, _) = run(model, MethodChoice::Dop853, rtol, omega0, &times);
-            let errors: Vec<Real> = out
-                .iter()
-                .zip(&reference)
-                .map(|(a, b)| {
-                    let omega = (a.omega_vec() - b.omega_vec()).norm() / omega0.norm();
-                    let turn = (a.rotation_matrix() - b.rotation_matrix()).norm();
-                    omega.max(turn)
-                })
-                .collect();
-            for (e, &phi) in errors.iter().zip(&angles) {
-                assert!(
-                    *e <= stepping_error(rtol, phi),
-                    "rtol {rtol:e}, {phi} rad: {e:e} above {:e}",
-                    stepping_error(rtol, phi)
-                );
+        for (choice, other) in [
+            (MethodChoice::Dop853, MethodChoice::Taylor),
+            (MethodChoice::Taylor, MethodChoice::Dop853),
+        ] {
+            let (reference, _) = run(model, other, 1e-13, omega0, &times);
+            for rtol in [1e-8, 1e-10] {
+                let (out, _) = run(model, choice, rtol, omega0, &times);
+                let errors: Vec<Real> = out
+                    .iter()
+                    .zip(&reference)
+                    .map(|(a, b)| {
+                        let omega = (a.omega_vec() - b.omega_vec()).norm() / omega0.norm();
+                        let turn = (a.rotation_matrix() - b.rotation_matrix()).norm();
+                        omega.max(turn)
+                    })
+                    .collect();
+                for (e, &phi) in errors.iter().zip(&angles) {
+                    assert!(
+                        *e <= stepping_error(rtol, phi),
+                        "{} at rtol {rtol:e}, {phi} rad: {e:e} above {:e}",
+                        choice.name(),
+                        stepping_error(rtol, phi)
+                    );
+                }
+                if choice == MethodChoice::Dop853 {
+                    assert!(errors[1] > 10.0 * errors[0], "{errors:?}");
+                }
             }
-            assert!(errors[1] > 10.0 * errors[0], "{errors:?}");
         }
     }
 }
@@ -207,33 +223,39 @@ fn long_asymmetric_runs_are_answered_within_rtol_or_refused_before_they_start() 
 
 /// The same 3·10⁶-rad run on the command line, where DOP853 is asked for
 /// outright: refused before it starts (exit 2, about 1.2e7 steps at 4 per
-/// radian), no longer stopped by the step budget after 24 s.
+/// radian), no longer stopped by the step budget after 24 s. `auto` steps it
+/// with the Taylor method at the default rtol (1.9 steps per radian), so
+/// the same refusal comes at 6·10⁶ rad.
 #[test]
 fn a_long_asymmetric_run_on_the_command_line_is_refused_before_it_starts() {
     let rate = (Vec3::new(0.1, 0.05, 0.2).dot(&Vec3::new(0.1, 0.075, 0.16)) / 0.8).sqrt();
-    let t_end = format!("{:e}", 3e6 / rate);
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_spintop"))
-        .args([
-            "simulate",
-            "--model",
-            "general",
-            "--inertia",
-            "1,1.5,0.8",
-            "--dipole",
-            "2e-7,0,1e-6",
-            "--omega",
-            "0.1,0.05,0.2",
-            "--t-end",
-            &t_end,
-        ])
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains("steps per radian") && err.contains("more than the 1e7 allowed"),
-        "{err}"
-    );
+    for (method, radians) in [("dop853", 3e6), ("auto", 6e6)] {
+        let t_end = format!("{:e}", radians / rate);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_spintop"))
+            .args([
+                "simulate",
+                "--model",
+                "general",
+                "--inertia",
+                "1,1.5,0.8",
+                "--dipole",
+                "2e-7,0,1e-6",
+                "--omega",
+                "0.1,0.05,0.2",
+                "--t-end",
+                &t_end,
+                "--method",
+                method,
+            ])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{method}: {err}");
+        assert!(
+            err.contains("steps per radian") && err.contains("more than the 1e7 allowed"),
+            "{method}: {err}"
+        );
+    }
 }
 
 /// The 10⁶-rad run stepped by DOP853 at rtol 1e-13 (about 9e6 steps) agrees

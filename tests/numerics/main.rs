@@ -12,4 +12,5 @@ mod splitting;
 mod stability;
 mod stability_long_run;
 mod stability_stiffness;
+mod taylor;
 mod workprecision;
