@@ -598,8 +598,15 @@ impl Learn {
 
     /// The panes at the current size and mode.
     pub fn panes(&self) -> Panes {
+        self.panes_in(self.size)
+    }
+
+    /// The panes of a frame of `size` in the current mode. The view draws
+    /// in the frame it is given: after a resize the terminal draws a frame
+    /// at its new size before the resize event reaches [`Learn::apply`].
+    pub fn panes_in(&self, size: (u16, u16)) -> Panes {
         panes(
-            self.size,
+            size,
             self.mode == Mode::Scene,
             !matches!(self.stage, Stage::None),
         )

@@ -582,3 +582,39 @@ fn the_students_function_of_time_is_drawn_against_the_reference() {
     press(&mut learn, KeyCode::Left);
     assert!(!draw(&mut learn, 160, 48).contains("yours:"));
 }
+
+/// A terminal resized between two frames is drawn at its new size before
+/// the resize event reaches `apply` (the loop reads events only after the
+/// frame): the frame must then be drawn in the frame's own area, never in
+/// the size the state last heard of. Found by random keys and resizes under
+/// tmux: shrinking the window while a chapter's scene was shown panicked
+/// with "index outside of buffer" in the scene's columns.
+#[test]
+fn a_frame_of_a_new_size_draws_before_its_resize_event_arrives() {
+    let sizes = [(200u16, 60u16), (80, 24), (192, 12), (106, 18), (160, 48)];
+    for chapter in ["4.2", "2", "A", "asymmetric-top", "preface"] {
+        for scene_full in [false, true] {
+            for &(w0, h0) in &sizes {
+                for &(w, h) in &sizes {
+                    let mut learn = Learn::open(&book(), Some(chapter)).unwrap();
+                    learn.apply(Command::Resize(w0, h0));
+                    if scene_full {
+                        press(&mut learn, KeyCode::Tab);
+                    }
+                    // The terminal is now w×h; the state still thinks w0×h0.
+                    let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
+                    let drawn = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        terminal
+                            .draw(|f| spintop::tui::learn::view::draw(f, &learn))
+                            .unwrap();
+                    }));
+                    assert!(
+                        drawn.is_ok(),
+                        "{chapter} (scene full screen: {scene_full}): state at {w0}×{h0}, \
+                         frame at {w}×{h}: the draw panicked"
+                    );
+                }
+            }
+        }
+    }
+}

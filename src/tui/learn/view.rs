@@ -59,7 +59,7 @@ pub fn draw(frame: &mut Frame, learn: &Learn) {
         frame.render_widget(p, area);
         return;
     }
-    let panes = learn.panes();
+    let panes = learn.panes_in((area.width, area.height));
     draw_header(frame, panes.header, learn);
     if let Some(text) = panes.text {
         draw_text(frame, text, learn);
@@ -67,7 +67,7 @@ pub fn draw(frame: &mut Frame, learn: &Learn) {
     if let Some(scene) = panes.scene {
         draw_scene(frame, scene, learn);
     }
-    draw_status(frame, panes.status, learn);
+    draw_status(frame, panes.status, learn, panes.scene.is_some());
     draw_footer(frame, panes.footer, learn, panes.scene.is_some());
     match learn.mode() {
         Mode::Help => draw_help(frame, area),
@@ -280,7 +280,7 @@ fn shortened(text: &str, width: u16) -> String {
     format!("{}…", out.trim_end_matches([',', ':', ';']))
 }
 
-fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn) {
+fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) {
     let line = match (learn.mode(), learn.message()) {
         (Mode::Search(q), _) => Line::from(vec![
             Span::styled(" /", theme::key()),
@@ -300,7 +300,7 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn) {
                         Stage::Top(app) => live_status(app),
                         _ => playback_status(stage.paused()),
                     });
-                    if learn.panes().scene.is_none() {
+                    if !scene_shown {
                         spans.push(Span::styled("  (Tab shows it)", theme::label()));
                     }
                 }
