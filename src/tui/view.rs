@@ -135,9 +135,9 @@ pub(crate) fn fit_cells(cells: Vec<Cell>, width_: u16) -> Line<'static> {
     let part = |i: usize, pick: &[usize]| &cells[i].0[pick[i].min(cells[i].0.len() - 1)];
     let build = |pick: &[usize], hidden: &[bool], wide: bool| -> Vec<Span<'static>> {
         let mut spans = Vec::new();
-        for i in 0..cells.len() {
+        for (i, &hide) in hidden.iter().enumerate() {
             let part = part(i, pick);
-            if hidden[i] || part.is_empty() {
+            if hide || part.is_empty() {
                 continue;
             }
             if !spans.is_empty() {
