@@ -280,7 +280,7 @@ pub enum Command {
     ToggleScene,
     /// o: library source unfolded, or folded back to one line.
     ToggleFolds,
-    /// /: start typing a search.
+    /// /: start typing a search (an empty one repeats the last).
     SearchStart,
     /// A character of the search.
     SearchInput(char),
@@ -1070,10 +1070,9 @@ impl Learn {
                     false,
                 ));
             }
-            Command::SearchStart => {
-                let query = self.search.as_ref().map(|s| s.query.clone());
-                self.mode = Mode::Search(query.unwrap_or_default());
-            }
+            // As in `less`: `/` starts an empty field; Enter on it repeats
+            // the last search from the next match.
+            Command::SearchStart => self.mode = Mode::Search(String::new()),
             Command::SearchInput(c) => {
                 if let Mode::Search(q) = &mut self.mode
                     && q.chars().count() < 64
@@ -1089,7 +1088,9 @@ impl Learn {
             Command::SearchCommit => {
                 if let Mode::Search(q) = std::mem::replace(&mut self.mode, Mode::Read) {
                     if q.trim().is_empty() {
-                        self.search = None;
+                        if self.search.is_some() {
+                            self.jump(true, false);
+                        }
                     } else {
                         self.find(&q);
                         self.jump(true, true);

@@ -618,3 +618,36 @@ fn a_frame_of_a_new_size_draws_before_its_resize_event_arrives() {
         }
     }
 }
+
+/// `/` starts a new search, as in `less`: the word typed after it is the
+/// whole query (the last one is not kept in front of it), and `/` then
+/// Enter alone repeats the last search from the next match. Found under
+/// tmux: a second search typed "k4z" after "hundredfold" and looked for
+/// "hundredfoldk4z".
+#[test]
+fn a_new_search_starts_empty_and_an_empty_one_repeats_the_last() {
+    let mut learn = Learn::open(&book(), Some("A")).unwrap();
+    draw(&mut learn, 80, 24);
+    let search = |learn: &mut Learn, word: &str| {
+        press(learn, KeyCode::Char('/'));
+        for c in word.chars() {
+            press(learn, KeyCode::Char(c));
+        }
+        press(learn, KeyCode::Enter);
+    };
+    search(&mut learn, "hundredfold");
+    assert_eq!(learn.search().unwrap().query, "hundredfold");
+    search(&mut learn, "delay");
+    let found = learn.search().unwrap();
+    assert_eq!(found.query, "delay", "the second query stands alone");
+    assert!(found.matches.len() > 2, "“delay” is all over the appendix");
+    let at = found.at;
+    search(&mut learn, "");
+    let again = learn.search().expect("an empty search repeats the last");
+    assert_eq!(again.query, "delay");
+    assert_eq!(
+        again.at,
+        (at + 1) % again.matches.len(),
+        "…from the next match"
+    );
+}

@@ -285,7 +285,15 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
         (Mode::Search(q), _) => Line::from(vec![
             Span::styled(" /", theme::key()),
             Span::styled(format!("{q}▏"), theme::selected()),
-            Span::styled("  Enter finds, Esc cancels", theme::label()),
+            Span::styled(
+                match learn.search() {
+                    Some(last) if q.is_empty() => {
+                        format!("  Enter finds (alone: “{}” again), Esc cancels", last.query)
+                    }
+                    _ => "  Enter finds, Esc cancels".to_string(),
+                },
+                theme::label(),
+            ),
         ]),
         (_, Some((m, true))) => Line::from(Span::styled(format!(" {m}"), theme::error())),
         (_, Some((m, false))) => Line::from(Span::styled(format!(" {m}"), theme::info())),
