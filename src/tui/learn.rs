@@ -825,9 +825,10 @@ impl Learn {
                     .split_once('|')
                     .map_or(text.as_str(), |(s, _)| s)
                     .trim();
+                // The key first: the settings may be cut at 80 columns.
                 self.message = Some((
                     format!(
-                        "experiment {} of {n} applied: {caption}{}",
+                        "experiment {} of {n} applied{}: {caption}",
                         k + 1,
                         if shown { "" } else { " (Tab shows the scene)" }
                     ),

@@ -651,3 +651,36 @@ fn a_new_search_starts_empty_and_an_empty_one_repeats_the_last() {
         "…from the next match"
     );
 }
+
+/// The status line at 80 columns never ends in the middle of a word: a
+/// message that does not fit is cut at a word and ends in "…", and an
+/// applied experiment says first that Tab shows the scene. Found under
+/// tmux: "experiment 1 of 3 applied: method=rk4 omega=0,10,20 warp=1 (Tab
+/// shows the sce" at 80×24.
+#[test]
+fn the_status_line_is_cut_only_between_words_and_keeps_the_tab_hint() {
+    let mut learn = Learn::open(&book(), Some("where-methods-fail")).unwrap();
+    let status_row = |shown: &str| {
+        // The TestBackend writes each row in quotes; the status is row 22.
+        let row = shown.lines().nth(22).unwrap();
+        row.trim_matches('"').trim().to_string()
+    };
+    for _ in 0..3 {
+        draw(&mut learn, 80, 24);
+        press(&mut learn, KeyCode::Char('x'));
+        let (message, _) = learn.message().cloned().expect("x says what it did");
+        let shown = status_row(&draw(&mut learn, 80, 24));
+        if shown != message.trim() {
+            let kept = shown
+                .strip_suffix('…')
+                .unwrap_or_else(|| panic!("cut without an ellipsis: {shown:?} of {message:?}"));
+            let kept = kept.trim_end();
+            assert!(
+                message.starts_with(kept)
+                    && message[kept.len()..].starts_with([' ', ',', ':', ';']),
+                "cut inside a word: {shown:?} of {message:?}"
+            );
+        }
+        assert!(shown.contains("Tab shows the scene"), "{shown:?}");
+    }
+}

@@ -295,8 +295,15 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
                 theme::label(),
             ),
         ]),
-        (_, Some((m, true))) => Line::from(Span::styled(format!(" {m}"), theme::error())),
-        (_, Some((m, false))) => Line::from(Span::styled(format!(" {m}"), theme::info())),
+        // A message too long for the line is cut at a word, with "…".
+        (_, Some((m, true))) => Line::from(Span::styled(
+            shortened(&format!(" {m}"), area.width),
+            theme::error(),
+        )),
+        (_, Some((m, false))) => Line::from(Span::styled(
+            shortened(&format!(" {m}"), area.width),
+            theme::info(),
+        )),
         _ => {
             let stage = learn.stage();
             let mut spans = vec![Span::styled(" scene ", theme::label())];
