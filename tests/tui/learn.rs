@@ -684,3 +684,57 @@ fn the_status_line_is_cut_only_between_words_and_keeps_the_tab_hint() {
         assert!(shown.contains("Tab shows the scene"), "{shown:?}");
     }
 }
+
+/// A scene's line names a key only where the key does something: "press x"
+/// only in a chapter with experiments, "m" only where the scene takes a
+/// method. Found under tmux: Numerical methods (no experiments) said "press
+/// x to break it", and x answered "this chapter has no experiments".
+#[test]
+fn a_scene_names_x_only_in_a_chapter_with_experiments() {
+    let mut learn = Learn::open(&book(), None).expect("the book opens");
+    for i in 0..learn.chapters().len() {
+        learn.apply(Command::Resize(80, 24));
+        let file = learn.chapters()[i].file.clone();
+        let about = learn.scene_info().describe();
+        if about.contains("press x") || about.contains("x runs") {
+            assert!(
+                !learn.rendered().experiments.is_empty(),
+                "{file}: the scene says “{about}” but the chapter has no experiment"
+            );
+        }
+        press(&mut learn, KeyCode::Right);
+    }
+}
+
+/// One subscript notation on the page: outside code (and tables, whose
+/// code-name columns are plain text), no `m_em`-style name is left that
+/// prose turns into `mₑₘ`, figure and diagram captions included.
+/// Found under tmux: the appendix's prose said mₑₘ and its diagram's caption
+/// m_em, a few lines apart.
+#[test]
+fn prose_and_captions_use_one_subscript_notation() {
+    let code = code_style();
+    let mut learn = Learn::open(&book(), None).expect("the book opens");
+    for _ in 0..learn.chapters().len() {
+        learn.apply(Command::Resize(80, 24));
+        let file = learn.chapters()[learn.current()].file.clone();
+        for line in &learn.rendered().lines {
+            // A table's cells are plain text, its code-name column included.
+            if line.spans.iter().any(|s| s.content == " │ ") {
+                continue;
+            }
+            for span in &line.spans {
+                if span.style.fg == code.fg {
+                    continue;
+                }
+                let text = span.content.as_ref();
+                assert_eq!(
+                    markdown::prose_subscripts(text),
+                    text,
+                    "{file}: a subscript left in ASCII in {line:?}"
+                );
+            }
+        }
+        press(&mut learn, KeyCode::Right);
+    }
+}
