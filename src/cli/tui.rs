@@ -61,7 +61,10 @@ pub(crate) fn execute(args: TuiArgs, out: &mut Gate<'_>) -> Result<(), CliError>
     let (settings, note) = args.settings()?;
     let limit = match args.bench {
         Some(s) if !(s > 0.0 && s <= 3600.0) => {
-            return Err(bad(format!("--bench takes 0 < SECONDS <= 3600, got {s}")));
+            return Err(bad(format!(
+                "--bench takes 0 < SECONDS <= 3600, got {}",
+                crate::numbers::fmt_value(s)
+            )));
         }
         s => s.map(Duration::from_secs_f64),
     };

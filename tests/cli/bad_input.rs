@@ -139,6 +139,16 @@ fn check(c: &Case) -> Option<String> {
             ));
         }
     }
+    // A number in a message is written as a number, never as hundreds of
+    // digits (`--bench 1e308` once echoed 309 of them).
+    let longest_digits = stderr
+        .split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0);
+    if longest_digits > 24 {
+        problems.push(format!("a run of {longest_digits} digits in the message"));
+    }
     let haystack = if code == 0 { &stdout } else { &stderr };
     if !haystack.contains(&c.fragment) {
         problems.push(format!("no {:?} in the message", c.fragment));
@@ -702,6 +712,7 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         (with(&["tui"], &["--ratio", "5"]), "I3/I1"),
         (with(&["tui"], &["--bench", "0"]), "bench"),
         (with(&["tui"], &["--bench", "1e9"]), "bench"),
+        (with(&["tui"], &["--bench", "1e308"]), "bench"),
         (with(&["tui"], &["nosuch-scene"]), "nosuch-scene"),
         (with(&["tui"], &["coulomb-collapse"]), "top scenes"),
         (with(&["tui"], &[]), "terminal"),
