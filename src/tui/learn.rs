@@ -1094,7 +1094,24 @@ impl Learn {
                         }
                     } else {
                         self.find(&q);
+                        // A word only in folded library source: show the
+                        // source whole (as o does) rather than miss it.
+                        let missed =
+                            |l: &Self| l.search.as_ref().is_some_and(|s| s.matches.is_empty());
+                        let mut unfolded_now = false;
+                        if missed(self) && !self.unfolded {
+                            self.unfolded = true;
+                            self.render();
+                            unfolded_now = !missed(self);
+                            if !unfolded_now {
+                                self.unfolded = false;
+                                self.render();
+                            }
+                        }
                         self.jump(true, true);
+                        if unfolded_now && let Some((text, _)) = &mut self.message {
+                            text.push_str(", in library source, now shown whole (o folds it)");
+                        }
                     }
                 }
             }

@@ -738,3 +738,31 @@ fn prose_and_captions_use_one_subscript_notation() {
         press(&mut learn, KeyCode::Right);
     }
 }
+
+/// A word that is only in folded library source is found: the search shows
+/// the source whole (as `o` does) and goes to it, instead of saying the word
+/// is not in the chapter. A word in neither leaves the folds as they were.
+/// Found under tmux: "k4z" (a variable of the appendix's method of steps)
+/// was "not in this chapter" until `o` was pressed.
+#[test]
+fn a_search_finds_words_in_folded_library_source() {
+    let mut learn = Learn::open(&book(), Some("A")).unwrap();
+    draw(&mut learn, 80, 24);
+    assert!(!learn.unfolded(), "library source starts folded");
+    let search = |learn: &mut Learn, word: &str| {
+        press(learn, KeyCode::Char('/'));
+        for c in word.chars() {
+            press(learn, KeyCode::Char(c));
+        }
+        press(learn, KeyCode::Enter);
+    };
+    search(&mut learn, "zqxj");
+    assert!(learn.search().unwrap().matches.is_empty());
+    assert!(!learn.unfolded(), "nothing found: the folds stay");
+    search(&mut learn, "k4z");
+    let found = learn.search().unwrap();
+    assert!(!found.matches.is_empty(), "k4z is in the method of steps");
+    assert!(learn.unfolded(), "the library source is shown whole");
+    let shown = draw(&mut learn, 80, 24);
+    assert!(shown.contains("k4z"), "the page shows the match:\n{shown}");
+}
