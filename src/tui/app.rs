@@ -1299,13 +1299,46 @@ impl App {
                     );
                     return;
                 }
-                let method = next_method(self.settings.method, &self.settings.top);
-                let candidate = Settings {
-                    method,
-                    ..self.settings
+                // The next method that can run live; the ones too costly
+                // here are skipped and named, so that m never sticks on a
+                // refusal (its advice may be "the closed forms (m)").
+                let mut method = self.settings.method;
+                let mut skipped: Vec<&str> = Vec::new();
+                let mut first_refusal = None;
+                let mut candidate = None;
+                for _ in 0..METHOD_CYCLE.len() {
+                    method = next_method(method, &self.settings.top);
+                    if method == self.settings.method {
+                        break;
+                    }
+                    let settings = Settings {
+                        method,
+                        ..self.settings
+                    };
+                    match settings.check_live() {
+                        Ok(()) => {
+                            candidate = Some(settings);
+                            break;
+                        }
+                        Err(e) => {
+                            skipped.push(method.title());
+                            first_refusal.get_or_insert(e);
+                        }
+                    }
+                }
+                let candidate = candidate.ok_or_else(|| {
+                    first_refusal.unwrap_or_else(|| "no other method can run this top".into())
+                });
+                let what = if skipped.is_empty() || candidate.is_err() {
+                    format!("method {}", method.title())
+                } else {
+                    format!(
+                        "method {} ({} skipped: too costly to draw live here)",
+                        method.title(),
+                        skipped.join(", ")
+                    )
                 };
-                let candidate = candidate.check_live().map(|()| candidate);
-                self.change(candidate, format!("method {}", method.title()));
+                self.change(candidate, what);
             }
             Command::ToggleLogTime => self.view.log_time = !self.view.log_time,
             Command::NextModel => {

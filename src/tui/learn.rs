@@ -280,7 +280,7 @@ pub enum Command {
     ToggleScene,
     /// o: library source unfolded, or folded back to one line.
     ToggleFolds,
-    /// /: start typing a search.
+    /// /: start typing a search (an empty one repeats the last).
     SearchStart,
     /// A character of the search.
     SearchInput(char),
@@ -598,8 +598,15 @@ impl Learn {
 
     /// The panes at the current size and mode.
     pub fn panes(&self) -> Panes {
+        self.panes_in(self.size)
+    }
+
+    /// The panes of a frame of `size` in the current mode. The view draws
+    /// in the frame it is given: after a resize the terminal draws a frame
+    /// at its new size before the resize event reaches [`Learn::apply`].
+    pub fn panes_in(&self, size: (u16, u16)) -> Panes {
         panes(
-            self.size,
+            size,
             self.mode == Mode::Scene,
             !matches!(self.stage, Stage::None),
         )
@@ -818,9 +825,10 @@ impl Learn {
                     .split_once('|')
                     .map_or(text.as_str(), |(s, _)| s)
                     .trim();
+                // The key first: the settings may be cut at 80 columns.
                 self.message = Some((
                     format!(
-                        "experiment {} of {n} applied: {caption}{}",
+                        "experiment {} of {n} applied{}: {caption}",
                         k + 1,
                         if shown { "" } else { " (Tab shows the scene)" }
                     ),
@@ -1063,10 +1071,9 @@ impl Learn {
                     false,
                 ));
             }
-            Command::SearchStart => {
-                let query = self.search.as_ref().map(|s| s.query.clone());
-                self.mode = Mode::Search(query.unwrap_or_default());
-            }
+            // As in `less`: `/` starts an empty field; Enter on it repeats
+            // the last search from the next match.
+            Command::SearchStart => self.mode = Mode::Search(String::new()),
             Command::SearchInput(c) => {
                 if let Mode::Search(q) = &mut self.mode
                     && q.chars().count() < 64
@@ -1082,10 +1089,29 @@ impl Learn {
             Command::SearchCommit => {
                 if let Mode::Search(q) = std::mem::replace(&mut self.mode, Mode::Read) {
                     if q.trim().is_empty() {
-                        self.search = None;
+                        if self.search.is_some() {
+                            self.jump(true, false);
+                        }
                     } else {
                         self.find(&q);
+                        // A word only in folded library source: show the
+                        // source whole (as o does) rather than miss it.
+                        let missed =
+                            |l: &Self| l.search.as_ref().is_some_and(|s| s.matches.is_empty());
+                        let mut unfolded_now = false;
+                        if missed(self) && !self.unfolded {
+                            self.unfolded = true;
+                            self.render();
+                            unfolded_now = !missed(self);
+                            if !unfolded_now {
+                                self.unfolded = false;
+                                self.render();
+                            }
+                        }
                         self.jump(true, true);
+                        if unfolded_now && let Some((text, _)) = &mut self.message {
+                            text.push_str(", in library source, now shown whole (o folds it)");
+                        }
                     }
                 }
             }

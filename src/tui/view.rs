@@ -124,16 +124,20 @@ fn width(spans: &[Span]) -> usize {
 }
 
 /// Cells joined by separators, made to fit `width`: narrower separators
-/// first, then the last cells' shorter renderings, last cell first, so that
-/// nothing is ever cut in the middle.
+/// first, then the last cells' shorter renderings, last cell first, then
+/// (when even the shortest do not fit) whole cells left out from the end,
+/// so that nothing is ever cut in the middle.
 pub(crate) fn fit_cells(cells: Vec<Cell>, width_: u16) -> Line<'static> {
     let limit = usize::from(width_);
     let mut pick = vec![0usize; cells.len()];
-    let build = |pick: &[usize], wide: bool| -> Vec<Span<'static>> {
+    // Cells left out whole when even their shortest rendering does not fit.
+    let mut hidden = vec![false; cells.len()];
+    let part = |i: usize, pick: &[usize]| &cells[i].0[pick[i].min(cells[i].0.len() - 1)];
+    let build = |pick: &[usize], hidden: &[bool], wide: bool| -> Vec<Span<'static>> {
         let mut spans = Vec::new();
-        for (cell, &k) in cells.iter().zip(pick) {
-            let part = &cell.0[k.min(cell.0.len() - 1)];
-            if part.is_empty() {
+        for (i, &hide) in hidden.iter().enumerate() {
+            let part = part(i, pick);
+            if hide || part.is_empty() {
                 continue;
             }
             if !spans.is_empty() {
@@ -146,21 +150,27 @@ pub(crate) fn fit_cells(cells: Vec<Cell>, width_: u16) -> Line<'static> {
         }
         spans
     };
-    if width(&build(&pick, true)) <= limit {
-        return Line::from(build(&pick, true));
+    if width(&build(&pick, &hidden, true)) <= limit {
+        return Line::from(build(&pick, &hidden, true));
     }
     loop {
-        let spans = build(&pick, false);
+        let spans = build(&pick, &hidden, false);
         if width(&spans) <= limit {
             return Line::from(spans);
         }
-        // Shorten the last cell that still can be.
-        match (0..cells.len())
+        // Shorten the last cell that still can be; when none can, leave
+        // out the last cell still shown but the first (whole: a cell is
+        // never cut in the middle).
+        let shorter = (0..cells.len())
             .rev()
-            .find(|&i| pick[i] + 1 < cells[i].0.len())
-        {
-            Some(i) => pick[i] += 1,
-            None => return Line::from(spans),
+            .find(|&i| pick[i] + 1 < cells[i].0.len());
+        let last_shown = (1..cells.len())
+            .rev()
+            .find(|&i| !hidden[i] && !part(i, &pick).is_empty());
+        match (shorter, last_shown) {
+            (Some(i), _) => pick[i] += 1,
+            (None, Some(i)) => hidden[i] = true,
+            (None, None) => return Line::from(spans),
         }
     }
 }
@@ -301,17 +311,22 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App, message: Vec<Line<'stat
             })],
         ),
     ];
+    // The body's constants give way before Ω₀ (the values the keys change,
+    // and the one being typed): dropped whole, never cut.
     let mut params = match settings.top() {
-        Top::Symmetric(top) | Top::Full(top) => vec![Cell::fixed(vec![
-            label(" I₃/I₁ = "),
-            value(fmt_param(top.ratio())),
-        ])],
+        Top::Symmetric(top) | Top::Full(top) => vec![Cell::or(
+            vec![label("I₃/I₁ = "), value(fmt_param(top.ratio()))],
+            Vec::new(),
+        )],
         Top::General(top) => vec![
-            Cell::fixed(vec![
-                label(" I = "),
-                value(fmt_triple(top.inertia().into())),
-            ]),
-            Cell::fixed(vec![label("d = "), value(fmt_triple(top.dipole().into()))]),
+            Cell::or(
+                vec![label("I = "), value(fmt_triple(top.inertia().into()))],
+                Vec::new(),
+            ),
+            Cell::or(
+                vec![label("d = "), value(fmt_triple(top.dipole().into()))],
+                Vec::new(),
+            ),
         ],
     };
     let mut omega = vec![label("Ω₀ = (")];
@@ -350,7 +365,10 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App, message: Vec<Line<'stat
         })],
         Vec::new(),
     ));
-    let mut lines = vec![fit_cells(first, area.width), fit_cells(params, area.width)];
+    // One column of margin, whichever cell comes first.
+    let mut params = fit_cells(params, area.width.saturating_sub(1));
+    params.spans.insert(0, Span::raw(" "));
+    let mut lines = vec![fit_cells(first, area.width), params];
     lines.extend(message);
     frame.render_widget(Paragraph::new(lines), area);
 }

@@ -740,6 +740,7 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         (with(&["tui"], &["--ratio", "5"]), "I3/I1"),
         (with(&["tui"], &["--bench", "0"]), "bench"),
         (with(&["tui"], &["--bench", "1e9"]), "bench"),
+        (with(&["tui"], &["--bench", "1e308"]), "bench"),
         (with(&["tui"], &["nosuch-scene"]), "nosuch-scene"),
         (with(&["tui"], &["coulomb-collapse"]), "top scenes"),
         (with(&["tui"], &[]), "terminal"),

@@ -303,6 +303,37 @@ fn method_cycles_closed_form_rk4_dp5_dop853_radau5() {
     }
 }
 
+/// `m` never sticks: at Ω₃₀ = 9·10⁴ RK4 is accepted (and blows up) while
+/// DP5, DOP853 and Radau5 are refused as too costly to draw live, and the
+/// refusal's advice is "the closed forms (m) take no steps". Pressing m must
+/// then reach the closed forms, skipping (and naming) the refused methods,
+/// not retry DP5 for ever. Found under tmux: five presses of m stayed on RK4.
+#[test]
+fn m_skips_the_methods_too_costly_to_draw_live_and_reaches_the_closed_forms() {
+    let settings = Settings::new(0.4, [0.0, 0.1, 9e4], MethodChoice::Rk4, 10.0).unwrap();
+    let mut app = App::new(settings).unwrap();
+    app.apply(Command::CycleMethod);
+    assert_eq!(
+        app.settings().method(),
+        MethodChoice::Exact,
+        "m goes on to the next method that can run: {:?}",
+        app.message()
+    );
+    let message = app.message().map(|m| m.text.clone()).unwrap_or_default();
+    for skipped in ["DP5", "DOP853", "Radau5"] {
+        assert!(
+            message.contains(skipped),
+            "the skipped methods are named: {message}"
+        );
+    }
+    // From the closed forms the cycle goes on to RK4, the only other method
+    // that can run here, and back.
+    app.apply(Command::CycleMethod);
+    assert_eq!(app.settings().method(), MethodChoice::Rk4);
+    app.apply(Command::CycleMethod);
+    assert_eq!(app.settings().method(), MethodChoice::Exact);
+}
+
 #[test]
 fn reset_log_help_and_quit() {
     let mut app = app();

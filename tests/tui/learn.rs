@@ -582,3 +582,187 @@ fn the_students_function_of_time_is_drawn_against_the_reference() {
     press(&mut learn, KeyCode::Left);
     assert!(!draw(&mut learn, 160, 48).contains("yours:"));
 }
+
+/// A terminal resized between two frames is drawn at its new size before
+/// the resize event reaches `apply` (the loop reads events only after the
+/// frame): the frame must then be drawn in the frame's own area, never in
+/// the size the state last heard of. Found by random keys and resizes under
+/// tmux: shrinking the window while a chapter's scene was shown panicked
+/// with "index outside of buffer" in the scene's columns.
+#[test]
+fn a_frame_of_a_new_size_draws_before_its_resize_event_arrives() {
+    let sizes = [(200u16, 60u16), (80, 24), (192, 12), (106, 18), (160, 48)];
+    for chapter in ["4.2", "2", "A", "asymmetric-top", "preface"] {
+        for scene_full in [false, true] {
+            for &(w0, h0) in &sizes {
+                for &(w, h) in &sizes {
+                    let mut learn = Learn::open(&book(), Some(chapter)).unwrap();
+                    learn.apply(Command::Resize(w0, h0));
+                    if scene_full {
+                        press(&mut learn, KeyCode::Tab);
+                    }
+                    // The terminal is now w×h; the state still thinks w0×h0.
+                    let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
+                    let drawn = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        terminal
+                            .draw(|f| spintop::tui::learn::view::draw(f, &learn))
+                            .unwrap();
+                    }));
+                    assert!(
+                        drawn.is_ok(),
+                        "{chapter} (scene full screen: {scene_full}): state at {w0}×{h0}, \
+                         frame at {w}×{h}: the draw panicked"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// `/` starts a new search, as in `less`: the word typed after it is the
+/// whole query (the last one is not kept in front of it), and `/` then
+/// Enter alone repeats the last search from the next match. Found under
+/// tmux: a second search typed "k4z" after "hundredfold" and looked for
+/// "hundredfoldk4z".
+#[test]
+fn a_new_search_starts_empty_and_an_empty_one_repeats_the_last() {
+    let mut learn = Learn::open(&book(), Some("A")).unwrap();
+    draw(&mut learn, 80, 24);
+    let search = |learn: &mut Learn, word: &str| {
+        press(learn, KeyCode::Char('/'));
+        for c in word.chars() {
+            press(learn, KeyCode::Char(c));
+        }
+        press(learn, KeyCode::Enter);
+    };
+    search(&mut learn, "hundredfold");
+    assert_eq!(learn.search().unwrap().query, "hundredfold");
+    search(&mut learn, "delay");
+    let found = learn.search().unwrap();
+    assert_eq!(found.query, "delay", "the second query stands alone");
+    assert!(found.matches.len() > 2, "“delay” is all over the appendix");
+    let at = found.at;
+    search(&mut learn, "");
+    let again = learn.search().expect("an empty search repeats the last");
+    assert_eq!(again.query, "delay");
+    assert_eq!(
+        again.at,
+        (at + 1) % again.matches.len(),
+        "…from the next match"
+    );
+}
+
+/// The status line at 80 columns never ends in the middle of a word: a
+/// message that does not fit is cut at a word and ends in "…", and an
+/// applied experiment says first that Tab shows the scene. Found under
+/// tmux: "experiment 1 of 3 applied: method=rk4 omega=0,10,20 warp=1 (Tab
+/// shows the sce" at 80×24.
+#[test]
+fn the_status_line_is_cut_only_between_words_and_keeps_the_tab_hint() {
+    let mut learn = Learn::open(&book(), Some("where-methods-fail")).unwrap();
+    let status_row = |shown: &str| {
+        // The TestBackend writes each row in quotes; the status is row 22.
+        let row = shown.lines().nth(22).unwrap();
+        row.trim_matches('"').trim().to_string()
+    };
+    for _ in 0..3 {
+        draw(&mut learn, 80, 24);
+        press(&mut learn, KeyCode::Char('x'));
+        let (message, _) = learn.message().cloned().expect("x says what it did");
+        let shown = status_row(&draw(&mut learn, 80, 24));
+        if shown != message.trim() {
+            let kept = shown
+                .strip_suffix('…')
+                .unwrap_or_else(|| panic!("cut without an ellipsis: {shown:?} of {message:?}"));
+            let kept = kept.trim_end();
+            assert!(
+                message.starts_with(kept)
+                    && message[kept.len()..].starts_with([' ', ',', ':', ';']),
+                "cut inside a word: {shown:?} of {message:?}"
+            );
+        }
+        assert!(shown.contains("Tab shows the scene"), "{shown:?}");
+    }
+}
+
+/// A scene's line names a key only where the key does something: "press x"
+/// only in a chapter with experiments, "m" only where the scene takes a
+/// method. Found under tmux: Numerical methods (no experiments) said "press
+/// x to break it", and x answered "this chapter has no experiments".
+#[test]
+fn a_scene_names_x_only_in_a_chapter_with_experiments() {
+    let mut learn = Learn::open(&book(), None).expect("the book opens");
+    for i in 0..learn.chapters().len() {
+        learn.apply(Command::Resize(80, 24));
+        let file = learn.chapters()[i].file.clone();
+        let about = learn.scene_info().describe();
+        if about.contains("press x") || about.contains("x runs") {
+            assert!(
+                !learn.rendered().experiments.is_empty(),
+                "{file}: the scene says “{about}” but the chapter has no experiment"
+            );
+        }
+        press(&mut learn, KeyCode::Right);
+    }
+}
+
+/// One subscript notation on the page: outside code (and tables, whose
+/// code-name columns are plain text), no `m_em`-style name is left that
+/// prose turns into `mₑₘ`, figure and diagram captions included.
+/// Found under tmux: the appendix's prose said mₑₘ and its diagram's caption
+/// m_em, a few lines apart.
+#[test]
+fn prose_and_captions_use_one_subscript_notation() {
+    let code = code_style();
+    let mut learn = Learn::open(&book(), None).expect("the book opens");
+    for _ in 0..learn.chapters().len() {
+        learn.apply(Command::Resize(80, 24));
+        let file = learn.chapters()[learn.current()].file.clone();
+        for line in &learn.rendered().lines {
+            // A table's cells are plain text, its code-name column included.
+            if line.spans.iter().any(|s| s.content == " │ ") {
+                continue;
+            }
+            for span in &line.spans {
+                if span.style.fg == code.fg {
+                    continue;
+                }
+                let text = span.content.as_ref();
+                assert_eq!(
+                    markdown::prose_subscripts(text),
+                    text,
+                    "{file}: a subscript left in ASCII in {line:?}"
+                );
+            }
+        }
+        press(&mut learn, KeyCode::Right);
+    }
+}
+
+/// A word that is only in folded library source is found: the search shows
+/// the source whole (as `o` does) and goes to it, instead of saying the word
+/// is not in the chapter. A word in neither leaves the folds as they were.
+/// Found under tmux: "k4z" (a variable of the appendix's method of steps)
+/// was "not in this chapter" until `o` was pressed.
+#[test]
+fn a_search_finds_words_in_folded_library_source() {
+    let mut learn = Learn::open(&book(), Some("A")).unwrap();
+    draw(&mut learn, 80, 24);
+    assert!(!learn.unfolded(), "library source starts folded");
+    let search = |learn: &mut Learn, word: &str| {
+        press(learn, KeyCode::Char('/'));
+        for c in word.chars() {
+            press(learn, KeyCode::Char(c));
+        }
+        press(learn, KeyCode::Enter);
+    };
+    search(&mut learn, "zqxj");
+    assert!(learn.search().unwrap().matches.is_empty());
+    assert!(!learn.unfolded(), "nothing found: the folds stay");
+    search(&mut learn, "k4z");
+    let found = learn.search().unwrap();
+    assert!(!found.matches.is_empty(), "k4z is in the method of steps");
+    assert!(learn.unfolded(), "the library source is shown whole");
+    let shown = draw(&mut learn, 80, 24);
+    assert!(shown.contains("k4z"), "the page shows the match:\n{shown}");
+}

@@ -358,3 +358,52 @@ fn general_top_draws_every_state_at_every_size() {
     let help = text(&screen(&app, 120, 40));
     assert!(help.contains("the general top") && help.contains("no closed form"));
 }
+
+/// Type `text` into Ω₀'s component `i` (↑/↓ to it, Enter, the characters),
+/// leaving the field open when `commit` is false.
+fn type_omega(app: &mut App, i: usize, text: &str, commit: bool) {
+    while app.view().selected != i {
+        app.apply(Command::SelectNext);
+    }
+    app.apply(Command::StartEdit);
+    for c in text.chars() {
+        app.apply(Command::Input(c));
+    }
+    if commit {
+        app.apply(Command::Commit);
+    }
+}
+
+/// The header never cuts a number at 80 columns: with every Ω₀ component
+/// written in exponent form (ten characters each), and while a long entry
+/// is being typed, the Ω₀ cell is shown whole (the cells of I, d or I₃/I₁
+/// give way first) and the line fits the screen. Found under tmux: the
+/// asymmetric top's header ran to "Ω₀ = (-1.235e-14, -1.235e-14, -1.23456789"
+/// and off the screen.
+#[test]
+fn the_header_shows_omega0_whole_at_80_columns() {
+    let long = "-1.23456789e-14";
+    let shown = "-1.235e-14";
+    for general in [true, false] {
+        let mut app = if general {
+            general_app()
+        } else {
+            App::new(Settings::default()).unwrap()
+        };
+        let u = if general { "u" } else { "τ" };
+        for i in 0..3 {
+            type_omega(&mut app, i, long, true);
+        }
+        let s = text(&screen(&app, MIN_WIDTH, MIN_HEIGHT));
+        let cell = format!("Ω₀ = ({shown}, {shown}, {shown})/{u}");
+        let line = s.lines().nth(1).unwrap();
+        assert!(line.contains(&cell), "general: {general}; {line:?}\n{s}");
+        // Now type the longest entry the field takes into the last one.
+        let typed = "-1.234567890123456789012345678e-1";
+        type_omega(&mut app, 2, &typed[..32], false);
+        let s = text(&screen(&app, MIN_WIDTH, MIN_HEIGHT));
+        let cell = format!("Ω₀ = ({shown}, {shown}, {}▏)/{u}", &typed[..32]);
+        let line = s.lines().nth(1).unwrap();
+        assert!(line.contains(&cell), "general: {general}; {line:?}\n{s}");
+    }
+}

@@ -726,7 +726,7 @@ impl Renderer {
     fn figure(&mut self, path: &str, alt: &str) {
         self.flush();
         self.blank();
-        let caption = without_colours(alt);
+        let caption = prose_subscripts(&without_colours(alt));
         if let Some(number) = super::figures::number_of(path) {
             let width = u16::try_from(self.width).unwrap_or(u16::MAX);
             if self.options.figures_later && !super::figures::ready(number) {

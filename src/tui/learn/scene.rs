@@ -171,7 +171,12 @@ impl Scene {
                     Err(_) => none("the chapter's top could not be built"),
                 }
             }
-            "numerical-methods.md" | "where-methods-fail.md" => top(
+            "numerical-methods.md" => top(
+                figure_by(MethodChoice::Rk4, 100.0),
+                vec![0, 1],
+                "both models under fixed-step RK4 at 100 τ/s; m changes the method",
+            ),
+            "where-methods-fail.md" => top(
                 figure_by(MethodChoice::Rk4, 100.0),
                 vec![0, 1],
                 "both models under fixed-step RK4 at 100 τ/s: press x to break it",

@@ -59,7 +59,7 @@ pub fn draw(frame: &mut Frame, learn: &Learn) {
         frame.render_widget(p, area);
         return;
     }
-    let panes = learn.panes();
+    let panes = learn.panes_in((area.width, area.height));
     draw_header(frame, panes.header, learn);
     if let Some(text) = panes.text {
         draw_text(frame, text, learn);
@@ -67,7 +67,7 @@ pub fn draw(frame: &mut Frame, learn: &Learn) {
     if let Some(scene) = panes.scene {
         draw_scene(frame, scene, learn);
     }
-    draw_status(frame, panes.status, learn);
+    draw_status(frame, panes.status, learn, panes.scene.is_some());
     draw_footer(frame, panes.footer, learn, panes.scene.is_some());
     match learn.mode() {
         Mode::Help => draw_help(frame, area),
@@ -280,15 +280,30 @@ fn shortened(text: &str, width: u16) -> String {
     format!("{}…", out.trim_end_matches([',', ':', ';']))
 }
 
-fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn) {
+fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) {
     let line = match (learn.mode(), learn.message()) {
         (Mode::Search(q), _) => Line::from(vec![
             Span::styled(" /", theme::key()),
             Span::styled(format!("{q}▏"), theme::selected()),
-            Span::styled("  Enter finds, Esc cancels", theme::label()),
+            Span::styled(
+                match learn.search() {
+                    Some(last) if q.is_empty() => {
+                        format!("  Enter finds (alone: “{}” again), Esc cancels", last.query)
+                    }
+                    _ => "  Enter finds, Esc cancels".to_string(),
+                },
+                theme::label(),
+            ),
         ]),
-        (_, Some((m, true))) => Line::from(Span::styled(format!(" {m}"), theme::error())),
-        (_, Some((m, false))) => Line::from(Span::styled(format!(" {m}"), theme::info())),
+        // A message too long for the line is cut at a word, with "…".
+        (_, Some((m, true))) => Line::from(Span::styled(
+            shortened(&format!(" {m}"), area.width),
+            theme::error(),
+        )),
+        (_, Some((m, false))) => Line::from(Span::styled(
+            shortened(&format!(" {m}"), area.width),
+            theme::info(),
+        )),
         _ => {
             let stage = learn.stage();
             let mut spans = vec![Span::styled(" scene ", theme::label())];
@@ -300,7 +315,7 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn) {
                         Stage::Top(app) => live_status(app),
                         _ => playback_status(stage.paused()),
                     });
-                    if learn.panes().scene.is_none() {
+                    if !scene_shown {
                         spans.push(Span::styled("  (Tab shows it)", theme::label()));
                     }
                 }
