@@ -98,6 +98,29 @@ pub fn linear_theory_rate(top: &SymmetricTop, omega3: Real) -> Complex<Real> {
     -i * omega3 + 2.0 * i * k / (1.0 + root)
 }
 
+/// ż/z on the slow manifold of (3.4) near rest, exact in τk: the slow root
+/// f₀ of linear theory ([`linear_theory_rate`]) and its first change with
+/// u = |z|².
+///
+/// Paper: Eq. (3.4) (its slow manifold; not in the paper).
+///
+/// ```text
+/// f(u) = f₀ + f′(0)u + O(u²),    f′(0) = τ / (2τf₀ + 2τ Re f₀ − 1 + 2iτΩ₃)
+/// ```
+///
+/// (the invariance equation differentiated once at u = 0; for small τk,
+/// f′(0) = −τ(1 + 2iτk) + O(τ³), the u-terms of [`slow_manifold_rate`]).
+/// Unlike that series, whose τ⁴ and τ⁵ terms grow like (τk)⁴ and (τk)⁶ and
+/// swamp it once τk ≳ 1, it holds at every spin where u is small, as it is
+/// at the end of a shot.
+pub fn near_rest_rate(top: &SymmetricTop, omega3: Real, u: Real) -> Complex<Real> {
+    let tau = top.tau();
+    let f0 = linear_theory_rate(top, omega3);
+    let slope =
+        tau / (2.0 * tau * f0 + 2.0 * tau * f0.re - 1.0 + Complex::new(0.0, 2.0 * tau * omega3));
+    f0 + slope * u
+}
+
 /// Why the physical solution could not be found.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum PhysicalError {
@@ -163,7 +186,11 @@ fn backward(
     rtol: Real,
 ) -> Result<(Vec<State<4>>, Stats), IntegrateError> {
     let z = Complex::new(a, 0.0);
-    let v = slow_manifold_rate(top, omega3, a * a) * z;
+    // NOTE: the final data need not be exact (the margin damps their error
+    // by e^{−40}), but they must be sane at every spin: the series
+    // [`slow_manifold_rate`] gives ż/z ~ −10⁹ at τk = 18, whose transient
+    // stalled the first backward step.
+    let v = near_rest_rate(top, omega3, a * a) * z;
     let rhs = |_t: Real, y: &State<4>| symmetric_full_ale_rhs(top, omega3, y);
     let opts = AdaptiveOptions::new(rtol, rtol * 1e-6 * a.max(1e-300))?;
     let mut stepper = Dop853::new(t_final, to_state(z, v), opts)?;
@@ -219,8 +246,9 @@ const SEGMENT_E_FOLDINGS: Real = 250.0;
 /// ([`final_margin`], 40τ for a slow spin), so the error of the approximate
 /// final data has decayed by e^{−40} before any sample. The final amplitude is found by bisection on ln a (|z(0)| grows
 /// monotonically with a), from a bracket around the guess of
-/// [`guessed_log_amplitude`] widened by doubling steps; the result is then
-/// rotated so that z(0) = Ω₁₀ + iΩ₂₀.
+/// [`guessed_log_amplitude`] widened by doubling steps, then matched once
+/// more by the pass that outputs the times ([`match_output_pass`]); the
+/// result is rotated so that z(0) = Ω₁₀ + iΩ₂₀.
 ///
 /// A horizon over which the amplitude falls by more than
 /// [`SEGMENT_E_FOLDINGS`] is cut into segments, each shot from the state the
@@ -383,14 +411,18 @@ fn shoot_segment(
             break;
         }
     }
-    let a = (0.5 * (lo + hi)).exp();
     let mut desc: Vec<Real> = times.iter().rev().copied().collect();
     if desc.last() != Some(&0.0) {
         desc.push(0.0);
     }
-    let (out, s) = backward(top, omega3, t_final, a, &desc, rtol)?;
+    let (out, s, passes) = match_output_pass(
+        |ln_a| backward(top, omega3, t_final, ln_a.exp(), &desc, rtol),
+        0.5 * (lo + hi),
+        target,
+        rtol,
+    )?;
     stats += s;
-    shots += 1;
+    shots += passes;
     let at_zero = out.last().expect("t = 0 was requested");
     let rotation = z0 / Complex::new(at_zero[0], at_zero[1]);
     let rotation = rotation / rotation.norm();
@@ -407,6 +439,82 @@ fn shoot_segment(
         stats,
         shots,
     })
+}
+
+/// The most output passes [`match_output_pass`] makes.
+const OUTPUT_PASSES: u32 = 8;
+
+/// The output pass whose own z(0) has the target amplitude: `pass(ln a)`
+/// integrates back from the final amplitude a to every output time, ending at
+/// t = 0. Returns its states, the work of all passes and their number; an
+/// error when none lands within `rtol` (relative) of the target.
+///
+/// NOTE: the bisection's shots stop only at t = 0, the output pass at every
+/// requested time, so the two take different steps; at a loose rtol the
+/// output pass from the shots' a misses |z(0)| by far more than rtol (35 % at
+/// rtol 1e-3 over 4000 τ) or blows up backward. A few secant steps on ln a
+/// with the output pass itself close that gap; d ln|z(0)|/d ln a = 1 where
+/// (3.4) is linear in z, so that is the first slope. A pass that blows up
+/// asked for too large an a: the next one goes halfway back.
+fn match_output_pass(
+    mut pass: impl FnMut(Real) -> Result<(Vec<State<4>>, Stats), IntegrateError>,
+    ln_a: Real,
+    target: Real,
+    rtol: Real,
+) -> Result<(Vec<State<4>>, Stats, u32), PhysicalError> {
+    let ln_target = target.ln();
+    let mut stats = Stats::default();
+    let (mut x, mut slope) = (ln_a, 1.0);
+    let mut last: Option<(Real, Real)> = None;
+    let mut best: Option<(Real, Vec<State<4>>)> = None;
+    let (mut passes, mut stalled) = (0, 0);
+    while passes < OUTPUT_PASSES {
+        passes += 1;
+        match pass(x) {
+            Ok((out, s)) => {
+                stats += s;
+                let y = out.last().expect("t = 0 is an output time");
+                let miss = y[0].hypot(y[1]).ln() - ln_target;
+                if miss.is_nan() {
+                    return Err(PhysicalError::NoConvergence("an output pass gave NaN"));
+                }
+                if let Some((x0, miss0)) = last {
+                    let secant = (miss - miss0) / (x - x0);
+                    if secant.is_finite() && secant > 0.0 {
+                        slope = secant;
+                    }
+                }
+                // Done at rounding, or when the passes' own noise (their
+                // steps move with a) stops the secant from gaining.
+                let better = best.as_ref().is_none_or(|(b, _)| miss.abs() < *b);
+                stalled = if better { 0 } else { stalled + 1 };
+                if better {
+                    best = Some((miss.abs(), out));
+                }
+                if miss.abs() <= 1e-14 || !miss.is_finite() || stalled >= 2 {
+                    break;
+                }
+                last = Some((x, miss));
+                x -= miss / slope;
+            }
+            Err(IntegrateError::NonFinite { .. } | IntegrateError::StepSizeUnderflow { .. }) => {
+                x = match last {
+                    Some((x0, _)) => 0.5 * (x + x0),
+                    None => x - 1.0,
+                };
+            }
+            Err(e) => return Err(e.into()),
+        }
+    }
+    match best {
+        Some((miss, out)) if miss <= rtol.max(1e-10) => Ok((out, stats, passes)),
+        Some(_) => Err(PhysicalError::NoConvergence(
+            "no final amplitude reaches the given Omega_perp at t = 0",
+        )),
+        None => Err(PhysicalError::NoConvergence(
+            "every output pass blew up backward",
+        )),
+    }
 }
 
 /// A runaway detected by [`integrate_forward`].

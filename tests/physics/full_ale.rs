@@ -35,6 +35,87 @@ fn eq_3_4_physical_solution_passes_through_the_given_omega0() {
     }
 }
 
+/// The table `auto` reads the physical solution from, shot at a loose rtol,
+/// still starts at the given Ω₀ and stays within rtol of the tight solution.
+/// The output pass stops at every table time, the bisection's shots only at
+/// t = 0: at rtol 1e-3 their steps differ enough that the output once began
+/// with Ω⊥ = 0.01347 for the scene's 0.01 (3.5e-3 of |Ω₀|, above rtol).
+#[test]
+fn eq_3_4_physical_table_passes_through_omega0_at_a_loose_rtol() {
+    use spintop::sim::physical::physical_table;
+    let top = SymmetricTop::new(0.05, 1.0).unwrap();
+    let omega0 = Vec3::new(0.0, 0.01, 1.0);
+    let times: Vec<f64> = (0..=40).map(|j| 100.0 * j as f64).collect();
+    let tight = physical_solution(&top, &omega0, &times, 1e-12).unwrap();
+    for rtol in [1e-2, 1e-3, 1e-4, 1e-6] {
+        let (table, _) = physical_table(&top, &omega0, 4000.0, rtol).unwrap();
+        let start = table.omega_at(0.0);
+        assert!(
+            (start - omega0).norm() < 1e-9 * omega0.x.hypot(omega0.y),
+            "rtol {rtol:e}: starts at {start:?}, not at {omega0:?}"
+        );
+        for (&t, z) in times.iter().zip(&tight.z) {
+            let err = (table.omega_at(t) - Vec3::new(z.re, z.im, omega0.z)).norm();
+            assert!(
+                err <= rtol * omega0.norm(),
+                "rtol {rtol:e}, t = {t}: off by {:e} of |Omega0|",
+                err / omega0.norm()
+            );
+        }
+    }
+}
+
+/// At fast spin, τk = 2 to 50 (I₃/I₁ = 2/5, Ω₃ = 5 to 125), the physical
+/// solution passes through Ω₀ and late in the run turns and decays at the
+/// slow root of linear theory, f₀ = (1 − 2iτΩ₃ − √(1 − 4iτk))/(2τ), computed
+/// here from the quadratic τf² − (1 − 2iτΩ₃)f − (iΩ̃₃ + τΩ₃²) = 0 itself.
+/// From τk ≈ 18 on, the shoot's final slope (the τ-series, ~10⁹ there)
+/// stalled every backward step, the bisection sank to a ~ 10⁻³⁰⁰ and the
+/// solution came back NaN, as a success.
+#[test]
+fn eq_3_4_physical_solution_at_tau_k_up_to_50_decays_at_linear_theorys_rate() {
+    let top = SymmetricTop::new(0.4, 1.0).unwrap();
+    for omega3 in [5.0, 12.5, 25.0, 50.0, 125.0] {
+        let omega0 = Vec3::new(0.0, 0.1, omega3);
+        let times: Vec<f64> = (0..=20).map(f64::from).collect();
+        let sol = physical_solution(&top, &omega0, &times, 1e-10)
+            .unwrap_or_else(|e| panic!("Omega3 = {omega3}: {e}"));
+        assert!(
+            (sol.z[0] - Complex::new(0.0, 0.1)).norm() < 1e-9,
+            "{}",
+            sol.z[0]
+        );
+        // The slow root of τf² − (1 − 2iτΩ₃)f − (iΩ̃₃ + τΩ₃²) = 0 (τ = 1).
+        let b = Complex::new(1.0, -2.0 * omega3);
+        let c = Complex::new(omega3 * omega3, 0.6 * omega3);
+        let disc = (b * b + 4.0 * c).sqrt();
+        let roots = [(b - disc) / 2.0, (b + disc) / 2.0];
+        let f0 = if roots[0].re < roots[1].re {
+            roots[0]
+        } else {
+            roots[1]
+        };
+        assert!(f0.re < 0.0);
+        // Over the last five units |z| is below 1e-3 of its start: τ|z|² is
+        // negligible beside the rates, so ż/z is f₀ to rounding.
+        let ratio = sol.z[20] / sol.z[15];
+        let rate = ratio.ln() / 5.0;
+        assert!(
+            (rate.re / f0.re - 1.0).abs() < 1e-6,
+            "Omega3 = {omega3}: decays at {}, linear theory {}",
+            rate.re,
+            f0.re
+        );
+        // The phase turns by Im f₀ per unit time, modulo 2π per 5 units.
+        let turn = (ratio / ratio.norm()).arg();
+        let expected = Complex::from_polar(1.0, 5.0 * f0.im).arg();
+        assert!(
+            (turn - expected).abs() < 1e-6,
+            "Omega3 = {omega3}: turns {turn}, linear theory {expected}"
+        );
+    }
+}
+
 /// The physical solution's ż/z agrees with the series f(|z|²) of the notes to
 /// the series' order; the reduced model's ż/z (the series cut at O(τ)) is off by
 /// its first neglected term, 2τ²k(u + k²) in the precession rate.

@@ -185,6 +185,13 @@ fn backward(
     let rhs = |_t: Real, y: &State<6>| general_full_ale_rhs(top, y);
     let mut opts = AdaptiveOptions::new(rtol, rtol * 1e-6 * a.norm().max(1e-300))?;
     opts.max_steps = SHOT_STEPS;
+    // NOTE: the margin damps the final data's error only if the steps
+    // follow the fast modes' decay; at a loose rtol DOP853 would stride over
+    // it (hλ of several, where its stability function is far from e^{hλ})
+    // and leave ~1e-7 of |Ω| off the manifold at each segment's end, which
+    // the motion then amplifies (1.7e-2 of |Ω₀| by t = 300 at rtol 1e-2).
+    // Half an e-folding of the faster runaway per step keeps e^{−36}.
+    opts.h_max = 0.5 / runaway_rates_at_rest(top)[1];
     let mut stepper = Dop853::new(t_final, near_manifold(top, a), opts)?;
     let mut out = Vec::with_capacity(desc.len());
     for &t in desc {
@@ -219,7 +226,12 @@ struct Shooter<'a> {
     rtol: Real,
     stats: Stats,
     shots: u32,
+    /// The chord Jacobian of the last [`Shooter::solve`], d Ω(0) / d Ω(span).
+    jacobian: Option<Matrix3<Real>>,
 }
+
+/// The most output passes [`Shooter::output`] makes.
+const OUTPUT_PASSES: u32 = 8;
 
 impl Shooter<'_> {
     /// Ω(0) of the backward run from Ω(span) = a, or `None` when that run blew
@@ -255,21 +267,13 @@ impl Shooter<'_> {
         let mut best = r.norm();
         for _ in 0..40 {
             if r.norm() <= tol {
+                self.jacobian = jacobian;
                 return Ok(a);
             }
             let j = match jacobian {
                 Some(j) => j,
                 None => {
-                    let h = 1e-6 * a.norm().max(1e-300);
-                    let mut m = Matrix3::zeros();
-                    for k in 0..3 {
-                        let mut ak = a;
-                        ak[k] += h;
-                        let rk = residual(self, &ak)?.ok_or(PhysicalError::NoConvergence(
-                            "a shot of the Jacobian blew up backward",
-                        ))?;
-                        m.set_column(k, &((rk - r) / h));
-                    }
+                    let m = self.jacobian_at(span, &a, &(r + start))?;
                     jacobian = Some(m);
                     m
                 }
@@ -305,6 +309,7 @@ impl Shooter<'_> {
                     // No descent along the chord step: at the level of the
                     // integrator's own noise, accept; else refresh once more.
                     if best <= 100.0 * self.rtol * scale {
+                        self.jacobian = None;
                         return Ok(a);
                     }
                     jacobian = None;
@@ -313,11 +318,102 @@ impl Shooter<'_> {
             }
         }
         if best <= 100.0 * self.rtol * scale {
+            self.jacobian = jacobian;
             Ok(a)
         } else {
             Err(PhysicalError::NoConvergence(
                 "Newton's method on the final rate",
             ))
+        }
+    }
+}
+
+impl Shooter<'_> {
+    /// d Ω(0) / d Ω(span) at `a`, whose shot reached `at_zero`, by forward
+    /// differences of shots.
+    fn jacobian_at(
+        &mut self,
+        span: Real,
+        a: &Vec3,
+        at_zero: &Vec3,
+    ) -> Result<Matrix3<Real>, PhysicalError> {
+        let h = 1e-6 * a.norm().max(1e-300);
+        let mut m = Matrix3::zeros();
+        for k in 0..3 {
+            let mut ak = *a;
+            ak[k] += h;
+            let wk = self.shoot(span, &ak)?.ok_or(PhysicalError::NoConvergence(
+                "a shot of the Jacobian blew up backward",
+            ))?;
+            m.set_column(k, &((wk - at_zero) / h));
+        }
+        Ok(m)
+    }
+
+    /// The output pass, from Ω(span) = `a` back to every time of `desc`
+    /// (descending, ending at 0), corrected by chord Newton until its own
+    /// Ω(0) is `start`.
+    ///
+    /// NOTE: the shots stop only at 0 and the output pass at every table
+    /// time, so their steps differ; at a loose rtol the pass from the shots'
+    /// a began off the segment's start by the shots' own error, and segment
+    /// after segment those jumps added up (2.3e-2 of |Ω₀| by t = 300 at
+    /// rtol 1e-2). The shots' Jacobian serves the output pass too.
+    fn output(
+        &mut self,
+        start: &Vec3,
+        span: Real,
+        mut a: Vec3,
+        desc: &[Real],
+    ) -> Result<Vec<State<6>>, PhysicalError> {
+        let scale = start.norm();
+        let mut best: Option<(Real, Vec<State<6>>)> = None;
+        let mut stalled = 0;
+        for _ in 0..OUTPUT_PASSES {
+            self.shots += 1;
+            let out = match backward(self.top, span, &a, desc, self.rtol) {
+                Ok((out, s)) => {
+                    self.stats += s;
+                    out
+                }
+                Err(
+                    IntegrateError::NonFinite { .. }
+                    | IntegrateError::StepSizeUnderflow { .. }
+                    | IntegrateError::TooManySteps { .. },
+                ) => break,
+                Err(e) => return Err(e.into()),
+            };
+            let at_zero = omega_of(out.last().expect("0 is an output time"));
+            let miss = (at_zero - start).norm();
+            if miss.is_nan() {
+                break;
+            }
+            let better = best.as_ref().is_none_or(|(b, _)| miss < *b);
+            stalled = if better { 0 } else { stalled + 1 };
+            if better {
+                best = Some((miss, out));
+            }
+            if miss <= (1e-3 * self.rtol).max(1e-13) * scale || stalled >= 2 {
+                break;
+            }
+            let j = match self.jacobian {
+                Some(j) => j,
+                None => {
+                    let j = self.jacobian_at(span, &a, &at_zero)?;
+                    self.jacobian = Some(j);
+                    j
+                }
+            };
+            match j.lu().solve(&(start - at_zero)) {
+                Some(delta) => a += delta,
+                None => break,
+            }
+        }
+        match best {
+            Some((miss, out)) if miss <= self.rtol * scale => Ok(out),
+            _ => Err(PhysicalError::NoConvergence(
+                "no output pass reaches the segment's start",
+            )),
         }
     }
 }
@@ -363,6 +459,7 @@ pub fn general_physical_solution(
         rtol,
         stats: Stats::default(),
         shots: 0,
+        jacobian: None,
     };
     let mut start = *omega0;
     let mut t0 = 0.0;
@@ -385,11 +482,19 @@ pub fn general_physical_solution(
             margin
         };
         let mut tries = 0;
-        let (t1, span, a) = loop {
+        let (t1, last, out) = loop {
             let t1 = (t0 + length).min(t_last);
             let span = (t1 - t0) + margin;
-            match shooter.solve(&start, span) {
-                Ok(a) => break (t1, span, a),
+            // Output the times in [t0, t1] (each once), and t1 to start the next.
+            let last = next + times[next..].partition_point(|&t| t <= t1);
+            let mut desc: Vec<Real> = vec![t1 - t0];
+            desc.extend(times[next..last].iter().rev().map(|t| t - t0));
+            desc.push(0.0);
+            let shot = shooter
+                .solve(&start, span)
+                .and_then(|a| shooter.output(&start, span, a, &desc));
+            match shot {
+                Ok(out) => break (t1, last, out),
                 Err(PhysicalError::NoConvergence(_)) if tries < 5 && t1 > t0 => {
                     tries += 1;
                     length *= 0.5;
@@ -397,17 +502,7 @@ pub fn general_physical_solution(
                 Err(e) => return Err(e),
             }
         };
-        // Output the times in [t0, t1] (each once), and t1 to start the next.
-        let mut desc: Vec<Real> = vec![t1 - t0];
-        let first = next;
-        while next < times.len() && times[next] <= t1 {
-            next += 1;
-        }
-        desc.extend(times[first..next].iter().rev().map(|t| t - t0));
-        desc.push(0.0);
-        let (out, s) = backward(top, span, &a, &desc, rtol)?;
-        shooter.stats += s;
-        shooter.shots += 1;
+        next = last;
         sol.segments += 1;
         // out[1..=n] are the requested times, descending.
         for y in out[1..out.len() - 1].iter().rev() {
