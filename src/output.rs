@@ -263,7 +263,7 @@ pub fn sim_failure(e: SimError, model: &Model, choice: MethodChoice, entry: Entr
     // The closed forms ran: nothing stepped, so only the time or the inputs
     // can have overflowed.
     let closed_form_run = matches!(
-        model.method(choice),
+        model.method(choice, &crate::sim::MethodOptions::default()),
         Ok(crate::sim::Method::ClosedForm | crate::sim::Method::ClosedFormDop853)
     );
     // A general top's numbers are in kappa = 1 units, and its dipole is an
