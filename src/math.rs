@@ -22,6 +22,11 @@ pub type Mat3 = Matrix3<Real>;
 pub type Quat = UnitQuaternion<Real>;
 /// A fixed-size state vector of dimension `N`.
 pub type State<const N: usize> = SVector<Real, N>;
+/// A complex number: the roots of characteristic equations (the shell
+/// model's chain, the linear theory of (3.4)) that the crate returns. The
+/// crate's own, so that a book snippet run by `spintop book` (which
+/// depends on spintop alone) can name it.
+pub use nalgebra::Complex;
 
 /// The skew-symmetric matrix of `a`, so that `hat(a) * b == a.cross(&b)`.
 pub fn hat(a: &Vec3) -> Mat3 {

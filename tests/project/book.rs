@@ -1304,3 +1304,87 @@ fn book_work_precision_figure_is_drawn_from_the_committed_peers_run() {
 /// and the interleaved head-to-head of the same run.
 const TAYLOR_PEERS_RUN: &str = "benches/results/peers-2026-11-26-taylor.csv";
 const TAYLOR_H2H_RUN: &str = "benches/results/peers-h2h-2026-11-26-run3.csv";
+
+/// The crates `Cargo.toml` names as dependencies (spintop's, not the
+/// dev-dependencies), with `-` written `_` as code names them.
+fn dependency_crates() -> BTreeSet<String> {
+    let manifest = fs::read_to_string(root().join("Cargo.toml")).unwrap();
+    let mut crates = BTreeSet::new();
+    let mut inside = false;
+    for line in manifest.lines() {
+        let line = line.trim();
+        if line.starts_with('[') {
+            inside = line == "[dependencies]"
+                || (line.starts_with("[target.") && line.ends_with(".dependencies]"));
+            continue;
+        }
+        if let Some((key, _)) = line
+            .split_once('=')
+            .filter(|_| inside && !line.starts_with('#'))
+        {
+            crates.insert(key.trim().replace('-', "_"));
+        }
+    }
+    crates
+}
+
+/// The crates a runnable Rust block of `chapter` names by path
+/// (`name::…`) among `crates`; hidden lines (`# …`) included.
+fn crates_named_by_snippets(chapter: &str, crates: &BTreeSet<String>) -> Vec<String> {
+    let mut named = Vec::new();
+    let mut in_block = false;
+    for line in chapter.lines() {
+        let fence = line.trim_start();
+        if fence.starts_with("```") {
+            in_block = !in_block && (fence == "```rust" || fence == "```rust,editable");
+            continue;
+        }
+        if !in_block {
+            continue;
+        }
+        let words = line.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == ':'));
+        for word in words {
+            if let Some((first, _)) = word.split_once("::") {
+                if crates.contains(first) && !named.contains(&first.to_string()) {
+                    named.push(first.to_string());
+                }
+            }
+        }
+    }
+    named
+}
+
+/// ▶ in `spintop book` builds a snippet in a crate that depends on spintop
+/// alone, while a doctest sees all of spintop's dependencies: a snippet that
+/// names `nalgebra::…` passes `cargo test` and fails in the reader's
+/// browser. Every runnable block names no crate but spintop and std (what
+/// it needs of a dependency, spintop re-exports: `spintop::math::Complex`).
+#[test]
+fn book_runnable_snippets_name_no_dependency_but_spintop() {
+    let crates = dependency_crates();
+    assert!(
+        crates.contains("nalgebra") && crates.contains("ratatui"),
+        "{crates:?}"
+    );
+    let mut problems = Vec::new();
+    for entry in fs::read_dir(book_src()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "md") {
+            let named = crates_named_by_snippets(&fs::read_to_string(&path).unwrap(), &crates);
+            if !named.is_empty() {
+                problems.push(format!("{}: {}", path.display(), named.join(", ")));
+            }
+        }
+    }
+    assert!(
+        problems.is_empty(),
+        "snippets that ▶ cannot build:\n{}",
+        problems.join("\n")
+    );
+    // The check itself sees a hidden line and leaves an ignored block alone.
+    let sample = "```rust\n# use nalgebra::Vector3;\n```\n```rust,ignore\nratatui::init();\n```\n";
+    assert_eq!(
+        crates_named_by_snippets(sample, &crates),
+        vec!["nalgebra".to_string()]
+    );
+}
