@@ -115,10 +115,7 @@ mod diag {
             // `inet_diag` in this kernel). The server's own end of the
             // connection is listed while it is open: if it is not found
             // either, the diagnostics cannot be trusted to answer.
-            None => match ask(local, remote)? {
-                Some(_) => Some(None),
-                None => None,
-            },
+            None => ask(local, remote)?.map(|_| None),
         }
     }
 
