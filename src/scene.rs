@@ -176,6 +176,26 @@ pub enum Body {
     Stability(StabilityScene),
 }
 
+/// serde writes a float of the wrong type in full (for 1e308, 309 digits
+/// after "floating point"): each is written as a message value (`1e308`).
+fn short_floats(message: &str) -> String {
+    const TAG: &str = "floating point `";
+    let mut out = String::new();
+    let mut rest = message;
+    while let Some(at) = rest.find(TAG) {
+        let (head, tail) = rest.split_at(at + TAG.len());
+        out.push_str(head);
+        let end = tail.find('`').unwrap_or(tail.len());
+        match tail[..end].parse::<crate::math::Real>() {
+            Ok(x) => out.push_str(&crate::numbers::fmt_value(x)),
+            Err(_) => out.push_str(&tail[..end]),
+        }
+        rest = &tail[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// Parse and validate a scene.
 ///
 /// `file` names the text in messages (a path, or `catalogue:NAME`).
@@ -190,6 +210,7 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
             .replace("unknown field", "unknown key")
             .replace("expected f64", "expected a number")
             .replace("expected i64", "expected a whole number");
+        message = short_floats(&message);
         // NOTE: serde's type errors do not name the key; the line does.
         if message.starts_with("invalid")
             && let Some(key) = key_on_line(text, start)

@@ -57,8 +57,6 @@ pub const STRONG_SPIN: Real = 0.3;
 /// Euler angles within this sin θ of a pole get a warning.
 pub const POLE_SIN: Real = 1e-2;
 
-use crate::sim::cost::FULL_TURN_PER_STEP;
-
 /// The method used, as outputs label it, and why.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct Chosen {
@@ -503,8 +501,16 @@ pub(super) fn plan_top(
             }
         }
         (Model::Full(_) | Model::GeneralFull(_), _) => {
-            let steps = angle / FULL_TURN_PER_STEP;
-            if steps > MAX_STEPS {
+            // The simulation's own estimate (one rule: `sim::cost`), so that
+            // a run the simulation would refuse is refused here, with the
+            // scene's line, before anything runs.
+            let estimate = model
+                .method(method, options)
+                .ok()
+                .and_then(|m| crate::sim::cost::estimate(model, m, options, &omega0, t_last));
+            if let Some(e) = &estimate
+                && (e.steps.is_nan() || e.steps > MAX_STEPS)
+            {
                 let at = if method == MethodChoice::Auto {
                     Blame::Times
                 } else {
@@ -512,10 +518,7 @@ pub(super) fn plan_top(
                 };
                 return Err(Refusal {
                     at,
-                    message: format!(
-                        "[solve] {}",
-                        too_many(steps, "the full ALE (3.4), which has no closed form,")
-                    ),
+                    message: format!("[solve] {}", too_many(e.steps, &e.what)),
                 });
             }
             let (label, reason) = match method {

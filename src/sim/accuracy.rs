@@ -87,7 +87,10 @@ pub fn symmetric_reduced_error(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Re
     let ln_phi = reduced_amplitude(top, omega0, t).ln();
     let lost = -a0 * ln_phi.exp_m1();
     let lost3 = -a0 * a0 * a0 * (3.0 * ln_phi).exp_m1();
-    (lost * (2.0 * tau * k.abs() + 5.0 * tau * tau * k * k) + tau * tau * lost3) / omega0.norm()
+    // NOTE: abs() only turns the −0 of a zero-length run (expm1(−0) = −0)
+    // into +0; every term is ≥ 0.
+    ((lost * (2.0 * tau * k.abs() + 5.0 * tau * tau * k * k) + tau * tau * lost3) / omega0.norm())
+        .abs()
 }
 // ANCHOR_END: reduced_error
 

@@ -1286,6 +1286,7 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         ("huge-omega", good_top.replace("omega = [0.0, 0.1, 0.2]", "omega = [0.0, 1e200, 0.2]"), "omega"),
         ("neg-tend", good_top.replace("t_end = 10.0", "t_end = -10.0"), "t_end"),
         ("zero-samples", good_top.replace("samples = 3", "samples = 0"), "samples"),
+        ("float-samples", good_top.replace("samples = 3", "samples = 1e308"), "samples: invalid type: floating point `1e308`"),
         ("huge-tend-rk4", good_top.replace("[solve]\n", "[solve]\nmethod = \"rk4\"\n").replace("t_end = 10.0", "t_end = 1e9"), "steps"),
         ("unknown-key", good_top.replace("ratio = 0.4", "ratio = 0.4\nspin = 3"), "spin"),
         ("unknown-table", format!("{good_top}\n[extra]\na = 1\n"), "extra"),

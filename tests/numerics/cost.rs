@@ -293,3 +293,54 @@ fn long_run_stepped_tightly_agrees_with_the_secular_answer() {
         );
     }
 }
+
+/// A physical solution of (3.4) that the simulation would refuse is refused
+/// when the scene is read, by the same estimate, with the scene's line: the
+/// planner used to count only the turning (20 steps per radian) and let
+/// through runs whose table (steps ≤ τ/4) or twenty backward passes of a
+/// general top (steps ≤ τ_f/4) pass 10⁷, which the simulation then refused
+/// without the file's name, after the model choice had been estimated.
+/// The symmetric top's count by hand: Ω₀ = (0, 10⁻³, 10⁻³) turns 4.2·10³ rad
+/// by t = 3·10⁶ τ, but its table takes t/(τ/4) = 1.2·10⁷ points.
+#[test]
+fn a_physical_solution_the_simulation_would_refuse_is_refused_when_the_scene_is_read() {
+    let scene = |top: &str, t_end: Real| {
+        format!(
+            "[scene]\nname = \"slow\"\nkind = \"top\"\ndescription = \"d\"\n[top]\nmodel = \"full\"\n{top}\n[solve]\nt_end = {t_end:e}\nsamples = 3\n"
+        )
+    };
+    let symmetric = "omega = [0.0, 1e-3, 1e-3]";
+    let general = "inertia = [1.0, 1.2, 0.5]\ndipole = [0.2, 0.0, 0.3]\nomega = [0.5, 0.05, 0.02]";
+    for (top, t_end) in [(symmetric, 3e6), (general, 1e5)] {
+        let err = spintop::scene::parse(&scene(top, t_end), "slow.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("slow.toml:") && err.contains("more than the 1e7 allowed"),
+            "{err}"
+        );
+        // The simulation refuses the same run: the two agree.
+        let model = match spintop::scene::parse(&scene(top, t_end / 100.0), "slow.toml") {
+            Ok(s) => match s.body {
+                spintop::scene::Body::Top(body) => body.model,
+                _ => unreachable!(),
+            },
+            Err(e) => panic!("a hundredth of the run is cheap: {e}"),
+        };
+        let omega0 = match model {
+            Model::Full(_) => Vec3::new(0.0, 1e-3, 1e-3),
+            _ => Vec3::new(0.5, 0.05, 0.02),
+        };
+        let initial = InitialState::new(omega0, EulerAngles::new(0.0, 0.0, 0.0)).unwrap();
+        let refused = Simulation::new(
+            model,
+            MethodChoice::Auto,
+            MethodOptions::default(),
+            initial,
+            Some(t_end),
+        );
+        assert!(refused.is_err(), "the simulation refuses {t_end}");
+    }
+    // By hand: 3e6 / 0.25 = 1.2e7 table points, and 1/10 of that passes.
+    assert!(spintop::scene::parse(&scene(symmetric, 3e5), "slow.toml").is_ok());
+}

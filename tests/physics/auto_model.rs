@@ -430,3 +430,24 @@ fn auto_picks_a_model_really_within_rtol_for_the_issues_scenes() {
         axial.chosen.reason
     );
 }
+
+/// Times that end at t = 0 (or within rounding of it) lose nothing, and
+/// both estimates are +0: the reason said "by -0.0e0" (expm1 of −0).
+#[test]
+fn auto_estimates_of_a_run_that_ends_at_zero_are_zero_not_minus_zero() {
+    let top = SymmetricTop::new(0.4, 1.0).unwrap();
+    for t in [0.0, 1e-300] {
+        let e = symmetric_errors(&top, &Vec3::new(0.0, 0.1, -0.2), t);
+        assert!(
+            e.reduced == 0.0 && e.reduced.is_sign_positive(),
+            "{t}: {e:?}"
+        );
+    }
+    let text = "[scene]\nname = \"x\"\nkind = \"top\"\ndescription = \"d\"\n[top]\nmodel = \"auto\"\nomega = [0.0, 0.1, -0.2]\n[solve]\ntimes = [0.0, 1e-300]\n";
+    let scene = spintop::scene::parse(text, "zero.toml").unwrap();
+    assert!(
+        !scene.chosen.reason.contains("-0."),
+        "{}",
+        scene.chosen.reason
+    );
+}
