@@ -277,7 +277,7 @@ fn an_omega0_edit_is_applied_refused_or_cancelled() {
 }
 
 #[test]
-fn method_cycles_closed_form_rk4_dp5_dop853_radau5() {
+fn method_cycles_closed_form_rk4_dp5_dop853_radau5_taylor() {
     let mut app = app();
     let labels = |app: &App| {
         [
@@ -292,6 +292,7 @@ fn method_cycles_closed_form_rk4_dp5_dop853_radau5() {
         (MethodChoice::Dopri5, ["dopri5", "dopri5"]),
         (MethodChoice::Dop853, ["dop853", "dop853"]),
         (MethodChoice::Radau5, ["radau5", "radau5"]),
+        (MethodChoice::Taylor, ["taylor", "taylor"]),
         (MethodChoice::Exact, ["exact", "exact+dop853"]),
     ];
     for (method, label) in expected {
@@ -304,7 +305,7 @@ fn method_cycles_closed_form_rk4_dp5_dop853_radau5() {
 }
 
 /// `m` never sticks: at Ω₃₀ = 9·10⁴ RK4 is accepted (and blows up) while
-/// DP5, DOP853 and Radau5 are refused as too costly to draw live, and the
+/// DP5, DOP853, Radau5 and Taylor are refused as too costly to draw live, and the
 /// refusal's advice is "the closed forms (m) take no steps". Pressing m must
 /// then reach the closed forms, skipping (and naming) the refused methods,
 /// not retry DP5 for ever. Found under tmux: five presses of m stayed on RK4.
@@ -320,7 +321,7 @@ fn m_skips_the_methods_too_costly_to_draw_live_and_reaches_the_closed_forms() {
         app.message()
     );
     let message = app.message().map(|m| m.text.clone()).unwrap_or_default();
-    for skipped in ["DP5", "DOP853", "Radau5"] {
+    for skipped in ["DP5", "DOP853", "Radau5", "Taylor"] {
         assert!(
             message.contains(skipped),
             "the skipped methods are named: {message}"
@@ -468,11 +469,12 @@ fn general_top_refuses_the_ratio_keys_and_keeps_running() {
 }
 
 #[test]
-fn general_top_method_cycles_rk4_dp5_dop853_radau5_and_never_the_closed_form() {
+fn general_top_method_cycles_rk4_dp5_dop853_radau5_taylor_and_never_the_closed_form() {
     let mut app = general_app();
     assert_eq!(app.columns()[0].method().label(), "dop853");
     let expected = [
         (MethodChoice::Radau5, "radau5"),
+        (MethodChoice::Taylor, "taylor"),
         (MethodChoice::Rk4, "rk4"),
         (MethodChoice::Dopri5, "dopri5"),
         (MethodChoice::Dop853, "dop853"),
