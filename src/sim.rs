@@ -1003,9 +1003,13 @@ impl TaylorRun {
         let q = base.quaternion();
         y0.fixed_rows_mut::<4>(3)
             .copy_from(&nalgebra::Vector4::new(q.w, q.i, q.j, q.k));
-        // The same absolute tolerance as `AnyStepper::new`: relative control
-        // for a top of any speed.
-        let atol = (1e-6 * options.rtol * initial.omega.norm()).max(1e-300);
+        // NOTE: relative control all the way down (the step rule floors the
+        // state's size at atol/rtol). An atol tied to |Ω₀|, as the Runge–Kutta
+        // pairs take, lets a top that collapses far below |Ω₀| (the truncated
+        // top from |Ω⊥| = 10²⁰) be stepped past the series' radius of
+        // convergence: its Ω flipped sign every step, within that atol, and
+        // the run crawled at the stability limit instead of finishing.
+        let atol = 1e-300;
         let opts = AdaptiveOptions::new(options.rtol, atol)?;
         fn build<M: TaylorRhs<3>>(
             m: M,

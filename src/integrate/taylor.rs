@@ -41,7 +41,16 @@
 //! a few percent more work per step and the same number of steps, where a
 //! Runge–Kutta method of order q pays 10^(1/q) more steps.
 //!
-//! Failure: a non-finite coefficient or state ends the step with
+//! Time scale: the coefficient of order k grows like ‖y‖ λᵏ for a rate λ, so
+//! a fast top overflows a double at high orders long before its rates do
+//! (the truncated top at |Ω| = 10¹² in units of 1/τ has λ ~ 10²⁴, and
+//! λ¹⁵ ~ 10³⁶⁰). A jet with a non-finite coefficient is built again in a
+//! scaled time s = t/σ, whose coefficients are `y_k σᵏ` (every product of
+//! the recurrences keeps its total order, so only `y_{k+1} = σ f_k/(k+1)`
+//! changes), with σ ~ 1/λ read off the coefficients that were finite; the
+//! step and the dense output convert back. σ is 1 unless the jet overflows.
+//!
+//! Failure: a coefficient or state that stays non-finite ends the step with
 //! [`IntegrateError::NonFinite`] at the time of the last finite state, which is
 //! kept; the stepper never holds a non-finite state.
 
@@ -59,9 +68,15 @@ pub use tops::{
 };
 
 /// The highest order the method uses. Jorba & Zou's rule gives order 40 at
-/// ε ≈ 10⁻³³, far below what a double resolves, so a tighter rtol only
-/// makes the step shorter, not the order higher.
+/// ε ≈ 10⁻³³, far below what a double resolves: a tighter rtol changes
+/// neither the order nor the step (ρ/e² with the terms at order 40 about
+/// e⁻⁸⁰ ≈ 2·10⁻³⁵ of ‖y‖), only the floor atol/rtol of the state's size.
 pub const MAX_ORDER: usize = 40;
+
+/// How many times a step builds its jet in a shorter time unit before a
+/// non-finite coefficient ends the run (each time the unit shrinks by the
+/// growth the finite orders show, so one is usually enough).
+const MAX_RESCALES: usize = 4;
 
 /// Coefficients of orders 0 to [`MAX_ORDER`].
 const CAP: usize = MAX_ORDER + 1;
@@ -212,8 +227,12 @@ pub fn stability_interval(rtol: Real) -> Real {
 pub struct Taylor<const N: usize, S: TaylorRhs<N>> {
     system: S,
     aux: S::Aux,
-    /// The coefficients of the last accepted step (its dense output).
+    /// The coefficients of the last accepted step (its dense output), in
+    /// units of `scale`.
     jet: [Series; N],
+    /// The time unit σ of the jet (1 unless the coefficients in units of 1
+    /// overflow).
+    scale: Real,
     t: Real,
     y: State<N>,
     t_prev: Real,
@@ -246,6 +265,7 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
             system,
             aux,
             jet: [ZERO_SERIES; N],
+            scale: 1.0,
             t: t0,
             y: y0,
             t_prev: t0,
@@ -282,9 +302,16 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
 
     /// The normalized Taylor coefficients of the last accepted step about its
     /// start, component `i` and order `k` at `[i][k]` (orders above
-    /// [`Taylor::order`] are not meaningful).
+    /// [`Taylor::order`] are not meaningful), in the time unit
+    /// [`Taylor::time_scale`]: `y⁽ᵏ⁾(t) σᵏ/k!`.
     pub fn coefficients(&self) -> &[Series; N] {
         &self.jet
+    }
+
+    /// The time unit σ of [`Taylor::coefficients`]: 1, unless the
+    /// coefficients in units of 1 overflowed a double (see the module notes).
+    pub fn time_scale(&self) -> Real {
+        self.scale
     }
 
     /// One step toward `t_stop`, of the size the series allows, never past
@@ -297,16 +324,37 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
         }
         // No attempt is ever rejected: the budget counts accepted steps.
         fixed_step_allowed(self.stats.steps, self.opts.max_steps, self.t)?;
-        self.build_jet();
         let order_p = self.order;
-        if !self
-            .jet
-            .iter()
-            .all(|s| s[..=order_p].iter().all(|c| c.is_finite()))
-        {
+        let p = order_p as u64;
+        // After a scaled step, the last step's length is the natural unit
+        // (its coefficients then fall off like e^(−2k)); otherwise 1.
+        let mut scale = if self.scale < 1.0 && self.h_last != 0.0 {
+            self.h_last.abs().min(1.0)
+        } else {
+            1.0
+        };
+        // The jet about to be built replaces the last step's polynomial: until
+        // this step is taken the dense output holds at the current state only.
+        self.h_last = 0.0;
+        self.t_prev = self.t;
+        let mut finite = false;
+        for _ in 0..MAX_RESCALES {
+            self.build_jet(scale);
+            self.stats.rhs_evals += p * (p + 1) / 2;
+            match self.rescaled(scale) {
+                None => {
+                    finite = true;
+                    break;
+                }
+                Some(s) if s > 0.0 && s < scale => scale = s,
+                Some(_) => break,
+            }
+        }
+        if !finite {
             return Err(IntegrateError::NonFinite { t: self.t });
         }
-        let h = self.step_size().min(self.opts.h_max);
+        self.scale = scale;
+        let h = self.scale * self.step_size().min(self.opts.h_max / self.scale);
         let dir = (t_stop - self.t).signum();
         attempt_allowed(&self.stats, self.opts.max_steps, self.t, h, dir)?;
         let (h, t_new, _) = clip_step(self.t, t_stop, h);
@@ -314,9 +362,7 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
         if !all_finite(&y_new) {
             return Err(IntegrateError::NonFinite { t: self.t });
         }
-        let p = order_p as u64;
         self.stats.steps += 1;
-        self.stats.rhs_evals += p * (p + 1) / 2;
         self.t_prev = self.t;
         self.t = t_new;
         self.y = y_new;
@@ -334,21 +380,49 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
         self.horner(t - self.t_prev)
     }
 
-    /// Fill the jet at the current state, orders 0 to p.
-    fn build_jet(&mut self) {
+    /// Fill the jet at the current state, orders 0 to p, in the time unit
+    /// `scale`.
+    fn build_jet(&mut self, scale: Real) {
         for (series, &y) in self.jet.iter_mut().zip(self.y.iter()) {
             series[0] = y;
         }
         for k in 0..self.order {
             let f = self.system.coefficient(&mut self.aux, &self.jet, k);
-            let inv = 1.0 / (k as Real + 1.0);
+            let inv = scale / (k as Real + 1.0);
             for (series, fk) in self.jet.iter_mut().zip(f) {
                 series[k + 1] = fk * inv;
             }
         }
     }
 
-    /// The step magnitude of Jorba & Zou from the jet (infinite when the two
+    /// `None` when the jet just built in units of `scale` is finite; else
+    /// a smaller time unit under which its growth, read off the orders that
+    /// are finite, is about 1 per order (`Some(scale)` when there is none:
+    /// already order 1 is not finite, the rate itself overflows).
+    fn rescaled(&self, scale: Real) -> Option<Real> {
+        let finite = |k: usize| self.jet.iter().all(|s| s[k].is_finite());
+        let last = (0..=self.order).take_while(|&k| finite(k)).last()?;
+        if last == self.order {
+            return None;
+        }
+        let max_abs = |k: usize| self.jet.iter().fold(0.0 as Real, |m, s| m.max(s[k].abs()));
+        let size = max_abs(0).max(self.opts.atol / self.opts.rtol);
+        let size = if size > 0.0 { size } else { 1.0 };
+        let rate = (1..=last)
+            .map(|k| (max_abs(k) / size).powf(1.0 / k as Real))
+            .fold(0.0, Real::max);
+        // NOTE: e² more than the rate, so that the last orders are small
+        // rather than about ‖y‖ (they must not overflow in the products).
+        let shrink = std::f64::consts::E.powi(2) * rate;
+        Some(if shrink.is_finite() && shrink > 1.0 {
+            scale / shrink
+        } else {
+            scale / 1e8
+        })
+    }
+
+    /// The step magnitude, in units of the jet's time scale, of Jorba & Zou
+    /// from the jet (infinite when the two
     /// last coefficients vanish: the polynomial is then the exact solution).
     ///
     /// NOTE: each block of [`TaylorRhs::BLOCK_ENDS`] gets its own scale ‖y‖
@@ -388,6 +462,7 @@ impl<const N: usize, S: TaylorRhs<N>> Taylor<N, S> {
     /// The jet's polynomial at signed offset `dt` from the start of its step
     /// (Horner's rule, the N components side by side).
     fn horner(&self, dt: Real) -> State<N> {
+        let dt = dt / self.scale;
         let mut acc = [0.0; N];
         for k in (0..=self.order).rev() {
             for (a, s) in acc.iter_mut().zip(&self.jet) {

@@ -4,7 +4,7 @@
 
 use super::{Body, Scene, catalogue};
 use crate::math::Real;
-use crate::sim::{MethodChoice, Model};
+use crate::sim::{Method, MethodChoice, MethodOptions, Model, auto_integrator};
 
 /// A top scene as the live view opens it.
 #[derive(Clone, Debug, PartialEq)]
@@ -28,7 +28,8 @@ pub struct LiveScene {
 /// scene opens the full ALE's physical solution beside its forward run.
 /// An asymmetric (general) scene opens the general layout: the truncated ALE
 /// (3.3) and its neighbours with their moments and dipole, integrated by the
-/// scene's method (DOP853 for `auto`, since nothing is closed). Scenes of
+/// scene's method (for `auto`, the integrator `auto` takes at the view's
+/// rtol, since nothing is closed: [`auto_integrator`]). Scenes of
 /// other kinds are refused, in one line that says what to run instead.
 pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
     let Body::Top(top) = &scene.body else {
@@ -45,12 +46,17 @@ pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
         ));
     };
     // The view names the method it runs: the closed forms where the model
-    // has them, else DOP853, for `auto` (and for `forward`, which is not a
-    // view: the full ALE's column always shows its physical solution).
+    // has them, else the integrator `auto` takes at the view's tolerance
+    // (the Taylor method at the default rtol 1e-10, by the measured
+    // crossover), for `auto` (and for `forward`, which is not a view: the
+    // full ALE's column always shows its physical solution).
     let general = !top.model.has_closed_form() && !matches!(top.model, Model::Full(_));
     let method = match top.method {
         MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward if general => {
-            MethodChoice::Dop853
+            match auto_integrator(MethodOptions::default().rtol()) {
+                Method::Taylor => MethodChoice::Taylor,
+                _ => MethodChoice::Dop853,
+            }
         }
         MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => MethodChoice::Exact,
         other => other,

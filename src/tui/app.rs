@@ -77,7 +77,7 @@ pub enum Command {
     Commit,
     /// Esc in the edit field: keep the old value.
     Cancel,
-    /// `m`: the next method (closed form, RK4, DP5, DOP853, Radau5).
+    /// `m`: the next method (closed form, RK4, DP5, DOP853, Radau5, Taylor).
     CycleMethod,
     /// `l`: log-time charts on or off.
     ToggleLogTime,
@@ -166,13 +166,15 @@ pub const LIVE_STEPS_PER_SECOND: Real = 1e6;
 /// within a few τ; this is the chart's window, where it would show no more.
 pub const FORWARD_HORIZON: Real = WINDOW;
 
-/// The methods `m` cycles through: closed form, RK4, DP5, DOP853, Radau IIA 5.
-pub const METHOD_CYCLE: [MethodChoice; 5] = [
+/// The methods `m` cycles through: closed form, RK4, DP5, DOP853, Radau IIA 5
+/// and the Taylor method (every model the view steps takes it).
+pub const METHOD_CYCLE: [MethodChoice; 6] = [
     MethodChoice::Exact,
     MethodChoice::Rk4,
     MethodChoice::Dopri5,
     MethodChoice::Dop853,
     MethodChoice::Radau5,
+    MethodChoice::Taylor,
 ];
 
 /// The method after `method` in [`METHOD_CYCLE`] that `top` takes (a

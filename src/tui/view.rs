@@ -605,7 +605,7 @@ const HELP_KEYS: [(&str, &str); 12] = [
         "Enter",
         "edit it: type, ↑/↓ ±0.01, Enter applies, Esc cancels",
     ),
-    ("m", "method: closed form, RK4, DP5, DOP853, Radau5"),
+    ("m", "method: closed form, RK4, DP5, DOP853, Radau5, Taylor"),
     ("l", "log-time charts (the whole run) or the last 200τ"),
     ("Tab", "the next model, where one is shown at a time"),
     ("?", "this help; any key closes it"),
@@ -626,7 +626,7 @@ const GENERAL_HELP_KEYS: [(&str, &str); 5] = [
     ),
     (
         "m",
-        "method of (3.3) and the reduced model: RK4, DP5, DOP853, Radau5 (no closed forms; the physical column always shoots backward)",
+        "method of (3.3) and the reduced model: RK4, DP5, DOP853, Radau5, Taylor (no closed forms; the physical column always shoots backward)",
     ),
 ];
 

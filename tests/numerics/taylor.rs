@@ -15,6 +15,8 @@
 //! - the balance laws along a run of the general top: E changes only by the
 //!   power of the radiation torque and |L|² only by 2 L·T, both integrated by
 //!   Gauss–Legendre along the dense output;
+//! - a top so fast that its coefficients overflow a double unscaled
+//!   (|Ω₀| = 10¹⁰ and 10⁵⁰): against (4.7) and against DOP853;
 //! - Jorba & Zou's order, the step-size rule (no rejections, fewer steps than
 //!   DOP853 at tight tolerances), the cost bookkeeping, backward runs, and
 //!   failures: a pole ends in a step-size underflow before it, the step
@@ -683,4 +685,71 @@ fn simulation_with_the_taylor_method_matches_the_references() {
         matches!(&full, Err(SimError::Refused(r)) if r.model == "full"),
         "{full:?}"
     );
+}
+
+/// A top this fast has rates a double holds (τΩ⊥²Ω⊥ = 10³⁰) but Taylor
+/// coefficients it does not: the one of order k grows like Ω⊥ (τΩ⊥²)ᵏ, past
+/// 10³⁰⁸ from order 15 on. The method builds such a jet in a shorter time
+/// unit and must still follow the closed form (4.7) through the collapse of
+/// Ω⊥ (by 10¹⁰) and after it, where DOP853 does (it failed at t = 0 with
+/// "non-finite").
+#[test]
+fn eq_4_7_holds_for_a_top_whose_unscaled_taylor_coefficients_overflow() {
+    let top = SymmetricTop::new(0.4, 1.0).unwrap();
+    let omega0 = Vec3::new(1e10, 0.0, 1.0);
+    let rtol = 1e-12;
+    let system = SymmetricTruncated(top);
+    let mut taylor = Taylor::new(system, 0.0, omega0, opts(rtol, 1e-300)).unwrap();
+    assert!(taylor_order(rtol) >= 15);
+    for t in [1e-25, 1e-20, 1e-15, 1e-10, 1e-5, 1.0, 10.0, 100.0] {
+        while taylor.t() < t {
+            taylor
+                .advance(t)
+                .unwrap_or_else(|e| panic!("t = {t:e}: {e}"));
+        }
+        let y = taylor.value_at(t);
+        let exact = truncated_closed_form(&top, &omega0, t);
+        let error = (y - exact).amax() / exact.amax();
+        assert!(error < 100.0 * rtol, "t = {t:e}: relative error {error:e}");
+    }
+    // Order and cost as for any other run: no step was taken twice.
+    let steps = taylor.stats().steps;
+    assert!(steps > 10 && steps < 10_000, "{steps} steps");
+}
+
+/// `auto` takes the Taylor method on a general top at rtol ≤ 1e-10, so it
+/// must reach wherever a Runge–Kutta method does: at |Ω₀| = 10⁵⁰ (κ = 1
+/// units), through the collapse of Ω across d over the first 10⁻⁴⁹ u, a
+/// simulation by `auto` agrees with DOP853 run with relative control
+/// throughout (the Taylor run ended at t = 0 with "the rates overflow a
+/// double", then, with its coefficients scaled, crawled at the stability
+/// limit with Ω flipping sign each step inside an atol tied to |Ω₀|).
+#[test]
+fn auto_on_a_fast_general_top_agrees_with_dop853() {
+    use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
+    let top = GeneralTop::new(Vec3::new(1.0, 1.2, 0.5), Vec3::new(0.2, 0.0, 0.3)).unwrap();
+    let omega0 = Vec3::new(1e50, 1.0, 1.0);
+    let initial = InitialState {
+        omega: omega0,
+        rotation: Mat3::identity(),
+    };
+    let options = MethodOptions::default().with_rtol(1e-12).unwrap();
+    let times: Vec<Real> = (0..=10).map(|i| i as Real * 1e-50).collect();
+    let mut sim = Simulation::new(
+        Model::General(top),
+        MethodChoice::Auto,
+        options,
+        initial,
+        Some(1e-49),
+    )
+    .unwrap();
+    let samples = sim.run(&times).unwrap();
+    assert_eq!(sim.method().label(), "taylor");
+    let system = GeneralTruncated(top);
+    let mut dop853 = Dop853::new(0.0, omega0, opts(1e-13, 1e-300)).unwrap();
+    let reference = solve(&mut dop853, &system, &times).unwrap();
+    for (a, b) in samples.iter().zip(&reference) {
+        let error = (a.omega_vec() - b).amax() / b.amax();
+        assert!(error < 1e-9, "t = {:e}: {error:e}", a.t);
+    }
 }

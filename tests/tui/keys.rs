@@ -11,8 +11,8 @@ use spintop::math::Vec3;
 use spintop::physics::general_top::GeneralTop;
 use spintop::physics::symmetric_top::{SymmetricTop, precession_tilt};
 use spintop::scene::catalogue;
-use spintop::sim::MethodChoice;
 use spintop::sim::Model;
+use spintop::sim::{MethodChoice, MethodOptions, TAYLOR_AUTO_RTOL};
 use spintop::tui::app::{App, Mode, Settings, TICK, Top, WARPS};
 use spintop::tui::{Command, command_for};
 use std::time::Duration;
@@ -277,7 +277,7 @@ fn an_omega0_edit_is_applied_refused_or_cancelled() {
 }
 
 #[test]
-fn method_cycles_closed_form_rk4_dp5_dop853_radau5() {
+fn method_cycles_closed_form_rk4_dp5_dop853_radau5_taylor() {
     let mut app = app();
     let labels = |app: &App| {
         [
@@ -292,6 +292,7 @@ fn method_cycles_closed_form_rk4_dp5_dop853_radau5() {
         (MethodChoice::Dopri5, ["dopri5", "dopri5"]),
         (MethodChoice::Dop853, ["dop853", "dop853"]),
         (MethodChoice::Radau5, ["radau5", "radau5"]),
+        (MethodChoice::Taylor, ["taylor", "taylor"]),
         (MethodChoice::Exact, ["exact", "exact+dop853"]),
     ];
     for (method, label) in expected {
@@ -304,7 +305,7 @@ fn method_cycles_closed_form_rk4_dp5_dop853_radau5() {
 }
 
 /// `m` never sticks: at Ω₃₀ = 9·10⁴ RK4 is accepted (and blows up) while
-/// DP5, DOP853 and Radau5 are refused as too costly to draw live, and the
+/// DP5, DOP853, Radau5 and Taylor are refused as too costly to draw live, and the
 /// refusal's advice is "the closed forms (m) take no steps". Pressing m must
 /// then reach the closed forms, skipping (and naming) the refused methods,
 /// not retry DP5 for ever. Found under tmux: five presses of m stayed on RK4.
@@ -320,7 +321,7 @@ fn m_skips_the_methods_too_costly_to_draw_live_and_reaches_the_closed_forms() {
         app.message()
     );
     let message = app.message().map(|m| m.text.clone()).unwrap_or_default();
-    for skipped in ["DP5", "DOP853", "Radau5"] {
+    for skipped in ["DP5", "DOP853", "Radau5", "Taylor"] {
         assert!(
             message.contains(skipped),
             "the skipped methods are named: {message}"
@@ -425,8 +426,8 @@ fn sec3_a_general_top_scene_opens_one_column_of_eq_3_3_with_lab_z_along_l0() {
     assert_eq!(app.settings().ratio(), None);
     assert_eq!(
         app.settings().method(),
-        MethodChoice::Dop853,
-        "auto: nothing closed"
+        MethodChoice::Taylor,
+        "auto: nothing closed, and at the view's rtol 1e-10 auto takes the Taylor method"
     );
     // Three models of the same top side by side: (3.3), the reduced ALE and
     // the physical solution of (3.4), all in the κ = 1 unit of time.
@@ -468,15 +469,20 @@ fn general_top_refuses_the_ratio_keys_and_keeps_running() {
 }
 
 #[test]
-fn general_top_method_cycles_rk4_dp5_dop853_radau5_and_never_the_closed_form() {
+fn general_top_method_cycles_rk4_dp5_dop853_radau5_taylor_and_never_the_closed_form() {
     let mut app = general_app();
-    assert_eq!(app.columns()[0].method().label(), "dop853");
+    // The scene says `auto`: at the view's rtol (1e-10, the measured
+    // crossover) that is the Taylor method, as `spintop simulate` runs it.
+    assert!(MethodOptions::default().rtol() <= TAYLOR_AUTO_RTOL);
+    assert_eq!(app.settings().method(), MethodChoice::Taylor);
+    assert_eq!(app.columns()[0].method().label(), "taylor");
     let expected = [
-        (MethodChoice::Radau5, "radau5"),
         (MethodChoice::Rk4, "rk4"),
         (MethodChoice::Dopri5, "dopri5"),
         (MethodChoice::Dop853, "dop853"),
         (MethodChoice::Radau5, "radau5"),
+        (MethodChoice::Taylor, "taylor"),
+        (MethodChoice::Rk4, "rk4"),
     ];
     for (method, label) in expected {
         app.advance_ticks(3);

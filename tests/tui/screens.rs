@@ -327,7 +327,7 @@ fn general_top_draws_every_state_at_every_size() {
     let small = text(&screen(&app, MIN_WIDTH, MIN_HEIGHT));
     for label in [
         "truncated (3.3)",
-        "method DOP853",
+        "method Taylor",
         "error",
         "tilt",
         "? help",

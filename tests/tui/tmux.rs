@@ -296,7 +296,7 @@ fn the_live_view_opens_the_asymmetric_top_scene() {
         "I = (1, 1.5, 0.8)",
         "d = (0.2, 0, 1)",
         "Ω₀ = (0.1, 0.05, 0.2)/u",
-        "method DOP853",
+        "method Taylor",
         "Ω(t) [1/u]",
         "hodograph of Ω",
         "the top in space",
