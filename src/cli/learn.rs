@@ -30,7 +30,7 @@ pub struct LearnArgs {
     #[arg(long)]
     list: bool,
     /// Forget the progress (the chapters opened) and exit.
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["list", "chapter"])]
     reset: bool,
     /// Do not grade the course in the background (by default the assignments
     /// are graded at the start and again whenever a file in lessons/src is saved).

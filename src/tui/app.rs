@@ -1217,7 +1217,10 @@ impl App {
                 self.paused = !self.paused;
                 self.backlog = 0;
                 if self.paused {
-                    // Nothing more than what is done: the clock stops now.
+                    // Nothing more than what is done: the clock stops now,
+                    // at the ticks the stepper has finished (collected
+                    // first, so that they do not arrive after the pause).
+                    self.absorb();
                     self.requested = self.ticks;
                     self.stepper.request(self.ticks);
                     let u = self.settings.top().time_unit();

@@ -775,6 +775,12 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         (with(&["learn"], &["--chapter", "9.9"]), "no such chapter"),
         (with(&["learn"], &[]), "terminal"),
         (with(&["learn"], &["--course", "/tmp"]), "is not a course"),
+        // --reset forgets the progress and exits: with --list it used to do
+        // only the reset, silently.
+        (
+            with(&["learn"], &["--reset", "--list"]),
+            "cannot be used with",
+        ),
         (
             with(&["learn"], &["--course", "/tmp", "--no-grading"]),
             "cannot be used with",

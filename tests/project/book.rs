@@ -1344,10 +1344,11 @@ fn crates_named_by_snippets(chapter: &str, crates: &BTreeSet<String>) -> Vec<Str
         }
         let words = line.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == ':'));
         for word in words {
-            if let Some((first, _)) = word.split_once("::") {
-                if crates.contains(first) && !named.contains(&first.to_string()) {
-                    named.push(first.to_string());
-                }
+            if let Some((first, _)) = word.split_once("::")
+                && crates.contains(first)
+                && !named.contains(&first.to_string())
+            {
+                named.push(first.to_string());
             }
         }
     }

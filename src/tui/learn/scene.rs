@@ -633,9 +633,9 @@ fn playback_key<T: Send + 'static>(
                 None => ("the warp is already at its end".into(), true),
             }
         }
-        SceneKey::Step => ("this scene is computed ahead: space pauses, r restarts".into(), true),
+        SceneKey::Step => ("this scene is computed ahead: p pauses, r restarts".into(), true),
         SceneKey::Log | SceneKey::Method | SceneKey::NextModel => (
-            "this scene has one view and its methods are fixed: space pauses, r restarts, + and - set the warp".into(),
+            "this scene has one view and its methods are fixed: p pauses, r restarts, + and - set the warp".into(),
             true,
         ),
     }
