@@ -149,7 +149,7 @@ where
     let mut last = start;
     let mut next_frame = start;
     let mut frames = 0;
-    let size = terminal.size().map_err(io::Error::other)?;
+    let mut size = terminal.size().map_err(io::Error::other)?;
     if let Some(c) = screen.command(&Event::Resize(size.width, size.height)) {
         screen.apply(c);
     }
@@ -160,9 +160,20 @@ where
         }
         screen.advance(now - last);
         last = now;
-        terminal
+        let drawn = terminal
             .draw(|frame| screen.draw(frame))
-            .map_err(io::Error::other)?;
+            .map_err(io::Error::other)?
+            .area;
+        // Keys are judged by the screen the reader sees: the size this frame
+        // was drawn at. (Resize events come from a signal, and two quick
+        // resizes can arrive as one, of the last size: the "enlarge" screen
+        // was drawn, and keys pressed on it were taken at the old size.)
+        if (drawn.width, drawn.height) != (size.width, size.height) {
+            if let Some(c) = screen.command(&Event::Resize(drawn.width, drawn.height)) {
+                screen.apply(c);
+            }
+            size = drawn.as_size();
+        }
         frames += 1;
         next_frame += FRAME;
         if next_frame < Instant::now() {
