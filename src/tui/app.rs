@@ -452,7 +452,13 @@ impl Settings {
             Some(w) => format!("at {w} {u}/s or slower it runs live (- slows down)"),
             None if self.top.ratio().is_some()
                 && self.method != MethodChoice::Exact
-                && self.top.takes_a_method() =>
+                && self.top.takes_a_method()
+                && Self {
+                    method: MethodChoice::Exact,
+                    ..*self
+                }
+                .check_live()
+                .is_ok() =>
             {
                 "the closed forms (m) take no steps, and a smaller |Ω₀| costs less".to_string()
             }

@@ -335,6 +335,28 @@ fn m_skips_the_methods_too_costly_to_draw_live_and_reaches_the_closed_forms() {
     assert_eq!(app.settings().method(), MethodChoice::Exact);
 }
 
+/// At Ω₃₀ = 10⁹ nothing but RK4 can be drawn live, the closed forms
+/// included: a refusal must not send the student to "the closed forms (m)"
+/// (found by a student at 80×24: every m repeated that advice and stayed on
+/// RK4). It names what would help, a smaller |Ω₀|.
+#[test]
+fn m_never_advises_the_closed_forms_where_they_are_refused_too() {
+    let settings = Settings::new(0.4, [0.0, 0.1, 1e9], MethodChoice::Rk4, 10.0).unwrap();
+    let exact = Settings::new(0.4, [0.0, 0.1, 1e9], MethodChoice::Exact, 10.0);
+    let mut app = App::new(settings).unwrap();
+    app.apply(Command::CycleMethod);
+    let message = app.message().map(|m| m.text.clone()).unwrap_or_default();
+    let closed_forms_run = exact.is_ok_and(|s| App::new(s).is_ok());
+    if closed_forms_run {
+        // Then m reaches them, as in the test above.
+        assert_eq!(app.settings().method(), MethodChoice::Exact, "{message}");
+    } else {
+        assert_eq!(app.settings().method(), MethodChoice::Rk4, "{message}");
+        assert!(!message.contains("closed forms (m)"), "{message}");
+        assert!(message.contains("smaller |Ω₀|"), "{message}");
+    }
+}
+
 #[test]
 fn reset_log_help_and_quit() {
     let mut app = app();
