@@ -70,11 +70,15 @@ const PARAM_EXACT_CHARS: usize = 8;
 pub fn fmt_param(x: Real) -> String {
     let x = if x == 0.0 { 0.0 } else { x };
     let plain = format!("{x}");
-    if plain.chars().count() <= PARAM_EXACT_CHARS {
+    let exp = format!("{x:e}");
+    // A round number is written as it would be typed: `1e7`, not
+    // `10000000` (which the refusals and status lines, echoing the typed
+    // text, would then disagree with); `250` and `0.001` stay as they are.
+    let (plain_len, exp_len) = (plain.chars().count(), exp.chars().count());
+    if plain_len <= PARAM_EXACT_CHARS && !(plain_len >= 6 && exp_len < plain_len) {
         return plain;
     }
-    let exp = format!("{x:e}");
-    if exp.chars().count() <= PARAM_EXACT_CHARS {
+    if exp_len <= PARAM_EXACT_CHARS {
         return exp;
     }
     fmt_num(x)
@@ -356,6 +360,11 @@ mod tests {
             (1.0 / 3.0, "0.3333"),
             (1.234_567_891e-7, "1.235e-7"),
             (12_345_678.9, "1.235e7"),
+            (1e7, "1e7"),
+            (1e5, "1e5"),
+            (250_000.0, "2.5e5"),
+            (123_456.0, "123456"),
+            (-1e6, "-1e6"),
         ] {
             assert_eq!(fmt_param(x), shown, "{x}");
             let back: Real = fmt_param(x).parse().unwrap();
