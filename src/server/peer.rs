@@ -6,8 +6,10 @@
 //! link or a web page that forwards there, receives the reader's cookie,
 //! which is the token. So on Linux the server also asks the kernel who made
 //! each connection: both ends of a loopback connection are sockets of this
-//! machine, listed with their owner in `/proc/net/tcp` and `/proc/net/tcp6`
-//! (as `ss -tne` shows them), and a connection is taken only from a live
+//! machine, and the kernel's socket diagnostics name the owner of the peer's
+//! socket in one lookup (as `ss -tne` asks; the tables `/proc/net/tcp` and
+//! `/proc/net/tcp6` say the same, slowly, and are read only where the
+//! diagnostics cannot answer). A connection is taken only from a live
 //! socket of the server's own user, or of root (who can read the token
 //! anyway, and whose relays carry a browser's connections on WSL). Another
 //! user's connection is answered 403, token or not.
@@ -15,8 +17,8 @@
 //! NOTE: fail closed: a peer socket not found, or already closed by its
 //! process (inode 0), is refused: else a client could send its request,
 //! reset its socket at once, and be gone from the table before the server
-//! looks. Only where the table cannot be read at all (no `/proc`) is the
-//! token the only key, as it is off Linux.
+//! looks. Only where neither the diagnostics nor the tables can be read
+//! (no `/proc`) is the token the only key, as it is off Linux.
 
 use std::net::{IpAddr, Ipv4Addr, Ipv6Addr, SocketAddr, TcpStream};
 
@@ -50,15 +52,20 @@ pub fn peer(stream: &TcpStream) -> Peer {
     if let Some(owner) = diag::owner(remote, local) {
         return judge(owner, me);
     }
-    let tables: Vec<String> = ["/proc/net/tcp", "/proc/net/tcp6"]
-        .iter()
-        .filter_map(|path| std::fs::read_to_string(path).ok())
-        .collect();
+    let tables = tables();
     if tables.is_empty() {
         return Peer::Unknown;
     }
     let owner = tables.iter().find_map(|table| owner(table, remote, local));
     judge(owner, me)
+}
+
+/// The kernel's TCP socket tables, IPv4 and IPv6 (those it can read).
+fn tables() -> Vec<String> {
+    ["/proc/net/tcp", "/proc/net/tcp6"]
+        .iter()
+        .filter_map(|path| std::fs::read_to_string(path).ok())
+        .collect()
 }
 
 /// The owner of a loopback socket from the kernel's socket diagnostics
@@ -320,10 +327,7 @@ mod tests {
             accepted.peer_addr().unwrap(),
             accepted.local_addr().unwrap(),
         );
-        let tables: Vec<String> = ["/proc/net/tcp", "/proc/net/tcp6"]
-            .iter()
-            .filter_map(|path| std::fs::read_to_string(path).ok())
-            .collect();
+        let tables = tables();
         let from_tables = |a, b| tables.iter().find_map(|t| owner(t, a, b));
         let Some(client_side) = diag::owner(remote, local) else {
             eprintln!("no socket diagnostics in this kernel: the tables alone answer");

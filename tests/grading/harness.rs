@@ -464,11 +464,8 @@ fn every_printed_command_repeats_the_course_it_was_given() {
     std::fs::remove_dir_all(dir.parent().unwrap()).ok();
 }
 
-#[test]
-fn the_example_wrong_answers_are_rejected_and_their_diagnoses_name_the_mistake() {
-    let answers = course::diagnose::read_folder(&repo().join("lessons/wrong")).unwrap();
-    assert!(answers.len() >= 30, "{}", answers.len());
-    // Every assignment has at least one.
+/// Every assignment of the course has at least one of `answers`.
+fn assert_every_assignment_has_a_wrong_answer(answers: &[course::diagnose::WrongAnswer]) {
     for a in COURSE {
         assert!(
             answers.iter().any(|w| w.assignment.function == a.function),
@@ -476,6 +473,14 @@ fn the_example_wrong_answers_are_rejected_and_their_diagnoses_name_the_mistake()
             a.function
         );
     }
+}
+
+#[test]
+fn the_example_wrong_answers_are_rejected_and_their_diagnoses_name_the_mistake() {
+    let answers = course::diagnose::read_folder(&repo().join("lessons/wrong")).unwrap();
+    assert!(answers.len() >= 30, "{}", answers.len());
+    // Every assignment has at least one.
+    assert_every_assignment_has_a_wrong_answer(&answers);
     let work = scratch("diagnose");
     for seed in super::SEEDS {
         let results = course::diagnose::run(repo(), &answers, seed, &work.join("build")).unwrap();
@@ -499,13 +504,7 @@ fn the_example_wrong_answers_are_rejected_and_their_diagnoses_name_the_mistake()
 fn the_independent_wrong_answers_are_all_rejected_and_their_diagnoses_name_the_mistake() {
     let answers = course::diagnose::read_folder(&repo().join("lessons/wrong/independent")).unwrap();
     assert!(answers.len() >= 60, "{}", answers.len());
-    for a in COURSE {
-        assert!(
-            answers.iter().any(|w| w.assignment.function == a.function),
-            "no wrong answer for {}",
-            a.function
-        );
-    }
+    assert_every_assignment_has_a_wrong_answer(&answers);
     let work = scratch("independent");
     for seed in super::SEEDS {
         let results = course::diagnose::run(repo(), &answers, seed, &work.join("build")).unwrap();

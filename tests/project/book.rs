@@ -1306,26 +1306,30 @@ const TAYLOR_PEERS_RUN: &str = "benches/results/peers-2026-11-26-taylor.csv";
 const TAYLOR_H2H_RUN: &str = "benches/results/peers-h2h-2026-11-26-run3.csv";
 
 /// The crates `Cargo.toml` names as dependencies (spintop's, not the
-/// dev-dependencies), with `-` written `_` as code names them.
+/// dev-dependencies; those of every target included), with `-` written `_`
+/// as code names them.
 fn dependency_crates() -> BTreeSet<String> {
-    let manifest = fs::read_to_string(root().join("Cargo.toml")).unwrap();
-    let mut crates = BTreeSet::new();
-    let mut inside = false;
-    for line in manifest.lines() {
-        let line = line.trim();
-        if line.starts_with('[') {
-            inside = line == "[dependencies]"
-                || (line.starts_with("[target.") && line.ends_with(".dependencies]"));
-            continue;
-        }
-        if let Some((key, _)) = line
-            .split_once('=')
-            .filter(|_| inside && !line.starts_with('#'))
-        {
-            crates.insert(key.trim().replace('-', "_"));
+    let manifest: toml::Table = fs::read_to_string(root().join("Cargo.toml"))
+        .unwrap()
+        .parse()
+        .expect("Cargo.toml parses");
+    let tables = |t: &toml::Table| -> Vec<toml::Table> {
+        t.get("dependencies")
+            .and_then(|d| d.as_table())
+            .into_iter()
+            .cloned()
+            .collect()
+    };
+    let mut all = tables(&manifest);
+    if let Some(targets) = manifest.get("target").and_then(|t| t.as_table()) {
+        for target in targets.values().filter_map(|t| t.as_table()) {
+            all.extend(tables(target));
         }
     }
-    crates
+    all.iter()
+        .flat_map(|d| d.keys())
+        .map(|k| k.replace('-', "_"))
+        .collect()
 }
 
 /// The crates a runnable Rust block of `chapter` names by path
