@@ -277,6 +277,41 @@ fn longest_stepped_turning(rtol: Real, angle: Real) -> Real {
     lo
 }
 
+/// Why the symmetric models' closed-form path (`auto` or `exact`) skips the
+/// orientation of a run that turns `angle` radians, if it does: the
+/// truncated model's closed form (4.9) past [`MAX_PHASE`], the reduced
+/// model's Q′ = QΩ̂ past [`ORIENTATION_STEP_LIMIT`] steps.
+fn symmetric_orientation_skip(truncated: bool, angle: Real) -> Option<String> {
+    let steps = angle; // at most 1 rad per orientation step
+    if truncated {
+        (angle > MAX_PHASE).then(|| {
+            format!(
+                "the orientation's phase reaches about {angle:.1e} rad, which a double cannot resolve (its closed form (4.9) would return noise)"
+            )
+        })
+    } else {
+        (steps > ORIENTATION_STEP_LIMIT).then(|| {
+            format!(
+                "the orientation has no closed form, and Q' = Q Omega^(t) would take {} steps (the body turns {} rad, at most 1 rad per step)",
+                fmt_about(steps),
+                fmt_about(angle)
+            )
+        })
+    }
+}
+
+/// Whether a run of `model` by `method` reports the orientation (the
+/// general models' secular path, which reports none, aside).
+fn reports_orientation(model: &Model, method: MethodChoice, omega0: &Vec3, t_last: Real) -> bool {
+    match (model, method) {
+        (Model::Truncated(_) | Model::Reduced(_), MethodChoice::Auto | MethodChoice::Exact) => {
+            let truncated = matches!(model, Model::Truncated(_));
+            symmetric_orientation_skip(truncated, turning_angle(model, omega0, t_last)).is_none()
+        }
+        _ => true,
+    }
+}
+
 /// What `model = "auto"` chose: 0 truncated, 1 reduced, 2 physical.
 pub(super) struct ModelChoice {
     pub tier: usize,
@@ -293,6 +328,7 @@ pub(super) struct ModelChoice {
 /// qualitatively off.
 pub(super) fn choose_model(
     tiers: &[Model; 3],
+    method: MethodChoice,
     omega0: &Vec3,
     times: &[Real],
     tol: Real,
@@ -347,9 +383,21 @@ pub(super) fn choose_model(
             ),
         };
     }
-    let tier = if errors.truncated <= tol {
+    // The orientation counts where the tier's run reports it (an angle in
+    // radians against a relative rtol: the rotation matrix's entries move by
+    // about that much).
+    let orientation = |tier: usize, error: Real| {
+        (measured == "Omega" && reports_orientation(&tiers[tier], method, omega0, t_last))
+            .then_some(error)
+    };
+    let oriented = [
+        orientation(0, errors.truncated_orientation),
+        orientation(1, errors.reduced_orientation),
+    ];
+    let within = |error: Real, turn: Option<Real>| error <= tol && turn.is_none_or(|o| o <= tol);
+    let tier = if within(errors.truncated, oriented[0]) {
         0
-    } else if errors.reduced <= tol && !strong {
+    } else if within(errors.reduced, oriented[1]) && !strong {
         1
     } else {
         2
@@ -359,10 +407,20 @@ pub(super) fn choose_model(
     } else {
         ""
     };
+    let turned = match oriented {
+        [Some(t), Some(r)] => format!(", and by {t:.1e} and {r:.1e} rad in the orientation"),
+        [None, Some(r)] => format!(
+            ", and the reduced ALE by {r:.1e} rad in the orientation (the truncated ALE's is skipped)"
+        ),
+        [Some(t), None] => format!(
+            ", and the truncated ALE by {t:.1e} rad in the orientation (the reduced ALE's is skipped)"
+        ),
+        [None, None] => String::new(),
+    };
     ModelChoice {
         tier,
         reason: format!(
-            "model = \"auto\": over the run the truncated ALE (3.3), which drops the Schott term, may be off by {:.1e} and the reduced ALE, right through first order, by {:.1e}{strong_note} in {measured} (their leading errors against the physical solution of (3.4), {how}); the lightest within rtol = {tol:.0e} is {}, so it answers",
+            "model = \"auto\": over the run the truncated ALE (3.3), which drops the Schott term, may be off by {:.1e} and the reduced ALE, right through first order, by {:.1e}{strong_note} in {measured}{turned} (their leading errors against the physical solution of (3.4), {how}); the lightest within rtol = {tol:.0e} is {}, so it answers",
             errors.truncated,
             errors.reduced,
             name(tier)
@@ -415,22 +473,7 @@ pub(super) fn plan_top(
     // The symmetric models' path: `top` comes from the match arm below.
     let mut symmetric_path = |top: &SymmetricTop, exact: bool| -> TopPlan {
         let truncated = matches!(model, Model::Truncated(_));
-        let steps = angle; // at most 1 rad per orientation step
-        let skip = if truncated {
-            (angle > MAX_PHASE).then(|| {
-                format!(
-                    "the orientation's phase reaches about {angle:.1e} rad, which a double cannot resolve (its closed form (4.9) would return noise)"
-                )
-            })
-        } else {
-            (steps > ORIENTATION_STEP_LIMIT).then(|| {
-                format!(
-                    "the orientation has no closed form, and Q' = Q Omega^(t) would take {} steps (the body turns {} rad, at most 1 rad per step)",
-                    fmt_about(steps),
-                    fmt_about(angle)
-                )
-            })
-        };
+        let skip = symmetric_orientation_skip(truncated, angle);
         let orientation = match skip {
             Some(why) => {
                 let phase = top.omega3_tilde(omega0.z).abs()

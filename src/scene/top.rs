@@ -342,7 +342,7 @@ pub(super) fn top_scene(
     let (model, model_choice) = match asked_tier {
         Some(tier) => (tiers[tier], None),
         None => {
-            let choice = plan::choose_model(&tiers, &omega0, &times, options.rtol());
+            let choice = plan::choose_model(&tiers, method, &omega0, &times, options.rtol());
             (tiers[choice.tier], Some(choice.reason))
         }
     };

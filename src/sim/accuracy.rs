@@ -46,7 +46,9 @@ use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Stepper};
 use crate::math::{Real, State, Vec3};
 use crate::physics::full_ale::slow_manifold_second_order;
 use crate::physics::general_top::GeneralTop;
-use crate::physics::symmetric_top::{SymmetricTop, reduced_amplitude, truncated_clock};
+use crate::physics::symmetric_top::{
+    SymmetricTop, reduced_amplitude, reduced_closed_form, truncated_clock, truncated_closed_form,
+};
 use crate::sim::secular::{Law, SecularRun, secular, swing};
 
 /// The estimated largest error of each model over a run, relative to |Ω₀|.
@@ -56,6 +58,12 @@ pub struct ModelErrors {
     pub truncated: Real,
     /// The reduced ALE against the physical solution of (3.4).
     pub reduced: Real,
+    /// The truncated ALE's orientation against the physical solution's: the
+    /// angle of the rotation between them, in radians (at most π).
+    pub truncated_orientation: Real,
+    /// The reduced ALE's orientation against the physical solution's, in
+    /// radians (at most π).
+    pub reduced_orientation: Real,
     /// Nothing radiates (Ω₀ along the axis of a symmetric top, or a steady
     /// spin about a principal axis along the dipole): every model is exact.
     pub exact: bool,
@@ -65,6 +73,8 @@ impl ModelErrors {
     const EXACT: Self = Self {
         truncated: 0.0,
         reduced: 0.0,
+        truncated_orientation: 0.0,
+        reduced_orientation: 0.0,
         exact: true,
     };
 }
@@ -140,6 +150,156 @@ pub fn symmetric_truncated_error(top: &SymmetricTop, omega0: &Vec3, t: Real) -> 
 }
 // ANCHOR_END: truncated_error
 
+/// The margin on the orientation estimates: they carry the leading term of
+/// each phase, linearised, and bound the turning parts by their chords.
+const ORIENTATION_MARGIN: Real = 1.5;
+
+// ANCHOR: reduced_orientation_error
+/// The reduced model's estimated orientation error over [0, `t`], in
+/// radians: the angle between its orientation and the physical solution's.
+///
+/// Paper: Eq. (3.4) (its slow manifold), Eq. (4.15), Eq. (4.16).
+///
+/// Two models whose body-frame Ω differ by δΩ(t) part in orientation by
+/// e(t) = ∫₀ᵗ O(s) δΩ(s) ds (to first order, in the lab). The reduced
+/// model's δΩ is a phase Δα of Ω⊥ and a relative amplitude Δ ln A, both
+/// functions of y = ln(u₀/u) along the run:
+///
+/// ```text
+/// Δα = τ|k| y,   Δ ln A = (τ²/2)(3u₀(1 − e^(−y)) + 5k² y)
+/// ```
+///
+/// The part of δΩ along L adds up: the lab phase about L, from
+/// Δ|L| = (u/|L|) Δ ln A. The phase part is O Δα (e₃ × Ω⊥) = Δα ṅ₃, and
+/// ∫ Δα ṅ₃ = ∫ Δα̇(s) (n₃(t) − n₃(s)) ds, where the figure axis n₃ lies
+/// within θ = atan(A/|k|) of n_L and n_L sweeps θ(s) − θ(t): the chord is
+/// at most 2θ(s). The amplitude's turning part, w = Δ ln A cos θ along
+/// n_L × ṅ₃, the same way. With s = u + k² and ds = dy/(2τs):
+///
+/// ```text
+/// e ≤ (τ/4)[6(√s₀ − √s_T)²/√s_T + 5k² ∫₀^Y y u s^(−3/2) dy]
+///     + ∫₀^Y τ|k| min(2θ, 2, ∫A dt) dy + ∫ 2θ dw + w_T θ₀²/2
+/// ```
+pub fn symmetric_reduced_orientation_error(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
+    let tau = top.tau();
+    let a0 = omega0.x.hypot(omega0.y);
+    if a0 == 0.0 || tau == 0.0 || t == 0.0 {
+        return 0.0;
+    }
+    let k = (top.ratio() * omega0.z).abs();
+    let k2 = k * k;
+    let u0 = a0 * a0;
+    // Y = ln(u₀/u_T) ≥ 0, the log of the amplitude's fall squared.
+    let big_y = -2.0 * reduced_amplitude(top, omega0, t).ln();
+    let a_t = a0 * (-0.5 * big_y).exp();
+    let u_t = a_t * a_t;
+    let (s0, s_t) = (u0 + k2, u_t + k2);
+    let root = s0.sqrt() - s_t.sqrt();
+    let lab_k0 = 0.25 * tau * 6.0 * root * root / s_t.sqrt();
+    let theta0 = a0.atan2(k);
+    if k2 == 0.0 {
+        // No spin term: no phase error, and w = 0 (cos θ = 0).
+        return (ORIENTATION_MARGIN * lab_k0).min(std::f64::consts::PI as Real);
+    }
+    // Past u ≪ k² every integrand falls as e^(−y/2) or faster: 80 beyond
+    // that point is the whole integral.
+    let end = big_y.min((u0 / k2).ln().max(0.0) + 80.0);
+    const N: usize = 4000;
+    let h = end / N as Real;
+    let at = |y: Real| {
+        let u = u0 * (-y).exp();
+        let theta = u.sqrt().atan2(k);
+        let d_ln_a = 0.5 * tau * tau * (3.0 * u0 * -(-y).exp_m1() + 5.0 * k2 * y);
+        (u, theta, d_ln_a * theta.cos())
+    };
+    // The chord from n₃(s) to n₃(T): within 2θ(s), and within the figure
+    // axis's path ∫ₛᵀ A dt = (θ(s) − θ_T)/(τ|k|).
+    let theta_t = a_t.atan2(k);
+    let chord = |theta: Real| (2.0 * theta).min(2.0).min((theta - theta_t) / (tau * k));
+    let (mut i2, mut phase, mut amplitude) = (0.0, 0.0, 0.0);
+    let mut before = at(0.0);
+    for j in 0..=N {
+        let y = j as Real * h;
+        let now = at(y);
+        // Simpson's weights for the smooth integrands.
+        let weight = if j == 0 || j == N {
+            1.0
+        } else if j % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
+        let (u, theta, _) = now;
+        i2 += weight * y * u / (u + k2).powf(1.5);
+        phase += weight * chord(theta);
+        // ∫ chord dw, w increasing: each step's rise at the larger chord
+        // before it.
+        amplitude += chord(before.1) * (now.2 - before.2).max(0.0);
+        before = now;
+    }
+    let (i2, phase) = (i2 * h / 3.0, tau * k * phase * h / 3.0);
+    let w_t = before.2;
+    let lab = lab_k0 + 0.25 * tau * 5.0 * k2 * i2;
+    (ORIENTATION_MARGIN * (lab + phase + amplitude + 0.5 * w_t * theta0 * theta0))
+        .min(std::f64::consts::PI as Real)
+}
+// ANCHOR_END: reduced_orientation_error
+
+// ANCHOR: truncated_orientation_error
+/// The truncated model's estimated orientation error over [0, `t`], in
+/// radians: its distance from the reduced model's orientation, plus the
+/// reduced model's own estimate.
+///
+/// Paper: Eq. (4.7), Eq. (4.15), Eq. (4.16).
+///
+/// With δΩ = Ω_trunc − Ω_red (both closed forms) and l̂ the reduced model's
+/// L/|L| in the body, e(t) = ∫ O δΩ ds splits into the part along L, which
+/// adds up, and the rest q, which turns with the figure axis:
+///
+/// ```text
+/// e ≤ max_t |∫₀ᵗ δΩ·l̂ ds| + min(∫₀ᵀ |q| ds, 3θ₀ max |q|/A_red)
+/// ```
+///
+/// taken on the geometric grid of [`symmetric_truncated_error`].
+pub fn symmetric_truncated_orientation_error(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
+    let a0 = omega0.x.hypot(omega0.y);
+    if a0 == 0.0 || top.tau() == 0.0 || t == 0.0 {
+        return 0.0;
+    }
+    let ratio = top.ratio();
+    let theta0 = a0.atan2((ratio * omega0.z).abs());
+    let parts = |s: Real| {
+        let w_t = truncated_closed_form(top, omega0, s);
+        let w_r = reduced_closed_form(top, omega0, s);
+        let delta = w_t - w_r;
+        let l = Vec3::new(w_r.x, w_r.y, ratio * w_r.z);
+        let l_hat = l / l.norm();
+        let along = delta.dot(&l_hat);
+        let q = (delta - l_hat * along).norm();
+        (along, q, w_r.x.hypot(w_r.y))
+    };
+    let times = std::iter::once(0.0)
+        .chain((0..=GRID).map(|j| t * (1e-9 as Real).powf(1.0 - j as Real / GRID as Real)));
+    let (mut last_t, mut last) = (0.0, parts(0.0));
+    let (mut secular, mut worst_secular, mut path, mut worst_ratio): (Real, Real, Real, Real) =
+        (0.0, 0.0, 0.0, 0.0);
+    for s in times.skip(1) {
+        let now = parts(s);
+        let h = s - last_t;
+        secular += 0.5 * h * (last.0 + now.0);
+        path += 0.5 * h * (last.1 + now.1);
+        worst_secular = worst_secular.max(secular.abs());
+        if now.2 > 0.0 {
+            worst_ratio = worst_ratio.max(now.1 / now.2);
+        }
+        (last_t, last) = (s, now);
+    }
+    let turning = path.min(3.0 * theta0 * worst_ratio);
+    (GRID_MARGIN * (worst_secular + turning) + symmetric_reduced_orientation_error(top, omega0, t))
+        .min(std::f64::consts::PI as Real)
+}
+// ANCHOR_END: truncated_orientation_error
+
 /// Both estimates for a symmetric top; exact when Ω₀ lies on the axis.
 pub fn symmetric_errors(top: &SymmetricTop, omega0: &Vec3, t: Real) -> ModelErrors {
     if omega0.x == 0.0 && omega0.y == 0.0 || top.tau() == 0.0 {
@@ -148,6 +308,8 @@ pub fn symmetric_errors(top: &SymmetricTop, omega0: &Vec3, t: Real) -> ModelErro
     ModelErrors {
         truncated: symmetric_truncated_error(top, omega0, t).min(2.0),
         reduced: symmetric_reduced_error(top, omega0, t).min(2.0),
+        truncated_orientation: symmetric_truncated_orientation_error(top, omega0, t),
+        reduced_orientation: symmetric_reduced_orientation_error(top, omega0, t),
         exact: false,
     }
 }
@@ -212,29 +374,34 @@ pub fn general_errors(top: &GeneralTop, omega0: &Vec3, t: Real) -> ModelErrors {
     };
     let reduced = |w: &Vec3| top.reduced_ale_rhs(w);
     let truncated = |w: &Vec3| top.truncated_ale_rhs(w);
-    let part = |y: &State<12>, i: usize| Vec3::new(y[i], y[i + 1], y[i + 2]);
-    let rhs = |_t: Real, y: &State<12>| -> State<12> {
+    let part = |y: &State<18>, i: usize| Vec3::new(y[i], y[i + 1], y[i + 2]);
+    // The orientation errors o_r, o_t in the body frame, ȯ = δΩ − Ω × o, in
+    // units of σ/|Ω₀| (radians per σ/|Ω₀|).
+    let rhs = |_t: Real, y: &State<18>| -> State<18> {
         let (w, er, wt, et) = (part(y, 0), part(y, 3), part(y, 6), part(y, 9));
+        let (or, ot) = (part(y, 12), part(y, 15));
         let f2 = second(&w);
         let g2 = slow_manifold_second_order(top, &w);
         let der = along(&reduced, &w, &er) - g2 / sigma_r;
         let det = along(&truncated, &w, &et) + (truncated(&w) - f2) / sigma_t;
         let dwt = truncated(&wt);
-        let mut out = State::<12>::zeros();
-        for (i, v) in [f2, der, dwt, det].iter().enumerate() {
+        let dor = er * scale - w.cross(&or);
+        let dot = et * scale - w.cross(&ot);
+        let mut out = State::<18>::zeros();
+        for (i, v) in [f2, der, dwt, det, dor, dot].iter().enumerate() {
             out.fixed_rows_mut::<3>(3 * i).copy_from(v);
         }
         out
     };
-    let mut y0 = State::<12>::zeros();
+    let mut y0 = State::<18>::zeros();
     y0.fixed_rows_mut::<3>(0).copy_from(omega0);
     y0.fixed_rows_mut::<3>(6).copy_from(omega0);
     // NOTE: rtol 1e-8 on states of order one (the errors in their own units):
     // the estimate needs two digits, the margin for its reach is generous.
     let mut options = AdaptiveOptions::new(1e-8, 1e-10 * scale.min(1.0)).expect("valid tolerances");
     options.max_steps = ESTIMATE_MAX_STEPS;
-    let mut worst = [0.0 as Real; 2];
-    let mut take = |y: &State<12>| {
+    let mut worst = [0.0 as Real; 4];
+    let mut take = |y: &State<18>| {
         let (w, er, wt, et) = (part(y, 0), part(y, 3), part(y, 6), part(y, 9));
         let e_r = er.norm() * sigma_r / scale;
         let e_t_lin = et.norm() * sigma_t / scale;
@@ -245,6 +412,8 @@ pub fn general_errors(top: &GeneralTop, omega0: &Vec3, t: Real) -> ModelErrors {
         };
         worst[0] = worst[0].max(e_t);
         worst[1] = worst[1].max(e_r);
+        worst[2] = worst[2].max(part(y, 15).norm() * sigma_t / scale);
+        worst[3] = worst[3].max(part(y, 12).norm() * sigma_r / scale);
     };
     let reached = match Dop853::new(0.0, y0, options) {
         Ok(mut stepper) => {
@@ -262,16 +431,21 @@ pub fn general_errors(top: &GeneralTop, omega0: &Vec3, t: Real) -> ModelErrors {
     };
     // Beyond the span reached, the error grows at most like the square of
     // the turning (the first step's span stands in when none was taken).
-    let stretch = if reached >= t {
-        1.0
+    // The orientation's error is the integral of Ω's: one power more.
+    let (stretch, stretch_o) = if reached >= t {
+        (1.0, 1.0)
     } else {
-        let reached = reached.max(t * 1e-12).max(Real::MIN_POSITIVE);
-        (t / reached).powi(2)
+        let over = t / reached.max(t * 1e-12).max(Real::MIN_POSITIVE);
+        (over.powi(2), over.powi(3))
     };
-    let [e_t, e_r] = worst.map(|e| (GENERAL_MARGIN * e * stretch).min(2.0));
+    let [e_t, e_r] = [worst[0], worst[1]].map(|e| (GENERAL_MARGIN * e * stretch).min(2.0));
+    let pi = std::f64::consts::PI as Real;
+    let [o_t, o_r] = [worst[2], worst[3]].map(|e| (GENERAL_MARGIN * e * stretch_o).min(pi));
     ModelErrors {
         truncated: (e_t + e_r).min(2.0),
         reduced: e_r,
+        truncated_orientation: (o_t + o_r).min(pi),
+        reduced_orientation: o_r,
         exact: false,
     }
 }
@@ -334,9 +508,12 @@ pub fn secular_errors(
     });
     let reduced = (SECULAR_MARGIN * (gap(&red) + swing_r)).min(2.0);
     let truncated = (SECULAR_MARGIN * (gap(&trunc) + swing_t)).min(2.0);
+    // NOTE: the secular model reports no orientation.
     Ok(ModelErrors {
         truncated: truncated.max(reduced),
         reduced,
+        truncated_orientation: 0.0,
+        reduced_orientation: 0.0,
         exact: false,
     })
 }

@@ -16,6 +16,7 @@
 
 use spintop::integrate::{AdaptiveOptions, Dop853, solve};
 use spintop::math::{Real, State, Vec3};
+use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::full_ale::slow_manifold_second_order;
 use spintop::physics::general_top::GeneralTop;
 use spintop::physics::symmetric_top::{SymmetricTop, reduced_closed_form, truncated_closed_form};
@@ -23,6 +24,7 @@ use spintop::sim::accuracy::{general_errors, secular_errors, symmetric_errors};
 use spintop::sim::physical::general::general_physical_solution;
 use spintop::sim::physical::physical_solution;
 use spintop::sim::secular::{Law, averaging_error, secular};
+use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
 
 /// Below this the real error is the reference's own (rtol 1e-12 over a run).
 const ROUNDING: Real = 1e-9;
@@ -129,6 +131,119 @@ fn auto_estimates_bound_the_symmetric_models_errors_on_a_fine_grid() {
     );
 }
 
+/// The angle of the rotation between two orientations, in radians:
+/// ‖O₁ − O₂‖_F = 2√2 sin(angle/2), without the acos of a trace near 1.
+fn rotation_angle(a: &spintop::math::Mat3, b: &spintop::math::Mat3) -> Real {
+    2.0 * ((a - b).norm() / (2.0 * std::f64::consts::SQRT_2))
+        .min(1.0)
+        .asin()
+}
+
+/// One symmetric top's orientation errors, as [`symmetric_case`] sets it up:
+/// each model's orientation (the truncated one by its closed form (4.9),
+/// the reduced one integrated on SO(3) at rtol 1e-12) against the physical
+/// solution's (backward shooting, its orientation integrated at 1e-12).
+fn orientation_case(
+    ratio: Real,
+    theta: Real,
+    strength: Real,
+    decays: Real,
+    report: &mut Vec<String>,
+    bad: &mut Vec<String>,
+) {
+    let top = SymmetricTop::new(ratio, 1.0).unwrap();
+    let (sin, cos) = if theta == std::f64::consts::FRAC_PI_2 {
+        (1.0, 0.0)
+    } else {
+        theta.sin_cos()
+    };
+    let size = strength / (sin * sin + (ratio * cos).powi(2)).sqrt();
+    let omega0 = Vec3::new(0.6 * size * sin, 0.8 * size * sin, size * cos);
+    let t_end = decays / (strength * strength);
+    let times: Vec<Real> = (0..=200).map(|j| t_end * (j as Real / 200.0)).collect();
+    let initial = InitialState::new(omega0, EulerAngles::new(0.3, 0.7, -0.2)).unwrap();
+    let options = MethodOptions::new(1e-12, 0.01).unwrap();
+    let run = |model: Model, choice: MethodChoice| {
+        Simulation::new(model, choice, options, initial, Some(t_end))
+            .unwrap()
+            .run(&times)
+            .unwrap()
+    };
+    let phys = run(Model::Full(top), MethodChoice::Auto);
+    let worst = |samples: &[spintop::sim::Sample]| {
+        samples
+            .iter()
+            .zip(&phys)
+            .map(|(a, b)| rotation_angle(&a.rotation_matrix(), &b.rotation_matrix()))
+            .fold(0.0, Real::max)
+    };
+    let real_t = worst(&run(Model::Truncated(top), MethodChoice::Exact));
+    let real_r = worst(&run(Model::Reduced(top), MethodChoice::Exact));
+    let claimed = symmetric_errors(&top, &omega0, t_end);
+    let what = format!("I3/I1 {ratio} theta {theta:.2} strength {strength} decays {decays}");
+    check(
+        &format!("{what} truncated orientation"),
+        real_t,
+        claimed.truncated_orientation,
+        report,
+        bad,
+    );
+    check(
+        &format!("{what} reduced orientation"),
+        real_r,
+        claimed.reduced_orientation,
+        report,
+        bad,
+    );
+}
+
+fn orientation_grid(ratios: &[Real], thetas: &[Real], strengths: &[Real], decays: &[Real]) {
+    let (mut report, mut bad) = (Vec::new(), Vec::new());
+    for &r in ratios {
+        for &th in thetas {
+            for &s in strengths {
+                for &d in decays {
+                    orientation_case(r, th, s, d, &mut report, &mut bad);
+                }
+            }
+        }
+    }
+    if std::env::var_os("SPINTOP_REPORT").is_some() {
+        eprintln!("{}", report.join("\n"));
+    }
+    assert!(
+        bad.is_empty(),
+        "outside real <= claimed <= 10 real:\n{}\n(all: {} cases)",
+        bad.join("\n"),
+        report.len()
+    );
+}
+
+/// The orientation estimates (in radians), coarse grid: the same tops as
+/// the estimates of Ω, each model's orientation against the physical
+/// solution's.
+#[test]
+fn auto_orientation_estimates_bound_the_symmetric_models_orientation_errors() {
+    orientation_grid(
+        &[0.05, 0.4, 1.0, 2.0],
+        &[0.3, 1.0, std::f64::consts::FRAC_PI_2],
+        &[0.03, 0.3],
+        &[0.1, 3.0],
+    );
+}
+
+/// The same, on a finer grid.
+#[test]
+#[ignore = "a finer grid: cargo test --test physics auto_ -- --ignored"]
+fn auto_orientation_estimates_bound_the_symmetric_models_orientation_errors_on_a_fine_grid() {
+    orientation_grid(
+        &[0.05, 0.2, 0.4, 0.7, 1.0, 1.3, 2.0],
+        &[0.02, 0.3, 0.7, 1.0, 1.3, std::f64::consts::FRAC_PI_2],
+        &[0.003, 0.03, 0.1, 0.3],
+        &[0.01, 0.1, 1.0, 5.0, 20.0],
+    );
+}
+
 /// Ω₀ along the axis of a symmetric top: the dipole does not move, nothing
 /// radiates, and every model keeps Ω₀; the estimate says so exactly.
 #[test]
@@ -227,8 +342,47 @@ fn general_grid(tops: &[(Vec3, Vec3, Vec3)], shares: &[Real], decays: &[Real]) -
                     &mut report,
                     &mut bad,
                 );
+                // The orientations: each model stepped at rtol 1e-12 on
+                // SO(3), against the physical solution's.
+                let rotations = |model: Model, choice: MethodChoice| {
+                    let initial =
+                        InitialState::new(omega0, EulerAngles::new(0.3, 0.7, -0.2)).unwrap();
+                    let options = MethodOptions::new(1e-12, 0.01).unwrap();
+                    let times: Vec<Real> = (0..=200).map(|j| t_end * (j as Real / 200.0)).collect();
+                    Simulation::new(model, choice, options, initial, Some(t_end))
+                        .unwrap()
+                        .run(&times)
+                        .unwrap()
+                        .iter()
+                        .map(|s| s.rotation_matrix())
+                        .collect::<Vec<_>>()
+                };
+                let phys = rotations(Model::GeneralFull(top), MethodChoice::Auto);
+                let apart = |m: Vec<spintop::math::Mat3>| {
+                    m.iter()
+                        .zip(&phys)
+                        .map(|(a, b)| rotation_angle(a, b))
+                        .fold(0.0, Real::max)
+                };
+                check(
+                    &format!("{what} truncated orientation"),
+                    apart(rotations(Model::General(top), MethodChoice::Dop853)),
+                    claimed.truncated_orientation,
+                    &mut report,
+                    &mut bad,
+                );
+                check(
+                    &format!("{what} reduced orientation"),
+                    apart(rotations(Model::GeneralReduced(top), MethodChoice::Dop853)),
+                    claimed.reduced_orientation,
+                    &mut report,
+                    &mut bad,
+                );
             }
         }
+    }
+    if std::env::var_os("SPINTOP_REPORT").is_some() {
+        eprintln!("{}", report.join("\n"));
     }
     assert!(
         bad.is_empty(),
