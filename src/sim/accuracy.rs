@@ -178,7 +178,7 @@ const ORIENTATION_MARGIN: Real = 1.5;
 ///
 /// ```text
 /// e ≤ (τ/4)[6(√s₀ − √s_T)²/√s_T + 5k² ∫₀^Y y u s^(−3/2) dy]
-///     + ∫₀^Y τ|k| min(2θ, 2, ∫A dt) dy + ∫ 2θ dw + w_T θ₀²/2
+///     + ∫₀^Y τ|k| min(2θ, 2, ∫A dt) dy + ∫ 2θ dw + w_T (θ₀² − θ_T²)/2
 /// ```
 pub fn symmetric_reduced_orientation_error(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
     let tau = top.tau();
@@ -240,8 +240,10 @@ pub fn symmetric_reduced_orientation_error(top: &SymmetricTop, omega0: &Vec3, t:
     let (i2, phase) = (i2 * h / 3.0, tau * k * phase * h / 3.0);
     let w_t = before.2;
     let lab = lab_k0 + 0.25 * tau * 5.0 * k2 * i2;
-    (ORIENTATION_MARGIN * (lab + phase + amplitude + 0.5 * w_t * theta0 * theta0))
-        .min(std::f64::consts::PI as Real)
+    // The amplitude part's last piece, ∫ w ṅ_L × n₃: at most w_T times
+    // ∫ θ |θ̇| dt = (θ₀² − θ_T²)/2.
+    let sweep = 0.5 * (theta0 - theta_t) * (theta0 + theta_t);
+    (ORIENTATION_MARGIN * (lab + phase + amplitude + w_t * sweep)).min(std::f64::consts::PI as Real)
 }
 // ANCHOR_END: reduced_orientation_error
 

@@ -1136,7 +1136,20 @@ impl App {
                             column.take(tick.k, outcome);
                         }
                     }
-                    self.ticks = tick.k;
+                    // Once every model has stopped, the clock shows the last
+                    // time one of them reached (what its panel shows), not
+                    // the tick that failed.
+                    self.ticks = if self.columns.iter().all(|c| c.failure.is_some()) {
+                        let reached = self
+                            .columns
+                            .iter()
+                            .map(|c| (c.current.t / TICK).round() as u64)
+                            .max()
+                            .unwrap_or(tick.k);
+                        reached.clamp(self.ticks.min(tick.k), tick.k)
+                    } else {
+                        tick.k
+                    };
                 }
                 Report::Lost => {
                     for c in &mut self.columns {

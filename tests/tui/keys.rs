@@ -640,6 +640,17 @@ fn stopped_models_stop_the_clock_and_show_their_whole_advice() {
         stopped_at < 200.0 * TICK,
         "the clock stopped at {stopped_at}"
     );
+    // The header's t is the last time a model reached, the time its panel
+    // shows, not the tick that failed (it read 0.10τ over panels at 0.00τ).
+    let reached = app
+        .columns()
+        .iter()
+        .map(|c| c.current().t)
+        .fold(0.0, f64::max);
+    assert!(
+        (stopped_at - reached).abs() < 1e-9,
+        "the header says t = {stopped_at}, the panels {reached}"
+    );
     app.advance_ticks(500);
     assert_eq!(
         app.time(),
