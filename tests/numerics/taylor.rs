@@ -270,7 +270,7 @@ fn taylor_omega(problem: &Problem, rtol: Real) -> (Vec<Vec3>, u64) {
 /// points (most of them read from the step polynomials), and the error falls
 /// with the tolerance.
 #[test]
-fn omega_matches_the_40_digit_references_to_the_last_digits() {
+fn eq_3_3_eq_4_2_eq_4_12_omega_matches_the_40_digit_references_to_the_last_digits() {
     for kind in [
         ProblemKind::Truncated,
         ProblemKind::Reduced,
@@ -299,7 +299,7 @@ fn omega_matches_the_40_digit_references_to_the_last_digits() {
 /// 3e-15: the quaternion's block makes the steps a little shorter, so a few
 /// more roundings add up).
 #[test]
-fn orientation_quaternion_matches_the_40_digit_references() {
+fn eq_3_3_eq_4_2_eq_4_12_orientation_quaternion_matches_the_40_digit_references() {
     for kind in [
         ProblemKind::Truncated,
         ProblemKind::Reduced,
@@ -638,7 +638,7 @@ fn auto_rule_is_the_measured_crossover() {
 /// the 40-digit references, Ω and O at all 200 points, at rtol 1e-14; and it
 /// refuses the full ALE by name.
 #[test]
-fn simulation_with_the_taylor_method_matches_the_references() {
+fn eq_3_3_eq_4_2_eq_4_12_simulation_with_the_taylor_method_matches_the_references() {
     use spintop::sim::{MethodChoice, MethodOptions, Model, SimError, Simulation};
     for kind in [
         ProblemKind::Truncated,
