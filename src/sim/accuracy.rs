@@ -178,7 +178,8 @@ const ORIENTATION_MARGIN: Real = 1.5;
 ///
 /// ```text
 /// e ≤ (τ/4)[6(√s₀ − √s_T)²/√s_T + 5k² ∫₀^Y y u s^(−3/2) dy]
-///     + ∫₀^Y τ|k| min(2θ, 2, ∫A dt) dy + ∫ 2θ dw + w_T (θ₀² − θ_T²)/2
+///     + ∫₀^Y τ|k| c(y) dy + ∫ c dw + w_T (θ₀² − θ_T²)/2,
+/// c = min(2θ(s), 2, ∫ₛᵀ A dt)   (the chord from n₃(s) to n₃(T))
 /// ```
 pub fn symmetric_reduced_orientation_error(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
     let tau = top.tau();
