@@ -50,6 +50,27 @@ fn check_within(
     report.push(line);
 }
 
+/// The top of a grid point: I₃/I₁ = `ratio`, Ω₀ at angle `theta` from the
+/// axis with τ√(Ω⊥₀² + k²) = `strength`, and the end of a run of `decays`
+/// decay times 1/(τs₀).
+fn symmetric_setup(
+    ratio: Real,
+    theta: Real,
+    strength: Real,
+    decays: Real,
+) -> (SymmetricTop, Vec3, Real) {
+    let top = SymmetricTop::new(ratio, 1.0).unwrap();
+    let (sin, cos) = if theta == std::f64::consts::FRAC_PI_2 {
+        (1.0, 0.0)
+    } else {
+        theta.sin_cos()
+    };
+    let size = strength / (sin * sin + (ratio * cos).powi(2)).sqrt();
+    // A phase χ₀ off the axes (the physics does not depend on it).
+    let omega0 = Vec3::new(0.6 * size * sin, 0.8 * size * sin, size * cos);
+    (top, omega0, decays / (strength * strength))
+}
+
 /// One symmetric top: I₃/I₁ = `ratio`, Ω₀ at angle `theta` from the axis
 /// with τ√(Ω⊥₀² + k²) = `strength`, over `decays` decay times 1/(τs₀).
 fn symmetric_case(
@@ -60,16 +81,7 @@ fn symmetric_case(
     report: &mut Vec<String>,
     bad: &mut Vec<String>,
 ) {
-    let top = SymmetricTop::new(ratio, 1.0).unwrap();
-    let (sin, cos) = if theta == std::f64::consts::FRAC_PI_2 {
-        (1.0, 0.0)
-    } else {
-        theta.sin_cos()
-    };
-    let size = strength / (sin * sin + (ratio * cos).powi(2)).sqrt();
-    // A phase χ₀ off the axes (the physics does not depend on it).
-    let omega0 = Vec3::new(0.6 * size * sin, 0.8 * size * sin, size * cos);
-    let t_end = decays / (strength * strength);
+    let (top, omega0, t_end) = symmetric_setup(ratio, theta, strength, decays);
     let times: Vec<Real> = (0..=400).map(|j| j as Real * t_end / 400.0).collect();
     let phys = physical_solution(&top, &omega0, &times, 1e-12).unwrap();
     let (mut real_t, mut real_r): (Real, Real) = (0.0, 0.0);
@@ -98,36 +110,56 @@ fn symmetric_case(
     );
 }
 
-fn symmetric_grid(ratios: &[Real], thetas: &[Real], strengths: &[Real], decays: &[Real]) {
+/// The grid of tops: I₃/I₁ × direction × strength × horizon, each case
+/// checked by `case`; fails with every case outside real ≤ claimed ≤
+/// `factor` × real.
+type Case<'a> = &'a dyn Fn(Real, Real, Real, Real, &mut Vec<String>, &mut Vec<String>);
+
+fn symmetric_grid_of(factor: Real, case: Case, grid: [&[Real]; 4]) {
+    let [ratios, thetas, strengths, decays] = grid;
     let (mut report, mut bad) = (Vec::new(), Vec::new());
     for &r in ratios {
         for &th in thetas {
             for &s in strengths {
                 for &d in decays {
-                    symmetric_case(r, th, s, d, &mut report, &mut bad);
+                    let seen = report.len();
+                    case(r, th, s, d, &mut report, &mut bad);
+                    if std::env::var_os("SPINTOP_REPORT").is_some() {
+                        eprintln!("{}", report[seen..].join("\n"));
+                    }
                 }
             }
         }
     }
     assert!(
         bad.is_empty(),
-        "outside real <= claimed <= 10 real:\n{}\n(all: {} cases)",
+        "outside real <= claimed <= {factor} real:\n{}\n(all: {} cases)",
         bad.join("\n"),
         report.len()
     );
 }
+
+fn symmetric_grid(ratios: &[Real], thetas: &[Real], strengths: &[Real], decays: &[Real]) {
+    symmetric_grid_of(10.0, &symmetric_case, [ratios, thetas, strengths, decays]);
+}
+
+/// The coarse grid: prolate, near spherical and oblate tops, Ω₀ near the
+/// axis, across it and in between, weak and at the validity line, a short
+/// run and one of three decay times.
+const COARSE: [&[Real]; 4] = [
+    &[0.05, 0.4, 1.0, 2.0],
+    &[0.3, 1.0, std::f64::consts::FRAC_PI_2],
+    &[0.03, 0.3],
+    &[0.1, 3.0],
+];
 
 /// The symmetric top's closed-form estimates, coarse grid: prolate, near
 /// spherical and oblate tops, Ω₀ near the axis, across it and in between,
 /// weak and at the validity line, a short run and one of three decay times.
 #[test]
 fn auto_estimates_bound_the_symmetric_models_errors_within_a_factor_10() {
-    symmetric_grid(
-        &[0.05, 0.4, 1.0, 2.0],
-        &[0.3, 1.0, std::f64::consts::FRAC_PI_2],
-        &[0.03, 0.3],
-        &[0.1, 3.0],
-    );
+    let [ratios, thetas, strengths, decays] = COARSE;
+    symmetric_grid(ratios, thetas, strengths, decays);
 }
 
 /// The same, on a finer grid (about 1900 cases; the largest claimed/real
@@ -164,15 +196,7 @@ fn orientation_case(
     report: &mut Vec<String>,
     bad: &mut Vec<String>,
 ) {
-    let top = SymmetricTop::new(ratio, 1.0).unwrap();
-    let (sin, cos) = if theta == std::f64::consts::FRAC_PI_2 {
-        (1.0, 0.0)
-    } else {
-        theta.sin_cos()
-    };
-    let size = strength / (sin * sin + (ratio * cos).powi(2)).sqrt();
-    let omega0 = Vec3::new(0.6 * size * sin, 0.8 * size * sin, size * cos);
-    let t_end = decays / (strength * strength);
+    let (top, omega0, t_end) = symmetric_setup(ratio, theta, strength, decays);
     let times: Vec<Real> = (0..=200).map(|j| t_end * (j as Real / 200.0)).collect();
     let initial = InitialState::new(omega0, EulerAngles::new(0.3, 0.7, -0.2)).unwrap();
     let options = MethodOptions::new(1e-12, 0.01).unwrap();
@@ -212,31 +236,11 @@ fn orientation_case(
     );
 }
 
-fn orientation_grid(
-    factor: Real,
-    ratios: &[Real],
-    thetas: &[Real],
-    strengths: &[Real],
-    decays: &[Real],
-) {
-    let (mut report, mut bad) = (Vec::new(), Vec::new());
-    for &r in ratios {
-        for &th in thetas {
-            for &s in strengths {
-                for &d in decays {
-                    orientation_case(factor, r, th, s, d, &mut report, &mut bad);
-                    if std::env::var_os("SPINTOP_REPORT").is_some() {
-                        eprintln!("{}", report[report.len() - 2..].join("\n"));
-                    }
-                }
-            }
-        }
-    }
-    assert!(
-        bad.is_empty(),
-        "outside real <= claimed <= {factor} real:\n{}\n(all: {} cases)",
-        bad.join("\n"),
-        report.len()
+fn orientation_grid(factor: Real, grid: [&[Real]; 4]) {
+    symmetric_grid_of(
+        factor,
+        &|r, th, s, d, report, bad| orientation_case(factor, r, th, s, d, report, bad),
+        grid,
     );
 }
 
@@ -245,13 +249,7 @@ fn orientation_grid(
 /// solution's, over a tenth of a decay time and three.
 #[test]
 fn auto_orientation_estimates_bound_the_symmetric_models_orientation_errors() {
-    orientation_grid(
-        10.0,
-        &[0.05, 0.4, 1.0, 2.0],
-        &[0.3, 1.0, std::f64::consts::FRAC_PI_2],
-        &[0.03, 0.3],
-        &[0.1, 3.0],
-    );
+    orientation_grid(10.0, COARSE);
 }
 
 /// The same, on a finer grid (450 tops, runs up to twenty decay times):
@@ -265,10 +263,12 @@ fn auto_orientation_estimates_bound_the_symmetric_models_orientation_errors() {
 fn auto_orientation_estimates_bound_the_symmetric_models_orientation_errors_on_a_fine_grid() {
     orientation_grid(
         80.0,
-        &[0.05, 0.2, 0.7, 1.0, 1.5, 2.0],
-        &[0.02, 0.3, 0.7, 1.3, std::f64::consts::FRAC_PI_2],
-        &[0.01, 0.1, 0.3],
-        &[0.01, 0.3, 1.0, 5.0, 20.0],
+        [
+            &[0.05, 0.2, 0.7, 1.0, 1.5, 2.0],
+            &[0.02, 0.3, 0.7, 1.3, std::f64::consts::FRAC_PI_2],
+            &[0.01, 0.1, 0.3],
+            &[0.01, 0.3, 1.0, 5.0, 20.0],
+        ],
     );
 }
 
