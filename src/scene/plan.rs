@@ -385,10 +385,11 @@ pub(super) fn choose_model(
     }
     // The orientation counts where the tier's run reports it (an angle in
     // radians against a relative rtol: the rotation matrix's entries move by
-    // about that much).
+    // about that much); the secular model, which measures E and |L|, reports
+    // none.
+    let secular = measured != "Omega";
     let orientation = |tier: usize, error: Real| {
-        (measured == "Omega" && reports_orientation(&tiers[tier], method, omega0, t_last))
-            .then_some(error)
+        (!secular && reports_orientation(&tiers[tier], method, omega0, t_last)).then_some(error)
     };
     let oriented = [
         orientation(0, errors.truncated_orientation),
