@@ -335,7 +335,14 @@ fn general_tops() -> Vec<(Vec3, Vec3, Vec3)> {
     ]
 }
 
-fn general_grid(tops: &[(Vec3, Vec3, Vec3)], shares: &[Real], decays: &[Real]) -> Vec<String> {
+/// Each general top's estimates against the real errors: of Ω, or (with
+/// `orientation`) of the orientation.
+fn general_grid(
+    tops: &[(Vec3, Vec3, Vec3)],
+    shares: &[Real],
+    decays: &[Real],
+    orientation: bool,
+) -> Vec<String> {
     let (mut report, mut bad) = (Vec::new(), Vec::new());
     for &(inertia, direction, omega0) in tops {
         for &eps in shares {
@@ -344,6 +351,20 @@ fn general_grid(tops: &[(Vec3, Vec3, Vec3)], shares: &[Real], decays: &[Real]) -
                 let dipole = direction.normalize() * (eps * inertia.min() / omega0.norm()).sqrt();
                 let top = GeneralTop::new(inertia, dipole).unwrap();
                 let t_end = d / (eps * omega0.norm());
+                let claimed = general_errors(&top, &omega0, t_end);
+                let what = format!("I {:?} eps {eps} decays {d}", inertia.as_slice());
+                if orientation {
+                    general_orientation_case(
+                        &top,
+                        omega0,
+                        t_end,
+                        &claimed,
+                        &what,
+                        &mut report,
+                        &mut bad,
+                    );
+                    continue;
+                }
                 let times: Vec<Real> = (0..=200).map(|j| j as Real * t_end / 200.0).collect();
                 let phys = general_physical_solution(&top, &omega0, &times, 1e-11).unwrap();
                 let red = stepped(&|w| top.reduced_ale_rhs(w), omega0, &times);
@@ -354,8 +375,6 @@ fn general_grid(tops: &[(Vec3, Vec3, Vec3)], shares: &[Real], decays: &[Real]) -
                         .map(|(a, b)| (a - b).norm() / omega0.norm())
                         .fold(0.0, Real::max)
                 };
-                let claimed = general_errors(&top, &omega0, t_end);
-                let what = format!("I {:?} eps {eps} decays {d}", inertia.as_slice());
                 check(
                     &format!("{what} truncated"),
                     worst(&trunc),
@@ -367,42 +386,6 @@ fn general_grid(tops: &[(Vec3, Vec3, Vec3)], shares: &[Real], decays: &[Real]) -
                     &format!("{what} reduced"),
                     worst(&red),
                     claimed.reduced,
-                    &mut report,
-                    &mut bad,
-                );
-                // The orientations: each model stepped at rtol 1e-12 on
-                // SO(3), against the physical solution's.
-                let rotations = |model: Model, choice: MethodChoice| {
-                    let initial =
-                        InitialState::new(omega0, EulerAngles::new(0.3, 0.7, -0.2)).unwrap();
-                    let options = MethodOptions::new(1e-12, 0.01).unwrap();
-                    let times: Vec<Real> = (0..=200).map(|j| t_end * (j as Real / 200.0)).collect();
-                    Simulation::new(model, choice, options, initial, Some(t_end))
-                        .unwrap()
-                        .run(&times)
-                        .unwrap()
-                        .iter()
-                        .map(|s| s.rotation_matrix())
-                        .collect::<Vec<_>>()
-                };
-                let phys = rotations(Model::GeneralFull(top), MethodChoice::Auto);
-                let apart = |m: Vec<spintop::math::Mat3>| {
-                    m.iter()
-                        .zip(&phys)
-                        .map(|(a, b)| rotation_angle(a, b))
-                        .fold(0.0, Real::max)
-                };
-                check(
-                    &format!("{what} truncated orientation"),
-                    apart(rotations(Model::General(top), MethodChoice::Dop853)),
-                    claimed.truncated_orientation,
-                    &mut report,
-                    &mut bad,
-                );
-                check(
-                    &format!("{what} reduced orientation"),
-                    apart(rotations(Model::GeneralReduced(top), MethodChoice::Dop853)),
-                    claimed.reduced_orientation,
                     &mut report,
                     &mut bad,
                 );
@@ -420,12 +403,67 @@ fn general_grid(tops: &[(Vec3, Vec3, Vec3)], shares: &[Real], decays: &[Real]) -
     report
 }
 
+/// One general top's orientation errors: each model stepped at rtol 1e-12
+/// on SO(3), against the physical solution's.
+fn general_orientation_case(
+    top: &GeneralTop,
+    omega0: Vec3,
+    t_end: Real,
+    claimed: &spintop::sim::accuracy::ModelErrors,
+    what: &str,
+    report: &mut Vec<String>,
+    bad: &mut Vec<String>,
+) {
+    let top = *top;
+    let rotations = |model: Model, choice: MethodChoice| {
+        let initial = InitialState::new(omega0, EulerAngles::new(0.3, 0.7, -0.2)).unwrap();
+        let options = MethodOptions::new(1e-12, 0.01).unwrap();
+        let times: Vec<Real> = (0..=200).map(|j| t_end * (j as Real / 200.0)).collect();
+        Simulation::new(model, choice, options, initial, Some(t_end))
+            .unwrap()
+            .run(&times)
+            .unwrap()
+            .iter()
+            .map(|s| s.rotation_matrix())
+            .collect::<Vec<_>>()
+    };
+    let phys = rotations(Model::GeneralFull(top), MethodChoice::Auto);
+    let apart = |m: Vec<spintop::math::Mat3>| {
+        m.iter()
+            .zip(&phys)
+            .map(|(a, b)| rotation_angle(a, b))
+            .fold(0.0, Real::max)
+    };
+    check(
+        &format!("{what} truncated orientation"),
+        apart(rotations(Model::General(top), MethodChoice::Dop853)),
+        claimed.truncated_orientation,
+        report,
+        bad,
+    );
+    check(
+        &format!("{what} reduced orientation"),
+        apart(rotations(Model::GeneralReduced(top), MethodChoice::Dop853)),
+        claimed.reduced_orientation,
+        report,
+        bad,
+    );
+}
+
 /// Asymmetric tops: the leading errors integrated along the run (with the
 /// slow manifold to second order) against the physical solution of (3.4)
 /// by its three-dimensional shoot.
 #[test]
 fn auto_estimates_bound_the_general_models_errors_within_a_factor_10() {
-    general_grid(&general_tops(), &[0.003, 0.03], &[0.1, 1.0]);
+    general_grid(&general_tops(), &[0.003, 0.03], &[0.1, 1.0], false);
+}
+
+/// The same tops' orientation estimates (the body-frame orientation error
+/// integrated with the run) against each model's orientation stepped on
+/// SO(3) and the physical solution's.
+#[test]
+fn auto_orientation_estimates_bound_the_general_models_orientation_errors() {
+    general_grid(&general_tops(), &[0.003, 0.03], &[0.1, 1.0], true);
 }
 
 /// More shares and horizons, and an elongated top (moments 1, 5, 5.5) over
@@ -433,13 +471,20 @@ fn auto_estimates_bound_the_general_models_errors_within_a_factor_10() {
 #[test]
 #[ignore = "a finer grid: cargo test --test physics auto_ -- --ignored"]
 fn auto_estimates_bound_the_general_models_errors_on_a_fine_grid() {
-    general_grid(&general_tops(), &[0.003, 0.01, 0.03], &[0.1, 1.0, 5.0]);
     let elongated = [(
         Vec3::new(1.0, 5.0, 5.5),
         Vec3::new(0.3, 1.0, 0.6),
         Vec3::new(0.9, 0.2, 0.1),
     )];
-    general_grid(&elongated, &[0.003, 0.01, 0.03], &[0.1, 0.3]);
+    for orientation in [false, true] {
+        general_grid(
+            &general_tops(),
+            &[0.003, 0.01, 0.03],
+            &[0.1, 1.0, 5.0],
+            orientation,
+        );
+        general_grid(&elongated, &[0.003, 0.01, 0.03], &[0.1, 0.3], orientation);
+    }
 }
 
 /// Where the estimate is loose: the elongated top (1, 5, 5.5) spun near its
