@@ -316,6 +316,11 @@ fn reports_orientation(model: &Model, method: MethodChoice, omega0: &Vec3, t_las
 pub(super) struct ModelChoice {
     pub tier: usize,
     pub reason: String,
+    /// When the physical solution was chosen only for the orientation: the
+    /// lighter closed-form tier that holds Ω within rtol, and why its
+    /// orientation is left out, for a run the physical solution cannot
+    /// take on the step budget.
+    pub without_orientation: Option<(usize, String)>,
 }
 
 // ANCHOR: choose_model
@@ -381,6 +386,7 @@ pub(super) fn choose_model(
                 "model = \"auto\": Omega0 {axis}, so nothing radiates and every model keeps the same steady spin; the lightest, {}, answers exactly",
                 name(0)
             ),
+            without_orientation: None,
         };
     }
     // The orientation counts where the tier's run reports it (an angle in
@@ -408,24 +414,46 @@ pub(super) fn choose_model(
     } else {
         ""
     };
+    let omega_tier = if errors.truncated <= tol {
+        0
+    } else if errors.reduced <= tol && !strong {
+        1
+    } else {
+        2
+    };
     let turned = match oriented {
         [Some(t), Some(r)] => format!(", and by {t:.1e} and {r:.1e} rad in the orientation"),
         [None, Some(r)] => format!(
-            ", and the reduced ALE by {r:.1e} rad in the orientation (the truncated ALE's is skipped)"
+            ", and the reduced ALE by {r:.1e} rad in the orientation, which a truncated run would skip"
         ),
         [Some(t), None] => format!(
-            ", and the truncated ALE by {t:.1e} rad in the orientation (the reduced ALE's is skipped)"
+            ", and the truncated ALE by {t:.1e} rad in the orientation, which a reduced run would skip"
         ),
         [None, None] => String::new(),
     };
+    let estimates = format!(
+        "model = \"auto\": over the run the truncated ALE (3.3), which drops the Schott term, may be off by {:.1e} and the reduced ALE, right through first order, by {:.1e}{strong_note} in {measured}{turned} (their leading errors against the physical solution of (3.4), {how})",
+        errors.truncated, errors.reduced,
+    );
+    let without_orientation = (tier == 2 && omega_tier < 2 && tiers[omega_tier].has_closed_form())
+        .then(|| {
+            let off = [errors.truncated_orientation, errors.reduced_orientation][omega_tier];
+            (
+                omega_tier,
+                format!(
+                    "{estimates}; the physical solution of (3.4) would take more steps than allowed, and the orientation of {} may be off by {off:.1e} rad, more than rtol = {tol:.0e}: {} answers Omega, and the orientation is not computed",
+                    name(omega_tier),
+                    name(omega_tier)
+                ),
+            )
+        });
     ModelChoice {
         tier,
         reason: format!(
-            "model = \"auto\": over the run the truncated ALE (3.3), which drops the Schott term, may be off by {:.1e} and the reduced ALE, right through first order, by {:.1e}{strong_note} in {measured}{turned} (their leading errors against the physical solution of (3.4), {how}); the lightest within rtol = {tol:.0e} is {}, so it answers",
-            errors.truncated,
-            errors.reduced,
+            "{estimates}; the lightest within rtol = {tol:.0e} is {}, so it answers",
             name(tier)
         ),
+        without_orientation,
     }
 }
 // ANCHOR_END: choose_model
@@ -442,6 +470,7 @@ pub(super) fn plan_top(
     options: &MethodOptions,
     initial: &InitialState,
     t_last: Real,
+    skip_orientation: Option<&str>,
 ) -> Result<TopPlan, Refusal> {
     let omega0 = initial.omega;
     let angle = turning_angle(model, &omega0, t_last);
@@ -474,7 +503,9 @@ pub(super) fn plan_top(
     // The symmetric models' path: `top` comes from the match arm below.
     let mut symmetric_path = |top: &SymmetricTop, exact: bool| -> TopPlan {
         let truncated = matches!(model, Model::Truncated(_));
-        let skip = symmetric_orientation_skip(truncated, angle);
+        let skip = skip_orientation
+            .map(str::to_string)
+            .or_else(|| symmetric_orientation_skip(truncated, angle));
         let orientation = match skip {
             Some(why) => {
                 let phase = top.omega3_tilde(omega0.z).abs()

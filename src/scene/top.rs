@@ -339,14 +339,29 @@ pub(super) fn top_scene(
     let (times, times_span) =
         solve_times(ctx, solve.clone(), own, Some((100.0, 11)), false, scale)?;
     let t_last = times.last().copied().unwrap_or(0.0);
-    let (model, model_choice) = match asked_tier {
-        Some(tier) => (tiers[tier], None),
+    let (mut model, mut model_choice, without_orientation) = match asked_tier {
+        Some(tier) => (tiers[tier], None, None),
         None => {
             let choice = plan::choose_model(&tiers, method, &omega0, &times, options.rtol());
-            (tiers[choice.tier], Some(choice.reason))
+            (
+                tiers[choice.tier],
+                Some(choice.reason),
+                choice.without_orientation,
+            )
         }
     };
-    let mut plan = plan::plan_top(&model, method, &options, &initial, t_last).map_err(|r| {
+    let mut planned = plan::plan_top(&model, method, &options, &initial, t_last, None);
+    // The physical solution was chosen for the orientation alone and cannot
+    // run: a lighter model answers Omega, without the orientation.
+    if let (Err(refusal), Some((tier, why))) = (&planned, &without_orientation)
+        && refusal.at == plan::Blame::Times
+    {
+        model = tiers[*tier];
+        model_choice = Some(why.clone());
+        let skip = "Omega alone is held within rtol without the physical solution, and the orientation is not";
+        planned = plan::plan_top(&model, method, &options, &initial, t_last, Some(skip));
+    }
+    let mut plan = planned.map_err(|r| {
         let span = match r.at {
             plan::Blame::Method => method_span.clone(),
             plan::Blame::Times => times_span
