@@ -386,6 +386,16 @@ pub fn general_errors(top: &GeneralTop, omega0: &Vec3, t: Real) -> ModelErrors {
     let part = |y: &State<18>, i: usize| Vec3::new(y[i], y[i + 1], y[i + 2]);
     // The orientation errors o_r, o_t in the body frame, ȯ = δΩ − Ω × o, in
     // units of σ/|Ω₀| (radians per σ/|Ω₀|).
+    // The truncated model's error in units of σ_t: e_t while it is small,
+    // Ω_t − Ω once it is not (the linearisation's reach); it drives both the
+    // estimate of Ω and the orientation's.
+    let truncated_error = |et: Vec3, wt: Vec3, w: Vec3| -> Vec3 {
+        if et.norm() * sigma_t / scale < 0.05 {
+            et
+        } else {
+            (wt - w) / sigma_t
+        }
+    };
     let rhs = |_t: Real, y: &State<18>| -> State<18> {
         let (w, er, wt, et) = (part(y, 0), part(y, 3), part(y, 6), part(y, 9));
         let (or, ot) = (part(y, 12), part(y, 15));
@@ -395,7 +405,7 @@ pub fn general_errors(top: &GeneralTop, omega0: &Vec3, t: Real) -> ModelErrors {
         let det = along(&truncated, &w, &et) + (truncated(&w) - f2) / sigma_t;
         let dwt = truncated(&wt);
         let dor = er * scale - w.cross(&or);
-        let dot = et * scale - w.cross(&ot);
+        let dot = truncated_error(et, wt, w) * scale - w.cross(&ot);
         let mut out = State::<18>::zeros();
         for (i, v) in [f2, der, dwt, det, dor, dot].iter().enumerate() {
             out.fixed_rows_mut::<3>(3 * i).copy_from(v);
@@ -413,12 +423,7 @@ pub fn general_errors(top: &GeneralTop, omega0: &Vec3, t: Real) -> ModelErrors {
     let mut take = |y: &State<18>| {
         let (w, er, wt, et) = (part(y, 0), part(y, 3), part(y, 6), part(y, 9));
         let e_r = er.norm() * sigma_r / scale;
-        let e_t_lin = et.norm() * sigma_t / scale;
-        let e_t = if e_t_lin < 0.05 {
-            e_t_lin
-        } else {
-            (wt - w).norm() / scale
-        };
+        let e_t = truncated_error(et, wt, w).norm() * sigma_t / scale;
         worst[0] = worst[0].max(e_t);
         worst[1] = worst[1].max(e_r);
         worst[2] = worst[2].max(part(y, 15).norm() * sigma_t / scale);
