@@ -118,6 +118,46 @@ pub fn slow_manifold_second_order(top: &GeneralTop, omega: &Vec3) -> Vec3 {
 }
 // ANCHOR_END: slow_manifold_second_order
 
+// ANCHOR: slow_manifold_third_order
+/// The third-order term G₃ of the slow manifold of (3.4) for any top, the
+/// next after [`slow_manifold_second_order`].
+///
+/// Paper: Eq. (3.4) (its slow manifold; not in the paper).
+///
+/// The same recursion one order on (T′ as there):
+///
+/// ```text
+/// G₃ = I⁻¹ T′(Ω; G₂, A₂),   A₂ = DG₂[G₀] + DG₁[G₁] + DG₀[G₂]
+/// ```
+///
+/// It carries the first drift of the invariants that the reduced ALE gets
+/// wrong (for the symmetric top, the amplitude's −τ³s(3u + 5k²)z): small
+/// in Ω, but along L it adds up in the orientation's phase. The derivatives
+/// are central differences of G₂ and of the reduced ALE G₀ + G₁ (DG₁[G₂],
+/// of fourth order, comes along).
+pub fn slow_manifold_third_order(top: &GeneralTop, omega: &Vec3) -> Vec3 {
+    let i = top.inertia();
+    let d = top.dipole();
+    let along = |f: &dyn Fn(&Vec3) -> Vec3, v: &Vec3| -> Vec3 {
+        let n = v.norm();
+        if n == 0.0 {
+            return Vec3::zeros();
+        }
+        let h = 1e-5 * omega.norm().max(Real::MIN_POSITIVE) / n;
+        (f(&(omega + v * h)) - f(&(omega - v * h))) / (2.0 * h)
+    };
+    let free = |w: &Vec3| -(w.cross(&i.component_mul(w))).component_div(&i);
+    let reduced = |w: &Vec3| top.reduced_ale_rhs(w);
+    let second = |w: &Vec3| slow_manifold_second_order(top, w);
+    let g0 = free(omega);
+    let g1 = reduced(omega) - g0;
+    let g2 = second(omega);
+    let a2 = along(&second, &g0) + along(&reduced, &g1) - along(&free, &g1) + along(&reduced, &g2);
+    d.cross(&(-d.cross(&a2) + d.dot(&g2) * omega + 2.0 * d.dot(omega) * g2))
+        .component_div(&i)
+}
+// ANCHOR_END: slow_manifold_third_order
+
 /// The full ALE of the symmetric top (4.1) as a 4-dimensional system in
 /// (Ω₁, Ω₂, V₁, V₂) with V = ż, z = Ω₁ + iΩ₂, at a constant Ω₃ (units τ = 1 = I₁
 /// as in Section 4, τ kept as a parameter).
