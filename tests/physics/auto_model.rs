@@ -183,6 +183,37 @@ fn rotation_angle(a: &spintop::math::Mat3, b: &spintop::math::Mat3) -> Real {
         .asin()
 }
 
+/// O(t) of `model` run by `choice` at rtol 1e-12 from Ω₀ and the Euler
+/// angles `euler`, at `n` + 1 even times over [0, `t_end`].
+fn rotations(
+    model: Model,
+    choice: MethodChoice,
+    omega0: Vec3,
+    euler: [Real; 3],
+    t_end: Real,
+    n: usize,
+) -> Vec<spintop::math::Mat3> {
+    let [phi, theta, psi] = euler;
+    let initial = InitialState::new(omega0, EulerAngles::new(phi, theta, psi)).unwrap();
+    let options = MethodOptions::new(1e-12, 0.01).unwrap();
+    let times: Vec<Real> = (0..=n).map(|j| t_end * (j as Real / n as Real)).collect();
+    Simulation::new(model, choice, options, initial, Some(t_end))
+        .unwrap()
+        .run(&times)
+        .unwrap()
+        .iter()
+        .map(|s| s.rotation_matrix())
+        .collect()
+}
+
+/// The largest angle between two runs' orientations, sample by sample.
+fn largest_angle(a: &[spintop::math::Mat3], b: &[spintop::math::Mat3]) -> Real {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| rotation_angle(x, y))
+        .fold(0.0, Real::max)
+}
+
 /// One symmetric top's orientation errors, as [`symmetric_case`] sets it up:
 /// each model's orientation (the truncated one by its closed form (4.9),
 /// the reduced one integrated on SO(3) at rtol 1e-12) against the physical
@@ -197,25 +228,12 @@ fn orientation_case(
     bad: &mut Vec<String>,
 ) {
     let (top, omega0, t_end) = symmetric_setup(ratio, theta, strength, decays);
-    let times: Vec<Real> = (0..=200).map(|j| t_end * (j as Real / 200.0)).collect();
-    let initial = InitialState::new(omega0, EulerAngles::new(0.3, 0.7, -0.2)).unwrap();
-    let options = MethodOptions::new(1e-12, 0.01).unwrap();
     let run = |model: Model, choice: MethodChoice| {
-        Simulation::new(model, choice, options, initial, Some(t_end))
-            .unwrap()
-            .run(&times)
-            .unwrap()
+        rotations(model, choice, omega0, [0.3, 0.7, -0.2], t_end, 200)
     };
     let phys = run(Model::Full(top), MethodChoice::Auto);
-    let worst = |samples: &[spintop::sim::Sample]| {
-        samples
-            .iter()
-            .zip(&phys)
-            .map(|(a, b)| rotation_angle(&a.rotation_matrix(), &b.rotation_matrix()))
-            .fold(0.0, Real::max)
-    };
-    let real_t = worst(&run(Model::Truncated(top), MethodChoice::Exact));
-    let real_r = worst(&run(Model::Reduced(top), MethodChoice::Exact));
+    let real_t = largest_angle(&run(Model::Truncated(top), MethodChoice::Exact), &phys);
+    let real_r = largest_angle(&run(Model::Reduced(top), MethodChoice::Exact), &phys);
     let claimed = symmetric_errors(&top, &omega0, t_end);
     let what = format!("I3/I1 {ratio} theta {theta:.2} strength {strength} decays {decays}");
     check_within(
@@ -415,35 +433,21 @@ fn general_orientation_case(
     bad: &mut Vec<String>,
 ) {
     let top = *top;
-    let rotations = |model: Model, choice: MethodChoice| {
-        let initial = InitialState::new(omega0, EulerAngles::new(0.3, 0.7, -0.2)).unwrap();
-        let options = MethodOptions::new(1e-12, 0.01).unwrap();
-        let times: Vec<Real> = (0..=200).map(|j| t_end * (j as Real / 200.0)).collect();
-        Simulation::new(model, choice, options, initial, Some(t_end))
-            .unwrap()
-            .run(&times)
-            .unwrap()
-            .iter()
-            .map(|s| s.rotation_matrix())
-            .collect::<Vec<_>>()
+    let run = |model: Model, choice: MethodChoice| {
+        rotations(model, choice, omega0, [0.3, 0.7, -0.2], t_end, 200)
     };
-    let phys = rotations(Model::GeneralFull(top), MethodChoice::Auto);
-    let apart = |m: Vec<spintop::math::Mat3>| {
-        m.iter()
-            .zip(&phys)
-            .map(|(a, b)| rotation_angle(a, b))
-            .fold(0.0, Real::max)
-    };
+    let phys = run(Model::GeneralFull(top), MethodChoice::Auto);
+    let apart = |m: Vec<spintop::math::Mat3>| largest_angle(&m, &phys);
     check(
         &format!("{what} truncated orientation"),
-        apart(rotations(Model::General(top), MethodChoice::Dop853)),
+        apart(run(Model::General(top), MethodChoice::Dop853)),
         claimed.truncated_orientation,
         report,
         bad,
     );
     check(
         &format!("{what} reduced orientation"),
-        apart(rotations(Model::GeneralReduced(top), MethodChoice::Dop853)),
+        apart(run(Model::GeneralReduced(top), MethodChoice::Dop853)),
         claimed.reduced_orientation,
         report,
         bad,
@@ -702,26 +706,11 @@ fn auto_holds_the_orientation_to_rtol_as_well_as_omega() {
         "{reason}"
     );
     let top = SymmetricTop::new(0.4, 1.0).unwrap();
-    let times: Vec<Real> = (0..=200).map(|j| t_end * (j as Real / 200.0)).collect();
-    let initial = InitialState::new(omega0, EulerAngles::new(0.0, 0.0, 0.0)).unwrap();
-    let options = MethodOptions::new(1e-12, 0.01).unwrap();
-    let rotations = |model: Model, choice: MethodChoice| {
-        Simulation::new(model, choice, options, initial, Some(t_end))
-            .unwrap()
-            .run(&times)
-            .unwrap()
-            .iter()
-            .map(|s| s.rotation_matrix())
-            .collect::<Vec<_>>()
-    };
-    let phys = rotations(Model::Full(top), MethodChoice::Auto);
-    let worst = |m: Vec<spintop::math::Mat3>| {
-        m.iter()
-            .zip(&phys)
-            .map(|(a, b)| rotation_angle(a, b))
-            .fold(0.0, Real::max)
-    };
-    let truncated = worst(rotations(Model::Truncated(top), MethodChoice::Exact));
+    let run =
+        |model: Model, choice: MethodChoice| rotations(model, choice, omega0, [0.0; 3], t_end, 200);
+    let phys = run(Model::Full(top), MethodChoice::Auto);
+    let worst = |m: Vec<spintop::math::Mat3>| largest_angle(&m, &phys);
+    let truncated = worst(run(Model::Truncated(top), MethodChoice::Exact));
     assert!(truncated > 1.5, "the truncated orientation: {truncated}");
     let e = symmetric_errors(&top, &omega0, t_end);
     assert!(
@@ -730,7 +719,7 @@ fn auto_holds_the_orientation_to_rtol_as_well_as_omega() {
     );
     // The chosen model (the reduced one, or the physical solution itself).
     if reason.contains("is the reduced ALE") {
-        let reduced = worst(rotations(Model::Reduced(top), MethodChoice::Exact));
+        let reduced = worst(run(Model::Reduced(top), MethodChoice::Exact));
         assert!(reduced <= 0.1, "the reduced orientation: {reduced}");
     } else {
         assert!(reason.contains("is the physical solution"), "{reason}");
