@@ -890,6 +890,32 @@ fn auto_general_estimates_bound_the_models_orientation_through_the_third_order()
     assert!(bad.is_empty(), "{bad:#?}\n{report:#?}");
 }
 
+/// G₃ where τ|Ω| is a molecule's (10⁻¹⁶ … 10⁻¹³): G₁ is then below 10⁻¹⁶ of
+/// the free Euler term G₀ (I₃ ≠ I₁), so a derivative of G₁ taken as one of
+/// (G₀ + G₁) − G₀ is lost to rounding (G₃ came out 0.025 and 0.74 of the
+/// series' τ³s(3u + 5k²)z at I₃/I₁ = 0.1 and 2). Prolate and oblate, d
+/// from 10⁻⁸ to 10⁻⁵, |Ω| from 10⁻³ to 10³.
+#[test]
+fn slow_manifold_third_order_of_the_symmetric_top_holds_at_a_molecules_tau_omega() {
+    for ratio in [0.1, 2.0] {
+        for (d, scale) in [(1e-8, 1e-3), (1e-8, 1.0), (1e-8, 1e3), (1e-5, 1e-3)] {
+            let top = GeneralTop::new(Vec3::new(1.0, 1.0, ratio), Vec3::new(0.0, 0.0, d)).unwrap();
+            let omega = Vec3::new(0.3, -0.4, 0.7) * scale;
+            let tau: Real = d * d;
+            let (u, k) = (omega.x * omega.x + omega.y * omega.y, ratio * omega.z);
+            let s = u + k * k;
+            let z = Vec3::new(omega.x, omega.y, 0.0);
+            let g3 = z * (tau.powi(3) * s * (3.0 * u + 5.0 * k * k));
+            let got = slow_manifold_third_order(&top, &omega);
+            let along = got.dot(&z) / u;
+            assert!(
+                (along / (g3.norm() / u.sqrt()) - 1.0).abs() < 1e-6,
+                "I3/I1 {ratio}, d {d:e}, Omega {omega:?}: {got:?} against {g3:?}"
+            );
+        }
+    }
+}
+
 /// The symmetric top as a general one (I = (1, 1, 2), d on the axis, so
 /// τ = |d|²): the slow manifold's series ż = f(u)z of the notes,
 /// Re f = −τs + τ³s(3u + 5k²), Im f = −Ω̃₃ − 2τ²ks + O(τ⁴), gives
