@@ -737,6 +737,52 @@ fn auto_holds_the_orientation_to_rtol_as_well_as_omega() {
     }
 }
 
+/// A general top (no closed form) over 10⁷ τ, Ω₀ across its axis: Ω is held
+/// by the lighter models (the reduced ALE by 1e-4 at 10⁵ τ already), the
+/// orientation only by the physical solution, which would take 3e8 steps.
+/// The refusal says so and names the model that answers Ω, instead of only
+/// "ask for shorter times"; where no lighter model holds Ω (an asymmetric top
+/// over 10⁶ τ at rtol 1e-3, off by 0.6) it gives their errors.
+#[test]
+fn auto_refusing_the_physical_solution_says_why_and_which_model_holds_omega() {
+    let refusal = |inertia: &str, dipole: &str, omega: &str, t_end: &str, rtol: &str| {
+        spintop::scene::parse(
+            &format!(
+                "[scene]\nname = \"g\"\nkind = \"top\"\ndescription = \"d\"\n[top]\nmodel = \"auto\"\ninertia = {inertia}\ndipole = {dipole}\nomega = {omega}\n[solve]\nt_end = {t_end}\nrtol = {rtol}\n"
+            ),
+            "g.toml",
+        )
+        .err()
+        .expect("the physical solution is refused")
+        .message
+    };
+    let orientation = refusal(
+        "[1.0, 1.0, 0.4]",
+        "[0.0, 0.0, 1.0]",
+        "[0.0, 0.01, 0.0]",
+        "1e7",
+        "1e-2",
+    );
+    assert!(
+        orientation.contains("for the orientation alone")
+            && (orientation.contains("(model = \"reduced\")")
+                || orientation.contains("(model = \"truncated\")")),
+        "{orientation}"
+    );
+    let omega = refusal(
+        "[1.0, 1.5, 0.8]",
+        "[0.2, 0.0, 1.0]",
+        "[0.0, 0.01, 0.02]",
+        "1e6",
+        "1e-3",
+    );
+    assert!(
+        omega.contains("chose it: the truncated and the reduced ALE may be off by")
+            && omega.contains("in Omega, more than rtol = 1e-3"),
+        "{omega}"
+    );
+}
+
 /// Ω₀ across the axis of a weak top, over 10⁷ τ: Ω stays within rtol in
 /// every model, but the orientation's lab phase about L grows like √t (1 rad
 /// here), so only the physical solution holds it, and that would take 4e7
