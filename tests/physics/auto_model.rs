@@ -752,9 +752,7 @@ fn auto_refusing_the_physical_solution_says_why_and_which_model_holds_omega() {
             ),
             "g.toml",
         )
-        .err()
-        .expect("the physical solution is refused")
-        .message
+        .map_or_else(|e| e.message, |_| panic!("the physical solution is refused"))
     };
     let orientation = refusal(
         "[1.0, 1.0, 0.4]",
