@@ -133,8 +133,8 @@ pub fn slow_manifold_second_order(top: &GeneralTop, omega: &Vec3) -> Vec3 {
 /// It carries the first drift of the invariants that the reduced ALE gets
 /// wrong (for the symmetric top, the amplitude's −τ³s(3u + 5k²)z): small
 /// in Ω, but along L it adds up in the orientation's phase. The derivatives
-/// are central differences of G₂ and of the reduced ALE G₀ + G₁ (DG₁[G₂],
-/// of fourth order, comes along).
+/// are central differences of G₂ and of G₁ (DG₁[G₂], of fourth order, comes
+/// along); DG₀ is exact (G₀ is quadratic).
 pub fn slow_manifold_third_order(top: &GeneralTop, omega: &Vec3) -> Vec3 {
     let i = top.inertia();
     let d = top.dipole();
@@ -146,13 +146,17 @@ pub fn slow_manifold_third_order(top: &GeneralTop, omega: &Vec3) -> Vec3 {
         let h = 1e-5 * omega.norm().max(Real::MIN_POSITIVE) / n;
         (f(&(omega + v * h)) - f(&(omega - v * h))) / (2.0 * h)
     };
-    let free = |w: &Vec3| -(w.cross(&i.component_mul(w))).component_div(&i);
-    let reduced = |w: &Vec3| top.reduced_ale_rhs(w);
+    // G₁ differenced on its own: as (G₀ + G₁) − G₀ it is lost to rounding
+    // once it is below 10⁻¹⁶ of G₀ (τ|Ω| ≲ 10⁻¹⁵, a molecule's). DG₀ is exact.
+    let first = |w: &Vec3| top.reduced_torque(w).component_div(&i);
     let second = |w: &Vec3| slow_manifold_second_order(top, w);
-    let g0 = free(omega);
-    let g1 = reduced(omega) - g0;
+    let dg0 = |v: &Vec3| {
+        -(omega.cross(&i.component_mul(v)) + v.cross(&i.component_mul(omega))).component_div(&i)
+    };
+    let g0 = -(omega.cross(&i.component_mul(omega))).component_div(&i);
+    let g1 = first(omega);
     let g2 = second(omega);
-    let a2 = along(&second, &g0) + along(&reduced, &g1) - along(&free, &g1) + along(&reduced, &g2);
+    let a2 = along(&second, &g0) + along(&first, &(g1 + g2)) + dg0(&g2);
     d.cross(&(-d.cross(&a2) + d.dot(&g2) * omega + 2.0 * d.dot(omega) * g2))
         .component_div(&i)
 }

@@ -321,6 +321,9 @@ pub(super) struct ModelChoice {
     /// orientation is left out, for a run the physical solution cannot
     /// take on the step budget.
     pub without_orientation: Option<(usize, String)>,
+    /// When the physical solution was chosen: why, for the refusal of a run
+    /// it cannot take (the lighter model that holds Ω, if any).
+    pub why_physical: Option<String>,
 }
 
 // ANCHOR: choose_model
@@ -387,6 +390,7 @@ pub(super) fn choose_model(
                 name(0)
             ),
             without_orientation: None,
+            why_physical: None,
         };
     }
     // The orientation counts where the tier's run reports it (an angle in
@@ -447,8 +451,24 @@ pub(super) fn choose_model(
                 ),
             )
         });
+    let why_physical = (tier == 2).then(|| {
+        if omega_tier < 2 {
+            let off = [errors.truncated_orientation, errors.reduced_orientation][omega_tier];
+            format!(
+                "model = \"auto\" chose it for the orientation alone: {} holds Omega within rtol = {tol:.0e} (model = \"{}\"), its orientation may be off by {off:.1e} rad",
+                name(omega_tier),
+                ["truncated", "reduced"][omega_tier]
+            )
+        } else {
+            format!(
+                "model = \"auto\" chose it: the truncated and the reduced ALE may be off by {:.1e} and {:.1e}{strong_note} in {measured}, more than rtol = {tol:.0e}",
+                errors.truncated, errors.reduced
+            )
+        }
+    });
     ModelChoice {
         tier,
+        why_physical,
         reason: format!(
             "{estimates}; the lightest within rtol = {tol:.0e} is {}, so it answers",
             name(tier)

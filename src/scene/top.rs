@@ -339,14 +339,15 @@ pub(super) fn top_scene(
     let (times, times_span) =
         solve_times(ctx, solve.clone(), own, Some((100.0, 11)), false, scale)?;
     let t_last = times.last().copied().unwrap_or(0.0);
-    let (mut model, mut model_choice, without_orientation) = match asked_tier {
-        Some(tier) => (tiers[tier], None, None),
+    let (mut model, mut model_choice, without_orientation, mut why_physical) = match asked_tier {
+        Some(tier) => (tiers[tier], None, None, None),
         None => {
             let choice = plan::choose_model(&tiers, method, &omega0, &times, options.rtol());
             (
                 tiers[choice.tier],
                 Some(choice.reason),
                 choice.without_orientation,
+                choice.why_physical,
             )
         }
     };
@@ -358,6 +359,7 @@ pub(super) fn top_scene(
     {
         model = tiers[*tier];
         model_choice = Some(why.clone());
+        why_physical = None;
         let skip = "Omega alone is held within rtol without the physical solution, and the orientation is not";
         planned = plan::plan_top(&model, method, &options, &initial, t_last, Some(skip));
     }
@@ -368,7 +370,12 @@ pub(super) fn top_scene(
                 .clone()
                 .unwrap_or_else(|| solve.as_ref().map_or(own.clone(), |(_, s)| s.clone())),
         };
-        ctx.at(&span, r.message)
+        match &why_physical {
+            Some(why) if r.at == plan::Blame::Times => {
+                ctx.at(&span, format!("{}; {why}", r.message))
+            }
+            _ => ctx.at(&span, r.message),
+        }
     })?;
     if let Some(why) = model_choice {
         plan.chosen.reason = format!("{why}; {}", plan.chosen.reason);

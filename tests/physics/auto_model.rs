@@ -726,6 +726,50 @@ fn auto_holds_the_orientation_to_rtol_as_well_as_omega() {
     }
 }
 
+/// A general top (no closed form) over 10⁷ τ, Ω₀ across its axis: Ω is held
+/// by the lighter models (the reduced ALE by 1e-4 at 10⁵ τ already), the
+/// orientation only by the physical solution, which would take 3e8 steps.
+/// The refusal says so and names the model that answers Ω, instead of only
+/// "ask for shorter times"; where no lighter model holds Ω (an asymmetric top
+/// over 10⁶ τ at rtol 1e-3, off by 0.6) it gives their errors.
+#[test]
+fn auto_refusing_the_physical_solution_says_why_and_which_model_holds_omega() {
+    let refusal = |inertia: &str, dipole: &str, omega: &str, t_end: &str, rtol: &str| {
+        spintop::scene::parse(
+            &format!(
+                "[scene]\nname = \"g\"\nkind = \"top\"\ndescription = \"d\"\n[top]\nmodel = \"auto\"\ninertia = {inertia}\ndipole = {dipole}\nomega = {omega}\n[solve]\nt_end = {t_end}\nrtol = {rtol}\n"
+            ),
+            "g.toml",
+        )
+        .map_or_else(|e| e.message, |_| panic!("the physical solution is refused"))
+    };
+    let orientation = refusal(
+        "[1.0, 1.0, 0.4]",
+        "[0.0, 0.0, 1.0]",
+        "[0.0, 0.01, 0.0]",
+        "1e7",
+        "1e-2",
+    );
+    assert!(
+        orientation.contains("for the orientation alone")
+            && (orientation.contains("(model = \"reduced\")")
+                || orientation.contains("(model = \"truncated\")")),
+        "{orientation}"
+    );
+    let omega = refusal(
+        "[1.0, 1.5, 0.8]",
+        "[0.2, 0.0, 1.0]",
+        "[0.0, 0.01, 0.02]",
+        "1e6",
+        "1e-3",
+    );
+    assert!(
+        omega.contains("chose it: the truncated and the reduced ALE may be off by")
+            && omega.contains("in Omega, more than rtol = 1e-3"),
+        "{omega}"
+    );
+}
+
 /// Ω₀ across the axis of a weak top, over 10⁷ τ: Ω stays within rtol in
 /// every model, but the orientation's lab phase about L grows like √t (1 rad
 /// here), so only the physical solution holds it, and that would take 4e7
@@ -877,6 +921,32 @@ fn auto_general_estimates_bound_the_models_orientation_through_the_third_order()
         );
     }
     assert!(bad.is_empty(), "{bad:#?}\n{report:#?}");
+}
+
+/// G₃ where τ|Ω| is a molecule's (10⁻¹⁶ … 10⁻¹³): G₁ is then below 10⁻¹⁶ of
+/// the free Euler term G₀ (I₃ ≠ I₁), so a derivative of G₁ taken as one of
+/// (G₀ + G₁) − G₀ is lost to rounding (G₃ came out 0.025 and 0.74 of the
+/// series' τ³s(3u + 5k²)z at I₃/I₁ = 0.1 and 2). Prolate and oblate, d
+/// from 10⁻⁸ to 10⁻⁵, |Ω| from 10⁻³ to 10³.
+#[test]
+fn slow_manifold_third_order_of_the_symmetric_top_holds_at_a_molecules_tau_omega() {
+    for ratio in [0.1, 2.0] {
+        for (d, scale) in [(1e-8, 1e-3), (1e-8, 1.0), (1e-8, 1e3), (1e-5, 1e-3)] {
+            let top = GeneralTop::new(Vec3::new(1.0, 1.0, ratio), Vec3::new(0.0, 0.0, d)).unwrap();
+            let omega = Vec3::new(0.3, -0.4, 0.7) * scale;
+            let tau: Real = d * d;
+            let (u, k) = (omega.x * omega.x + omega.y * omega.y, ratio * omega.z);
+            let s = u + k * k;
+            let z = Vec3::new(omega.x, omega.y, 0.0);
+            let g3 = z * (tau.powi(3) * s * (3.0 * u + 5.0 * k * k));
+            let got = slow_manifold_third_order(&top, &omega);
+            let along = got.dot(&z) / u;
+            assert!(
+                (along / (g3.norm() / u.sqrt()) - 1.0).abs() < 1e-6,
+                "I3/I1 {ratio}, d {d:e}, Omega {omega:?}: {got:?} against {g3:?}"
+            );
+        }
+    }
 }
 
 /// The symmetric top as a general one (I = (1, 1, 2), d on the axis, so
