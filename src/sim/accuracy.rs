@@ -163,25 +163,27 @@ const ORIENTATION_MARGIN: Real = 1.5;
 ///
 /// Two models whose body-frame Ω differ by δΩ(t) part in orientation by
 /// e(t) = ∫₀ᵗ O(s) δΩ(s) ds (to first order, in the lab). The reduced
-/// model's δΩ is a phase Δα of Ω⊥ and a relative amplitude Δ ln A, both
-/// functions of y = ln(u₀/u) along the run:
+/// model's δΩ is a phase Δα of Ω⊥ and a relative amplitude Δ ln A = D/2,
+/// both functions of y = ln(u₀/u) along the run; the amplitudes of both
+/// models are drawn to the same late-time value, so D relaxes:
 ///
 /// ```text
-/// Δα = τ|k| y,   Δ ln A = (τ²/2)(3u₀(1 − e^(−y)) + 5k² y)
+/// Δα = τ|k| y,   dD/dy = −(u/s) D + τ²(3u + 5k²),  D(0) = 0
 /// ```
 ///
 /// The part of δΩ along L adds up: the lab phase about L, from
 /// Δ|L| = (u/|L|) Δ ln A. The phase part is O Δα (e₃ × Ω⊥) = Δα ṅ₃, and
 /// ∫ Δα ṅ₃ = ∫ Δα̇(s) (n₃(t) − n₃(s)) ds, where the figure axis n₃ lies
 /// within θ = atan(A/|k|) of n_L and n_L sweeps θ(s) − θ(t): the chord is
-/// at most 2θ(s). The amplitude's turning part, w = Δ ln A cos θ along
-/// n_L × ṅ₃, the same way. With s = u + k² and ds = dy/(2τs):
+/// at most 2θ(s). The amplitude's turning part, w = (D/2) cos θ along
+/// n_L × ṅ₃, the same way. With s = u + k² and dt = dy/(2τs):
 ///
 /// ```text
-/// e ≤ (τ/4)[6(√s₀ − √s_T)²/√s_T + 5k² ∫₀^Y y u s^(−3/2) dy]
-///     + ∫₀^Y τ|k| c(y) dy + ∫ c dw + w_T (θ₀² − θ_T²)/2,
+/// e ≤ ∫₀^Y [D u/(4τ s^(3/2)) + τ|k| c + w θ |k|√u/(2s)] dy + ∫ c |dw|,
 /// c = min(2θ(s), 2, ∫ₛᵀ A dt)   (the chord from n₃(s) to n₃(T))
 /// ```
+///
+/// (for k = 0 the lab phase is 3τ[A₀ − A_T(1 + ln(A₀/A_T))], at most 3τA₀).
 pub fn symmetric_reduced_orientation_error(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
     let tau = top.tau();
     let a0 = omega0.x.hypot(omega0.y);
@@ -194,35 +196,52 @@ pub fn symmetric_reduced_orientation_error(top: &SymmetricTop, omega0: &Vec3, t:
     // Y = ln(u₀/u_T) ≥ 0, the log of the amplitude's fall squared.
     let big_y = -2.0 * reduced_amplitude(top, omega0, t).ln();
     let a_t = a0 * (-0.5 * big_y).exp();
-    let u_t = a_t * a_t;
-    let (s0, s_t) = (u0 + k2, u_t + k2);
-    let root = s0.sqrt() - s_t.sqrt();
-    let lab_k0 = 0.25 * tau * 6.0 * root * root / s_t.sqrt();
-    let theta0 = a0.atan2(k);
-    if k2 == 0.0 {
-        // No spin term: no phase error, and w = 0 (cos θ = 0).
-        return (ORIENTATION_MARGIN * lab_k0).min(std::f64::consts::PI as Real);
-    }
+    let theta_t = a_t.atan2(k);
     // Past u ≪ k² every integrand falls as e^(−y/2) or faster: 80 beyond
     // that point is the whole integral.
-    let end = big_y.min((u0 / k2).ln().max(0.0) + 80.0);
-    const N: usize = 4000;
-    let h = end / N as Real;
-    let at = |y: Real| {
-        let u = u0 * (-y).exp();
-        let theta = u.sqrt().atan2(k);
-        let d_ln_a = 0.5 * tau * tau * (3.0 * u0 * -(-y).exp_m1() + 5.0 * k2 * y);
-        (u, theta, d_ln_a * theta.cos())
+    let end = if k2 > 0.0 {
+        big_y.min((u0 / k2).ln().max(0.0) + 80.0)
+    } else {
+        big_y
     };
     // The chord from n₃(s) to n₃(T): within 2θ(s), and within the figure
     // axis's path ∫ₛᵀ A dt = (θ(s) − θ_T)/(τ|k|).
-    let theta_t = a_t.atan2(k);
-    let chord = |theta: Real| (2.0 * theta).min(2.0).min((theta - theta_t) / (tau * k));
-    let (mut i2, mut phase, mut amplitude) = (0.0, 0.0, 0.0);
-    let mut before = at(0.0);
+    let chord = |theta: Real| {
+        let near = (2.0 * theta).min(2.0);
+        if k > 0.0 {
+            near.min((theta - theta_t) / (tau * k))
+        } else {
+            near
+        }
+    };
+    const N: usize = 4000;
+    let h = end / N as Real;
+    // Along y: u, θ, and the integrands of the lab phase, (Δ ln u/2)(u/√s)
+    // dt/dy, and of the phase's turning part, τ|k| chord.
+    let point = |y: Real, d_ln_u: Real| {
+        let u = u0 * (-y).exp();
+        let s = u + k2;
+        let theta = u.sqrt().atan2(k);
+        let lab = 0.25 * d_ln_u * u / (tau * s * s.sqrt());
+        (u, s, theta, lab, tau * k * chord(theta))
+    };
+    // Δ ln u relaxes: d(Δ ln u)/dy = −(u/s) Δ ln u + τ²(3u + 5k²), by the
+    // midpoint rule (each step's rate at its middle).
+    let rate = |y: Real, d: Real| {
+        let u = u0 * (-y).exp();
+        -(u / (u + k2)) * d + tau * tau * (3.0 * u + 5.0 * k2)
+    };
+    let (mut lab, mut phase, mut amplitude, mut sweep) = (0.0, 0.0, 0.0, 0.0);
+    let mut d_ln_u: Real = 0.0;
+    let mut before = point(0.0, 0.0);
+    let mut w_before: Real = 0.0;
     for j in 0..=N {
         let y = j as Real * h;
-        let now = at(y);
+        if j > 0 {
+            let mid = d_ln_u + 0.5 * h * rate(y - h, d_ln_u);
+            d_ln_u += h * rate(y - 0.5 * h, mid);
+        }
+        let now = point(y, d_ln_u);
         // Simpson's weights for the smooth integrands.
         let weight = if j == 0 || j == N {
             1.0
@@ -231,21 +250,21 @@ pub fn symmetric_reduced_orientation_error(top: &SymmetricTop, omega0: &Vec3, t:
         } else {
             2.0
         };
-        let (u, theta, _) = now;
-        i2 += weight * y * u / (u + k2).powf(1.5);
-        phase += weight * chord(theta);
-        // ∫ chord dw, w increasing: each step's rise at the larger chord
-        // before it.
-        amplitude += chord(before.1) * (now.2 - before.2).max(0.0);
-        before = now;
+        lab += weight * now.3;
+        phase += weight * now.4;
+        // The amplitude's turning part, w = (Δ ln u/2) cos θ: ∫ chord |dw|,
+        // each step's change at the larger chord before it, and ∫ w θ |θ̇| dt
+        // with −dθ/dy = |k|√u/(2s).
+        let w = 0.5 * d_ln_u * now.2.cos();
+        if j > 0 {
+            amplitude += chord(before.2) * (w - w_before).abs();
+        }
+        sweep += weight * w * now.2 * k * now.0.sqrt() / (2.0 * now.1);
+        (before, w_before) = (now, w);
     }
-    let (i2, phase) = (i2 * h / 3.0, tau * k * phase * h / 3.0);
-    let w_t = before.2;
-    let lab = lab_k0 + 0.25 * tau * 5.0 * k2 * i2;
-    // The amplitude part's last piece, ∫ w ṅ_L × n₃: at most w_T times
-    // ∫ θ |θ̇| dt = (θ₀² − θ_T²)/2.
-    let sweep = 0.5 * (theta0 - theta_t) * (theta0 + theta_t);
-    (ORIENTATION_MARGIN * (lab + phase + amplitude + w_t * sweep)).min(std::f64::consts::PI as Real)
+    let third = h / 3.0;
+    (ORIENTATION_MARGIN * (third * (lab + phase + sweep) + amplitude))
+        .min(std::f64::consts::PI as Real)
 }
 // ANCHOR_END: reduced_orientation_error
 
