@@ -28,6 +28,18 @@ pub type State<const N: usize> = SVector<Real, N>;
 /// depends on spintop alone) can name it.
 pub use nalgebra::Complex;
 
+/// The derivative of `f` at `at` along `v`, Df(at)[v], by a central
+/// difference of step `rel`·|at|/|v| (|at| floored at the smallest normal
+/// double); zero along v = 0.
+pub fn directional_derivative(f: &dyn Fn(&Vec3) -> Vec3, at: &Vec3, v: &Vec3, rel: Real) -> Vec3 {
+    let n = v.norm();
+    if n == 0.0 {
+        return Vec3::zeros();
+    }
+    let h = rel * at.norm().max(Real::MIN_POSITIVE) / n;
+    (f(&(at + v * h)) - f(&(at - v * h))) / (2.0 * h)
+}
+
 /// The skew-symmetric matrix of `a`, so that `hat(a) * b == a.cross(&b)`.
 pub fn hat(a: &Vec3) -> Mat3 {
     Mat3::new(0.0, -a.z, a.y, a.z, 0.0, -a.x, -a.y, a.x, 0.0)

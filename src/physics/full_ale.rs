@@ -18,7 +18,7 @@
 
 use super::general_top::GeneralTop;
 use super::symmetric_top::SymmetricTop;
-use crate::math::{Real, State, Vec3};
+use crate::math::{Real, State, Vec3, directional_derivative};
 
 /// The full ALE of a general top as a 6-dimensional first-order system in
 /// (Ω, W = Ω̇), κ = 1 units.
@@ -68,6 +68,18 @@ pub fn general_full_ale_rhs(top: &GeneralTop, y: &State<6>) -> State<6> {
 }
 
 // ANCHOR: slow_manifold_second_order
+/// Q(a, b) = a × Ib + b × Ia: the free motion is G₀(Ω) = −I⁻¹Q(Ω, Ω)/2 and
+/// its derivative DG₀(Ω)[V] = −I⁻¹Q(Ω, V) (G₀ is quadratic).
+fn free_pair(i: &Vec3, a: &Vec3, b: &Vec3) -> Vec3 {
+    a.cross(&i.component_mul(b)) + b.cross(&i.component_mul(a))
+}
+
+/// T′(Ω; W, A) = d × {−d × A + (d·W)Ω + 2(d·Ω)W}: the torque's part
+/// linear in Ω̇ = W and Ω̈ = A.
+fn torque_linear(d: &Vec3, omega: &Vec3, w: &Vec3, a: &Vec3) -> Vec3 {
+    d.cross(&(-d.cross(a) + d.dot(w) * omega + 2.0 * d.dot(omega) * w))
+}
+
 /// The second-order term G₂ of the slow manifold of (3.4) for any top:
 /// on the physical solution Ω̇ = G₀ + G₁ + G₂ + O(τ_f³), where G₀ + G₁ is the
 /// reduced ALE ([`GeneralTop::reduced_ale_rhs`]).
@@ -92,13 +104,11 @@ pub fn general_full_ale_rhs(top: &GeneralTop, y: &State<6>) -> State<6> {
 pub fn slow_manifold_second_order(top: &GeneralTop, omega: &Vec3) -> Vec3 {
     let i = top.inertia();
     let d = top.dipole();
-    // Q(a, b) = a × Ib + b × Ia; G₀(Ω) = −I⁻¹Q(Ω, Ω)/2, DG₀(Ω)[V] = −I⁻¹Q(Ω, V).
-    let q = |a: &Vec3, b: &Vec3| a.cross(&i.component_mul(b)) + b.cross(&i.component_mul(a));
+    let q = |a: &Vec3, b: &Vec3| free_pair(&i, a, b);
     let dg0 = |at: &Vec3, v: &Vec3| -q(at, v).component_div(&i);
     let g0 = -(omega.cross(&i.component_mul(omega))).component_div(&i);
     let a0 = dg0(omega, &g0);
-    let t_lin =
-        |w: &Vec3, a: &Vec3| d.cross(&(-d.cross(a) + d.dot(w) * omega + 2.0 * d.dot(omega) * w));
+    let t_lin = |w: &Vec3, a: &Vec3| torque_linear(&d, omega, w, a);
     let torque1 = d.cross(&d.cross(&(omega.norm_squared() * omega))) + t_lin(&g0, &a0);
     let g1 = torque1.component_div(&i);
     // DG₁[V]: the explicit Ω-dependence of T, then T′ of DG₀[V] and D(DG₀[G₀])[V].
@@ -138,27 +148,17 @@ pub fn slow_manifold_second_order(top: &GeneralTop, omega: &Vec3) -> Vec3 {
 pub fn slow_manifold_third_order(top: &GeneralTop, omega: &Vec3) -> Vec3 {
     let i = top.inertia();
     let d = top.dipole();
-    let along = |f: &dyn Fn(&Vec3) -> Vec3, v: &Vec3| -> Vec3 {
-        let n = v.norm();
-        if n == 0.0 {
-            return Vec3::zeros();
-        }
-        let h = 1e-5 * omega.norm().max(Real::MIN_POSITIVE) / n;
-        (f(&(omega + v * h)) - f(&(omega - v * h))) / (2.0 * h)
-    };
+    let along = |f: &dyn Fn(&Vec3) -> Vec3, v: &Vec3| directional_derivative(f, omega, v, 1e-5);
     // G₁ differenced on its own: as (G₀ + G₁) − G₀ it is lost to rounding
     // once it is below 10⁻¹⁶ of G₀ (τ|Ω| ≲ 10⁻¹⁵, a molecule's). DG₀ is exact.
     let first = |w: &Vec3| top.reduced_torque(w).component_div(&i);
     let second = |w: &Vec3| slow_manifold_second_order(top, w);
-    let dg0 = |v: &Vec3| {
-        -(omega.cross(&i.component_mul(v)) + v.cross(&i.component_mul(omega))).component_div(&i)
-    };
+    let dg0 = |v: &Vec3| -free_pair(&i, omega, v).component_div(&i);
     let g0 = -(omega.cross(&i.component_mul(omega))).component_div(&i);
     let g1 = first(omega);
     let g2 = second(omega);
     let a2 = along(&second, &g0) + along(&first, &(g1 + g2)) + dg0(&g2);
-    d.cross(&(-d.cross(&a2) + d.dot(&g2) * omega + 2.0 * d.dot(omega) * g2))
-        .component_div(&i)
+    torque_linear(&d, omega, &g2, &a2).component_div(&i)
 }
 // ANCHOR_END: slow_manifold_third_order
 

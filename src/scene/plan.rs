@@ -342,26 +342,27 @@ pub(super) fn choose_model(
     tol: Real,
 ) -> ModelChoice {
     let t_last = times.last().copied().unwrap_or(0.0);
-    let (errors, measured, how) = match &tiers[1] {
+    // `secular`: the run will be answered by the secular model, which
+    // reports E and |L| and no orientation.
+    let (errors, measured, how, secular) = match &tiers[1] {
         Model::Reduced(top) | Model::Truncated(top) | Model::Full(top) => (
             symmetric_errors(top, omega0, t_last),
             "Omega",
             "in closed form",
+            false,
         ),
         Model::GeneralReduced(top) | Model::General(top) | Model::GeneralFull(top) => {
-            match general_path(&tiers[1], omega0, t_last, tol) {
-                GeneralPath::Secular { .. } => match secular_errors(top, omega0, times, tol) {
-                    Ok(e) => (e, "E and |L|", "along the secular drift of each law"),
-                    Err(_) => (
-                        general_errors(top, omega0, t_last),
-                        "Omega",
-                        "integrated along the run",
-                    ),
-                },
+            let secular = matches!(
+                general_path(&tiers[1], omega0, t_last, tol),
+                GeneralPath::Secular { .. }
+            );
+            match secular.then(|| secular_errors(top, omega0, times, tol)) {
+                Some(Ok(e)) => (e, "E and |L|", "along the secular drift of each law", true),
                 _ => (
                     general_errors(top, omega0, t_last),
                     "Omega",
                     "integrated along the run",
+                    secular,
                 ),
             }
         }
@@ -395,35 +396,25 @@ pub(super) fn choose_model(
     }
     // The orientation counts where the tier's run reports it (an angle in
     // radians against a relative rtol: the rotation matrix's entries move by
-    // about that much); the secular model, which measures E and |L|, reports
-    // none.
-    let secular = measured != "Omega";
-    let orientation = |tier: usize, error: Real| {
-        (!secular && reports_orientation(&tiers[tier], method, omega0, t_last)).then_some(error)
+    // about that much); the secular model reports none.
+    let turns = [errors.truncated_orientation, errors.reduced_orientation];
+    let oriented: [Option<Real>; 2] = std::array::from_fn(|tier| {
+        (!secular && reports_orientation(&tiers[tier], method, omega0, t_last))
+            .then_some(turns[tier])
+    });
+    let omegas = [errors.truncated, errors.reduced];
+    // The lightest tier that `holds` (the reduced model never at strong spin).
+    let lightest = |holds: &dyn Fn(usize) -> bool| {
+        (0..2)
+            .find(|&tier| holds(tier) && (tier == 0 || !strong))
+            .unwrap_or(2)
     };
-    let oriented = [
-        orientation(0, errors.truncated_orientation),
-        orientation(1, errors.reduced_orientation),
-    ];
-    let within = |error: Real, turn: Option<Real>| error <= tol && turn.is_none_or(|o| o <= tol);
-    let tier = if within(errors.truncated, oriented[0]) {
-        0
-    } else if within(errors.reduced, oriented[1]) && !strong {
-        1
-    } else {
-        2
-    };
+    let tier = lightest(&|t| omegas[t] <= tol && oriented[t].is_none_or(|o| o <= tol));
+    let omega_tier = lightest(&|t| omegas[t] <= tol);
     let strong_note = if strong {
         " (qualitatively off at this spin)"
     } else {
         ""
-    };
-    let omega_tier = if errors.truncated <= tol {
-        0
-    } else if errors.reduced <= tol && !strong {
-        1
-    } else {
-        2
     };
     let turned = match oriented {
         [Some(t), Some(r)] => format!(", and by {t:.1e} and {r:.1e} rad in the orientation"),
@@ -441,7 +432,7 @@ pub(super) fn choose_model(
     );
     let without_orientation = (tier == 2 && omega_tier < 2 && tiers[omega_tier].has_closed_form())
         .then(|| {
-            let off = [errors.truncated_orientation, errors.reduced_orientation][omega_tier];
+            let off = turns[omega_tier];
             (
                 omega_tier,
                 format!(
@@ -453,7 +444,7 @@ pub(super) fn choose_model(
         });
     let why_physical = (tier == 2).then(|| {
         if omega_tier < 2 {
-            let off = [errors.truncated_orientation, errors.reduced_orientation][omega_tier];
+            let off = turns[omega_tier];
             format!(
                 "model = \"auto\" chose it for the orientation alone: {} holds Omega within rtol = {tol:.0e} (model = \"{}\"), its orientation may be off by {off:.1e} rad",
                 name(omega_tier),

@@ -37,6 +37,12 @@
 //! **Any other top**: no closed form, so the same leading terms are
 //! integrated along the run (see [`general_errors`]).
 //!
+//! **The orientation** a run reports strays by the integral of Ω's error
+//! (in the lab, e(t) = ∫₀ᵗ OδΩ dt): its part along L adds up, the rest turns
+//! with the figure axis. Each model's orientation error, in radians, is
+//! estimated beside its error in Ω ([`symmetric_reduced_orientation_error`],
+//! [`symmetric_truncated_orientation_error`], and in [`general_errors`]).
+//!
 //! | code name | symbol | meaning | units |
 //! |---|---|---|---|
 //! | `a0`, `a_t` | A₀, A_T | Ω⊥ at 0 and at the end (reduced model) | 1/τ |
@@ -44,7 +50,7 @@
 //! | `r` | R(t) | the truncated model's clock (4.6) | – |
 
 use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Stepper};
-use crate::math::{Real, State, Vec3};
+use crate::math::{Real, State, Vec3, directional_derivative};
 use crate::physics::full_ale::{slow_manifold_second_order, slow_manifold_third_order};
 use crate::physics::general_top::GeneralTop;
 use crate::physics::symmetric_top::{
@@ -396,18 +402,11 @@ pub fn general_errors(top: &GeneralTop, omega0: &Vec3, t: Real) -> ModelErrors {
     // of the invariants that adds up in the orientation's phase).
     let beyond = |w: &Vec3| slow_manifold_second_order(top, w) + slow_manifold_third_order(top, w);
     let along = |f: &dyn Fn(&Vec3) -> Vec3, at: &Vec3, e: &Vec3| -> Vec3 {
-        let n = e.norm();
-        if n == 0.0 {
-            return Vec3::zeros();
-        }
-        let h = 1e-6 * at.norm().max(1e-300) / n;
-        (f(&(at + e * h)) - f(&(at - e * h))) / (2.0 * h)
+        directional_derivative(f, at, e, 1e-6)
     };
     let reduced = |w: &Vec3| top.reduced_ale_rhs(w);
     let truncated = |w: &Vec3| top.truncated_ale_rhs(w);
     let part = |y: &State<18>, i: usize| Vec3::new(y[i], y[i + 1], y[i + 2]);
-    // The orientation errors o_r, o_t in the body frame, ȯ = δΩ − Ω × o, in
-    // units of σ/|Ω₀| (radians per σ/|Ω₀|).
     // The truncated model's error in units of σ_t: e_t while it is small,
     // Ω_t − Ω once it is not (the linearisation's reach); it drives both the
     // estimate of Ω and the orientation's.
@@ -418,6 +417,8 @@ pub fn general_errors(top: &GeneralTop, omega0: &Vec3, t: Real) -> ModelErrors {
             (wt - w) / sigma_t
         }
     };
+    // The orientation errors o_r, o_t in the body frame, ȯ = δΩ − Ω × o, in
+    // units of σ/|Ω₀| (radians per σ/|Ω₀|).
     let rhs = |_t: Real, y: &State<18>| -> State<18> {
         let (w, er, wt, et) = (part(y, 0), part(y, 3), part(y, 6), part(y, 9));
         let (or, ot) = (part(y, 12), part(y, 15));

@@ -73,14 +73,8 @@ fn symmetric_setup(
 
 /// One symmetric top: I₃/I₁ = `ratio`, Ω₀ at angle `theta` from the axis
 /// with τ√(Ω⊥₀² + k²) = `strength`, over `decays` decay times 1/(τs₀).
-fn symmetric_case(
-    ratio: Real,
-    theta: Real,
-    strength: Real,
-    decays: Real,
-    report: &mut Vec<String>,
-    bad: &mut Vec<String>,
-) {
+fn symmetric_case(point: [Real; 4], report: &mut Vec<String>, bad: &mut Vec<String>) {
+    let [ratio, theta, strength, decays] = point;
     let (top, omega0, t_end) = symmetric_setup(ratio, theta, strength, decays);
     let times: Vec<Real> = (0..=400).map(|j| j as Real * t_end / 400.0).collect();
     let phys = physical_solution(&top, &omega0, &times, 1e-12).unwrap();
@@ -113,7 +107,7 @@ fn symmetric_case(
 /// The grid of tops: I₃/I₁ × direction × strength × horizon, each case
 /// checked by `case`; fails with every case outside real ≤ claimed ≤
 /// `factor` × real.
-type Case<'a> = &'a dyn Fn(Real, Real, Real, Real, &mut Vec<String>, &mut Vec<String>);
+type Case<'a> = &'a dyn Fn([Real; 4], &mut Vec<String>, &mut Vec<String>);
 
 fn symmetric_grid_of(factor: Real, case: Case, grid: [&[Real]; 4]) {
     let [ratios, thetas, strengths, decays] = grid;
@@ -123,7 +117,7 @@ fn symmetric_grid_of(factor: Real, case: Case, grid: [&[Real]; 4]) {
             for &s in strengths {
                 for &d in decays {
                     let seen = report.len();
-                    case(r, th, s, d, &mut report, &mut bad);
+                    case([r, th, s, d], &mut report, &mut bad);
                     if std::env::var_os("SPINTOP_REPORT").is_some() {
                         eprintln!("{}", report[seen..].join("\n"));
                     }
@@ -220,13 +214,11 @@ fn largest_angle(a: &[spintop::math::Mat3], b: &[spintop::math::Mat3]) -> Real {
 /// solution's (backward shooting, its orientation integrated at 1e-12).
 fn orientation_case(
     factor: Real,
-    ratio: Real,
-    theta: Real,
-    strength: Real,
-    decays: Real,
+    point: [Real; 4],
     report: &mut Vec<String>,
     bad: &mut Vec<String>,
 ) {
+    let [ratio, theta, strength, decays] = point;
     let (top, omega0, t_end) = symmetric_setup(ratio, theta, strength, decays);
     let run = |model: Model, choice: MethodChoice| {
         rotations(model, choice, omega0, [0.3, 0.7, -0.2], t_end, 200)
@@ -257,7 +249,7 @@ fn orientation_case(
 fn orientation_grid(factor: Real, grid: [&[Real]; 4]) {
     symmetric_grid_of(
         factor,
-        &|r, th, s, d, report, bad| orientation_case(factor, r, th, s, d, report, bad),
+        &|point, report, bad| orientation_case(factor, point, report, bad),
         grid,
     );
 }
@@ -929,7 +921,7 @@ fn auto_general_estimates_bound_the_models_orientation_through_the_third_order()
 /// series' τ³s(3u + 5k²)z at I₃/I₁ = 0.1 and 2). Prolate and oblate, d
 /// from 10⁻⁸ to 10⁻⁵, |Ω| from 10⁻³ to 10³.
 #[test]
-fn slow_manifold_third_order_of_the_symmetric_top_holds_at_a_molecules_tau_omega() {
+fn eq_3_4_slow_manifold_third_order_of_the_symmetric_top_holds_at_a_molecules_tau_omega() {
     for ratio in [0.1, 2.0] {
         for (d, scale) in [(1e-8, 1e-3), (1e-8, 1.0), (1e-8, 1e3), (1e-5, 1e-3)] {
             let top = GeneralTop::new(Vec3::new(1.0, 1.0, ratio), Vec3::new(0.0, 0.0, d)).unwrap();
@@ -954,7 +946,7 @@ fn slow_manifold_third_order_of_the_symmetric_top_holds_at_a_molecules_tau_omega
 /// Re f = −τs + τ³s(3u + 5k²), Im f = −Ω̃₃ − 2τ²ks + O(τ⁴), gives
 /// G₂ = −2iτ²ksz and G₃ = τ³s(3u + 5k²)z.
 #[test]
-fn slow_manifold_third_order_of_the_symmetric_top_is_tau3_s_3u_5k2_z() {
+fn eq_3_4_slow_manifold_third_order_of_the_symmetric_top_is_tau3_s_3u_5k2_z() {
     let tau: Real = 0.01;
     let top = GeneralTop::new(Vec3::new(1.0, 1.0, 2.0), Vec3::new(0.0, 0.0, tau.sqrt())).unwrap();
     for omega in [
