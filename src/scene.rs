@@ -24,6 +24,7 @@ use toml::Spanned;
 
 pub mod answer;
 pub mod catalogue;
+pub mod choose;
 mod format;
 mod keys;
 mod kinds;

@@ -5,7 +5,7 @@
 use super::format::{RawSolve, RawTop, RawUnits};
 use super::keys::{Ctx, choice, finite_array, missing, not_here, num, param, solve_times};
 use super::units::{GENERAL_SHAPES, GeneralUnits, RealUnits, real_units, rigid_units};
-use super::{Body, Built, Orientation, SceneError, plan};
+use super::{Body, Built, Orientation, SceneError, choose, plan};
 use crate::math::{Real, Vec3};
 use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
@@ -342,7 +342,7 @@ pub(super) fn top_scene(
     let (mut model, mut model_choice, without_orientation, mut why_physical) = match asked_tier {
         Some(tier) => (tiers[tier], None, None, None),
         None => {
-            let choice = plan::choose_model(&tiers, method, &omega0, &times, options.rtol());
+            let choice = choose::choose_model(&tiers, method, &omega0, &times, options.rtol());
             (
                 tiers[choice.tier],
                 Some(choice.reason),

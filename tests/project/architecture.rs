@@ -1333,3 +1333,24 @@ fn the_circle_check_catches_a_circle() {
     );
     assert_eq!(none, None);
 }
+
+/// Issue 30: the scene engine is split by concept, each file under about 600
+/// lines (`scene.rs` was 1.8k lines holding every concept; auto's model
+/// choice grew `plan.rs` to 888 before it moved to `choose.rs`).
+#[test]
+fn scene_files_are_split_by_concept_under_600_lines() {
+    let mut files = vec![root().join("src/scene.rs")];
+    rust_files(&root().join("src/scene"), &mut files);
+    assert!(files.len() > 5, "the scene engine's files: {files:?}");
+    let long: Vec<String> = files
+        .iter()
+        .filter_map(|f| {
+            let n = std::fs::read_to_string(f)
+                .expect("a scene file")
+                .lines()
+                .count();
+            (n > 600).then(|| format!("{} has {n} lines", f.display()))
+        })
+        .collect();
+    assert!(long.is_empty(), "split these by concept: {long:?}");
+}
