@@ -360,6 +360,16 @@ impl Method {
         }
     }
 
+    /// The user's choice that bears this method's name, if one does: a
+    /// choice and the integrator it runs share their name (`rk4`, `dop853`,
+    /// `taylor`, …, and `exact` for the closed form), so this reads the one
+    /// name table both use rather than mapping one enum onto the other by
+    /// hand. The closed form with DOP853, the physical solution and the
+    /// splittings are no choice's name.
+    pub fn choice(&self) -> Option<MethodChoice> {
+        MethodChoice::from_name(self.label())
+    }
+
     /// One sentence saying what was computed how.
     pub fn detail(&self) -> &'static str {
         match self {
@@ -1404,6 +1414,39 @@ mod method_rule_tests {
             Model::GeneralReduced(general),
             Model::GeneralFull(general),
         ]
+    }
+
+    /// A method's choice is the choice that runs it: for every model and
+    /// every choice other than `auto`, the method the rule takes bears the
+    /// choice's name or none (`exact+dop853`, `physical`); and `auto`'s
+    /// integrator for a general top is named by a choice that runs it.
+    #[test]
+    fn a_methods_choice_runs_that_method() {
+        let options = MethodOptions::default();
+        for model in models() {
+            for choice in MethodChoice::ALL {
+                let Ok(method) = model.method(choice, &options) else {
+                    continue;
+                };
+                match (choice, method.choice()) {
+                    (MethodChoice::Auto, Some(named)) => {
+                        assert_eq!(model.method(named, &options), Ok(method));
+                    }
+                    (_, Some(named)) => assert_eq!(named, choice, "{}", model.name()),
+                    (_, None) => assert!(matches!(
+                        method,
+                        Method::ClosedFormDop853 | Method::Physical
+                    )),
+                }
+            }
+        }
+        let general = models()[3];
+        for rtol in [1e-6, 1e-12] {
+            let options = MethodOptions::default().with_rtol(rtol).unwrap();
+            let auto = general.method(MethodChoice::Auto, &options).unwrap();
+            assert_eq!(auto, auto_integrator(rtol));
+            assert!(auto.choice().is_some(), "{rtol}: {auto:?}");
+        }
     }
 
     /// The rule every entry point asks (`Model::check_method`) and what a

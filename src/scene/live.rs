@@ -4,7 +4,7 @@
 
 use super::{Body, Scene, catalogue};
 use crate::math::Real;
-use crate::sim::{Method, MethodChoice, MethodOptions, Model, auto_integrator};
+use crate::sim::{MethodChoice, MethodOptions, Model};
 
 /// A top scene as the live view opens it.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,7 +29,7 @@ pub struct LiveScene {
 /// An asymmetric (general) scene opens the general layout: the truncated ALE
 /// (3.3) and its neighbours with their moments and dipole, integrated by the
 /// scene's method (for `auto`, the integrator `auto` takes at the view's
-/// rtol, since nothing is closed: [`auto_integrator`]). Scenes of
+/// rtol, since nothing is closed: [`crate::sim::auto_integrator`]). Scenes of
 /// other kinds are refused, in one line that says what to run instead.
 pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
     let Body::Top(top) = &scene.body else {
@@ -45,20 +45,20 @@ pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
             scene.kind().name(),
         ));
     };
-    // The view names the method it runs: the closed forms where the model
-    // has them, else the integrator `auto` takes at the view's tolerance
-    // (the Taylor method at the default rtol 1e-10, by the measured
-    // crossover), for `auto` (and for `forward`, which is not a view: the
-    // full ALE's column always shows its physical solution).
-    let general = !top.model.has_closed_form() && !matches!(top.model, Model::Full(_));
+    // The view names the method it runs: what `auto` runs on this model at
+    // the view's tolerance, where that is a choice of its own (an
+    // integrator, for a model with nothing closed: the Taylor method at the
+    // default rtol 1e-10, by the measured crossover), else the closed forms
+    // (also for the full ALE, whose column always shows its physical
+    // solution), for `auto`, `exact` and `forward` (which is not a view).
     let method = match top.method {
-        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward if general => {
-            match auto_integrator(MethodOptions::default().rtol()) {
-                Method::Taylor => MethodChoice::Taylor,
-                _ => MethodChoice::Dop853,
-            }
-        }
-        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => MethodChoice::Exact,
+        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => top
+            .model
+            .method(MethodChoice::Auto, &MethodOptions::default())
+            .ok()
+            .and_then(|m| m.choice())
+            .filter(|c| *c != MethodChoice::Forward)
+            .unwrap_or(MethodChoice::Exact),
         other => other,
     };
     let mut note = format!("scene {}", scene.name);
