@@ -3,7 +3,7 @@
 
 use super::{Format, Output};
 use crate::math::{Real, Vec3};
-use crate::numbers::table;
+use crate::numbers::{self, table};
 use crate::physics::balance::{
     Balance, DipoleTrajectory, Dumbbell, PlanarLoop, PrecessingDipole, balance_at, period_average,
 };
@@ -198,14 +198,14 @@ impl Output for BalanceOutput {
                 writeln!(out, "{}", head.join(","))?;
                 let row = |t: String, vs: [[Real; 3]; 5], ax: [Real; 3]| {
                     let mut cells = vec![t];
-                    cells.extend(vs.iter().flatten().map(|x| x.to_string()));
-                    cells.extend(ax.iter().map(|x| x.to_string()));
+                    cells.extend(vs.iter().flatten().map(|x| numbers::csv(*x)));
+                    cells.extend(ax.iter().map(|x| numbers::csv(*x)));
                     cells.join(",")
                 };
                 for s in &output.samples {
                     let vs = [s.dipole, s.larmor, s.torque, s.schott, s.schott_rate];
                     let ax = [s.larmor_axial, s.torque_axial, s.schott_rate_axial];
-                    writeln!(out, "{}", row(s.t.to_string(), vs, ax))?;
+                    writeln!(out, "{}", row(numbers::csv(s.t), vs, ax))?;
                 }
                 // NOTE: the period average is the last row, its t cell reads `average`.
                 let a = &output.period_average;

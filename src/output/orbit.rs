@@ -4,7 +4,7 @@
 use super::{Failure, Format, Output, Stop, write_aligned};
 use crate::integrate::Stats;
 use crate::math::Real;
-use crate::numbers::{fmt_time, table};
+use crate::numbers::{self, fmt_time, table};
 use crate::physics::central::{
     Potential, abraham_lorentz_oscillator_roots, landau_lifshitz_oscillator_root,
 };
@@ -228,7 +228,7 @@ impl Output for OrbitOutput {
                         s.l,
                         s.energy,
                     ];
-                    let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
+                    let cells: Vec<String> = row.iter().map(|x| numbers::csv(*x)).collect();
                     writeln!(out, "{}", cells.join(","))?;
                 }
                 Ok(())

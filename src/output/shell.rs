@@ -3,7 +3,7 @@
 
 use super::{Failure, Format, Output, write_aligned};
 use crate::math::Real;
-use crate::numbers::table;
+use crate::numbers::{self, table};
 use crate::physics::central::abraham_lorentz_oscillator_roots;
 use crate::physics::shell::ShellModel;
 use crate::sim::shell::{History, ShellError, ShellSample, run_shell};
@@ -157,7 +157,7 @@ impl Output for ShellOutput {
                         s.flux_exact,
                         s.flux_paper,
                     ];
-                    let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
+                    let cells: Vec<String> = row.iter().map(|x| numbers::csv(*x)).collect();
                     writeln!(out, "{}", cells.join(","))?;
                 }
                 Ok(())

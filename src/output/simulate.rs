@@ -3,7 +3,7 @@
 
 use super::{Entry, Failure, Format, Output, Stop, sim_failure, write_aligned};
 use crate::math::{Real, Vec3};
-use crate::numbers::{fmt_time, table};
+use crate::numbers::{self, fmt_time, table};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
 use serde::Serialize;
 use std::io::{self, Write};
@@ -194,7 +194,7 @@ impl Output for SimulateOutput {
                     row.push(s.tilt);
                     row.extend(s.euler);
                     row.extend(s.rotation.iter().flatten());
-                    let cells: Vec<String> = row.iter().map(|x| x.to_string()).collect();
+                    let cells: Vec<String> = row.iter().map(|x| numbers::csv(*x)).collect();
                     writeln!(out, "{}", cells.join(","))?;
                 }
                 Ok(())

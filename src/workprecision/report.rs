@@ -45,8 +45,14 @@ pub fn matched_index(error: Real) -> Option<usize> {
     MATCHED_ERRORS.iter().position(|&e| e == error)
 }
 
+/// A count's cell, empty where there is none.
 fn cell<T: ToString>(x: Option<T>) -> String {
     x.map(|v| v.to_string()).unwrap_or_default()
+}
+
+/// A number's cell (lossless, [`crate::numbers::csv`]), empty where there is none.
+fn real_cell(x: Option<Real>) -> String {
+    x.map(crate::numbers::csv).unwrap_or_default()
 }
 
 /// The rows as CSV with a header line (full precision, `.` decimal point).
@@ -63,13 +69,13 @@ pub fn to_csv(rows: &[Row]) -> String {
             r.method.clone(),
             r.target.name().to_string(),
             r.knob.name().to_string(),
-            cell(r.value),
-            cell(r.omega_error),
-            cell(r.orientation_error),
+            real_cell(r.value),
+            real_cell(r.omega_error),
+            real_cell(r.orientation_error),
             cell(r.rhs_evals),
             cell(r.steps),
             cell(r.rejected),
-            cell(r.time_s),
+            real_cell(r.time_s),
             r.repeats.to_string(),
             status,
         ];

@@ -366,3 +366,31 @@ fn json_output_streams_and_is_never_built_whole_first() {
         value.walked.get()
     );
 }
+
+/// CSV cells are written by the one number module (`numbers::csv`): lossless
+/// and short. A rate of 1e-300 used to fill a cell with 302 digits
+/// (`to_string`), and the same value is read back exactly.
+#[test]
+fn csv_cells_are_short_and_read_back_exactly() {
+    let out = spintop(&[
+        "simulate",
+        "--model",
+        "truncated",
+        "--omega",
+        "1e-300,0,1e-300",
+        "--times",
+        "0,1",
+        "--format",
+        "csv",
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut rows = text.lines().filter(|l| !l.starts_with('#'));
+    let head: Vec<&str> = rows.next().unwrap().split(',').collect();
+    let first: Vec<&str> = rows.next().unwrap().split(',').collect();
+    for cell in text.lines().flat_map(|l| l.split(',')) {
+        assert!(cell.len() <= 25, "a cell of {} characters: {cell}", cell.len());
+    }
+    let column = head.iter().position(|h| *h == "omega1").expect("omega1");
+    assert_eq!(first[column].parse::<f64>().unwrap(), 1e-300);
+}
