@@ -333,15 +333,16 @@ pub(super) fn rigid_units(
             &u.moments_amu_a2,
             "three principal moments in amu A^2",
         )?;
-        let total: Real = m.iter().sum();
         for (k, &mk) in m.iter().enumerate() {
-            let others = total - mk;
+            // NOTE: the other two summed, not the total less this one, which
+            // cancels to 0 beside a moment of 1e300.
+            let others = m[(k + 1) % 3] + m[(k + 2) % 3];
             if mk > others * (1.0 + 1e-12) {
                 let span = u
                     .moments_amu_a2
                     .as_ref()
                     .map_or(header.clone(), |v| v.span());
-                return Err(ctx.at(&span, format!("[units] moments_amu_a2: I{} = {} exceeds the sum of the other two, {}, by {:.3e} amu A^2, which no rigid body does; measured moments carry the inertia defect of vibration, so give the rigid ones (I_C = I_A + I_B for a planar molecule)", k + 1, mk, others, mk - others)));
+                return Err(ctx.at(&span, format!("[units] moments_amu_a2: I{} = {} exceeds the sum of the other two, {}, by {:.3e} amu A^2, which no rigid body does; measured moments carry the inertia defect of vibration, so give the rigid ones (I_C = I_A + I_B for a planar molecule)", k + 1, crate::numbers::short(mk), crate::numbers::short(others), mk - others)));
             }
         }
         RigidShape::Molecule { moments_amu_a2: m }

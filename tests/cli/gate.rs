@@ -259,6 +259,25 @@ fn a_particle_whose_moment_ratio_underflows_is_a_scene_error() {
     }
 }
 
+/// A molecule whose one moment outweighs the other two is refused with the
+/// other two's real sum, in a few digits: beside a moment of 1e300 the sum
+/// was taken as the total less that moment, which cancelled to 0, and the
+/// moment was printed in 301 digits.
+#[test]
+fn a_molecule_refused_for_its_moments_names_their_sum_in_few_digits() {
+    let dir = Scratch::new("gate-molecule");
+    let text = "[scene]\nname = \"heavy\"\nkind = \"top\"\ndescription = \"One heavy axis.\"\n\n[top]\nmodel = \"auto\"\n\n[units]\nshape = \"molecule\"\nmoments_amu_a2 = [1e300, 1.0, 1.0]\ndipole_vector_debye = [2.33, 0.0, 0.0]\nomega_hz = [1e12, 1e12, 1e12]\n";
+    let path = dir.write("heavy.toml", text);
+    let out = spintop(&["run", path.as_str()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("I1 = 1e300 exceeds the sum of the other two, 2,"),
+        "{stderr}"
+    );
+}
+
 /// A quantity that stops existing is absent, not a non-finite number: the
 /// tumbling nanoellipsoid ends turning about one axis, where the free motion
 /// has no period. Its scene passes the gate in every format: no `period` in
