@@ -73,6 +73,10 @@ struct PlotConfig {
     t_end: Real,
 }
 
+/// The sizes of omega0 a chart draws faithfully (textplots works in f32,
+/// whose range is about 1e-38 to 3e38).
+const PLOT_RANGE: (Real, Real) = (1e-30, 1e30);
+
 /// The decades a log-time plot spans.
 const LOG_DECADES: Real = 4.0;
 
@@ -88,6 +92,18 @@ impl PlotArgs {
             return Err(bad(format!(
                 "--t-end must be > 0, got {}",
                 crate::numbers::fmt_value(self.t_end)
+            )));
+        }
+        // NOTE: textplots draws in single precision: a curve beyond its
+        // range drew as inf (exit 3 after the header) or flat at 0.
+        let [w1, w2, w3] = self.omega;
+        let reach = w1.hypot(w2).max(w3.abs());
+        if reach != 0.0 && !(PLOT_RANGE.0..=PLOT_RANGE.1).contains(&reach) {
+            return Err(bad(format!(
+                "--omega: plot draws in single precision, so the size of omega0 must lie within {:.0e} and {:.0e}, got {}; spintop simulate gives the numbers at any size",
+                PLOT_RANGE.0,
+                PLOT_RANGE.1,
+                crate::numbers::fmt_value(reach)
             )));
         }
         if !(16..=500).contains(&self.width) {
@@ -162,6 +178,7 @@ fn samples(
 }
 
 fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError> {
+    use crate::numbers::short;
     let [w1, w2, w3] = config.omega0;
     let reach = w1.hypot(w2).max(w3.abs());
     let y = nice_ceiling(reach * 1.05) as f32;
@@ -176,11 +193,14 @@ fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError
         let top = &config.top;
         writeln!(
             out,
-            "# spintop plot: {} model, {}; I3/I1 = {}, tau = 1; omega0 = ({w1}, {w2}, {w3}) 1/tau; \
+            "# spintop plot: {} model, {}; I3/I1 = {}, tau = 1; omega0 = ({}, {}, {}) 1/tau; \
              method {method}; lab z along L0",
             model.name(),
             model.equations(),
-            top.ratio(),
+            short(top.ratio()),
+            short(w1),
+            short(w2),
+            short(w3),
         )?;
         let quantities: [Quantity; 4] = [
             ("Ω₁", |s| s.omega[0]),

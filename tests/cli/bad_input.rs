@@ -736,6 +736,16 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         (with(&["plot"], &["--width", "-3"]), "width"),
         (with(&["plot"], &["--height", "1"]), "height"),
         (with(&["plot"], &["--height", "1000"]), "height"),
+        // A chart is drawn in single precision: beyond its range a curve was
+        // inf (exit 3 after the header) or flat at 0 (exit 0).
+        (
+            with(&["plot"], &["--omega", "0,1e39,0"]),
+            "single precision",
+        ),
+        (
+            with(&["plot"], &["--omega", "0,1e-46,0"]),
+            "single precision",
+        ),
         (with(&["tui"], &["--warp", "3"]), "warp"),
         (with(&["tui"], &["--ratio", "5"]), "I3/I1"),
         (with(&["tui"], &["--bench", "0"]), "bench"),

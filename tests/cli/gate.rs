@@ -408,7 +408,11 @@ fn csv_cells_are_short_and_read_back_exactly() {
     let head: Vec<&str> = rows.next().unwrap().split(',').collect();
     let first: Vec<&str> = rows.next().unwrap().split(',').collect();
     for cell in text.lines().flat_map(|l| l.split(',')) {
-        assert!(cell.len() <= 25, "a cell of {} characters: {cell}", cell.len());
+        assert!(
+            cell.len() <= 25,
+            "a cell of {} characters: {cell}",
+            cell.len()
+        );
     }
     let column = head.iter().position(|h| *h == "omega1").expect("omega1");
     assert_eq!(first[column].parse::<f64>().unwrap(), 1e-300);
