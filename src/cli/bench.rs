@@ -115,7 +115,9 @@ struct BenchConfig {
     chart: ProblemKind,
     plan: Plan,
     quick: bool,
-    out: Option<(PathBuf, OutFormat)>,
+    /// The file, opened before the sweep (a path that cannot be written is
+    /// refused before minutes of timing, not after), its name and format.
+    out: Option<(std::fs::File, PathBuf, OutFormat)>,
     width: u32,
     height: u32,
 }
@@ -187,7 +189,14 @@ impl BenchArgs {
                         )));
                     }
                 };
-                Some((path, format))
+                // NOTE: opened now, not truncated until the rows are there.
+                let file = std::fs::OpenOptions::new()
+                    .write(true)
+                    .create(true)
+                    .truncate(false)
+                    .open(&path)
+                    .map_err(|e| bad(format!("cannot write --out '{}': {e}", path.display())))?;
+                Some((file, path, format))
             }
         };
         Ok(Job::Sweep(BenchConfig {
@@ -289,14 +298,17 @@ fn sweep(config: &BenchConfig, out: &mut Gate<'_>) -> Result<(), CliError> {
     for line in summary(&rows) {
         writeln!(out, "{line}")?;
     }
-    if let Some((path, format)) = &config.out {
+    if let Some((file, path, format)) = &config.out {
         let text = match format {
             OutFormat::Csv => report::to_csv(&rows),
             OutFormat::Json => report::to_json(&rows) + "\n",
         };
-        std::fs::write(path, text).map_err(|e| {
-            CliError::BadInput(format!("cannot write --out '{}': {e}", path.display()))
-        })?;
+        let mut file = file;
+        file.set_len(0)
+            .and_then(|()| file.write_all(text.as_bytes()))
+            .map_err(|e| {
+                CliError::BadInput(format!("cannot write --out '{}': {e}", path.display()))
+            })?;
         writeln!(out, "wrote {} rows to {}", rows.len(), path.display())?;
     }
     Ok(())

@@ -258,3 +258,18 @@ fn bench_bad_input_exits_2_with_one_line() {
         assert!(out.stdout.is_empty(), "{args:?}");
     }
 }
+
+/// An `--out` that cannot be written is refused before the sweep: nothing
+/// on stdout, exit 2 (it used to time every method, print the charts and
+/// the table, and only then fail).
+#[test]
+fn bench_out_that_cannot_be_written_is_refused_before_the_sweep() {
+    let dir = scratch("bench-out-folder").join("rows.csv");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = spintop(&["bench", "--quick", "--out", dir.to_str().unwrap()]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(out.stdout.is_empty(), "{}", text(&out.stdout));
+    assert!(stderr.contains("cannot write --out"), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+}
