@@ -141,6 +141,12 @@ pub enum Knob {
     ForceLl,
     /// The orbit's physical solution of (2.5).
     ForceAl,
+    /// The shell's radiation time.
+    ShellTau0,
+    /// The shell's delay r0/c.
+    Delay,
+    /// The shell's output times.
+    Times,
 }
 
 impl Entry {
@@ -159,6 +165,9 @@ impl Entry {
             (Entry::CommandLine, K::Tau0) => "--tau0",
             (Entry::CommandLine, K::ForceLl) => "--force ll",
             (Entry::CommandLine, K::ForceAl) => "--force al",
+            (Entry::CommandLine, K::ShellTau0) => "--tau0",
+            (Entry::CommandLine, K::Delay) => "--delay",
+            (Entry::CommandLine, K::Times) => "--times",
             (Entry::Scene, K::Rtol) => "[solve] rtol",
             (Entry::Scene, K::TEnd) => "[solve] t_end (or times)",
             (Entry::Scene, K::Omega) => "[top] omega",
@@ -170,6 +179,9 @@ impl Entry {
             (Entry::Scene, K::Tau0) => "[orbit] tau0",
             (Entry::Scene, K::ForceLl) => "[orbit] force = \"ll\"",
             (Entry::Scene, K::ForceAl) => "[orbit] force = \"al\"",
+            (Entry::Scene, K::ShellTau0) => "[shell] tau0",
+            (Entry::Scene, K::Delay) => "[shell] delay",
+            (Entry::Scene, K::Times) => "[solve] times",
         }
     }
 }

@@ -55,6 +55,7 @@ impl ShellArgs {
             steps,
             times,
             format: self.format,
+            entry: crate::output::Entry::CommandLine,
         })
     }
 }

@@ -68,6 +68,8 @@ pub struct ShellRequest {
     pub times: Vec<Real>,
     /// Output format.
     pub format: Format,
+    /// Where the request came from, for advice in its words.
+    pub entry: super::Entry,
 }
 
 /// The JSON output of `shell` (the contract).
@@ -230,11 +232,29 @@ impl Output for ShellOutput {
 pub fn shell(request: &ShellRequest) -> Result<ShellOutput, Failure> {
     let model = request.model;
     let growth_rate = model.growth_rate();
+    let knob = |k: super::Knob| request.entry.name(k);
+    // NOTE: the root is sought before anything runs; where Newton's method
+    // finds none, tau0 and the delay lie outside what the model answers
+    // (bad input, not a failure at some time).
     let near = model.root_near_al().ok_or_else(|| {
-        Failure::Stopped(
-            "Newton's method found no characteristic root near the Abraham-Lorentz one; try a smaller --delay"
-                .to_string(),
-        )
+        Failure::BadInput(format!(
+            "Newton's method found no characteristic root of (A.1) near the Abraham-Lorentz one at tau0 = {} and delay = {}; {}",
+            table(model.tau0()),
+            table(model.delta()),
+            if model.tau0() < 1.0 {
+                // Measured: found down to tau0 = 1e-150, lost at 1e-155.
+                format!(
+                    "use a larger {} (the root is found down to about 1e-150)",
+                    knob(super::Knob::ShellTau0)
+                )
+            } else {
+                format!(
+                    "use a smaller {} or {}",
+                    knob(super::Knob::ShellTau0),
+                    knob(super::Knob::Delay)
+                )
+            }
+        ))
     })?;
     let s_al = abraham_lorentz_oscillator_roots(model.tau0()).0;
     let samples = run_shell(
@@ -245,8 +265,9 @@ pub fn shell(request: &ShellRequest) -> Result<ShellOutput, Failure> {
     )
     .map_err(|e| match e {
         ShellError::Overflow { .. } => Failure::Stopped(format!(
-            "{e}: (A.1) is unstable here (growth rate {}); ask for earlier --times or a delay above 2 tau0",
-            growth_rate.map_or("unknown".to_string(), table)
+            "{e}: (A.1) is unstable here (growth rate {}); ask for earlier {} or a delay above 2 tau0",
+            growth_rate.map_or("unknown".to_string(), table),
+            knob(super::Knob::Times)
         )),
         other => Failure::BadInput(other.to_string()),
     })?;

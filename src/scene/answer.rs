@@ -530,6 +530,7 @@ pub fn answer(scene: &Scene) -> Result<Report, Failure> {
                 steps,
                 times: s.times.clone(),
                 format: Format::Json,
+                entry: crate::output::Entry::Scene,
             };
             Answer::Shell(shell::shell(&request)?)
         }

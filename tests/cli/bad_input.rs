@@ -728,6 +728,20 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
             ),
             "RK4 steps",
         ),
+        (
+            with(
+                &["shell", "--delay", "1", "--times", "0,1"],
+                &["--tau0", "1e308"],
+            ),
+            "use a smaller --tau0 or --delay",
+        ),
+        (
+            with(
+                &["shell", "--delay", "1", "--times", "0,1"],
+                &["--tau0", "1e-320"],
+            ),
+            "use a larger --tau0",
+        ),
         (with(&["plot"], &["--ratio", "0"]), "I3/I1"),
         (with(&["plot"], &["--t-end", "0"]), "t-end"),
         (with(&["plot"], &["--t-end", "-5"]), "t-end"),
@@ -1803,6 +1817,14 @@ fn extremes(dir: &std::path::Path) -> Vec<Case> {
             "[scene]\nname = \"s\"\nkind = \"shell\"\ndescription = \"d\"\n\n[shell]\ntau0 = 1e-3\ndelay = 0.03\n\n[solve]\ntimes = [0.0, 1e308]\n",
             2,
             "1e308",
+        ),
+        (
+            // No characteristic root: bad input named in the scene's words
+            // (was exit 3, "try a smaller --delay").
+            "extreme-shell-tau0",
+            "[scene]\nname = \"s\"\nkind = \"shell\"\ndescription = \"d\"\n\n[shell]\ntau0 = 1e308\ndelay = 1.0\n\n[solve]\ntimes = [0.0, 1.0]\n",
+            2,
+            "use a smaller [shell] tau0 or [shell] delay",
         ),
         (
             "extreme-oscillator",
