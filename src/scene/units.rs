@@ -188,6 +188,21 @@ pub(super) fn real_units(
     )
     .map_err(|e| ctx.at(header, format!("[units] {e}")))?;
     time_scale_fits(ctx, header, "tau", particle.tau_seconds())?;
+    // NOTE: a spin too slow for a double in units of tau became 0: the top
+    // then never turned, and the report contradicted the scene's tilt.
+    let per_tau = particle.omega0_per_tau(spin_hz, 0.0).norm();
+    if per_tau < Real::MIN_POSITIVE {
+        let span = u.spin_hz.as_ref().map_or(header.clone(), |v| v.span());
+        return Err(ctx.at(
+            &span,
+            format!(
+                "[units] spin_hz = {} is {} in the model's unit of time, tau = {:.3e} s, below what a double holds; expected a faster spin",
+                crate::numbers::short(spin_hz),
+                crate::numbers::short(per_tau),
+                particle.tau_seconds()
+            ),
+        ));
+    }
     Ok(RealUnits {
         particle,
         spin_hz,

@@ -1827,6 +1827,14 @@ fn extremes(dir: &std::path::Path) -> Vec<Case> {
             "use a smaller [shell] tau0 or [shell] delay",
         ),
         (
+            // A spin that is 0 in units of tau: refused, not run as a top at
+            // rest whose report contradicted the scene's tilt.
+            "extreme-slow-spin",
+            "[scene]\nname = \"s\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"auto\"\n\n[units]\nshape = \"cylinder\"\nradius_nm = 50.0\nlength_nm = 200.0\ndensity_kg_m3 = 2200.0\ndipole_debye = 1e3\nspin_hz = 1e-300\n",
+            2,
+            "spin_hz = 1e-300 is 0 in the model's unit of time",
+        ),
+        (
             "extreme-oscillator",
             "[scene]\nname = \"s\"\nkind = \"orbit\"\ndescription = \"d\"\n\n[orbit]\npotential = \"harmonic\"\ntau0 = 3.0\nforce = \"ll\"\n\n[solve]\ntimes = [0.0, 1.0]\n",
             2,
