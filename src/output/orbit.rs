@@ -21,7 +21,8 @@ pub const MAX_BACKWARD_SPAN: Real = 1e6;
 /// A backward integration of (2.5) longer than [`MAX_BACKWARD_SPAN`] τ₀.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[error(
-    "force al for coulomb integrates (2.5) backward in steps of a few tau0, and t_last/tau0 = {span:.1e} exceeds {MAX_BACKWARD_SPAN:.0e}"
+    "force al for coulomb integrates (2.5) backward in steps of a few tau0, and t_last/tau0, {}, exceeds {MAX_BACKWARD_SPAN:.0e}",
+    crate::numbers::fmt_about(*span)
 )]
 pub struct BackwardTooLong {
     /// t_last/τ₀.

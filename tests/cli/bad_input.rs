@@ -742,6 +742,22 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
             ),
             "use a larger --tau0",
         ),
+        (
+            // t_last/tau0 overflows: said in words, never `inf`.
+            with(
+                &[
+                    "orbit",
+                    "--potential",
+                    "coulomb",
+                    "--tau0",
+                    "0.01",
+                    "--force",
+                    "al",
+                ],
+                &["--times", "0,1e308"],
+            ),
+            "t_last/tau0, more than 1e308, exceeds",
+        ),
         (with(&["plot"], &["--ratio", "0"]), "I3/I1"),
         (with(&["plot"], &["--t-end", "0"]), "t-end"),
         (with(&["plot"], &["--t-end", "-5"]), "t-end"),
