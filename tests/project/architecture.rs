@@ -378,7 +378,18 @@ fn written_paths(code: &str) -> Vec<Written> {
                     let rest: String = chars[i + 3..].iter().collect();
                     if let Some(end) = rest.find(';') {
                         let tree = &rest[..end];
-                        for (segments, offset) in expand(tree) {
+                        for (mut segments, offset) in expand(tree) {
+                            // A relative path (`use plan::Chosen` in
+                            // `scene.rs`) is read from this module; an
+                            // outside crate's (`use serde::…`) then resolves
+                            // to this module itself and is no import.
+                            if segments.first().is_some_and(|s| {
+                                !s.is_empty()
+                                    && !["crate", "super", "self", "std", "core", "alloc"]
+                                        .contains(&s.as_str())
+                            }) {
+                                segments.insert(0, "self".to_string());
+                            }
                             if segments
                                 .first()
                                 .is_some_and(|s| s == "crate" || s == "super" || s == "self")
@@ -525,6 +536,43 @@ fn imports(root: &Path) -> Vec<Import> {
             }
         }
     }
+    // What a module brings in from its own descendants by `use` (mostly
+    // `pub use` re-exports): `scene::Chosen` is `scene::plan`'s, so a
+    // sibling's `use super::Chosen` imports `scene::plan`, not `scene`
+    // (read as `scene`, a circle between siblings through their parent's
+    // re-exports would pass).
+    let mut brought: BTreeMap<(Vec<String>, String), Vec<String>> = BTreeMap::new();
+    for f in &files {
+        let module = module_of(root, &f.path);
+        for w in written_paths(&f.code).iter().filter(|w| w.from_use) {
+            let (Some(path), Some(to)) = (absolute(&module, w), resolve(&module, w, &modules))
+            else {
+                continue;
+            };
+            let item = path.last().filter(|s| *s != "*" && path.len() > to.len());
+            if let Some(item) = item
+                && to.len() > module.len()
+                && to.starts_with(&module)
+            {
+                brought.insert((module.clone(), item.clone()), to);
+            }
+        }
+    }
+    // The module a written path reaches, through what its modules bring in.
+    let reach = |from: &[String], w: &Written| -> Option<Vec<String>> {
+        let mut to = resolve(from, w, &modules)?;
+        let path = absolute(from, w)?;
+        for _ in 0..8 {
+            match path
+                .get(to.len())
+                .and_then(|item| brought.get(&(to.clone(), item.clone())))
+            {
+                Some(next) if path.starts_with(&to) => to = next.clone(),
+                _ => break,
+            }
+        }
+        Some(to)
+    };
     let mut out = Vec::new();
     for f in &files {
         let from = module_of(root, &f.path);
@@ -533,7 +581,7 @@ fn imports(root: &Path) -> Vec<Import> {
         }
         let mut reached: Vec<(Vec<String>, usize)> = written_paths(&f.code)
             .iter()
-            .filter_map(|w| resolve(&from, w, &modules).map(|to| (to, w.line)))
+            .filter_map(|w| reach(&from, w).map(|to| (to, w.line)))
             .collect();
         let t = tokens(&f.code);
         for (k, (word, line)) in t.iter().enumerate() {
@@ -1353,4 +1401,50 @@ fn scene_files_are_split_by_concept_under_600_lines() {
         })
         .collect();
     assert!(long.is_empty(), "split these by concept: {long:?}");
+}
+
+/// Two files of one module that import each other through their parent's
+/// re-exports make a circle too: `scene/answer.rs` writes
+/// `use super::Chosen` for what `scene.rs` brings in from `scene/plan.rs`,
+/// so it imports `plan`; with `plan` importing `answer` back, the checker
+/// must see the circle (it read `super::Chosen` as an import of `scene`).
+#[test]
+fn a_circle_through_a_parents_re_exports_is_caught() {
+    let dir = std::env::temp_dir().join(format!("spintop-reexport-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let scene = "pub mod answer;\npub mod plan;\npub use plan::Chosen;\npub use answer::{Answer as Reply};\n";
+    let circle = violations_of_scratch(
+        &dir,
+        &[
+            ("src/lib.rs", "pub mod scene;\n"),
+            ("src/scene.rs", scene),
+            (
+                "src/scene/answer.rs",
+                "use super::Chosen;\npub struct Answer;\n",
+            ),
+            (
+                "src/scene/plan.rs",
+                "use super::answer::Answer;\npub struct Chosen;\n",
+            ),
+        ],
+    );
+    let none = violations_of_scratch(
+        &dir,
+        &[
+            ("src/lib.rs", "pub mod scene;\n"),
+            ("src/scene.rs", scene),
+            (
+                "src/scene/answer.rs",
+                "use super::Chosen;\npub struct Answer;\n",
+            ),
+            ("src/scene/plan.rs", "pub struct Chosen;\n"),
+        ],
+    );
+    assert!(
+        circle
+            .iter()
+            .any(|v| v.contains("an import circle: scene::answer <-> scene::plan")),
+        "{circle:?}"
+    );
+    assert!(none.is_empty(), "{none:?}");
 }
