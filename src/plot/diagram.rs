@@ -901,7 +901,7 @@ fn shell_model() -> Diagram {
     svg.label((340.0, 140.0), "m = m₀ + mₑₘ", "black", 16.0, "start", true);
     svg.label(
         (340.0, 170.0),
-        "mₑₘ = τ₀/δ: the field's mass,",
+        "mₑₘ = mτ₀/δ: the field's mass,",
         "black",
         13.0,
         "start",
