@@ -607,16 +607,7 @@ pub struct InitialState {
 impl InitialState {
     /// Ω₀ and the z-x-z Euler angles of O(0); refuses non-finite numbers.
     pub fn new(omega: Vec3, euler: EulerAngles) -> Result<Self, SimError> {
-        if !all_finite(&omega) {
-            return Err(SimError::NotFinite("the initial angular velocity"));
-        }
-        // NOTE: in units of 1/τ a real top has |Ω| far below 1 (τΩ ~ 1e-20 for a
-        // nanoparticle); above 1e100 the products τΩ²t overflow a double.
-        if omega.amax() > MAX_RATE {
-            return Err(SimError::OutOfRange(
-                "each component of the initial angular velocity must be at most 1e100 in units of 1/tau",
-            ));
-        }
+        check_rate(&omega)?;
         if !(euler.phi.is_finite() && euler.theta.is_finite() && euler.psi.is_finite()) {
             return Err(SimError::NotFinite("the initial Euler angles"));
         }
@@ -625,6 +616,23 @@ impl InitialState {
             rotation: euler.to_rotation(),
         })
     }
+}
+
+/// The one check of an initial body rate Ω₀ (every entry point's, through
+/// [`InitialState::new`] or, where a scene points at its key, directly):
+/// finite, and each component at most [`MAX_RATE`] in units of 1/τ.
+pub fn check_rate(omega: &Vec3) -> Result<(), SimError> {
+    if !all_finite(omega) {
+        return Err(SimError::NotFinite("the initial angular velocity"));
+    }
+    // NOTE: in units of 1/τ a real top has |Ω| far below 1 (τΩ ~ 1e-20 for a
+    // nanoparticle); above 1e100 the products τΩ²t overflow a double.
+    if omega.amax() > MAX_RATE {
+        return Err(SimError::OutOfRange(
+            "each component of the initial angular velocity must be at most 1e100 in units of 1/tau",
+        ));
+    }
+    Ok(())
 }
 
 /// Why a simulation could not be built or advanced.

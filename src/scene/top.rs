@@ -11,7 +11,7 @@ use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
 use crate::physics::rigid_body::lab_frame;
 use crate::physics::symmetric_top::SymmetricTop;
-use crate::sim::{InitialState, MAX_RATE, MethodChoice, MethodOptions, Model};
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model};
 use std::ops::Range;
 
 /// How the initial orientation was given.
@@ -250,10 +250,9 @@ pub(super) fn top_scene(
             .omega0_per_tau(u.spin_hz, u.spin_tilt_deg.to_radians()),
         (None, Some(g), _) => g.particle.omega0(g.omega_hz),
         (None, None, Some((w, span))) => {
-            if w.iter().any(|x| x.abs() > MAX_RATE) {
-                return Err(ctx.at(span, "[top] omega is out of range; expected each component at most 1e100 in units of 1/tau"));
-            }
-            Vec3::from(*w)
+            let w = Vec3::from(*w);
+            crate::sim::check_rate(&w).map_err(|e| ctx.at(span, format!("[top] omega: {e}")))?;
+            w
         }
         (None, None, None) => Vec3::new(0.0, 0.1, 0.2),
     };
