@@ -346,16 +346,9 @@ fn run_top(
             if let Some(w) = pole_warning(&output.samples) {
                 warnings.push(w);
             }
-            if let Some(r) = &output.runaway {
-                warnings.push(format!(
-                    "runaway at t = {:.3}, growing at rate {:.4} per {} (an e-folding time of {:.3}); {}",
-                    r.t,
-                    r.growth_rate,
-                    r.unit,
-                    1.0 / r.growth_rate,
-                    r.advice
-                ));
-            }
+            // NOTE: a runaway is the run's own report (its `runaway` record,
+            // the table's line, the gate's `stopped`), not also a warning:
+            // it was said three times.
             TopRun::Full(output)
         }
         Orientation::Skipped(why)

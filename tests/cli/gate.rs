@@ -417,3 +417,20 @@ fn csv_cells_are_short_and_read_back_exactly() {
     let column = head.iter().position(|h| *h == "omega1").expect("omega1");
     assert_eq!(first[column].parse::<f64>().unwrap(), 1e-300);
 }
+
+/// A scene's runaway is said by the run (its `runaway` record, its line, the
+/// gate's `# stopped:`), not also as a warning: the table said it three times
+/// and stderr twice.
+#[test]
+fn a_scenes_runaway_is_reported_once_not_also_as_a_warning() {
+    let dir = Scratch::new("gate-runaway");
+    let text = "[scene]\nname = \"fw\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"full\"\n\n[solve]\nmethod = \"forward\"\nt_end = 100.0\n";
+    let path = dir.write("fw.toml", text);
+    let out = spintop(&["run", path.as_str()]);
+    assert_eq!(out.status.code(), Some(3));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stdout.contains("# warning: runaway"), "{stdout}");
+    assert!(!stderr.contains("warning: runaway"), "{stderr}");
+    assert_eq!(stderr.matches("runaway at t = ").count(), 1, "{stderr}");
+}
