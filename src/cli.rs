@@ -305,8 +305,16 @@ where
         Err(e) => {
             use clap::error::ErrorKind;
             if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
-                let _ = write!(stdout, "{e}");
-                return ExitCode::SUCCESS;
+                // The help is output like any other: a write that fails (a
+                // full disk) is said, as the commands' are; a closed pipe is not.
+                return match write!(stdout, "{e}").and_then(|()| stdout.flush()) {
+                    Err(e) if e.kind() != io::ErrorKind::BrokenPipe => {
+                        let e = CliError::from(e);
+                        let _ = writeln!(stderr, "spintop: error: {}", e.message());
+                        ExitCode::from(e.exit_code())
+                    }
+                    _ => ExitCode::SUCCESS,
+                };
             }
             let _ = writeln!(stderr, "spintop: error: {} (see --help)", clap_message(&e));
             return ExitCode::from(EXIT_BAD_INPUT);

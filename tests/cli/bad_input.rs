@@ -1309,6 +1309,9 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         vec!["figure", "1"],
         vec!["stability", "--row", "5"],
         vec!["balance", "--dipole", "loop", "--times", "0,1"],
+        // The help too (it was written with its error dropped: exit 0).
+        vec!["--help"],
+        vec!["simulate", "--help"],
     ] {
         let mut c = case(&args, 1, "cannot write output");
         c.full = true;
