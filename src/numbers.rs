@@ -243,6 +243,29 @@ pub fn parse_number(s: &str) -> Result<Real, String> {
     }
 }
 
+/// A count the user typed (`--samples 1e3` as well as `1000`): a whole number
+/// in plain or exponent form that fits `T`, or one line saying what is wrong
+/// ("invalid digit found in string" was all `1e12` got).
+pub fn parse_count<T: TryFrom<u64>>(s: &str) -> Result<T, String> {
+    let t = s.trim();
+    let n = match t.parse::<u64>() {
+        Ok(n) => n,
+        Err(_) => {
+            let x: Real = t
+                .parse()
+                .ok()
+                .filter(|x: &Real| x.is_finite() && *x >= 0.0 && x.fract() == 0.0)
+                .ok_or_else(|| format!("'{s}' is not a whole number"))?;
+            // NOTE: 2^64 and above do not fit a u64 (`as` would saturate).
+            if x >= 18_446_744_073_709_551_616.0 {
+                return Err(format!("'{s}' is too large"));
+            }
+            x as u64
+        }
+    };
+    T::try_from(n).map_err(|_| format!("'{s}' is too large"))
+}
+
 /// A short key that is the same for the same text on every run and machine
 /// (FNV-1a, 32 bits): names derived from a folder's path, so that two folders
 /// never share a name (the scratch program of `spintop book`, the package of
@@ -299,6 +322,29 @@ pub fn non_finite_in_words(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+
+    /// A count is a whole number in plain or exponent form that fits its
+    /// type; anything else is one line naming it.
+    #[test]
+    fn a_count_is_a_whole_number_in_either_form_that_fits() {
+        assert_eq!(parse_count::<usize>("1000"), Ok(1000));
+        assert_eq!(parse_count::<usize>("1e3"), Ok(1000));
+        assert_eq!(parse_count::<u64>("1e12"), Ok(1_000_000_000_000));
+        assert_eq!(parse_count::<u32>(" 7 "), Ok(7));
+        for bad in ["2.5", "-3", "nan", "inf", "", "x", "1e-3"] {
+            assert_eq!(
+                parse_count::<u32>(bad),
+                Err(format!("'{bad}' is not a whole number"))
+            );
+        }
+        for big in ["4294967297", "1e30", "1e300"] {
+            assert_eq!(
+                parse_count::<u32>(big),
+                Err(format!("'{big}' is too large"))
+            );
+        }
+    }
+
     use super::*;
 
     #[test]

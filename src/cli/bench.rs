@@ -91,10 +91,10 @@ pub struct BenchArgs {
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
     /// Width of each chart, in characters (16 to 250).
-    #[arg(long, default_value_t = 60, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 60, value_parser = crate::numbers::parse_count::<u32>, allow_hyphen_values = true)]
     width: u32,
     /// Height of each chart, in lines (4 to 100).
-    #[arg(long, default_value_t = 18, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 18, value_parser = crate::numbers::parse_count::<u32>, allow_hyphen_values = true)]
     height: u32,
     /// Instead of a sweep: join CSV files of earlier runs, chart every source's methods for one problem (--chart), and print each method's time at matched error 1e-8, 1e-10, 1e-12 and 1e-14, with ratios.
     #[arg(long, value_name = "CSV", num_args = 1..,

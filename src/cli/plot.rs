@@ -52,10 +52,10 @@ pub struct PlotArgs {
     #[arg(long, value_enum, default_value = "exact")]
     method: MethodChoice,
     /// Width of each chart, in characters (16 to 500).
-    #[arg(long, default_value_t = 60, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 60, value_parser = crate::numbers::parse_count::<u32>, allow_hyphen_values = true)]
     width: u32,
     /// Height of each chart, in lines (2 to 200).
-    #[arg(long, default_value_t = 10, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 10, value_parser = crate::numbers::parse_count::<u32>, allow_hyphen_values = true)]
     height: u32,
 }
 

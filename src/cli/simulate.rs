@@ -57,7 +57,7 @@ pub struct SimulateArgs {
     #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     t_end: Option<Real>,
     /// Number of evenly spaced output times from 0 to --t-end [default: 11]
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, value_parser = crate::numbers::parse_count::<usize>, allow_hyphen_values = true)]
     samples: Option<usize>,
     /// Numerical method.
     #[arg(long, value_enum, default_value = "auto")]
