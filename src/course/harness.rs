@@ -611,6 +611,7 @@ impl Run<'_> {
             Ok(c) => c,
             Err(e) => return State::Failing(format!("cannot run {}: {e}", exe.display())),
         };
+        limit_memory(&child);
         let stderr = drain(child.stderr.take(), 16 * 1024);
         let status = wait_within(&mut child, limit, self.ctx);
         let stderr = String::from_utf8_lossy(&stderr.join().unwrap_or_default()).into_owned();
@@ -637,12 +638,37 @@ impl Run<'_> {
                 "the test ended without a verdict from the course's grader: is it still the course's own test (graded!)?".into(),
             ),
             None => State::Failing(format!(
-                "the test process ended without a verdict ({}): {}. A recursion without end (a stack overflow), or an abort?",
+                "the test process ended without a verdict ({}): {}. A recursion without end (a stack overflow), more than the {} GiB of memory a grader may take, or an abort?",
                 how(status),
-                last_words(&stderr)
+                last_words(&stderr),
+                MEMORY_LIMIT >> 30
             )),
         }
     }
+}
+
+/// The most memory (address space) one grader's process may take. No
+/// assignment needs more than a few megabytes; a copy that allocates without
+/// bound must fail alone, not take the machine, and the class's grading with
+/// it (there is no swap to slow it down first).
+pub(crate) const MEMORY_LIMIT: u64 = 2 << 30;
+
+/// Puts [`MEMORY_LIMIT`] on a grader's process just started (Linux; an
+/// allocation beyond it fails, and the process aborts). Set from outside,
+/// since the crate has no `unsafe` for a `pre_exec`: the test program is
+/// still starting when it lands, long before any grader runs.
+fn limit_memory(child: &Child) {
+    #[cfg(target_os = "linux")]
+    {
+        use rustix::process::{Pid, Resource, Rlimit, prlimit};
+        let limit = Rlimit {
+            current: Some(MEMORY_LIMIT),
+            maximum: Some(MEMORY_LIMIT),
+        };
+        let _ = prlimit(Some(Pid::from_child(child)), Resource::As, limit);
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = child;
 }
 
 /// The verdict at `path`, if the grader of `function` wrote it in this run.
