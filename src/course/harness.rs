@@ -235,6 +235,10 @@ impl Ctx<'_> {
 /// be run at all; everything else (a shortcut, a compile error, a hang) is a
 /// state in the status.
 pub fn grade(dir: &Path, opts: &Options) -> Result<Status, String> {
+    // Absolute: cargo runs inside the copy, where a path relative to here
+    // (`--course mine`) would name nothing.
+    let absolute = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
+    let dir = absolute.as_path();
     let seed = opts.seed.unwrap_or_else(verdict::fresh_seed);
     let selected = |a: &Assignment| opts.binaries.is_empty() || opts.binaries.contains(&a.binary);
     // 1. The source rule, before anything is compiled. A file the parser

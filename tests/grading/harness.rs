@@ -568,3 +568,22 @@ fn a_grader_that_allocates_without_bound_is_stopped_by_its_memory_limit() {
     assert!(row.contains("memory"), "{row}");
     std::fs::remove_dir_all(&class).ok();
 }
+
+/// `spintop course --course DIR` with DIR relative to where it is run (a
+/// student beside their copy) grades the copy; cargo must not look for the
+/// manifest relative to the copy itself ("does not compile", Cargo.toml:1).
+#[test]
+fn a_copy_named_by_a_relative_path_is_graded() {
+    let parent = scratch("relative");
+    course::export(repo(), &parent.join("mine")).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_spintop"))
+        .args(["course", "--course", "mine"])
+        .current_dir(&parent)
+        .env("CARGO_TARGET_DIR", target())
+        .output()
+        .expect("spintop runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(!text.contains("does not compile"), "{text}");
+    assert!(text.contains("not started"), "{text}");
+    std::fs::remove_dir_all(&parent).ok();
+}
