@@ -567,6 +567,9 @@ fn grade_copies(
             "spintop course grade needs the repository's graders (lessons/); run it from a clone of spintop",
         ));
     }
+    if let Some(why) = course::gradebook::same_names(copies) {
+        return Err(bad(why));
+    }
     // Where the grades go is checked before any copy is graded.
     let several = copies.len() > 1;
     if let Some(p) = path {

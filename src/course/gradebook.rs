@@ -132,6 +132,22 @@ pub fn student_name(folder: &Path) -> String {
         .unwrap_or_else(|| folder.display().to_string())
 }
 
+/// Two copies that [`student_name`] gives the same name (the same folder
+/// twice, or `x/alice` and `y/alice`), said in one line: their rows (and
+/// Gradescope's `STUDENT/results.json`) could not be told apart.
+pub fn same_names(copies: &[PathBuf]) -> Option<String> {
+    let names: Vec<String> = copies.iter().map(|c| student_name(c)).collect();
+    (0..names.len()).find_map(|j| {
+        let i = names[..j].iter().position(|n| *n == names[j])?;
+        Some(format!(
+            "{} and {} would both be graded as student `{}`: give each copy a folder of its own name",
+            copies[i].display(),
+            copies[j].display(),
+            names[j]
+        ))
+    })
+}
+
 /// Puts together `scratch`: a fresh export of `repo` with the student's
 /// `src/**/*.rs` from `submission` in place of the stubs. Like an export, it
 /// leaves out `src/solutions/` (the instructor's, never a student's work);
@@ -380,5 +396,22 @@ impl Class {
             "output": summary,
             "tests": tests,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_copies_of_one_name_are_named_and_distinct_ones_pass() {
+        let copies = |names: &[&str]| names.iter().map(PathBuf::from).collect::<Vec<_>>();
+        let why = same_names(&copies(&["x/alice", "bob", "y/alice"])).expect("a clash");
+        assert!(
+            why.starts_with("x/alice and y/alice would both be graded as student `alice`"),
+            "{why}"
+        );
+        assert!(same_names(&copies(&["bob", "bob"])).is_some());
+        assert_eq!(same_names(&copies(&["x/alice", "x/bob", "carol"])), None);
     }
 }

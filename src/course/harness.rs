@@ -235,6 +235,10 @@ impl Ctx<'_> {
 /// be run at all; everything else (a shortcut, a compile error, a hang) is a
 /// state in the status.
 pub fn grade(dir: &Path, opts: &Options) -> Result<Status, String> {
+    // Absolute: cargo runs inside the copy, where a path relative to here
+    // (`--course mine`) would name nothing.
+    let absolute = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
+    let dir = absolute.as_path();
     let seed = opts.seed.unwrap_or_else(verdict::fresh_seed);
     let selected = |a: &Assignment| opts.binaries.is_empty() || opts.binaries.contains(&a.binary);
     // 1. The source rule, before anything is compiled. A file the parser
@@ -611,6 +615,7 @@ impl Run<'_> {
             Ok(c) => c,
             Err(e) => return State::Failing(format!("cannot run {}: {e}", exe.display())),
         };
+        limit_memory(&child);
         let stderr = drain(child.stderr.take(), 16 * 1024);
         let status = wait_within(&mut child, limit, self.ctx);
         let stderr = String::from_utf8_lossy(&stderr.join().unwrap_or_default()).into_owned();
@@ -637,12 +642,37 @@ impl Run<'_> {
                 "the test ended without a verdict from the course's grader: is it still the course's own test (graded!)?".into(),
             ),
             None => State::Failing(format!(
-                "the test process ended without a verdict ({}): {}. A recursion without end (a stack overflow), or an abort?",
+                "the test process ended without a verdict ({}): {}. A recursion without end (a stack overflow), more than the {} GiB of memory a grader may take, or an abort?",
                 how(status),
-                last_words(&stderr)
+                last_words(&stderr),
+                MEMORY_LIMIT >> 30
             )),
         }
     }
+}
+
+/// The most memory (address space) one grader's process may take. No
+/// assignment needs more than a few megabytes; a copy that allocates without
+/// bound must fail alone, not take the machine, and the class's grading with
+/// it (there is no swap to slow it down first).
+pub(crate) const MEMORY_LIMIT: u64 = 2 << 30;
+
+/// Puts [`MEMORY_LIMIT`] on a grader's process just started (Linux; an
+/// allocation beyond it fails, and the process aborts). Set from outside,
+/// since the crate has no `unsafe` for a `pre_exec`: the test program is
+/// still starting when it lands, long before any grader runs.
+fn limit_memory(child: &Child) {
+    #[cfg(target_os = "linux")]
+    {
+        use rustix::process::{Pid, Resource, Rlimit, prlimit};
+        let limit = Rlimit {
+            current: Some(MEMORY_LIMIT),
+            maximum: Some(MEMORY_LIMIT),
+        };
+        let _ = prlimit(Some(Pid::from_child(child)), Resource::As, limit);
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = child;
 }
 
 /// The verdict at `path`, if the grader of `function` wrote it in this run.

@@ -533,3 +533,57 @@ fn the_independent_wrong_answers_are_all_rejected_and_their_diagnoses_name_the_m
     }
     std::fs::remove_dir_all(&work).ok();
 }
+
+/// A copy that allocates without bound fails alone, within its memory
+/// limit, instead of taking the (shared) machine and the class's grading
+/// with it: 4 GiB asked for by one grader is refused, and the row says why.
+#[test]
+fn a_grader_that_allocates_without_bound_is_stopped_by_its_memory_limit() {
+    let class = scratch("memory");
+    let greedy = class.join("greedy");
+    course::export(repo(), &greedy).unwrap();
+    write_function(
+        &greedy,
+        "ch2",
+        "larmor_rate",
+        "pub fn larmor_rate(jet: &Jet) -> Vec3 {\n    let big = vec![jet[0].x; 1 << 29];\n    Vec3::repeat(big[big.len() - 1])\n}\n",
+    );
+    let csv = class.join("grades.csv");
+    let out = spintop(&[
+        "course",
+        "grade",
+        greedy.to_str().unwrap(),
+        "--out",
+        csv.to_str().unwrap(),
+        "--seed",
+        "3",
+    ]);
+    let grades = std::fs::read_to_string(&csv)
+        .unwrap_or_else(|_| panic!("no CSV: {}", String::from_utf8_lossy(&out.stderr)));
+    let row = grades
+        .lines()
+        .find(|r| r.starts_with("greedy,larmor_rate,"))
+        .expect("a row");
+    assert!(row.contains(",failing,"), "{row}");
+    assert!(row.contains("memory"), "{row}");
+    std::fs::remove_dir_all(&class).ok();
+}
+
+/// `spintop course --course DIR` with DIR relative to where it is run (a
+/// student beside their copy) grades the copy; cargo must not look for the
+/// manifest relative to the copy itself ("does not compile", Cargo.toml:1).
+#[test]
+fn a_copy_named_by_a_relative_path_is_graded() {
+    let parent = scratch("relative");
+    course::export(repo(), &parent.join("mine")).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_spintop"))
+        .args(["course", "--course", "mine"])
+        .current_dir(&parent)
+        .env("CARGO_TARGET_DIR", target())
+        .output()
+        .expect("spintop runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(!text.contains("does not compile"), "{text}");
+    assert!(text.contains("not started"), "{text}");
+    std::fs::remove_dir_all(&parent).ok();
+}
