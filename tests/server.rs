@@ -1029,6 +1029,32 @@ fn a_long_run_answers_pending_and_its_status_follows_it() {
     assert_eq!(last["result"].as_str().unwrap().trim(), "done at last");
 }
 
+/// A warm run that takes longer than the answer time is answered "pending"
+/// with what it is doing, not with the first, cold build's minutes.
+#[test]
+fn a_warm_run_past_the_answer_time_does_not_claim_a_cold_build() {
+    let s = start(
+        "pendingwarm",
+        Limits {
+            answer_within: Duration::from_millis(300),
+            ..limits()
+        },
+    );
+    s.server.warm_up();
+    assert!(wait_for(Duration::from_secs(600), || matches!(
+        s.server.warm_up_state(),
+        WarmUp::Ready { .. }
+    )));
+    let (status, v) = s.run("std::thread::sleep(std::time::Duration::from_millis(2000));");
+    assert_eq!(status, 202, "{v}");
+    let shown = v["result"].as_str().unwrap();
+    assert!(!shown.contains("first run"), "{shown}");
+    assert!(
+        shown.starts_with("compiling…") || shown.starts_with("running… (its time limit is 3 s)"),
+        "{shown}"
+    );
+}
+
 /// One response read off a kept-alive connection: status and body (by its
 /// Content-Length), or `None` if it does not come within 10 s.
 fn read_response(stream: &mut TcpStream) -> Option<(u16, String)> {
