@@ -771,13 +771,25 @@ impl Inner {
         });
         match done_rx.recv_timeout(answer_within) {
             Ok(outcome) => json(200, outcome_json(&outcome)),
-            Err(_) => json(
-                202,
-                serde_json::json!({
-                    "result": "compiling… (the first run builds spintop for the book: a minute or two on a small machine; later runs take a second or two)",
-                    "pending": true,
-                }),
-            ),
+            Err(_) => {
+                // What holds it up: only a build of spintop itself takes
+                // minutes.
+                let phase = lock(&self.job).phase;
+                let result = match phase {
+                    Phase::Running => format!(
+                        "running… (its time limit is {} s)",
+                        self.config.runner.limits.run.as_secs()
+                    ),
+                    Phase::Compiling if self.shared.warm.load(Ordering::SeqCst) => {
+                        "compiling…".to_string()
+                    }
+                    Phase::Waiting | Phase::Compiling => "compiling… (the first run builds spintop for the book: a minute or two on a small machine; later runs take a second or two)".to_string(),
+                };
+                json(
+                    202,
+                    serde_json::json!({ "result": result, "pending": true }),
+                )
+            }
         }
     }
 

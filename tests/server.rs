@@ -641,6 +641,39 @@ fn a_run_past_the_time_limit_is_killed_with_every_process_it_started() {
     both_gone(&scratch);
 }
 
+/// A snippet that stops its supervisor (SIGSTOP) holds the kill up for the
+/// 2 s grace: its `sleep` child still dies, and the note still gives the
+/// limit it applied (3 s), not the 5 s the kill took. (A child that left
+/// the session would come to this test process, which cannot sweep it; the
+/// same attack on `spintop book` is in
+/// `a_snippet_that_kills_its_supervisor_leaves_nothing_running`.)
+#[test]
+fn a_run_that_stops_its_supervisor_is_killed_and_the_note_gives_the_limit() {
+    let s = start("stopsup", limits());
+    let scratch = s.root.join("scratch");
+    let (status, v) = s.run(
+        r#"use std::process::Command;
+fn main() {
+    let sleeper = Command::new("sleep").arg("1000").spawn().unwrap();
+    std::fs::write("sleeper.pid", sleeper.id().to_string()).unwrap();
+    let supervisor = std::os::unix::process::parent_id().to_string();
+    Command::new("kill").args(["-STOP", &supervisor]).status().unwrap();
+    println!("stopped it");
+}
+"#,
+    );
+    assert_eq!(status, 200, "{v}");
+    assert_eq!(v["error"], "time limit", "{v}");
+    let shown = v["result"].as_str().unwrap();
+    assert!(shown.contains("time limit (3 s)"), "{shown}");
+    let sleeper: i32 = std::fs::read_to_string(scratch.join("sleeper.pid"))
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    assert!(wait_for(Duration::from_secs(2), || !alive(sleeper)));
+}
+
 /// "One run at a time" is one process tree at a time: what a snippet
 /// leaves behind when it ends normally goes with it.
 #[test]
@@ -994,6 +1027,32 @@ fn a_long_run_answers_pending_and_its_status_follows_it() {
     }
     assert_eq!(last["done"], true, "{last}");
     assert_eq!(last["result"].as_str().unwrap().trim(), "done at last");
+}
+
+/// A warm run that takes longer than the answer time is answered "pending"
+/// with what it is doing, not with the first, cold build's minutes.
+#[test]
+fn a_warm_run_past_the_answer_time_does_not_claim_a_cold_build() {
+    let s = start(
+        "pendingwarm",
+        Limits {
+            answer_within: Duration::from_millis(300),
+            ..limits()
+        },
+    );
+    s.server.warm_up();
+    assert!(wait_for(Duration::from_secs(600), || matches!(
+        s.server.warm_up_state(),
+        WarmUp::Ready { .. }
+    )));
+    let (status, v) = s.run("std::thread::sleep(std::time::Duration::from_millis(2000));");
+    assert_eq!(status, 202, "{v}");
+    let shown = v["result"].as_str().unwrap();
+    assert!(!shown.contains("first run"), "{shown}");
+    assert!(
+        shown.starts_with("compiling…") || shown.starts_with("running… (its time limit is 3 s)"),
+        "{shown}"
+    );
 }
 
 /// One response read off a kept-alive connection: status and body (by its

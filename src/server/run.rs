@@ -111,6 +111,10 @@ pub struct Outcome {
     pub truncated: bool,
     /// The wall time of the run (compile and execution).
     pub elapsed: Duration,
+    /// The time limit it met (a timeout), else `None`. Not `elapsed`: the
+    /// tree may take a while to kill (its supervisor stopped by the
+    /// snippet: the 2 s grace), and the note states the limit.
+    pub limit: Option<Duration>,
 }
 
 /// The kinds of [`Outcome`].
@@ -165,12 +169,12 @@ impl Outcome {
         }
         match self.kind {
             OutcomeKind::RunTimeout => note(format!(
-                "[stopped: the run took longer than the time limit ({:.0} s) and was killed, with every process it started]",
-                self.elapsed.as_secs_f64().max(1.0)
+                "[stopped: the run took longer than the time limit ({} s) and was killed, with every process it started]",
+                seconds(self.limit.unwrap_or(self.elapsed))
             )),
             OutcomeKind::CompileTimeout => note(format!(
-                "[stopped: the compile took longer than the time limit ({:.0} s) and was killed]",
-                self.elapsed.as_secs_f64().max(1.0)
+                "[stopped: the compile took longer than the time limit ({} s) and was killed]",
+                seconds(self.limit.unwrap_or(self.elapsed))
             )),
             OutcomeKind::Failed if self.output.trim().is_empty() => {
                 note("[the program failed with no output]".into())
@@ -281,6 +285,7 @@ impl Runner {
                 output: String::new(),
                 truncated: false,
                 elapsed: start.elapsed(),
+                limit: None,
             },
             Err(outcome) => outcome,
         }
@@ -383,6 +388,7 @@ impl Runner {
                     output: String::new(),
                     truncated: false,
                     elapsed: start.elapsed(),
+                    limit: Some(limit),
                 });
             }
             Ended::Stopped => return Err(internal("the server is stopping".into(), start)),
@@ -402,6 +408,7 @@ impl Runner {
                 output: text,
                 truncated,
                 elapsed: start.elapsed(),
+                limit: None,
             });
         }
         shared.warm.store(true, Ordering::SeqCst);
@@ -457,7 +464,18 @@ impl Runner {
             } else {
                 start.elapsed()
             },
+            limit: (kind == OutcomeKind::RunTimeout).then_some(self.limits.run),
         }
+    }
+}
+
+/// A duration in seconds as a note gives it: whole seconds as such
+/// (`10`), else to a tenth (`0.5`).
+fn seconds(d: Duration) -> String {
+    if d.subsec_nanos() == 0 {
+        d.as_secs().to_string()
+    } else {
+        format!("{:.1}", d.as_secs_f64())
     }
 }
 
@@ -467,6 +485,7 @@ fn internal(msg: String, start: Instant) -> Outcome {
         output: msg,
         truncated: false,
         elapsed: start.elapsed(),
+        limit: None,
     }
 }
 
