@@ -33,8 +33,16 @@
                         show(s.result && s.result.trim() !== '' ? s.result : 'No output');
                     } else {
                         var secs = Math.round((Date.now() - started) / 1000);
-                        show('compiling… ' + secs + ' s: ' + (s.progress || '') +
-                            '\n(the first run builds spintop for the book; later runs take a second or two)');
+                        var progress = s.progress || '';
+                        if (progress === 'running') {
+                            // Built: the snippet itself is running.
+                            show('running… ' + secs + ' s');
+                        } else if (progress.indexOf('background build') >= 0) {
+                            show('compiling… ' + secs + ' s: ' + progress +
+                                '\n(the first run builds spintop for the book; later runs take a second or two)');
+                        } else {
+                            show('compiling… ' + secs + ' s: ' + progress);
+                        }
                         poll(token, started);
                     }
                 })
