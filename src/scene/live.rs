@@ -45,19 +45,22 @@ pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
             scene.kind().name(),
         ));
     };
-    // The view names the method it runs: what `auto` runs on this model at
-    // the view's tolerance, where that is a choice of its own (an
-    // integrator, for a model with nothing closed: the Taylor method at the
-    // default rtol 1e-10, by the measured crossover), else the closed forms
-    // (also for the full ALE, whose column always shows its physical
-    // solution), for `auto`, `exact` and `forward` (which is not a view).
+    // The view names the method its lighter columns run (the full ALE's
+    // column always shows its physical solution): what `auto` runs on the
+    // scene's lightest model at the view's tolerance, where that is a
+    // choice of its own (an integrator for a general top: the Taylor method
+    // at the default rtol 1e-10, by the measured crossover), else the closed
+    // forms, for `auto`, `exact` and `forward` (which is not a view).
+    let lightest = match top.model {
+        Model::Full(t) | Model::Reduced(t) => Model::Truncated(t),
+        Model::GeneralFull(g) | Model::GeneralReduced(g) => Model::General(g),
+        other => other,
+    };
     let method = match top.method {
-        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => top
-            .model
+        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => lightest
             .method(MethodChoice::Auto, &MethodOptions::default())
             .ok()
             .and_then(|m| m.choice())
-            .filter(|c| *c != MethodChoice::Forward)
             .unwrap_or(MethodChoice::Exact),
         other => other,
     };

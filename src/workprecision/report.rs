@@ -176,7 +176,12 @@ pub fn parse_csv(text: &str) -> Result<Vec<Row>, String> {
             steps: count(9)?,
             rejected: count(10)?,
             time_s: at_least(11, false)?,
-            repeats: count(12)?.unwrap_or(0) as u32,
+            // NOTE: a count past u32 is refused, not cut (`as` kept 4294967297 as 1).
+            repeats: count(12)?
+                .map(u32::try_from)
+                .transpose()
+                .map_err(|_| at(n, &format!("repeats '{}' is too large", get(12))))?
+                .unwrap_or(0),
             status: get(13).to_string(),
         });
     }

@@ -441,6 +441,20 @@ fn general_app() -> App {
         .with_message(note)
 }
 
+/// A general top's scene opens in the live view whatever its model: with
+/// model = "full" (the physical solution beside the lighter two) the lighter
+/// columns run the integrator auto takes, not the closed form, which a
+/// general top has not (the view refused such a scene: "not exact").
+#[test]
+fn a_general_top_with_the_full_model_opens_with_auto_s_integrator() {
+    let text = "[scene]\nname = \"gf\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"full\"\ninertia = [1.0, 1.5, 0.8]\ndipole = [0.2, 0.0, 1.0]\nomega = [0.1, 0.05, 0.2]\n";
+    let scene = spintop::scene::parse(text, "gf.toml").expect("the scene parses");
+    let live = spintop::scene::live::live_scene(&scene).expect("the live view opens it");
+    let auto = spintop::sim::auto_integrator(spintop::sim::MethodOptions::default().rtol());
+    assert_eq!(Some(live.method), auto.choice());
+    spintop::tui::app::Settings::for_scene(&scene, None).expect("the live view opens it");
+}
+
 #[test]
 fn sec3_a_general_top_scene_opens_one_column_of_eq_3_3_with_lab_z_along_l0() {
     let app = general_app();
