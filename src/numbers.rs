@@ -247,23 +247,42 @@ pub fn parse_number(s: &str) -> Result<Real, String> {
 /// in plain or exponent form that fits `T`, or one line saying what is wrong
 /// ("invalid digit found in string" was all `1e12` got).
 pub fn parse_count<T: TryFrom<u64>>(s: &str) -> Result<T, String> {
+    let not_whole = || format!("'{s}' is not a whole number");
+    let too_large = || format!("'{s}' is too large");
+    // NOTE: read as decimal digits, not through a double, so that
+    // 2.0000000000000001 is refused rather than rounded to 2.
     let t = s.trim();
-    let n = match t.parse::<u64>() {
-        Ok(n) => n,
-        Err(_) => {
-            let x: Real = t
-                .parse()
-                .ok()
-                .filter(|x: &Real| x.is_finite() && *x >= 0.0 && x.fract() == 0.0)
-                .ok_or_else(|| format!("'{s}' is not a whole number"))?;
-            // NOTE: 2^64 and above do not fit a u64 (`as` would saturate).
-            if x >= 18_446_744_073_709_551_616.0 {
-                return Err(format!("'{s}' is too large"));
-            }
-            x as u64
-        }
+    let t = t.strip_prefix('+').unwrap_or(t);
+    let (mantissa, exp) = match t.find(['e', 'E']) {
+        Some(i) => (&t[..i], t[i + 1..].parse::<i64>().map_err(|_| not_whole())?),
+        None => (t, 0),
     };
-    T::try_from(n).map_err(|_| format!("'{s}' is too large"))
+    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let digits_only = int.chars().chain(frac.chars()).all(|c| c.is_ascii_digit());
+    if (int.is_empty() && frac.is_empty()) || !digits_only {
+        return Err(not_whole());
+    }
+    let all = format!("{int}{frac}");
+    let all = all.trim_start_matches('0');
+    let significant = all.trim_end_matches('0');
+    if significant.is_empty() {
+        return T::try_from(0).map_err(|_| too_large());
+    }
+    // The value is significant × 10^shift.
+    let shift = exp - frac.len() as i64 + (all.len() - significant.len()) as i64;
+    if shift < 0 {
+        return Err(not_whole());
+    }
+    if significant.len() as i64 + shift > 20 {
+        return Err(too_large());
+    }
+    let n = significant
+        .parse::<u128>()
+        .ok()
+        .and_then(|m| m.checked_mul(10u128.checked_pow(shift as u32)?))
+        .and_then(|n| u64::try_from(n).ok())
+        .ok_or_else(too_large)?;
+    T::try_from(n).map_err(|_| too_large())
 }
 
 /// A short key that is the same for the same text on every run and machine
@@ -331,13 +350,34 @@ mod tests {
         assert_eq!(parse_count::<usize>("1e3"), Ok(1000));
         assert_eq!(parse_count::<u64>("1e12"), Ok(1_000_000_000_000));
         assert_eq!(parse_count::<u32>(" 7 "), Ok(7));
-        for bad in ["2.5", "-3", "nan", "inf", "", "x", "1e-3"] {
+        assert_eq!(parse_count::<u32>("1230e-1"), Ok(123));
+        assert_eq!(parse_count::<u32>("0e5"), Ok(0));
+        assert_eq!(parse_count::<u32>("2.50e1"), Ok(25));
+        for bad in [
+            "2.5",
+            "-3",
+            "nan",
+            "inf",
+            "",
+            "x",
+            "1e-3",
+            "1e-400",
+            ".",
+            "15.99999999999999999",
+            "2.0000000000000001",
+        ] {
             assert_eq!(
                 parse_count::<u32>(bad),
                 Err(format!("'{bad}' is not a whole number"))
             );
         }
-        for big in ["4294967297", "1e30", "1e300"] {
+        for big in [
+            "4294967297",
+            "1e30",
+            "1e300",
+            "1e400",
+            "99999999999999999999999",
+        ] {
             assert_eq!(
                 parse_count::<u32>(big),
                 Err(format!("'{big}' is too large"))

@@ -85,7 +85,7 @@ pub struct BenchArgs {
     #[arg(long, value_enum)]
     chart: Option<ChartModel>,
     /// Timed samples per run, 1 to 1000; the median is reported [default: 7, 3 with --quick]
-    #[arg(long)]
+    #[arg(long, value_parser = crate::numbers::parse_count::<u32>, allow_hyphen_values = true)]
     repeats: Option<u32>,
     /// Also write the rows to this file: FILE.csv or FILE.json.
     #[arg(long, value_name = "FILE")]
@@ -118,6 +118,8 @@ struct BenchConfig {
     /// The file, opened before the sweep (a path that cannot be written is
     /// refused before minutes of timing, not after), its name and format.
     out: Option<(std::fs::File, PathBuf, OutFormat)>,
+    /// Whether `out` was created by this run (and is removed if the run fails).
+    created: bool,
     width: u32,
     height: u32,
 }
@@ -176,6 +178,7 @@ impl BenchArgs {
                 t.repeats = n;
             }
         }
+        let mut created = false;
         let out = match self.out {
             None => None,
             Some(path) => {
@@ -189,6 +192,15 @@ impl BenchArgs {
                         )));
                     }
                 };
+                // NOTE: a FIFO would block the open, a device take the rows
+                // nowhere: only a regular file (or a new one) is written.
+                if path.exists() && !path.is_file() {
+                    return Err(bad(format!(
+                        "cannot write --out '{}': not a regular file",
+                        path.display()
+                    )));
+                }
+                created = !path.exists();
                 // NOTE: opened now, not truncated until the rows are there.
                 let file = std::fs::OpenOptions::new()
                     .write(true)
@@ -205,6 +217,7 @@ impl BenchArgs {
             plan,
             quick: self.quick,
             out,
+            created,
             width: self.width,
             height: self.height,
         }))
@@ -241,7 +254,14 @@ impl Stopwatch for WallClock {
 pub(crate) fn execute(args: BenchArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     match args.validate()? {
         Job::Join(config) => join(&config, out),
-        Job::Sweep(config) => sweep(&config, out),
+        Job::Sweep(config) => {
+            let result = sweep(&config, out);
+            // NOTE: a file this run created is not left empty by a failure.
+            if let (Err(_), true, Some((_, path, _))) = (&result, config.created, &config.out) {
+                let _ = std::fs::remove_file(path);
+            }
+            result
+        }
     }
 }
 

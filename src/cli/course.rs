@@ -127,7 +127,7 @@ enum CourseAction {
         #[arg(long, value_name = "SECONDS", default_value_t = 30.0, value_parser = parse_number, allow_hyphen_values = true)]
         test_timeout: f64,
         /// Copies graded at once (default: the number of cores)
-        #[arg(long, value_name = "N")]
+        #[arg(long, value_name = "N", value_parser = crate::numbers::parse_count::<usize>, allow_hyphen_values = true)]
         jobs: Option<usize>,
         /// Draw every grader's inputs from this seed (default: a fresh one for the class)
         #[arg(long, value_name = "N")]

@@ -94,6 +94,16 @@ impl PlotArgs {
                 crate::numbers::fmt_value(self.t_end)
             )));
         }
+        // NOTE: a linear time axis is drawn in single precision too (a
+        // log-time axis draws log10 t, which always fits).
+        if !self.log_time && !(PLOT_RANGE.0..=PLOT_RANGE.1).contains(&self.t_end) {
+            return Err(bad(format!(
+                "--t-end: plot draws in single precision, so a linear time axis must end within {:.0e} and {:.0e}, got {}; use --log-time, or spintop simulate for the numbers",
+                PLOT_RANGE.0,
+                PLOT_RANGE.1,
+                crate::numbers::fmt_value(self.t_end)
+            )));
+        }
         // NOTE: textplots draws in single precision: a curve beyond its
         // range drew as inf (exit 3 after the header) or flat at 0.
         let [w1, w2, w3] = self.omega;

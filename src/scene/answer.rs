@@ -513,7 +513,14 @@ pub fn answer(scene: &Scene) -> Result<Report, Failure> {
                     scene
                         .error_at(
                             scene.lines.times,
-                            format!("[solve] {e}; expected shorter times or a longer delay"),
+                            format!(
+                                "[solve] {e}; {}",
+                                if e.delay_too_long {
+                                    "the delay is longer than the run itself: expected a shorter [shell] delay"
+                                } else {
+                                    "expected shorter times or a longer delay"
+                                }
+                            ),
                         )
                         .to_string(),
                 )

@@ -381,6 +381,19 @@ pub(super) fn rigid_units(
     let particle =
         RigidParticle::new(shape, dipole).map_err(|e| ctx.at(header, format!("[units] {e}")))?;
     time_scale_fits(ctx, header, "tau_f", particle.fast_time_seconds())?;
+    // NOTE: as for spin_hz: a rate that is 0 in the model's units ran a top
+    // at rest ("a steady spin about a principal axis").
+    let per_unit = particle.omega0(omega_hz);
+    if omega_hz.iter().any(|&f| f != 0.0) && per_unit.amax() < Real::MIN_POSITIVE {
+        let span = u.omega_hz.as_ref().map_or(header.clone(), |v| v.span());
+        return Err(ctx.at(
+            &span,
+            format!(
+                "[units] omega_hz is 0 in the model's unit of time, tau_f = {:.3e} s, below what a double holds; expected faster rates",
+                particle.fast_time_seconds()
+            ),
+        ));
+    }
     Ok(GeneralUnits {
         particle,
         omega_hz,

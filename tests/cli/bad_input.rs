@@ -776,6 +776,19 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
             with(&["plot"], &["--omega", "0,1e-46,0"]),
             "single precision",
         ),
+        (with(&["plot"], &["--t-end", "3.5e38"]), "single precision"),
+        (with(&["plot"], &["--t-end", "1e-50"]), "single precision"),
+        (
+            with(
+                &["bench", "--quick"],
+                &["--out", "/nonexistent-spintop-dir/rows.csv"],
+            ),
+            "cannot write --out",
+        ),
+        (
+            with(&["bench", "--quick"], &["--repeats", "2.5"]),
+            "not a whole number",
+        ),
         (with(&["tui"], &["--warp", "3"]), "warp"),
         (with(&["tui"], &["--ratio", "5"]), "I3/I1"),
         (with(&["tui"], &["--bench", "0"]), "bench"),
@@ -1141,7 +1154,7 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
             "--t-end",
             "1e300",
         ],
-        vec!["plot", "--t-end", "1e300"],
+        vec!["plot", "--log-time", "--t-end", "1e300"],
         vec!["plot", "--method", "rk4", "--t-end", "1e6"],
     ] {
         let fragment = "more than the 1e7 allowed";
@@ -1852,6 +1865,20 @@ fn extremes(dir: &std::path::Path) -> Vec<Case> {
             "[scene]\nname = \"s\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"auto\"\n\n[units]\nshape = \"cylinder\"\nradius_nm = 50.0\nlength_nm = 200.0\ndensity_kg_m3 = 2200.0\ndipole_debye = 1e3\nspin_hz = 1e-300\n",
             2,
             "spin_hz = 1e-300 is 0 in the model's unit of time",
+        ),
+        (
+            // The same for a general particle's omega_hz.
+            "extreme-slow-omega-hz",
+            "[scene]\nname = \"s\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"auto\"\n\n[units]\nshape = \"ellipsoid\"\nsemi_axes_nm = [20.0, 30.0, 50.0]\ndensity_kg_m3 = 2200.0\ndipole_vector_debye = [0.0, 0.0, 1e3]\nomega_hz = [1e-300, 1e-300, 1e-300]\n",
+            2,
+            "omega_hz is 0 in the model's unit of time",
+        ),
+        (
+            // A delay longer than the run: a shorter delay, not a longer one.
+            "extreme-shell-delay",
+            "[scene]\nname = \"s\"\nkind = \"shell\"\ndescription = \"d\"\n\n[shell]\ntau0 = 1e-3\ndelay = 1e300\n\n[solve]\ntimes = [0.0, 1.0]\n",
+            2,
+            "expected a shorter [shell] delay",
         ),
         (
             "extreme-oscillator",
