@@ -85,7 +85,13 @@ pub fn tilt(inertia: &Vec3, omega: &Vec3) -> Real {
     let l = angular_momentum_body(inertia, omega);
     // NOTE: atan2 of the two legs is accurate at every angle, where acos(L₃/|L|)
     // loses half the digits near 0 and π.
-    l.x.hypot(l.y).atan2(l.z)
+    let perp = l.x.hypot(l.y);
+    // NOTE: L = 0 written with negative zeros (Ω₀ = (-0, -0, -0)) made
+    // atan2(0, -0) = π.
+    if perp == 0.0 && l.z == 0.0 {
+        return 0.0;
+    }
+    perp.atan2(l.z)
 }
 
 /// Observables of a top in one state, computed in the core so that no front
@@ -138,6 +144,24 @@ pub fn lab_frame(inertia: &Vec3, omega0: &Vec3) -> EulerAngles {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The tilt is 0 where L = 0 (its doc), whatever the zeros' signs:
+    /// Ω₀ = (-0, -0, -0) read π (atan2(0, -0)).
+    #[test]
+    fn the_tilt_of_no_angular_momentum_is_zero_whatever_the_signs() {
+        let inertia = Vec3::new(1.0, 1.0, 0.4);
+        for omega in [Vec3::new(0.0, 0.0, 0.0), Vec3::new(-0.0, -0.0, -0.0)] {
+            assert_eq!(tilt(&inertia, &omega), 0.0);
+        }
+        assert_eq!(
+            tilt(&inertia, &Vec3::new(0.0, 0.0, -1.0)),
+            std::f64::consts::PI
+        );
+        assert_eq!(
+            tilt(&inertia, &Vec3::new(1.0, 0.0, 0.0)),
+            std::f64::consts::FRAC_PI_2
+        );
+    }
     use crate::math::{exp_so3, hat};
     use approx::assert_relative_eq;
 
