@@ -270,16 +270,22 @@ struct Written {
     from_use: bool,
 }
 
-/// The segments of one plain path (`a :: b as c` → `a`, `b`).
+/// The segments of one plain path (`a :: b as c` → `a`, `b`, `as:c`: a
+/// rename is kept as a last segment no module has, so that what a module
+/// brings in under another name is found by that name).
 fn segments(path: &str) -> Vec<String> {
-    let path = path
-        .split_whitespace()
-        .take_while(|w| *w != "as")
-        .collect::<String>();
-    path.split("::")
+    let words: Vec<&str> = path.split_whitespace().collect();
+    let cut = words.iter().position(|w| *w == "as").unwrap_or(words.len());
+    let mut out: Vec<String> = words[..cut]
+        .concat()
+        .split("::")
         .filter(|s| !s.is_empty())
         .map(String::from)
-        .collect()
+        .collect();
+    if let Some(alias) = words.get(cut + 1).filter(|a| **a != "_") {
+        out.push(format!("as:{alias}"));
+    }
+    out
 }
 
 /// Expand a `use` tree (`crate::{a, b::{c, d}}`) into its paths, each with
@@ -549,7 +555,12 @@ fn imports(root: &Path) -> Vec<Import> {
             else {
                 continue;
             };
-            let item = path.last().filter(|s| *s != "*" && path.len() > to.len());
+            // The name it is brought in under: its own, or its rename.
+            let (name, item_at) = match path.last() {
+                Some(a) if a.starts_with("as:") => (Some(a[3..].to_string()), path.len() - 1),
+                last => (last.cloned(), path.len()),
+            };
+            let item = name.filter(|s| s != "*" && item_at > to.len());
             if let Some(item) = item
                 && to.len() > module.len()
                 && to.starts_with(&module)
@@ -671,7 +682,14 @@ fn disguises(root: &Path) -> Vec<String> {
         let module = module_of(root, &f.path);
         let at = |line: usize, what: &str| format!("{}:{line}: {what}", f.rel);
         for w in written_paths(&f.code).iter().filter(|w| w.from_use) {
-            match absolute(&module, w).as_deref() {
+            // A rename is not part of the path (`use crate as c` is `crate`).
+            let path = absolute(&module, w).map(|mut p| {
+                if p.last().is_some_and(|s| s.starts_with("as:")) {
+                    p.pop();
+                }
+                p
+            });
+            match path.as_deref() {
                 Some([]) => bad.push(at(w.line, "an alias of the crate: name the module instead")),
                 Some([star]) if star == "*" => bad.push(at(
                     w.line,
@@ -1412,7 +1430,7 @@ fn scene_files_are_split_by_concept_under_600_lines() {
 fn a_circle_through_a_parents_re_exports_is_caught() {
     let dir = std::env::temp_dir().join(format!("spintop-reexport-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let scene = "pub mod answer;\npub mod plan;\npub use plan::Chosen;\npub use answer::{Answer as Reply};\n";
+    let scene = "pub mod answer;\npub mod plan;\npub use plan::Chosen as Pick;\npub use answer::{Answer as Reply};\n";
     let circle = violations_of_scratch(
         &dir,
         &[
@@ -1420,11 +1438,11 @@ fn a_circle_through_a_parents_re_exports_is_caught() {
             ("src/scene.rs", scene),
             (
                 "src/scene/answer.rs",
-                "use super::Chosen;\npub struct Answer;\n",
+                "use super::Pick;\npub struct Answer;\n",
             ),
             (
                 "src/scene/plan.rs",
-                "use super::answer::Answer;\npub struct Chosen;\n",
+                "use super::Reply;\npub struct Chosen;\n",
             ),
         ],
     );
@@ -1435,7 +1453,7 @@ fn a_circle_through_a_parents_re_exports_is_caught() {
             ("src/scene.rs", scene),
             (
                 "src/scene/answer.rs",
-                "use super::Chosen;\npub struct Answer;\n",
+                "use super::Pick;\npub struct Answer;\n",
             ),
             ("src/scene/plan.rs", "pub struct Chosen;\n"),
         ],
