@@ -91,6 +91,22 @@ impl Model {
         }
     }
 
+    /// The three models of this model's top, lightest first: the truncated
+    /// ALE (3.3), the reduced ALE, the physical solution of (3.4), for the
+    /// symmetric top or for any other.
+    pub fn tiers(&self) -> [Model; 3] {
+        match *self {
+            Model::Truncated(t) | Model::Reduced(t) | Model::Full(t) => {
+                [Model::Truncated(t), Model::Reduced(t), Model::Full(t)]
+            }
+            Model::General(g) | Model::GeneralReduced(g) | Model::GeneralFull(g) => [
+                Model::General(g),
+                Model::GeneralReduced(g),
+                Model::GeneralFull(g),
+            ],
+        }
+    }
+
     /// True when Ω(t) has a closed form.
     pub fn has_closed_form(&self) -> bool {
         matches!(self, Model::Truncated(_) | Model::Reduced(_))

@@ -71,11 +71,28 @@ struct PlotConfig {
     width: u32,
     height: u32,
     t_end: Real,
+    /// The largest size a curve of Ω reaches, max(|Ω⊥₀|, |Ω₃₀|): neither
+    /// model's Ω⊥ grows and Ω₃ stays, so it sets the charts' y range.
+    reach: Real,
 }
 
 /// The sizes of omega0 a chart draws faithfully (textplots works in f32,
 /// whose range is about 1e-38 to 3e38).
 const PLOT_RANGE: (Real, Real) = (1e-30, 1e30);
+
+/// Refuse `value` (of `flag`) outside what a single-precision chart draws
+/// faithfully, [`PLOT_RANGE`].
+fn drawable(value: Real, flag: &str, what: &str, instead: &str) -> Result<(), CliError> {
+    if (PLOT_RANGE.0..=PLOT_RANGE.1).contains(&value) {
+        return Ok(());
+    }
+    Err(bad(format!(
+        "{flag}: plot draws in single precision, so {what} within {:.0e} and {:.0e}, got {}; {instead}",
+        PLOT_RANGE.0,
+        PLOT_RANGE.1,
+        crate::numbers::fmt_value(value)
+    )))
+}
 
 /// The decades a log-time plot spans.
 const LOG_DECADES: Real = 4.0;
@@ -94,27 +111,27 @@ impl PlotArgs {
                 crate::numbers::fmt_value(self.t_end)
             )));
         }
-        // NOTE: a linear time axis is drawn in single precision too (a
-        // log-time axis draws log10 t, which always fits).
-        if !self.log_time && !(PLOT_RANGE.0..=PLOT_RANGE.1).contains(&self.t_end) {
-            return Err(bad(format!(
-                "--t-end: plot draws in single precision, so a linear time axis must end within {:.0e} and {:.0e}, got {}; use --log-time, or spintop simulate for the numbers",
-                PLOT_RANGE.0,
-                PLOT_RANGE.1,
-                crate::numbers::fmt_value(self.t_end)
-            )));
-        }
         // NOTE: textplots draws in single precision: a curve beyond its
-        // range drew as inf (exit 3 after the header) or flat at 0.
+        // range drew as inf (exit 3 after the header) or flat at 0, and so
+        // did a linear time axis (a log-time axis draws log10 t, which
+        // always fits).
         let [w1, w2, w3] = self.omega;
         let reach = w1.hypot(w2).max(w3.abs());
-        if reach != 0.0 && !(PLOT_RANGE.0..=PLOT_RANGE.1).contains(&reach) {
-            return Err(bad(format!(
-                "--omega: plot draws in single precision, so the size of omega0 must lie within {:.0e} and {:.0e}, got {}; spintop simulate gives the numbers at any size",
-                PLOT_RANGE.0,
-                PLOT_RANGE.1,
-                crate::numbers::fmt_value(reach)
-            )));
+        if !self.log_time {
+            drawable(
+                self.t_end,
+                "--t-end",
+                "a linear time axis must end",
+                "use --log-time, or spintop simulate for the numbers",
+            )?;
+        }
+        if reach != 0.0 {
+            drawable(
+                reach,
+                "--omega",
+                "the size of omega0 must lie",
+                "spintop simulate gives the numbers at any size",
+            )?;
         }
         if !(16..=500).contains(&self.width) {
             return Err(bad(format!(
@@ -160,6 +177,7 @@ impl PlotArgs {
             width: self.width,
             height: self.height,
             t_end: self.t_end,
+            reach,
         })
     }
 }
@@ -190,8 +208,7 @@ fn samples(
 fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError> {
     use crate::numbers::short;
     let [w1, w2, w3] = config.omega0;
-    let reach = w1.hypot(w2).max(w3.abs());
-    let y = nice_ceiling(reach * 1.05) as f32;
+    let y = nice_ceiling(config.reach * 1.05) as f32;
     // Every model runs before anything is written: a refusal or a failure
     // leaves no half-printed chart behind.
     let runs = config

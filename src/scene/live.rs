@@ -51,13 +51,8 @@ pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
     // choice of its own (an integrator for a general top: the Taylor method
     // at the default rtol 1e-10, by the measured crossover), else the closed
     // forms, for `auto`, `exact` and `forward` (which is not a view).
-    let lightest = match top.model {
-        Model::Full(t) | Model::Reduced(t) => Model::Truncated(t),
-        Model::GeneralFull(g) | Model::GeneralReduced(g) => Model::General(g),
-        other => other,
-    };
     let method = match top.method {
-        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => lightest
+        MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => top.model.tiers()[0]
             .method(MethodChoice::Auto, &MethodOptions::default())
             .ok()
             .and_then(|m| m.choice())

@@ -177,7 +177,7 @@ pub(super) fn top_scene(
             let span = ratio.as_ref().map(|(_, s)| s);
             param(ctx, e, &[("I3/I1", span)], own, "top")
         })?;
-        [Model::Truncated(top), Model::Reduced(top), Model::Full(top)]
+        Model::Truncated(top).tiers()
     } else {
         not_here(
             ctx,
@@ -223,11 +223,7 @@ pub(super) fn top_scene(
                 })?
             }
         };
-        [
-            Model::General(top),
-            Model::GeneralReduced(top),
-            Model::GeneralFull(top),
-        ]
+        Model::General(top).tiers()
     };
     let asked_tier = match model_index {
         0 | 2 => Some(0),

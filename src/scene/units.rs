@@ -188,21 +188,17 @@ pub(super) fn real_units(
     )
     .map_err(|e| ctx.at(header, format!("[units] {e}")))?;
     time_scale_fits(ctx, header, "tau", particle.tau_seconds())?;
-    // NOTE: a spin too slow for a double in units of tau became 0: the top
-    // then never turned, and the report contradicted the scene's tilt.
     let per_tau = particle.omega0_per_tau(spin_hz, 0.0).norm();
-    if per_tau < Real::MIN_POSITIVE {
-        let span = u.spin_hz.as_ref().map_or(header.clone(), |v| v.span());
-        return Err(ctx.at(
-            &span,
-            format!(
-                "[units] spin_hz = {} is {} in the model's unit of time, tau = {:.3e} s, below what a double holds; expected a faster spin",
-                crate::numbers::short(spin_hz),
-                crate::numbers::short(per_tau),
-                particle.tau_seconds()
-            ),
-        ));
-    }
+    rate_fits(
+        ctx,
+        u.spin_hz.as_ref().map_or(header.clone(), |v| v.span()),
+        (
+            &format!("spin_hz = {}", crate::numbers::short(spin_hz)),
+            "tau",
+            particle.tau_seconds(),
+        ),
+        per_tau,
+    )?;
     Ok(RealUnits {
         particle,
         spin_hz,
@@ -224,6 +220,29 @@ pub(super) fn time_scale_fits(
     } else {
         Err(ctx.at(header, format!("[units] give {name} = {seconds:e} s, which a double cannot hold; expected sizes and a dipole of laboratory scale")))
     }
+}
+
+/// A rate given in hertz must not vanish in the model's unit of time: one
+/// below the smallest normal double there became 0, and the top was run at
+/// rest ("the tilt stays 0 deg", "a steady spin about a principal axis")
+/// against the scene's own rates. `key` names the rates (as given), `unit` and
+/// `seconds` the unit of time; `in_units` is the largest rate in it.
+fn rate_fits(
+    ctx: &Ctx,
+    span: Range<usize>,
+    (key, unit, seconds): (&str, &str, Real),
+    in_units: Real,
+) -> Result<(), SceneError> {
+    if in_units >= Real::MIN_POSITIVE {
+        return Ok(());
+    }
+    Err(ctx.at(
+        &span,
+        format!(
+            "[units] {key} is {} in the model's unit of time, {unit} = {seconds:.3e} s, below what a double holds; expected faster rates",
+            crate::numbers::short(in_units)
+        ),
+    ))
 }
 
 /// The time unit of `[units] time_unit` (seconds by default).
@@ -381,18 +400,13 @@ pub(super) fn rigid_units(
     let particle =
         RigidParticle::new(shape, dipole).map_err(|e| ctx.at(header, format!("[units] {e}")))?;
     time_scale_fits(ctx, header, "tau_f", particle.fast_time_seconds())?;
-    // NOTE: as for spin_hz: a rate that is 0 in the model's units ran a top
-    // at rest ("a steady spin about a principal axis").
-    let per_unit = particle.omega0(omega_hz);
-    if omega_hz.iter().any(|&f| f != 0.0) && per_unit.amax() < Real::MIN_POSITIVE {
-        let span = u.omega_hz.as_ref().map_or(header.clone(), |v| v.span());
-        return Err(ctx.at(
-            &span,
-            format!(
-                "[units] omega_hz is 0 in the model's unit of time, tau_f = {:.3e} s, below what a double holds; expected faster rates",
-                particle.fast_time_seconds()
-            ),
-        ));
+    if omega_hz.iter().any(|&f| f != 0.0) {
+        rate_fits(
+            ctx,
+            u.omega_hz.as_ref().map_or(header.clone(), |v| v.span()),
+            ("omega_hz", "tau_f", particle.fast_time_seconds()),
+            particle.omega0(omega_hz).amax(),
+        )?;
     }
     Ok(GeneralUnits {
         particle,

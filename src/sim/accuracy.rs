@@ -190,6 +190,9 @@ const ORIENTATION_MARGIN: Real = 1.5;
 /// ```
 ///
 /// (for k = 0 the lab phase is 3τ[A₀ − A_T(1 + ln(A₀/A_T))], at most 3τA₀).
+///
+/// Paper: Eq. (4.15), Eq. (4.16) (the reduced model's Ω) and Eq. (3.1) (the
+/// orientation it drives); the estimate itself is not in the paper.
 pub fn symmetric_reduced_orientation_error(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Real {
     let tau = top.tau();
     let a0 = omega0.x.hypot(omega0.y);

@@ -259,17 +259,25 @@ fn a_particle_whose_moment_ratio_underflows_is_a_scene_error() {
     }
 }
 
+/// `spintop run` of a scene file holding `text`, written to a scratch folder
+/// named `tag`: the output, its stdout and its stderr.
+fn run_scene(tag: &str, text: &str) -> (std::process::Output, String, String) {
+    let dir = Scratch::new(tag);
+    let path = dir.write("scene.toml", text);
+    let out = spintop(&["run", path.as_str()]);
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    (out, stdout, stderr)
+}
+
 /// A molecule whose one moment outweighs the other two is refused with the
 /// other two's real sum, in a few digits: beside a moment of 1e300 the sum
 /// was taken as the total less that moment, which cancelled to 0, and the
 /// moment was printed in 301 digits.
 #[test]
 fn a_molecule_refused_for_its_moments_names_their_sum_in_few_digits() {
-    let dir = Scratch::new("gate-molecule");
     let text = "[scene]\nname = \"heavy\"\nkind = \"top\"\ndescription = \"One heavy axis.\"\n\n[top]\nmodel = \"auto\"\n\n[units]\nshape = \"molecule\"\nmoments_amu_a2 = [1e300, 1.0, 1.0]\ndipole_vector_debye = [2.33, 0.0, 0.0]\nomega_hz = [1e12, 1e12, 1e12]\n";
-    let path = dir.write("heavy.toml", text);
-    let out = spintop(&["run", path.as_str()]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let (out, _, stderr) = run_scene("gate-molecule", text);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(
@@ -423,13 +431,9 @@ fn csv_cells_are_short_and_read_back_exactly() {
 /// and stderr twice.
 #[test]
 fn a_scenes_runaway_is_reported_once_not_also_as_a_warning() {
-    let dir = Scratch::new("gate-runaway");
     let text = "[scene]\nname = \"fw\"\nkind = \"top\"\ndescription = \"d\"\n\n[top]\nmodel = \"full\"\n\n[solve]\nmethod = \"forward\"\nt_end = 100.0\n";
-    let path = dir.write("fw.toml", text);
-    let out = spintop(&["run", path.as_str()]);
+    let (out, stdout, stderr) = run_scene("gate-runaway", text);
     assert_eq!(out.status.code(), Some(3));
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stdout.contains("# warning: runaway"), "{stdout}");
     assert!(!stderr.contains("warning: runaway"), "{stderr}");
     assert_eq!(stderr.matches("runaway at t = ").count(), 1, "{stderr}");
