@@ -8,7 +8,7 @@
 //! MathJax-style `\\[ … \\]` and `\\( … \\)` are read as math, every equation
 //! goes through [`super::tex`] to Unicode, and the result is wrapped to the
 //! panel's width as styled ratatui lines. Inline code that starts with
-//! `spintop:` (`` `spintop: ratio=1.5` ``, visible in the web book as the
+//! `spintop: ` (`` `spintop: ratio=1.5` ``, visible in the web book as the
 //! settings to try) marks one of the chapter's experiments.
 
 use super::tex;
@@ -449,7 +449,9 @@ impl Renderer {
                     alt.push_str(&t);
                     return;
                 }
-                if let Some(settings) = t.strip_prefix("spintop:") {
+                // `spintop: …` (a space after the colon), not a path such
+                // as `spintop::physics`.
+                if let Some(settings) = t.strip_prefix("spintop: ") {
                     self.experiment(settings.trim());
                     return;
                 }
@@ -1243,11 +1245,12 @@ mod tests {
         assert_eq!(r.experiments.len(), 1);
         assert_eq!(r.experiments[0].1, "ratio=1.5");
         let shown = plain(&r.lines);
-        assert!(shown.contains("try this [ratio=1.5]: a flat top"), "{shown}");
+        assert!(shown.contains("try this") && shown.contains("[ratio=1.5]: a flat top"), "{shown}");
         // The line recorded is the experiment's own.
         assert!(plain(&r.lines[r.experiments[0].0..]).starts_with("•"), "{shown}");
-        // Other inline code, and HTML comments, are not experiments.
-        let r = render("`ratio=1.5` and <!-- spintop: ratio=1.5 -->\n", 40);
+        // Other inline code, a path in the crate, and HTML comments are not
+        // experiments.
+        let r = render("`ratio=1.5`, `spintop::physics` and <!-- spintop: ratio=1.5 -->\n", 40);
         assert!(r.experiments.is_empty());
     }
 }
