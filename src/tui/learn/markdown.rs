@@ -1245,12 +1245,21 @@ mod tests {
         assert_eq!(r.experiments.len(), 1);
         assert_eq!(r.experiments[0].1, "ratio=1.5");
         let shown = plain(&r.lines);
-        assert!(shown.contains("try this") && shown.contains("[ratio=1.5]: a flat top"), "{shown}");
+        assert!(
+            shown.contains("try this") && shown.contains("[ratio=1.5]: a flat top"),
+            "{shown}"
+        );
         // The line recorded is the experiment's own.
-        assert!(plain(&r.lines[r.experiments[0].0..]).starts_with("•"), "{shown}");
+        assert!(
+            plain(&r.lines[r.experiments[0].0..]).starts_with("•"),
+            "{shown}"
+        );
         // Other inline code, a path in the crate, and HTML comments are not
         // experiments.
-        let r = render("`ratio=1.5`, `spintop::physics` and <!-- spintop: ratio=1.5 -->\n", 40);
+        let r = render(
+            "`ratio=1.5`, `spintop::physics` and <!-- spintop: ratio=1.5 -->\n",
+            40,
+        );
         assert!(r.experiments.is_empty());
     }
 }
