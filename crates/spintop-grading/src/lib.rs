@@ -24,8 +24,8 @@
 //! before anything is compiled; the graders themselves stay in the core, so
 //! that a student's build compiles neither a parser nor the terminal UI.
 //!
-//! The graders, one per assignment, are in `grading/graders.rs` and are
-//! re-exported here.
+//! The graders, one per assignment, are in `graders/` (one file per chapter)
+//! and are re-exported here.
 
 use spintop::math::{Real, State, Vec3};
 use spintop::physics::shell::C;
