@@ -30,6 +30,8 @@ mod ch2;
 mod ch3;
 mod ch4;
 mod numerics;
+mod run;
+mod tableau;
 
 pub use appendix::{characteristic_root, shell_acceleration, shell_masses};
 pub use ch2::{
@@ -41,7 +43,8 @@ pub use ch4::{
     precession_tilt, reduced_ale_rhs, reduced_closed_form, reduced_decay_time,
     truncated_closed_form, truncated_omega_perp, truncated_time_to_factor,
 };
-pub use numerics::{dp5_step, reduced_rk4, rk4_step};
+pub use numerics::{dp5_step, rk4_step};
+pub use run::reduced_rk4;
 
 /// The body-frame rates' names, for reports.
 const OMEGA: [&str; 3] = ["Ω₁", "Ω₂", "Ω₃"];

@@ -1,7 +1,8 @@
-//! The numerical methods: one RK4 step, one Dormand–Prince 5(4) step, and a
-//! whole RK4 run of the reduced model.
+//! The numerical methods: one RK4 step and one Dormand–Prince 5(4) step,
+//! each graded on test problems, and probed on fields that single out each
+//! stage (`tableau`).
 
-use super::OMEGA;
+use super::tableau::{self, Observed, Tableau};
 use crate::CASES;
 use crate::{Again, Grade, Grader, Rng, close, mistake};
 use spintop::assignment::DynField;
@@ -29,20 +30,56 @@ fn fields() -> [(&'static str, Field); 2] {
     [("linear", linear), ("reduced ALE (4.12), tau = 1", reduced)]
 }
 
+/// The right-hand side a step grader hands the student's step: one of the
+/// test problems, or a probe y' = A y + p(t) (A by rows, p a cubic in t for
+/// each component, constant term first), chosen to single out the stages.
+#[derive(Clone, Copy, PartialEq)]
+enum StepField {
+    Test(usize),
+    Affine {
+        a: [[Real; 3]; 3],
+        p: [[Real; 4]; 3],
+    },
+}
+
+impl StepField {
+    fn eval(&self, t: Real, y: &State<3>) -> State<3> {
+        match self {
+            StepField::Test(i) => fields()[*i].1(t, y),
+            StepField::Affine { a, p } => State::<3>::from_fn(|i, _| {
+                let ay: Real = (0..3).map(|j| a[i][j] * y[j]).sum();
+                let [p0, p1, p2, p3] = p[i];
+                ay + p0 + t * (p1 + t * (p2 + t * p3))
+            }),
+        }
+    }
+}
+
 #[derive(Clone, Copy)]
 struct StepInput {
-    field: usize,
+    field: StepField,
     t: Real,
     y: State<3>,
     h: Real,
 }
 
+impl StepInput {
+    /// f as the student's step receives it.
+    fn rhs(&self) -> impl Fn(Real, &State<3>) -> State<3> + use<> {
+        let field = self.field;
+        move |t, y| field.eval(t, y)
+    }
+}
+
 impl fmt::Debug for StepInput {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let name = match self.field {
+            StepField::Test(i) => fields()[i].0.to_string(),
+            StepField::Affine { a, p } => format!("y' = A y + p(t), A = {a:?}, p = {p:?}"),
+        };
         write!(
             f,
-            "f = {}, t = {}, y = {:?}, h = {}",
-            fields()[self.field].0,
+            "f = {name}, t = {}, y = {:?}, h = {}",
             self.t,
             self.y.as_slice(),
             self.h
@@ -54,7 +91,7 @@ fn step_inputs(seed: u64) -> Vec<StepInput> {
     let mut rng = Rng::new(seed);
     (0..CASES)
         .map(|i| StepInput {
-            field: i % 2,
+            field: StepField::Test(i % 2),
             t: rng.uniform(-1.0, 3.0),
             y: State::<3>::new(
                 rng.uniform(-1.0, 1.0),
@@ -71,19 +108,19 @@ fn step_inputs(seed: u64) -> Vec<StepInput> {
 /// for each stage after the first, which slope it steps from and how far
 /// (`from`, as (stage, fraction of h)).
 #[derive(Clone, Copy)]
-struct Rk4Shape {
-    weights: [Real; 4],
-    c: [Real; 3],
-    from: [(usize, Real); 3],
+pub(super) struct Rk4Shape {
+    pub(super) weights: [Real; 4],
+    pub(super) c: [Real; 3],
+    pub(super) from: [(usize, Real); 3],
 }
 
-const RK4: Rk4Shape = Rk4Shape {
+pub(super) const RK4: Rk4Shape = Rk4Shape {
     weights: [1.0, 2.0, 2.0, 1.0],
     c: [0.5, 0.5, 1.0],
     from: [(0, 0.5), (1, 0.5), (2, 1.0)],
 };
 
-fn rk4_shaped(
+pub(super) fn rk4_shaped(
     shape: Rk4Shape,
     f: &dyn Fn(Real, &State<3>) -> State<3>,
     t: Real,
@@ -104,7 +141,7 @@ fn rk4_shaped(
 }
 
 /// The plausible slips in an RK4 step, each with what it says.
-fn rk4_slips() -> Vec<(Rk4Shape, &'static str)> {
+pub(super) fn rk4_slips() -> Vec<(Rk4Shape, &'static str)> {
     vec![
         (
             Rk4Shape {
@@ -132,7 +169,7 @@ fn rk4_slips() -> Vec<(Rk4Shape, &'static str)> {
                 c: [0.5, 0.5, 0.0],
                 ..RK4
             },
-            "right when f does not depend on t, wrong when it does: the fourth stage evaluates f at the start time, not at the end of the step",
+            "stage 4 (k4) is evaluated at the wrong time: right when f does not depend on t, wrong when it does: the fourth stage evaluates f at the start time, not at the end of the step",
         ),
         (
             Rk4Shape {
@@ -153,62 +190,62 @@ fn rk4_slips() -> Vec<(Rk4Shape, &'static str)> {
                 from: [(0, 0.5), (0, 0.5), (2, 1.0)],
                 ..RK4
             },
-            "the third stage steps from the wrong slope: it must step from the second slope, and yours steps from the first",
+            "the third stage steps from the wrong slope: stage 3 (k3) steps from k1, where it must step from k2",
         ),
         (
             Rk4Shape {
                 from: [(0, 0.5), (1, 0.5), (1, 1.0)],
                 ..RK4
             },
-            "the fourth stage steps from the wrong slope: it must step from the third slope, and yours steps from the second",
+            "the fourth stage steps from the wrong slope: stage 4 (k4) steps from k2, where it must step from k3",
         ),
         (
             Rk4Shape {
                 from: [(0, 1.0), (1, 0.5), (2, 1.0)],
                 ..RK4
             },
-            "the second stage steps too far: the middle stages go half a step",
+            "the second stage steps too far: stage 2 (k2) goes a full step along k1, and the middle stages go half a step",
         ),
         (
             Rk4Shape {
                 from: [(0, 0.5), (1, 1.0), (2, 1.0)],
                 ..RK4
             },
-            "the third stage steps too far: the middle stages go half a step",
+            "the third stage steps too far: stage 3 (k3) goes a full step along k2, and the middle stages go half a step",
         ),
         (
             Rk4Shape {
                 from: [(0, 0.5), (1, 0.5), (2, 0.5)],
                 ..RK4
             },
-            "the fourth stage steps only half a step: it goes the whole step, to the end",
+            "the fourth stage steps only half a step: stage 4 (k4) goes a full step along k3, to the end",
         ),
     ]
 }
 
 /// Grade one classical RK4 step.
 pub fn rk4_step(seed: u64, student: impl Fn(DynField, Real, &State<3>, Real) -> State<3>) -> Grade {
-    let f = |x: &StepInput| fields()[x.field].1;
+    let reference = |x: &StepInput| reference_rk4_step(&x.rhs(), x.t, &x.y, x.h);
     let mut mistakes: Vec<_> = rk4_slips()
         .into_iter()
         .map(|(shape, text)| {
             mistake(text, move |x: &StepInput| {
-                rk4_shaped(shape, &f(x), x.t, &x.y, x.h)
+                rk4_shaped(shape, &x.rhs(), x.t, &x.y, x.h)
             })
         })
         .collect();
     mistakes.extend([
         mistake(
             "your step returns the increment alone: the new state is the old one plus it",
-            move |x: &StepInput| reference_rk4_step(&f(x), x.t, &x.y, x.h) - x.y,
+            move |x: &StepInput| reference(x) - x.y,
         ),
         mistake(
             "that is one step of Euler's method: only the first stage is used",
-            move |x: &StepInput| x.y + f(x)(x.t, &x.y) * x.h,
+            move |x: &StepInput| x.y + x.rhs()(x.t, &x.y) * x.h,
         ),
         mistake(
             "the slopes were not multiplied by the step size h",
-            move |x: &StepInput| x.y + (reference_rk4_step(&f(x), x.t, &x.y, x.h) - x.y) / x.h,
+            move |x: &StepInput| x.y + (reference(x) - x.y) / x.h,
         ),
     ]);
     Grader::new(
@@ -216,18 +253,21 @@ pub fn rk4_step(seed: u64, student: impl Fn(DynField, Real, &State<3>, Real) -> 
         "classical RK4, Hairer-Norsett-Wanner I, Table II.1.2",
         seed,
         step_inputs(seed),
-        move |x: &StepInput| reference_rk4_step(&f(x), x.t, &x.y, x.h),
+        reference,
         |a: &State<3>, b: &State<3>| close(a, b, 1e-13),
     )
     .mistakes(mistakes)
     .probe(rk4_weights_probe)
+    .probe(stage_probe(Tableau::rk4(), |y: &State<3>| {
+        y.as_slice().to_vec()
+    }))
     .probe(step_order_probe(
         "classical RK4",
-        move |x: &StepInput| reference_rk4_step(&f(x), x.t, &x.y, x.h),
+        reference,
         |y: &State<3>| *y,
     ))
     .labels(&["y₁", "y₂", "y₃"])
-    .run(|x| student(&fields()[x.field].1, x.t, &x.y, x.h))
+    .run(|x| student(&x.rhs(), x.t, &x.y, x.h))
 }
 
 /// The inputs a step probe tries beside `x`: the same field, nearby starts.
@@ -247,6 +287,82 @@ fn nearby_steps(x: &StepInput) -> [StepInput; 3] {
     ]
 }
 
+/// The inputs that single out the stages of a step (see `tableau`): the
+/// failing input and two near it, then y' = A y + p(t) with A = 0 (the step
+/// is a quadrature of p, which weighs the stages' times), with A a chain
+/// (y₂' = y₁, y₃' = y₂: each stage passes its slope on to the next), with A
+/// diagonal (the products of the stages' coefficients), and with a mixed A.
+fn stage_inputs(x: &StepInput) -> Vec<StepInput> {
+    let affine = |a: [[Real; 3]; 3], p: [[Real; 4]; 3], h: Real| StepInput {
+        field: StepField::Affine { a, p },
+        t: x.t,
+        y: x.y,
+        h,
+    };
+    let none = [0.0; 4];
+    let chain = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let mut out = nearby_steps(x).to_vec();
+    out.extend([
+        affine(
+            [[0.0; 3]; 3],
+            [
+                [0.3, 1.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0, 0.0],
+                [0.0, 0.0, 0.0, 1.0],
+            ],
+            1.0,
+        ),
+        affine(chain, [[0.5, 0.0, 0.0, 1.0], none, none], 1.0),
+        affine(
+            chain,
+            [[0.0, 0.0, 1.0, 0.0], [0.0, 1.0, 0.0, 0.0], none],
+            0.7,
+        ),
+        affine(
+            [[-2.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -0.5]],
+            [none; 3],
+            1.0,
+        ),
+        affine(
+            [[-1.0, 2.0, 0.0], [-2.0, -1.0, 0.5], [0.3, 0.0, -0.5]],
+            [
+                [0.0, 1.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0, 0.5],
+                [0.0, 0.0, 1.0, 0.0],
+            ],
+            0.8,
+        ),
+    ]);
+    out
+}
+
+/// Which stage of the student's step is wrong: the single entry (or row,
+/// or set of weights) of the method's table that reproduces every answer on
+/// the stage inputs; `numbers` lists an answer's numbers.
+fn stage_probe<'a, T: 'a>(
+    right: Tableau,
+    numbers: impl Fn(&T) -> Vec<Real> + 'a,
+) -> impl Fn(&StepInput, &Again<'_, StepInput, T>) -> Option<String> + 'a {
+    move |x, again| {
+        let inputs = stage_inputs(x);
+        let mut theirs = Vec::new();
+        for s in &inputs {
+            theirs.push(numbers(&again(s)?));
+        }
+        let fields: Vec<_> = inputs.iter().map(StepInput::rhs).collect();
+        let seen = Observed {
+            probes: inputs
+                .iter()
+                .zip(&fields)
+                .map(|(s, f)| (f as tableau::Rhs<'_>, s.t, s.y, s.h))
+                .collect(),
+            theirs,
+        };
+        let slip = tableau::find_slip(&right, &seen)?;
+        Some(tableau::slip_words(&right, &slip))
+    }
+}
+
 /// The weights the student's RK4 step gives its four stages, fitted on
 /// three inputs: when the stages are the classical ones and only their
 /// weights differ, it says so (and what the weights look like).
@@ -255,7 +371,7 @@ fn rk4_weights_probe(x: &StepInput, again: &Again<'_, StepInput, State<3>>) -> O
     let mut rhs = Vec::new();
     for s in nearby_steps(x) {
         let theirs = again(&s)?;
-        let f = fields()[s.field].1;
+        let f = s.rhs();
         let k1 = f(s.t, &s.y);
         let k2 = f(s.t + s.h / 2.0, &(s.y + k1 * (s.h / 2.0)));
         let k3 = f(s.t + s.h / 2.0, &(s.y + k2 * (s.h / 2.0)));
@@ -305,13 +421,29 @@ fn step_order_probe<'a, T: 'a>(
     }
 }
 
+/// The step right and the estimate not: the fourth-order solution (an
+/// estimate right but for signs is left to the shape, which names them).
+fn estimate_probe(
+    x: &StepInput,
+    again: &Again<'_, StepInput, (State<3>, State<3>)>,
+) -> Option<String> {
+    let (theirs, right) = (again(x)?, dopri5_step(&x.rhs(), x.t, &x.y, x.h));
+    let signs_only = theirs
+        .1
+        .iter()
+        .zip(right.1.iter())
+        .all(|(a, b)| (a.abs() - b.abs()).abs() <= 1e-9 * (1e-300 + b.abs()));
+    (close(&theirs.0, &right.0, 1e-13) && !signs_only).then(|| {
+        "the step is right, the error estimate is not: it is the fifth-order result minus the embedded fourth-order one, which has weights of its own and uses a seventh stage, f at the end of the step from the fifth-order result".to_string()
+    })
+}
+
 /// Grade one Dormand–Prince 5(4) step: (y₅, y₅ − ŷ₄).
 pub fn dp5_step(
     seed: u64,
     student: impl Fn(DynField, Real, &State<3>, Real) -> (State<3>, State<3>),
 ) -> Grade {
-    let f = |x: &StepInput| fields()[x.field].1;
-    let reference = move |x: &StepInput| dopri5_step(&f(x), x.t, &x.y, x.h);
+    let reference = |x: &StepInput| dopri5_step(&x.rhs(), x.t, &x.y, x.h);
     Grader::new(
         "dp5_step",
         "Dormand-Prince 5(4), Hairer-Norsett-Wanner I, Table II.5.2",
@@ -359,19 +491,10 @@ pub fn dp5_step(
             },
         ),
     ])
-    .probe(move |x: &StepInput, again: &Again<'_, StepInput, (State<3>, State<3>)>| {
-        // The step right, the estimate not: the fourth-order solution. (An
-        // estimate right but for signs is left to the shape, which names them.)
-        let (theirs, right) = (again(x)?, reference(x));
-        let signs_only = theirs
-            .1
-            .iter()
-            .zip(right.1.iter())
-            .all(|(a, b)| (a.abs() - b.abs()).abs() <= 1e-9 * (1e-300 + b.abs()));
-        (close(&theirs.0, &right.0, 1e-13) && !signs_only).then(|| {
-            "the step is right, the error estimate is not: it is the fifth-order result minus the embedded fourth-order one, which has weights of its own and uses a seventh stage, f at the end of the step from the fifth-order result".to_string()
-        })
-    })
+    .probe(stage_probe(Tableau::dp5(), |a: &(State<3>, State<3>)| {
+        [a.0.as_slice(), a.1.as_slice()].concat()
+    }))
+    .probe(estimate_probe)
     .probe(step_order_probe("Dormand-Prince 5(4)", reference, |a: &(State<3>, State<3>)| a.0))
     .labels(&[
         "the step's y₁",
@@ -381,218 +504,136 @@ pub fn dp5_step(
         "the estimate's y₂",
         "the estimate's y₃",
     ])
-    .run(|x| student(&fields()[x.field].1, x.t, &x.y, x.h))
+    .run(|x| student(&x.rhs(), x.t, &x.y, x.h))
 }
 
-/// A start, an end and a number of steps for [`reduced_rk4`].
-#[derive(Clone, Copy)]
-struct RunInput {
-    ratio: Real,
-    tau: Real,
-    omega0: Vec3,
-    t_end: Real,
-    steps: usize,
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::graders::tableau::{Entry, Slip, find_slip};
 
-impl fmt::Debug for RunInput {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "ratio = {}, tau = {}, omega0 = {:?}, t_end = {}, steps = {}",
-            self.ratio,
-            self.tau,
-            self.omega0.as_slice(),
-            self.t_end,
-            self.steps
-        )
+    /// The slip `find_slip` names for a student whose step is `theirs`.
+    fn found(right: &Tableau, theirs: &Tableau, x: &StepInput) -> Option<Slip> {
+        let inputs = stage_inputs(x);
+        let fields: Vec<_> = inputs.iter().map(StepInput::rhs).collect();
+        let seen = Observed {
+            probes: inputs
+                .iter()
+                .zip(&fields)
+                .map(|(s, f)| (f as tableau::Rhs<'_>, s.t, s.y, s.h))
+                .collect(),
+            theirs: inputs
+                .iter()
+                .zip(&fields)
+                .map(|(s, f)| theirs.step(f, s.t, &s.y, s.h))
+                .collect(),
+        };
+        find_slip(right, &seen)
     }
-}
 
-/// `steps` RK4 steps (of the given shape) of size `h` on the right-hand side
-/// `rhs` of the reduced model.
-fn run_with(
-    x: &RunInput,
-    shape: Rk4Shape,
-    rhs: fn(&SymmetricTop, &Vec3) -> Vec3,
-    steps: usize,
-    h: Real,
-) -> Vec3 {
-    let Ok(top) = SymmetricTop::new(x.ratio, x.tau) else {
-        return Vec3::repeat(Real::NAN);
-    };
-    let f = |_t: Real, y: &State<3>| rhs(&top, y);
-    (0..steps).fold(x.omega0, |y, i| rk4_shaped(shape, &f, i as Real * h, &y, h))
-}
-
-/// The reference: `steps` classical RK4 steps of size t_end/steps.
-fn reference_run(x: &RunInput) -> Vec3 {
-    let Ok(top) = SymmetricTop::new(x.ratio, x.tau) else {
-        return Vec3::repeat(Real::NAN);
-    };
-    let h = x.t_end / x.steps as Real;
-    let f = |_t: Real, y: &State<3>| sym::reduced_ale_rhs(&top, y);
-    (0..x.steps).fold(x.omega0, |y, i| {
-        reference_rk4_step(&f, i as Real * h, &y, h)
-    })
-}
-
-/// The order at which the student's run converges, from three step counts.
-fn observed_order(x: &RunInput, again: &Again<'_, RunInput, Vec3>) -> Option<(Real, Real)> {
-    let top = SymmetricTop::new(x.ratio, x.tau).ok()?;
-    let exact = sym::reduced_closed_form(&top, &x.omega0, x.t_end);
-    let n = 40;
-    let err = |steps: usize| again(&RunInput { steps, ..*x }).map(|w| (w - exact).norm());
-    let (e2, e3) = (err(2 * n)?, err(4 * n)?);
-    Some(((e2 / e3).log2(), e3 / (1.0 + exact.norm())))
-}
-
-/// The end: a run that does not move with t_end, or that stops (or goes on)
-/// after another number of the right steps.
-fn end_probe(x: &RunInput, again: &Again<'_, RunInput, Vec3>) -> Option<String> {
-    let theirs = again(x)?;
-    let later = again(&RunInput {
-        t_end: 1.37 * x.t_end,
-        ..*x
-    })?;
-    if close(&theirs, &later, 1e-11) {
-        return Some(
-            "your answer does not change with t_end: the run must end at t_end, so the step size is t_end over the number of steps".to_string(),
-        );
+    /// Every single entry of RK4's and DP5's tables, changed to zero, to
+    /// minus itself or to another value, is found, and nothing else is.
+    #[test]
+    fn every_single_slip_of_a_table_is_found_where_it_is() {
+        let x = step_inputs(2026)[1];
+        let mut misses = Vec::new();
+        for right in [Tableau::rk4(), Tableau::dp5()] {
+            for e in right.entries() {
+                let v = right.get(e);
+                for wrong in [0.0, -v, 0.5 * v + 0.3] {
+                    if (wrong - v).abs() < 1e-12 {
+                        continue;
+                    }
+                    let mut theirs = right.clone();
+                    theirs.set(e, wrong);
+                    let want = Slip {
+                        changed: vec![(e, wrong)],
+                    };
+                    let got = found(&right, &theirs, &x);
+                    let same = got.as_ref().is_some_and(|s| {
+                        s.changed.len() == 1
+                            && s.changed[0].0 == e
+                            && (s.changed[0].1 - wrong).abs() < 1e-8
+                    });
+                    if !same {
+                        misses.push(format!("{e:?} = {wrong}: {got:?}, want {want:?}"));
+                    }
+                }
+            }
+        }
+        assert!(misses.is_empty(), "{}\n{}", misses.len(), misses.join("\n"));
+        let _ = Entry::C(0);
     }
-    let top = SymmetricTop::new(x.ratio, x.tau).ok()?;
-    let h = x.t_end / x.steps as Real;
-    let f = |_t: Real, y: &State<3>| sym::reduced_ale_rhs(&top, y);
-    let mut y = x.omega0;
-    for k in 1..=3 * x.steps {
-        y = reference_rk4_step(&f, (k - 1) as Real * h, &y, h);
-        if k != x.steps && close(&theirs, &y, 1e-11) {
-            return Some(format!(
-                "your run takes {k} steps of size t_end/steps, not steps = {}: it ends at t = {}, not at t_end = {} (count the loop's steps)",
-                x.steps,
-                spintop::numbers::fmt_time(k as Real * h),
-                spintop::numbers::fmt_time(x.t_end)
-            ));
+
+    /// The slips students make, each named by its stage and its entry.
+    #[test]
+    fn a_wrong_stage_is_named_with_its_entry() {
+        let x = step_inputs(7)[0];
+        let rk4 = Tableau::rk4();
+        let dp5 = Tableau::dp5();
+        let cases: Vec<(&Tableau, Vec<(Entry, Real)>, &[&str])> = vec![
+            (
+                &rk4,
+                vec![(Entry::C(1), 0.0)],
+                &["stage 2", "time", "start of the step"],
+            ),
+            (
+                &rk4,
+                vec![(Entry::C(3), 0.5)],
+                &["stage 4", "time", "midpoint"],
+            ),
+            (
+                &rk4,
+                vec![(Entry::A(2, 0), 0.5), (Entry::A(2, 1), 0.0)],
+                &["stage 3", "from k1", "k2"],
+            ),
+            (
+                &rk4,
+                vec![(Entry::A(3, 2), 0.5)],
+                &["stage 4", "half a step", "a full step"],
+            ),
+            (
+                &dp5,
+                vec![(Entry::B(4), 2187.0 / 6784.0)],
+                &["stage 5", "weight", "sign"],
+            ),
+            (
+                &dp5,
+                vec![(Entry::A(3, 1), 56.0 / 15.0)],
+                &["stage 4", "coefficient on k2", "sign"],
+            ),
+            (
+                &dp5,
+                vec![(Entry::C(5), 8.0 / 9.0)],
+                &["stage 6", "time", "stage 5"],
+            ),
+            (
+                &dp5,
+                vec![(Entry::A(2, 0), 9.0 / 40.0), (Entry::A(2, 1), 3.0 / 40.0)],
+                &["stage 3", "coefficients", "swapped"],
+            ),
+            (
+                &dp5,
+                vec![(Entry::Bhat(6), 0.0)],
+                &["error estimate", "stage 7", "missing"],
+            ),
+            (
+                &dp5,
+                vec![(Entry::C(1), 0.25), (Entry::A(1, 0), 0.25)],
+                &["stage 2", "time", "coefficient"],
+            ),
+        ];
+        for (right, changes, says) in cases {
+            let mut theirs = right.clone();
+            for (e, v) in &changes {
+                theirs.set(*e, *v);
+            }
+            let slip =
+                found(right, &theirs, &x).unwrap_or_else(|| panic!("{changes:?}: not found"));
+            let words = tableau::slip_words(right, &slip);
+            for w in says {
+                assert!(words.contains(w), "{changes:?}: '{w}' not in: {words}");
+            }
         }
     }
-    None
-}
-
-/// The order at which the run converges, and what it says.
-fn order_probe(x: &RunInput, again: &Again<'_, RunInput, Vec3>) -> Option<String> {
-    let (order, finest) = observed_order(x, again)?;
-    Some(if !order.is_finite() {
-        "your answer does not change with the number of steps: it is not a run of `steps` RK4 steps"
-            .to_string()
-    } else if (3.5..=4.6).contains(&order) && finest > 1e-7 {
-        "your run converges at order 4, but to a wrong answer: the right-hand side it integrates is not (4.12)-(4.14), or the start or the end is wrong".to_string()
-    } else if order.abs() < 0.3 {
-        "the error does not shrink as the steps get smaller: the run converges to a wrong answer (the step size, the number of steps, or the right-hand side)".to_string()
-    } else if order < 3.5 {
-        format!(
-            "your run converges at order {order:.2}, not 4: it is not the classical RK4 (a stage of your step, or a lower-order method)"
-        )
-    } else {
-        format!(
-            "your run's error falls at order {order:.2} but it is not N classical RK4 steps: did you take more steps than asked, or a method other than RK4?"
-        )
-    })
-}
-
-/// Grade a whole RK4 run of the reduced model: `steps` equal classical RK4
-/// steps from 0 to `t_end` must give the same Ω(t_end) as spintop's, to
-/// rounding; a wrong run is told apart by its step count, its end time, its
-/// stages, its model or its order of convergence.
-///
-/// Paper: Eq. (4.12), Eq. (4.13), Eq. (4.14).
-pub fn reduced_rk4(seed: u64, student: impl Fn(Real, Real, Vec3, Real, usize) -> Vec3) -> Grade {
-    let mut rng = Rng::new(seed);
-    let inputs: Vec<RunInput> = (0..20)
-        .map(|_| {
-            let mut pick = || rng.sign() * rng.uniform(0.5, 1.5);
-            let omega0 = Vec3::new(pick(), pick(), pick());
-            RunInput {
-                ratio: rng.uniform(0.2, 0.8),
-                tau: rng.uniform(0.1, 0.5),
-                omega0,
-                t_end: rng.uniform(2.0, 4.0),
-                steps: 20 + (rng.next_u64() % 181) as usize,
-            }
-        })
-        .collect();
-    let mut mistakes: Vec<_> = rk4_slips()
-        .into_iter()
-        .filter(|(s, _)| s.from != RK4.from || s.weights != RK4.weights)
-        .map(|(shape, text)| {
-            let text = format!("your RK4 step is wrong: {text}");
-            mistake(text, move |x: &RunInput| {
-                run_with(
-                    x,
-                    shape,
-                    sym::reduced_ale_rhs,
-                    x.steps,
-                    x.t_end / x.steps as Real,
-                )
-            })
-        })
-        .collect();
-    mistakes.extend([
-        mistake(
-            "you integrated the truncated model (4.2)-(4.4), not the reduced one (4.12)-(4.14)".to_string(),
-            |x: &RunInput| run_with(x, RK4, sym::truncated_ale_rhs, x.steps, x.t_end / x.steps as Real),
-        ),
-        mistake(
-            "one step too many: your run takes steps + 1 steps of size t_end/steps and ends past t_end (count the loop's steps)".to_string(),
-            |x: &RunInput| run_with(x, RK4, sym::reduced_ale_rhs, x.steps + 1, x.t_end / x.steps as Real),
-        ),
-        mistake(
-            "one step too few: your run takes steps - 1 steps of size t_end/steps and stops short of t_end (count the loop's steps)".to_string(),
-            |x: &RunInput| run_with(x, RK4, sym::reduced_ale_rhs, x.steps - 1, x.t_end / x.steps as Real),
-        ),
-        mistake(
-            "the step size is t_end/(steps + 1): with `steps` steps the run stops short of t_end".to_string(),
-            |x: &RunInput| run_with(x, RK4, sym::reduced_ale_rhs, x.steps, x.t_end / (x.steps + 1) as Real),
-        ),
-        mistake(
-            "the step size is t_end/(steps - 1): with `steps` steps the run ends past t_end".to_string(),
-            |x: &RunInput| run_with(x, RK4, sym::reduced_ale_rhs, x.steps, x.t_end / (x.steps - 1) as Real),
-        ),
-        mistake(
-            "your run returns the start: no step was taken (is the loop empty, or is the state never updated?)".to_string(),
-            |x: &RunInput| x.omega0,
-        ),
-        mistake(
-            "that is the exact Ω(t_end) of the closed form (4.15)-(4.16), not `steps` RK4 steps: the assignment asks for the numerical run, whose error the book measures against the closed form".to_string(),
-            |x: &RunInput| match SymmetricTop::new(x.ratio, x.tau) {
-                Ok(top) => sym::reduced_closed_form(&top, &x.omega0, x.t_end),
-                Err(_) => Vec3::repeat(Real::NAN),
-            },
-        ),
-        mistake(
-            "the run ends at the wrong time: each step is t_end long (h = t_end/steps was not divided)".to_string(),
-            |x: &RunInput| run_with(x, RK4, sym::reduced_ale_rhs, x.steps, x.t_end),
-        ),
-        mistake(
-            "that is Euler's method, not RK4: only the first slope of each step is used".to_string(),
-            |x: &RunInput| {
-                let Ok(top) = SymmetricTop::new(x.ratio, x.tau) else {
-                    return Vec3::repeat(Real::NAN);
-                };
-                let h = x.t_end / x.steps as Real;
-                (0..x.steps).fold(x.omega0, |y, _| y + sym::reduced_ale_rhs(&top, &y) * h)
-            },
-        ),
-    ]);
-    Grader::new(
-        "reduced_rk4",
-        "Eqs. (4.12)-(4.14), integrated by RK4",
-        seed,
-        inputs,
-        reference_run,
-        |a: &Vec3, b: &Vec3| close(a, b, 1e-11),
-    )
-    .mistakes(mistakes)
-    .probe(end_probe)
-    .probe(order_probe)
-    .labels(&OMEGA)
-    .run(|x| student(x.ratio, x.tau, x.omega0, x.t_end, x.steps))
 }
