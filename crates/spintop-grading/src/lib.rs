@@ -37,6 +37,7 @@ use std::sync::Once;
 
 mod diagnosis;
 mod graders;
+mod parts;
 pub mod verdict;
 pub use diagnosis::{factor_words, shape_diagnosis};
 pub use graders::*;
@@ -363,7 +364,7 @@ pub(crate) fn mistake<'a, I, T>(
 }
 
 /// A comparison of two answers.
-pub(crate) type Close<'a, T> = Box<dyn Fn(&T, &T) -> bool + 'a>;
+pub(crate) type Close<'a, T> = Rc<dyn Fn(&T, &T) -> bool + 'a>;
 
 /// The student's function called again on another input (`None`: it panicked).
 pub(crate) type Again<'a, I, T> = dyn Fn(&I) -> Option<T> + 'a;
@@ -401,7 +402,7 @@ impl<'a, I: fmt::Debug + 'a, T: Answer + 'a> Grader<'a, I, T> {
             seed,
             inputs,
             reference: Rc::new(reference),
-            close: Box::new(close),
+            close: Rc::new(close),
             mistakes: Vec::new(),
             probes: Vec::new(),
             labels: None,

@@ -2,6 +2,7 @@
 //! method-of-steps update and its characteristic root.
 
 use crate::CASES;
+use crate::parts::{named, part};
 use crate::{Again, Grade, Grader, Rng, close, mistake};
 use spintop::math::Real;
 use spintop::physics::shell::{C, ShellModel};
@@ -58,14 +59,14 @@ pub fn shell_masses(seed: u64, student: impl Fn(Real, Real) -> (Real, Real)) -> 
     )
     .mistakes(vec![
         mistake(
-            "the two masses are swapped: the field's share is the small one when the shell is large",
+            "the two masses are swapped (returned in the wrong order): the field's share is the small one when the shell is large",
             move |x: &ShellInput| {
                 let (a, b) = reference(x);
                 (b, a)
             },
         ),
         mistake(
-            "the field's mass is upside down: it grows as the shell shrinks",
+            "the field's mass m_em is inverted (upside down): it grows as the shell shrinks",
             |x: &ShellInput| (1.0 - x.delta / x.tau0, x.delta / x.tau0),
         ),
         mistake(
@@ -73,7 +74,7 @@ pub fn shell_masses(seed: u64, student: impl Fn(Real, Real) -> (Real, Real)) -> 
             |x: &ShellInput| (1.0, x.tau0 / x.delta),
         ),
         mistake(
-            "the bare mass is not the rest of the whole mass: the two add up to m = 1",
+            "the bare mass has the field's mass added with the wrong sign: it is the rest of the whole mass, and the two add up to m = 1",
             |x: &ShellInput| (1.0 + x.tau0 / x.delta, x.tau0 / x.delta),
         ),
     ])
@@ -89,10 +90,6 @@ pub fn shell_acceleration(seed: u64, student: impl Fn(Real, Real, C, C) -> C) ->
     let reference = |x: &ShellInput| match ShellModel::new(x.tau0, x.delta) {
         Ok(m) => m.acceleration(x.z, x.z_ddot_ret),
         Err(_) => C::new(Real::NAN, Real::NAN),
-    };
-    let masses = |x: &ShellInput| {
-        let m_em = x.tau0 / x.delta;
-        (1.0 - m_em, m_em)
     };
     Grader::new(
         "shell_acceleration",
@@ -147,6 +144,25 @@ pub fn shell_acceleration(seed: u64, student: impl Fn(Real, Real, C, C) -> C) ->
             },
         ),
     ])
+    .parts(
+        vec![
+            part(
+                "with Z''(t - delta) = 0",
+                "the restoring force's term",
+                "",
+                |x: &ShellInput| ShellInput { z_ddot_ret: C::new(0.0, 0.0), ..*x },
+            ),
+            part("with Z = 0", "the retarded term", "", |x: &ShellInput| ShellInput {
+                z: C::new(0.0, 0.0),
+                ..*x
+            }),
+        ],
+        vec![
+            named("m_em", |x: &ShellInput| masses(x).1),
+            named("m0", |x: &ShellInput| masses(x).0),
+            named("delta", |x: &ShellInput| x.delta),
+        ],
+    )
     .run(|x| student(x.tau0, x.delta, x.z, x.z_ddot_ret))
 }
 
@@ -159,23 +175,169 @@ fn newton_iterates(p: impl Fn(C) -> C, dp: impl Fn(C) -> C, start: C, steps: usi
         let step = p(s) / dp(s);
         s -= step;
         out.push(s);
-        if step.norm() <= 1e-15 * s.norm().max(1.0) {
+        if step.norm() <= 1e-15 * s.norm().max(1.0) || !(s.re.is_finite() && s.im.is_finite()) {
             break;
         }
     }
     out
 }
 
+/// The derivative P'(s) a student hands Newton's method: the right one, or
+/// one of the slips of its product rule.
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum Derivative {
+    Right,
+    /// Without the term the product rule takes from the delay factor.
+    NoProductRule,
+    /// That term with the wrong sign.
+    ProductRuleSign,
+    /// That term without the chain rule's factor delta.
+    NoChainRule,
+    /// No derivative of the delay term at all.
+    NoDelayTerm,
+}
+
+impl Derivative {
+    const SLIPS: [Derivative; 4] = [
+        Derivative::NoProductRule,
+        Derivative::ProductRuleSign,
+        Derivative::NoChainRule,
+        Derivative::NoDelayTerm,
+    ];
+
+    fn words(self) -> &'static str {
+        match self {
+            Derivative::Right => "",
+            Derivative::NoProductRule => {
+                "your P'(s) lacks a term of the product rule: the delay factor e^(-s delta) depends on s too, so differentiating its product with s^2 gives two terms"
+            }
+            Derivative::ProductRuleSign => {
+                "in your P'(s) the product rule's term from the delay factor has the wrong sign: differentiating e^(-s delta) brings a factor -delta"
+            }
+            Derivative::NoChainRule => {
+                "in your P'(s) the product rule's term from the delay factor lacks the chain rule's factor delta"
+            }
+            Derivative::NoDelayTerm => {
+                "your P'(s) differentiates only the bare mass's term: the delay term m_em s^2 e^(-s delta) has a derivative too (by the product rule)"
+            }
+        }
+    }
+}
+
 /// The characteristic function of (A.1) with the delay factor e^{sign·sδ}
-/// and the masses given, and its derivative.
-fn characteristic(m0: Real, m_em: Real, d: Real, sign: Real) -> (impl Fn(C) -> C, impl Fn(C) -> C) {
+/// and the masses given, and its derivative (or a slip of it).
+fn characteristic(
+    m0: Real,
+    m_em: Real,
+    d: Real,
+    sign: Real,
+    derivative: Derivative,
+) -> (impl Fn(C) -> C, impl Fn(C) -> C) {
     (
         move |s: C| s * s * (m0 + (s * (sign * d)).exp() * m_em) + 1.0,
         move |s: C| {
             let e = (s * (sign * d)).exp() * m_em;
-            s * 2.0 * (e + m0) + s * s * e * (sign * d)
+            let product_rule = s * s * e * (sign * d);
+            match derivative {
+                Derivative::Right => s * 2.0 * (e + m0) + product_rule,
+                Derivative::NoProductRule => s * 2.0 * (e + m0),
+                Derivative::ProductRuleSign => s * 2.0 * (e + m0) - product_rule,
+                Derivative::NoChainRule => s * 2.0 * (e + m0) + product_rule / (sign * d),
+                Derivative::NoDelayTerm => s * 2.0 * m0,
+            }
         },
     )
+}
+
+/// The masses (m₀, m_em) of an input.
+fn masses(x: &ShellInput) -> (Real, Real) {
+    let m_em = x.tau0 / x.delta;
+    (1.0 - m_em, m_em)
+}
+
+/// The iterates of Newton's method from s = i with `derivative`.
+fn newton_from_i(x: &ShellInput, derivative: Derivative, steps: usize) -> Vec<C> {
+    let (m0, m_em) = masses(x);
+    let (p, dp) = characteristic(m0, m_em, x.delta, -1.0, derivative);
+    newton_iterates(p, dp, C::new(0.0, 1.0), steps)
+}
+
+/// Shells where Newton's method from s = i needs several iterations: a
+/// delay of 1.4 to 1.65 and a field's mass of 0.45 to 0.75 of the whole
+/// (the oscillation's root moves far from i). Four iterations leave it 1e-9
+/// to 1e-2 off, and a derivative without its product-rule term 1e-8 to 1e-5
+/// after twenty; the full method converges in at most 10, to the same root
+/// as spintop's search from the Abraham–Lorentz root.
+fn hard_shells(seed: u64) -> Vec<ShellInput> {
+    let mut rng = Rng::new(seed ^ 0xA1);
+    (0..8)
+        .map(|_| {
+            let delta = rng.uniform(1.4, 1.65);
+            let m_em = rng.uniform(0.45, 0.75);
+            ShellInput {
+                tau0: m_em * delta,
+                delta,
+                z: C::new(0.0, 0.0),
+                z_ddot_ret: C::new(0.0, 0.0),
+            }
+        })
+        .collect()
+}
+
+/// Newton's method stopped early or iterated with a wrong derivative: the
+/// student's root is an iterate of Newton from s = i (with the right
+/// derivative, or a slip of it) before it has converged, on the failing
+/// input and on a hard shell (`others`) too.
+fn newton_probe(
+    others: Vec<ShellInput>,
+) -> impl Fn(&ShellInput, &Again<'_, ShellInput, C>) -> Option<String> {
+    move |x, again| {
+        let other = others
+            .iter()
+            .find(|o| (o.tau0, o.delta) != (x.tau0, x.delta))?;
+        // Which iterate of which method the student's root is, if any.
+        let which = |input: &ShellInput, theirs: C, derivative: Derivative| {
+            let iterates = newton_from_i(input, derivative, 200);
+            let last = *iterates.last()?;
+            iterates.iter().enumerate().skip(1).find_map(|(k, s)| {
+                let same = (*s - theirs).norm() <= 1e-12 * s.norm().max(1.0);
+                let early = derivative != Derivative::Right || (*s - last).norm() > 1e-10;
+                (same && early).then_some(k)
+            })
+        };
+        let (here, there) = (again(x)?, again(other)?);
+        for derivative in std::iter::once(Derivative::Right).chain(Derivative::SLIPS) {
+            let (Some(k1), Some(k2)) =
+                (which(x, here, derivative), which(other, there, derivative))
+            else {
+                continue;
+            };
+            let plural = |k: usize| if k == 1 { "" } else { "s" };
+            if derivative != Derivative::Right {
+                let (m0, m_em) = masses(x);
+                let residual =
+                    characteristic(m0, m_em, x.delta, -1.0, Derivative::Right).0(here).norm();
+                return Some(format!(
+                    "Newton's method with a wrong derivative: {}. With it Newton converges slowly, if at all, and your root is where it stands after {k1} iteration{} (P(s) is {residual:.1e} there, not zero to rounding)",
+                    derivative.words(),
+                    plural(k1)
+                ));
+            }
+            return Some(if k1 == k2 {
+                format!(
+                    "you stopped Newton's method after {k1} step{}: it has not converged yet, {k1} iteration{} not enough here. Iterate until the Newton step is below rounding (a fixed number of iterations, or a stopping test on |P(s)| or on the step with a tolerance far above rounding, stops too early)",
+                    plural(k1),
+                    if k1 == 1 { " is" } else { "s are" }
+                )
+            } else {
+                format!(
+                    "your stopping test ends Newton's method too early (after {k1} iteration{} here, {k2} on another shell), before it has converged: its tolerance is far above rounding. Iterate until the Newton step is below rounding, and apply the last step too",
+                    plural(k1)
+                )
+            });
+        }
+        None
+    }
 }
 
 /// Grade the root of the characteristic function of (A.1) that continues
@@ -187,41 +349,18 @@ pub fn characteristic_root(seed: u64, student: impl Fn(Real, Real) -> C) -> Grad
         Ok(m) => m.root_near_al().unwrap_or(C::new(Real::NAN, Real::NAN)),
         Err(_) => C::new(Real::NAN, Real::NAN),
     };
-    let masses = |x: &ShellInput| {
-        let m_em = x.tau0 / x.delta;
-        (1.0 - m_em, m_em)
-    };
     let root_of = move |x: &ShellInput, swap: bool, sign: Real| {
         let (m0, m_em) = masses(x);
         let (m0, m_em) = if swap { (m_em, m0) } else { (m0, m_em) };
-        let (p, dp) = characteristic(m0, m_em, x.delta, sign);
+        let (p, dp) = characteristic(m0, m_em, x.delta, sign, Derivative::Right);
         *newton_iterates(p, dp, C::new(0.0, 1.0), 100)
             .last()
             .unwrap_or(&C::new(0.0, 1.0))
     };
-    // Newton stopped after a fixed number of iterations.
-    let stopped_early = move |x: &ShellInput, again: &Again<'_, ShellInput, C>| {
-        let theirs = again(x)?;
-        let (m0, m_em) = masses(x);
-        let (p, dp) = characteristic(m0, m_em, x.delta, -1.0);
-        let iterates = newton_iterates(p, dp, C::new(0.0, 1.0), 12);
-        let last = *iterates.last()?;
-        iterates
-            .iter()
-            .enumerate()
-            .skip(1)
-            .find(|(_, s)| (**s - theirs).norm() <= 1e-13 * s.norm() && (**s - last).norm() > 1e-10)
-            .map(|(k, _)| {
-                format!(
-                    "you stopped Newton's method after {k} step{}: it has not converged yet. Iterate until the Newton step is below rounding (a fixed number of steps, or a test of |P(s)| against a tolerance far above rounding, stops too early)",
-                    if k == 1 { "" } else { "s" }
-                )
-            })
-    };
     let not_converged = move |x: &ShellInput, again: &Again<'_, ShellInput, C>| {
         let theirs = again(x)?;
         let (m0, m_em) = masses(x);
-        let (p, _) = characteristic(m0, m_em, x.delta, -1.0);
+        let (p, _) = characteristic(m0, m_em, x.delta, -1.0, Derivative::Right);
         let right = reference(x);
         let residual = p(theirs).norm();
         let near = (theirs - right).norm() < 1e-3;
@@ -231,11 +370,14 @@ pub fn characteristic_root(seed: u64, student: impl Fn(Real, Real) -> C) -> Grad
             )
         })
     };
+    let hard = hard_shells(seed);
+    let mut inputs = shell_inputs(seed, 0.3);
+    inputs.extend(hard.iter().copied());
     Grader::new(
         "characteristic_root",
         "Eq. (A.1) with Z ~ e^{st}",
         seed,
-        shell_inputs(seed, 0.3),
+        inputs,
         reference,
         |a: &C, b: &C| close(a, b, 1e-10),
     )
@@ -253,11 +395,11 @@ pub fn characteristic_root(seed: u64, student: impl Fn(Real, Real) -> C) -> Grad
             move |x: &ShellInput| root_of(x, true, -1.0),
         ),
         mistake(
-            "that is the complex conjugate of the root: the oscillation's root continues s = +i, with a positive imaginary part",
+            "that is the complex conjugate of the root: Newton's starting point decides which root it finds, and the oscillation's root continues s = +i, with a positive imaginary part",
             move |x: &ShellInput| reference(x).conj(),
         ),
     ])
-    .probe(stopped_early)
+    .probe(newton_probe(hard))
     .probe(not_converged)
     .run(|x| student(x.tau0, x.delta))
 }

@@ -1,8 +1,8 @@
 //! Section 2: the two laws of the angular momentum a radiating dipole loses,
 //! the Schott term, and the precessing dipole of the example.
 
-use crate::CASES;
 use crate::{Again, Grade, Grader, Rng, close, mistake};
+use crate::{CASES, diagnosis};
 use spintop::math::{Real, Vec3};
 use spintop::physics::balance::{self, DipoleTrajectory, Jet};
 use std::fmt;
@@ -47,13 +47,17 @@ fn crossings<'a>(
     right: (usize, usize, Real),
     special: &[((usize, usize, Real), &'static str)],
 ) -> Vec<crate::Mistake<'a, JetInput, Vec3>> {
-    let mut out = Vec::new();
+    let (ri, rj, rs) = right;
+    let mut out = vec![mistake(
+        "a sign flip: your answer is exactly −1 times the right one (the cross product's factors in the wrong order, or a minus sign lost)",
+        move |x: &JetInput| -rs * x.0[ri].cross(&x.0[rj]),
+    )];
     for &(pair, text) in special {
         let (i, j, s) = pair;
         out.push(mistake(text, move |x: &JetInput| s * x.0[i].cross(&x.0[j])));
     }
-    for (i, a) in JET_NAMES.iter().enumerate() {
-        for (j, b) in JET_NAMES.iter().enumerate() {
+    for i in 0..JET_NAMES.len() {
+        for j in 0..JET_NAMES.len() {
             if i == j || (i, j) == (right.0, right.1) || (j, i) == (right.0, right.1) {
                 continue; // the right pair: a sign or the order, said by the shape
             }
@@ -66,14 +70,147 @@ fn crossings<'a>(
                 if said {
                     continue;
                 }
-                let text = format!(
-                    "you crossed {a} with {b}: the law involves another pair of the dipole's derivatives (count the derivatives)"
-                );
+                let text = wrong_pair_words((i, j), (right.0, right.1));
                 out.push(mistake(text, move |x: &JetInput| s * x.0[i].cross(&x.0[j])));
             }
         }
     }
     out
+}
+
+/// "you crossed d with d'': d'' is right, but d is the wrong factor, one
+/// derivative too few": which factor of a wrong pair is wrong, and by how
+/// many derivatives, when one of the two is right.
+fn wrong_pair_words((i, j): (usize, usize), (ri, rj): (usize, usize)) -> String {
+    let (a, b) = (JET_NAMES[i], JET_NAMES[j]);
+    let shared = [i, j].into_iter().find(|k| *k == ri || *k == rj);
+    let Some(k) = shared else {
+        return format!(
+            "you crossed {a} with {b}: neither factor is the right derivative of the dipole (count the derivatives)"
+        );
+    };
+    let wrong = if k == i { j } else { i };
+    let want = if k == ri { rj } else { ri };
+    let n = wrong.abs_diff(want);
+    let how = match (n, wrong > want) {
+        (1, true) => "one derivative too many".to_string(),
+        (1, false) => "one derivative too few".to_string(),
+        (n, true) => format!("{n} derivatives too many"),
+        (n, false) => format!("{n} derivatives too few"),
+    };
+    format!(
+        "you crossed {a} with {b}: {} is right, but {} is the wrong factor, {how}",
+        JET_NAMES[k], JET_NAMES[wrong]
+    )
+}
+
+/// The cross products of two derivatives of the dipole, d_i × d_j (i < j).
+const PAIRS: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+
+/// The student's answer as a sum of cross products of the dipole's
+/// derivatives: its coefficient on each pair, read from jets with two
+/// derivatives only (d_i along x and d_j along y give the coefficient along
+/// z), checked on a second such jet for each pair and on the failing input
+/// `x`; `None` if the answer is not such a sum.
+fn jet_terms(x: &JetInput, again: &Again<'_, JetInput, Vec3>) -> Option<[Real; 6]> {
+    let mut c = [0.0; 6];
+    for (n, &(i, j)) in PAIRS.iter().enumerate() {
+        let mut jet = [Vec3::zeros(); 4];
+        (jet[i], jet[j]) = (Vec3::x(), Vec3::y());
+        let a = again(&JetInput(jet))?;
+        c[n] = a.z;
+        (jet[i], jet[j]) = (2.0 * Vec3::y(), -0.5 * Vec3::z());
+        let b = again(&JetInput(jet))?;
+        let tol = 1e-12 * (1.0 + a.z.abs());
+        if a.x.abs() + a.y.abs() > tol || (b + Vec3::x() * a.z).norm() > tol {
+            return None;
+        }
+    }
+    let sum = PAIRS.iter().zip(c).fold(Vec3::zeros(), |s, (&(i, j), k)| {
+        s + k * x.0[i].cross(&x.0[j])
+    });
+    close(&again(x)?, &sum, 1e-10).then_some(c)
+}
+
+/// What a term the student added is, when it is a law of Section 2.
+fn known_term(n: usize, k: Real) -> &'static str {
+    match (PAIRS[n], k) {
+        ((1, 2), -1.0) => " (the Larmor-like law (2.1))",
+        ((0, 2), 1.0) => " (L_S of (2.4))",
+        ((0, 3), 1.0) => " (the torque law (2.2))",
+        _ => "",
+    }
+}
+
+/// Which term of a sum of cross products is wrong: the student's answer is
+/// decomposed on the six pairs of derivatives (see [`jet_terms`]) and
+/// compared with `right`, the law's terms as (i, j, coefficient, name).
+fn jet_terms_probe(
+    right: &[(usize, usize, Real, &'static str)],
+) -> impl Fn(&JetInput, &Again<'_, JetInput, Vec3>) -> Option<String> + use<> {
+    let right: Vec<(usize, usize, Real, &'static str)> = right.to_vec();
+    move |x, again| {
+        let theirs = jet_terms(x, again)?;
+        // An answer proportional to the law's is a factor, which the shape
+        // of the answer names better.
+        let scale = right.iter().find_map(|r| {
+            PAIRS
+                .iter()
+                .position(|p| *p == (r.0, r.1))
+                .map(|n| theirs[n] / r.2)
+        })?;
+        let proportional = PAIRS.iter().enumerate().all(|(n, &(i, j))| {
+            let want = right
+                .iter()
+                .find(|r| (r.0, r.1) == (i, j))
+                .map_or(0.0, |r| r.2);
+            (theirs[n] - scale * want).abs() <= 1e-12 * (1.0 + want.abs())
+        });
+        if proportional {
+            return None;
+        }
+        let mut words = Vec::new();
+
+        for (n, &(i, j)) in PAIRS.iter().enumerate() {
+            let (want, name) = right
+                .iter()
+                .find(|r| (r.0, r.1) == (i, j))
+                .map_or((0.0, ""), |r| (r.2, r.3));
+            let k = theirs[n];
+            if (k - want).abs() <= 1e-12 * (1.0 + want.abs()) {
+                continue;
+            }
+            words.push(if want == 0.0 {
+                let sign = if k < 0.0 { "−" } else { "" };
+                let times = if k.abs() == 1.0 {
+                    String::new()
+                } else {
+                    format!("{} ", diagnosis::factor_words(k.abs()))
+                };
+                format!(
+                    "a term too many: {sign}{times}{} × {}{}",
+                    JET_NAMES[i],
+                    JET_NAMES[j],
+                    known_term(n, k)
+                )
+            } else if k == 0.0 {
+                format!("{name} is missing")
+            } else if k == -want {
+                format!("{name} has the wrong sign")
+            } else {
+                format!(
+                    "{name} is {} times the right one",
+                    diagnosis::factor_words(k / want)
+                )
+            });
+        }
+        (!words.is_empty()).then(|| {
+            format!(
+                "your answer is a sum of cross products of the dipole's derivatives, but not the law's: {}",
+                words.join("; ")
+            )
+        })
+    }
 }
 
 fn tight(a: &Vec3, b: &Vec3) -> bool {
@@ -105,6 +242,7 @@ pub fn larmor_rate(seed: u64, student: impl Fn(&Jet) -> Vec3) -> Grade {
             ),
         ],
     ))
+    .probe(jet_terms_probe(&[(1, 2, -1.0, "the law's own term")]))
     .labels(&["x", "y", "z"])
     .run(|j| student(&j.0))
 }
@@ -130,7 +268,7 @@ pub fn schott_angular_momentum(seed: u64, student: impl Fn(&Jet) -> Vec3) -> Gra
             ),
             (
                 (0, 3, 1.0),
-                "that is the torque law (2.2), a rate; L_S is the angular momentum whose rate is the difference of the two laws",
+                "that is the torque law (2.2), a rate: its second factor d''' is one derivative too many; L_S is the angular momentum whose rate is the difference of the two laws",
             ),
             (
                 (1, 2, 1.0),
@@ -138,6 +276,7 @@ pub fn schott_angular_momentum(seed: u64, student: impl Fn(&Jet) -> Vec3) -> Gra
             ),
         ],
     ))
+    .probe(jet_terms_probe(&[(0, 2, 1.0, "the law's own term")]))
     .labels(&["x", "y", "z"])
     .run(|j| student(&j.0))
 }
@@ -155,12 +294,16 @@ pub fn torque_rate(seed: u64, student: impl Fn(&Jet) -> Vec3) -> Grade {
             "that is dL_S/dt of (2.3), the difference of the two laws, not the torque",
             |j: &JetInput| balance::schott_rate(&j.0),
         ),
+        mistake(
+            "that is the Larmor-like law (2.1) plus only half of dL_S/dt: its product rule has two terms, and the one from differentiating the first factor, d' × d'', which cancels the Larmor-like term, is missing",
+            |j: &JetInput| balance::larmor_rate(&j.0) + j.0[0].cross(&j.0[3]),
+        ),
     ];
     mistakes.extend(crossings(
         (0, 3, 1.0),
         &[(
             (0, 2, 1.0),
-            "that is L_S of (2.4), one derivative too few on the second factor",
+            "that is the Schott angular momentum L_S of (2.4): its second factor d'' is one derivative too few",
         )],
     ));
     Grader::new(
@@ -172,6 +315,7 @@ pub fn torque_rate(seed: u64, student: impl Fn(&Jet) -> Vec3) -> Grade {
         tight,
     )
     .mistakes(mistakes)
+    .probe(jet_terms_probe(&[(0, 3, 1.0, "the law's own term")]))
     .labels(&["x", "y", "z"])
     .run(|j| student(&j.0))
 }
@@ -190,19 +334,19 @@ pub fn schott_rate(seed: u64, student: impl Fn(&Jet) -> Vec3) -> Grade {
     )
     .mistakes(vec![
         mistake(
-            "only half of the product rule: you differentiated the first factor of L_S and not the second",
+            "only half of the product rule (a missing term): you differentiated the first factor of L_S and not the second",
             |j: &JetInput| j.0[1].cross(&j.0[2]),
         ),
         mistake(
-            "only half of the product rule: you differentiated the second factor of L_S and not the first",
+            "only half of the product rule (a missing term): you differentiated the second factor of L_S and not the first",
             |j: &JetInput| j.0[0].cross(&j.0[3]),
         ),
         mistake(
-            "the two terms of the product rule have opposite signs in your answer: both come with +",
+            "the first term of the product rule (from differentiating the first factor of L_S) has the wrong sign: the two terms have opposite signs in your answer, and both come with +",
             |j: &JetInput| j.0[0].cross(&j.0[3]) - j.0[1].cross(&j.0[2]),
         ),
         mistake(
-            "the two terms of the product rule have opposite signs in your answer: both come with +",
+            "the second term of the product rule (from differentiating the second factor of L_S) has the wrong sign: the two terms have opposite signs in your answer, and both come with +",
             |j: &JetInput| j.0[1].cross(&j.0[2]) - j.0[0].cross(&j.0[3]),
         ),
         mistake(
@@ -222,6 +366,10 @@ pub fn schott_rate(seed: u64, student: impl Fn(&Jet) -> Vec3) -> Grade {
             |j: &JetInput| j.0[1].cross(&j.0[2]) + 2.0 * j.0[0].cross(&j.0[3]),
         ),
     ])
+    .probe(jet_terms_probe(&[
+        (1, 2, 1.0, "the product rule's first term (from differentiating the first factor of L_S)"),
+        (0, 3, 1.0, "its second term (from differentiating the second factor)"),
+    ]))
     .labels(&["x", "y", "z"])
     .run(|j| student(&j.0))
 }
@@ -249,15 +397,15 @@ pub fn axial_schott_rate(seed: u64, student: impl Fn(&Jet) -> Real) -> Grade {
             move |j: &JetInput| rate(j) / j.0[0].norm_squared(),
         ),
         mistake(
-            "that is the size of dL_S/dt, not its part along d: project it on the unit vector along d",
+            "that is the size of dL_S/dt, its magnitude (norm), not its projection on d: project it on the unit vector along d",
             |j: &JetInput| balance::schott_rate(&j.0).norm(),
         ),
         mistake(
-            "projected on the wrong vector: the projection is along d itself, not along one of its derivatives",
+            "projected on the wrong vector (the wrong direction): the projection is along d itself, not along one of its derivatives",
             |j: &JetInput| balance::axial(&j.0[1], &balance::schott_rate(&j.0)),
         ),
         mistake(
-            "projected on the wrong vector: the projection is along d itself, not along one of its derivatives",
+            "projected on the wrong vector (the wrong direction): the projection is along d itself, not along one of its derivatives",
             |j: &JetInput| balance::axial(&j.0[2], &balance::schott_rate(&j.0)),
         ),
         mistake(
@@ -355,7 +503,7 @@ fn cone_mistakes<'a>() -> Vec<crate::Mistake<'a, ConeInput, Jet>> {
             |x: &ConeInput| cone_scaled(x, [1.0, 1.0, -1.0, 1.0]),
         ),
         mistake(
-            "d''' has the wrong sign: differentiate d'' once more, carefully",
+            "the third derivative d''' has the wrong sign: differentiate d'' once more, carefully",
             |x: &ConeInput| cone_scaled(x, [1.0, 1.0, 1.0, -1.0]),
         ),
         mistake(
@@ -397,7 +545,8 @@ pub fn precessing_dipole_jet(seed: u64, student: impl Fn(Real, Real, Real) -> Je
         |x: &ConeInput| ConeInput { omega: -x.omega, ..*x },
     )
     .variant(
-        "theta measured from the x-y plane: the cone's half-angle is measured from the z axis",
+        "theta measured from the x-y plane (sin and cos of theta swapped): the cone's half-angle is measured from the z axis",
+
         |x: &ConeInput| ConeInput { theta: FRAC_PI_2 - x.theta, ..*x },
     )
     .variant(

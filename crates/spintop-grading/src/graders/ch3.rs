@@ -3,6 +3,7 @@
 
 use super::OMEGA;
 use crate::CASES;
+use crate::parts::{named, part};
 use crate::{Grade, Grader, Passed, Rng, call, close, mistake, panic_diagnosis};
 use spintop::math::{Mat3, Real, Vec3};
 use spintop::physics::euler_angles::EulerAngles;
@@ -96,7 +97,7 @@ pub fn truncated_ale_rhs(seed: u64, student: impl Fn(Vec3, Vec3, Vec3) -> Vec3) 
     )
     .mistakes(vec![
         mistake(
-            "the damping term that contains the angular acceleration itself is missing: it is on both sides, so the equation must be solved for it",
+            "a missing term: the damping term of the left-hand side that contains the angular acceleration itself (the rank-one matrix times it) is missing: it is on both sides, so the equation must be solved for it",
             |x: &TopInput| top_rhs_with(x, 1.0, 1.0, None),
         ),
         mistake(
@@ -120,11 +121,18 @@ pub fn truncated_ale_rhs(seed: u64, student: impl Fn(Vec3, Vec3, Vec3) -> Vec3) 
             |x: &TopInput| top_rhs_with(x, 1.0, 0.0, None),
         ),
         mistake(
-            "the damping's size is |d|^2 |Omega|^2: it is the square of d x Omega, which vanishes when the rotation is along the dipole",
+            "the damping's size is |d|^2 |Omega|^2: it is the square of the cross product d x Omega, which vanishes when the rotation is along the dipole",
             move |x: &TopInput| {
                 // (3.3) with the damping's coefficient |d x Omega|^2 replaced.
                 let damp = dw(x).norm_squared();
                 let s = x.dipole.norm_squared() * x.omega.norm_squared() / damp;
+                top_rhs_with(x, 1.0, s, Some((x.dipole, dw(x))))
+            },
+        ),
+        mistake(
+            "the damping is not squared: its coefficient is the square of the size of d x Omega, and yours has the size alone",
+            move |x: &TopInput| {
+                let s = 1.0 / dw(x).norm();
                 top_rhs_with(x, 1.0, s, Some((x.dipole, dw(x))))
             },
         ),
@@ -140,6 +148,23 @@ pub fn truncated_ale_rhs(seed: u64, student: impl Fn(Vec3, Vec3, Vec3) -> Vec3) 
     .variant(
         "the moments of inertia are attached to the wrong axes (I2 and I3 swapped?): check with a zero dipole, where Euler's equations must come out",
         |x: &TopInput| TopInput { inertia: Vec3::new(x.inertia.x, x.inertia.z, x.inertia.y), ..*x },
+    )
+    .parts(
+        vec![
+            part(
+                "with no dipole",
+                "Euler's equations of a free top",
+                "the gyroscopic term or the moments of inertia",
+                |x: &TopInput| TopInput { dipole: Vec3::zeros(), ..*x },
+            ),
+            part(
+                "with equal moments of inertia (no gyroscopic term)",
+                "radiation's terms",
+                "the damping, or the term with the angular acceleration on the left-hand side",
+                |x: &TopInput| TopInput { inertia: Vec3::repeat(x.inertia.x), ..*x },
+            ),
+        ],
+        vec![named("the moment of inertia", |x: &TopInput| x.inertia.x)],
     )
     .labels(&OMEGA.map(|w| match w {
         "Ω₁" => "Ω̇₁",
@@ -167,8 +192,19 @@ pub fn energy_rate(seed: u64, student: impl Fn(Vec3, Vec3, Vec3) -> Real) -> Gra
             |x: &TopInput| x.omega.dot(&top_rhs(x)),
         ),
         mistake(
-            "only the first damping term: the term with the angular acceleration inside also does work",
+            "a missing term: only the first damping term is there; the term from the matrix on the left-hand side, with the angular acceleration inside, also does work",
             |x: &TopInput| -x.dipole.cross(&x.omega).norm_squared() * x.omega.norm_squared(),
+        ),
+        mistake(
+            "the moment of inertia is applied twice: that is the rate of |L|^2/2, half the squared angular momentum L = I Omega, not of the kinetic energy",
+            |x: &TopInput| {
+                let l = x.inertia.component_mul(&x.omega);
+                l.dot(&x.inertia.component_mul(&top_rhs(x)))
+            },
+        ),
+        mistake(
+            "half of the product rule: your value is half the right one; differentiating Omega . I Omega gives two equal terms, so the energy's factor 1/2 cancels (a factor 2 missing)",
+            |x: &TopInput| 0.5 * x.omega.dot(&x.inertia.component_mul(&top_rhs(x))),
         ),
         mistake(
             "the angular acceleration used is not solved from (3.3): the term with it inside was left out",
@@ -182,6 +218,17 @@ pub fn energy_rate(seed: u64, student: impl Fn(Vec3, Vec3, Vec3) -> Real) -> Gra
             |x: &TopInput| x.omega.component_mul(&x.inertia).dot(&x.omega),
         ),
     ])
+    .parts(
+        vec![
+            part(
+                "with no dipole",
+                "a free top, whose energy is constant",
+                "a term that should vanish without radiation",
+                |x: &TopInput| TopInput { dipole: Vec3::zeros(), ..*x },
+            ),
+        ],
+        vec![],
+    )
     .run(|x| student(x.inertia, x.dipole, x.omega))
 }
 
@@ -243,6 +290,67 @@ fn euler_diagnosis(m: &Mat3, (phi, theta, psi): (Real, Real, Real)) -> &'static 
     "the angles rebuild a different rotation: check which matrix entries give phi and psi in the z-x-z convention, and the signs inside each atan2"
 }
 
+/// The slip behind angles that rebuild another rotation, away from the
+/// poles: the transpose read for the matrix, or one of phi and psi wrong
+/// (the other two right) in a way an atan2 makes it: its two arguments
+/// swapped, or one of them with the wrong sign.
+fn euler_slip(m: &Mat3, (phi, theta, psi): (Real, Real, Real)) -> Option<String> {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let truth = EulerAngles::from_rotation(m);
+    if truth.theta < 1e-3 || truth.theta > PI - 1e-3 {
+        return None;
+    }
+    let rebuilt = EulerAngles::new(phi, theta, psi).to_rotation();
+    if (rebuilt - m.transpose()).norm() < 1e-9 {
+        return Some("those are the angles of the transpose: rows and columns of the matrix swapped when reading it (the transpose is the inverse rotation)".into());
+    }
+    let same = |a: Real, b: Real| (a - b).sin().abs() < 1e-9 && (a - b).cos() > 0.0;
+    if !same(theta, truth.theta) {
+        return None;
+    }
+    let slips = [
+        (
+            FRAC_PI_2,
+            -1.0,
+            "the two arguments of its atan2 are swapped",
+        ),
+        (0.0, -1.0, "one argument of its atan2 has the wrong sign"),
+        (PI, -1.0, "one argument of its atan2 has the wrong sign"),
+        (PI, 1.0, "both arguments of its atan2 have the wrong sign"),
+        (
+            FRAC_PI_2,
+            1.0,
+            "the arguments of its atan2 are swapped, and one has the wrong sign",
+        ),
+        (
+            -FRAC_PI_2,
+            1.0,
+            "the arguments of its atan2 are swapped, and one has the wrong sign",
+        ),
+        (
+            -FRAC_PI_2,
+            -1.0,
+            "the arguments of its atan2 are swapped, and both have the wrong sign",
+        ),
+    ];
+    for (name, theirs, right, other, other_right, others) in [
+        ("phi", phi, truth.phi, psi, truth.psi, "theta and psi"),
+        ("psi", psi, truth.psi, phi, truth.phi, "phi and theta"),
+    ] {
+        if !same(other, other_right) || same(theirs, right) {
+            continue;
+        }
+        let how = slips
+            .iter()
+            .find(|(shift, sign, _)| same(theirs, shift + sign * right))
+            .map_or("check which matrix entries give it", |(_, _, words)| words);
+        return Some(format!(
+            "{name} is wrong ({others} are right): {how} (check the signs inside each atan2)"
+        ));
+    }
+    None
+}
+
 /// Grade Euler angles from a rotation matrix, z-x-z, pole included.
 ///
 /// Paper: Eq. (3.5) (its angle convention).
@@ -293,11 +401,24 @@ pub fn euler_from_rotation(seed: u64, student: impl Fn(&Mat3) -> (Real, Real, Re
                 let err = (rebuilt - m).norm();
                 // NOTE: a NaN error (from non-finite angles) fails too.
                 if !finite || !(0.0..=pi).contains(&theta) || err.is_nan() || err > 1e-12 {
+                    // A slip is named only when a second rotation shows it too.
+                    let slip = euler_slip(&m, (phi, theta, psi)).filter(|s| {
+                        let other = inputs[inputs.len() / 2..]
+                            .iter()
+                            .map(|r| r.0)
+                            .find(|o| *o != m)
+                            .unwrap_or(m);
+
+                        call(|| student(&other))
+                            .ok()
+                            .and_then(|a| euler_slip(&other, a))
+                            .is_some_and(|t| t == *s)
+                    });
                     return Err(g.fail(
                         format!("{input:?}"),
                         "finite angles, theta in [0, pi], rebuilding the matrix to 1e-12".into(),
                         format!("({phi}, {theta:e}, {psi}), rebuilding it to {err:.1e}"),
-                        euler_diagnosis(&m, (phi, theta, psi)).into(),
+                        slip.unwrap_or_else(|| euler_diagnosis(&m, (phi, theta, psi)).into()),
                     ));
                 }
             }

@@ -2,6 +2,7 @@
 //! reduced one (4.12)–(4.18).
 
 use super::OMEGA;
+use crate::parts::{named, part};
 use crate::{Again, Answer, Grade, Grader, Rng, close, mistake};
 use crate::{CASES, diagnosis};
 use spintop::math::{Real, Vec3};
@@ -106,9 +107,9 @@ fn perp_probe(
             );
         }
         if near(size, rsize) && !same_turn {
-            return Some(
-                "Omega_perp has the right size but has turned by the wrong angle: the precession rate (which spin, which moment ratio) or the clock it runs on is wrong".into(),
-            );
+            return Some(phase_words(x, again, &reference).unwrap_or_else(|| {
+                "Omega_perp has the right size but has turned by the wrong angle: the precession rate (which spin, which moment ratio) or the clock it runs on is wrong".into()
+            }));
         }
         if same_turn && !near(size, rsize) {
             return Some(format!(
@@ -120,7 +121,112 @@ fn perp_probe(
     }
 }
 
+/// How far the student's Ω⊥ has turned from a start (u, 0), as a multiple
+/// of the right angle, at the time the free precession turns it by about
+/// `target` radians (small, so that no turn is lost to 2π).
+fn turn_ratio(
+    x: &TopTime,
+    target: Real,
+    again: &Again<'_, TopTime, Vec3>,
+    reference: &impl Fn(&TopTime) -> Vec3,
+) -> Option<Real> {
+    let rate = (1.0 - x.ratio) * x.omega0.z;
+    if rate.abs() < 1e-6 {
+        return None;
+    }
+    let start = TopTime {
+        omega0: Vec3::new(x.omega0.x.hypot(x.omega0.y), 0.0, x.omega0.z),
+        t: target / rate.abs(),
+        ..*x
+    };
+    let angle = |p: Vec3| -p.y.atan2(p.x);
+    let right = angle(reference(&start));
+    (right.abs() > 1e-3).then_some(angle(again(&start)?) / right)
+}
+
+/// What a phase that is off by the same factor at two times says: degrees
+/// for radians, a factor 2, or a rate off by some other factor.
+fn phase_words(
+    x: &TopTime,
+    again: &Again<'_, TopTime, Vec3>,
+    reference: &impl Fn(&TopTime) -> Vec3,
+) -> Option<String> {
+    let (k1, k2) = (
+        turn_ratio(x, 0.5, again, reference)?,
+        turn_ratio(x, 0.3, again, reference)?,
+    );
+    if (k1 - k2).abs() > 1e-6 * k1.abs().max(1e-3) {
+        return None;
+    }
+    let is = |f: Real| (k1 / f - 1.0).abs() < 1e-6;
+    let radians = std::f64::consts::PI / 180.0;
+    Some(if is(radians) {
+        "the phase (the precession angle) went through a conversion from degrees to radians, but it is in radians already: sin and cos take it as it is".into()
+    } else if is(0.5) {
+        "the phase runs at half speed: Omega_perp turns by half the right angle at every time, a factor 2 missing in the precession angle (in its rate, or in the clock it runs on)".into()
+    } else if is(2.0) {
+        "the phase runs twice too fast: Omega_perp turns by twice the right angle at every time, a factor 2 too many in the precession angle (in its rate, or in the clock it runs on)".into()
+    } else {
+        format!(
+            "the phase is off: Omega_perp turns {} times as far as it should at every time, so the precession rate (which spin, which moment ratio) is wrong",
+            diagnosis::factor_words(k1)
+        )
+    })
+}
+
+/// The reduced model's decay factor Φ with a tiny Ω⊥₀ is its exponential
+/// alone: how fast the student's falls, as a multiple of the right rate,
+/// at two times (a factor the same at both names the slip).
+fn decay_probe(
+    reference: impl Fn(&TopTime) -> Vec3,
+) -> impl Fn(&TopTime, &Again<'_, TopTime, Vec3>) -> Option<String> {
+    move |x, again| {
+        let k = x.ratio * x.omega0.z;
+        if k.abs() < 1e-3 || x.tau <= 0.0 {
+            return None;
+        }
+        let u = 1e-6;
+        let rate_at = |t: Real| -> Option<Real> {
+            let input = TopTime {
+                omega0: Vec3::new(u, 0.0, x.omega0.z),
+                t,
+                ..*x
+            };
+            let (theirs, right) = (again(&input)?, reference(&input));
+            let (phi, want) = (theirs.x.hypot(theirs.y) / u, right.x.hypot(right.y) / u);
+            (phi > 0.0 && want < 1.0 - 1e-6).then(|| phi.ln() / want.ln())
+        };
+        // Where the exponential has fallen to 1/e, and half as far.
+        let t1 = (1.0 / (x.tau * k * k)).min(100.0);
+        let (q1, q2) = (rate_at(t1)?, rate_at(t1 / 2.0)?);
+        if (q1 - q2).abs() > 1e-6 * q1.abs().max(1e-3) || (q1 - 1.0).abs() < 1e-6 {
+            return None;
+        }
+        let is = |f: Real| (q1 - f).abs() < 1e-6;
+        let tiny = "with a tiny Omega_perp0 the decay is the exponential factor of Phi alone";
+        Some(if is(0.0) {
+            format!(
+                "a missing factor: the exponential factor of Phi is missing; {tiny}, and yours does not decay"
+            )
+        } else if is(0.5) {
+            format!(
+                "Omega_perp decays at half the rate: {tiny}, and yours falls half as fast (a factor 2 missing in its exponent s)"
+            )
+        } else if is(2.0) {
+            format!(
+                "Omega_perp decays twice too fast: {tiny}, and yours falls twice as fast (a factor 2 too many in its exponent s)"
+            )
+        } else {
+            format!(
+                "{tiny}, and yours decays {} times as fast: its exponent is wrong",
+                diagnosis::factor_words(q1)
+            )
+        })
+    }
+}
+
 /// Grade Ω⊥(t) of the truncated model.
+
 ///
 /// Paper: Eq. (4.5), Eq. (4.6).
 pub fn truncated_omega_perp(seed: u64, student: impl Fn(Real, Real, Real, Real) -> Real) -> Grade {
@@ -253,7 +359,8 @@ pub fn truncated_closed_form(seed: u64, student: impl Fn(Real, Real, Vec3, Real)
         ),
     ])
     .variant(
-        "the start was taken with Omega_10 = 0, as the paper prints it: keep both components of Omega_perp0",
+        "the start was taken with Omega_10 = 0, as the paper prints it, so the initial phase of Omega_perp is wrong: keep both components of Omega_perp0",
+
         |x: &TopTime| TopTime { omega0: Vec3::new(0.0, x.omega0.x.hypot(x.omega0.y), x.omega0.z), ..*x },
     )
     .variant(
@@ -319,11 +426,11 @@ pub fn truncated_time_to_factor(
             move |x: &FactorInput| (x.p * x.p - 1.0) / rate(x),
         ),
         mistake(
-            "the factor is upside down: the rates fall as 1/R, so R must reach 1/p, not p",
+            "the factor is upside down (inverted): the rates fall as 1/R, so R must reach 1/p, not p",
             move |x: &FactorInput| (1.0 - x.p * x.p) / rate(x),
         ),
         mistake(
-            "R was not squared: R is a square root, so undo it before solving for t",
+            "R was not squared: the rates fall as 1/R, so R reaches 1/p at the time asked, and R is a square root: square it before solving for t",
             move |x: &FactorInput| (1.0 / x.p - 1.0) / rate(x),
         ),
         mistake(
@@ -388,11 +495,11 @@ pub fn precession_tilt(seed: u64, student: impl Fn(Real, Vec3) -> Real) -> Grade
             },
         ),
         mistake(
-            "the angle between the axis and the rotation rate, not L: the angular momentum weighs each component by its moment of inertia",
+            "the angle between the axis and the rotation rate, not L: the moment ratio is missing, and the angular momentum weighs each component by its moment of inertia",
             |(_, w): &(Real, Vec3)| w.x.hypot(w.y).atan2(w.z),
         ),
         mistake(
-            "the moments of inertia are swapped: the perpendicular part of L carries I1, the axial part I3",
+            "the ratio of the moments is inverted: the moments of inertia are swapped, and the perpendicular part of L carries I1, the axial part I3",
             |(ratio, w): &(Real, Vec3)| (ratio * w.x.hypot(w.y)).atan2(w.z),
         ),
         mistake(
@@ -457,11 +564,84 @@ fn sym_top(x: &SymInput) -> Option<SymmetricTop> {
 }
 
 /// (4.12)–(4.14) with its pieces changed: the precession rate `wt3` and the
-/// squared rate `k2` in the damping, from the input.
-fn reduced_rhs_with(x: &SymInput, wt3: Real, k2: Real) -> Vec3 {
-    let w = x.omega;
-    let damp = x.tau * (w.x * w.x + w.y * w.y + k2);
+/// squared rate `k2` in the damping.
+fn reduced_rhs_with(tau: Real, w: &Vec3, wt3: Real, k2: Real) -> Vec3 {
+    let damp = tau * (w.x * w.x + w.y * w.y + k2);
     Vec3::new(wt3 * w.y - damp * w.x, -wt3 * w.x - damp * w.y, 0.0)
+}
+
+/// A slip in (4.12)–(4.14): what it says, and Ω̇ with it from the moment
+/// ratio, τ and Ω.
+pub(super) type RhsSlip = (&'static str, fn(Real, Real, &Vec3) -> Vec3);
+
+/// The plausible slips in the reduced model's right-hand side (the graders
+/// of the model and of an RK4 run of it share them).
+pub(super) fn reduced_rhs_slips() -> Vec<RhsSlip> {
+    let slips: Vec<RhsSlip> = vec![
+        (
+            "that is the truncated model (4.2)-(4.4): the Schott term's contribution to the damping is missing, and the spin is damped",
+            |r, tau, w| match SymmetricTop::new(r, tau) {
+                Ok(top) => sym::truncated_ale_rhs(&top, w),
+                Err(_) => Vec3::repeat(Real::NAN),
+            },
+        ),
+        (
+            "the spin is damped: in the reduced model the axial rate is constant",
+            |r, tau, w| {
+                let mut out = reduced_rhs_with(tau, w, (1.0 - r) * w.z, (r * w.z).powi(2));
+                out.z = -tau * (w.x * w.x + w.y * w.y + (r * w.z).powi(2)) * w.z;
+                out
+            },
+        ),
+        (
+            "the damping's Schott part uses the rate about the axis without its moment ratio: it is the axial angular momentum over I1 that enters",
+            |r, tau, w| reduced_rhs_with(tau, w, (1.0 - r) * w.z, w.z * w.z),
+        ),
+        (
+            "the damping's Schott part is missing: Omega_perp is damped by more than its own square in the reduced model",
+            |r, tau, w| reduced_rhs_with(tau, w, (1.0 - r) * w.z, 0.0),
+        ),
+        (
+            "a missing term: the damping rate lacks Omega_perp's own square (the perpendicular rate squared); Omega_perp is damped by its own square and the axial part together",
+            |r, tau, w| {
+                let (wt, damp) = ((1.0 - r) * w.z, tau * (r * w.z).powi(2));
+                Vec3::new(wt * w.y - damp * w.x, -wt * w.x - damp * w.y, 0.0)
+            },
+        ),
+        (
+            "the free precession turns the wrong way: check the signs of the two precession terms against (4.12)-(4.13)",
+            |r, tau, w| reduced_rhs_with(tau, w, -(1.0 - r) * w.z, (r * w.z).powi(2)),
+        ),
+        (
+            "the precession rate is the spin itself: in the body frame Omega_perp turns at the spin times (1 - the moment ratio)",
+            |r, tau, w| reduced_rhs_with(tau, w, w.z, (r * w.z).powi(2)),
+        ),
+        (
+            "the moment ratio is upside down in the precession rate: the ratio is I3/I1",
+            |r, tau, w| reduced_rhs_with(tau, w, (1.0 - 1.0 / r) * w.z, (r * w.z).powi(2)),
+        ),
+        (
+            "the moment ratio enters the damping once, not squared: it is the square of the axial angular momentum over I1",
+            |r, tau, w| reduced_rhs_with(tau, w, (1.0 - r) * w.z, r * w.z * w.z),
+        ),
+        (
+            "the damping has the wrong sign: radiation slows Omega_perp",
+            |r, tau, w| reduced_rhs_with(-tau, w, (1.0 - r) * w.z, (r * w.z).powi(2)),
+        ),
+        (
+            "the damping is twice too strong: a factor 2 on tau",
+            |r, tau, w| reduced_rhs_with(2.0 * tau, w, (1.0 - r) * w.z, (r * w.z).powi(2)),
+        ),
+        (
+            "the damping is half as strong as it should be: a factor 2 missing on tau",
+            |r, tau, w| reduced_rhs_with(tau / 2.0, w, (1.0 - r) * w.z, (r * w.z).powi(2)),
+        ),
+        (
+            "the precession rate is the moment ratio times the spin: in the body frame Omega_perp turns at the spin times (1 - the moment ratio)",
+            |r, tau, w| reduced_rhs_with(tau, w, r * w.z, (r * w.z).powi(2)),
+        ),
+    ];
+    slips
 }
 
 /// Grade the reduced model's right-hand side.
@@ -472,8 +652,10 @@ pub fn reduced_ale_rhs(seed: u64, student: impl Fn(Real, Real, Vec3) -> Vec3) ->
         Some(top) => sym::reduced_ale_rhs(&top, &x.omega),
         None => Vec3::repeat(Real::NAN),
     };
-    let wt3 = |x: &SymInput| (1.0 - x.ratio) * x.omega.z;
-    let k2 = |x: &SymInput| (x.ratio * x.omega.z).powi(2);
+    let mistakes = reduced_rhs_slips()
+        .into_iter()
+        .map(|(text, f)| mistake(text, move |x: &SymInput| f(x.ratio, x.tau, &x.omega)))
+        .collect();
     Grader::new(
         "reduced_ale_rhs",
         "Eqs. (4.12)-(4.14)",
@@ -482,71 +664,29 @@ pub fn reduced_ale_rhs(seed: u64, student: impl Fn(Real, Real, Vec3) -> Vec3) ->
         reference,
         |a: &Vec3, b: &Vec3| close(a, b, 1e-12),
     )
-    .mistakes(vec![
-        mistake(
-            "that is the truncated model (4.2)-(4.4): the Schott term's contribution to the damping is missing, and the spin is damped",
-            |x: &SymInput| match sym_top(x) {
-                Some(top) => sym::truncated_ale_rhs(&top, &x.omega),
-                None => Vec3::repeat(Real::NAN),
-            },
-        ),
-        mistake(
-            "the spin is damped: in the reduced model the axial rate is constant",
-            move |x: &SymInput| {
-                let mut w = reference(x);
-                w.z = -x.tau * (x.omega.x.powi(2) + x.omega.y.powi(2) + k2(x)) * x.omega.z;
-                w
-            },
-        ),
-        mistake(
-            "the damping's Schott part uses the rate about the axis without its moment ratio: it is the axial angular momentum over I1 that enters",
-            move |x: &SymInput| reduced_rhs_with(x, wt3(x), x.omega.z.powi(2)),
-        ),
-        mistake(
-            "the damping's Schott part is missing: Omega_perp is damped by more than its own square in the reduced model",
-            move |x: &SymInput| reduced_rhs_with(x, wt3(x), 0.0),
-        ),
-        mistake(
-            "the damping rate lacks Omega_perp's own square: Omega_perp is damped by its own square and the axial part together",
-            move |x: &SymInput| {
-                let w = x.omega;
-                let damp = x.tau * k2(x);
-                Vec3::new(wt3(x) * w.y - damp * w.x, -wt3(x) * w.x - damp * w.y, 0.0)
-            },
-        ),
-        mistake(
-            "the free precession turns the wrong way: check the signs of the two precession terms against (4.12)-(4.13)",
-            move |x: &SymInput| reduced_rhs_with(x, -wt3(x), k2(x)),
-        ),
-        mistake(
-            "the precession rate is the spin itself: in the body frame Omega_perp turns at the spin times (1 - the moment ratio)",
-            move |x: &SymInput| reduced_rhs_with(x, x.omega.z, k2(x)),
-        ),
-        mistake(
-            "the moment ratio is upside down in the precession rate: the ratio is I3/I1",
-            move |x: &SymInput| reduced_rhs_with(x, (1.0 - 1.0 / x.ratio) * x.omega.z, k2(x)),
-        ),
-        mistake(
-            "the moment ratio enters the damping once, not squared: it is the square of the axial angular momentum over I1",
-            move |x: &SymInput| reduced_rhs_with(x, wt3(x), x.ratio * x.omega.z.powi(2)),
-        ),
-        mistake(
-            "the damping has the wrong sign: radiation slows Omega_perp",
-            move |x: &SymInput| {
-                let mut w = reduced_rhs_with(x, wt3(x), k2(x));
-                let undamped = reduced_rhs_with(&SymInput { tau: 0.0, ..*x }, wt3(x), k2(x));
-                w = undamped - (w - undamped);
-                w
-            },
-        ),
-    ])
-    .variant(
-        "the damping is twice too strong: a factor 2 on tau",
-        |x: &SymInput| SymInput { tau: 2.0 * x.tau, ..*x },
-    )
-    .variant(
-        "the damping is half as strong as it should be: a factor 2 missing on tau",
-        |x: &SymInput| SymInput { tau: x.tau / 2.0, ..*x },
+    .mistakes(mistakes)
+    .parts(
+        vec![
+            part(
+                "with tau = 0 (no radiation)",
+                "the free precession",
+                "the precession rate (which spin, which moment ratio)",
+                |x: &SymInput| SymInput { tau: 0.0, ..*x },
+            ),
+            part(
+                "with no spin (Omega_3 = 0)",
+                "Omega_perp's damping by its own square",
+                "the damping rate",
+                |x: &SymInput| SymInput {
+                    omega: Vec3::new(x.omega.x, x.omega.y, 0.0),
+                    ..*x
+                },
+            ),
+        ],
+        vec![
+            named("tau", |x: &SymInput| x.tau),
+            named("the moment ratio", |x: &SymInput| x.ratio),
+        ],
     )
     .labels(&["Ω̇₁", "Ω̇₂", "Ω̇₃"])
     .run(|x| student(x.ratio, x.tau, x.omega))
@@ -582,12 +722,17 @@ pub fn reduced_decay_time(seed: u64, student: impl Fn(Real, Real, Real) -> Real)
             |x: &SymInput| 1.0 / (x.ratio * x.omega.z * x.omega.z * x.tau),
         ),
         mistake(
-            "the moment ratio is upside down: the axial angular momentum is I3 times the spin, divided by I1",
+            "the moment ratio is inverted (upside down): the axial angular momentum is I3 times the spin, divided by I1",
             |x: &SymInput| 1.0 / ((x.omega.z / x.ratio).powi(2) * x.tau),
         ),
         mistake(
             "the moment ratio is missing: it is the axial angular momentum over I1, I3/I1 times the spin, that sets the decay",
             |x: &SymInput| 1.0 / (x.omega.z * x.omega.z * x.tau),
+        ),
+        mistake(
+            "half the decay time (a factor 1/2): that is the decay time of Omega_perp squared, which decays twice as fast as Omega_perp itself (a factor 2 missing)",
+
+            |x: &SymInput| 0.5 / ((x.ratio * x.omega.z).powi(2) * x.tau),
         ),
         mistake(
             "that is a rate, not a time: sigma is the inverse of the decay rate",
@@ -651,7 +796,7 @@ pub fn reduced_closed_form(seed: u64, student: impl Fn(Real, Real, Vec3, Real) -
             },
         ),
         mistake(
-            "the square root in Phi is the truncated model's: in the reduced model its growth slows as the exponential decays, it does not grow linearly in t",
+            "a wrong term under the square root of Phi: that is the truncated model's; in the reduced model its growth slows as the exponential decays, it does not grow linearly in t",
             move |x: &TopTime| {
                 let u0 = x.omega0.x * x.omega0.x + x.omega0.y * x.omega0.y;
                 let k = x.ratio * x.omega0.z;
@@ -680,13 +825,15 @@ pub fn reduced_closed_form(seed: u64, student: impl Fn(Real, Real, Vec3, Real) -
         ),
     ])
     .variant(
-        "the start was taken with Omega_10 = 0, as the paper prints it: keep both components of Omega_perp0",
+        "the start was taken with Omega_10 = 0, as the paper prints it, so the initial phase of Omega_perp is wrong: keep both components of Omega_perp0",
+
         |x: &TopTime| TopTime { omega0: Vec3::new(0.0, x.omega0.x.hypot(x.omega0.y), x.omega0.z), ..*x },
     )
     .variant(
         "the moment ratio is upside down: the ratio is I3/I1, in the precession rate and in sigma",
         |x: &TopTime| TopTime { ratio: 1.0 / x.ratio, ..*x },
     )
+    .probe(decay_probe(reference))
     .probe(perp_probe(reference))
     .probe(drift_probe(reference))
     .labels(&OMEGA)
