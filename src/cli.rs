@@ -273,7 +273,7 @@ fn unknown_name(e: &clap::Error) -> Option<String> {
         "{flag} {value} is not known; expected one of {}",
         names.join(", ")
     );
-    if let Some(near) = suggested(e) {
+    if let Some(near) = suggested(e).filter(|_| names.len() > 1) {
         message = format!("{message} (a similar one: {near})");
     }
     Some(message)

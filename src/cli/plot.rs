@@ -112,7 +112,7 @@ const LOG_DECADES: Real = 4.0;
 
 /// The table's default of a key of `plot`.
 fn plot_default(key: &str) -> table::DefaultValue {
-    table::key(P, "plot", key).default.clone()
+    table::key(P, "plot", key).default
 }
 
 impl PlotArgs {
@@ -139,11 +139,10 @@ impl PlotArgs {
     }
 
     fn validate(self) -> Result<PlotConfig, CliError> {
-        let t_end = match (self.t_end, plot_default("t_end")) {
-            (Some(t), _) => t,
-            (None, table::DefaultValue::Number(t)) => t,
-            (None, _) => table::PLOT_T_END,
-        };
+        let t_end = self
+            .t_end
+            .or(plot_default("t_end").number())
+            .unwrap_or(table::PLOT_T_END);
         // Each model plotted is asked as a top scene would ask it.
         let names: Vec<&str> = if self.model == BOTH {
             vec!["truncated", "reduced"]

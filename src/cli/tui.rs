@@ -11,6 +11,7 @@ use crate::tui::app::{App, Settings, WARPS};
 use crate::tui::session::{self, Session};
 use clap::Args;
 use spintop::math::Real;
+use spintop::numbers::{fmt_time, significant};
 use spintop::physics::symmetric_top::{FIGURE_OMEGA0, FIGURE_RATIO};
 use spintop::scene::table::Command::Simulate as S;
 use spintop::sim::MethodChoice;
@@ -92,19 +93,19 @@ pub(crate) fn execute(args: TuiArgs, out: &mut Gate<'_>) -> Result<(), CliError>
     if limit.is_some() {
         let cpu = match (report.cpu, report.cpu_share()) {
             (Some(cpu), Some(share)) => format!(
-                "CPU {:.2} s = {:.1}% of one core",
-                cpu.as_secs_f64(),
-                100.0 * share
+                "CPU {} s = {}% of one core",
+                significant(cpu.as_secs_f64()),
+                significant(100.0 * share)
             ),
             _ => "CPU time not available on this platform".into(),
         };
         writeln!(
             out,
-            "spintop tui --bench: {} frames in {:.2} s = {:.1} fps; {cpu}; t = {:.1}τ at {} τ/s",
+            "spintop tui --bench: {} frames in {} s = {} fps; {cpu}; t = {}τ at {} τ/s",
             report.frames,
-            report.wall.as_secs_f64(),
-            report.fps(),
-            app.time(),
+            significant(report.wall.as_secs_f64()),
+            significant(report.fps()),
+            fmt_time(app.time()),
             app.settings().warp(),
         )?;
     }

@@ -823,7 +823,7 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
         (with(&["run"], &["nosuch"]), "no such scene"),
         (
             with(&["run"], &["figure-1", "--format", "xml"]),
-            "possible values",
+            "is not known; expected one of",
         ),
         (with(&["learn"], &["--chapter", "9.9"]), "no such chapter"),
         (with(&["learn"], &[]), "terminal"),
@@ -895,14 +895,17 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
                 &["course", "export"],
                 &["--out", "/tmp/x", "--ci", "gitlab"],
             ),
-            "possible values",
+            "is not known; expected one of",
         ),
         (
             with(&["course", "diagnose"], &["/nonexistent-wrong"]),
             "nonexistent-wrong",
         ),
         (with(&["course"], &["--seed", "x"]), "--seed"),
-        (with(&["course"], &["--format", "xml"]), "possible values"),
+        (
+            with(&["course"], &["--format", "xml"]),
+            "is not known; expected one of",
+        ),
         (with(&["book"], &["--port", "99999"]), "--port"),
         (
             with(
@@ -1037,13 +1040,16 @@ fn corpus(dir: &std::path::Path) -> Vec<Case> {
             with(&["simulate"], &["--model", "reduced", "--t_end", "5"]),
             "--t-end",
         ),
-        (with(&["simulate"], &["--model", "xml"]), "possible values"),
+        (
+            with(&["simulate"], &["--model", "xml"]),
+            "is not known; expected one of",
+        ),
         (
             with(
                 &["simulate", "--model", "reduced", "--t-end", "1"],
                 &["--format", "xml"],
             ),
-            "possible values",
+            "is not known; expected one of",
         ),
         (with(&["simulate"], &["--t-end", "5"]), "--model"),
         (with(&["balance"], &[]), "--dipole"),

@@ -9,6 +9,7 @@ use super::{
 };
 use crate::integrate::Stats;
 use crate::math::Real;
+use crate::numbers::{fmt_value, worked};
 use crate::output::balance::{self, BalanceOutput};
 use crate::output::orbit::{self, OrbitOutput, OrbitRequest};
 use crate::output::shell::{self, ShellOutput, ShellRequest};
@@ -139,7 +140,11 @@ pub fn physical_report(units: &RealUnits) -> PhysicalReport {
         spin_tilt_deg: units.spin_tilt_deg,
         tau_s,
         conversion: format!(
-            "tau = 2 d^2/(3 I1 c^3) = 2 ({d:.4e} statC cm)^2 / (3 x {i1:.4e} g cm^2 x ({SPEED_OF_LIGHT_CM_S:.6e} cm/s)^3) = {tau_s:.4e} s (Gaussian units)"
+            "tau = 2 d^2/(3 I1 c^3) = 2 ({} statC cm)^2 / (3 x {} g cm^2 x ({} cm/s)^3) = {} s (Gaussian units)",
+            worked(d),
+            worked(i1),
+            fmt_value(SPEED_OF_LIGHT_CM_S),
+            worked(tau_s)
         ),
         tau_omega: omega0.norm(),
         time_unit: units.time_unit.name(),
@@ -260,9 +265,11 @@ pub fn rigid_report(units: &GeneralUnits) -> RigidReport {
         omega_hz: units.omega_hz,
         fast_time_s: tau_f,
         conversion: format!(
-            "tau_f = 2 |D|^2/(3 c^3 min I) = 2 ({:.4e} statC cm)^2 / (3 x ({SPEED_OF_LIGHT_CM_S:.6e} cm/s)^3 x {:.4e} g cm^2) = {tau_f:.4e} s (Gaussian units)",
-            d.norm(),
-            i.min()
+            "tau_f = 2 |D|^2/(3 c^3 min I) = 2 ({} statC cm)^2 / (3 x ({} cm/s)^3 x {} g cm^2) = {} s (Gaussian units)",
+            worked(d.norm()),
+            fmt_value(SPEED_OF_LIGHT_CM_S),
+            worked(i.min()),
+            worked(tau_f)
         ),
         share_per_radian: omega0.norm(),
         time_unit: units.time_unit.name(),

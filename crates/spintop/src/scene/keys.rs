@@ -251,7 +251,7 @@ pub(super) fn finite_array<const N: usize>(
         return Err(ctx.at(
             at,
             format!(
-                "{} holds {x}, not a finite number; expected {expected}",
+                "{} holds {x}, which is not a finite number; expected {expected}",
                 ctx.key(section, key)
             ),
         ));
@@ -430,16 +430,12 @@ pub(super) fn solve_times(
     }
     let t_end = number(ctx, "solve", "t_end", &s.t_end, true)?;
     let samples = count(ctx, "solve", "samples", &s.samples)?;
-    let n = match (&samples, &ctx.spec("solve", "samples").default) {
+    let n = match (&samples, ctx.spec("solve", "samples").default) {
         (Some((n, _)), _) => *n,
-        (None, table::DefaultValue::Count(n)) => *n,
+        (None, table::DefaultValue::Count(n)) => n,
         (None, _) => 1,
     };
-    let t_end_default = match ctx.spec("solve", "t_end").default {
-        table::DefaultValue::Number(t) => Some(t),
-        _ => None,
-    };
-    let (t_end, at) = match (t_end, t_end_default) {
+    let (t_end, at) = match (t_end, ctx.spec("solve", "t_end").default.number()) {
         (Some((t, at)), _) => (t, Some(at)),
         (None, Some(t)) => {
             if let Some((_, at)) = &samples {

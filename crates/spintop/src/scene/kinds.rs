@@ -129,16 +129,13 @@ pub struct StabilityScene {
 
 /// The table's default of a number key of `command`.
 fn default_number(ctx: &Ctx, section: &str, key: &str) -> Real {
-    match ctx.spec(section, key).default {
-        DefaultValue::Number(x) => x,
-        _ => 0.0,
-    }
+    ctx.spec(section, key).default.number().unwrap_or(0.0)
 }
 
 /// The table's default of a pair key of `command`.
 fn default_pair(ctx: &Ctx, section: &str, key: &str) -> [Real; 2] {
-    match &ctx.spec(section, key).default {
-        DefaultValue::Numbers(v) if v.len() == 2 => [v[0], v[1]],
+    match ctx.spec(section, key).default {
+        DefaultValue::Numbers(&[a, b]) => [a, b],
         _ => [0.0; 2],
     }
 }

@@ -25,7 +25,6 @@ use crate::physics::symmetric_top::{FIGURE_OMEGA0, FIGURE_RATIO};
 use crate::sim::orbit::{Force, MAX_ORBIT_RTOL, OrbitConfig};
 use crate::sim::times::MAX_SAMPLES;
 use crate::sim::{MAX_RATE, MIN_RTOL, MethodChoice, MethodOptions};
-use std::sync::LazyLock;
 
 // ------------------------------------------------------------------ names
 
@@ -231,7 +230,7 @@ pub enum Bound {
 }
 
 /// What a value must be.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Range {
     /// Any finite number (or numbers).
     Finite,
@@ -253,7 +252,7 @@ pub enum Range {
         forward: bool,
     },
     /// One of these names.
-    Names(Vec<&'static str>),
+    Names(&'static [&'static str]),
 }
 
 /// A number in a range, as written (`pi` for π).
@@ -393,14 +392,17 @@ impl Range {
 }
 
 /// A key's default.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub enum DefaultValue {
     /// None: the key is required, or its absence means something.
     None,
     /// A number.
     Number(Real),
+    /// A number another part of the core holds (a tolerance `MethodOptions`
+    /// starts from).
+    Of(fn() -> Real),
     /// Numbers.
-    Numbers(Vec<Real>),
+    Numbers(&'static [Real]),
     /// A whole number.
     Count(usize),
     /// A name.
@@ -408,11 +410,20 @@ pub enum DefaultValue {
 }
 
 impl DefaultValue {
+    /// The number, where the default is one.
+    pub fn number(&self) -> Option<Real> {
+        match self {
+            DefaultValue::Number(x) => Some(*x),
+            DefaultValue::Of(f) => Some(f()),
+            _ => None,
+        }
+    }
+
     /// As a flag takes it (`0.4`, `0,0.1,0.2`, `ll`); `None` when there is none.
     pub fn text(&self) -> Option<String> {
         match self {
             DefaultValue::None => None,
-            DefaultValue::Number(x) => Some(fmt_value(*x)),
+            DefaultValue::Number(_) | DefaultValue::Of(_) => self.number().map(fmt_value),
             DefaultValue::Numbers(v) => Some(
                 v.iter()
                     .map(|x| fmt_value(*x))
@@ -426,7 +437,7 @@ impl DefaultValue {
 }
 
 /// One key of a scene file and the flag that stands for it.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Spec {
     /// The command it belongs to.
     pub command: Command,
@@ -476,10 +487,57 @@ pub fn flag_of(key: &str) -> String {
     format!("--{}", key.replace('_', "-"))
 }
 
-fn spec(
+/// The names of a table of names, as a constant.
+const fn names_of<T: Copy, const N: usize>(table: &[Choice<T>; N]) -> [&'static str; N] {
+    let mut names = [""; N];
+    let mut i = 0;
+    while i < N {
+        names[i] = table[i].name;
+        i += 1;
+    }
+    names
+}
+
+const MODEL_NAMES: [&str; MODELS.len()] = names_of(&MODELS);
+const POTENTIAL_NAMES: [&str; POTENTIALS.len()] = names_of(&POTENTIALS);
+const FORCE_NAMES: [&str; FORCES.len()] = names_of(&FORCES);
+const DIPOLE_NAMES: [&str; DIPOLES.len()] = names_of(&DIPOLES);
+const FRAME_NAMES: [&str; FRAMES.len()] = names_of(&FRAMES);
+
+/// The time a top runs to when a scene or `simulate` gives no times, in τ.
+pub const TOP_T_END: Real = 100.0;
+/// How many evenly spaced times `t_end` stands for without `samples`.
+pub const SAMPLES: usize = 11;
+/// The time a chart of `plot` ends at, in τ.
+pub const PLOT_T_END: Real = 500.0;
+
+/// The tolerance of the adaptive methods unless `rtol` says otherwise.
+fn method_rtol() -> Real {
+    MethodOptions::default().rtol()
+}
+
+/// The step of RK4 unless `step` says otherwise.
+fn method_step() -> Real {
+    MethodOptions::default().step()
+}
+
+/// The tolerance an orbit is integrated at unless `rtol` says otherwise: the
+/// one [`OrbitConfig::new`] sets.
+fn orbit_rtol() -> Real {
+    ChargeInField::new(Potential::Coulomb, 1e-3)
+        .and_then(|c| OrbitConfig::new(c, 1.0, 0.0, Force::LandauLifshitz))
+        .map_or(MIN_RTOL, |c| c.rtol)
+}
+
+/// A row of the table.
+#[allow(clippy::too_many_arguments)]
+const fn row(
     command: Command,
-    (section, key): (&'static str, &'static str),
-    (noun, help, value_name): (&'static str, &'static str, &'static str),
+    section: &'static str,
+    key: &'static str,
+    noun: &'static str,
+    help: &'static str,
+    value_name: &'static str,
     range: Range,
     default: DefaultValue,
 ) -> Spec {
@@ -495,359 +553,112 @@ fn spec(
     }
 }
 
-/// The time a top runs to when a scene or `simulate` gives no times, in τ.
-pub const TOP_T_END: Real = 100.0;
-/// How many evenly spaced times `t_end` stands for without `samples`.
-pub const SAMPLES: usize = 11;
+use Command::{Balance as B, Orbit as O, Plot as P, Shell as H, Simulate as S};
+use DefaultValue as D;
+use Range as R;
+const POSITIVE: Range = R::Between(Bound::Open(0.0), Bound::None);
+const NOT_NEGATIVE: Range = R::Between(Bound::Closed(0.0), Bound::None);
+const FORWARD: Range = R::Times { forward: true };
+const TIME: &str = "a time";
+const T_END_HELP: &str = "Last output time (with samples, evenly spaced times from 0)";
+const SAMPLES_HELP: &str = "Number of evenly spaced output times from 0 to t_end";
+const TIMES_HELP: &str = "Output times, comma-separated";
+const TAU0: &str = "tau0 = 2q^2/(3mc^3)";
 
-fn top_keys() -> Vec<Spec> {
-    use Command::Simulate as S;
-    let methods = MethodOptions::default();
-    vec![
-        spec(
-            S,
-            ("top", "model"),
-            ("a model", "Which equations of motion", "MODEL"),
-            Range::Names(names(&MODELS)),
-            DefaultValue::None,
-        ),
-        spec(
-            S,
-            ("top", "ratio"),
-            ("I3/I1", "I3/I1 of the symmetric models", "RATIO"),
-            Range::Between(Bound::Open(0.0), Bound::Closed(2.0)),
-            DefaultValue::Number(FIGURE_RATIO),
-        ),
-        spec(
-            S,
-            ("top", "inertia"),
-            (
-                "three principal moments",
-                "Principal moments of an asymmetric top (kappa = 1 units)",
-                "I1,I2,I3",
-            ),
-            Range::RigidBody,
-            DefaultValue::None,
-        ),
-        spec(
-            S,
-            ("top", "dipole"),
-            (
-                "three numbers, the body-frame dipole",
-                "Body-frame dipole of an asymmetric top (kappa = 1 units)",
-                "D1,D2,D3",
-            ),
-            Range::NonZero,
-            DefaultValue::None,
-        ),
-        spec(
-            S,
-            ("top", "omega"),
-            (
-                "three body-frame rates in 1/tau",
-                "Initial body angular velocity, in 1/tau",
-                "W1,W2,W3",
-            ),
-            Range::EachAtMost(MAX_RATE),
-            DefaultValue::Numbers(FIGURE_OMEGA0.to_vec()),
-        ),
-        spec(
-            S,
-            ("top", "euler"),
-            (
-                "three z-x-z Euler angles in radians",
-                "Initial orientation as z-x-z Euler angles, radians",
-                "PHI,THETA,PSI",
-            ),
-            Range::Finite,
-            DefaultValue::Numbers(vec![0.0; 3]),
-        ),
-        spec(
-            S,
-            ("top", "frame"),
-            ("a frame", "Lab z along L0 instead of Euler angles", "FRAME"),
-            Range::Names(names(&FRAMES)),
-            DefaultValue::None,
-        ),
-        spec(
-            S,
-            ("solve", "method"),
-            ("a method", "Numerical method", "METHOD"),
-            Range::Names(MethodChoice::NAMES.to_vec()),
-            DefaultValue::Name(MethodChoice::Auto.name()),
-        ),
-        spec(
-            S,
-            ("solve", "rtol"),
-            (
-                "a relative tolerance",
-                "Relative tolerance of the adaptive methods",
-                "RTOL",
-            ),
-            Range::Between(Bound::Closed(MIN_RTOL), Bound::Open(1.0)),
-            DefaultValue::Number(methods.rtol()),
-        ),
-        spec(
-            S,
-            ("solve", "step"),
-            ("a step in units of tau", "Step size of RK4, in tau", "STEP"),
-            Range::Between(Bound::Open(0.0), Bound::None),
-            DefaultValue::Number(methods.step()),
-        ),
-    ]
-}
-
-/// The times of `[solve]`, read the same way by every command: `times`, or
-/// `t_end` with `samples`.
-fn times_keys(command: Command, forward: bool, t_end: DefaultValue) -> Vec<Spec> {
-    let (noun, help) = if forward {
-        ("output times", "Output times, comma-separated")
-    } else {
-        (
-            "sample times",
-            "Sample times, comma-separated (any finite values)",
-        )
-    };
-    vec![
-        spec(
-            command,
-            ("solve", "times"),
-            (noun, help, "T1,T2,..."),
-            Range::Times { forward },
-            DefaultValue::None,
-        ),
-        spec(
-            command,
-            ("solve", "t_end"),
-            (
-                "a time",
-                "Last output time (with samples, evenly spaced times from 0)",
-                "T_END",
-            ),
-            Range::Between(Bound::Closed(0.0), Bound::None),
-            t_end,
-        ),
-        spec(
-            command,
-            ("solve", "samples"),
-            (
-                "a count",
-                "Number of evenly spaced output times from 0 to t_end",
-                "SAMPLES",
-            ),
-            Range::Count(1, MAX_SAMPLES),
-            DefaultValue::Count(SAMPLES),
-        ),
-    ]
-}
-
-fn other_keys() -> Vec<Spec> {
-    use Command::{Balance as B, Orbit as O, Plot as P, Shell as H};
-    let positive = || Range::Between(Bound::Open(0.0), Bound::None);
-    vec![
-        spec(
-            B,
-            ("balance", "dipole"),
-            ("a dipole trajectory", "Which dipole trajectory", "DIPOLE"),
-            Range::Names(names(&DIPOLES)),
-            DefaultValue::None,
-        ),
-        spec(
-            B,
-            ("balance", "cone"),
-            (
-                "a cone angle",
-                "Cone half-angle theta of the precessing dipole, radians",
-                "CONE",
-            ),
-            Range::Between(Bound::Closed(0.0), Bound::Closed(std::f64::consts::PI)),
-            DefaultValue::Number(0.5),
-        ),
-        spec(
-            B,
-            ("balance", "rate"),
-            (
-                "a rate",
-                "Rate omega of the precessing dipole or the dumbbell",
-                "RATE",
-            ),
-            Range::NonZero,
-            DefaultValue::Number(1.0),
-        ),
-        spec(
-            B,
-            ("balance", "b"),
-            ("a number", "Loop parameter b", "B"),
-            Range::Finite,
-            DefaultValue::Number(0.5),
-        ),
-        spec(
-            B,
-            ("balance", "eps"),
-            ("a number", "Loop parameter eps, the second harmonic", "EPS"),
-            Range::Finite,
-            DefaultValue::Number(0.2),
-        ),
-        spec(
-            B,
-            ("balance", "charges"),
-            (
-                "two charges",
-                "Dumbbell charges q1,q2 (kappa = 1 units)",
-                "Q1,Q2",
-            ),
-            Range::Finite,
-            DefaultValue::Numbers(vec![1.0, -1.0]),
-        ),
-        spec(
-            B,
-            ("balance", "masses"),
-            ("two masses", "Dumbbell masses m1,m2", "M1,M2"),
-            Range::EachPositive,
-            DefaultValue::Numbers(vec![1.0, 1.0]),
-        ),
-        spec(
-            B,
-            ("balance", "length"),
-            ("a length", "Dumbbell rod length", "LENGTH"),
-            positive(),
-            DefaultValue::Number(1.0),
-        ),
-        spec(
-            O,
-            ("orbit", "potential"),
-            ("a potential", "The central potential", "POTENTIAL"),
-            Range::Names(names(&POTENTIALS)),
-            DefaultValue::None,
-        ),
-        spec(
-            O,
-            ("orbit", "tau0"),
-            ("tau0 = 2q^2/(3mc^3)", "tau0 = 2q^2/(3mc^3)", "TAU0"),
-            positive(),
-            DefaultValue::None,
-        ),
-        spec(
-            O,
-            ("orbit", "force"),
-            ("a force", "The equation of motion", "FORCE"),
-            Range::Names(names(&FORCES)),
-            DefaultValue::Name(FORCES[0].name),
-        ),
-        spec(
-            O,
-            ("orbit", "r0"),
-            ("a radius", "Starting radius", "R0"),
-            positive(),
-            DefaultValue::Number(1.0),
-        ),
-        spec(
-            O,
-            ("orbit", "eccentricity"),
-            ("an eccentricity", "Eccentricity of the starting orbit", "E"),
-            Range::Between(Bound::Closed(0.0), Bound::Open(1.0)),
-            DefaultValue::Number(0.0),
-        ),
-        spec(
-            O,
-            ("solve", "rtol"),
-            (
-                "a relative tolerance",
-                "Relative tolerance of the integrations",
-                "RTOL",
-            ),
-            Range::Between(Bound::Closed(MIN_RTOL), Bound::Closed(MAX_ORBIT_RTOL)),
-            orbit_rtol(),
-        ),
-        spec(
-            H,
-            ("shell", "tau0"),
-            ("tau0 = 2q^2/(3mc^3)", "tau0 = 2q^2/(3mc^3)", "TAU0"),
-            positive(),
-            DefaultValue::None,
-        ),
-        spec(
-            H,
-            ("shell", "delay"),
-            (
-                "a delay r0/c, different from tau0",
-                "The delay r0/c, different from tau0",
-                "DELAY",
-            ),
-            positive(),
-            DefaultValue::None,
-        ),
-        spec(
-            P,
-            ("solve", "method"),
-            ("a method", "Numerical method", "METHOD"),
-            Range::Names(MethodChoice::NAMES.to_vec()),
-            DefaultValue::Name(MethodChoice::Exact.name()),
-        ),
-        spec(
-            P,
-            ("plot", "t_end"),
-            (
-                "a last time of a chart",
-                "Last time of the plot, in tau",
-                "T_END",
-            ),
-            positive(),
-            DefaultValue::Number(PLOT_T_END),
-        ),
-        spec(
-            P,
-            ("plot", "width"),
-            (
-                "a width in characters",
-                "Width of each chart, in characters",
-                "WIDTH",
-            ),
-            Range::Count(16, 500),
-            DefaultValue::Count(60),
-        ),
-        spec(
-            P,
-            ("plot", "height"),
-            (
-                "a height in lines",
-                "Height of each chart, in lines",
-                "HEIGHT",
-            ),
-            Range::Count(2, 200),
-            DefaultValue::Count(10),
-        ),
-    ]
-}
-
-/// The tolerance an orbit is integrated at unless `rtol` says otherwise: the
-/// one [`OrbitConfig::new`] sets.
-fn orbit_rtol() -> DefaultValue {
-    ChargeInField::new(Potential::Coulomb, 1e-3)
-        .and_then(|c| OrbitConfig::new(c, 1.0, 0.0, Force::LandauLifshitz))
-        .map_or(DefaultValue::None, |c| DefaultValue::Number(c.rtol))
-}
-
-/// The time a chart of `plot` ends at, in τ.
-pub const PLOT_T_END: Real = 500.0;
-
-static SPECS: LazyLock<Vec<Spec>> = LazyLock::new(|| {
-    let mut all = top_keys();
-    all.extend(times_keys(
-        Command::Simulate,
-        true,
-        DefaultValue::Number(TOP_T_END),
-    ));
-    all.extend(other_keys());
-    all.extend(times_keys(Command::Balance, false, DefaultValue::None));
-    all.extend(times_keys(Command::Orbit, true, DefaultValue::None));
-    all.extend(times_keys(Command::Shell, true, DefaultValue::None));
-    all
-});
+/// Every key of every command: section, key, what its value is, the flag's
+/// help line and value name, its range and its default.
+#[rustfmt::skip]
+pub const SPECS: &[Spec] = &[
+    // simulate, and a scene of kind top: [top]
+    row(S, "top", "model", "a model", "Which equations of motion", "MODEL",
+        R::Names(&MODEL_NAMES), D::None),
+    row(S, "top", "ratio", "I3/I1", "I3/I1 of the symmetric models", "RATIO",
+        R::Between(Bound::Open(0.0), Bound::Closed(2.0)), D::Number(FIGURE_RATIO)),
+    row(S, "top", "inertia", "three principal moments",
+        "Principal moments of an asymmetric top (kappa = 1 units)", "I1,I2,I3",
+        R::RigidBody, D::None),
+    row(S, "top", "dipole", "three numbers, the body-frame dipole",
+        "Body-frame dipole of an asymmetric top (kappa = 1 units)", "D1,D2,D3",
+        R::NonZero, D::None),
+    row(S, "top", "omega", "three body-frame rates in 1/tau",
+        "Initial body angular velocity, in 1/tau", "W1,W2,W3",
+        R::EachAtMost(MAX_RATE), D::Numbers(&FIGURE_OMEGA0)),
+    row(S, "top", "euler", "three z-x-z Euler angles in radians",
+        "Initial orientation as z-x-z Euler angles, radians", "PHI,THETA,PSI",
+        R::Finite, D::Numbers(&[0.0; 3])),
+    row(S, "top", "frame", "a frame", "Lab z along L0 instead of Euler angles", "FRAME",
+        R::Names(&FRAME_NAMES), D::None),
+    // [solve]
+    row(S, "solve", "method", "a method", "Numerical method", "METHOD",
+        R::Names(&MethodChoice::NAMES), D::Name("auto")),
+    row(S, "solve", "rtol", "a relative tolerance", "Relative tolerance of the adaptive methods",
+        "RTOL", R::Between(Bound::Closed(MIN_RTOL), Bound::Open(1.0)), D::Of(method_rtol)),
+    row(S, "solve", "step", "a step in units of tau", "Step size of RK4, in tau", "STEP",
+        POSITIVE, D::Of(method_step)),
+    row(S, "solve", "times", "output times", TIMES_HELP, "T1,T2,...", FORWARD, D::None),
+    row(S, "solve", "t_end", TIME, T_END_HELP, "T_END", NOT_NEGATIVE, D::Number(TOP_T_END)),
+    row(S, "solve", "samples", "a count", SAMPLES_HELP, "SAMPLES",
+        R::Count(1, MAX_SAMPLES), D::Count(SAMPLES)),
+    // balance: [balance] and [solve]
+    row(B, "balance", "dipole", "a dipole trajectory", "Which dipole trajectory", "DIPOLE",
+        R::Names(&DIPOLE_NAMES), D::None),
+    row(B, "balance", "cone", "a cone angle",
+        "Cone half-angle theta of the precessing dipole, radians", "CONE",
+        R::Between(Bound::Closed(0.0), Bound::Closed(std::f64::consts::PI)), D::Number(0.5)),
+    row(B, "balance", "rate", "a rate", "Rate omega of the precessing dipole or the dumbbell",
+        "RATE", R::NonZero, D::Number(1.0)),
+    row(B, "balance", "b", "a number", "Loop parameter b", "B", R::Finite, D::Number(0.5)),
+    row(B, "balance", "eps", "a number", "Loop parameter eps, the second harmonic", "EPS",
+        R::Finite, D::Number(0.2)),
+    row(B, "balance", "charges", "two charges", "Dumbbell charges q1,q2 (kappa = 1 units)",
+        "Q1,Q2", R::Finite, D::Numbers(&[1.0, -1.0])),
+    row(B, "balance", "masses", "two masses", "Dumbbell masses m1,m2", "M1,M2",
+        R::EachPositive, D::Numbers(&[1.0, 1.0])),
+    row(B, "balance", "length", "a length", "Dumbbell rod length", "LENGTH",
+        POSITIVE, D::Number(1.0)),
+    row(B, "solve", "times", "sample times", "Sample times, comma-separated (any finite values)",
+        "T1,T2,...", R::Times { forward: false }, D::None),
+    row(B, "solve", "t_end", TIME, T_END_HELP, "T_END", NOT_NEGATIVE, D::None),
+    row(B, "solve", "samples", "a count", SAMPLES_HELP, "SAMPLES",
+        R::Count(1, MAX_SAMPLES), D::Count(SAMPLES)),
+    // orbit: [orbit] and [solve]
+    row(O, "orbit", "potential", "a potential", "The central potential", "POTENTIAL",
+        R::Names(&POTENTIAL_NAMES), D::None),
+    row(O, "orbit", "tau0", TAU0, TAU0, "TAU0", POSITIVE, D::None),
+    row(O, "orbit", "force", "a force", "The equation of motion", "FORCE",
+        R::Names(&FORCE_NAMES), D::Name(FORCE_NAMES[0])),
+    row(O, "orbit", "r0", "a radius", "Starting radius", "R0", POSITIVE, D::Number(1.0)),
+    row(O, "orbit", "eccentricity", "an eccentricity", "Eccentricity of the starting orbit", "E",
+        R::Between(Bound::Closed(0.0), Bound::Open(1.0)), D::Number(0.0)),
+    row(O, "solve", "rtol", "a relative tolerance", "Relative tolerance of the integrations",
+        "RTOL", R::Between(Bound::Closed(MIN_RTOL), Bound::Closed(MAX_ORBIT_RTOL)),
+        D::Of(orbit_rtol)),
+    row(O, "solve", "times", "output times", TIMES_HELP, "T1,T2,...", FORWARD, D::None),
+    row(O, "solve", "t_end", TIME, T_END_HELP, "T_END", NOT_NEGATIVE, D::None),
+    row(O, "solve", "samples", "a count", SAMPLES_HELP, "SAMPLES",
+        R::Count(1, MAX_SAMPLES), D::Count(SAMPLES)),
+    // shell: [shell] and [solve]
+    row(H, "shell", "tau0", TAU0, TAU0, "TAU0", POSITIVE, D::None),
+    row(H, "shell", "delay", "a delay r0/c, different from tau0",
+        "The delay r0/c, different from tau0", "DELAY", POSITIVE, D::None),
+    row(H, "solve", "times", "output times", TIMES_HELP, "T1,T2,...", FORWARD, D::None),
+    row(H, "solve", "t_end", TIME, T_END_HELP, "T_END", NOT_NEGATIVE, D::None),
+    row(H, "solve", "samples", "a count", SAMPLES_HELP, "SAMPLES",
+        R::Count(1, MAX_SAMPLES), D::Count(SAMPLES)),
+    // plot: its own keys (it shares [top] ratio and omega with simulate)
+    row(P, "solve", "method", "a method", "Numerical method", "METHOD",
+        R::Names(&MethodChoice::NAMES), D::Name("exact")),
+    row(P, "plot", "t_end", "a last time of a chart", "Last time of the plot, in tau", "T_END",
+        POSITIVE, D::Number(PLOT_T_END)),
+    row(P, "plot", "width", "a width in characters", "Width of each chart, in characters",
+        "WIDTH", R::Count(16, 500), D::Count(60)),
+    row(P, "plot", "height", "a height in lines", "Height of each chart, in lines", "HEIGHT",
+        R::Count(2, 200), D::Count(10)),
+];
 
 /// Every key, by command.
 pub fn specs() -> &'static [Spec] {
-    &SPECS
+    SPECS
 }
 
 /// The keys of a command, in the table's order.
@@ -873,4 +684,200 @@ pub fn ranges_help(command: Command) -> String {
         .filter_map(|s| s.range.with_flag(&s.flag()))
         .collect::<Vec<_>>()
         .join("; ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::request::{self, Given, RawBalance, RawOrbit, RawShell, RawSolve, RawTop};
+
+    /// Whether the flags of `spec`'s command, a valid question but for
+    /// `spec`'s key set to `x`, are accepted.
+    fn accepts(spec: &Spec, x: Real) -> bool {
+        let g = |v: Real| Some(Given::flag(v));
+        let name = |s: &str| Some(Given::flag(s.to_string()));
+        let mut solve = RawSolve {
+            t_end: g(1.0),
+            ..RawSolve::default()
+        };
+        match (spec.section, spec.key) {
+            ("solve", "rtol") if spec.command == Command::Simulate => solve.rtol = g(x),
+            ("solve", "rtol") => solve.rtol = g(x),
+            ("solve", "step") => {
+                solve.method = name("rk4");
+                solve.step = g(x);
+            }
+            ("solve", "t_end") => solve.t_end = g(x),
+            ("solve", "samples") => solve.samples = Some(Given::flag(x as i64)),
+            _ => {}
+        }
+        match spec.command {
+            Command::Simulate => {
+                let mut top = RawTop {
+                    model: name("truncated"),
+                    ..RawTop::default()
+                };
+                match spec.key {
+                    "ratio" => top.ratio = g(x),
+                    "omega" => top.omega = Some(Given::flag([x, 0.0, 0.0])),
+                    "dipole" => {
+                        top.inertia = Some(Given::flag([1.0, 2.0, 2.5]));
+                        top.dipole = Some(Given::flag([0.0, 0.0, x]));
+                    }
+                    _ => {}
+                }
+                request::top(&top, &solve).is_ok()
+            }
+            Command::Balance => {
+                let mut raw = RawBalance {
+                    dipole: name("precessing"),
+                    ..RawBalance::default()
+                };
+                match spec.key {
+                    "cone" => raw.cone = g(x),
+                    "rate" => raw.rate = g(x),
+                    "masses" | "length" => {
+                        raw.dipole = name("dumbbell");
+                        if spec.key == "length" {
+                            raw.length = g(x);
+                        } else {
+                            raw.masses = Some(Given::flag([1.0, x]));
+                        }
+                    }
+                    _ => {}
+                }
+                request::balance(&raw, &solve).is_ok()
+            }
+            Command::Orbit => {
+                let mut raw = RawOrbit {
+                    potential: name("harmonic"),
+                    tau0: g(1e-3),
+                    ..RawOrbit::default()
+                };
+                match spec.key {
+                    "tau0" => raw.tau0 = g(x),
+                    "r0" => raw.r0 = g(x),
+                    "eccentricity" => raw.eccentricity = g(x),
+                    _ => {}
+                }
+                request::orbit(&raw, &solve).is_ok()
+            }
+            Command::Shell => {
+                let mut raw = RawShell {
+                    tau0: g(1e-3),
+                    delay: g(0.03),
+                };
+                match spec.key {
+                    "tau0" => raw.tau0 = g(x),
+                    "delay" => raw.delay = g(x),
+                    _ => {}
+                }
+                request::shell(&raw, &solve).is_ok()
+            }
+            Command::Plot => spec.range.contains(x),
+        }
+    }
+
+    /// Values at each end of a range, with whether the range holds them:
+    /// the end itself and the double just beyond it.
+    fn probes(range: &Range) -> Vec<(Real, bool)> {
+        let mut out = Vec::new();
+        match *range {
+            Range::Between(lo, hi) => {
+                match lo {
+                    Bound::Open(a) => out.extend([(a, false), (a.next_up(), true)]),
+                    Bound::Closed(a) => out.extend([(a, true), (a.next_down(), false)]),
+                    Bound::None => {}
+                }
+                match hi {
+                    Bound::Open(b) => out.extend([(b, false), (b.next_down(), true)]),
+                    Bound::Closed(b) => out.extend([(b, true), (b.next_up(), false)]),
+                    Bound::None => {}
+                }
+            }
+            Range::NonZero | Range::EachPositive => out.extend([(0.0, false), (1.0, true)]),
+            Range::EachAtMost(m) => out.extend([(m, true), (m.next_up(), false)]),
+            Range::Count(lo, hi) => out.extend([
+                (lo as Real, true),
+                (lo as Real - 1.0, false),
+                (hi as Real, true),
+                (hi as Real + 1.0, false),
+            ]),
+            _ => {}
+        }
+        out
+    }
+
+    /// The ranges `--help` states are the ones the checks enforce: at each
+    /// end of each key's range, the value the range holds is accepted and
+    /// the double beyond it refused, by the validation a flag goes through.
+    #[test]
+    fn each_range_in_the_table_is_what_the_checks_enforce() {
+        let mut wrong = Vec::new();
+        let mut probed = 0;
+        for spec in SPECS {
+            for (x, held) in probes(&spec.range) {
+                probed += 1;
+                if accepts(spec, x) != held {
+                    wrong.push(format!(
+                        "{:?} [{}] {} = {x:e}: the table says {}",
+                        spec.command,
+                        spec.section,
+                        spec.key,
+                        if held { "in range" } else { "out of range" }
+                    ));
+                }
+            }
+        }
+        assert!(probed > 40, "{probed}");
+        assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+    }
+
+    /// Every name a table of names lists maps back to what it stands for,
+    /// and the core's own names agree (`Potential::name`, `Force::name`).
+    #[test]
+    fn names_are_the_cores_names() {
+        for c in POTENTIALS {
+            assert_eq!(find(&POTENTIALS, c.name), Some(c.value));
+            assert_eq!(c.value.name(), c.name);
+        }
+        for c in FORCES {
+            assert_eq!(c.value.name(), c.name);
+        }
+        for spec in SPECS {
+            if let (Range::Names(names), DefaultValue::Name(d)) = (spec.range, spec.default) {
+                assert!(
+                    names.contains(&d),
+                    "{:?} {}: default {d}",
+                    spec.command,
+                    spec.key
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn ranges_read_as_written() {
+        let ratio = key(Command::Simulate, "top", "ratio");
+        assert_eq!(ratio.range.short(), "in (0, 2]");
+        assert_eq!(
+            ratio.range.with_flag("--ratio").unwrap(),
+            "0 < --ratio <= 2"
+        );
+        assert_eq!(
+            ratio.help_line(),
+            "I3/I1 of the symmetric models, in (0, 2] [default: 0.4]"
+        );
+        let rtol = key(Command::Simulate, "solve", "rtol");
+        assert_eq!(
+            rtol.range.with_flag("--rtol").unwrap(),
+            "1e-14 <= --rtol < 1"
+        );
+        assert_eq!(rtol.default.text().unwrap(), "1e-10");
+        let step = key(Command::Simulate, "solve", "step");
+        assert_eq!(step.expected(), "a positive step in units of tau");
+        let cone = key(Command::Balance, "balance", "cone");
+        assert_eq!(cone.range.short(), "in [0, pi]");
+        assert!(ranges_help(Command::Simulate).contains("each --omega component at most 1e100"));
+    }
 }

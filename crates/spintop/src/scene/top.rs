@@ -239,10 +239,11 @@ fn symmetric_tiers(
     let r = match (particle, &ratio) {
         (Particle::Symmetric(u), _) => u.particle.ratio(),
         (_, Some((r, _))) => *r,
-        _ => match ctx.spec("top", "ratio").default {
-            table::DefaultValue::Number(r) => r,
-            _ => crate::physics::symmetric_top::FIGURE_RATIO,
-        },
+        _ => ctx
+            .spec("top", "ratio")
+            .default
+            .number()
+            .unwrap_or(crate::physics::symmetric_top::FIGURE_RATIO),
     };
     let top = SymmetricTop::new(r, 1.0).map_err(|e| {
         let at = ratio.as_ref().map(|(_, at)| at);
@@ -341,8 +342,8 @@ fn read_omega0(ctx: &Ctx, raw: &RawTop, particle: &Particle) -> Result<Vec3, Ref
                 .map_err(|e| ctx.at(&at, format!("{}: {e}", ctx.key("top", "omega"))))?;
             w
         }
-        (Particle::None, None) => match &ctx.spec("top", "omega").default {
-            table::DefaultValue::Numbers(w) if w.len() == 3 => Vec3::new(w[0], w[1], w[2]),
+        (Particle::None, None) => match ctx.spec("top", "omega").default {
+            table::DefaultValue::Numbers(&[w1, w2, w3]) => Vec3::new(w1, w2, w3),
             _ => Vec3::from(crate::physics::symmetric_top::FIGURE_OMEGA0),
         },
     })

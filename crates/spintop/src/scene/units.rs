@@ -212,7 +212,7 @@ pub(super) fn time_scale_fits(
     if seconds > 0.0 && seconds.is_finite() {
         Ok(())
     } else {
-        Err(ctx.at(header, format!("[units] give {name} = {seconds:e} s, which a double cannot hold; expected sizes and a dipole of laboratory scale")))
+        Err(ctx.at(header, format!("[units] give {name} = {} s, which a double cannot hold; expected sizes and a dipole of laboratory scale", crate::numbers::fmt_value(seconds))))
     }
 }
 
@@ -233,8 +233,9 @@ fn rate_fits(
     Err(ctx.at(
         &at,
         format!(
-            "[units] {key} is {} in the model's unit of time, {unit} = {seconds:.3e} s, below what a double holds; expected faster rates",
-            crate::numbers::short(in_units)
+            "[units] {key} is {} in the model's unit of time, {unit} = {} s, below what a double holds; expected faster rates",
+            crate::numbers::short(in_units),
+            crate::numbers::worked(seconds)
         ),
     ))
 }
