@@ -15,14 +15,7 @@ use std::path::Path;
 fn run(args: &[&str]) -> (u8, String, String) {
     let (mut out, mut err) = (Vec::new(), Vec::new());
     let argv = std::iter::once("spintop").chain(args.iter().copied());
-    let code = spintop_app::cli::run(argv, &mut out, &mut err);
-    // ExitCode hides its value; its Debug form shows it.
-    let code = format!("{code:?}")
-        .chars()
-        .filter(char::is_ascii_digit)
-        .collect::<String>()
-        .parse()
-        .unwrap_or(255);
+    let code = spintop_app::cli::run_code(argv, &mut out, &mut err);
     (
         code,
         String::from_utf8_lossy(&out).into_owned(),
