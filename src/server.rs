@@ -105,19 +105,33 @@
 //! snippet; a ▶ pressed meanwhile waits for that build and shows its
 //! progress.
 
+mod answer;
+mod bounds;
+mod client;
+mod drain;
+mod folders;
 #[doc(hidden)]
 pub mod http;
+mod jobs;
 mod peer;
+mod procs;
 mod run;
+mod supervise;
 mod tree;
+mod unit;
 
+pub use answer::site_file;
+pub use client::{Response, fetch, request};
+pub use folders::Untrusted;
 pub use run::{Limits, Outcome, OutcomeKind, Runner, default_runner};
-pub use tree::{SUPERVISE_FLAG, supervise};
+pub use supervise::{SUPERVISE_FLAG, supervise};
+pub use unit::Containment;
 
+use jobs::Job;
 use run::{Shared, Stage};
 use std::io::Read;
 use std::net::{TcpListener, TcpStream};
-use std::path::{Component, Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
@@ -134,6 +148,20 @@ pub enum ServerError {
         /// The system's reason.
         reason: String,
     },
+    /// Another process holds the port on ::1, where a browser that resolves
+    /// `localhost` to ::1 first would send it the address with the token.
+    #[error(
+        "cannot listen on [::1]:{port} ({reason}): another process holds it there, and a browser that opens localhost:{port} would send it the book's key; choose another --port"
+    )]
+    Localhost {
+        /// The port asked for.
+        port: u16,
+        /// The system's reason.
+        reason: String,
+    },
+    /// A folder another user could write, or not the reader's.
+    #[error(transparent)]
+    Folder(#[from] Untrusted),
 }
 
 /// What the server serves and where it runs snippets.
@@ -165,39 +193,6 @@ const SECURITY_HEADERS: [(&str, &str); 5] = [
     ("Referrer-Policy", "no-referrer"),
     ("Cache-Control", "no-store"),
 ];
-
-/// Where the one ▶ run that may be going on is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Phase {
-    /// Waiting for the background build (or another tree) to end.
-    Waiting,
-    /// Cargo compiles it.
-    Compiling,
-    /// The program runs.
-    Running,
-}
-
-/// The state of the one ▶ run that may be going on, and the last outcome.
-#[derive(Debug)]
-struct Job {
-    running: bool,
-    phase: Phase,
-    since: Instant,
-    progress: String,
-    last: Option<Outcome>,
-}
-
-impl Default for Job {
-    fn default() -> Self {
-        Self {
-            running: false,
-            phase: Phase::Waiting,
-            since: Instant::now(),
-            progress: String::new(),
-            last: None,
-        }
-    }
-}
 
 /// The background build of the scratch project ([`Server::warm_up`]).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -234,7 +229,8 @@ enum WarmState {
 
 /// A running server.
 pub struct Server {
-    listener: TcpListener,
+    /// 127.0.0.1 and, where the machine has it, ::1.
+    listeners: Vec<TcpListener>,
     inner: Arc<Inner>,
 }
 
@@ -279,21 +275,67 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-impl Server {
-    /// Binds 127.0.0.1:`config.port`.
-    pub fn bind(config: Config) -> Result<Self, ServerError> {
-        let bind_error = |e: std::io::Error| ServerError::Bind {
-            port: config.port,
-            reason: e.to_string(),
+/// Listens on 127.0.0.1:`port` and on [::1] at the same port, so that no
+/// other process can listen there (a browser resolves `localhost` to ::1
+/// first); with port 0, on a free port where both are free. The listeners,
+/// and the port.
+fn listen(port: u16) -> Result<(Vec<TcpListener>, u16), ServerError> {
+    let bind_error = |e: std::io::Error| ServerError::Bind {
+        port,
+        reason: e.to_string(),
+    };
+    for _ in 0..32 {
+        let v4 = TcpListener::bind(("127.0.0.1", port)).map_err(bind_error)?;
+        let got = v4.local_addr().map_err(bind_error)?.port();
+        let listeners = match TcpListener::bind(("::1", got)) {
+            Ok(v6) => vec![v4, v6],
+            // No IPv6 loopback: no process can listen there either.
+            Err(e)
+                if e.kind() == std::io::ErrorKind::AddrNotAvailable
+                    || e.raw_os_error() == Some(rustix::io::Errno::AFNOSUPPORT.raw_os_error()) =>
+            {
+                vec![v4]
+            }
+            // Taken there: another free port.
+            Err(_) if port == 0 => continue,
+            Err(e) => {
+                return Err(ServerError::Localhost {
+                    port,
+                    reason: e.to_string(),
+                });
+            }
         };
-        let listener = TcpListener::bind(("127.0.0.1", config.port)).map_err(bind_error)?;
-        listener.set_nonblocking(true).map_err(bind_error)?;
-        let port = listener
-            .local_addr()
-            .map(|a| a.port())
-            .unwrap_or(config.port);
+        for l in &listeners {
+            l.set_nonblocking(true).map_err(bind_error)?;
+        }
+        return Ok((listeners, got));
+    }
+    Err(ServerError::Localhost {
+        port,
+        reason: "no port tried was free on both 127.0.0.1 and ::1".into(),
+    })
+}
+
+impl Server {
+    /// Checks the folders (each the reader's own, see `folders.rs`), makes
+    /// the scratch folder fresh, finds the strongest containment the
+    /// machine allows ([`Server::containment`]), and listens on
+    /// 127.0.0.1:`config.port` (and on [::1] at that port, see [`listen`]).
+    pub fn bind(mut config: Config) -> Result<Self, ServerError> {
+        config.site = folders::check("--site", &config.site)?;
+        let target = &config.runner.target_dir;
+        std::fs::create_dir_all(target).map_err(|e| Untrusted {
+            what: "the build folder".into(),
+            path: target.clone(),
+            why: format!("cannot be made: {e}"),
+        })?;
+        config.runner.target_dir = folders::check("the build folder", target)?;
+        config.runner.scratch = folders::fresh_scratch(&config.runner.scratch)?;
+        config.runner.containment =
+            supervise::strongest(config.runner.containment, &config.runner.launcher);
+        let (listeners, port) = listen(config.port)?;
         Ok(Self {
-            listener,
+            listeners,
             inner: Arc::new(Inner {
                 port,
                 token: new_token(),
@@ -310,6 +352,17 @@ impl Server {
     /// The port it listens on.
     pub fn port(&self) -> u16 {
         self.inner.port
+    }
+
+    /// How each tree is ended as a unit here: the strongest of those up to
+    /// [`Runner::containment`] that this machine allows.
+    pub fn containment(&self) -> Containment {
+        self.inner.config.runner.containment
+    }
+
+    /// Whether it also listens on [::1] (the machine has IPv6 loopback).
+    pub fn holds_localhost6(&self) -> bool {
+        self.listeners.len() > 1
     }
 
     /// The address to open, the key included: the only address that
@@ -347,7 +400,7 @@ impl Server {
             };
         }
         let inner = Arc::clone(&self.inner);
-        std::thread::spawn(move || {
+        let spawned = std::thread::Builder::new().spawn(move || {
             let outcome = inner.config.runner.warm_up(&inner.shared, &mut |stage| {
                 if let Stage::Line(line) = stage
                     && let WarmState::Building { progress, .. } = &mut *lock(&inner.warm)
@@ -365,6 +418,11 @@ impl Server {
                 }
             };
         });
+        if let Err(e) = spawned {
+            *lock(&self.inner.warm) = WarmState::Failed {
+                why: format!("cannot start a thread for the background build: {e}"),
+            };
+        }
     }
 
     /// Where the background build is.
@@ -382,51 +440,80 @@ impl Server {
 
     /// Accepts connections until `stop` is set (checked every 20 ms); each
     /// connection is served on a thread of its own, so that one a browser
-    /// keeps open never holds up another. This process becomes a child
-    /// subreaper first (see `src/server/tree.rs`).
+    /// keeps open never holds up another. A connection that cannot have a
+    /// thread (the reader's process limit is reached: a fork bomb) is
+    /// answered 503 at once, and the next is tried again. This process
+    /// becomes a child subreaper first (see `src/server/tree.rs`).
     pub fn serve(&self, stop: &AtomicBool) {
         tree::become_subreaper();
         while !stop.load(Ordering::Relaxed) {
-            match self.listener.accept() {
-                Ok((stream, _)) => {
-                    let peer = peer::peer(&stream);
-                    let Ok(mut conn) = http::Connection::new(stream) else {
-                        continue;
-                    };
-                    if let Some(why) = refusal(peer) {
-                        self.inner.refuse(conn, why);
-                        continue;
-                    }
-                    if !self.inner.admit(&conn) {
-                        let _ = conn.respond(
-                            503,
-                            &SECURITY_HEADERS,
-                            b"too many connections",
-                            false,
-                            false,
-                        );
-                        continue;
-                    }
-                    let inner = Arc::clone(&self.inner);
-                    std::thread::spawn(move || {
-                        let watch = conn.watch();
-                        inner.connection(conn);
-                        lock(&inner.connections).retain(|w| !Arc::ptr_eq(w, &watch));
-                    });
-                }
+            let mut accepted = false;
+            for listener in &self.listeners {
                 // Nothing waiting (the listener does not block), or a
                 // transient failure such as too many open files.
-                Err(_) => std::thread::sleep(Duration::from_millis(20)),
+                if let Ok((stream, _)) = listener.accept() {
+                    accepted = true;
+                    self.accept(stream);
+                }
+            }
+            if !accepted {
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        }
+    }
+
+    /// Takes one connection: refused, answered 503, or served on a thread
+    /// of its own.
+    fn accept(&self, stream: TcpStream) {
+        let peer = peer::peer(&stream);
+        let Ok(mut conn) = http::Connection::new(stream) else {
+            return;
+        };
+        if let Some(why) = refusal(peer) {
+            self.inner.refuse(conn, why);
+            return;
+        }
+        if !self.inner.admit(&conn) {
+            send(
+                &mut conn,
+                &reason(503, "too many connections"),
+                false,
+                false,
+            );
+            return;
+        }
+        let watch = conn.watch();
+        // The connection goes to its thread once the thread exists; if it
+        // cannot be made, it stays here for the 503.
+        let (hand, take) = std::sync::mpsc::channel::<http::Connection>();
+        let inner = Arc::clone(&self.inner);
+        let spawned = std::thread::Builder::new().spawn(move || {
+            if let Ok(conn) = take.recv() {
+                let watch = conn.watch();
+                inner.connection(conn);
+                lock(&inner.connections).retain(|w| !Arc::ptr_eq(w, &watch));
+            }
+        });
+        match spawned {
+            Ok(_) => {
+                let _ = hand.send(conn);
+            }
+            Err(e) => {
+                lock(&self.inner.connections).retain(|w| !Arc::ptr_eq(w, &watch));
+                send(&mut conn, &jobs::unavailable(&e), false, false);
             }
         }
     }
 
     /// Stops: kills the running process tree (a snippet, or cargo and its
     /// compilers) and refuses new ones; returns once it is gone (true), or
-    /// after 3 s without seeing it go (false).
+    /// after [`Server::STOP_WAIT`] without seeing it go (false).
     pub fn shutdown(&self) -> bool {
-        self.inner.shared.slot.close(Duration::from_secs(1))
+        self.inner.shared.slot.close()
     }
+
+    /// How long [`Server::shutdown`] waits for the tree to be gone.
+    pub const STOP_WAIT: Duration = tree::STOP_WAIT;
 
     /// For a process that serves this server and starts nothing else
     /// (`spintop book`): kills every process below this one but the running
@@ -477,17 +564,18 @@ impl Inner {
             return;
         }
         let inner = Arc::clone(self);
-        std::thread::spawn(move || {
+        let spawned = std::thread::Builder::new().spawn(move || {
             conn.set_request_time(Duration::from_secs(1));
             let limit = inner.config.runner.limits.request_bytes;
             if !matches!(conn.next_request(limit), Err(http::ReadError::Closed)) {
-                let reply = reason(403, &why);
-                let mut headers: Vec<(&str, &str)> = vec![("Content-Type", reply.content_type)];
-                headers.extend(SECURITY_HEADERS);
-                let _ = conn.respond(403, &headers, &reply.body, false, false);
+                send(&mut conn, &reason(403, &why), false, false);
             }
             inner.refusing.fetch_sub(1, Ordering::SeqCst);
         });
+        // No thread: closed unanswered, like those past the limit.
+        if spawned.is_err() {
+            self.refusing.fetch_sub(1, Ordering::SeqCst);
+        }
     }
 
     /// Makes room for `conn`: at [`MAX_CONNECTIONS`], the connection idle or
@@ -533,290 +621,21 @@ impl Inner {
                     false,
                 ),
             };
-            let mut headers: Vec<(&str, &str)> = vec![("Content-Type", reply.content_type)];
-            headers.extend(SECURITY_HEADERS);
-            headers.extend(reply.headers.iter().map(|(k, v)| (*k, v.as_str())));
-            let sent = conn.respond(reply.code, &headers, &reply.body, keep_alive, head_only);
-            if sent.is_err() || !keep_alive {
+            if !send(&mut conn, &reply, keep_alive, head_only) || !keep_alive {
                 return;
             }
         }
     }
+}
 
-    fn handle(self: &Arc<Self>, request: &http::Request) -> Reply {
-        let host = request.header("Host").unwrap_or_default();
-        let allowed_hosts = [
-            format!("127.0.0.1:{}", self.port),
-            format!("localhost:{}", self.port),
-        ];
-        if !allowed_hosts.iter().any(|h| h == host) {
-            return reason(403, &format!("refused: Host {host:?} is not this server"));
-        }
-        if let Some(origin) = request.header("Origin") {
-            let own = allowed_hosts
-                .iter()
-                .any(|h| origin == format!("http://{h}"));
-            if !own {
-                return reason(403, &format!("refused: Origin {origin:?} is not this book"));
-            }
-        }
-        let (path, query) = request.url.split_once('?').unwrap_or((&request.url, ""));
-        let method = request.method.as_str();
-        let header_token = request.header("X-Spintop-Token");
-        match path {
-            "/evaluate.json" | "/evaluate/status" => {
-                if !header_token.is_some_and(|t| self.is_token(t)) {
-                    return reason(
-                        403,
-                        "refused: no valid token (runs are accepted only from this book's own pages)",
-                    );
-                }
-                if path == "/evaluate/status" {
-                    if method != "GET" {
-                        return reason(405, "use GET for /evaluate/status");
-                    }
-                    return self.status();
-                }
-                if method != "POST" {
-                    return reason(405, "use POST for /evaluate.json");
-                }
-                let limit = self.config.runner.limits.request_bytes;
-                match &request.body {
-                    http::Body::Read(body) => self.evaluate(body),
-                    http::Body::TooLong => reason(
-                        413,
-                        &format!("the snippet is larger than {} KiB", limit / 1024),
-                    ),
-                    http::Body::Chunked => reason(411, "send the snippet with a Content-Length"),
-                }
-            }
-            _ => {
-                let (token, rest) = split_token(query);
-                if let Some(token) = token {
-                    if !self.is_token(token) {
-                        return self.forbidden();
-                    }
-                    // The printed address: keep the key in a cookie, and
-                    // the address bar (and history) without it.
-                    // One leading slash: a browser reads `//host/` (or
-                    // `/\host/`) as another host.
-                    let path = format!("/{}", path.trim_start_matches(['/', '\\']));
-                    let clean = if rest.is_empty() {
-                        path
-                    } else {
-                        format!("{path}?{rest}")
-                    };
-                    let mut reply = reason(303, "the book is at the address without its token");
-                    reply.headers = vec![
-                        ("Location", clean),
-                        (
-                            "Set-Cookie",
-                            format!(
-                                "{}={}; HttpOnly; SameSite=Strict; Path=/",
-                                self.cookie_name(),
-                                self.token
-                            ),
-                        ),
-                    ];
-                    return reply;
-                }
-                let keyed =
-                    self.has_cookie(request) || header_token.is_some_and(|t| self.is_token(t));
-                if !keyed {
-                    return self.forbidden();
-                }
-                if method != "GET" && method != "HEAD" {
-                    return reason(405, "the book is read with GET");
-                }
-                self.file(path)
-            }
-        }
-    }
-
-    /// The page for a request without the key.
-    fn forbidden(&self) -> Reply {
-        let page = format!(
-            "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>spintop book: open the printed address</title></head>\n<body><h1>Open the address printed in the terminal</h1>\n<p>This book runs code on your machine, so it answers only the address that <code>spintop book</code> printed in the terminal when it started: <code>http://127.0.0.1:{}/?token=…</code>, with its token (the key, not shown here). Copy that whole address into the browser, or start it with <code>spintop book --open</code>.</p></body></html>\n",
-            self.port
-        );
-        Reply {
-            code: 403,
-            content_type: "text/html; charset=utf-8",
-            headers: Vec::new(),
-            body: page.into_bytes(),
-        }
-    }
-
-    /// A file of the built book; HTML pages receive the token, for their ▶.
-    fn file(&self, path: &str) -> Reply {
-        let Some(file) = site_file(&self.config.site, path) else {
-            return reason(404, &format!("no such page: {path}"));
-        };
-        let Ok(mut bytes) = std::fs::read(&file) else {
-            return reason(404, &format!("no such page: {path}"));
-        };
-        let ext = file.extension().and_then(|e| e.to_str()).unwrap_or("");
-        if ext == "html" {
-            let text = String::from_utf8_lossy(&bytes);
-            let script = format!(
-                "<script>window.spintopBook = {{ token: \"{}\" }};</script>",
-                self.token
-            );
-            bytes = match text.find("<head>") {
-                Some(i) => format!("{}{script}{}", &text[..i + 6], &text[i + 6..]),
-                None => format!("{script}{text}"),
-            }
-            .into_bytes();
-        }
-        Reply {
-            code: 200,
-            content_type: content_type(ext),
-            headers: Vec::new(),
-            body: bytes,
-        }
-    }
-
-    /// What is busy, for how long, and its limit: the 429 answer.
-    fn busy(&self, job: &Job) -> Reply {
-        let limits = self.config.runner.limits;
-        let secs = job.since.elapsed().as_secs();
-        let what = match job.phase {
-            Phase::Waiting => {
-                format!("is waiting for the background build of spintop ({secs} s so far)")
-            }
-            Phase::Compiling => {
-                let limit = if self.shared.warm.load(Ordering::SeqCst) {
-                    limits.compile_warm
-                } else {
-                    limits.compile
-                };
-                format!(
-                    "is compiling ({secs} s so far; the compile limit is {} s)",
-                    limit.as_secs()
-                )
-            }
-            Phase::Running => format!(
-                "is running ({secs} s so far; the time limit is {} s)",
-                limits.run.as_secs()
-            ),
-        };
-        json(
-            429,
-            serde_json::json!({
-                "result": format!("busy: another snippet {what}; press ▶ again when it has finished"),
-                "error": "busy",
-            }),
-        )
-    }
-
-    /// `/evaluate.json`: start a run, answer within [`Limits::answer_within`].
-    fn evaluate(self: &Arc<Self>, body: &[u8]) -> Reply {
-        #[derive(serde::Deserialize)]
-        struct Params {
-            code: String,
-            #[serde(default)]
-            edition: Option<String>,
-        }
-        let params: Params = match serde_json::from_slice(body) {
-            Ok(p) => p,
-            Err(e) => return reason(400, &format!("malformed request: {e}")),
-        };
-        {
-            let mut job = lock(&self.job);
-            if job.running {
-                return self.busy(&job);
-            }
-            *job = Job {
-                running: true,
-                progress: "waiting for its turn".into(),
-                ..Job::default()
-            };
-        }
-        let inner = Arc::clone(self);
-        let edition = params.edition.unwrap_or_else(|| "2024".into());
-        let answer_within = self.config.runner.limits.answer_within;
-        let (done_tx, done_rx) = std::sync::mpsc::channel();
-        // The run on a thread of its own: this connection answers within
-        // `answer_within` (202 and "pending" if the run goes on), and other
-        // connections meanwhile are told "busy", not queued.
-        std::thread::spawn(move || {
-            let outcome =
-                inner
-                    .config
-                    .runner
-                    .run(&params.code, &edition, &inner.shared, &mut |stage| {
-                        let mut job = lock(&inner.job);
-                        match stage {
-                            Stage::Compiling => {
-                                job.phase = Phase::Compiling;
-                                job.since = Instant::now();
-                                job.progress = "compiling".into();
-                            }
-                            Stage::Line(line) => {
-                                let secs = job.since.elapsed().as_secs();
-                                job.progress = format!("{line} ({secs} s)");
-                            }
-                            Stage::Running => {
-                                job.phase = Phase::Running;
-                                job.since = Instant::now();
-                                job.progress = "running".into();
-                            }
-                        }
-                    });
-            let mut job = lock(&inner.job);
-            job.running = false;
-            job.last = Some(outcome.clone());
-            drop(job);
-            let _ = done_tx.send(outcome);
-        });
-        match done_rx.recv_timeout(answer_within) {
-            Ok(outcome) => json(200, outcome_json(&outcome)),
-            Err(_) => {
-                // What holds it up: only a build of spintop itself takes
-                // minutes.
-                let phase = lock(&self.job).phase;
-                let result = match phase {
-                    Phase::Running => format!(
-                        "running… (its time limit is {} s)",
-                        self.config.runner.limits.run.as_secs()
-                    ),
-                    Phase::Compiling if self.shared.warm.load(Ordering::SeqCst) => {
-                        "compiling…".to_string()
-                    }
-                    Phase::Waiting | Phase::Compiling => "compiling… (the first run builds spintop for the book: a minute or two on a small machine; later runs take a second or two)".to_string(),
-                };
-                json(
-                    202,
-                    serde_json::json!({ "result": result, "pending": true }),
-                )
-            }
-        }
-    }
-
-    /// `/evaluate/status`: the run's progress, or its outcome once done.
-    fn status(&self) -> Reply {
-        let job = lock(&self.job);
-        let value = match (&job.running, &job.last) {
-            (true, _) => {
-                let progress = match (job.phase, lock(&self.warm).clone()) {
-                    (Phase::Waiting, WarmState::Building { started, progress }) => format!(
-                        "waiting for the background build of spintop ({} s): {progress}",
-                        started.elapsed().as_secs()
-                    ),
-                    _ => job.progress.clone(),
-                };
-                serde_json::json!({ "done": false, "progress": progress })
-            }
-            (false, Some(outcome)) => {
-                let mut v = outcome_json(outcome);
-                v["done"] = serde_json::Value::Bool(true);
-                v
-            }
-            (false, None) => serde_json::json!({ "done": true, "result": "" }),
-        };
-        drop(job);
-        json(200, value)
-    }
+/// Writes `reply` on `conn` with the [`SECURITY_HEADERS`]; whether it was
+/// written.
+fn send(conn: &mut http::Connection, reply: &Reply, keep_alive: bool, head_only: bool) -> bool {
+    let mut headers: Vec<(&str, &str)> = vec![("Content-Type", reply.content_type)];
+    headers.extend(SECURITY_HEADERS);
+    headers.extend(reply.headers.iter().map(|(k, v)| (*k, v.as_str())));
+    conn.respond(reply.code, &headers, &reply.body, keep_alive, head_only)
+        .is_ok()
 }
 
 /// Why a connection from `peer` is refused, if it is: another user's
@@ -835,81 +654,6 @@ fn refusal(peer: peer::Peer) -> Option<String> {
     }
 }
 
-/// A query's `token` parameter, and the query without it.
-fn split_token(query: &str) -> (Option<&str>, String) {
-    let mut token = None;
-    let mut rest = Vec::new();
-    for pair in query.split('&').filter(|p| !p.is_empty()) {
-        match pair.strip_prefix("token=") {
-            Some(t) if token.is_none() => token = Some(t),
-            _ => rest.push(pair),
-        }
-    }
-    (token, rest.join("&"))
-}
-
-/// The playground's answer shape: `result` is what the page shows.
-fn outcome_json(outcome: &Outcome) -> serde_json::Value {
-    serde_json::json!({
-        "result": outcome.shown(),
-        "error": outcome.error_kind(),
-        "success": outcome.success(),
-    })
-}
-
-/// The file under `site` that `path` names, if it stays inside `site`.
-pub fn site_file(site: &Path, path: &str) -> Option<PathBuf> {
-    let decoded = percent_decode(path)?;
-    let rel = decoded.trim_start_matches('/');
-    let rel = if rel.is_empty() || rel.ends_with('/') {
-        format!("{rel}index.html")
-    } else {
-        rel.to_string()
-    };
-    let rel = Path::new(&rel);
-    if rel.components().any(|c| !matches!(c, Component::Normal(_))) {
-        return None;
-    }
-    let file = site.join(rel);
-    file.is_file().then_some(file)
-}
-
-/// `%xx` decoding; `None` for a malformed escape or a NUL.
-fn percent_decode(s: &str) -> Option<String> {
-    let bytes = s.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        if bytes[i] == b'%' {
-            let hex = s.get(i + 1..i + 3)?;
-            out.push(u8::from_str_radix(hex, 16).ok()?);
-            i += 3;
-        } else {
-            out.push(bytes[i]);
-            i += 1;
-        }
-    }
-    let text = String::from_utf8(out).ok()?;
-    (!text.contains('\0')).then_some(text)
-}
-
-fn content_type(ext: &str) -> &'static str {
-    match ext {
-        "html" => "text/html; charset=utf-8",
-        "css" => "text/css; charset=utf-8",
-        "js" => "text/javascript; charset=utf-8",
-        "svg" => "image/svg+xml",
-        "png" => "image/png",
-        "json" => "application/json",
-        "woff" => "font/woff",
-        "woff2" => "font/woff2",
-        "ttf" => "font/ttf",
-        "ico" => "image/x-icon",
-        "txt" | "md" => "text/plain; charset=utf-8",
-        _ => "application/octet-stream",
-    }
-}
-
 /// A one-line reason, as JSON in the playground's shape (the page shows it).
 fn reason(code: u16, why: &str) -> Reply {
     json(code, serde_json::json!({ "result": why, "error": why }))
@@ -924,116 +668,9 @@ fn json(code: u16, value: serde_json::Value) -> Reply {
     }
 }
 
-/// An answer read by [`fetch`].
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Response {
-    /// The status code (0 if the answer was not HTTP).
-    pub code: u16,
-    /// The headers, in order.
-    pub headers: Vec<(String, String)>,
-    /// The body.
-    pub body: String,
-}
-
-impl Response {
-    /// The first value of header `name` (case-insensitive).
-    pub fn header(&self, name: &str) -> Option<&str> {
-        http::values(&self.headers, name).next()
-    }
-}
-
-/// A minimal HTTP/1.1 client for the server's own checks (`spintop book
-/// --self-test` and the tests): one request, `Connection: close`, the
-/// answer back.
-pub fn fetch(
-    port: u16,
-    method: &str,
-    path: &str,
-    headers: &[(&str, &str)],
-    body: &[u8],
-) -> std::io::Result<Response> {
-    use std::io::Write;
-    let mut stream = TcpStream::connect(("127.0.0.1", port))?;
-    stream.set_read_timeout(Some(Duration::from_secs(1200)))?;
-    let mut head = format!(
-        "{method} {path} HTTP/1.1\r\nConnection: close\r\nContent-Length: {}\r\n",
-        body.len()
-    );
-    if !headers.iter().any(|(k, _)| k.eq_ignore_ascii_case("Host")) {
-        head.push_str(&format!("Host: 127.0.0.1:{port}\r\n"));
-    }
-    for (k, v) in headers {
-        head.push_str(&format!("{k}: {v}\r\n"));
-    }
-    head.push_str("\r\n");
-    stream.write_all(head.as_bytes())?;
-    stream.write_all(body)?;
-    let mut raw = Vec::new();
-    stream.read_to_end(&mut raw)?;
-    let text = String::from_utf8_lossy(&raw).into_owned();
-    let (head, body) = text.split_once("\r\n\r\n").unwrap_or((&text, ""));
-    let mut lines = head.lines();
-    let code = lines
-        .next()
-        .and_then(|l| l.split_whitespace().nth(1))
-        .and_then(|c| c.parse().ok())
-        .unwrap_or(0);
-    let headers = lines
-        .filter_map(|l| l.split_once(':'))
-        .map(|(k, v)| (k.trim().to_string(), v.trim().to_string()))
-        .collect();
-    Ok(Response {
-        code,
-        headers,
-        body: body.to_string(),
-    })
-}
-
-/// [`fetch`], the status code and the body only.
-pub fn request(
-    port: u16,
-    method: &str,
-    path: &str,
-    headers: &[(&str, &str)],
-    body: &[u8],
-) -> std::io::Result<(u16, String)> {
-    fetch(port, method, path, headers, body).map(|r| (r.code, r.body))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_path_outside_the_site_is_never_a_file() {
-        let site = Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src");
-        assert!(site_file(&site, "/SUMMARY.md").is_some());
-        assert!(
-            site_file(&site, "/figures/").is_none(),
-            "no index.html there"
-        );
-        for bad in [
-            "/../Cargo.toml",
-            "/figures/../../Cargo.toml",
-            "/%2e%2e/Cargo.toml",
-            "//etc/passwd",
-            "/a%00b",
-            "/%zz",
-        ] {
-            assert!(site_file(&site, bad).is_none(), "{bad}");
-        }
-    }
-
-    #[test]
-    fn the_token_parameter_is_split_from_the_rest_of_the_query() {
-        assert_eq!(split_token(""), (None, String::new()));
-        assert_eq!(split_token("token=ab"), (Some("ab"), String::new()));
-        assert_eq!(
-            split_token("x=1&token=ab&y=2"),
-            (Some("ab"), "x=1&y=2".to_string())
-        );
-        assert_eq!(split_token("tokens=ab"), (None, "tokens=ab".to_string()));
-    }
 
     #[test]
     fn tokens_are_long_and_differ() {

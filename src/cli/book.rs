@@ -41,7 +41,7 @@ pub struct BookArgs {
     self_test: bool,
     /// The supervisor of a snippet's process tree (the server starts it;
     /// see `spintop::server`).
-    #[arg(long = "supervise", hide = true, num_args = 2.., allow_hyphen_values = true, value_name = "BOUNDS PROGRAM ARGS")]
+    #[arg(long = "supervise", hide = true, num_args = 1.., allow_hyphen_values = true, value_name = "SPEC PROGRAM ARGS")]
     supervise: Option<Vec<OsString>>,
 }
 
@@ -147,8 +147,9 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     }
     writeln!(
         out,
-        "spintop book: serving {}\n  open this address: the token in it is the key, and the book answers no other (▶ runs each snippet against this spintop; Ctrl-C stops)",
-        server.url()
+        "spintop book: serving {}\n  open this address: the token in it is the key, and the book answers no other (▶ runs each snippet against this spintop, in {}; Ctrl-C stops)",
+        server.url(),
+        server.containment().described()
     )?;
     out.flush()?;
     // Before the server becomes a subreaper (in `serve`): the browser must
@@ -180,7 +181,9 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     out.flush()?;
     server.warm_up();
     std::thread::scope(|scope| -> Result<(), CliError> {
-        scope.spawn(|| server.serve(&stop));
+        std::thread::Builder::new()
+            .spawn_scoped(scope, || server.serve(&stop))
+            .map_err(|e| CliError::Stopped(format!("cannot start the server's thread: {e}")))?;
         let mut shown = false;
         while !stop.load(Ordering::Relaxed) {
             if child_ended.swap(false, Ordering::Relaxed) {
@@ -214,16 +217,18 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     })?;
     // The tree, then whatever a tree left to this process (for up to 3 s:
     // what is killed may have started more meanwhile).
-    let mut gone = server.shutdown();
     let start = Instant::now();
+    let mut gone = server.shutdown();
+    let swept = Instant::now();
     while server.sweep_strays() > 0 {
-        if start.elapsed() > Duration::from_secs(3) {
+        if swept.elapsed() > Duration::from_secs(3) {
             gone = false;
             break;
         }
         std::thread::sleep(Duration::from_millis(20));
     }
     server.sweep_strays();
+    let waited = start.elapsed().as_secs_f64().ceil();
     if let Some(file) = forward {
         let _ = std::fs::remove_file(file);
     }
@@ -242,7 +247,7 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     } else {
         writeln!(
             out,
-            "spintop book: stopped ({name}), but what its last snippet started did not end within 3 s"
+            "spintop book: stopped ({name}), but what its last snippet started did not end within {waited} s"
         )?;
     }
     Ok(())
@@ -299,7 +304,9 @@ fn self_test(server: Server, out: &mut impl Write) -> Result<(), CliError> {
     let stop = AtomicBool::new(false);
     server.warm_up();
     std::thread::scope(|scope| {
-        scope.spawn(|| server.serve(&stop));
+        std::thread::Builder::new()
+            .spawn_scoped(scope, || server.serve(&stop))
+            .map_err(|e| CliError::Stopped(format!("cannot start the server's thread: {e}")))?;
         let result = measure(&server, out);
         stop.store(true, Ordering::Relaxed);
         result
