@@ -393,6 +393,10 @@ fn stage(args: &[OsString]) -> i32 {
     if subreaper(rustix::process::getpid()).is_err() {
         return 2;
     }
+    if let Err(e) = forbid_stopping() {
+        eprintln!("spintop book: cannot bound the snippet's processes: {e}");
+        return 2;
+    }
     let child = match Command::new(program)
         .args(rest)
         .stdin(Stdio::null())
@@ -417,6 +421,71 @@ fn stage(args: &[OsString]) -> i32 {
         eprintln!("{}", signal_note(signal, spec.bounds));
     }
     mirror(status)
+}
+
+/// Forbids this process and all it starts to stop a process (SIGSTOP,
+/// SIGTSTP, SIGTTIN, SIGTTOU, by any of the system calls that send a
+/// signal) or to trace one, with a seccomp filter that no process can
+/// remove: a stopped supervisor cannot end its tree, and a snippet runs as
+/// the reader, whose processes may otherwise signal each other. (In a PID
+/// namespace the supervisor has no process id to name; outside one, this
+/// is what keeps it running.) Such calls fail with EPERM. Also sets
+/// `no_new_privs`: a set-user-ID program started below gains nothing.
+///
+/// NOTE: where seccompiler knows no filter for the machine
+/// (x86_64, aarch64 and riscv64 only), nothing is forbidden.
+#[cfg(target_os = "linux")]
+fn forbid_stopping() -> Result<(), String> {
+    use seccompiler::{
+        BpfProgram, SeccompAction, SeccompCmpArgLen, SeccompCmpOp, SeccompCondition, SeccompFilter,
+        SeccompRule, TargetArch,
+    };
+    let Ok(arch) = TargetArch::try_from(std::env::consts::ARCH) else {
+        return Ok(());
+    };
+    let stops = [libc::SIGSTOP, libc::SIGTSTP, libc::SIGTTIN, libc::SIGTTOU];
+    // Each system call that sends a signal, and which argument the signal is.
+    let senders = [
+        (libc::SYS_kill, 1),
+        (libc::SYS_tkill, 1),
+        (libc::SYS_tgkill, 2),
+        (libc::SYS_rt_sigqueueinfo, 1),
+        (libc::SYS_rt_tgsigqueueinfo, 2),
+        (libc::SYS_pidfd_send_signal, 1),
+    ];
+    let mut rules = std::collections::BTreeMap::new();
+    for (call, arg) in senders {
+        let any_stop = stops
+            .iter()
+            .map(|&signal| {
+                let cmp = SeccompCondition::new(
+                    arg,
+                    SeccompCmpArgLen::Dword,
+                    SeccompCmpOp::Eq,
+                    signal.unsigned_abs().into(),
+                )?;
+                SeccompRule::new(vec![cmp])
+            })
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| e.to_string())?;
+        rules.insert(call, any_stop);
+    }
+    // No rule: every call.
+    rules.insert(libc::SYS_ptrace, Vec::new());
+    let filter = SeccompFilter::new(
+        rules,
+        SeccompAction::Allow,
+        SeccompAction::Errno(libc::EPERM.unsigned_abs()),
+        arch,
+    )
+    .map_err(|e| e.to_string())?;
+    let program = BpfProgram::try_from(filter).map_err(|e| e.to_string())?;
+    seccompiler::apply_filter(&program).map_err(|e| format!("cannot set its seccomp filter: {e}"))
+}
+
+#[cfg(not(target_os = "linux"))]
+fn forbid_stopping() -> Result<(), String> {
+    Ok(())
 }
 
 /// `probe`: whether this process can make a PID namespace (see
