@@ -5,7 +5,7 @@
 //! are parsed by `httparse`; each connection has a thread of its own
 //! (`http.rs` says why no pooled server crate). Because it runs code on the
 //! reader's machine, this is what holds, each point tested against the real
-//! server in `tests/server.rs`:
+//! server in `tests/server/`:
 //!
 //! # Who can run code: the reader, holding the printed address
 //!
@@ -27,44 +27,106 @@
 //! - Every request needs it, pages and static files included. The first
 //!   visit with `?token=` sets a cookie (HttpOnly, SameSite=Strict, named
 //!   after the port, since a host's cookies are shared by all its ports) and
-//!   redirects to the address without the token; a request with neither gets
-//!   a 403 page that says to open the address printed in the terminal.
+//!   redirects to the address without the token. A request with neither
+//!   gets a 403 page that says to open the printed address, and takes the
+//!   key again in a form (posted to `/login` from the book's own origin
+//!   only): such a page may overwrite the cookie, which cookies' sharing of
+//!   ports allows, and the reader then pastes the address or the token
+//!   there instead of restarting the book.
 //! - A run (`/evaluate.json`, `/evaluate/status`) carries the token in a
 //!   header (`X-Spintop-Token`) that the served pages add; a cookie alone
-//!   does not start a run.
+//!   does not start a run. A page asked with that header is served too.
 //! - Tokens are compared in constant time (`subtle`).
-//! - Other origins: the server listens on 127.0.0.1 only; a `Host` other
-//!   than `127.0.0.1:PORT`/`localhost:PORT` (DNS rebinding) or a foreign
-//!   `Origin` is refused (403); no CORS headers; every answer forbids framing
-//!   (`X-Frame-Options: DENY`, CSP `frame-ancestors 'none'`) and sniffing
-//!   (`nosniff`), and sends no referrer and `Cache-Control: no-store`.
+//! - Other origins: the server listens on 127.0.0.1, and on ::1 at the same
+//!   port where the machine has IPv6 loopback, so that no other process can
+//!   listen there: a browser resolves `localhost` to ::1 first, and would
+//!   send the address to whoever held it. It refuses to start if another
+//!   process holds [::1] at the port asked for (with a free port asked for,
+//!   it takes one free on both). A `Host` other than
+//!   `127.0.0.1:PORT`, `localhost:PORT` or `[::1]:PORT` (DNS rebinding) or a
+//!   foreign `Origin` is refused (403); no CORS headers; every answer
+//!   forbids framing (`X-Frame-Options: DENY`, CSP `frame-ancestors
+//!   'none'`) and sniffing (`nosniff`), and sends no referrer and
+//!   `Cache-Control: no-store`.
+//!
+//! # Folders: the reader's own
+//!
+//! The built book it serves with the token, the scratch project it builds
+//! and the build folder whose programs it runs must each be the reader's,
+//! and neither they nor any folder above them writable by another user or
+//! owned by one but root; a sticky folder above (as /tmp) is allowed when
+//! the next one down is the reader's (`src/server/folders.rs`). Else
+//! [`Server::bind`] refuses, saying which folder and why. The scratch folder
+//! is made fresh at each start, mode 0700. Cargo runs in `/` and finds the
+//! scratch project by its path, so that no `.cargo/config.toml` in a folder
+//! above the scratch (which cargo reads from the folder it runs in upward,
+//! whoever wrote it, and whatever `--config` or `CARGO_HOME` say) is read;
+//! the reader's own `CARGO_HOME` configuration is.
 //!
 //! # What a snippet can do: anything the reader can, within limits
 //!
 //! A snippet runs as the reader, with the reader's files and network. Each
-//! build and each run is a process tree under a supervisor
-//! (`src/server/tree.rs` says how): its own session and process group, a
-//! child subreaper so that what it starts (daemons, double forks, `setsid`,
-//! `nohup`) stays in the tree, and for a run resource limits ([`Limits`]):
-//! per process 4 GiB of address space and 11 CPU seconds, files up to
-//! 64 MiB each, no core dumps, and at most 512 processes and threads more
-//! than the reader had when it started (the kernel does not hold root to
-//! that one). These bound each process, not the tree's sum: its processes
-//! together may take more memory, and its files more disk (or `/dev/shm`,
-//! which is memory). A compile (cargo, rustc) has only its time limit. One
-//! tree at a time: a second ▶ gets 429 with what is busy and for how long.
-//! A run is killed, whole, after 10 s; a compile after 120 s once the
-//! scratch project is built (900 s for the first, cold build); the output
-//! is cut at 64 KiB.
+//! build and each run is a process tree under a supervisor and its stage
+//! (`src/server/supervise.rs` says how), with resource limits for a run
+//! ([`Limits`]): per process 4 GiB of address space and 11 CPU seconds,
+//! files up to 64 MiB each, no core dumps, and at most 512 processes and
+//! threads more than the reader had when it started, within the reader's
+//! own hard limit and leaving 96 below the soft one for the server's
+//! threads (the kernel does not hold root to this one). These bound each
+//! process, not the tree's sum: its processes together may take more
+//! memory, and its files more disk (or `/dev/shm`, which is memory). A
+//! compile (cargo, rustc) has only its time limit. One tree at a time: a
+//! second ▶ gets 429 with what is busy and for how long. A run is killed,
+//! whole, after 10 s; a compile after 120 s once the scratch project is
+//! built (900 s for the first, cold build); the output is cut at 64 KiB.
 //!
-//! A snippet may kill its own supervisor (it runs as the reader): what it
-//! started then lands on the server, and `spintop book` kills every process
-//! below it but the running tree as soon as it sees a child end
-//! ([`Server::sweep_strays`]). What a snippet hands to a service outside
-//! its tree (cron, `systemd-run`, an already running tmux server), or a
-//! program written to outrun the kill (each process forking the next and
-//! ending faster than `/proc` can be read), is beyond these limits, as it
-//! would be for any program the reader runs.
+//! Each tree is ended as a unit, the strongest the machine allows
+//! ([`Containment`], `src/server/unit.rs`; [`Server::containment`] says
+//! which, and `spintop book` prints it):
+//!
+//! - **Linux where the reader may make a user namespace** (most
+//!   distributions; not Ubuntu 23.10 and later by default, whose AppArmor
+//!   restricts them, nor where `user.max_user_namespaces` is 0), **or as
+//!   root: a PID namespace.** No process leaves it; when its init (the
+//!   stage) dies, the kernel kills every process in it; the stage dies with
+//!   the supervisor, and the supervisor with the server (SIGKILL by
+//!   `PR_SET_PDEATHSIG`). From inside, neither has a process id, so a
+//!   snippet can neither signal nor trace them.
+//! - **Linux where the reader may make a cgroup v2 below the server's** (a
+//!   systemd user session's terminal; Linux 5.14 for `cgroup.kill`): the
+//!   tree's own cgroup, killed at once, forks under way included. The
+//!   reader owns the parent cgroup, so a snippet may move itself out; the
+//!   supervisor then still finds it below itself.
+//! - **Other Linux: the process group and session**, the supervisor and
+//!   the stage child subreapers (`PR_SET_CHILD_SUBREAPER`), so that what a
+//!   snippet starts (daemons, double forks, `setsid`, `nohup`) stays below
+//!   them; every process below the supervisor or in its session is killed,
+//!   again and again until none is left.
+//!
+//! Whatever the unit, on Linux: the supervisor is not dumpable (a process
+//! of the reader, root aside, can neither trace it nor open its `/proc`
+//! files, such as its control pipe), dies with the server (checked at
+//! once: a server gone before would send nothing), and keeps the time limit
+//! on its own clock, so a tree ends on time while the server is stopped
+//! (Ctrl-Z) and as soon as the server is killed (SIGKILL, the OOM killer).
+//! Outside a namespace it catches that death's SIGTERM and ends the tree
+//! first. A snippet may not stop or trace any process (a seccomp filter:
+//! SIGSTOP, SIGTSTP, SIGTTIN and SIGTTOU by any call, and `ptrace`, fail
+//! with EPERM; on x86_64, aarch64 and riscv64, where seccompiler has a
+//! filter), so it cannot stop its supervisor. It may kill it (it runs as
+//! the reader) outside a namespace: what it started then lands on the
+//! server, which kills the tree's cgroup, session and group, and
+//! `spintop book` every process below it but the running tree
+//! ([`Server::sweep_strays`]).
+//!
+//! Beyond these limits, as for any program the reader runs: what a snippet
+//! hands to a service outside its tree (cron, `systemd-run`, an already
+//! running tmux server); outside a namespace, a program written to outrun
+//! the kill (each process forking the next faster than `/proc` is read) or
+//! killing its supervisor at the instant the server is killed; and
+//! whatever root's snippets do (root may trace and signal anything).
+//! Elsewhere than Linux (macOS, the BSDs; not tested) a tree has only its
+//! session, process group and limits, and the server's kill of its group.
 //!
 //! # Slow clients
 //!
@@ -75,20 +137,25 @@
 //! among them). Malformed requests get a 4xx with a one-line
 //! reason: 400, 405, 404, 411, 413 (over 64 KiB).
 //!
-//! # Stops
+//! # Stops and exhaustion
 //!
 //! [`Server::shutdown`] (also on drop) kills the running tree, a snippet or
 //! cargo with its compilers, and waits until it is gone; `spintop book`
 //! calls it on SIGINT, SIGTERM, SIGHUP and SIGQUIT, then kills whatever a
 //! snippet left to it, and says whether anything survived. If the server
-//! itself is killed (SIGKILL), each supervisor sees its control pipe close
-//! and kills its tree; what a snippet had already left to the server then
-//! goes to init.
+//! itself is killed, its trees end with it (above).
+//!
+//! A thread the system refuses (the reader's process limit taken by a fork
+//! bomb outside the tree) is no panic: the connection is answered 503 and
+//! the server goes on; a run's output is read by the thread that waits for
+//! it, and the supervisor starts none.
 //!
 //! # What is written where
 //!
 //! The built book (`target/spintop-book/site`, by mdBook), the scratch
-//! project (`target/spintop-book/scratch`), the build folder it shares with
+//! project (`target/spintop-book/scratch`), in a cgroup unit a cgroup
+//! `spintop-book-PID` below the server's for each tree (removed with it),
+//! the build folder it shares with
 //! the workspace (`target/debug`: spintop's debug build and the snippet's
 //! program), and with `--open` a page readable by the reader only that
 //! forwards the browser to the address (removed at stop). And whatever a

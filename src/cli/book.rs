@@ -6,7 +6,7 @@
 
 use super::gate::Gate;
 use super::{CliError, bad};
-use crate::server::{self, Config, Server, WarmUp, default_runner};
+use crate::server::{self, Config, Containment, Server, WarmUp, default_runner};
 use clap::Args;
 use std::ffi::OsString;
 use std::io::Write;
@@ -39,6 +39,10 @@ pub struct BookArgs {
     /// snippet through the server twice, print the times, exit.
     #[arg(long)]
     self_test: bool,
+    /// The strongest way to end a snippet's tree as a unit: namespace (the
+    /// default), cgroup or group; the machine may allow less (for tests).
+    #[arg(long, hide = true, value_name = "UNIT")]
+    containment: Option<String>,
     /// The supervisor of a snippet's process tree (the server starts it;
     /// see `spintop::server`).
     #[arg(long = "supervise", hide = true, num_args = 1.., allow_hyphen_values = true, value_name = "SPEC PROGRAM ARGS")]
@@ -135,6 +139,10 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     let mut runner = default_runner(&repo);
     if let Some(scratch) = args.scratch {
         runner.scratch = scratch;
+    }
+    if let Some(name) = &args.containment {
+        runner.containment = Containment::named(name)
+            .ok_or_else(|| bad(format!("--containment {name}: namespace, cgroup or group")))?;
     }
     let server = Server::bind(Config {
         site,

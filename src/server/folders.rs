@@ -75,29 +75,36 @@ fn verdict(meta: &Metadata, me: u32, last: bool) -> Option<String> {
 /// Checks that `dir` (which exists) and every folder above it may be
 /// trusted (see the module's docs); returns it resolved.
 pub fn check(what: &str, dir: &Path) -> Result<PathBuf, Untrusted> {
-    let untrusted = |path: &Path, why: String| Untrusted {
+    check_chain(what, dir, true)
+}
+
+/// [`check`], `dir` itself judged as the folder trusted (`is_folder`) or
+/// as one above it (the scratch folder's parent: the scratch is made in it
+/// by the server, mode 0700).
+fn check_chain(what: &str, dir: &Path, is_folder: bool) -> Result<PathBuf, Untrusted> {
+    // `above`: the folder above `dir` that fails, `None` for `dir` itself.
+    let untrusted = |above: Option<&Path>, why: String| Untrusted {
         what: what.to_string(),
         path: dir.to_path_buf(),
-        why: if path == dir {
-            format!("{why}: {}", risk(what))
-        } else {
-            format!("{} above it {why}: {}", path.display(), risk(what))
+        why: match above {
+            None => format!("{why}: {}", risk(what)),
+            Some(path) => format!("{} above it {why}: {}", path.display(), risk(what)),
         },
     };
     let resolved =
-        std::fs::canonicalize(dir).map_err(|e| untrusted(dir, format!("cannot be read ({e})")))?;
+        std::fs::canonicalize(dir).map_err(|e| untrusted(None, format!("cannot be read ({e})")))?;
     let me = rustix::process::geteuid().as_raw();
     let chain: Vec<&Path> = resolved.ancestors().collect();
     for (i, folder) in chain.iter().rev().enumerate() {
+        let last = is_folder && i + 1 == chain.len();
+        let at = (!last).then_some(*folder);
         let meta = std::fs::metadata(folder)
-            .map_err(|e| untrusted(folder, format!("cannot be read ({e})")))?;
-        let last = i + 1 == chain.len();
+            .map_err(|e| untrusted(at, format!("cannot be read ({e})")))?;
         if !meta.is_dir() {
-            return Err(untrusted(folder, "is not a folder".into()));
+            return Err(untrusted(at, "is not a folder".into()));
         }
         if let Some(why) = verdict(&meta, me, last) {
-            let shown = if last { dir } else { folder };
-            return Err(untrusted(shown, why));
+            return Err(untrusted(at, why));
         }
     }
     Ok(resolved)
@@ -121,13 +128,20 @@ pub fn fresh_scratch(scratch: &Path) -> Result<PathBuf, Untrusted> {
     };
     std::fs::create_dir_all(parent)
         .map_err(|e| refuse(format!("cannot make the folder above it: {e}")))?;
-    let parent = check("--scratch", parent).map_err(|mut e| {
+    let parent = check_chain("--scratch", parent, false).map_err(|mut e| {
         e.path = scratch.to_path_buf();
         e
     })?;
     let resolved = parent.join(name);
+    let me = rustix::process::geteuid().as_raw();
     match std::fs::symlink_metadata(&resolved) {
         Err(_) => {}
+        Ok(meta) if meta.uid() != me => {
+            return Err(refuse(format!(
+                "belongs to uid {}, not to you (uid {me}); name a folder of your own",
+                meta.uid()
+            )));
+        }
         Ok(meta) if meta.is_dir() && is_old_scratch(&resolved) => {
             std::fs::remove_dir_all(&resolved)
                 .map_err(|e| refuse(format!("cannot remove the old scratch project: {e}")))?;

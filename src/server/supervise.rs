@@ -91,7 +91,7 @@ impl Spec {
         for part in arg.split(',') {
             let (key, value) = part.split_once('=')?;
             match key {
-                "unit" => unit = Some(Containment::parse(value)?),
+                "unit" => unit = Some(Containment::named(value)?),
                 _ => {
                     let value = value.parse::<u64>().ok()?;
                     match key {

@@ -46,7 +46,8 @@ impl Containment {
         }
     }
 
-    pub(crate) fn parse(name: &str) -> Option<Self> {
+    /// The containment named `name` (see [`Containment::name`]).
+    pub fn named(name: &str) -> Option<Self> {
         [Self::Group, Self::Cgroup, Self::Namespace]
             .into_iter()
             .find(|c| c.name() == name)
