@@ -224,16 +224,20 @@ fn can_become_another_user() -> bool {
 
 /// A snippet that starts a `sleep` child and a busy loop detached in a
 /// session of its own (its parent gone at once), writes their process ids
-/// into its folder, and then waits forever.
+/// into its folder, and then waits forever. Each child writes its own id,
+/// read from `/proc/self/stat`: the machine's number (in a PID namespace
+/// the snippet sees other numbers).
 const LEAVES_CHILDREN: &str = r#"use std::process::Command;
 fn main() {
-    let sleeper = Command::new("sleep").arg("1000").spawn().unwrap();
-    std::fs::write("sleeper.pid", sleeper.id().to_string()).unwrap();
     Command::new("sh")
-        .args(["-c", "setsid sh -c 'echo $$ > escapee.pid.tmp; mv escapee.pid.tmp escapee.pid; while :; do :; done' &"])
+        .args(["-c", "read -r pid rest < /proc/self/stat; echo $pid > sleeper.pid.tmp; mv sleeper.pid.tmp sleeper.pid; exec sleep 1000"])
+        .spawn()
+        .unwrap();
+    Command::new("sh")
+        .args(["-c", "setsid sh -c 'read -r pid rest < /proc/self/stat; echo $pid > escapee.pid.tmp; mv escapee.pid.tmp escapee.pid; while :; do :; done' &"])
         .status()
         .unwrap();
-    while std::fs::metadata("escapee.pid").is_err() {
+    while std::fs::metadata("escapee.pid").is_err() || std::fs::metadata("sleeper.pid").is_err() {
         std::thread::sleep(std::time::Duration::from_millis(10));
     }
     println!("started both");
@@ -511,4 +515,23 @@ fn parent_of(pid: i32) -> Option<i32> {
         .into_iter()
         .find(|&(p, _, _)| p == pid)
         .map(|(_, ppid, _)| ppid)
+}
+
+/// How long ago process `pid` started, from its start time in `/proc`
+/// (clock ticks since boot, 100 a second on Linux) and the machine's
+/// uptime.
+fn age(pid: i32) -> Option<Duration> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    let ticks: f64 = stat[stat.rfind(')')? + 2..]
+        .split(' ')
+        .nth(19)?
+        .parse()
+        .ok()?;
+    let uptime: f64 = std::fs::read_to_string("/proc/uptime")
+        .ok()?
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()?;
+    Some(Duration::from_secs_f64((uptime - ticks / 100.0).max(0.0)))
 }
