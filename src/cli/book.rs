@@ -188,9 +188,34 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     )?;
     out.flush()?;
     server.warm_up();
+    serve_until_stopped(&server, &stop, &child_ended, out)?;
+    let name = match signal.load(Ordering::Relaxed) as i32 {
+        signal_hook::consts::SIGINT => "SIGINT",
+        signal_hook::consts::SIGTERM => "SIGTERM",
+        signal_hook::consts::SIGHUP => "SIGHUP",
+        signal_hook::consts::SIGQUIT => "SIGQUIT",
+        _ => "a signal",
+    };
+    let said = stop_everything(&server, name);
+    if let Some(file) = forward {
+        let _ = std::fs::remove_file(file);
+    }
+    writeln!(out, "{said}")?;
+    Ok(())
+}
+
+/// Serves on a thread of its own until `stop`; meanwhile says when the
+/// background build is done, and kills what a snippet left to this process
+/// whenever a child ends (`child_ended`).
+fn serve_until_stopped(
+    server: &Server,
+    stop: &AtomicBool,
+    child_ended: &AtomicBool,
+    out: &mut Gate<'_>,
+) -> Result<(), CliError> {
     std::thread::scope(|scope| -> Result<(), CliError> {
         std::thread::Builder::new()
-            .spawn_scoped(scope, || server.serve(&stop))
+            .spawn_scoped(scope, || server.serve(stop))
             .map_err(|e| CliError::Stopped(format!("cannot start the server's thread: {e}")))?;
         let mut shown = false;
         while !stop.load(Ordering::Relaxed) {
@@ -198,33 +223,43 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
                 server.sweep_strays();
             }
             if !shown {
-                match server.warm_up_state() {
-                    WarmUp::Ready { took } => {
-                        writeln!(
-                            out,
-                            "spintop book: ▶ is ready (the background build took {:.0} s)",
-                            took.as_secs_f64()
-                        )?;
-                        shown = true;
-                    }
-                    WarmUp::Failed { why } => {
-                        let first = why.lines().next().unwrap_or("").to_string();
-                        writeln!(
-                            out,
-                            "spintop book: the background build failed ({first}); ▶ will show the whole message"
-                        )?;
-                        shown = true;
-                    }
-                    WarmUp::NotStarted | WarmUp::Building { .. } => {}
-                }
-                out.flush()?;
+                shown = say_warm_up(server, out)?;
             }
             std::thread::sleep(Duration::from_millis(50));
         }
         Ok(())
-    })?;
-    // The tree, then whatever a tree left to this process (for up to 3 s:
-    // what is killed may have started more meanwhile).
+    })
+}
+
+/// Says how the background build ended, once it has: whether it did.
+fn say_warm_up(server: &Server, out: &mut Gate<'_>) -> Result<bool, CliError> {
+    let said = match server.warm_up_state() {
+        WarmUp::Ready { took } => {
+            writeln!(
+                out,
+                "spintop book: ▶ is ready (the background build took {:.0} s)",
+                took.as_secs_f64()
+            )?;
+            true
+        }
+        WarmUp::Failed { why } => {
+            let first = why.lines().next().unwrap_or("").to_string();
+            writeln!(
+                out,
+                "spintop book: the background build failed ({first}); ▶ will show the whole message"
+            )?;
+            true
+        }
+        WarmUp::NotStarted | WarmUp::Building { .. } => false,
+    };
+    out.flush()?;
+    Ok(said)
+}
+
+/// Stops the running tree, then whatever a tree left to this process (for
+/// up to 3 s: what is killed may have started more meanwhile); the line
+/// that says so, after signal `name`.
+fn stop_everything(server: &Server, name: &str) -> String {
     let start = Instant::now();
     let mut gone = server.shutdown();
     let swept = Instant::now();
@@ -236,29 +271,14 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
         std::thread::sleep(Duration::from_millis(20));
     }
     server.sweep_strays();
-    let waited = start.elapsed().as_secs_f64().ceil();
-    if let Some(file) = forward {
-        let _ = std::fs::remove_file(file);
-    }
-    let name = match signal.load(Ordering::Relaxed) as i32 {
-        signal_hook::consts::SIGINT => "SIGINT",
-        signal_hook::consts::SIGTERM => "SIGTERM",
-        signal_hook::consts::SIGHUP => "SIGHUP",
-        signal_hook::consts::SIGQUIT => "SIGQUIT",
-        _ => "a signal",
-    };
     if gone {
-        writeln!(
-            out,
-            "spintop book: stopped ({name}); nothing it started is left running"
-        )?;
+        format!("spintop book: stopped ({name}); nothing it started is left running")
     } else {
-        writeln!(
-            out,
+        let waited = start.elapsed().as_secs_f64().ceil();
+        format!(
             "spintop book: stopped ({name}), but what its last snippet started did not end within {waited} s"
-        )?;
+        )
     }
-    Ok(())
 }
 
 /// `--open`: writes a page readable by the reader only that forwards to the

@@ -39,8 +39,9 @@ pub struct Limits {
     /// How many processes and threads a run may start beyond those the
     /// reader has when it starts (RLIMIT_NPROC counts every task of a user,
     /// so it is set from that count): a fork bomb stops there, with the
-    /// machine's other programs still able to start theirs. The kernel does
-    /// not hold root to it.
+    /// machine's other programs still able to start theirs. Within the
+    /// reader's hard limit, and 96 below the soft one, which the server's
+    /// threads need. The kernel does not hold root to it.
     pub processes: u64,
     /// The most output kept; the rest is dropped, with a note.
     pub output_bytes: usize,
@@ -76,7 +77,7 @@ pub struct Runner {
     /// The build folder shared with the workspace.
     pub target_dir: PathBuf,
     /// The spintop binary, which supervises each build and run
-    /// (`spintop book --supervise`, see `src/server/tree.rs`).
+    /// (`spintop book --supervise`, see `src/server/supervise.rs`).
     pub launcher: PathBuf,
     /// The limits.
     pub limits: Limits,
