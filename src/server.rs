@@ -46,8 +46,10 @@
 //!   `127.0.0.1:PORT`, `localhost:PORT` or `[::1]:PORT` (DNS rebinding) or a
 //!   foreign `Origin` is refused (403); no CORS headers; every answer
 //!   forbids framing (`X-Frame-Options: DENY`, CSP `frame-ancestors
-//!   'none'`) and sniffing (`nosniff`), and sends no referrer and
-//!   `Cache-Control: no-store`.
+//!   'none'`) and sniffing (`nosniff`), sends a referrer only to itself
+//!   (`same-origin`: with `no-referrer` a browser sends `Origin: null` on
+//!   a form's POST, and the 403 page's form could not prove its origin),
+//!   and `Cache-Control: no-store`.
 //!
 //! # Folders: the reader's own
 //!
@@ -251,13 +253,13 @@ const REFUSING: usize = 8;
 /// one, and if none is (all are being answered), the new one gets 503.
 pub const MAX_CONNECTIONS: usize = 64;
 
-/// The headers of every answer: no framing, no sniffing, no referrer, no
-/// copy kept (the pages carry the token).
+/// The headers of every answer: no framing, no sniffing, no referrer to
+/// another origin, no copy kept (the pages carry the token).
 const SECURITY_HEADERS: [(&str, &str); 5] = [
     ("X-Frame-Options", "DENY"),
     ("Content-Security-Policy", "frame-ancestors 'none'"),
     ("X-Content-Type-Options", "nosniff"),
-    ("Referrer-Policy", "no-referrer"),
+    ("Referrer-Policy", "same-origin"),
     ("Cache-Control", "no-store"),
 ];
 

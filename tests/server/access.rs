@@ -241,7 +241,7 @@ fn every_answer_forbids_framing_and_sniffing_and_is_not_stored() {
             ("X-Frame-Options", "DENY"),
             ("Content-Security-Policy", "frame-ancestors 'none'"),
             ("X-Content-Type-Options", "nosniff"),
-            ("Referrer-Policy", "no-referrer"),
+            ("Referrer-Policy", "same-origin"),
             ("Cache-Control", "no-store"),
         ] {
             assert_eq!(r.header(name), Some(value), "{} {name}: {r:?}", r.code);
