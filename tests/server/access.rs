@@ -559,16 +559,13 @@ fn a_listener_on_ipv6_of_another_user_cannot_receive_the_token() {
     assert_eq!(first.trim(), "listening");
     let root = scratch_root("squatted");
     let config = |port| Config {
-        site: site(&root),
         port,
-        runner: Runner {
-            scratch: root.join("scratch"),
-            spintop: repo(),
-            target_dir: target_dir(),
-            launcher: PathBuf::from(env!("CARGO_BIN_EXE_spintop")),
-            limits: limits(),
-            containment: Containment::Group,
-        },
+        ..config(
+            site(&root),
+            root.join("scratch"),
+            limits(),
+            Containment::Group,
+        )
     };
     match Server::bind(config(port)) {
         Err(e @ ServerError::Localhost { .. }) => {

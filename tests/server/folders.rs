@@ -8,18 +8,7 @@ use std::os::unix::fs::PermissionsExt;
 
 /// A server's configuration with `site` and `scratch`.
 fn config(site: PathBuf, scratch: PathBuf) -> Config {
-    Config {
-        site,
-        port: 0,
-        runner: Runner {
-            scratch,
-            spintop: repo(),
-            target_dir: target_dir(),
-            launcher: PathBuf::from(env!("CARGO_BIN_EXE_spintop")),
-            limits: limits(),
-            containment: Containment::Group,
-        },
-    }
+    super::config(site, scratch, limits(), Containment::Group)
 }
 
 /// Why `Server::bind` refused `config`, or a panic if it did not.

@@ -82,18 +82,12 @@ fn start(name: &str, limits: Limits) -> Running {
 /// `containment` says.
 fn start_in(name: &str, limits: Limits, containment: Containment) -> Running {
     let root = scratch_root(name);
-    let server = Server::bind(Config {
-        site: site(&root),
-        port: 0,
-        runner: Runner {
-            scratch: root.join("scratch"),
-            spintop: repo(),
-            target_dir: target_dir(),
-            launcher: PathBuf::from(env!("CARGO_BIN_EXE_spintop")),
-            limits,
-            containment,
-        },
-    })
+    let server = Server::bind(config(
+        site(&root),
+        root.join("scratch"),
+        limits,
+        containment,
+    ))
     .unwrap();
     let (port, token) = (server.port(), server.token().to_string());
     let server = Arc::new(server);
@@ -107,6 +101,24 @@ fn start_in(name: &str, limits: Limits, containment: Containment) -> Running {
         stop,
         thread: Some(thread),
         root,
+    }
+}
+
+/// A server's configuration: the book in `site`, snippets compiled in
+/// `scratch` against this spintop under `limits`, trees ended at most as
+/// `containment` says; a free port.
+fn config(site: PathBuf, scratch: PathBuf, limits: Limits, containment: Containment) -> Config {
+    Config {
+        site,
+        port: 0,
+        runner: Runner {
+            scratch,
+            spintop: repo(),
+            target_dir: target_dir(),
+            launcher: PathBuf::from(env!("CARGO_BIN_EXE_spintop")),
+            limits,
+            containment,
+        },
     }
 }
 

@@ -90,27 +90,46 @@ fn a_signal_stops_spintop_book_and_leaves_no_process_it_started() {
 /// of the reader may, outside a PID namespace. What it left is adopted by
 /// `spintop book`, a child subreaper, and not by the dead supervisor's
 /// session sweep, since it is in a session of its own.
-const KILLS_ITS_SUPERVISOR: &str = r#"use std::process::Command;
+fn kills_its_supervisor() -> String {
+    attacker(
+        r#"fn main() {
+    daemon("escapee");
+    let supervisor = parent(&parent(&me()));
+    println!("killing my supervisor {supervisor}");
+    Command::new("kill").args(["-9", &supervisor]).status().unwrap();
+    std::thread::sleep(std::time::Duration::from_secs(30));
+}
+"#,
+    )
+}
+
+/// A snippet of `main` and what the attacks share: `parent` and `me`, a
+/// process id as the machine's `/proc` numbers it, and `daemon(NAME)`,
+/// which starts a process in a session of its own that writes its id to
+/// `NAME.pid` and sleeps forever.
+fn attacker(main: &str) -> String {
+    let helpers = r#"use std::process::Command;
 /// The parent of `pid`, as the machine's /proc numbers it.
 fn parent(pid: &str) -> String {
     let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap();
     stat[stat.rfind(')').unwrap() + 2..].split(' ').nth(1).unwrap().to_string()
 }
-fn main() {
-    Command::new("sh")
-        .args(["-c", "setsid sh -c 'read -r pid rest < /proc/self/stat; echo $pid > escapee.pid.tmp; mv escapee.pid.tmp escapee.pid; while :; do sleep 1; done' &"])
-        .status()
-        .unwrap();
-    while std::fs::metadata("escapee.pid").is_err() {
+/// This process, as the machine's /proc numbers it.
+fn me() -> String {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap();
+    stat.split(' ').next().unwrap().to_string()
+}
+/// A daemon in a session of its own; returns once it has written NAME.pid.
+fn daemon(name: &str) {
+    let script = format!("setsid sh -c 'read -r pid rest < /proc/self/stat; echo $pid > {name}.pid.tmp; mv {name}.pid.tmp {name}.pid; while :; do sleep 1; done' &");
+    Command::new("sh").args(["-c", &script]).status().unwrap();
+    while std::fs::metadata(format!("{name}.pid")).is_err() {
         std::thread::sleep(std::time::Duration::from_millis(10));
     }
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap();
-    let supervisor = parent(&parent(stat.split(' ').next().unwrap()));
-    println!("killing my supervisor {supervisor}");
-    Command::new("kill").args(["-9", &supervisor]).status().unwrap();
-    std::thread::sleep(std::time::Duration::from_secs(30));
 }
 "#;
+    format!("{helpers}{main}")
+}
 
 /// F2 and F4 for a snippet that kills its supervisor, in each unit where
 /// it can name it (a cgroup, the process group; in a PID namespace it has
@@ -135,7 +154,7 @@ fn a_snippet_that_kills_its_supervisor_leaves_nothing_running() {
             continue;
         }
         book.wait_line("▶ is ready");
-        book.run(KILLS_ITS_SUPERVISOR);
+        book.run(&kills_its_supervisor());
         let escapee = pid_file(&scratch, "escapee.pid", Duration::from_secs(300))
             .expect("the snippet did not start its escapee");
         let server = book.pid();
@@ -226,15 +245,10 @@ fn open_hands_the_browser_a_file_only_the_reader_can_read_not_the_address() {
 /// writes what it managed to `attack`, starts a daemon in a session of its
 /// own, writes its own and the daemon's process ids (the machine's), and
 /// loops.
-const ATTACKS_ITS_SUPERVISOR: &str = r#"use std::process::Command;
-/// The parent of `pid`, as the machine's /proc numbers it.
-fn parent(pid: &str) -> String {
-    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap();
-    stat[stat.rfind(')').unwrap() + 2..].split(' ').nth(1).unwrap().to_string()
-}
-fn main() {
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap();
-    let me = stat.split(' ').next().unwrap().to_string();
+fn attacks_its_supervisor() -> String {
+    attacker(
+        r#"fn main() {
+    let me = me();
     let supervisor = parent(&parent(&me));
     let held = std::fs::OpenOptions::new().write(true).open(format!("/proc/{supervisor}/fd/0"));
     let stopped = Command::new("kill")
@@ -247,21 +261,17 @@ fn main() {
         format!("held its pipe: {}\nstopped it: {stopped}\n", held.is_ok()),
     )
     .unwrap();
-    Command::new("sh")
-        .args(["-c", "setsid sh -c 'read -r pid rest < /proc/self/stat; echo $pid > daemon.pid.tmp; mv daemon.pid.tmp daemon.pid; while :; do sleep 1; done' &"])
-        .status()
-        .unwrap();
-    while std::fs::metadata("daemon.pid").is_err() {
-        std::thread::sleep(std::time::Duration::from_millis(10));
-    }
+    daemon("daemon");
     std::fs::write("snippet.pid", &me).unwrap();
     loop {
         std::thread::sleep(std::time::Duration::from_millis(100));
     }
 }
-"#;
+"#,
+    )
+}
 
-/// [`ATTACKS_ITS_SUPERVISOR`] as a shell script, for the stand-in cargo.
+/// [`attacks_its_supervisor`] as a shell script, for the stand-in cargo.
 fn attacks_its_supervisor_script() -> String {
     script(
         r#"parent() { read -r line < "/proc/$1/stat"; set -- ${line##*) }; echo "$2"; }
@@ -360,7 +370,7 @@ fn sigkill_of_the_server_leaves_nothing_of_a_snippet_that_attacks_its_supervisor
             eprintln!("{}: this machine gives {got}: skipped", unit.name());
             continue;
         }
-        book.run(ATTACKS_ITS_SUPERVISOR);
+        book.run(&attacks_its_supervisor());
         sigkill_ends_the_tree(book, &scratch, unit.name());
     }
     let _ = std::fs::remove_dir_all(&root);
@@ -434,7 +444,7 @@ fn a_stopped_servers_snippet_still_ends_at_its_limit() {
     let root = scratch_root("stopped");
     let scratch = root.join("scratch");
     let book = Book::start(&site(&root), &scratch);
-    a_stopped_server_still_ends_its_snippet(book, &scratch, ATTACKS_ITS_SUPERVISOR);
+    a_stopped_server_still_ends_its_snippet(book, &scratch, &attacks_its_supervisor());
     let _ = std::fs::remove_dir_all(&root);
 }
 
@@ -459,7 +469,7 @@ fn sigterm_with_a_snippet_holding_the_control_pipe_says_nothing_is_left() {
     let root = scratch_root("sigterm-pipe");
     let scratch = root.join("scratch");
     let mut book = Book::start(&site(&root), &scratch);
-    book.run(ATTACKS_ITS_SUPERVISOR);
+    book.run(&attacks_its_supervisor());
     let tree = attack_tree(&scratch, book.pid(), Duration::from_secs(600));
     let asked = Instant::now();
     assert_eq!(book.stop(Signal::TERM).code(), Some(0));
@@ -498,7 +508,7 @@ fn a_snippet_cannot_stop_its_supervisor_in_any_unit() {
             continue;
         }
         let scratch = s.root.join("scratch");
-        let (status, v) = s.run(ATTACKS_ITS_SUPERVISOR);
+        let (status, v) = s.run(&attacks_its_supervisor());
         assert_eq!(status, 200, "{v}");
         assert_eq!(v["error"], "time limit", "{}: {v}", unit.name());
         let shown = v["result"].as_str().unwrap();
