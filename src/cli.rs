@@ -1,7 +1,7 @@
-//! The `spintop` command line: a thin shell over [`crate::sim`].
+//! The `spintop` command line: a thin shell over [`spintop::sim`].
 //!
 //! Raw arguments are parsed by clap, then validated into the objects the core
-//! runs on ([`crate::output::simulate::SimulateConfig`]), then run; every failure becomes one line on
+//! runs on ([`spintop::output::simulate::SimulateConfig`]), then run; every failure becomes one line on
 //! stderr and an exit code:
 //!
 //! | code | meaning |
@@ -10,12 +10,12 @@
 //! | 2 | bad input: malformed or unphysical arguments |
 //! | 3 | numerical failure: the run was stopped, with the time and what to try |
 
-use crate::math::Real;
-pub(crate) use crate::numbers::parse_number;
-use crate::output::Failure;
-pub use crate::output::Format;
-use crate::sim::SimError;
 use clap::{Parser, Subcommand};
+use spintop::math::Real;
+pub(crate) use spintop::numbers::parse_number;
+use spintop::output::Failure;
+pub use spintop::output::Format;
+use spintop::sim::SimError;
 use std::ffi::OsString;
 use std::io::{self, Write};
 use std::process::ExitCode;
@@ -35,6 +35,7 @@ pub mod shell;
 pub mod simulate;
 pub mod stability;
 pub mod tui;
+pub mod values;
 
 /// Exit code for bad input.
 pub const EXIT_BAD_INPUT: u8 = 2;
@@ -111,9 +112,9 @@ pub(crate) struct TimeList(pub(crate) Vec<Real>);
 
 /// Output times of the time-stepping commands: at least one, all >= 0,
 /// non-decreasing (the core steps forward in time only), by the core's one
-/// rule ([`crate::sim::times::check_times`]).
+/// rule ([`spintop::sim::times::check_times`]).
 pub(crate) fn check_output_times(times: &[Real]) -> Result<(), CliError> {
-    crate::sim::times::check_times(times, true).map_err(|e| bad(format!("--{e}")))
+    spintop::sim::times::check_times(times, true).map_err(|e| bad(format!("--{e}")))
 }
 
 pub(crate) fn parse_times(s: &str) -> Result<TimeList, String> {
@@ -179,17 +180,17 @@ impl From<Failure> for CliError {
 }
 
 /// A simulation's failure, with advice for the model and the method in use
-/// (see [`crate::output::sim_failure`]).
+/// (see [`spintop::output::sim_failure`]).
 pub(crate) fn sim_failure(
     e: SimError,
-    model: &crate::sim::Model,
-    choice: crate::sim::MethodChoice,
+    model: &spintop::sim::Model,
+    choice: spintop::sim::MethodChoice,
 ) -> CliError {
-    CliError::from(crate::output::sim_failure(
+    CliError::from(spintop::output::sim_failure(
         e,
         model,
         choice,
-        crate::output::Entry::CommandLine,
+        spintop::output::Entry::CommandLine,
     ))
 }
 

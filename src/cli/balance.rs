@@ -3,10 +3,10 @@
 
 use super::gate::Gate;
 use super::{CliError, Format, TimeList, bad, parse_list, parse_number, parse_times};
-use crate::math::Real;
-use crate::output::balance::{BalanceConfig, BalanceParameters, DipoleChoice, balance};
-use crate::physics::balance::{Dumbbell, PlanarLoop, PrecessingDipole};
 use clap::{Args, ValueEnum};
+use spintop::math::Real;
+use spintop::output::balance::{BalanceConfig, BalanceParameters, DipoleChoice, balance};
+use spintop::physics::balance::{Dumbbell, PlanarLoop, PrecessingDipole};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum DipoleArg {
@@ -61,7 +61,7 @@ pub struct BalanceArgs {
     #[arg(long, value_name = "T1,T2,...", value_parser = parse_times, allow_hyphen_values = true)]
     times: TimeList,
     /// Output format.
-    #[arg(long, value_enum, default_value = "table")]
+    #[arg(long, value_parser = super::values::format(), default_value = "table")]
     format: Format,
 }
 
@@ -74,7 +74,7 @@ impl BalanceArgs {
                 Ok(())
             }
         };
-        let param = |e: crate::physics::ParamError| bad(e.to_string());
+        let param = |e: spintop::physics::ParamError| bad(e.to_string());
         let mut p = BalanceParameters::default();
         let dipole = match self.dipole {
             DipoleArg::Precessing => {

@@ -1,13 +1,13 @@
 //! `spintop book`: the book served on 127.0.0.1, where ▶ compiles and runs
 //! every snippet against the local spintop. Builds the book first when its
 //! sources are newer than the last build. The server is
-//! [`crate::server`] (its docs state what holds); this file only launches
+//! [`spintop_server`] (its docs state what holds); this file only launches
 //! it, shows its background build, and stops it on a signal.
 
 use super::gate::Gate;
 use super::{CliError, bad};
-use crate::server::{self, Config, Containment, Server, WarmUp, default_runner};
 use clap::Args;
+use spintop_server::{self as server, Config, Containment, Server, WarmUp, default_runner};
 use std::ffi::OsString;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -44,7 +44,7 @@ pub struct BookArgs {
     #[arg(long, hide = true, value_name = "UNIT")]
     containment: Option<String>,
     /// The supervisor of a snippet's process tree (the server starts it;
-    /// see `spintop::server`).
+    /// see `spintop_server`).
     #[arg(long = "supervise", hide = true, num_args = 1.., allow_hyphen_values = true, value_name = "SPEC PROGRAM ARGS")]
     supervise: Option<Vec<OsString>>,
 }
@@ -114,7 +114,7 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
         out.flush()?;
         std::process::exit(server::supervise(supervised));
     }
-    let repo = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let repo = spintop_course::repository().to_path_buf();
     if !repo.join("book/book.toml").is_file() || !repo.join("Cargo.toml").is_file() {
         return Err(bad(format!(
             "spintop book serves the book of the repository, and {} is missing; run it from a clone of spintop (cargo run --release -- book)",

@@ -3,11 +3,11 @@
 
 use super::gate::Gate;
 use super::{CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times};
-use crate::math::Real;
-use crate::output::orbit::{OrbitRequest, check_backward_span, orbit};
-use crate::physics::central::{ChargeInField, Potential};
-use crate::sim::orbit::{Force, OrbitConfig};
 use clap::{Args, ValueEnum};
+use spintop::math::Real;
+use spintop::output::orbit::{OrbitRequest, check_backward_span, orbit};
+use spintop::physics::central::{ChargeInField, Potential};
+use spintop::sim::orbit::{Force, OrbitConfig};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum PotentialArg {
@@ -58,7 +58,7 @@ pub struct OrbitArgs {
     #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     rtol: Option<Real>,
     /// Output format.
-    #[arg(long, value_enum, default_value = "table")]
+    #[arg(long, value_parser = super::values::format(), default_value = "table")]
     format: Format,
 }
 
@@ -97,7 +97,7 @@ impl OrbitArgs {
             config,
             times,
             format: self.format,
-            entry: crate::output::Entry::CommandLine,
+            entry: spintop::output::Entry::CommandLine,
         })
     }
 }

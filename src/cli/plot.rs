@@ -7,12 +7,14 @@
 
 use super::gate::Gate;
 use super::{CliError, bad, parse_number, parse_vec3};
-use crate::math::{Real, Vec3};
-use crate::numbers::{fmt_axis, nice_ceiling};
-use crate::physics::rigid_body::lab_frame;
-use crate::physics::symmetric_top::SymmetricTop;
-use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
 use clap::{Args, ValueEnum};
+use spintop::math::{Real, Vec3};
+use spintop::numbers::{fmt_axis, nice_ceiling};
+use spintop::physics::rigid_body::lab_frame;
+use spintop::physics::symmetric_top::SymmetricTop;
+use spintop::sim::{
+    InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation,
+};
 use std::io::Write;
 use textplots::{AxisBuilder, Chart, LabelBuilder, LabelFormat, LineStyle, Plot, Shape};
 
@@ -49,13 +51,13 @@ pub struct PlotArgs {
     #[arg(long)]
     log_time: bool,
     /// Numerical method.
-    #[arg(long, value_enum, default_value = "exact")]
+    #[arg(long, value_parser = super::values::method(), default_value = "exact")]
     method: MethodChoice,
     /// Width of each chart, in characters (16 to 500).
-    #[arg(long, default_value_t = 60, value_parser = crate::numbers::parse_count::<u32>, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 60, value_parser = spintop::numbers::parse_count::<u32>, allow_hyphen_values = true)]
     width: u32,
     /// Height of each chart, in lines (2 to 200).
-    #[arg(long, default_value_t = 10, value_parser = crate::numbers::parse_count::<u32>, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 10, value_parser = spintop::numbers::parse_count::<u32>, allow_hyphen_values = true)]
     height: u32,
 }
 
@@ -90,7 +92,7 @@ fn drawable(value: Real, flag: &str, what: &str, instead: &str) -> Result<(), Cl
         "{flag}: plot draws in single precision, so {what} within {:.0e} and {:.0e}, got {}; {instead}",
         PLOT_RANGE.0,
         PLOT_RANGE.1,
-        crate::numbers::fmt_value(value)
+        spintop::numbers::fmt_value(value)
     )))
 }
 
@@ -108,7 +110,7 @@ impl PlotArgs {
         if self.t_end <= 0.0 {
             return Err(bad(format!(
                 "--t-end must be > 0, got {}",
-                crate::numbers::fmt_value(self.t_end)
+                spintop::numbers::fmt_value(self.t_end)
             )));
         }
         // NOTE: textplots draws in single precision: a curve beyond its
@@ -206,7 +208,7 @@ fn samples(
 }
 
 fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError> {
-    use crate::numbers::short;
+    use spintop::numbers::short;
     let [w1, w2, w3] = config.omega0;
     let y = nice_ceiling(config.reach * 1.05) as f32;
     // Every model runs before anything is written: a refusal or a failure

@@ -4,10 +4,10 @@
 
 use super::gate::Gate;
 use super::{CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times};
-use crate::math::Real;
-use crate::output::shell::{ShellRequest, instability_warning, shell, steps_per_delay};
-use crate::physics::shell::ShellModel;
 use clap::Args;
+use spintop::math::Real;
+use spintop::output::shell::{ShellRequest, instability_warning, shell, steps_per_delay};
+use spintop::physics::shell::ShellModel;
 use std::io::Write;
 
 /// The raw arguments of `shell`, before validation.
@@ -30,7 +30,7 @@ pub struct ShellArgs {
     #[arg(long, value_name = "T1,T2,...", value_parser = parse_times, allow_hyphen_values = true)]
     times: TimeList,
     /// Output format.
-    #[arg(long, value_enum, default_value = "table")]
+    #[arg(long, value_parser = super::values::format(), default_value = "table")]
     format: Format,
 }
 
@@ -55,7 +55,7 @@ impl ShellArgs {
             steps,
             times,
             format: self.format,
-            entry: crate::output::Entry::CommandLine,
+            entry: spintop::output::Entry::CommandLine,
         })
     }
 }

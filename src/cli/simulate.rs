@@ -5,15 +5,15 @@ use super::gate::Gate;
 use super::{
     CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times, parse_vec3,
 };
-use crate::math::{Real, Vec3};
-use crate::numbers::fmt_value;
-use crate::output::simulate::{SimulateConfig, simulate};
-use crate::physics::euler_angles::EulerAngles;
-use crate::physics::general_top::GeneralTop;
-use crate::physics::symmetric_top::SymmetricTop;
-use crate::sim::times::{MAX_SAMPLES, even_times};
-use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, SimError};
 use clap::{Args, ValueEnum};
+use spintop::math::{Real, Vec3};
+use spintop::numbers::fmt_value;
+use spintop::output::simulate::{SimulateConfig, simulate};
+use spintop::physics::euler_angles::EulerAngles;
+use spintop::physics::general_top::GeneralTop;
+use spintop::physics::symmetric_top::SymmetricTop;
+use spintop::sim::times::{MAX_SAMPLES, even_times};
+use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, SimError};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum ModelArg {
@@ -57,10 +57,10 @@ pub struct SimulateArgs {
     #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     t_end: Option<Real>,
     /// Number of evenly spaced output times from 0 to --t-end [default: 11]
-    #[arg(long, value_parser = crate::numbers::parse_count::<usize>, allow_hyphen_values = true)]
+    #[arg(long, value_parser = spintop::numbers::parse_count::<usize>, allow_hyphen_values = true)]
     samples: Option<usize>,
     /// Numerical method.
-    #[arg(long, value_enum, default_value = "auto")]
+    #[arg(long, value_parser = super::values::method(), default_value = "auto")]
     method: MethodChoice,
     /// Relative tolerance of the adaptive methods [default: 1e-10]
     #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
@@ -69,7 +69,7 @@ pub struct SimulateArgs {
     #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
     step: Option<Real>,
     /// Output format.
-    #[arg(long, value_enum, default_value = "table")]
+    #[arg(long, value_parser = super::values::format(), default_value = "table")]
     format: Format,
 }
 
@@ -150,7 +150,7 @@ impl SimulateArgs {
             euler0: self.euler,
             times,
             format: self.format,
-            entry: crate::output::Entry::CommandLine,
+            entry: spintop::output::Entry::CommandLine,
         })
     }
 }

@@ -6,11 +6,11 @@
 
 use super::gate::Gate;
 use super::{CliError, bad, parse_number, parse_vec3};
-use crate::math::Real;
-use crate::sim::MethodChoice;
 use crate::tui::app::{App, Settings, WARPS};
 use crate::tui::session::{self, Session};
 use clap::Args;
+use spintop::math::Real;
+use spintop::sim::MethodChoice;
 use std::io::Write;
 use std::time::Duration;
 
@@ -31,7 +31,7 @@ pub struct TuiArgs {
     #[arg(long, value_name = "W1,W2,W3", value_parser = parse_vec3, allow_hyphen_values = true)]
     omega: Option<[Real; 3]>,
     /// Numerical method of both models [default: exact]
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = super::values::method())]
     method: Option<MethodChoice>,
     /// Model time per wall-clock second, in tau: 0.5, 1, 2, 5, 10, 20, 50, 100,
     /// 200, 500 or 1000 [default: 10]
@@ -67,7 +67,7 @@ pub(crate) fn execute(args: TuiArgs, out: &mut Gate<'_>) -> Result<(), CliError>
         Some(s) if !(s > 0.0 && s <= 3600.0) => {
             return Err(bad(format!(
                 "--bench takes 0 < SECONDS <= 3600, got {}",
-                crate::numbers::fmt_value(s)
+                spintop::numbers::fmt_value(s)
             )));
         }
         s => s.map(Duration::from_secs_f64),

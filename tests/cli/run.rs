@@ -181,7 +181,7 @@ fn run_by_name_from_elsewhere_gives_the_simulate_contract_and_chosen() {
 fn run_a_real_particle_reports_units_milestones_and_the_skipped_orientation() {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/lessons/scenes/nanoparticle-1e7-debye.toml"
+        "/crates/spintop/scenes/nanoparticle-1e7-debye.toml"
     );
     let v = support::json("run", &[path]);
     let u = &v["units"];
@@ -280,7 +280,7 @@ fn every_kind_keeps_its_commands_json_keys() {
 fn tui_opens_every_top_scene() {
     for entry in CATALOGUE {
         let scene = entry.scene().unwrap();
-        let got = spintop::tui::app::Settings::for_scene(&scene, None);
+        let got = spintop_app::tui::app::Settings::for_scene(&scene, None);
         match &scene.body {
             Body::Top(top) => {
                 let (settings, note) = got.unwrap_or_else(|e| panic!("{}: {e}", entry.name));
@@ -293,7 +293,7 @@ fn tui_opens_every_top_scene() {
                 } else if general {
                     assert!(note.contains("a general top under (3.3)"), "{note}");
                 }
-                let app = spintop::tui::app::App::new(settings).unwrap();
+                let app = spintop_app::tui::app::App::new(settings).unwrap();
                 assert_eq!(app.columns().len(), if general { 3 } else { 2 });
             }
             _ => assert!(got.is_err(), "{}", entry.name),

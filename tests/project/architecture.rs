@@ -1,17 +1,21 @@
-//! The direction of imports, read from the sources: the whole order of the
-//! crate's layers, each service's allowed neighbours, shells side by side,
-//! and no circle anywhere.
+//! The direction of imports inside a crate, read from the sources: what
+//! the compiler cannot see. Between crates the manifests hold the layers
+//! (`crates/spintop` → `spintop-grading` → `spintop-course`,
+//! `spintop-server` → the application), and cargo refuses a circle; inside
+//! one crate any module may name any other, so this test holds the order:
 //!
 //! ```text
-//! math, numbers → physics → integrate → sim
-//!   → {scene, stability, figure, workprecision, plot, grading, course, output, assignment}
-//!   → {cli, tui, server}
+//! the core (crates/spintop):
+//!   math, numbers → physics → integrate → sim
+//!     → {assignment, figure, output, plot, scene, stability, workprecision}
+//! the application (src/):
+//!   cli, tui side by side (the command line launches the live view)
 //! ```
 //!
 //! A module may use what lies in a lower layer, a service the neighbours
-//! listed in [`NEIGHBOURS`], and a shell no other shell (the command line
-//! launches the live view and the book server from the three files in
-//! [`LAUNCHERS`]). Every path into the crate counts: `use` trees over
+//! listed in its rules, and a shell no other shell (the command line
+//! launches the live view from the files in its rules' launchers). Every
+//! path into the crate counts: `use` trees over
 //! several lines and nested braces, `super::` chains (resolved against the
 //! file's module and any inline `mod` it sits in), `self::`, and fully
 //! qualified `crate::…` paths in code (spaces round `::` too), a path in an
@@ -25,67 +29,120 @@
 //!
 //! A new import that breaks a rule fails here with the file, the line and the
 //! rule; `the_checker_fails_on_each_kind_of_wrong_import` and
-//! `the_checker_sees_imports_in_every_disguise` show each kind caught.
+//! `the_checker_sees_imports_in_every_disguise` show each kind caught (on a
+//! scratch tree under the rules the crate had as one package, which hold
+//! every kind of module at once).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-/// Every top-level module and its layer, bottom (0) to top (5).
-const LAYERS: &[(&str, u8)] = &[
-    ("math", 0),
-    ("numbers", 0),
-    ("physics", 1),
-    ("integrate", 2),
-    ("sim", 3),
-    ("assignment", 4),
-    ("course", 4),
-    ("figure", 4),
-    ("grading", 4),
-    ("output", 4),
-    ("plot", 4),
-    ("scene", 4),
-    ("stability", 4),
-    ("workprecision", 4),
-    ("cli", 5),
-    ("server", 5),
-    ("tui", 5),
-];
-
-/// The layer of the shells.
-const SHELL: u8 = 5;
-
-/// What a service may use beside the layers below it (and nothing uses a
-/// service not listed here).
-const NEIGHBOURS: &[(&str, &[&str])] = &[
-    // A scene is answered by the commands' computations, and a stability
-    // scene by its row.
-    ("scene", &["output", "stability"]),
-    // The sweep's charts.
-    ("workprecision", &["plot"]),
-    // The figures as text and SVG.
-    ("plot", &["figure"]),
-    // The course grades with the graders; a grader knows the assignment types.
-    ("course", &["grading"]),
-    ("grading", &["assignment"]),
-];
-
-/// The only places one shell may reach another: (file, the shell it launches).
-const LAUNCHERS: &[(&str, &str)] = &[
-    ("src/cli/tui.rs", "tui"),
-    ("src/cli/learn.rs", "tui"),
-    ("src/cli/book.rs", "server"),
-];
-
-fn layer(module: &str) -> Option<u8> {
-    LAYERS.iter().find(|(m, _)| *m == module).map(|(_, l)| *l)
+/// The layers of one crate's modules, bottom (0) to top: each top-level
+/// module's layer, what a module may use in its own layer, and where one
+/// shell may launch another.
+struct Rules {
+    /// Every top-level module and its layer.
+    layers: &'static [(&'static str, u8)],
+    /// The layer of the shells.
+    shell: u8,
+    /// What a module may use beside the layers below it (and nothing uses
+    /// a module of its own layer not listed here).
+    neighbours: &'static [(&'static str, &'static [&'static str])],
+    /// The only places one shell may reach another: (file, the shell it launches).
+    launchers: &'static [(&'static str, &'static str)],
 }
 
-fn neighbours(module: &str) -> &'static [&'static str] {
-    NEIGHBOURS
-        .iter()
-        .find(|(m, _)| *m == module)
-        .map_or(&[], |(_, n)| n)
+impl Rules {
+    fn layer(&self, module: &str) -> Option<u8> {
+        self.layers
+            .iter()
+            .find(|(m, _)| *m == module)
+            .map(|(_, l)| *l)
+    }
+
+    fn neighbours(&self, module: &str) -> &'static [&'static str] {
+        self.neighbours
+            .iter()
+            .find(|(m, _)| *m == module)
+            .map_or(&[], |(_, n)| n)
+    }
 }
+
+/// The core (`crates/spintop`): no shell in it.
+const CORE: Rules = Rules {
+    layers: &[
+        ("math", 0),
+        ("numbers", 0),
+        ("physics", 1),
+        ("integrate", 2),
+        ("sim", 3),
+        ("assignment", 4),
+        ("figure", 4),
+        ("output", 4),
+        ("plot", 4),
+        ("scene", 4),
+        ("stability", 4),
+        ("workprecision", 4),
+    ],
+    shell: u8::MAX,
+    neighbours: &[
+        // A scene is answered by the commands' computations, and a stability
+        // scene by its row.
+        ("scene", &["output", "stability"]),
+        // The sweep's charts.
+        ("workprecision", &["plot"]),
+        // The figures as text and SVG.
+        ("plot", &["figure"]),
+    ],
+    launchers: &[],
+};
+
+/// The application (`src/`): shells side by side.
+const APP: Rules = Rules {
+    layers: &[("cli", 5), ("tui", 5)],
+    shell: 5,
+    neighbours: &[],
+    launchers: &[("src/cli/tui.rs", "tui"), ("src/cli/learn.rs", "tui")],
+};
+
+/// The rules of the crate when it was one package (every kind of module at
+/// once): the checker's own tests run on scratch trees under them.
+const WHOLE: Rules = Rules {
+    layers: &[
+        ("math", 0),
+        ("numbers", 0),
+        ("physics", 1),
+        ("integrate", 2),
+        ("sim", 3),
+        ("assignment", 4),
+        ("course", 4),
+        ("figure", 4),
+        ("grading", 4),
+        ("output", 4),
+        ("plot", 4),
+        ("scene", 4),
+        ("stability", 4),
+        ("workprecision", 4),
+        ("cli", 5),
+        ("server", 5),
+        ("tui", 5),
+    ],
+    shell: 5,
+    neighbours: &[
+        ("scene", &["output", "stability"]),
+        ("workprecision", &["plot"]),
+        ("plot", &["figure"]),
+        ("course", &["grading"]),
+        ("grading", &["assignment"]),
+    ],
+    launchers: &[
+        ("src/cli/tui.rs", "tui"),
+        ("src/cli/learn.rs", "tui"),
+        ("src/cli/book.rs", "server"),
+    ],
+};
+
+/// The crates this test reads, with their rules: (folder, rules).
+const CRATES: [(&str, &Rules); 2] = [("crates/spintop", &CORE), (".", &APP)];
 
 // ---------------------------------------------------------------- reading
 
@@ -746,19 +803,26 @@ fn disguises(root: &Path) -> Vec<String> {
 // ---------------------------------------------------------------- rules
 
 /// The rule an import between top-level modules breaks, if any.
-fn rule_broken(import: &Import) -> Option<String> {
+fn rule_broken(import: &Import, rules: &Rules) -> Option<String> {
     let (from, to) = (&import.from[0], &import.to[0]);
     if from == to {
         return None;
     }
-    let (Some(lf), Some(lt)) = (layer(from), layer(to)) else {
-        let unknown = if layer(from).is_none() { from } else { to };
+    let (Some(lf), Some(lt)) = (rules.layer(from), rules.layer(to)) else {
+        let unknown = if rules.layer(from).is_none() {
+            from
+        } else {
+            to
+        };
         return Some(format!(
-            "{unknown} is in no layer: place it in LAYERS on purpose"
+            "{unknown} is in no layer: place it in its crate's rules on purpose"
         ));
     };
-    if lf == SHELL && lt == SHELL {
-        let launcher = LAUNCHERS.iter().any(|(f, s)| *f == import.file && *s == to);
+    if lf == rules.shell && lt == rules.shell {
+        let launcher = rules
+            .launchers
+            .iter()
+            .any(|(f, s)| *f == import.file && *s == to);
         return (!launcher).then(|| {
             format!("the {from} shell imports the {to} shell: shells stand side by side; move what both need below them")
         });
@@ -768,7 +832,7 @@ fn rule_broken(import: &Import) -> Option<String> {
             "{from} (layer {lf}) imports {to} (layer {lt}): nothing reaches up"
         ));
     }
-    if lt == lf && !neighbours(from).contains(&to.as_str()) {
+    if lt == lf && !rules.neighbours(from).contains(&to.as_str()) {
         return Some(format!(
             "{from} imports {to}, in its own layer ({lf}) but not one of its neighbours"
         ));
@@ -841,13 +905,13 @@ fn circles(edges: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
 }
 
 /// Every import that breaks the order, and every circle, as lines.
-fn violations(root: &Path) -> Vec<String> {
+fn violations(root: &Path, rules: &Rules) -> Vec<String> {
     let imports = imports(root);
     let mut bad: Vec<String> = disguises(root);
     bad.extend(
         imports
             .iter()
-            .filter_map(|i| rule_broken(i).map(|r| format!("{}:{}: {r}", i.file, i.line))),
+            .filter_map(|i| rule_broken(i, rules).map(|r| format!("{}:{}: {r}", i.file, i.line))),
     );
     // Circles among the top-level modules, and among the files of one module.
     let mut top: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
@@ -897,14 +961,21 @@ fn violations_of_scratch(dir: &Path, files: &[(&str, &str)]) -> Vec<String> {
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
         std::fs::write(path, text).unwrap();
     }
-    let bad = violations(dir);
+    let bad = violations(dir, &WHOLE);
     let _ = std::fs::remove_dir_all(dir);
     bad
 }
 
 #[test]
 fn imports_follow_the_layers_and_run_in_no_circle() {
-    let bad = violations(&root());
+    let bad: Vec<String> = CRATES
+        .iter()
+        .flat_map(|(dir, rules)| {
+            violations(&root().join(dir), rules)
+                .into_iter()
+                .map(move |v| format!("{dir}/{v}"))
+        })
+        .collect();
     assert!(
         bad.is_empty(),
         "imports that break the order:\n{}",
@@ -914,21 +985,25 @@ fn imports_follow_the_layers_and_run_in_no_circle() {
 
 #[test]
 fn every_top_level_module_is_placed_in_a_layer_on_purpose() {
-    let mut files = Vec::new();
-    rust_files(&root().join("src"), &mut files);
-    let mut modules: Vec<String> = files
-        .iter()
-        .map(|f| module_of(&root(), f))
-        .filter_map(|m| m.first().cloned())
-        .collect();
-    modules.sort();
-    modules.dedup();
-    let mut placed: Vec<String> = LAYERS.iter().map(|(m, _)| m.to_string()).collect();
-    placed.sort();
-    assert_eq!(
-        modules, placed,
-        "a top-level module was added or removed: place it in LAYERS (and NEIGHBOURS if a service uses it)"
-    );
+    for (dir, rules) in CRATES {
+        let root = root().join(dir);
+        let mut files = Vec::new();
+        rust_files(&root.join("src"), &mut files);
+        let mut modules: Vec<String> = files
+            .iter()
+            .map(|f| module_of(&root, f))
+            .filter(|m| m.first().is_some_and(|f| f != "bin"))
+            .filter_map(|m| m.first().cloned())
+            .collect();
+        modules.sort();
+        modules.dedup();
+        let mut placed: Vec<String> = rules.layers.iter().map(|(m, _)| m.to_string()).collect();
+        placed.sort();
+        assert_eq!(
+            modules, placed,
+            "{dir}: a top-level module was added or removed: place it in the crate's rules (and its neighbours if a module of its layer uses it)"
+        );
+    }
 }
 
 /// The checker itself can fail, on each kind of wrong import: a scratch tree
@@ -1080,7 +1155,7 @@ fn the_checker_sees_imports_in_every_disguise() {
         // 9. `extern crate self` is an alias of the crate too.
         (
             "src/output.rs",
-            "extern crate self as spintop;\nfn f() { spintop::cli::run(); }\n",
+            "extern crate self as spintop;\nfn f() { spintop_app::cli::run(); }\n",
         ),
     ];
     let bad = violations_of_scratch(&dir, files);
@@ -1405,8 +1480,8 @@ fn the_circle_check_catches_a_circle() {
 /// choice grew `plan.rs` to 888 before it moved to `choose.rs`).
 #[test]
 fn scene_files_are_split_by_concept_under_600_lines() {
-    let mut files = vec![root().join("src/scene.rs")];
-    rust_files(&root().join("src/scene"), &mut files);
+    let mut files = vec![root().join("crates/spintop/src/scene.rs")];
+    rust_files(&root().join("crates/spintop/src/scene"), &mut files);
     assert!(files.len() > 5, "the scene engine's files: {files:?}");
     let long: Vec<String> = files
         .iter()
@@ -1465,4 +1540,118 @@ fn a_circle_through_a_parents_re_exports_is_caught() {
         "{circle:?}"
     );
     assert!(none.is_empty(), "{none:?}");
+}
+
+/// The workspace's crates, bottom up, with the layer of each: a crate may
+/// depend on crates of lower layers only.
+const WORKSPACE: [(&str, &str, u8); 7] = [
+    ("crates/spintop", "spintop", 0),
+    ("crates/spintop-grading", "spintop-grading", 1),
+    ("crates/spintop-course", "spintop-course", 2),
+    ("crates/spintop-server", "spintop-server", 2),
+    (".", "spintop-app", 3),
+    // What a student builds and what measures speed: the core (and the graders).
+    ("lessons", "spintop-lessons", 2),
+    ("benches", "spintop-benches", 2),
+];
+
+/// The crates only a shell may depend on: a terminal, a command line, a
+/// progress bar, signals.
+const SHELL_CRATES: [&str; 6] = [
+    "clap",
+    "crossterm",
+    "ratatui",
+    "indicatif",
+    "signal-hook",
+    "pulldown-cmark",
+];
+
+/// The dependencies of a manifest, by section (`dependencies`,
+/// `dev-dependencies`, and the same under every `target.*`).
+fn manifest_dependencies(dir: &str) -> Vec<(String, String, toml::Value)> {
+    let path = root().join(dir).join("Cargo.toml");
+    let manifest: toml::Table = std::fs::read_to_string(&path)
+        .unwrap()
+        .parse()
+        .expect("a manifest");
+    let mut tables = vec![manifest.clone()];
+    if let Some(targets) = manifest.get("target").and_then(|t| t.as_table()) {
+        tables.extend(targets.values().filter_map(|t| t.as_table()).cloned());
+    }
+    let mut out = Vec::new();
+    for t in tables {
+        for section in ["dependencies", "dev-dependencies", "build-dependencies"] {
+            for (name, spec) in t
+                .get(section)
+                .and_then(|d| d.as_table())
+                .into_iter()
+                .flatten()
+            {
+                out.push((section.to_string(), name.clone(), spec.clone()));
+            }
+        }
+    }
+    out
+}
+
+/// The manifests show the layers: every path dependency of a workspace crate
+/// lies in a lower layer; the lessons and the benchmarks use the core (and
+/// the lessons' tests the graders) only; no crate but the application
+/// depends on a shell's crate, so `cargo doc -p spintop` shows no shell.
+#[test]
+fn the_manifests_show_the_layers() {
+    let members: Vec<String> = {
+        let manifest: toml::Table = std::fs::read_to_string(root().join("Cargo.toml"))
+            .unwrap()
+            .parse()
+            .unwrap();
+        manifest["workspace"]["members"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| m.as_str().unwrap().to_string())
+            .collect()
+    };
+    let mut listed: Vec<&str> = WORKSPACE.iter().map(|(d, _, _)| *d).collect();
+    listed.sort();
+    let mut members_sorted: Vec<&str> = members.iter().map(String::as_str).collect();
+    members_sorted.sort();
+    assert_eq!(
+        listed, members_sorted,
+        "a crate was added: give it a layer here"
+    );
+    let layer_of = |name: &str| WORKSPACE.iter().find(|(_, n, _)| *n == name).map(|w| w.2);
+    let mut bad = Vec::new();
+    for (dir, name, layer) in WORKSPACE {
+        for (section, dep, spec) in manifest_dependencies(dir) {
+            if spec.get("path").is_some() {
+                match layer_of(&dep) {
+                    Some(l) if l < layer => {}
+                    _ => bad.push(format!("{name} ({section}) depends on {dep}, not below it")),
+                }
+            }
+            if name != "spintop-app" && SHELL_CRATES.contains(&dep.as_str()) {
+                bad.push(format!(
+                    "{name} ({section}) depends on {dep}, a shell's crate"
+                ));
+            }
+        }
+    }
+    for (dir, allowed) in [
+        ("lessons", &["spintop", "spintop-grading"][..]),
+        ("benches", &["spintop"][..]),
+    ] {
+        for (section, dep, spec) in manifest_dependencies(dir) {
+            if spec.get("path").is_some() && !allowed.contains(&dep.as_str()) {
+                bad.push(format!("{dir} ({section}) depends on {dep}"));
+            }
+        }
+    }
+    // Only the lessons' tests see the graders: the student's src/ sees the core.
+    assert!(
+        manifest_dependencies("lessons")
+            .iter()
+            .any(|(s, d, _)| s == "dev-dependencies" && d == "spintop-grading")
+    );
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
