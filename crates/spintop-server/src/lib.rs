@@ -107,12 +107,13 @@
 //!
 //! Whatever the unit, on Linux: the supervisor is not dumpable (a process
 //! of the reader, root aside, can neither trace it nor open its `/proc`
-//! files, such as its control pipe), dies with the server (checked at
-//! once: a server gone before would send nothing), and keeps the time limit
-//! on its own clock, so a tree ends on time while the server is stopped
-//! (Ctrl-Z) and as soon as the server is killed (SIGKILL, the OOM killer).
-//! Outside a namespace it catches that death's SIGTERM and ends the tree
-//! first. A snippet may not stop or trace any process (a seccomp filter:
+//! files, such as its control pipe), ends its tree when the server dies
+//! (`PR_SET_PDEATHSIG`, checked at once, since a server gone before would
+//! send nothing; outside a namespace the signal only wakes it, and it sees
+//! its parent gone within 10 ms and ends the tree first), and keeps the
+//! time limit on its own clock, so a tree ends on time while the server is
+//! stopped (Ctrl-Z) and as soon as the server is killed (SIGKILL, the OOM
+//! killer). A snippet may not stop or trace any process (a seccomp filter:
 //! SIGSTOP, SIGTSTP, SIGTTIN and SIGTTOU by any call, and `ptrace`, fail
 //! with EPERM; on x86_64, aarch64 and riscv64, where seccompiler has a
 //! filter), so it cannot stop its supervisor. It may kill it (it runs as

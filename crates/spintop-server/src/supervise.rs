@@ -16,18 +16,21 @@
 //!    or the process group alone;
 //! 4. turns itself non-dumpable (`PR_SET_DUMPABLE` 0: a process of the
 //!    same user may then neither trace it nor open its `/proc` files, such
-//!    as its control pipe), asks to die with the server
+//!    as its control pipe), asks for a signal when the server dies
 //!    (`PR_SET_PDEATHSIG`: SIGKILL in a namespace, whose init then dies
-//!    with it; SIGTERM otherwise, caught, so that it first ends the tree),
-//!    and checks at once that the server is still its parent (a server
-//!    gone before would send nothing); becomes a child subreaper;
+//!    with it; SIGCONT otherwise, which wakes it if it was stopped, so that
+//!    it sees its parent gone and ends the tree first), and checks at once
+//!    that the server is still its parent (a server gone before would send
+//!    nothing); becomes a child subreaper;
 //! 5. starts the stage, moves it into the unit, and tells it to go;
 //! 6. ends the whole unit (the stage first) when the stage ends, when the
-//!    server says so (a byte on, or the end of, its control pipe, or
-//!    SIGTERM), at its own wall-clock limit (whether or not the server is
-//!    there to count: a stopped server's tree still ends on time), or when
-//!    its parent is no longer the server; reaps all, and exits with the
-//!    program's status.
+//!    server says so (a byte on, or the end of, its control pipe), at its
+//!    own wall-clock limit (whether or not the server is there to count: a
+//!    stopped server's tree still ends on time), or when its parent is no
+//!    longer the server (checked every 10 ms); reaps all, and exits with
+//!    the program's status. It catches no signal: one that ends it (a
+//!    snippet may send SIGTERM or SIGKILL to its supervisor outside a
+//!    namespace) leaves the tree to the server's sweep.
 //!
 //! The stage asks to die with the supervisor (`PR_SET_PDEATHSIG`,
 //! SIGKILL), waits for the supervisor's word on a socket (whose end,
@@ -44,8 +47,6 @@ use std::ffi::{OsStr, OsString};
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 /// The hidden flag of `spintop book` that runs the supervisor.
@@ -185,19 +186,6 @@ fn supervisor(args: &[OsString]) -> i32 {
         return 2;
     };
     let start = Instant::now();
-    // SIGTERM: from the server at a stop, or from the kernel when the
-    // server ends (PR_SET_PDEATHSIG); either way, end the tree.
-    let told = Arc::new(AtomicBool::new(false));
-    for signal in [
-        signal_hook::consts::SIGTERM,
-        signal_hook::consts::SIGHUP,
-        signal_hook::consts::SIGINT,
-    ] {
-        if let Err(e) = signal_hook::flag::register(signal, Arc::clone(&told)) {
-            eprintln!("spintop book: cannot bound the snippet's processes: {e}");
-            return 2;
-        }
-    }
     let me = rustix::process::getpid();
     let unit = match set_up(spec, me) {
         Ok(unit) => unit,
@@ -217,7 +205,7 @@ fn supervisor(args: &[OsString]) -> i32 {
             return 2;
         }
     };
-    let (status, why) = watch(spec, start, stage, &told);
+    let (status, why) = watch(spec, start, stage);
     unit.end(me, status.is_none().then_some(stage));
     reap_all(Duration::from_secs(2));
     unit.remove();
@@ -254,7 +242,7 @@ fn dies_with_server(spec: Spec, unit: &Unit) -> Result<(), String> {
             .map_err(|e| format!("cannot turn off tracing: {e}"))?;
         let signal = match unit {
             Unit::Namespace => Signal::KILL,
-            Unit::Cgroup(_) | Unit::Group => Signal::TERM,
+            Unit::Cgroup(_) | Unit::Group => Signal::CONT,
         };
         rustix::process::set_parent_process_death_signal(Some(signal))
             .map_err(|e| format!("cannot ask to die with the server: {e}"))?;
@@ -305,7 +293,7 @@ fn start_stage(unit: &Unit, args: &[OsString]) -> Result<Pid, String> {
 /// Why the supervisor ended the tree itself.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Stop {
-    /// The server said so (its control pipe, SIGTERM), or is gone.
+    /// The server said so (its control pipe), or is gone.
     Server,
     /// The supervisor's own wall-clock limit.
     Deadline,
@@ -313,12 +301,7 @@ enum Stop {
 
 /// Step 6: waits for the stage to end (its status), or for a reason to end
 /// it, checking every 10 ms; reaps what comes to the supervisor meanwhile.
-fn watch(
-    spec: Spec,
-    start: Instant,
-    stage: Pid,
-    told: &AtomicBool,
-) -> (Option<WaitStatus>, Option<Stop>) {
+fn watch(spec: Spec, start: Instant, stage: Pid) -> (Option<WaitStatus>, Option<Stop>) {
     loop {
         loop {
             match rustix::process::waitpid(None, WaitOptions::NOHANG) {
@@ -330,7 +313,7 @@ fn watch(
                 Err(_) => return (None, Some(Stop::Server)),
             }
         }
-        if told.load(Ordering::SeqCst) || control_closed() || !server_is_parent(spec) {
+        if control_closed() || !server_is_parent(spec) {
             return (None, Some(Stop::Server));
         }
         if start.elapsed() >= spec.limit {

@@ -4,7 +4,8 @@
 //!
 //! The server waits for the supervisor's exit before it starts another tree,
 //! so "one run at a time" is one process tree at a time. It tells a
-//! supervisor to end its tree by closing its control pipe and by SIGTERM,
+//! supervisor to end its tree by closing its control pipe (and SIGCONT, in
+//! case it was stopped),
 //! at the tree's time limit (the supervisor keeps the same limit on its own
 //! clock, for a server that is stopped) or when the server stops. The
 //! supervisor exits only once its tree is gone, unless it is itself killed:
@@ -122,13 +123,15 @@ impl Slot {
     }
 
     /// Tells the running tree's supervisor to kill the tree: closes its
-    /// control pipe, and sends it SIGTERM (a snippet outside a PID
-    /// namespace could hold the pipe open, were the supervisor dumpable).
+    /// control pipe, and wakes it (SIGCONT) if another process of the
+    /// reader stopped it. (A snippet may hold the pipe open only as root:
+    /// the supervisor is not dumpable. Then the server's own kill, after
+    /// [`GRACE`], ends the tree.)
     fn stop(&self) {
         let mut control = lock(&self.control);
         control.pipe = None;
         if let Some(pid) = control.supervisor.and_then(Pid::from_raw) {
-            let _ = rustix::process::kill_process(pid, Signal::TERM);
+            let _ = rustix::process::kill_process(pid, Signal::CONT);
         }
     }
 
