@@ -143,16 +143,9 @@ fn a_snippet_that_kills_its_supervisor_leaves_nothing_running() {
     let site = site(&root);
     for unit in [Containment::Cgroup, Containment::Group] {
         let scratch = root.join(format!("scratch-{}", unit.name()));
-        let options = BookOptions {
-            args: vec!["--containment".into(), unit.name().into()],
-            ..BookOptions::default()
-        };
-        let mut book = Book::start_with(&site, &scratch, options);
-        let got = book.unit();
-        if got != unit.described() {
-            eprintln!("{}: this machine gives {got}: skipped", unit.name());
+        let Some(mut book) = book_in_unit(&site, &scratch, unit) else {
             continue;
-        }
+        };
         book.wait_line("▶ is ready");
         book.run(&kills_its_supervisor());
         let escapee = pid_file(&scratch, "escapee.pid", Duration::from_secs(300))
@@ -341,7 +334,24 @@ fn sigkill_ends_the_tree(mut book: Book, scratch: &Path, what: &str) -> Duration
     took
 }
 
-/// The units to try, each with the words `spintop book` uses for it.
+/// `spintop book` serving `site` with snippets in `scratch`, its trees
+/// ended at most as `unit` says; `None`, said, where this machine gives a
+/// weaker unit.
+fn book_in_unit(site: &Path, scratch: &Path, unit: Containment) -> Option<Book> {
+    let options = BookOptions {
+        args: vec!["--containment".into(), unit.name().into()],
+        ..BookOptions::default()
+    };
+    let mut book = Book::start_with(site, scratch, options);
+    let got = book.unit();
+    if got != unit.described() {
+        eprintln!("{}: this machine gives {got}: skipped", unit.name());
+        return None;
+    }
+    Some(book)
+}
+
+/// The units to try.
 const UNITS: [Containment; 3] = [
     Containment::Namespace,
     Containment::Cgroup,
@@ -360,16 +370,9 @@ fn sigkill_of_the_server_leaves_nothing_of_a_snippet_that_attacks_its_supervisor
     let site = site(&root);
     for unit in UNITS {
         let scratch = root.join(format!("scratch-{}", unit.name()));
-        let options = BookOptions {
-            args: vec!["--containment".into(), unit.name().into()],
-            ..BookOptions::default()
-        };
-        let mut book = Book::start_with(&site, &scratch, options);
-        let got = book.unit();
-        if got != unit.described() {
-            eprintln!("{}: this machine gives {got}: skipped", unit.name());
+        let Some(book) = book_in_unit(&site, &scratch, unit) else {
             continue;
-        }
+        };
         book.run(&attacks_its_supervisor());
         sigkill_ends_the_tree(book, &scratch, unit.name());
     }
