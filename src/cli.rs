@@ -301,6 +301,16 @@ where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
 {
+    ExitCode::from(run_code(args, stdout, stderr))
+}
+
+/// [`run`], with the exit code as a number: what the tests read when they
+/// run the command line in their own process.
+pub fn run_code<I, T>(args: I, stdout: &mut impl Write, stderr: &mut impl Write) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
     let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {
@@ -312,13 +322,13 @@ where
                     Err(e) if e.kind() != io::ErrorKind::BrokenPipe => {
                         let e = CliError::from(e);
                         let _ = writeln!(stderr, "spintop: error: {}", e.message());
-                        ExitCode::from(e.exit_code())
+                        e.exit_code()
                     }
-                    _ => ExitCode::SUCCESS,
+                    _ => 0,
                 };
             }
             let _ = writeln!(stderr, "spintop: error: {} (see --help)", clap_message(&e));
-            return ExitCode::from(EXIT_BAD_INPUT);
+            return EXIT_BAD_INPUT;
         }
     };
     // Every command writes its output through the gate, and only through it.
@@ -343,12 +353,12 @@ where
         Some(Command::Book(args)) => book::execute(args, out),
     };
     match result.and_then(|()| gate.flush().map_err(CliError::from)) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => 0,
         // A closed pipe (`spintop … | head`) is the reader's choice, not an error.
-        Err(CliError::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(CliError::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => 0,
         Err(e) => {
             let _ = writeln!(stderr, "spintop: error: {}", e.message());
-            ExitCode::from(e.exit_code())
+            e.exit_code()
         }
     }
 }

@@ -83,6 +83,7 @@ fn time_to_answer(book: &Book) -> Duration {
 #[test]
 #[ignore = "end-to-end: another user, real time"]
 fn a_fork_burst_in_a_snippet_leaves_the_server_answering() {
+    let _one = one_nobody_at_a_time();
     let root = scratch_root("burst");
     let Some(book) = nobody_book(&root, Containment::Namespace, Some(NPROC)) else {
         return;
@@ -129,6 +130,7 @@ fn a_fork_burst_in_a_snippet_leaves_the_server_answering() {
 #[ignore = "end-to-end: another user, real time"]
 fn a_fork_burst_that_takes_every_process_leaves_the_server_answering_after() {
     use std::os::unix::process::CommandExt;
+    let _one = one_nobody_at_a_time();
     let root = scratch_root("burst-outside");
     let Some(book) = nobody_book(&root, Containment::Namespace, Some(NPROC)) else {
         return;

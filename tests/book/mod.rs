@@ -481,6 +481,14 @@ fn give(root: &Path, uid: u32) {
     }
 }
 
+/// Held by each test that runs processes as uid [`NOBODY`]: the process
+/// limit counts every task of a user, so a fork burst of one such test
+/// would take what another's server needs.
+fn one_nobody_at_a_time() -> std::sync::MutexGuard<'static, ()> {
+    static NOBODY_TESTS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    NOBODY_TESTS.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// `spintop book` as uid [`NOBODY`] with the stand-in cargo, in folders of
 /// its own under `root` (given to it), its trees ended at most as
 /// `containment` says, under process limit `nproc` if any. `None` (with

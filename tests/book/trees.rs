@@ -385,6 +385,7 @@ fn sigkill_of_the_server_leaves_nothing_of_a_snippet_that_attacks_its_supervisor
 #[test]
 #[ignore = "end-to-end: another user, real time"]
 fn sigkill_of_the_server_leaves_nothing_of_another_users_attacking_snippet() {
+    let _one = one_nobody_at_a_time();
     for unit in UNITS {
         let root = scratch_root(&format!("sigkill-nobody-{}", unit.name()));
         let Some(mut book) = nobody_book(&root, unit, None) else {
@@ -454,6 +455,7 @@ fn a_stopped_servers_snippet_still_ends_at_its_limit() {
 #[test]
 #[ignore = "end-to-end: another user, real time"]
 fn a_stopped_servers_snippet_still_ends_at_its_limit_as_another_user() {
+    let _one = one_nobody_at_a_time();
     let root = scratch_root("stopped-nobody");
     let Some(book) = nobody_book(&root, Containment::Group, None) else {
         return;

@@ -86,6 +86,7 @@ fn spintop(args: &[&str]) -> std::process::Output {
 }
 
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn a_stub_that_prints_the_harness_lines_grades_zero_of_22() {
     let dir = scratch("printing-stub").join("copy");
     export_linked(&dir);
@@ -203,6 +204,7 @@ fn check_gradescope(json: &serde_json::Value) {
 }
 
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn course_grade_writes_every_row_of_a_class_within_its_time_limits() {
     let class = scratch("class");
     // alice solved (2.1); bob's (2.2) never returns; carol's ch3.rs does not
@@ -336,6 +338,7 @@ fn course_grade_writes_every_row_of_a_class_within_its_time_limits() {
 /// (and never "does not compile" for want of the file).
 #[cfg(unix)]
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn course_grade_names_a_symbolic_link_to_the_solution_in_the_reason() {
     let class = scratch("link");
     let frank = class.join("frank");
@@ -374,6 +377,7 @@ fn course_grade_names_a_symbolic_link_to_the_solution_in_the_reason() {
 }
 
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn an_export_for_github_grades_itself_with_cargo_test_on_every_push() {
     let dir = scratch("ci").join("copy");
     let written = course::export_with(
@@ -464,6 +468,7 @@ fn an_export_for_github_grades_itself_with_cargo_test_on_every_push() {
 }
 
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn every_printed_command_repeats_the_course_it_was_given() {
     let dir = scratch("hint").join("copy");
     export_linked(&dir);
@@ -508,6 +513,7 @@ fn assert_every_assignment_has_a_wrong_answer(answers: &[course::diagnose::Wrong
 }
 
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn the_example_wrong_answers_are_rejected_and_their_diagnoses_name_the_mistake() {
     let answers = course::diagnose::read_folder(&repo().join("lessons/wrong")).unwrap();
     assert!(answers.len() >= 30, "{}", answers.len());
@@ -533,6 +539,7 @@ fn the_example_wrong_answers_are_rejected_and_their_diagnoses_name_the_mistake()
 /// measured"): every one is rejected, and all but one diagnosis contain the
 /// words that name the mistake. Neither count may fall.
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn the_independent_wrong_answers_are_all_rejected_and_their_diagnoses_name_the_mistake() {
     let answers = course::diagnose::read_folder(&repo().join("lessons/wrong/independent")).unwrap();
     assert!(answers.len() >= 60, "{}", answers.len());
@@ -570,6 +577,7 @@ fn the_independent_wrong_answers_are_all_rejected_and_their_diagnoses_name_the_m
 /// limit, instead of taking the (shared) machine and the class's grading
 /// with it: 4 GiB asked for by one grader is refused, and the row says why.
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn a_grader_that_allocates_without_bound_is_stopped_by_its_memory_limit() {
     let class = scratch("memory");
     let greedy = class.join("greedy");
@@ -605,6 +613,7 @@ fn a_grader_that_allocates_without_bound_is_stopped_by_its_memory_limit() {
 /// student beside their copy) grades the copy; cargo must not look for the
 /// manifest relative to the copy itself ("does not compile", Cargo.toml:1).
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn a_copy_named_by_a_relative_path_is_graded() {
     let parent = scratch("relative");
     export_linked(&parent.join("mine"));

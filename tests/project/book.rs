@@ -701,8 +701,9 @@ fn book_every_cited_equation_is_typeset() {
     assert!(typeset_numbers(r"a = b").is_empty());
 }
 
-/// The prose of a chapter: its text without code blocks, inline code, math,
-/// HTML comments (the live view's experiments) and image descriptions.
+/// The prose of a chapter: its text without code blocks, inline code (the
+/// live view's experiments among it), math, HTML comments and image
+/// descriptions.
 fn prose(chapter: &str) -> String {
     let mut out = String::new();
     let mut rest = chapter;
