@@ -51,6 +51,7 @@ fn rk4_variant(
 pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
     [
         section_2,
+        section_2_schott,
         section_3,
         section_4_1,
         section_4_2,
@@ -64,7 +65,6 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
 
 /// Section 2: the laws (2.1)-(2.4) and the precessing dipole.
 fn section_2(seed: u64) -> Vec<Wrong> {
-    let cone = |th: f64, w: f64, t: f64| PrecessingDipole::new(th, w).unwrap().jet(t);
     vec![
         // (2.1)
         w(
@@ -129,6 +129,13 @@ fn section_2(seed: u64) -> Vec<Wrong> {
             grading::torque_rate(seed, |j: &Jet| j[3].cross(&j[0])),
             "sign flip",
         ),
+    ]
+}
+
+/// Section 2: the Schott rate (2.3), its axial part, and the precessing dipole.
+fn section_2_schott(seed: u64) -> Vec<Wrong> {
+    let cone = |th: f64, w: f64, t: f64| PrecessingDipole::new(th, w).unwrap().jet(t);
+    vec![
         // (2.3)
         w(
             "schott_rate",
