@@ -9,7 +9,7 @@
 //! what `spintop figure N --svg FILE` draws now.
 //!
 //! After a deliberate change to a lesson or a figure, refresh the book's copies
-//! with `UPDATE_BOOK=1 cargo test --test project`, and review the diff.
+//! with `UPDATE_BOOK=1 cargo test -p spintop-app --test app project::`, and review the diff.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
@@ -68,7 +68,7 @@ fn figure_is_current(name: &str, fresh: &str, chapter: &str, drawn_by: &str) -> 
     }
     assert!(
         fs::read_to_string(&shown).unwrap_or_default() == fresh,
-        "the book's {name} is not what {drawn_by} draws now; run UPDATE_BOOK=1 cargo test --test project"
+        "the book's {name} is not what {drawn_by} draws now; run UPDATE_BOOK=1 cargo test -p spintop-app --test app project::"
     );
     let text = fs::read_to_string(book_src().join(chapter)).unwrap();
     assert!(
@@ -152,7 +152,7 @@ fn stale(name: &str, output: &str, shown: &Path) -> Option<String> {
         .position(|(a, b)| a != b)
         .map_or_else(|| "its length".to_string(), |i| format!("line {}", i + 1));
     Some(format!(
-        "the book's copy of `{name}` output ({}) is stale at {line}; run UPDATE_BOOK=1 cargo test --test project",
+        "the book's copy of `{name}` output ({}) is stale at {line}; run UPDATE_BOOK=1 cargo test -p spintop-app --test app project::",
         shown.display()
     ))
 }
@@ -287,7 +287,7 @@ fn book_figures_are_what_spintop_figure_draws_now() {
             fs::write(&shown, &fresh).unwrap();
         } else if fs::read_to_string(&shown).unwrap_or_default() != fresh {
             problems.push(format!(
-                "the book's {name} is not what `spintop figure {n} --svg` draws now; run UPDATE_BOOK=1 cargo test --test project"
+                "the book's {name} is not what `spintop figure {n} --svg` draws now; run UPDATE_BOOK=1 cargo test -p spintop-app --test app project::"
             ));
         }
         let embedded = summary_chapters().iter().any(|c| {
@@ -402,7 +402,7 @@ const SYMBOL_MODULES: &[(&str, &str, &str, &str)] = &[
 /// copied from the source so that the page cannot drift from the code.
 fn symbol_table() -> String {
     let mut out = String::from(
-        "<!-- Generated from the module headers by tests/project/book.rs; refresh with UPDATE_BOOK=1 cargo test --test project -->\n",
+        "<!-- Generated from the module headers by tests/project/book.rs; refresh with UPDATE_BOOK=1 cargo test -p spintop-app --test app project:: -->\n",
     );
     for (file, module, chapter, title) in SYMBOL_MODULES {
         let source = fs::read_to_string(root().join(file)).expect("a listed module exists");
@@ -776,7 +776,7 @@ fn book_diagrams_are_what_the_generator_draws_now_and_are_shown() {
             fs::write(&path, &d.svg).unwrap();
         } else if fs::read_to_string(&path).unwrap_or_default() != d.svg {
             problems.push(format!(
-                "the book's figures/{}.svg is not what the diagram generator draws now; run UPDATE_BOOK=1 cargo test --test project",
+                "the book's figures/{}.svg is not what the diagram generator draws now; run UPDATE_BOOK=1 cargo test -p spintop-app --test app project::",
                 d.name
             ));
         }

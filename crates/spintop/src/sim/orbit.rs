@@ -246,7 +246,7 @@ pub enum OrbitError {
     Integrate(#[from] IntegrateError),
     /// The orbit fell inside [`OrbitConfig::floor_radius`].
     #[error(
-        "the orbit fell to r = {r:.3e} at t = {}, where the orbital time comes within 10 tau0 and the model ends",
+        "the orbit fell to r = {r:.3e} at t = {}, where the orbital time r^(3/2) (the time to turn one radian) is below 10 tau0 and the model ends",
         crate::numbers::fmt_time(*t)
     )]
     Collapsed {
