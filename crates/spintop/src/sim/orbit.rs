@@ -155,8 +155,9 @@ impl OrbitConfig {
     }
 
     /// The radius below which a Coulomb run stops: where the orbital time
-    /// r^{3/2} comes within 10 τ₀, so that neither the Landau–Lifshitz reduction
-    /// nor a point charge on a slowly decaying orbit makes sense any more.
+    /// r^{3/2} (the time to turn one radian) falls below 10 τ₀, so that
+    /// neither the Landau–Lifshitz reduction nor a point charge on a slowly
+    /// decaying orbit makes sense any more.
     pub fn floor_radius(&self) -> Real {
         match self.charge.potential() {
             Potential::Coulomb => (10.0 * self.charge.tau0()).powf(2.0 / 3.0),
