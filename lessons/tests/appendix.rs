@@ -1,4 +1,4 @@
-//! Appendix assignments: `cargo test -p spintop-lessons --test appendix`.
+//! Appendix assignments: `cargo test --test appendix` in a student's copy (in spintop's repository: `cargo test -p spintop-lessons --test appendix`).
 //!
 //! Each test grades one assignment with fresh inputs (`SPINTOP_SEED=N` gives
 //! the inputs of seed N again). `spintop course` runs each in a process of

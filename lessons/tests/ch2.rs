@@ -1,4 +1,4 @@
-//! Section 2 assignments: `cargo test -p spintop-lessons --test ch2`.
+//! Section 2 assignments: `cargo test --test ch2` in a student's copy (in spintop's repository: `cargo test -p spintop-lessons --test ch2`).
 //!
 //! Each test grades one assignment with fresh inputs (`SPINTOP_SEED=N` gives
 //! the inputs of seed N again). `spintop course` runs each in a process of

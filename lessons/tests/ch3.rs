@@ -1,4 +1,4 @@
-//! Section 3 assignments: `cargo test -p spintop-lessons --test ch3`.
+//! Section 3 assignments: `cargo test --test ch3` in a student's copy (in spintop's repository: `cargo test -p spintop-lessons --test ch3`).
 //!
 //! Each test grades one assignment with fresh inputs (`SPINTOP_SEED=N` gives
 //! the inputs of seed N again). `spintop course` runs each in a process of

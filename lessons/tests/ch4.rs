@@ -1,4 +1,4 @@
-//! Sections 4.1 and 4.2 assignments: `cargo test -p spintop-lessons --test ch4`.
+//! Sections 4.1 and 4.2 assignments: `cargo test --test ch4` in a student's copy (in spintop's repository: `cargo test -p spintop-lessons --test ch4`).
 //!
 //! Each test grades one assignment with fresh inputs (`SPINTOP_SEED=N` gives
 //! the inputs of seed N again). `spintop course` runs each in a process of

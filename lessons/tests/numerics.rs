@@ -1,4 +1,4 @@
-//! Numerical methods (and the Euler angles of Section 3) assignments: `cargo test -p spintop-lessons --test numerics`.
+//! Numerical methods (and the Euler angles of Section 3) assignments: `cargo test --test numerics` in a student's copy (in spintop's repository: `cargo test -p spintop-lessons --test numerics`).
 //!
 //! Each test grades one assignment with fresh inputs (`SPINTOP_SEED=N` gives
 //! the inputs of seed N again). `spintop course` runs each in a process of

@@ -610,21 +610,59 @@ fn a_copy_exported_from_a_deleted_clone_builds_and_is_graded() {
         !ch2.contains(&solution("ch2", "larmor_rate")),
         "a solution in src/ch2.rs"
     );
-    // Solve (2.1) and build the copy offline, in a build folder of its own.
-    write_function(&copy, "ch2", "larmor_rate", &solution("ch2", "larmor_rate"));
-    let test = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
-        .current_dir(&copy)
-        .env_remove("CARGO_TARGET_DIR")
-        .args([
-            "test",
+    // Moved elsewhere, the copy is a workspace of one package whose lock is
+    // its own: cargo's --locked holds, and --workspace means the student's
+    // package (not the carried crates, whose tests are not carried).
+    let moved = root.join("elsewhere").join("copy");
+    std::fs::create_dir_all(root.join("elsewhere")).unwrap();
+    std::fs::rename(&copy, &moved).unwrap();
+    let copy = moved;
+    let cargo = |args: &[&str]| {
+        Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
+            .current_dir(&copy)
+            .env_remove("CARGO_TARGET_DIR")
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let metadata = cargo(&["metadata", "--locked", "--offline", "--format-version", "1"]);
+    assert!(
+        metadata.status.success(),
+        "{}",
+        String::from_utf8_lossy(&metadata.stderr)
+    );
+    let metadata: serde_json::Value = serde_json::from_slice(&metadata.stdout).unwrap();
+    let members = metadata["workspace_members"].as_array().unwrap();
+    assert_eq!(members.len(), 1, "{members:?}");
+    for args in [
+        &[
+            "check",
+            "--workspace",
+            "--all-targets",
+            "--locked",
             "--offline",
             "--quiet",
-            "--test",
-            "ch2",
-            "eq_2_1_larmor_rate",
-        ])
-        .output()
-        .unwrap();
+        ][..],
+        &["test", "--locked", "--offline", "--no-run", "--quiet"][..],
+    ] {
+        let out = cargo(args);
+        assert!(
+            out.status.success(),
+            "cargo {args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    // Solve (2.1) and build the copy offline, in a build folder of its own.
+    write_function(&copy, "ch2", "larmor_rate", &solution("ch2", "larmor_rate"));
+    let test = cargo(&[
+        "test",
+        "--locked",
+        "--offline",
+        "--quiet",
+        "--test",
+        "ch2",
+        "eq_2_1_larmor_rate",
+    ]);
     assert!(
         test.status.success(),
         "{}",

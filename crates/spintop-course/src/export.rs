@@ -191,8 +191,12 @@ edition = "2024"
 publish = false
 description = "Course assignments on Duviryak's polarized spinning top, graded by cargo test."
 
-# A course of its own, not a member of any other workspace.
+# A course of its own, not a member of any other workspace; its one member is
+# this package, so `cargo test --workspace` grades the assignments and does not
+# build the carried crates' own tests (which the copy does not carry).
 [workspace]
+members = ["."]
+exclude = ["crates"]
 
 [lib]
 name = "spintop_lessons"
@@ -223,10 +227,13 @@ builds anywhere Rust is installed.
 Two commands:
 
 ```sh
-cargo test                     # grade every assignment (fresh inputs each time)
+cargo test --no-fail-fast      # grade every assignment (fresh inputs each time)
 cargo test --test ch2          # grade one chapter's assignments
-SPINTOP_SEED=123 cargo test    # the inputs of a failure again (its report gives the seed)
+SPINTOP_SEED=123 cargo test --no-fail-fast   # the inputs of a failure again (its report gives the seed)
 ```
+
+(Without `--no-fail-fast`, cargo stops at the first chapter with a failing
+test and never runs the others.)
 
 With spintop installed, `spintop course --course .` lists the assignments in
 course order with their state and what to do next (it also checks the source
@@ -298,6 +305,78 @@ fn carried(repo: &Path) -> Result<Vec<(PathBuf, Vec<u8>)>, String> {
     Ok(files)
 }
 
+/// The rewrites that make the book's assignments page true in a copy: the
+/// repository's page names `lessons/`, the package `spintop-lessons` and the
+/// workspace's other packages, none of which a copy holds (its tests are
+/// `tests/CHAPTER.rs` of its one package). Each `from` occurs in the page
+/// (a test checks it, so that a change to the page is seen here).
+pub(crate) const PAGE_REWRITES: [(&str, &str); 9] = [
+    (
+        "The directory `lessons/` is also a small Cargo package,\n`spintop-lessons`, and a member of the workspace. It holds",
+        "This copy is a small Cargo package of its own. It holds",
+    ),
+    (
+        "The plain `cargo test` at the top of the repository does not build this\npackage (the workspace's default member is spintop itself), so the project's\nown tests stay green while the stubs are unsolved.",
+        "`cargo test --no-fail-fast` grades every chapter (a plain `cargo test`\nstops at the first chapter with a failing test); `cargo test --test ch2`\ngrades one.",
+    ),
+    (
+        "`spintop course` (from the repository: `cargo run --release -- course`)",
+        "`spintop course --course .` (with spintop installed)",
+    ),
+    (
+        "`lessons/README.md` lists the rule, the\nthreat model behind it,",
+        "The course's README in spintop's repository\nlists the rule, the threat model behind it,",
+    ),
+    (
+        "cargo test -p spintop-lessons --features solutions\n",
+        "cargo test --no-fail-fast\n",
+    ),
+    (
+        "on the page [Teaching with spintop](instructors.md).",
+        "on the page \"Teaching with spintop\" of spintop's book.",
+    ),
+    ("cargo test -p spintop-course --test course graders::\n", ""),
+    ("cargo test -p spintop-lessons --test", "cargo test --test"),
+    ("`lessons/src/", "`src/"),
+];
+
+/// The book's assignments page as a copy carries it ([`PAGE_REWRITES`]).
+pub(crate) fn copy_page(text: &str) -> String {
+    PAGE_REWRITES
+        .iter()
+        .fold(text.to_string(), |t, (from, to)| t.replace(from, to))
+}
+
+/// Cuts the repository's `Cargo.lock`, copied to `out`, down to the copy's
+/// own packages, at the versions the repository pinned: cargo drops what the
+/// copy does not use (the application's, the server's, the carried crates'
+/// dev-dependencies) and adds the copy's package, so that `--locked` holds in
+/// the copy. Offline first (the repository's build has every package); on a
+/// machine whose cache lacks one, cargo may fetch its index.
+fn prune_lock(out: &Path) -> Result<(), String> {
+    let mut last = String::new();
+    for offline in [true, false] {
+        let mut cmd = crate::harness::cargo();
+        cmd.args(["metadata", "--format-version", "1"])
+            .arg("--manifest-path")
+            .arg(out.join("Cargo.toml"))
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped());
+        if offline {
+            cmd.arg("--offline");
+        }
+        match cmd.output() {
+            Ok(o) if o.status.success() => return Ok(()),
+            Ok(o) => last = String::from_utf8_lossy(&o.stderr).trim().to_string(),
+            Err(e) => last = format!("cargo: {e}"),
+        }
+    }
+    Err(format!(
+        "{}: the copy's Cargo.lock could not be made ({last})",
+        out.display()
+    ))
+}
+
 /// Writes a self-contained student's copy of the course in `repo` to `out`
 /// (a folder that must not exist yet, or be empty): the stubs without the
 /// reference solutions, the graders' tests, the book's assignments page, a
@@ -353,8 +432,8 @@ pub fn export_with(repo: &Path, out: &Path, options: &ExportOptions) -> Result<E
         }
     }
     let page = repo.join("book/src/assignments.md");
-    if let Ok(text) = std::fs::read(&page) {
-        files.push(("book/assignments.md".into(), text));
+    if let Ok(text) = std::fs::read_to_string(&page) {
+        files.push(("book/assignments.md".into(), copy_page(&text).into_bytes()));
     }
     if let Ok(lock) = std::fs::read(repo.join("Cargo.lock")) {
         files.push(("Cargo.lock".into(), lock));
@@ -374,6 +453,9 @@ pub fn export_with(repo: &Path, out: &Path, options: &ExportOptions) -> Result<E
             std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
         }
         std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    if out.join("Cargo.lock").is_file() {
+        prune_lock(out)?;
     }
     Ok(Export {
         files: files.into_iter().map(|(p, _)| p).collect(),
@@ -435,9 +517,72 @@ mod tests {
                 && manifest.contains("spintop = { path")
                 && manifest.contains("spintop-grading = { path")
         );
+        // The copy's workspace is its own package: the carried crates are
+        // not members (their tests and dev-dependencies are not carried).
+        let parsed: toml::Table = manifest.parse().unwrap();
+        let workspace = parsed["workspace"].as_table().unwrap();
+        assert_eq!(workspace["members"].as_array().unwrap().len(), 1);
+        assert_eq!(workspace["members"][0].as_str(), Some("."));
+        assert_eq!(workspace["exclude"][0].as_str(), Some("crates"));
+        // The lock is the copy's own: its package in, the application's and
+        // the dev-dependencies' out (the repository's would fail --locked).
+        let lock = std::fs::read_to_string(out.join("Cargo.lock")).unwrap();
+        assert!(lock.contains("name = \"spintop-lessons-"), "{lock}");
+        for absent in ["ratatui", "clap", "proptest", "insta", "spintop-course"] {
+            assert!(
+                !lock.contains(&format!("name = \"{absent}\"")),
+                "the copy's Cargo.lock holds {absent}"
+            );
+        }
+        // The README grades every chapter, not only up to the first failing one.
+        let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
+        assert!(readme.contains("cargo test --no-fail-fast "), "{readme}");
+        assert!(!readme.contains("cargo test   "), "{readme}");
         // A second export into the same folder is refused, nothing overwritten.
         assert!(export(root, &out).unwrap_err().contains("not empty"));
         std::fs::remove_dir_all(&out).unwrap();
+    }
+
+    /// The assignments page a copy carries names only what the copy holds:
+    /// no `lessons/` folder, no other package, no `solutions` feature, and
+    /// every `--test` target it names is one of its `tests/*.rs`.
+    #[test]
+    fn the_copys_assignments_page_names_what_the_copy_holds() {
+        let root = crate::repository();
+        let page = std::fs::read_to_string(root.join("book/src/assignments.md")).unwrap();
+        for (from, _) in PAGE_REWRITES {
+            assert!(page.contains(from), "the page no longer says {from:?}");
+        }
+        let copy = copy_page(&page);
+        for absent in [
+            "lessons/",
+            " -p ",
+            "--features",
+            "spintop-lessons",
+            "workspace",
+            "cargo run",
+            "](",
+        ] {
+            assert!(!copy.contains(absent), "the copy's page names {absent:?}");
+        }
+        let mut named = 0;
+        for part in copy.split("cargo test").skip(1) {
+            if let Some(rest) = part.trim_start().strip_prefix("--test ") {
+                let name: String = rest
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                assert!(
+                    root.join("lessons/tests")
+                        .join(format!("{name}.rs"))
+                        .is_file(),
+                    "--test {name}"
+                );
+                named += 1;
+            }
+        }
+        assert!(named >= 2, "{copy}");
+        assert!(copy.contains("cargo test --no-fail-fast"));
     }
 
     #[test]

@@ -390,7 +390,9 @@ pub(crate) enum Built {
     OutOfTime,
 }
 
-fn cargo() -> Command {
+/// The cargo that runs this program (a build script's or a test's), or the
+/// one on the PATH.
+pub(crate) fn cargo() -> Command {
     Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
 }
 
