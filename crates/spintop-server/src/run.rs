@@ -68,10 +68,13 @@ impl Default for Limits {
 }
 
 /// The crates a snippet may use (the repository's `crates/NAME`): the core,
-/// and for the course's chapters the graders and the course runner. A
-/// snippet that names any other crate builds under `cargo test` (a doctest
-/// sees every dependency) and fails under ▶.
-pub const SNIPPET_CRATES: [&str; 3] = ["spintop", "spintop-grading", "spintop-course"];
+/// and for the course's chapters the graders. A snippet that names any other
+/// crate builds under `cargo test` (a doctest sees every dependency) and
+/// fails under ▶; the blocks that need the course runner (the instructors'
+/// page) are marked `rust,noplayground`, so ▶ is not offered for them, and
+/// `spintop-course` doctests them. The scratch project thus never compiles
+/// the course runner's syntax parser and process control.
+pub const SNIPPET_CRATES: [&str; 2] = ["spintop", "spintop-grading"];
 
 /// Where snippets are compiled, and with what.
 #[derive(Debug, Clone)]
@@ -79,8 +82,7 @@ pub struct Runner {
     /// The scratch project (created on first use).
     pub scratch: PathBuf,
     /// The repository whose crates the snippets use (`crates/spintop`, the
-    /// core; `crates/spintop-grading` and `crates/spintop-course` for the
-    /// course's chapters).
+    /// core; `crates/spintop-grading` for the course's chapters).
     pub spintop: PathBuf,
     /// The build folder shared with the workspace.
     pub target_dir: PathBuf,
@@ -215,21 +217,20 @@ impl Runner {
         )
     }
 
-    /// The scratch project's manifest.
+    /// The scratch project's manifest: the crates of [`SNIPPET_CRATES`].
     fn manifest(&self, edition: &str) -> String {
-        format!(
-            "[package]\nname = \"{}\"\nversion = \"0.0.0\"\nedition = \"{edition}\"\npublish = false\n\n# The book's snippets, one at a time; not part of any workspace.\n[workspace]\n\n[dependencies]\nspintop = {{ path = {:?} }}\nspintop-grading = {{ path = {:?} }}\nspintop-course = {{ path = {:?} }}\n",
+        let mut text = format!(
+            "[package]\nname = \"{}\"\nversion = \"0.0.0\"\nedition = \"{edition}\"\npublish = false\n\n# The book's snippets, one at a time; not part of any workspace.\n[workspace]\n\n[dependencies]\n",
             self.binary_name(),
-            self.spintop.join("crates/spintop").display().to_string(),
-            self.spintop
-                .join("crates/spintop-grading")
-                .display()
-                .to_string(),
-            self.spintop
-                .join("crates/spintop-course")
-                .display()
-                .to_string(),
-        )
+        );
+        for krate in SNIPPET_CRATES {
+            let path = self.spintop.join("crates").join(krate);
+            text.push_str(&format!(
+                "{krate} = {{ path = {:?} }}\n",
+                path.display().to_string()
+            ));
+        }
+        text
     }
 
     fn prepare(&self, code: &str, edition: &str) -> std::io::Result<()> {
@@ -515,5 +516,28 @@ pub fn default_runner(repo: &Path) -> Runner {
         launcher: std::env::current_exe().unwrap_or_else(|_| PathBuf::from("spintop")),
         limits: Limits::default(),
         containment: Containment::Namespace,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 41: a ▶ snippet depends on the core and the graders only, so
+    /// the scratch project never builds the course runner (syn, rustix, …).
+    #[test]
+    fn the_scratch_project_depends_on_the_core_and_the_graders_only() {
+        let runner = default_runner(Path::new("/repo"));
+        let manifest = runner.manifest("2024");
+        let (_, deps) = manifest.split_once("[dependencies]\n").unwrap();
+        let deps: Vec<&str> = deps.lines().collect();
+        assert_eq!(
+            deps,
+            [
+                "spintop = { path = \"/repo/crates/spintop\" }",
+                "spintop-grading = { path = \"/repo/crates/spintop-grading\" }",
+            ],
+            "{manifest}"
+        );
     }
 }
