@@ -7,7 +7,7 @@
 //! cargo bench -p spintop-benches --bench crossover -- --out crossover.csv
 //! ```
 //!
-//! Three tops (the asymmetric tops of `tests/numerics/cost.rs`: three
+//! Three tops (the asymmetric tops of `crates/spintop/tests/numerics/cost.rs`: three
 //! different sets of moments, weakly radiating), each under the truncated
 //! ALE (3.3) and the reduced ALE, over 300 rad of turning with 5 and with
 //! 1000 output times, at rtol 1e-4 to 1e-14. Each case is timed in
@@ -16,7 +16,7 @@
 //! Taylor method's: the median over the rounds, with the smallest and
 //! largest. `spintop::sim::auto_integrator` takes the Taylor method at an
 //! rtol only where it was the faster in every case here; a test
-//! (`tests/numerics/taylor.rs`) holds the rule to the committed
+//! (`crates/spintop/tests/numerics/taylor.rs`) holds the rule to the committed
 //! `benches/results/crossover-*.csv`.
 
 use spintop::math::{Real, Vec3};

@@ -2,5 +2,6 @@
 
 mod architecture;
 mod book;
+mod commands;
 mod readme;
 mod sizes;

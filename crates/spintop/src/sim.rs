@@ -436,7 +436,7 @@ impl Method {
 /// the faster in all twelve cases (1.2–1.7× at 1e-10, 1.6–2.4× at 1e-12); at
 /// 1e-9 and looser DOP853 was the faster in some (by up to 1.3× at 1e-6, on
 /// a top with few outputs), so there `auto` keeps DOP853, whose embedded
-/// error estimate checks every step. `tests/numerics/taylor.rs` holds this
+/// error estimate checks every step. `crates/spintop/tests/numerics/taylor.rs` holds this
 /// constant to that file.
 pub const TAYLOR_AUTO_RTOL: Real = 1e-10;
 

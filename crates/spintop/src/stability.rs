@@ -2,7 +2,7 @@
 //! method breaks, measured beside the method spintop uses instead.
 //!
 //! Each row is a small experiment in its own module. It returns a typed
-//! measurement (what the tests in `tests/numerics/stability.rs` assert on) that turns
+//! measurement (what the tests in `crates/spintop/tests/numerics/stability.rs` assert on) that turns
 //! into a printable [`Row`] (what `spintop stability` prints). Pure: no I/O, no
 //! clock; every number is a count, a time, a rate or an error.
 //!

@@ -9,7 +9,7 @@
 //! and Hairer's Fortran code `DOP853`. The coefficients are those of `DOP853`
 //! (`dop853.f`), checked against SciPy's copy
 //! (`scipy/integrate/_ivp/dop853_coefficients.py`); the order tests in
-//! `tests/numerics/integrators.rs` (global order 8, dense order 7) are the proof they are
+//! `crates/spintop/tests/numerics/integrators.rs` (global order 8, dense order 7) are the proof they are
 //! right.
 //!
 //! Counting ([`Stats`]): `rhs_evals = 12·(steps + rejected) + 1 + g + 3·d`, where

@@ -1,6 +1,6 @@
 //! The catalogue: the scene files of `crates/spintop/scenes/`, compiled into the
 //! binary so that `spintop scenes` and `spintop run NAME` work from any
-//! directory. `tests/numerics/scenes.rs` checks that this list and the folder agree.
+//! directory. `crates/spintop/tests/numerics/scenes.rs` checks that this list and the folder agree.
 
 use super::{Scene, SceneError, parse};
 

@@ -23,7 +23,7 @@ pub const FULL_TURN_PER_STEP: Real = 0.05;
 /// six free tops took (asymmetric, elongated, near the separatrix,
 /// symmetric), Ω and the orientation stepped together, with 10 % to spare
 /// (30 % for Radau IIA 5, measured on fewer turns; the Taylor method's on
-/// the three asymmetric tops of `tests/numerics/cost.rs`, which measures
+/// the three asymmetric tops of `crates/spintop/tests/numerics/cost.rs`, which measures
 /// them all again).
 const STEPS_PER_RADIAN: [(Real, [Real; 4]); 8] = [
     //  rtol    DP5   DOP853 Radau5 Taylor

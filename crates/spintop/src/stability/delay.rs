@@ -5,7 +5,7 @@
 //!
 //! The experiment: τ₀ = 0.06, δ = 0.1 (m_em = 0.6 > m₀ = 0.4), started on the
 //! Abraham–Lorentz physical motion. The method of steps itself is faithful:
-//! it reproduces exact modes to 1e-10 (tests/physics/shell_model.rs); what fails is
+//! it reproduces exact modes to 1e-10 (crates/spintop/tests/physics/shell_model.rs); what fails is
 //! the model, whose neutral chain of roots sits in the right half plane. The
 //! deviation from the Abraham–Lorentz motion is measured by its peak over a
 //! window of one time unit at t = 2 and at t = 6. For contrast, τ₀ = 0.001

@@ -23,7 +23,7 @@
 //! The full ALE has no closed form and its physical solution needs a shoot
 //! (see [`crate::sim::physical`]); its reference is spintop's own shooting
 //! solution at rtol 1e-13, computed when the problem is built. A test
-//! (`tests/numerics/workprecision.rs`) checks it against the same at rtol 1e-12 and
+//! (`crates/spintop/tests/numerics/workprecision.rs`) checks it against the same at rtol 1e-12 and
 //! against the slow-manifold series. Its orientation is not measured: it is
 //! driven by an interpolated table of Ω (accurate to about 1e-9), so its error
 //! would say more about the table than about the method.

@@ -3,8 +3,8 @@
 //! invariants, independent predictions or documented high-precision values,
 //! never against numbers the code printed.
 //!
-//! Rows 3 and 4 (stiffness, long runs) live in `tests/numerics/stability_stiffness.rs`
-//! and `tests/numerics/stability_long_run.rs`.
+//! Rows 3 and 4 (stiffness, long runs) live in `crates/spintop/tests/numerics/stability_stiffness.rs`
+//! and `crates/spintop/tests/numerics/stability_long_run.rs`.
 
 use spintop::physics::shell::Regime;
 use spintop::stability::{closed_forms, delay, pole, runaway};

@@ -74,7 +74,7 @@ fn stored_references_are_the_problems_spintop_solves() {
 
 /// Eq. (4.7) and Eqs. (4.15)–(4.16) in double precision against the 40-digit
 /// reference: the closed-form rows are at rounding level. The bound is the
-/// one of `tests/physics/closed_forms.rs`: a few ulps plus the rounding of the phase
+/// one of `crates/spintop/tests/physics/closed_forms.rs`: a few ulps plus the rounding of the phase
 /// α = Ω̃₃ϑ (up to about 24 rad here), 4ε(1 + |α|).
 #[test]
 fn eq_4_7_and_eq_4_16_closed_form_rows_are_at_rounding_level() {
