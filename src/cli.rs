@@ -264,6 +264,12 @@ fn unknown_name(e: &clap::Error) -> Option<String> {
     let Some(ContextValue::Strings(names)) = e.get(ContextKind::ValidValue) else {
         return None;
     };
+    if names.is_empty() {
+        // A path (clap refuses an empty one, with no list of names to offer).
+        return value
+            .is_empty()
+            .then(|| format!("{flag}: the path is empty"));
+    }
     let value = if value.is_empty() {
         "''".to_string()
     } else {
