@@ -311,3 +311,56 @@ fn cli_orbit_past_the_collapse_exits_3_with_the_time() {
     );
     assert!(!err.contains("NaN"));
 }
+
+/// Nothing lost: the rows before the collapse are printed, then the stop
+/// (`# stopped:` in the table and the CSV, `stopped` in the JSON), and the
+/// exit code is still 3, as `simulate` does before a runaway.
+#[test]
+fn cli_orbit_keeps_the_rows_before_the_collapse() {
+    let base = [
+        "orbit",
+        "--potential",
+        "coulomb",
+        "--tau0",
+        "1e-3",
+        "--times",
+        "0,50,100,200",
+    ];
+    for format in ["table", "csv", "json"] {
+        let mut args = base.to_vec();
+        args.extend(["--format", format]);
+        let out = spintop(&args);
+        assert_eq!(out.status.code(), Some(3), "{format}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains("t_c = 166.6666667"), "{err}");
+        let text = String::from_utf8(out.stdout).unwrap();
+        if format == "json" {
+            let v: Value = serde_json::from_str(&text).unwrap();
+            let ts: Vec<f64> = v["samples"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|s| s["t"].as_f64().unwrap())
+                .collect();
+            assert_eq!(ts, [0.0, 50.0, 100.0], "{text}");
+            assert_eq!(v["samples_omitted"].as_u64(), Some(1), "{text}");
+            assert!(
+                v["stopped"].as_str().unwrap().contains("at t = 166."),
+                "{text}"
+            );
+        } else {
+            // Three rows of numbers (t = 0, 50, 100), then the stop.
+            let rows = text
+                .lines()
+                .filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit()))
+                .count();
+            assert_eq!(rows, 3, "{text}");
+            let last = text.lines().last().unwrap();
+            assert!(
+                last.starts_with("# stopped: ") && last.contains("at t = 166."),
+                "{text}"
+            );
+        }
+    }
+}

@@ -9,7 +9,7 @@ use crate::physics::central::{
     Potential, abraham_lorentz_oscillator_roots, landau_lifshitz_oscillator_root,
 };
 use crate::sim::orbit::{
-    Crossing, Force, OrbitConfig, OrbitError, OrbitSample, Runaway, run_orbit,
+    Crossing, Force, OrbitConfig, OrbitError, OrbitSample, Runaway, run_orbit_to_collapse,
 };
 use serde::Serialize;
 use std::io::{self, Write};
@@ -121,7 +121,8 @@ pub struct OrbitOutput {
     /// The detected runaway (`al-forward`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub runaway: Option<Runaway>,
-    /// Requested times not sampled because the solution ran away first.
+    /// Requested times not sampled because the solution ran away (or the
+    /// orbit collapsed) first.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub samples_omitted: Option<usize>,
     /// The oscillator's roots.
@@ -133,6 +134,10 @@ pub struct OrbitOutput {
     /// Where the request came from (for the words of a stop's advice).
     #[serde(skip)]
     pub entry: super::Entry,
+    /// The collapse that ended a Coulomb run before the last time (the rows
+    /// before it are kept; JSON has it as `stopped`).
+    #[serde(skip)]
+    pub collapse: Option<Stop>,
 }
 
 /// Run a validated `orbit` request.
@@ -147,12 +152,15 @@ pub fn orbit(request: &OrbitRequest) -> Result<OrbitOutput, Failure> {
         Entry::CommandLine => "--times",
         Entry::Scene => "[solve] times",
     };
-    let run = run_orbit(config, &request.times).map_err(|e| match e {
-        OrbitError::Collapsed { .. } => Failure::Stopped(format!(
+    let collapsed = |e: &OrbitError| {
+        format!(
             "{e}; the averaged collapse time is t_c = {}: ask for times before it, or a smaller {}",
             table(collapse.unwrap_or(Real::INFINITY)),
             k(Knob::Tau0)
-        )),
+        )
+    };
+    let run = run_orbit_to_collapse(config, &request.times).map_err(|e| match e {
+        OrbitError::Collapsed { .. } => Failure::Stopped(collapsed(&e)),
         OrbitError::ShootingFailed { .. } => Failure::Stopped(format!(
             "{e}; try shorter {times}, a smaller {}, or {}",
             k(Knob::Tau0),
@@ -164,6 +172,14 @@ pub fn orbit(request: &OrbitRequest) -> Result<OrbitOutput, Failure> {
             k(Knob::Tau0)
         )),
     })?;
+    let omitted = request.times.len() - run.samples.len();
+    let fell = run.collapse.map(|(t, r)| {
+        let e = OrbitError::Collapsed { t, r };
+        Stop {
+            line: format!("{e}; {omitted} later sample(s) omitted"),
+            message: collapsed(&e),
+        }
+    });
     let integrated = run.method != "exact";
     let roots = (potential == Potential::Harmonic).then(|| {
         let (s, s_run) = abraham_lorentz_oscillator_roots(tau0);
@@ -174,7 +190,6 @@ pub fn orbit(request: &OrbitRequest) -> Result<OrbitOutput, Failure> {
             runaway: s_run,
         }
     });
-    let omitted = request.times.len() - run.samples.len();
     Ok(OrbitOutput {
         potential: potential.name(),
         force: config.force.name(),
@@ -200,13 +215,14 @@ pub fn orbit(request: &OrbitRequest) -> Result<OrbitOutput, Failure> {
         collapse_time: collapse,
         first_crossing: run.first_crossing,
         runaway: run.runaway,
-        samples_omitted: run.runaway.map(|_| omitted),
+        samples_omitted: (run.runaway.is_some() || fell.is_some()).then_some(omitted),
         roots,
         shooting: run.shooting.map(|(iterations, mismatch)| Shooting {
             iterations,
             mismatch,
         }),
         entry: request.entry,
+        collapse: fell,
     })
 }
 
@@ -326,7 +342,9 @@ impl Output for OrbitOutput {
     }
 
     fn stopped(&self) -> Option<Stop> {
-        let r = self.runaway.as_ref()?;
+        let Some(r) = self.runaway.as_ref() else {
+            return self.collapse.clone();
+        };
         let omitted = self.samples_omitted.unwrap_or(0);
         Some(Stop {
             line: format!(

@@ -237,6 +237,10 @@ pub struct OrbitRun {
     pub shooting: Option<(usize, Real)>,
     /// Work done.
     pub stats: Stats,
+    /// When a Coulomb orbit fell inside [`OrbitConfig::floor_radius`] before
+    /// the last requested time: (t, r) of the fall (only from
+    /// [`run_orbit_to_collapse`]; the samples before it are kept).
+    pub collapse: Option<(Real, Real)>,
 }
 
 /// Why an orbit could not be computed.
@@ -268,8 +272,20 @@ pub enum OrbitError {
     },
 }
 
-/// Run `config` and sample it at `times` (≥ 0, non-decreasing).
+/// Run `config` and sample it at `times` (≥ 0, non-decreasing); a
+/// collapse before the last time is [`OrbitError::Collapsed`].
 pub fn run_orbit(config: &OrbitConfig, times: &[Real]) -> Result<OrbitRun, OrbitError> {
+    let run = run_orbit_to_collapse(config, times)?;
+    match run.collapse {
+        Some((t, r)) => Err(OrbitError::Collapsed { t, r }),
+        None => Ok(run),
+    }
+}
+
+/// [`run_orbit`], but a Landau–Lifshitz Coulomb orbit that collapses before
+/// the last time keeps the samples before the fall, with
+/// [`OrbitRun::collapse`] set (a batch writes every row it can).
+pub fn run_orbit_to_collapse(config: &OrbitConfig, times: &[Real]) -> Result<OrbitRun, OrbitError> {
     let potential = config.charge.potential();
     match (config.force, potential) {
         (Force::LandauLifshitz, Potential::Harmonic) => Ok(exact_oscillator(
@@ -287,7 +303,11 @@ pub fn run_orbit(config: &OrbitConfig, times: &[Real]) -> Result<OrbitRun, Orbit
             let y0 = State::<4>::new(pos.x, pos.y, vel.x, vel.y);
             let rhs = |_t: Real, y: &State<4>| landau_lifshitz_rhs(&config.charge, y);
             let mut tracker = Tracker::new(config);
-            let stats = integrate(config, &rhs, y0, 0.0, times, &mut tracker)?;
+            let (stats, collapse) = match integrate(config, &rhs, y0, 0.0, times, &mut tracker) {
+                Ok(stats) => (stats, None),
+                Err(OrbitError::Collapsed { t, r }) => (tracker.stats, Some((t, r))),
+                Err(e) => return Err(e),
+            };
             Ok(OrbitRun {
                 samples: tracker.samples,
                 first_crossing: Some(tracker.crossings),
@@ -295,6 +315,7 @@ pub fn run_orbit(config: &OrbitConfig, times: &[Real]) -> Result<OrbitRun, Orbit
                 method: "dop853",
                 shooting: None,
                 stats,
+                collapse,
             })
         }
         (Force::AbrahamLorentz, Potential::Coulomb) => physical_coulomb(config, times),
@@ -319,6 +340,7 @@ fn exact_oscillator(config: &OrbitConfig, times: &[Real], s: nalgebra::Complex<R
         method: "exact",
         shooting: None,
         stats: Stats::default(),
+        collapse: None,
     }
 }
 
@@ -329,6 +351,8 @@ struct Tracker {
     floor: Real,
     crossings: Vec<Crossing>,
     samples: Vec<OrbitSample>,
+    /// The stepper's work up to its last step (kept when a step fails).
+    stats: Stats,
 }
 
 impl Tracker {
@@ -350,6 +374,7 @@ impl Tracker {
             floor: config.floor_radius(),
             crossings,
             samples: Vec::new(),
+            stats: Stats::default(),
         }
     }
 
@@ -428,8 +453,12 @@ fn integrate<const N: usize, R: Rhs<N>>(
         } else {
             stepper.t() > t
         } {
-            stepper.step(rhs, t_end)?;
-            tracker.after_step(&mut stepper, rhs)?;
+            let stepped = stepper
+                .step(rhs, t_end)
+                .map_err(OrbitError::from)
+                .and_then(|_| tracker.after_step(&mut stepper, rhs));
+            tracker.stats = stepper.stats();
+            stepped?;
         }
         let y = if t == stepper.t() {
             *stepper.y()
@@ -501,6 +530,7 @@ fn physical_coulomb(config: &OrbitConfig, times: &[Real]) -> Result<OrbitRun, Or
                 method: "dop853-backward",
                 shooting: Some((iteration, mismatch)),
                 stats,
+                collapse: None,
             });
         }
         // NOTE: backward(forward_LL(z)) = z + O(τ₀²) with a slowly varying
@@ -587,6 +617,7 @@ fn forward_abraham_lorentz(config: &OrbitConfig, times: &[Real]) -> Result<Orbit
         method: "dop853",
         shooting: None,
         stats: stepper.stats(),
+        collapse: None,
     })
 }
 // ANCHOR_END: runaway_detection
