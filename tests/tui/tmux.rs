@@ -90,6 +90,24 @@ impl Drop for Tmux {
     }
 }
 
+/// Whether `CI` (its value, if set) says this is CI, where tmux is
+/// installed and a missing one is a failure, not a skip.
+fn is_ci(value: Option<&str>) -> bool {
+    value.is_some_and(|v| !matches!(v.trim(), "" | "0" | "false" | "no"))
+}
+
+/// Under CI (`CI=true`, as .ci/run and GitHub set it) the end-to-end tier
+/// fails without tmux instead of passing with SKIPPED; elsewhere it skips.
+#[test]
+fn without_tmux_ci_fails_and_a_desk_skips() {
+    for ci in ["true", "1", "TRUE", "yes"] {
+        assert!(is_ci(Some(ci)), "{ci}");
+    }
+    for desk in [None, Some(""), Some("0"), Some("false"), Some("no")] {
+        assert!(!is_ci(desk), "{desk:?}");
+    }
+}
+
 fn tmux_available() -> bool {
     Command::new("tmux")
         .arg("-V")
@@ -125,7 +143,7 @@ fn launch_with(tag: &str, env: &str, args: &str) -> Option<Tmux> {
 /// [`launch_with`] in a terminal of `size` (columns, rows).
 fn launch_sized(tag: &str, env: &str, args: &str, size: (u16, u16)) -> Option<Tmux> {
     if !tmux_available() {
-        if std::env::var("CI").is_ok_and(|v| !matches!(v.as_str(), "" | "0" | "false")) {
+        if is_ci(std::env::var("CI").ok().as_deref()) {
             panic!("CI is set but tmux is missing: .ci/run installs it with apt-get");
         }
         // Written to the stderr handle itself, which the test harness does not
