@@ -173,7 +173,10 @@ fn a_command_is_read_as_cargo_reads_it() {
         vec![(Some("spintop-app".into()), "app".into())]
     );
     // (Written in two parts, so that this file's text names no stale target.)
-    let stale = format!("\"a finer grid: cargo {} --test physics auto_ -- --ignored\"", "test");
+    let stale = format!(
+        "\"a finer grid: cargo {} --test physics auto_ -- --ignored\"",
+        "test"
+    );
     assert_eq!(commands(&stale), vec![(None, "physics".into())]);
     assert!(commands("cargo test -p <package> --test <binary>").is_empty());
     assert!(commands("cargo test -- --test-threads 1").is_empty());
