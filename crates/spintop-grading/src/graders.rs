@@ -36,6 +36,7 @@ use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::general_top::GeneralTop;
 use spintop::physics::shell::{C, ShellModel};
 use spintop::physics::symmetric_top::{self as sym, SymmetricTop};
+use spintop_runner::fields::Field;
 use std::fmt;
 
 const OMEGA: [&str; 3] = ["Ω₁", "Ω₂", "Ω₃"];
@@ -1460,23 +1461,11 @@ pub fn reduced_closed_form(seed: u64, student: impl Fn(Real, Real, Vec3, Real) -
 
 // ---------------------------------------------------------------- numerical methods
 
-/// The test problems of the step graders: a non-autonomous linear system and
-/// the reduced ALE (4.12), as `(name, f)`.
-type Field = fn(Real, &State<3>) -> State<3>;
-
-fn fields() -> [(&'static str, Field); 2] {
-    fn linear(t: Real, y: &State<3>) -> State<3> {
-        State::<3>::new(
-            -0.5 * y[0] + 2.0 * y[1] + t.sin(),
-            -2.0 * y[0] - 0.5 * y[1],
-            -y[2] + t * t,
-        )
-    }
-    fn reduced(_t: Real, y: &State<3>) -> State<3> {
-        let top = SymmetricTop::figure();
-        sym::reduced_ale_rhs(&top, &Vec3::new(y[0], y[1], y[2]))
-    }
-    [("linear", linear), ("reduced ALE (4.12), tau = 1", reduced)]
+/// The test problems of the step graders: named fields of
+/// [`spintop_runner::fields`], which a student's runner builds on its side
+/// (a function cannot cross the pipe, and no field is an assignment's answer).
+fn fields() -> [Field; 2] {
+    Field::TESTS
 }
 
 #[derive(Clone, Copy)]
@@ -1492,7 +1481,7 @@ impl fmt::Debug for StepInput {
         write!(
             f,
             "f = {}, t = {}, y = {:?}, h = {}",
-            fields()[self.field].0,
+            fields()[self.field].describe(),
             self.t,
             self.y.as_slice(),
             self.h
@@ -1638,7 +1627,21 @@ fn rk4_slips() -> Vec<(Rk4Shape, &'static str)> {
 
 /// Grade one classical RK4 step.
 pub fn rk4_step(seed: u64, student: impl Fn(DynField, Real, &State<3>, Real) -> State<3>) -> Grade {
-    let f = |x: &StepInput| fields()[x.field].1;
+    rk4_step_on(seed, |f: &Field, t, y: &State<3>, h| {
+        student(&|t: Real, y: &State<3>| f.eval(t, y), t, y, h)
+    })
+}
+
+/// [`rk4_step`], with the right-hand side given by name: how a runner in
+/// another process is graded (it builds the named field on its side).
+pub fn rk4_step_on(
+    seed: u64,
+    student: impl Fn(&Field, Real, &State<3>, Real) -> State<3>,
+) -> Grade {
+    let f = |x: &StepInput| {
+        let field = fields()[x.field];
+        move |t: Real, y: &State<3>| field.eval(t, y)
+    };
     let mut mistakes: Vec<_> = rk4_slips()
         .into_iter()
         .map(|(shape, text)| {
@@ -1677,7 +1680,7 @@ pub fn rk4_step(seed: u64, student: impl Fn(DynField, Real, &State<3>, Real) -> 
         |y: &State<3>| *y,
     ))
     .labels(&["y₁", "y₂", "y₃"])
-    .run(|x| student(&fields()[x.field].1, x.t, &x.y, x.h))
+    .run(|x| student(&fields()[x.field], x.t, &x.y, x.h))
 }
 
 /// The inputs a step probe tries beside `x`: the same field, nearby starts.
@@ -1705,7 +1708,8 @@ fn rk4_weights_probe(x: &StepInput, again: &Again<'_, StepInput, State<3>>) -> O
     let mut rhs = Vec::new();
     for s in nearby_steps(x) {
         let theirs = again(&s)?;
-        let f = fields()[s.field].1;
+        let field = fields()[s.field];
+        let f = |t: Real, y: &State<3>| field.eval(t, y);
         let k1 = f(s.t, &s.y);
         let k2 = f(s.t + s.h / 2.0, &(s.y + k1 * (s.h / 2.0)));
         let k3 = f(s.t + s.h / 2.0, &(s.y + k2 * (s.h / 2.0)));
@@ -1760,7 +1764,20 @@ pub fn dp5_step(
     seed: u64,
     student: impl Fn(DynField, Real, &State<3>, Real) -> (State<3>, State<3>),
 ) -> Grade {
-    let f = |x: &StepInput| fields()[x.field].1;
+    dp5_step_on(seed, |f: &Field, t, y: &State<3>, h| {
+        student(&|t: Real, y: &State<3>| f.eval(t, y), t, y, h)
+    })
+}
+
+/// [`dp5_step`], with the right-hand side given by name (see [`rk4_step_on`]).
+pub fn dp5_step_on(
+    seed: u64,
+    student: impl Fn(&Field, Real, &State<3>, Real) -> (State<3>, State<3>),
+) -> Grade {
+    let f = |x: &StepInput| {
+        let field = fields()[x.field];
+        move |t: Real, y: &State<3>| field.eval(t, y)
+    };
     let reference = move |x: &StepInput| dopri5_step(&f(x), x.t, &x.y, x.h);
     Grader::new(
         "dp5_step",
@@ -1831,7 +1848,7 @@ pub fn dp5_step(
         "the estimate's y₂",
         "the estimate's y₃",
     ])
-    .run(|x| student(&fields()[x.field].1, x.t, &x.y, x.h))
+    .run(|x| student(&fields()[x.field], x.t, &x.y, x.h))
 }
 
 /// A start, an end and a number of steps for [`reduced_rk4`].
