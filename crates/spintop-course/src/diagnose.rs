@@ -22,7 +22,8 @@
 //! solutions (so `crate::ch4::reduced_ale_rhs` and the like are right), and
 //! each is graded in a process of its own, under a time limit.
 
-use super::harness::{self, Built, Ctx, Options};
+use super::compile::{self, Built};
+use super::process::{self, Ctx};
 use super::{Assignment, find};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -221,29 +222,27 @@ pub fn run(
     for (path, text) in &files {
         std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
     }
-    let options = Options {
-        target_dir: Some(
-            std::env::var_os("CARGO_TARGET_DIR")
-                .map(PathBuf::from)
-                .unwrap_or_else(|| repo.join("target")),
-        ),
-        ..Options::default()
-    };
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| repo.join("target"));
     let ctx = Ctx {
-        opts: &options,
+        stop: None,
         deadline: Some(Instant::now() + Duration::from_secs(1800)),
     };
-    let exe = match harness::cargo_json(work, &["build"], &ctx, |m| {
-        m["target"]["kind"]
-            .as_array()
-            .is_some_and(|k| k.iter().any(|x| x == "bin"))
-    })? {
+    let built =
+        compile::cargo_json(work, &["build"], Some(&target), &ctx).map_err(|e| e.to_string())?;
+    let exe = match built {
         Built::Programs(p) => p
             .into_iter()
             .next()
             .map(|(_, exe)| exe)
             .ok_or("cargo built no program")?,
-        Built::Failed(e) => {
+        Built::Failed(errors) => {
+            let e = errors.first().cloned().unwrap_or_else(|| super::Located {
+                file: "?".into(),
+                line: 1,
+                message: "the build failed".into(),
+            });
             // Name the wrong answer's own file, not the scratch copy.
             let file = Path::new(&e.file)
                 .file_stem()
@@ -258,7 +257,9 @@ pub fn run(
                 e.line, e.message
             ));
         }
-        Built::OutOfTime => return Err("the build did not finish in 30 minutes".into()),
+        Built::OutOfTime | Built::Bounded(_) => {
+            return Err("the build did not finish in 30 minutes".into());
+        }
     };
     let mut out = Vec::new();
     for (i, a) in answers.iter().enumerate() {
@@ -268,9 +269,9 @@ pub fn run(
             .stdout(Stdio::piped())
             .stderr(Stdio::null());
         let mut child =
-            harness::spawn_group(&mut cmd).map_err(|e| format!("{}: {e}", exe.display()))?;
-        let stdout = harness::drain(child.stdout.take(), 64 * 1024);
-        let status = harness::wait_within(&mut child, Duration::from_secs(60), &ctx);
+            process::spawn_group(&mut cmd).map_err(|e| format!("{}: {e}", exe.display()))?;
+        let stdout = process::drain(child.stdout.take(), 64 * 1024);
+        let status = process::wait_within(&mut child, Duration::from_secs(60), &ctx);
         let text = String::from_utf8_lossy(&stdout.join().unwrap_or_default()).into_owned();
         let line = text.lines().next().unwrap_or_default();
         let (passed, diagnosis) = match (status, line.split_once('\t')) {
