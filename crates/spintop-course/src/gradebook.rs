@@ -31,7 +31,8 @@ pub struct ClassOptions {
     pub jobs: usize,
     /// The seed of the inputs (one fresh seed for the class when `None`).
     pub seed: Option<u64>,
-    /// Where runs put their private folders, and the warm cache.
+    /// Where runs put their private folders (the warm cache is the
+    /// repository's: `target/course-grade/cache`).
     pub work: PathBuf,
     /// The sandbox's launcher (the `spintop` binary; `None`: no sandbox).
     pub launcher: Option<PathBuf>,
@@ -201,7 +202,7 @@ pub fn warm_up(repo: &Path, options: &ClassOptions, run: &Run) -> Result<(), Cou
     };
     super::warm::prepare(
         repo,
-        &options.work.join("cache"),
+        &super::warm::cache_dir(repo),
         &run.warm(),
         options.launcher.as_deref(),
         &ctx,

@@ -171,8 +171,10 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, CourseError> {
         };
         return Ok(refusal(seed, &lines, place));
     }
-    if let Some(warm) = &opts.warm {
-        super::warm::copy_into(warm, &ws.target())?;
+    match &opts.warm {
+        Some(warm) => super::warm::copy_into(warm, &ws.target())?,
+        // A first grading here starts from the class's warm build, if any.
+        None => super::warm::seed_from_cache(super::repository(), &ws.target())?,
     }
     // 3. The build.
     let ctx = Ctx {

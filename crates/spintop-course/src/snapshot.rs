@@ -451,3 +451,89 @@ mod imp {
         Ok(out)
     }
 }
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+    use std::time::{Duration, Instant};
+
+    fn fresh(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("spintop-snap-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(dir.join("src/nested/deeper")).unwrap();
+        dir
+    }
+
+    fn mkfifo(path: &Path) {
+        rustix::fs::mknodat(
+            rustix::fs::CWD,
+            path,
+            rustix::fs::FileType::Fifo,
+            rustix::fs::Mode::from_raw_mode(0o600),
+            0,
+        )
+        .unwrap();
+    }
+
+    #[test]
+    fn a_snapshot_copies_rust_files_and_refuses_links_fifos_and_giants_without_reading_them() {
+        let copy = fresh("copy");
+        std::fs::write(copy.join("src/lib.rs"), "mod nested;\n").unwrap();
+        std::fs::write(copy.join("src/nested/deeper/x.rs"), "pub fn x() {}\n").unwrap();
+        std::fs::write(copy.join("src/notes.txt"), "not rust\n").unwrap();
+        std::os::unix::fs::symlink("/etc/passwd", copy.join("src/link.rs")).unwrap();
+        mkfifo(&copy.join("src/pipe.rs"));
+        // 3 GB, sparse: a stat, never a read.
+        let giant = std::fs::File::create(copy.join("src/giant.rs")).unwrap();
+        giant.set_len(3 << 30).unwrap();
+        let into = copy.join("snapshot");
+        let start = Instant::now();
+        let snap = take(&copy, &into, &Limits::default()).unwrap();
+        assert!(start.elapsed() < Duration::from_secs(5));
+        assert_eq!(
+            snap.files,
+            [PathBuf::from("src/lib.rs"), PathBuf::from("src/nested/deeper/x.rs")]
+        );
+        let refused: Vec<String> = snap.refused.iter().map(|r| r.path.display().to_string()).collect();
+        assert_eq!(refused, ["src/giant.rs", "src/link.rs", "src/pipe.rs"], "{snap:?}");
+        assert!(snap.refused[0].why.contains("larger than"));
+        assert!(snap.refused[1].why.contains("symbolic link"));
+        assert!(snap.refused[2].why.contains("not a regular file"));
+        assert!(!into.join("src/notes.txt").exists());
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(into.join("src/nested")).unwrap().permissions().mode();
+        assert_eq!(mode & 0o777, 0o700);
+        std::fs::remove_dir_all(&copy).unwrap();
+    }
+
+    #[test]
+    fn a_src_that_is_a_link_is_not_walked() {
+        let copy = fresh("src-link");
+        std::fs::remove_dir_all(copy.join("src")).unwrap();
+        std::os::unix::fs::symlink("/etc", copy.join("src")).unwrap();
+        let err = take(&copy, &copy.join("snapshot"), &Limits::default()).unwrap_err();
+        assert!(matches!(err, SnapshotError::SrcNotAFolder), "{err}");
+        std::fs::remove_dir_all(&copy).unwrap();
+    }
+
+    #[test]
+    fn a_bounded_read_refuses_a_fifo_a_device_and_a_link_at_once() {
+        let dir = fresh("bounded");
+        std::fs::create_dir_all(dir.join("target")).unwrap();
+        mkfifo(&dir.join("target/fifo.json"));
+        std::os::unix::fs::symlink("/dev/zero", dir.join("target/zero.json")).unwrap();
+        std::os::unix::fs::symlink("/etc", dir.join("linked")).unwrap();
+        std::fs::write(dir.join("target/big.json"), vec![b' '; 2000]).unwrap();
+        std::fs::write(dir.join("target/ok.json"), b"{}").unwrap();
+        let start = Instant::now();
+        let read = |rel: &str| read_bounded(&dir, Path::new(rel), 1000);
+        assert!(matches!(read("target/fifo.json"), Err(ReadError::NotAFile)));
+        assert!(matches!(read("target/zero.json"), Err(ReadError::NotAFile)));
+        assert!(matches!(read("linked/passwd"), Err(ReadError::NotAFile)));
+        assert!(matches!(read("target/big.json"), Err(ReadError::TooLarge(1000))));
+        assert!(matches!(read("target/none.json"), Err(ReadError::Missing)));
+        assert_eq!(read("target/ok.json").unwrap(), b"{}");
+        assert!(start.elapsed() < Duration::from_secs(2), "nothing waited");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -19,6 +19,30 @@ const OWN_UNITS: [&str; 4] = [
     "spintop-course-runner",
 ];
 
+/// The warm cache of the repository `repo` (shared by every grading).
+pub(crate) fn cache_dir(repo: &Path) -> PathBuf {
+    repo.join("target").join("course-grade").join("cache")
+}
+
+/// Seeds the build folder `target` (when it has no build yet) from the
+/// repository's warm cache, if one was built, under the cache's lock
+/// (shared: several may copy at once, none while it is rebuilt).
+pub(crate) fn seed_from_cache(repo: &Path, target: &Path) -> Result<(), CourseError> {
+    let cache = cache_dir(repo);
+    let warm = cache.join("workspace").join("target");
+    if target.join("debug").join("deps").is_dir() || !warm.join("debug").join("deps").is_dir() {
+        return Ok(());
+    }
+    let lock_path = cache.join("lock");
+    let Ok(lock) = std::fs::File::open(&lock_path) else {
+        return Ok(());
+    };
+    #[cfg(unix)]
+    rustix::fs::flock(&lock, rustix::fs::FlockOperation::LockShared)
+        .map_err(|e| CourseError::io(&lock_path)(e.into()))?;
+    copy_into(&warm, target)
+}
+
 /// Builds the stubs' runner in the cache `cache` (under its lock) and
 /// copies its build folder to `into`, a run's own: the warm build every
 /// copy of the run starts from.
