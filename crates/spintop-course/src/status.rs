@@ -110,6 +110,12 @@ impl Failure {
     }
 }
 
+impl From<&str> for Failure {
+    fn from(text: &str) -> Self {
+        Failure::plain(text)
+    }
+}
+
 impl std::fmt::Display for Failure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(&self.text)
