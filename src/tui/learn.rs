@@ -132,7 +132,7 @@ pub fn headings(markdown: &str) -> Vec<(u8, String)> {
     out
 }
 
-/// One experiment, parsed from `<!-- spintop: ratio=1.5 method=rk4 -->`.
+/// One experiment, parsed from the book's `` `spintop: ratio=1.5 method=rk4` ``.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Experiment {
     /// I₃/I₁.
