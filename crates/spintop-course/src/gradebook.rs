@@ -259,6 +259,7 @@ pub fn grade_class(
             time_limit: Some(options.timeout),
             build_lock: Some(Arc::clone(&build_lock)),
             jobs: 1,
+            crates: harness::Crates::Repository,
             ..Options::default()
         };
         let outcome = grade_submission(folder, &opts);

@@ -63,6 +63,36 @@ pub struct Options {
     pub jobs: usize,
     /// Set to stop: the running build or runner is killed.
     pub stop: Option<Arc<AtomicBool>>,
+    /// Which spintop crates the runner is built against.
+    pub crates: Crates,
+}
+
+/// The spintop crates (the core, the wire) a runner is built against, and
+/// the lock file that pins their dependencies.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Crates {
+    /// Those the copy carries in its own `crates/` (an export handed to a
+    /// student), so that `spintop course` grades it where the repository
+    /// is not; the repository's when the copy carries none.
+    #[default]
+    CarriedOrRepository,
+    /// The repository's, always: an instructor's grade never builds
+    /// against crates a student's copy holds.
+    Repository,
+}
+
+impl Crates {
+    /// The folder whose `crates/` and `Cargo.lock` the runner of the copy
+    /// in `dir` is built against.
+    pub fn root(self, dir: &Path) -> PathBuf {
+        let carried = dir.join("crates/spintop-runner/Cargo.toml").is_file()
+            && dir.join("crates/spintop/Cargo.toml").is_file()
+            && dir.join("Cargo.lock").is_file();
+        match self {
+            Crates::CarriedOrRepository if carried => dir.to_path_buf(),
+            _ => super::repository().to_path_buf(),
+        }
+    }
 }
 
 impl Default for Options {
@@ -80,6 +110,7 @@ impl Default for Options {
             build_lock: None,
             jobs: std::thread::available_parallelism().map_or(2, |n| n.get()),
             stop: None,
+            crates: Crates::default(),
         }
     }
 }
@@ -122,7 +153,8 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, CourseError> {
         .seed
         .unwrap_or_else(spintop_grading::verdict::fresh_seed);
     let ws = Workspace::at(&opts.work.clone().unwrap_or_else(|| default_work(&dir)));
-    ws.lay_out(super::repository())?;
+    let crates = opts.crates.root(&dir);
+    ws.lay_out(&crates)?;
     let ws = Workspace::at(
         &ws.root()
             .canonicalize()
@@ -173,8 +205,12 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, CourseError> {
     }
     match &opts.warm {
         Some(warm) => super::warm::copy_into(warm, &ws.target())?,
-        // A first grading here starts from the class's warm build, if any.
-        None => super::warm::seed_from_cache(super::repository(), &ws.target())?,
+        // A first grading here starts from the class's warm build, if any
+        // (built against the repository's crates).
+        None if crates == super::repository() => {
+            super::warm::seed_from_cache(super::repository(), &ws.target())?
+        }
+        None => {}
     }
     // 3. The build.
     let ctx = Ctx {
@@ -336,15 +372,25 @@ fn build_with_stubs(ws: &Workspace, opts: &Options, ctx: &Ctx) -> Result<Outcome
     ))
 }
 
+/// The course's assignment files as this spintop was built with them (the
+/// stubs, and the solutions' switch that an export strips), so that a
+/// student's copy is graded where the repository is not.
+const STUBS: [(&str, &str); 5] = [
+    ("ch2", include_str!("../../../lessons/src/ch2.rs")),
+    ("ch3", include_str!("../../../lessons/src/ch3.rs")),
+    ("ch4", include_str!("../../../lessons/src/ch4.rs")),
+    ("numerics", include_str!("../../../lessons/src/numerics.rs")),
+    ("appendix", include_str!("../../../lessons/src/appendix.rs")),
+];
+
 /// Puts the stub of the assignment file `module` in place of the
-/// student's (the repository's own stubs, as an export writes them).
+/// student's (the course's own stub, as an export writes it).
 fn put_back_stub(ws: &Workspace, module: &str) -> Result<(), CourseError> {
-    let from = super::lessons_dir(super::repository())
-        .join("src")
-        .join(format!("{module}.rs"));
-    let text = std::fs::read_to_string(&from).map_err(CourseError::io(&from))?;
     let to = ws.course().join("src").join(format!("{module}.rs"));
-    std::fs::write(&to, super::strip_solutions(&text)).map_err(CourseError::io(&to))
+    let Some((_, text)) = STUBS.iter().find(|(m, _)| *m == module) else {
+        return Err(CourseError::Export(format!("no stub for {module}")));
+    };
+    std::fs::write(&to, super::strip_solutions(text)).map_err(CourseError::io(&to))
 }
 
 /// Grades `todo` with the runner `exe`, on `opts.jobs` runners at once

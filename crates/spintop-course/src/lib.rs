@@ -56,7 +56,7 @@ pub use export::{
     CARRIED_CRATES, Ci, Export, ExportOptions, Link, check_lessons_dir, export, export_with,
     lessons_dir, strip_solutions,
 };
-pub use harness::{Options, default_work, grade};
+pub use harness::{Crates, Options, default_work, grade};
 pub use hints::{Hint, next_hint};
 pub use probe::{ProbeSpec, Probed, parse_probe, probe};
 pub use progress::{
