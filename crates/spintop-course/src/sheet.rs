@@ -209,6 +209,90 @@ mod tests {
         assert_eq!(csv_cell("(2.1)"), "(2.1)");
     }
 
+    /// The cells of one CSV line (quoted cells unquoted).
+    fn cells(line: &str) -> Vec<String> {
+        let (mut out, mut cell, mut quoted, mut chars) =
+            (Vec::new(), String::new(), false, line.chars().peekable());
+        while let Some(c) = chars.next() {
+            match (c, quoted) {
+                ('"', true) if chars.peek() == Some(&'"') => {
+                    cell.push('"');
+                    chars.next();
+                }
+                ('"', _) => quoted = !quoted,
+                (',', false) => out.push(std::mem::take(&mut cell)),
+                _ => cell.push(c),
+            }
+        }
+        out.push(cell);
+        out
+    }
+
+    /// A class whose student names, panics and reasons are formulas: no
+    /// CSV cell a spreadsheet would run, a total per student, and no panic
+    /// text (a formula, a path) in Gradescope's visible output.
+    #[test]
+    fn a_class_of_formulas_writes_cells_a_spreadsheet_will_not_run() {
+        use crate::gradebook::{Class, Copy, Outcome};
+        use crate::status::{Failure, State, Status};
+        let panic = "=HYPERLINK(\"http://evil\",\"/root /home/alice\")";
+        let failed = spintop_grading::Failed {
+            assignment: "larmor_rate",
+            equation: "(2.1)",
+            seed: 5,
+            input: "jet".into(),
+            expected: "(1, 2, 3)".into(),
+            actual: format!("panicked: {panic}"),
+            diagnosis: "your function panicked on a valid input".into(),
+            course: None,
+        };
+        let graded = Status::new(5, |a| match a.function {
+            "larmor_rate" => State::Failing(Failure::of(&failed)),
+            "torque_rate" => State::Passing,
+            _ => State::DoesNotCompile("-src/ch3.rs:1: @expected item".into()),
+        });
+        let copy = |student: &str, outcome: Outcome| Copy {
+            student: student.into(),
+            folder: student.into(),
+            outcome,
+            progress: Err("+not a regular file".into()),
+            seconds: 1.0,
+        };
+        let class = Class {
+            copies: vec![
+                copy("=2+3", Outcome::Graded(graded)),
+                copy("@bob", Outcome::NotGraded("\t=1+1".into())),
+                copy("\r-carol", Outcome::Missing("+1".into())),
+                copy("dave", Outcome::NotACourse("=cmd|' /C calc'!A0".into())),
+            ],
+            seed: 5,
+        };
+        let csv = class.csv();
+        let mut lines = csv.lines();
+        assert_eq!(lines.next(), Some(CSV_HEADER));
+        let rows: Vec<Vec<String>> = lines.map(cells).collect();
+        assert_eq!(rows.len(), 4 * (COURSE_LEN + 1), "{csv}");
+        for row in &rows {
+            assert_eq!(row.len(), 8, "{row:?}");
+            for cell in row {
+                assert!(
+                    !cell.starts_with(['=', '+', '-', '@', '\t', '\r']),
+                    "{cell:?} in {row:?}"
+                );
+            }
+        }
+        let totals: Vec<&Vec<String>> = rows.iter().filter(|r| r[1] == TOTAL).collect();
+        assert_eq!(totals.len(), 4);
+        assert_eq!((totals[0][0].as_str(), totals[0][4].as_str()), ("'=2+3", "1"));
+        assert!(totals[0][7].contains("1 of 22 passing"), "{:?}", totals[0]);
+        assert!(!csv.contains("HYPERLINK"), "{csv}");
+        let json = class.gradescope(&class.copies[0]).to_string();
+        assert!(json.contains("your function panicked"), "{json}");
+        for leak in ["HYPERLINK", "/root", "/home/alice"] {
+            assert!(!json.contains(leak), "{leak} in {json}");
+        }
+    }
+
     #[test]
     fn a_seed_shown_to_students_is_remembered() {
         let work = std::env::temp_dir().join(format!("spintop-seeds-{}", std::process::id()));
