@@ -8,7 +8,7 @@
 //! runs. A second run grades at the same time; a third on a terminal (a
 //! pseudo-terminal) shows its progress bar and finishes.
 
-use super::{export_linked, repo, solution_file, spintop, scratch};
+use super::{export_linked, repo, scratch, solution_file, spintop};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
@@ -70,11 +70,9 @@ fn swapper(copy: PathBuf, stop: Arc<AtomicBool>) -> std::thread::JoinHandle<()> 
     })
 }
 
+/// The class of adversarial copies in `class`, one folder each.
 #[cfg(unix)]
-#[test]
-#[ignore = "end-to-end: builds copies"]
-fn every_adversarial_copy_costs_only_its_own_rows_and_two_runs_at_once_agree() {
-    let class = scratch("adversaries");
+fn adversaries(class: &Path) {
     let copy = |name: &str| class.join(name);
     for name in ["good", "fifo", "zero", "keeper", "alone"] {
         honest(&copy(name));
@@ -84,7 +82,13 @@ fn every_adversarial_copy_costs_only_its_own_rows_and_two_runs_at_once_agree() {
     }
     // The progress file a FIFO, and a link to /dev/zero.
     let fifo = progress_file(&copy("fifo"));
-    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    assert!(
+        Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
     std::os::unix::fs::symlink("/dev/zero", progress_file(&copy("zero"))).unwrap();
     // A 3 GB sparse file (32 kB as a .tgz).
     let giant = std::fs::File::create(copy("giant").join("src/giant.rs")).unwrap();
@@ -117,20 +121,100 @@ fn every_adversarial_copy_costs_only_its_own_rows_and_two_runs_at_once_agree() {
     // Honest code kept in the student's own src/solutions/.
     let keeper = copy("keeper");
     std::fs::create_dir_all(keeper.join("src/solutions")).unwrap();
-    std::fs::rename(keeper.join("src/ch2.rs"), keeper.join("src/solutions/ch2.rs")).unwrap();
+    std::fs::rename(
+        keeper.join("src/ch2.rs"),
+        keeper.join("src/solutions/ch2.rs"),
+    )
+    .unwrap();
     std::fs::write(keeper.join("src/solutions/mod.rs"), "pub mod ch2;\n").unwrap();
-    std::fs::write(keeper.join("src/ch2.rs"), "pub use crate::solutions::ch2::*;\n").unwrap();
+    std::fs::write(
+        keeper.join("src/ch2.rs"),
+        "pub use crate::solutions::ch2::*;\n",
+    )
+    .unwrap();
     let lib = keeper.join("src/lib.rs");
     let text = std::fs::read_to_string(&lib).unwrap();
     std::fs::write(&lib, format!("{text}\nmod solutions;\n")).unwrap();
+}
 
+/// Each adversarial copy's rows in the CSV `grades`: only its own cost.
+#[cfg(unix)]
+fn check_adversaries(grades: &str) {
+    for (name, passing) in [("good", 6), ("fifo", 6), ("zero", 6), ("keeper", 6)] {
+        assert_eq!(total(grades, name).0, passing, "{name}");
+    }
+    for name in ["fifo", "zero"] {
+        let (_, why) = total(grades, name);
+        assert!(
+            why.contains("hint rungs unknown") && why.contains("not a regular file"),
+            "{why}"
+        );
+    }
+    let (giant, why) = total(grades, "giant");
+    assert_eq!(giant, 0);
+    let giant_row = &rows(grades, "giant")[0].1;
+    assert!(
+        giant_row[7].contains("src/giant.rs") && giant_row[7].contains("larger than"),
+        "{giant_row:?}"
+    );
+    assert!(why.contains("0 of 22"), "{why}");
+    let big = &rows(grades, "static")[0].1;
+    assert_eq!(
+        (total(grades, "static").0, big[3].as_str()),
+        (0, "does not compile"),
+        "{big:?}"
+    );
+    assert_eq!(
+        total(grades, "exploit").0,
+        0,
+        "the exploit finds nothing to read"
+    );
+    let panicked = rows(grades, "panics");
+    let (_, larmor) = panicked.iter().find(|(a, _)| a == "larmor_rate").unwrap();
+    assert_eq!(larmor[3], "failing");
+    assert!(
+        !larmor[7].contains("HYPERLINK") && larmor[7].contains("panicked"),
+        "{larmor:?}"
+    );
+    assert!(
+        grades.lines().any(|l| l.starts_with("'=2+3,larmor_rate,")),
+        "{grades}"
+    );
+    assert!(!grades.lines().any(|l| l.starts_with("=")), "{grades}");
+    assert_eq!(
+        total(grades, "swap").0,
+        0,
+        "the swap never reaches the solutions"
+    );
+}
+
+#[cfg(unix)]
+#[test]
+#[ignore = "end-to-end: builds copies"]
+fn every_adversarial_copy_costs_only_its_own_rows_and_two_runs_at_once_agree() {
+    let class = scratch("adversaries");
+    adversaries(&class);
+    let copy = |name: &str| class.join(name);
     let csv = class.join("grades.csv");
-    let names = ["good", "fifo", "zero", "giant", "static", "exploit", "panics", "=2+3", "keeper", "swap"];
+    let names = [
+        "good", "fifo", "zero", "giant", "static", "exploit", "panics", "=2+3", "keeper", "swap",
+    ];
     let mut args: Vec<String> = vec!["course".into(), "grade".into()];
     args.extend(names.iter().map(|n| copy(n).display().to_string()));
     args.extend(
-        ["--out", csv.to_str().unwrap(), "--timeout", "300", "--test-timeout", "20", "--seed", "5", "--jobs", "2"]
-            .map(String::from),
+        [
+            "--out",
+            csv.to_str().unwrap(),
+            "--timeout",
+            "300",
+            "--test-timeout",
+            "20",
+            "--seed",
+            "5",
+            "--jobs",
+            "2",
+        ]
+        .map(String::from),
     );
     let stop = Arc::new(AtomicBool::new(false));
     let swapping = swapper(copy("swap"), Arc::clone(&stop));
@@ -141,7 +225,15 @@ fn every_adversarial_copy_costs_only_its_own_rows_and_two_runs_at_once_agree() {
         let (copy, csv) = (copy("alone"), alone_csv.clone());
         std::thread::spawn(move || {
             std::thread::sleep(Duration::from_secs(1));
-            spintop(&["course", "grade", copy.to_str().unwrap(), "--out", csv.to_str().unwrap(), "--seed", "6"])
+            spintop(&[
+                "course",
+                "grade",
+                copy.to_str().unwrap(),
+                "--out",
+                csv.to_str().unwrap(),
+                "--seed",
+                "6",
+            ])
         })
     };
     let start = Instant::now();
@@ -155,29 +247,11 @@ fn every_adversarial_copy_costs_only_its_own_rows_and_two_runs_at_once_agree() {
     let grades = std::fs::read_to_string(&csv).unwrap_or_else(|_| panic!("no CSV: {stderr}"));
     eprintln!("{grades}\n{stderr}\ngraded in {elapsed:?}");
     assert_eq!(out.status.code(), Some(0), "{stderr}");
-    assert_eq!(grades.lines().next(), Some(spintop_course::sheet::CSV_HEADER));
-    for (name, passing) in [("good", 6), ("fifo", 6), ("zero", 6), ("keeper", 6)] {
-        assert_eq!(total(&grades, name).0, passing, "{name}");
-    }
-    for name in ["fifo", "zero"] {
-        let (_, why) = total(&grades, name);
-        assert!(why.contains("hint rungs unknown") && why.contains("not a regular file"), "{why}");
-    }
-    let (giant, why) = total(&grades, "giant");
-    assert_eq!(giant, 0);
-    let giant_row = &rows(&grades, "giant")[0].1;
-    assert!(giant_row[7].contains("src/giant.rs") && giant_row[7].contains("larger than"), "{giant_row:?}");
-    assert!(why.contains("0 of 22"), "{why}");
-    let big = &rows(&grades, "static")[0].1;
-    assert_eq!((total(&grades, "static").0, big[3].as_str()), (0, "does not compile"), "{big:?}");
-    assert_eq!(total(&grades, "exploit").0, 0, "the exploit finds nothing to read");
-    let panicked = rows(&grades, "panics");
-    let (_, larmor) = panicked.iter().find(|(a, _)| a == "larmor_rate").unwrap();
-    assert_eq!(larmor[3], "failing");
-    assert!(!larmor[7].contains("HYPERLINK") && larmor[7].contains("panicked"), "{larmor:?}");
-    assert!(grades.lines().any(|l| l.starts_with("'=2+3,larmor_rate,")), "{grades}");
-    assert!(!grades.lines().any(|l| l.starts_with("=")), "{grades}");
-    assert_eq!(total(&grades, "swap").0, 0, "the swap never reaches the solutions");
+    assert_eq!(
+        grades.lines().next(),
+        Some(spintop_course::sheet::CSV_HEADER)
+    );
+    check_adversaries(&grades);
     // The build folders of the class are gone; nothing large is left.
     let left = repo().join("target/course-grade");
     for entry in std::fs::read_dir(&left).unwrap().flatten() {
@@ -185,7 +259,11 @@ fn every_adversarial_copy_costs_only_its_own_rows_and_two_runs_at_once_agree() {
         assert!(!name.starts_with("run-"), "{name} was left behind");
     }
     // The run at the same time: right too.
-    assert!(alone.status.success(), "{}", String::from_utf8_lossy(&alone.stderr));
+    assert!(
+        alone.status.success(),
+        "{}",
+        String::from_utf8_lossy(&alone.stderr)
+    );
     let alone_grades = std::fs::read_to_string(&alone_csv).unwrap();
     assert_eq!(total(&alone_grades, "alone").0, 6, "{alone_grades}");
     std::fs::remove_dir_all(&class).ok();
@@ -207,11 +285,18 @@ fn the_exploit_reads_the_expected_answer_in_process_and_gets_nothing_from_the_ru
         .output()
         .unwrap();
     let printed = String::from_utf8_lossy(&test.stdout);
-    let stolen = ["eq_2_1_larmor_rate", "eq_2_4_schott_angular_momentum", "eq_2_2_torque_rate"]
-        .iter()
-        .filter(|t| printed.contains(&format!("test {t} ... ok")))
-        .count();
-    assert!(stolen >= 1, "the exploit passes nothing in process:\n{printed}");
+    let stolen = [
+        "eq_2_1_larmor_rate",
+        "eq_2_4_schott_angular_momentum",
+        "eq_2_2_torque_rate",
+    ]
+    .iter()
+    .filter(|t| printed.contains(&format!("test {t} ... ok")))
+    .count();
+    assert!(
+        stolen >= 1,
+        "the exploit passes nothing in process:\n{printed}"
+    );
     // Through the runner: nothing to read, 0 points.
     let options = spintop_course::Options {
         launcher: Some(PathBuf::from(env!("CARGO_BIN_EXE_spintop"))),

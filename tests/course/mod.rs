@@ -333,7 +333,13 @@ fn course_grade_writes_every_row_of_a_class_within_its_time_limits() {
         )),
         "{text}"
     );
-    // Gradescope's results.json for one copy, with the documented fields.
+    gradescope_of_one(&alice, &class);
+    std::fs::remove_dir_all(&class).ok();
+}
+
+/// Gradescope's results.json for the one copy `alice` (one assignment
+/// solved), with the documented fields.
+fn gradescope_of_one(alice: &Path, class: &Path) {
     let results = class.join("results.json");
     let out = spintop(&[
         "course",
@@ -362,7 +368,6 @@ fn course_grade_writes_every_row_of_a_class_within_its_time_limits() {
             .unwrap()
             .starts_with("not started")
     );
-    std::fs::remove_dir_all(&class).ok();
 }
 
 /// The instructor's clean checkout keeps a submission's symbolic link as a
@@ -683,34 +688,63 @@ fn a_copy_exported_from_a_deleted_clone_builds_and_is_graded() {
         "{grades}"
     );
     assert_eq!(grades.matches(",passing,").count(), 1, "{grades}");
-    // Moved elsewhere, the student's own `spintop course` builds the runner
-    // against the crates the copy carries (the repository's are not needed),
-    // and grades it the same.
+    graded_where_it_was_moved(&root, &copy);
+    std::fs::remove_dir_all(&root).ok();
+}
+
+/// The copy at `copy`, moved below `root` elsewhere: the student's own
+/// `spintop course` builds the runner against the crates the copy carries
+/// (the repository's are not needed) and grades it the same.
+fn graded_where_it_was_moved(root: &Path, copy: &Path) {
     let moved = root.join("elsewhere").join("mine");
     std::fs::create_dir_all(moved.parent().unwrap()).unwrap();
-    std::fs::rename(&copy, &moved).unwrap();
+    std::fs::rename(copy, &moved).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_spintop"))
-        .args(["course", "--course", moved.to_str().unwrap(), "--format", "json"])
+        .args([
+            "course",
+            "--course",
+            moved.to_str().unwrap(),
+            "--format",
+            "json",
+        ])
         .env_remove("CARGO_TARGET_DIR")
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{text}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let status: serde_json::Value = serde_json::from_str(&text).unwrap();
     let states: Vec<(&str, &str)> = status["assignments"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|a| (a["function"].as_str().unwrap(), a["state"].as_str().unwrap()))
+        .map(|a| {
+            (
+                a["function"].as_str().unwrap(),
+                a["state"].as_str().unwrap(),
+            )
+        })
         .collect();
     assert!(states.contains(&("larmor_rate", "passing")), "{states:?}");
-    assert_eq!(states.iter().filter(|(_, s)| *s == "passing").count(), 1, "{states:?}");
+    assert_eq!(
+        states.iter().filter(|(_, s)| *s == "passing").count(),
+        1,
+        "{states:?}"
+    );
     let ws = course::default_work(&moved);
     for manifest in ["course/Cargo.toml", "runner/Cargo.toml"] {
         let text = std::fs::read_to_string(ws.join(manifest)).unwrap();
         let carried = moved.canonicalize().unwrap().join("crates");
-        assert!(text.contains(carried.to_str().unwrap()), "{manifest}: {text}");
-        assert!(!text.contains(&repo().display().to_string()), "{manifest}: {text}");
+        assert!(
+            text.contains(carried.to_str().unwrap()),
+            "{manifest}: {text}"
+        );
+        assert!(
+            !text.contains(&repo().display().to_string()),
+            "{manifest}: {text}"
+        );
     }
-    std::fs::remove_dir_all(&root).ok();
 }

@@ -57,7 +57,14 @@ fn probe() -> &'static Path {
         std::fs::write(dir.join("probe.rs"), PROBE).unwrap();
         let exe = dir.join("probe");
         let ok = Command::new("rustc")
-            .args(["-O", "--edition", "2021", "-C", "target-feature=+crt-static", "-o"])
+            .args([
+                "-O",
+                "--edition",
+                "2021",
+                "-C",
+                "target-feature=+crt-static",
+                "-o",
+            ])
             .arg(&exe)
             .arg(dir.join("probe.rs"))
             .status()
@@ -119,12 +126,21 @@ fn a_runner_lists_reads_and_writes_nothing_outside_itself() {
     let (lines, status, _) = run(
         &runner(),
         &[
-            "list", "/",
-            "read", solution.to_str().unwrap(),
-            "read", "/etc/passwd",
-            "list", std::env::temp_dir().to_str().unwrap(),
-            "write", "/runner-was-here",
-            "write", std::env::temp_dir().join("spintop-runner-was-here").to_str().unwrap(),
+            "list",
+            "/",
+            "read",
+            solution.to_str().unwrap(),
+            "read",
+            "/etc/passwd",
+            "list",
+            std::env::temp_dir().to_str().unwrap(),
+            "write",
+            "/runner-was-here",
+            "write",
+            std::env::temp_dir()
+                .join("spintop-runner-was-here")
+                .to_str()
+                .unwrap(),
         ],
     );
     assert!(status.success(), "{status:?} {lines:?}");
@@ -137,7 +153,11 @@ fn a_runner_lists_reads_and_writes_nothing_outside_itself() {
     for line in lines.iter().filter(|l| !l.contains(" list ")) {
         assert!(line.starts_with("err"), "{line}");
     }
-    assert!(!std::env::temp_dir().join("spintop-runner-was-here").exists());
+    assert!(
+        !std::env::temp_dir()
+            .join("spintop-runner-was-here")
+            .exists()
+    );
 }
 
 #[test]
@@ -160,7 +180,10 @@ fn a_runner_opens_no_socket_and_starts_no_process_or_thread() {
         let line = answer(&lines, what);
         if what == "spawn" || what == "thread" {
             if layers.seccomp.is_err() {
-                eprintln!("SKIPPED {what}: no seccomp on this kernel ({:?})", layers.seccomp);
+                eprintln!(
+                    "SKIPPED {what}: no seccomp on this kernel ({:?})",
+                    layers.seccomp
+                );
                 continue;
             }
         }
@@ -176,7 +199,10 @@ fn a_runner_cannot_outlast_its_cpu_time_or_its_memory() {
         limits: Limits::run(1),
     };
     let (lines, status, elapsed) = run(&spec, &["alloc", &(2usize << 30).to_string()]);
-    assert!(!status.success() && lines.is_empty(), "{status:?} {lines:?}");
+    assert!(
+        !status.success() && lines.is_empty(),
+        "{status:?} {lines:?}"
+    );
     let (_, status, elapsed2) = run(&spec, &["spin", ""]);
     #[cfg(unix)]
     {
@@ -194,7 +220,9 @@ fn a_build_writes_only_in_its_own_folder_and_reaches_no_network() {
     let layers = layers();
     let work = std::env::temp_dir().join(format!("spintop-build-box-{}", std::process::id()));
     std::fs::create_dir_all(&work).unwrap();
-    let outside = spintop_course::repository().join("target").join("spintop-build-was-here");
+    let outside = spintop_course::repository()
+        .join("target")
+        .join("spintop-build-was-here");
     let spec = Spec {
         kind: Kind::Build {
             writable: work.clone(),
@@ -205,15 +233,21 @@ fn a_build_writes_only_in_its_own_folder_and_reaches_no_network() {
     let (lines, status, _) = run(
         &spec,
         &[
-            "write", inside.to_str().unwrap(),
-            "write", outside.to_str().unwrap(),
-            "tcp", "",
+            "write",
+            inside.to_str().unwrap(),
+            "write",
+            outside.to_str().unwrap(),
+            "tcp",
+            "",
         ],
     );
     assert!(status.success(), "{status:?} {lines:?}");
     assert!(lines[0].starts_with("ok") && inside.is_file(), "{lines:?}");
     if layers.namespaces.is_ok() || layers.landlock.is_ok() {
-        assert!(lines[1].starts_with("err") && !outside.exists(), "{lines:?}");
+        assert!(
+            lines[1].starts_with("err") && !outside.exists(),
+            "{lines:?}"
+        );
     } else {
         eprintln!("SKIPPED: no namespaces or Landlock: a build may write where its user may");
     }

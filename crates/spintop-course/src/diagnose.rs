@@ -235,6 +235,19 @@ pub fn run(
     seed: u64,
     work: &Path,
 ) -> Result<Vec<Diagnosed>, String> {
+    lay_out(repo, answers, work)?;
+    let ctx = Ctx {
+        stop: None,
+        deadline: Some(Instant::now() + Duration::from_secs(1800)),
+    };
+    let exe = build(repo, answers, work, &ctx)?;
+    grade_each(&exe, answers, seed, &ctx)
+}
+
+/// Writes the scratch crate in `work` (emptied first): the reference
+/// solutions as the course's modules, each answer a module of `wrong`, and
+/// a `main` that grades one by its number.
+fn lay_out(repo: &Path, answers: &[WrongAnswer], work: &Path) -> Result<(), String> {
     if work.exists() {
         std::fs::remove_dir_all(work).map_err(|e| format!("{}: {e}", work.display()))?;
     }
@@ -281,21 +294,23 @@ pub fn run(
     for (path, text) in &files {
         std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
     }
+    Ok(())
+}
+
+/// Builds the scratch crate in `work` (in the repository's build folder):
+/// its program, or the first error, named by the wrong answer's own file.
+fn build(repo: &Path, answers: &[WrongAnswer], work: &Path, ctx: &Ctx) -> Result<PathBuf, String> {
     let target = std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
         .unwrap_or_else(|| repo.join("target"));
-    let ctx = Ctx {
-        stop: None,
-        deadline: Some(Instant::now() + Duration::from_secs(1800)),
-    };
     let built =
-        compile::cargo_json(work, &["build"], Some(&target), &ctx).map_err(|e| e.to_string())?;
-    let exe = match built {
+        compile::cargo_json(work, &["build"], Some(&target), ctx).map_err(|e| e.to_string())?;
+    match built {
         Built::Programs(p) => p
             .into_iter()
             .next()
             .map(|(_, exe)| exe)
-            .ok_or("cargo built no program")?,
+            .ok_or_else(|| "cargo built no program".to_string()),
         Built::Failed(errors) => {
             let e = errors.first().cloned().unwrap_or_else(|| super::Located {
                 file: "?".into(),
@@ -311,18 +326,27 @@ pub fn run(
                 .and_then(|i| answers.get(i))
                 .map(|a| a.file.display().to_string())
                 .unwrap_or(e.file.clone());
-            return Err(format!(
+            Err(format!(
                 "{file}:{}: {} (fix it, or leave it out)",
                 e.line, e.message
-            ));
+            ))
         }
         Built::OutOfTime | Built::Bounded(_) => {
-            return Err("the build did not finish in 30 minutes".into());
+            Err("the build did not finish in 30 minutes".into())
         }
-    };
+    }
+}
+
+/// Runs the program `exe` once per answer at `seed`: what each grader said.
+fn grade_each(
+    exe: &Path,
+    answers: &[WrongAnswer],
+    seed: u64,
+    ctx: &Ctx,
+) -> Result<Vec<Diagnosed>, String> {
     let mut out = Vec::new();
     for (i, a) in answers.iter().enumerate() {
-        let mut cmd = Command::new(&exe);
+        let mut cmd = Command::new(exe);
         cmd.args([i.to_string(), seed.to_string()])
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
@@ -330,7 +354,7 @@ pub fn run(
         let mut child =
             process::spawn_group(&mut cmd).map_err(|e| format!("{}: {e}", exe.display()))?;
         let stdout = process::drain(child.stdout.take(), 64 * 1024);
-        let status = process::wait_within(&mut child, Duration::from_secs(60), &ctx);
+        let status = process::wait_within(&mut child, Duration::from_secs(60), ctx);
         let text = String::from_utf8_lossy(&stdout.join().unwrap_or_default()).into_owned();
         let line = text.lines().next().unwrap_or_default();
         let (passed, diagnosis) = match (status, line.split_once('\t')) {

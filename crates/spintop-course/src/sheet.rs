@@ -283,7 +283,10 @@ mod tests {
         }
         let totals: Vec<&Vec<String>> = rows.iter().filter(|r| r[1] == TOTAL).collect();
         assert_eq!(totals.len(), 4);
-        assert_eq!((totals[0][0].as_str(), totals[0][4].as_str()), ("'=2+3", "1"));
+        assert_eq!(
+            (totals[0][0].as_str(), totals[0][4].as_str()),
+            ("'=2+3", "1")
+        );
         assert!(totals[0][7].contains("1 of 22 passing"), "{:?}", totals[0]);
         assert!(!csv.contains("HYPERLINK"), "{csv}");
         let json = class.gradescope(&class.copies[0]).to_string();

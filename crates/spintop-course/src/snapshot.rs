@@ -492,16 +492,30 @@ mod tests {
         assert!(start.elapsed() < Duration::from_secs(5));
         assert_eq!(
             snap.files,
-            [PathBuf::from("src/lib.rs"), PathBuf::from("src/nested/deeper/x.rs")]
+            [
+                PathBuf::from("src/lib.rs"),
+                PathBuf::from("src/nested/deeper/x.rs")
+            ]
         );
-        let refused: Vec<String> = snap.refused.iter().map(|r| r.path.display().to_string()).collect();
-        assert_eq!(refused, ["src/giant.rs", "src/link.rs", "src/pipe.rs"], "{snap:?}");
+        let refused: Vec<String> = snap
+            .refused
+            .iter()
+            .map(|r| r.path.display().to_string())
+            .collect();
+        assert_eq!(
+            refused,
+            ["src/giant.rs", "src/link.rs", "src/pipe.rs"],
+            "{snap:?}"
+        );
         assert!(snap.refused[0].why.contains("larger than"));
         assert!(snap.refused[1].why.contains("symbolic link"));
         assert!(snap.refused[2].why.contains("not a regular file"));
         assert!(!into.join("src/notes.txt").exists());
         use std::os::unix::fs::PermissionsExt;
-        let mode = std::fs::metadata(into.join("src/nested")).unwrap().permissions().mode();
+        let mode = std::fs::metadata(into.join("src/nested"))
+            .unwrap()
+            .permissions()
+            .mode();
         assert_eq!(mode & 0o777, 0o700);
         std::fs::remove_dir_all(&copy).unwrap();
     }
@@ -530,7 +544,10 @@ mod tests {
         assert!(matches!(read("target/fifo.json"), Err(ReadError::NotAFile)));
         assert!(matches!(read("target/zero.json"), Err(ReadError::NotAFile)));
         assert!(matches!(read("linked/passwd"), Err(ReadError::NotAFile)));
-        assert!(matches!(read("target/big.json"), Err(ReadError::TooLarge(1000))));
+        assert!(matches!(
+            read("target/big.json"),
+            Err(ReadError::TooLarge(1000))
+        ));
         assert!(matches!(read("target/none.json"), Err(ReadError::Missing)));
         assert_eq!(read("target/ok.json").unwrap(), b"{}");
         assert!(start.elapsed() < Duration::from_secs(2), "nothing waited");

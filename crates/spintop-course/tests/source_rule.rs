@@ -307,7 +307,11 @@ fn a_src_folder_that_is_a_symbolic_link_is_refused() {
 fn a_build_script_and_a_manifest_of_the_copy_count_for_nothing() {
     let dir = copy("build-script");
     std::fs::write(dir.join("build.rs"), "fn main() {}\n").unwrap();
-    append(&dir, "Cargo.toml", "\n[package.metadata]\nx = 1\nbuild = \"build.rs\"\n");
+    append(
+        &dir,
+        "Cargo.toml",
+        "\n[package.metadata]\nx = 1\nbuild = \"build.rs\"\n",
+    );
     let ws = course::workspace::Workspace::at(&dir.join("graded"));
     ws.lay_out(repo()).unwrap();
     let snap = course::snapshot::take(&dir, &ws.course(), &Default::default()).unwrap();

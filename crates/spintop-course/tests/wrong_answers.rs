@@ -49,24 +49,47 @@ fn rk4_variant(
 
 /// The plausible wrong answers, at least two per assignment.
 pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
-    let top_rhs = |i: Vec3, d: Vec3, w: Vec3| GeneralTop::new(i, d).unwrap().truncated_ale_rhs(&w);
-    let cone = |th: f64, w: f64, t: f64| PrecessingDipole::new(th, w).unwrap().jet(t);
-    let reduced_run = |euler: bool| {
-        move |r: f64, tau: f64, w0: Vec3, t_end: f64, n: usize| {
-            let h = t_end / n as f64;
-            let f = |_t: f64, y: &State<3>| sym::reduced_ale_rhs(&top(r, tau), y);
-            (0..n).fold(w0, |y, i| {
-                if euler {
-                    y + f(0.0, &y) * h
-                } else {
-                    // The midpoint method: order 2.
-                    let _ = i;
-                    let k1 = f(0.0, &y);
-                    y + f(0.0, &(y + k1 * (h / 2.0))) * h
-                }
-            })
-        }
-    };
+    [
+        section_2_first(seed),
+        section_2_rest(seed),
+        section_3(seed),
+        truncated(seed),
+        reduced(seed),
+        appendix(seed),
+        numerics(seed),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+fn top_rhs(i: Vec3, d: Vec3, w: Vec3) -> Vec3 {
+    GeneralTop::new(i, d).unwrap().truncated_ale_rhs(&w)
+}
+
+fn cone(th: f64, w: f64, t: f64) -> Jet {
+    PrecessingDipole::new(th, w).unwrap().jet(t)
+}
+
+/// A run of the reduced model (4.12) with Euler's method, or the midpoint
+/// method (order 2), in place of RK4.
+fn reduced_run(euler: bool) -> impl Fn(f64, f64, Vec3, f64, usize) -> Vec3 {
+    move |r: f64, tau: f64, w0: Vec3, t_end: f64, n: usize| {
+        let h = t_end / n as f64;
+        let f = |_t: f64, y: &State<3>| sym::reduced_ale_rhs(&top(r, tau), y);
+        (0..n).fold(w0, |y, _| {
+            if euler {
+                y + f(0.0, &y) * h
+            } else {
+                let k1 = f(0.0, &y);
+                y + f(0.0, &(y + k1 * (h / 2.0))) * h
+            }
+        })
+    }
+}
+
+/// The wrong answers of (2.1), (2.4), (2.2).
+fn section_2_first(seed: u64) -> Vec<Wrong> {
     vec![
         // (2.1)
         w(
@@ -131,6 +154,12 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             grading::torque_rate(seed, |j: &Jet| j[3].cross(&j[0])),
             "sign flip",
         ),
+    ]
+}
+
+/// The wrong answers of (2.3), its axial part, the precessing dipole.
+fn section_2_rest(seed: u64) -> Vec<Wrong> {
+    vec![
         // (2.3)
         w(
             "schott_rate",
@@ -206,6 +235,12 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             }),
             "d''' has the wrong sign",
         ),
+    ]
+}
+
+/// The wrong answers of (3.3) and (3.5).
+fn section_3(seed: u64) -> Vec<Wrong> {
+    vec![
         // (3.3)
         w(
             "truncated_ale_rhs",
@@ -291,6 +326,12 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             }),
             "phi and psi are swapped",
         ),
+    ]
+}
+
+/// The wrong answers of (4.5)–(4.11).
+fn truncated(seed: u64) -> Vec<Wrong> {
+    vec![
         // (4.5)-(4.6)
         w(
             "truncated_omega_perp",
@@ -391,6 +432,12 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             grading::precession_tilt(seed, |r: f64, w0: Vec3| (r * w0.x.hypot(w0.y)).atan2(w0.z)),
             "swapped",
         ),
+    ]
+}
+
+/// The wrong answers of (4.12)–(4.16).
+fn reduced(seed: u64) -> Vec<Wrong> {
+    vec![
         // (4.12)-(4.14)
         w(
             "reduced_ale_rhs",
@@ -467,6 +514,12 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             }),
             "turns the wrong way",
         ),
+    ]
+}
+
+/// The wrong answers of (A.1) and its characteristic root.
+fn appendix(seed: u64) -> Vec<Wrong> {
+    vec![
         // (A.1) masses
         w(
             "shell_masses",
@@ -527,6 +580,12 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             }),
             "wrong sign in the exponent",
         ),
+    ]
+}
+
+/// The wrong answers of the step methods and the runs.
+fn numerics(seed: u64) -> Vec<Wrong> {
+    vec![
         // RK4
         w(
             "rk4_step",
