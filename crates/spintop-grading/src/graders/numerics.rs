@@ -549,7 +549,9 @@ mod tests {
         let x = step_inputs(7)[0];
         let rk4 = Tableau::rk4();
         let dp5 = Tableau::dp5();
-        let cases: Vec<(&Tableau, Vec<(Entry, Real)>, &[&str])> = vec![
+        // A table, the entries changed in it, and words the diagnosis says.
+        type Case<'a> = (&'a Tableau, Vec<(Entry, Real)>, &'a [&'a str]);
+        let cases: Vec<Case<'_>> = vec![
             (
                 &rk4,
                 vec![(Entry::C(1), 0.0)],
