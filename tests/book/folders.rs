@@ -200,3 +200,89 @@ fn a_cargo_config_above_the_scratch_folder_is_not_read() {
     assert!(!marker.exists(), "the planted rustc-wrapper ran");
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// Two `spintop book` at once with one scratch folder (two in one clone:
+/// both take `target/spintop-book/scratch`) each compile in a folder of
+/// their own and run their own program: the second takes the folder
+/// beside the first's, and neither ever runs the other's snippet, however
+/// their ▶ interleave. With the stand-in cargo (no compiler), the real
+/// servers and supervisors.
+#[test]
+fn two_servers_at_once_never_run_each_others_snippet() {
+    let root = scratch_root("two-servers");
+    let site = site(&root);
+    let cargo = fake_cargo(&root);
+    let target = root.join("target");
+    std::fs::create_dir_all(&target).unwrap();
+    let scratch = root.join("scratch");
+    let options = || BookOptions {
+        env: vec![
+            ("CARGO".into(), cargo.clone().into()),
+            ("CARGO_TARGET_DIR".into(), target.clone().into()),
+        ],
+        ..BookOptions::default()
+    };
+    let books = [
+        Book::start_with(&site, &scratch, options()),
+        Book::start_with(&site, &scratch, options()),
+    ];
+    // Each says where it is, and which server it is.
+    let run = |(port, token): (u16, &str), who: &str| -> String {
+        let code = script(&format!("sleep 0.05; echo \"{who} in $(pwd)\""));
+        let (status, text) = request(
+            port,
+            "POST",
+            "/evaluate.json",
+            &[("X-Spintop-Token", token)],
+            &body(&code),
+        )
+        .unwrap();
+        assert_eq!(status, 200, "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        v["result"].as_str().unwrap_or("").trim().to_string()
+    };
+    let mut folders = [Vec::new(), Vec::new()];
+    for round in 0..6 {
+        let said: Vec<String> = std::thread::scope(|scope| {
+            let runs: Vec<_> = books
+                .iter()
+                .zip(["first", "second"])
+                .map(|(book, who)| {
+                    let key = (book.port, book.token.as_str());
+                    scope.spawn(move || run(key, who))
+                })
+                .collect();
+            runs.into_iter().map(|r| r.join().unwrap()).collect()
+        });
+        for (i, (said, who)) in said.iter().zip(["first", "second"]).enumerate() {
+            assert!(
+                said.starts_with(&format!("{who} in ")),
+                "round {round}: the {who} server ran {said:?}"
+            );
+            folders[i].push(said.split(" in ").nth(1).unwrap().to_string());
+        }
+    }
+    let first = std::fs::canonicalize(&scratch).unwrap();
+    let second = first.with_file_name("scratch-2");
+    assert!(
+        folders[0].iter().all(|f| Path::new(f) == first),
+        "{folders:?}"
+    );
+    assert!(
+        folders[1].iter().all(|f| Path::new(f) == second),
+        "{folders:?}"
+    );
+    let programs = std::fs::read_dir(target.join("debug"))
+        .unwrap()
+        .filter(|e| {
+            e.as_ref().is_ok_and(|e| {
+                e.file_name()
+                    .to_string_lossy()
+                    .starts_with("spintop-snippet-")
+            })
+        })
+        .count();
+    assert_eq!(programs, 2, "one program each");
+    drop(books);
+    let _ = std::fs::remove_dir_all(&root);
+}

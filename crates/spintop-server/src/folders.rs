@@ -17,7 +17,11 @@
 //!
 //! The scratch folder is made fresh at each start, mode 0700: an old one is
 //! removed only if it is a scratch project of `spintop book` (or empty),
-//! never another folder a reader named by mistake.
+//! never another folder a reader named by mistake. Each server holds its
+//! scratch folder for as long as it lives (a lock, [`claim_scratch`]): two
+//! servers started with the same one (two `spintop book` in one clone)
+//! each get a folder of their own, and with it a program name of their
+//! own, so that neither removes the other's project nor runs its snippet.
 
 use std::fs::Metadata;
 use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
@@ -110,10 +114,28 @@ fn check_chain(what: &str, dir: &Path, is_folder: bool) -> Result<PathBuf, Untru
     Ok(resolved)
 }
 
-/// Makes `scratch` fresh, mode 0700, in a folder that may be trusted;
-/// returns it resolved. An existing one is removed first if it is a
-/// scratch project of `spintop book` or empty; anything else is refused.
-pub fn fresh_scratch(scratch: &Path) -> Result<PathBuf, Untrusted> {
+/// A scratch folder this server holds: the lock on `NAME.lock` beside it
+/// (an open file description of this process's, not inherited by what it
+/// runs), released when the server ends, however it ends (the kernel drops
+/// a dead process's locks).
+#[derive(Debug)]
+pub struct Scratch {
+    /// The folder, resolved.
+    pub path: PathBuf,
+    _lock: std::fs::File,
+}
+
+/// How many servers at once may each have a scratch folder beside the one
+/// named: `NAME`, then `NAME-2` up to `NAME-16`.
+const SLOTS: usize = 16;
+
+/// Claims a scratch folder for this server: `scratch` if no other living
+/// server holds it, else the first of `scratch-2`, `scratch-3`, … that none
+/// holds; then makes it fresh, mode 0700, in a folder that may be trusted
+/// (see [`fresh_scratch`]).
+pub fn claim_scratch(scratch: &Path) -> Result<Scratch, Untrusted> {
+    use rustix::fs::{FlockOperation, flock};
+    use std::os::unix::fs::OpenOptionsExt;
     let refuse = |why: String| Untrusted {
         what: "--scratch".into(),
         path: scratch.to_path_buf(),
@@ -121,7 +143,9 @@ pub fn fresh_scratch(scratch: &Path) -> Result<PathBuf, Untrusted> {
     };
     let name = scratch
         .file_name()
-        .ok_or_else(|| refuse("names no folder".into()))?;
+        .ok_or_else(|| refuse("names no folder".into()))?
+        .to_string_lossy()
+        .into_owned();
     let parent = match scratch.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
@@ -132,9 +156,52 @@ pub fn fresh_scratch(scratch: &Path) -> Result<PathBuf, Untrusted> {
         e.path = scratch.to_path_buf();
         e
     })?;
-    let resolved = parent.join(name);
+    for slot in 1..=SLOTS {
+        let name = match slot {
+            1 => name.clone(),
+            n => format!("{name}-{n}"),
+        };
+        let lock = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .mode(0o600)
+            .open(parent.join(format!("{name}.lock")))
+            .map_err(|e| refuse(format!("cannot make its lock file: {e}")))?;
+        match flock(&lock, FlockOperation::NonBlockingLockExclusive) {
+            Ok(()) => {}
+            // Another server's.
+            Err(rustix::io::Errno::WOULDBLOCK) => continue,
+            Err(e) => return Err(refuse(format!("cannot lock it: {e}"))),
+        }
+        let path = fresh_scratch(&parent.join(&name), scratch, slot > 1)?;
+        return Ok(Scratch { path, _lock: lock });
+    }
+    Err(refuse(format!(
+        "{SLOTS} other spintop book servers hold it and the folders beside it; stop one, or name another --scratch"
+    )))
+}
+
+/// Makes `resolved` (in a folder checked already) fresh, mode 0700, for
+/// `--scratch asked` (`another`: beside it, since another server holds
+/// `asked`); returns it. An existing one is removed first if it
+/// is a scratch project of `spintop book` or empty; anything else is
+/// refused. The caller holds its lock: no living server uses it.
+fn fresh_scratch(resolved: &Path, asked: &Path, another: bool) -> Result<PathBuf, Untrusted> {
+    let refuse = |why: String| Untrusted {
+        what: "--scratch".into(),
+        path: asked.to_path_buf(),
+        why: match another {
+            false => why,
+            true => format!(
+                "{} (beside it, since another spintop book holds it) {why}",
+                resolved.display()
+            ),
+        },
+    };
     let me = rustix::process::geteuid().as_raw();
-    match std::fs::symlink_metadata(&resolved) {
+    match std::fs::symlink_metadata(resolved) {
         Err(_) => {}
         Ok(meta) if meta.uid() != me => {
             return Err(refuse(format!(
@@ -142,8 +209,8 @@ pub fn fresh_scratch(scratch: &Path) -> Result<PathBuf, Untrusted> {
                 meta.uid()
             )));
         }
-        Ok(meta) if meta.is_dir() && is_old_scratch(&resolved) => {
-            std::fs::remove_dir_all(&resolved)
+        Ok(meta) if meta.is_dir() && is_old_scratch(resolved) => {
+            std::fs::remove_dir_all(resolved)
                 .map_err(|e| refuse(format!("cannot remove the old scratch project: {e}")))?;
         }
         Ok(_) => {
@@ -154,9 +221,9 @@ pub fn fresh_scratch(scratch: &Path) -> Result<PathBuf, Untrusted> {
     }
     std::fs::DirBuilder::new()
         .mode(0o700)
-        .create(&resolved)
+        .create(resolved)
         .map_err(|e| refuse(format!("cannot be made: {e}")))?;
-    Ok(resolved)
+    Ok(resolved.to_path_buf())
 }
 
 /// Whether `dir` is a folder `spintop book` made (its manifest names a
@@ -200,6 +267,39 @@ mod tests {
         let why = verdict(&private, other, true).expect("refused");
         assert!(why.contains(&format!("belongs to uid {me}")), "{why}");
         assert_eq!(verdict(&private, other, false).is_none(), me == 0);
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    /// Two servers at once with one scratch folder each get their own: the
+    /// second takes the folder beside it, leaves the first's project alone,
+    /// and once the first is gone (its lock with it), the next server takes
+    /// the first folder again, fresh.
+    #[test]
+    fn a_scratch_folder_held_by_a_living_server_is_not_taken_by_another() {
+        let root = std::env::temp_dir().join(format!("spintop-claims-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        std::fs::create_dir_all(&root).unwrap();
+        let asked = root.join("scratch");
+        let first = claim_scratch(&asked).unwrap();
+        let planted = first.path.join("Cargo.toml");
+        std::fs::write(&planted, "[package]\nname = \"spintop-snippet-x\"\n").unwrap();
+        let second = claim_scratch(&asked).unwrap();
+        assert_eq!(first.path, std::fs::canonicalize(&asked).unwrap());
+        assert_eq!(second.path, first.path.with_file_name("scratch-2"));
+        assert!(
+            planted.is_file(),
+            "the second server removed the first's project"
+        );
+        let mode = std::fs::metadata(&second.path)
+            .unwrap()
+            .permissions()
+            .mode();
+        assert_eq!(mode & 0o777, 0o700);
+        drop(first);
+        let third = claim_scratch(&asked).unwrap();
+        assert_eq!(third.path, std::fs::canonicalize(&asked).unwrap());
+        assert!(!planted.exists(), "not made fresh");
+        drop((second, third));
         std::fs::remove_dir_all(&root).unwrap();
     }
 }

@@ -59,7 +59,11 @@
 //! owned by one but root; a sticky folder above (as /tmp) is allowed when
 //! the next one down is the reader's (`src/server/folders.rs`). Else
 //! [`Server::bind`] refuses, saying which folder and why. The scratch folder
-//! is made fresh at each start, mode 0700. Cargo runs in `/` and finds the
+//! is made fresh at each start, mode 0700, and is the server's alone while
+//! it lives (a lock beside it): a second server started with the same one
+//! takes `NAME-2` (and so on) instead, with a program name of its own, so
+//! that two `spintop book` in one clone never remove each other's project
+//! nor run each other's snippet. Cargo runs in `/` and finds the
 //! scratch project by its path, so that no `.cargo/config.toml` in a folder
 //! above the scratch (which cargo reads from the folder it runs in upward,
 //! whoever wrote it, and whatever `--config` or `CARGO_HOME` say) is read;
@@ -156,7 +160,8 @@
 //! # What is written where
 //!
 //! The built book (`target/spintop-book/site`, by mdBook), the scratch
-//! project (`target/spintop-book/scratch`), in a cgroup unit a cgroup
+//! project (`target/spintop-book/scratch`, or `scratch-2` and on while
+//! other servers hold it) and its lock file beside it (`scratch.lock`), in a cgroup unit a cgroup
 //! `spintop-book-PID` below the server's for each tree (removed with it),
 //! the build folder it shares with
 //! the workspace (`target/debug`: spintop's debug build and the snippet's
@@ -314,6 +319,8 @@ struct Inner {
     warm: Mutex<WarmState>,
     connections: Mutex<Vec<Arc<http::Watch>>>,
     refusing: AtomicUsize,
+    /// Held while anything of this server may use it.
+    _scratch: folders::Scratch,
 }
 
 /// An answer: status, content type, further headers, body.
@@ -387,8 +394,8 @@ fn listen(port: u16) -> Result<(Vec<TcpListener>, u16), ServerError> {
 }
 
 impl Server {
-    /// Checks the folders (each the reader's own, see `folders.rs`), makes
-    /// the scratch folder fresh, finds the strongest containment the
+    /// Checks the folders (each the reader's own, see `folders.rs`), claims
+    /// a scratch folder no other living server holds and makes it fresh, finds the strongest containment the
     /// machine allows ([`Server::containment`]), and listens on
     /// 127.0.0.1:`config.port` (and on [::1] at that port, see [`listen`]).
     pub fn bind(mut config: Config) -> Result<Self, ServerError> {
@@ -400,7 +407,8 @@ impl Server {
             why: format!("cannot be made: {e}"),
         })?;
         config.runner.target_dir = folders::check("the build folder", target)?;
-        config.runner.scratch = folders::fresh_scratch(&config.runner.scratch)?;
+        let scratch = folders::claim_scratch(&config.runner.scratch)?;
+        config.runner.scratch = scratch.path.clone();
         config.runner.containment =
             supervise::strongest(config.runner.containment, &config.runner.launcher);
         let (listeners, port) = listen(config.port)?;
@@ -415,8 +423,16 @@ impl Server {
                 warm: Mutex::new(WarmState::NotStarted),
                 connections: Mutex::default(),
                 refusing: AtomicUsize::new(0),
+                _scratch: scratch,
             }),
         })
+    }
+
+    /// The scratch folder it compiles snippets in: the one asked for, or
+    /// beside it if another living server holds that one (see
+    /// `folders.rs`).
+    pub fn scratch(&self) -> &std::path::Path {
+        &self.inner.config.runner.scratch
     }
 
     /// The port it listens on.
