@@ -286,3 +286,35 @@ fn two_servers_at_once_never_run_each_others_snippet() {
     drop(books);
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// In a sticky folder others may write (as /tmp), another user (uid 65534,
+/// when this runs as root) who puts a file or a link where the scratch
+/// folder's lock goes can neither have the server follow the link nor
+/// share the lock: refused, saying whose it is, and nothing is made.
+#[test]
+fn a_lock_file_another_user_planted_beside_the_scratch_is_refused() {
+    if !can_become_another_user() {
+        return;
+    }
+    let root = scratch_root("planted-lock");
+    let open = root.join("open");
+    std::fs::create_dir_all(&open).unwrap();
+    chmod(&open, 0o1777);
+    let planted = open.join("scratch.lock");
+    std::fs::write(&planted, "").unwrap();
+    std::os::unix::fs::chown(&planted, Some(NOBODY), Some(NOBODY)).unwrap();
+    let why = refusal(config(site(&root), open.join("scratch")));
+    assert!(
+        why.contains("lock file scratch.lock belongs to uid 65534"),
+        "{why}"
+    );
+    std::fs::remove_file(&planted).unwrap();
+    let target = root.join("elsewhere");
+    std::os::unix::fs::symlink(&target, &planted).unwrap();
+    std::os::unix::fs::lchown(&planted, Some(NOBODY), Some(NOBODY)).unwrap();
+    let why = refusal(config(site(&root), open.join("scratch")));
+    assert!(why.contains("cannot make its lock file"), "{why}");
+    assert!(!target.exists(), "the link was followed");
+    assert!(!open.join("scratch").exists());
+    let _ = std::fs::remove_dir_all(&root);
+}

@@ -156,6 +156,7 @@ pub fn claim_scratch(scratch: &Path) -> Result<Scratch, Untrusted> {
         e.path = scratch.to_path_buf();
         e
     })?;
+    let me = rustix::process::geteuid().as_raw();
     for slot in 1..=SLOTS {
         let name = match slot {
             1 => name.clone(),
@@ -167,8 +168,17 @@ pub fn claim_scratch(scratch: &Path) -> Result<Scratch, Untrusted> {
             .create(true)
             .truncate(false)
             .mode(0o600)
+            // In a sticky folder (/tmp) another user may have put a link
+            // or a file of theirs there first.
+            .custom_flags(rustix::fs::OFlags::NOFOLLOW.bits() as i32)
             .open(parent.join(format!("{name}.lock")))
-            .map_err(|e| refuse(format!("cannot make its lock file: {e}")))?;
+            .map_err(|e| refuse(format!("cannot make its lock file {name}.lock: {e}")))?;
+        let owner = lock.metadata().map(|m| m.uid()).unwrap_or(u32::MAX);
+        if owner != me {
+            return Err(refuse(format!(
+                "its lock file {name}.lock belongs to uid {owner}, not to you (uid {me}); name a folder of your own"
+            )));
+        }
         match flock(&lock, FlockOperation::NonBlockingLockExclusive) {
             Ok(()) => {}
             // Another server's.
