@@ -205,7 +205,8 @@ fn a_cargo_config_above_the_scratch_folder_is_not_read() {
 /// both take `target/spintop-book/scratch`) each compile in a folder of
 /// their own and run their own program: the second takes the folder
 /// beside the first's, and neither ever runs the other's snippet, however
-/// their ▶ interleave. With the stand-in cargo (no compiler), the real
+/// their ▶ interleave; once the first is killed (SIGKILL), the next
+/// server takes its folder. With the stand-in cargo (no compiler), the real
 /// servers and supervisors.
 #[test]
 fn two_servers_at_once_never_run_each_others_snippet() {
@@ -283,7 +284,14 @@ fn two_servers_at_once_never_run_each_others_snippet() {
         })
         .count();
     assert_eq!(programs, 2, "one program each");
-    drop(books);
+    // SIGKILL frees the first's folder (the kernel drops its lock): the
+    // next server takes it again, while the second still holds its own.
+    let mut books = books;
+    books[0].stop(rustix::process::Signal::KILL);
+    let third = Book::start_with(&site, &scratch, options());
+    let said = run((third.port, third.token.as_str()), "third");
+    assert_eq!(said, format!("third in {}", first.display()));
+    drop((books, third));
     let _ = std::fs::remove_dir_all(&root);
 }
 
