@@ -54,9 +54,18 @@ fn site_and_scratch_in_a_folder_others_can_write_are_refused() {
         why.contains("plant code that the build runs as you"),
         "{why}"
     );
-    // The site folder itself writable by its group, or sticky and open
-    // (a sticky bit protects entries, not the creation of index.html).
+    // The site folder itself writable by a group shared with another user
+    // (as root: uid 65534's primary group, which two system users share
+    // too), or sticky and open (a sticky bit protects entries, not the
+    // creation of index.html).
+    let shared_group = can_become_another_user();
+    if shared_group {
+        std::os::unix::fs::chown(&own_site, None, Some(NOBODY)).unwrap();
+    }
     for mode in [0o775, 0o1777] {
+        if mode == 0o775 && !shared_group {
+            continue;
+        }
         chmod(&own_site, mode);
         let why = refusal(config(own_site.clone(), root.join("scratch")));
         assert!(why.contains("can be written by"), "{mode:o}: {why}");
@@ -324,5 +333,51 @@ fn a_lock_file_another_user_planted_beside_the_scratch_is_refused() {
     assert!(why.contains("cannot make its lock file"), "{why}");
     assert!(!target.exists(), "the link was followed");
     assert!(!open.join("scratch").exists());
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// Whether group `gid` has user `uid` as its one member, asked of the
+/// system's databases (`getent`, NSS included) independently of the
+/// server's reading of `/etc/group` and `/etc/passwd`.
+fn private_group(gid: u32, uid: u32) -> bool {
+    let sh = |script: String| {
+        std::process::Command::new("sh")
+            .args(["-c", &script])
+            .output()
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+            .unwrap_or_default()
+    };
+    let primary = sh(format!(
+        "getent passwd | awk -F: '$4 == {gid} {{ print $3 }}' | sort -u"
+    ));
+    let name = sh(format!("getent passwd {uid} | cut -d: -f1"));
+    let listed = sh(format!("getent group {gid} | cut -d: -f4"));
+    let listed_ok = listed.is_empty() || listed == name;
+    let primary_ok = primary.is_empty() || primary == uid.to_string();
+    listed_ok && primary_ok && (!primary.is_empty() || !listed.is_empty())
+}
+
+/// Debian, Ubuntu and Fedora give each user a private group and a umask of
+/// 002, so a clone's folders are writable by their group, which is the
+/// reader's alone: `spintop book` serves such a clone's book and builds in
+/// its scratch and build folders (as Debian's OpenSSH takes such a home).
+#[test]
+fn a_clone_made_with_umask_002_in_a_private_group_is_taken() {
+    use std::os::unix::fs::MetadataExt;
+    let root = scratch_root("umask-002");
+    let site = site(&root);
+    for folder in [&root, &site, &site.join("css")] {
+        chmod(folder, 0o775);
+    }
+    let meta = std::fs::metadata(&root).unwrap();
+    let me = rustix::process::geteuid().as_raw();
+    if !private_group(meta.gid(), me) {
+        eprintln!("gid {} is not uid {me}'s alone here: skipped", meta.gid());
+        let _ = std::fs::remove_dir_all(&root);
+        return;
+    }
+    let server = Server::bind(config(site, root.join("scratch")))
+        .unwrap_or_else(|e| panic!("a private group's folder refused: {e}"));
+    drop(server);
     let _ = std::fs::remove_dir_all(&root);
 }

@@ -8,7 +8,14 @@
 //! The rule is OpenSSH's `StrictModes` and Jupyter's for its runtime
 //! folder: the folder is the reader's, and neither it nor any folder above
 //! it may be written by another user (group or others) or belong to one
-//! (root aside, who can do anything anyway). One exception, as for `/tmp`:
+//! (root aside, who can do anything anyway). A folder its group may write
+//! is the reader's alone if that group is: the reader's private group
+//! (Debian, Ubuntu and Fedora give each user one and a umask of 002, so a
+//! clone's folders are group-writable), with no other member in
+//! `/etc/group` nor any other user's primary group in `/etc/passwd`
+//! (Debian's OpenSSH takes the same rule for StrictModes). A group known
+//! only to a directory service (LDAP) is not read, and refused. One
+//! exception, as for `/tmp`:
 //! a folder above that others may write but that has the sticky bit, where
 //! only an entry's owner may rename or remove it, provided the next folder
 //! down is the reader's (or root's). The path is resolved once
@@ -62,11 +69,13 @@ fn verdict(meta: &Metadata, me: u32, last: bool) -> Option<String> {
         ));
     }
     let sticky = mode & 0o1000 != 0;
-    if mode & 0o022 != 0 && (last || !sticky) {
-        let who = if mode & 0o002 != 0 {
-            "every user"
+    let others = mode & 0o002 != 0;
+    let group = mode & 0o020 != 0 && !group_is_alone(meta.gid(), me);
+    if (others || group) && (last || !sticky) {
+        let who = if others {
+            "every user".to_string()
         } else {
-            "its group"
+            format!("its group (gid {}, not yours alone)", meta.gid())
         };
         return Some(format!(
             "can be written by {who} (mode {:04o}); make it yours alone (chmod go-w) or use another",
@@ -74,6 +83,42 @@ fn verdict(meta: &Metadata, me: u32, last: bool) -> Option<String> {
         ));
     }
     None
+}
+
+/// Whether group `gid` is the user `me`'s alone, by `/etc/group` and
+/// `/etc/passwd` (see the module's docs).
+fn group_is_alone(gid: u32, me: u32) -> bool {
+    let read = |path| std::fs::read_to_string(path).unwrap_or_default();
+    sole_member(&read("/etc/group"), &read("/etc/passwd"), gid, me)
+}
+
+/// Whether group `gid` of the `groups` table (`/etc/group`'s lines) has
+/// user `me` of the `users` table (`/etc/passwd`'s) as its one member:
+/// every user whose primary group it is, and every member it lists, is
+/// `me`, and there is at least one. A group not in the table is not.
+fn sole_member(groups: &str, users: &str, gid: u32, me: u32) -> bool {
+    let fields = |line: &'_ str| line.split(':').map(str::to_string).collect::<Vec<_>>();
+    let Some(listed) = groups
+        .lines()
+        .map(fields)
+        .find(|f| f.len() >= 4 && f[2].parse() == Ok(gid))
+        .map(|f| f[3].clone())
+    else {
+        return false;
+    };
+    // Name, uid and primary gid of each user.
+    let users: Vec<(String, Option<u32>, Option<u32>)> = users
+        .lines()
+        .map(fields)
+        .filter(|f| f.len() >= 4)
+        .map(|f| (f[0].clone(), f[2].parse().ok(), f[3].parse().ok()))
+        .collect();
+    let primary: Vec<_> = users.iter().filter(|u| u.2 == Some(gid)).collect();
+    let is_me = |name: &str| users.iter().any(|u| u.0 == name && u.1 == Some(me));
+    let listed: Vec<&str> = listed.split(',').filter(|m| !m.is_empty()).collect();
+    primary.iter().all(|u| u.1 == Some(me))
+        && listed.iter().all(|m| is_me(m))
+        && primary.len() + listed.len() > 0
 }
 
 /// Checks that `dir` (which exists) and every folder above it may be
@@ -257,6 +302,29 @@ mod tests {
         std::fs::metadata(&dir).unwrap()
     }
 
+    /// Debian's OpenSSH rule: a group is one user's alone if it is the
+    /// primary group of that user only and lists no one else.
+    #[test]
+    fn a_private_group_is_its_users_alone_and_a_shared_one_is_not() {
+        let users = "root:x:0:0::/root:/bin/sh\nalice:x:1000:1000::/home/alice:/bin/sh\nbob:x:1001:1001::/home/bob:/bin/sh\ncarol:x:1002:1000::/home/carol:/bin/sh\ndave:x:1003:1003::/:/bin/sh\n";
+        let groups = "root:x:0:\nalice:x:1000:\nbob:x:1001:\nstaff:x:50:alice\nclass:x:60:alice,bob\nempty:x:70:\ndave:x:1003:dave\nbobs:x:80:bob\n";
+        // A private group, as useradd makes it.
+        assert!(sole_member(groups, users, 1001, 1001));
+        assert!(sole_member(groups, users, 1003, 1003));
+        assert!(sole_member(groups, users, 0, 0));
+        // Another user's, or one that lists only another user.
+        assert!(!sole_member(groups, users, 1001, 1000));
+        assert!(!sole_member(groups, users, 80, 1000));
+        // alice's primary group is carol's too.
+        assert!(!sole_member(groups, users, 1000, 1000));
+        // Listing only alice: hers; listing bob too: not.
+        assert!(sole_member(groups, users, 50, 1000));
+        assert!(!sole_member(groups, users, 60, 1000));
+        // No member at all, or no such group: not.
+        assert!(!sole_member(groups, users, 70, 1000));
+        assert!(!sole_member(groups, users, 99, 1000));
+    }
+
     #[test]
     fn a_folder_others_may_write_is_refused_unless_sticky_above_ones_own() {
         let root = std::env::temp_dir().join(format!("spintop-folders-{}", std::process::id()));
@@ -267,10 +335,28 @@ mod tests {
         assert_eq!(verdict(&folder(&root, "shared", 0o755), me, true), None);
         for mode in [0o777, 0o775, 0o1777] {
             let open = folder(&root, &format!("open{mode:o}"), mode);
-            let why = verdict(&open, me, true).expect("refused");
-            assert!(why.contains("can be written by"), "{why}");
+            // Writable by its group only, that group this user's alone.
+            let alone = mode == 0o775 && group_is_alone(open.gid(), me);
+            match verdict(&open, me, true) {
+                None => assert!(alone, "{mode:o} taken"),
+                Some(why) => assert!(!alone && why.contains("can be written by"), "{why}"),
+            }
             // Above the folder: only a sticky one passes.
-            assert_eq!(verdict(&open, me, false).is_none(), mode == 0o1777);
+            assert_eq!(verdict(&open, me, false).is_none(), mode == 0o1777 || alone);
+        }
+        // As root: a folder its group may write, that group another
+        // user's (uid 65534's primary group, as a class's shared group).
+        if me == 0 {
+            let theirs = root.join("group");
+            let _ = folder(&root, "group", 0o775);
+            std::os::unix::fs::chown(&theirs, None, Some(65534)).unwrap();
+            let meta = std::fs::metadata(&theirs).unwrap();
+            assert!(!group_is_alone(65534, me));
+            let why = verdict(&meta, me, true).expect("refused");
+            assert!(
+                why.contains("its group (gid 65534, not yours alone)"),
+                "{why}"
+            );
         }
         // Another user's folder: never the folder itself; above it, only
         // if that user is root.

@@ -56,8 +56,10 @@
 //! The built book it serves with the token, the scratch project it builds
 //! and the build folder whose programs it runs must each be the reader's,
 //! and neither they nor any folder above them writable by another user or
-//! owned by one but root; a sticky folder above (as /tmp) is allowed when
-//! the next one down is the reader's (`src/server/folders.rs`). Else
+//! owned by one but root (a group that is the reader's alone, as the
+//! private group of a umask-002 system, is no other user); a sticky folder
+//! above (as /tmp) is allowed when the next one down is the reader's
+//! (`crates/spintop-server/src/folders.rs`). Else
 //! [`Server::bind`] refuses, saying which folder and why. The scratch folder
 //! is made fresh at each start, mode 0700, and is the server's alone while
 //! it lives (a lock beside it): a second server started with the same one
