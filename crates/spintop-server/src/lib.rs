@@ -16,7 +16,7 @@
 //!
 //! - On Linux, only the reader's processes (and root's) are served: the
 //!   kernel's socket tables say whose process made each connection
-//!   (`src/server/peer.rs`), and another user's gets 403 whatever it
+//!   (`crates/spintop-server/src/peer.rs`), and another user's gets 403 whatever it
 //!   holds, without taking one of the reader's connections. The token alone
 //!   would not do: a browser sends a host's cookies to every port of it, so
 //!   a page of another user's server on 127.0.0.1 that the reader opens (by
@@ -75,7 +75,7 @@
 //!
 //! A snippet runs as the reader, with the reader's files and network. Each
 //! build and each run is a process tree under a supervisor and its stage
-//! (`src/server/supervise.rs` says how), with resource limits for a run
+//! (`crates/spintop-server/src/supervise.rs` says how), with resource limits for a run
 //! ([`Limits`]): per process 4 GiB of address space and 11 CPU seconds,
 //! files up to 64 MiB each, no core dumps, and at most 512 processes and
 //! threads more than the reader had when it started, within the reader's
@@ -89,7 +89,7 @@
 //! built (900 s for the first, cold build); the output is cut at 64 KiB.
 //!
 //! Each tree is ended as a unit, the strongest the machine allows
-//! ([`Containment`], `src/server/unit.rs`; [`Server::containment`] says
+//! ([`Containment`], `crates/spintop-server/src/unit.rs`; [`Server::containment`] says
 //! which, and `spintop book` prints it):
 //!
 //! - **Linux where the reader may make a user namespace** (most
@@ -531,7 +531,7 @@ impl Server {
     /// keeps open never holds up another. A connection that cannot have a
     /// thread (the reader's process limit is reached: a fork bomb) is
     /// answered 503 at once, and the next is tried again. This process
-    /// becomes a child subreaper first (see `src/server/tree.rs`).
+    /// becomes a child subreaper first (see `crates/spintop-server/src/tree.rs`).
     pub fn serve(&self, stop: &AtomicBool) {
         tree::become_subreaper();
         while !stop.load(Ordering::Relaxed) {
@@ -607,7 +607,7 @@ impl Server {
     /// (`spintop book`): kills every process below this one but the running
     /// tree, and reaps those that have ended; returns how many living ones
     /// it found. A snippet that kills its own supervisor leaves what it
-    /// started to this process (see `src/server/tree.rs`); calling this
+    /// started to this process (see `crates/spintop-server/src/tree.rs`); calling this
     /// when a child ends (SIGCHLD) keeps one tree at a time, and after
     /// [`Server::shutdown`], nothing running.
     pub fn sweep_strays(&self) -> usize {
@@ -727,7 +727,7 @@ fn send(conn: &mut http::Connection, reply: &Reply, keep_alive: bool, head_only:
 }
 
 /// Why a connection from `peer` is refused, if it is: another user's
-/// process, or a peer already gone (see `src/server/peer.rs`).
+/// process, or a peer already gone (see `crates/spintop-server/src/peer.rs`).
 fn refusal(peer: peer::Peer) -> Option<String> {
     match peer {
         peer::Peer::Trusted | peer::Peer::Unknown => None,
