@@ -316,6 +316,7 @@ fn stop_everything(server: &Server, name: &str) -> String {
 /// for as long as it runs. Jupyter opens such a file for the same reason.
 fn open_browser(dir: &Path, server: &Server, out: &mut impl Write) -> Result<PathBuf, CliError> {
     use std::os::unix::fs::OpenOptionsExt;
+    use std::os::unix::process::CommandExt;
     let page = dir.join(format!("open-{}.html", server.port()));
     let url = server.url();
     let html = format!(
@@ -330,7 +331,10 @@ fn open_browser(dir: &Path, server: &Server, out: &mut impl Write) -> Result<Pat
         .open(&page)?
         .write_all(html.as_bytes())?;
     // Through a shell that exits at once, so the opener (and a browser it
-    // starts) is nobody's child here.
+    // starts) is nobody's child here; in a process group of its own, so
+    // that Ctrl-C or Ctrl-Z at the terminal, which signal the foreground
+    // group, stop the book and not the browser (as Python's `webbrowser`
+    // starts one in a session of its own).
     let opener = if cfg!(target_os = "macos") {
         "open"
     } else {
@@ -340,6 +344,7 @@ fn open_browser(dir: &Path, server: &Server, out: &mut impl Write) -> Result<Pat
         .is_some_and(|path| std::env::split_paths(&path).any(|d| d.join(opener).is_file()));
     let opened = found
         && Command::new("sh")
+            .process_group(0)
             .args(["-c", "\"$0\" \"$1\" >/dev/null 2>&1 &", opener])
             .arg(&page)
             .status()

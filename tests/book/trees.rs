@@ -532,3 +532,75 @@ fn a_snippet_cannot_stop_its_supervisor_in_any_unit() {
         );
     }
 }
+
+/// Run the way a reader runs it, at a terminal (tmux, 80×24): Ctrl-C there
+/// signals the terminal's foreground process group, and stops the book,
+/// not the browser `--open` started (here a stand-in that sleeps, in the
+/// process group it records).
+#[test]
+#[ignore = "end-to-end: tmux, spintop book at a terminal"]
+fn ctrl_c_at_the_terminal_stops_the_book_and_not_the_browser_it_opened() {
+    use std::os::unix::fs::PermissionsExt;
+    let root = scratch_root("open-tty");
+    let site = site(&root);
+    let bin = root.join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    let browser = root.join("browser.pid");
+    let opener = bin.join("xdg-open");
+    std::fs::write(
+        &opener,
+        format!(
+            "#!/bin/sh\necho $$ > {0}.tmp; mv {0}.tmp {0}\nexec sleep 60\n",
+            browser.display()
+        ),
+    )
+    .unwrap();
+    std::fs::set_permissions(&opener, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let cargo = fake_cargo(&root);
+    let out = root.join("out");
+    let command = format!(
+        "PATH={}:$PATH CARGO={} CARGO_TARGET_DIR={} {} book --open --site {} --scratch {} > {} 2>&1",
+        bin.display(),
+        cargo.display(),
+        root.join("target").display(),
+        env!("CARGO_BIN_EXE_spintop"),
+        site.display(),
+        root.join("scratch").display(),
+        out.display()
+    );
+    let socket = format!("spintop-open-tty-{}", std::process::id());
+    let tmux = |args: &[&str]| {
+        std::process::Command::new("tmux")
+            .args(["-L", &socket])
+            .args(args)
+            .status()
+            .is_ok_and(|s| s.success())
+    };
+    if !tmux(&["new-session", "-d", "-x", "80", "-y", "24", &command]) {
+        eprintln!("no tmux: skipped");
+        return;
+    }
+    let said = || std::fs::read_to_string(&out).unwrap_or_default();
+    let ready = wait_for(Duration::from_secs(60), || {
+        said().contains("▶ is ready") && browser.is_file()
+    });
+    assert!(ready, "{}", said());
+    let pid = pid_file(&root, "browser.pid", Duration::ZERO).unwrap();
+    assert!(tmux(&["send-keys", "C-c"]));
+    let stopped = wait_for(Duration::from_secs(20), || {
+        said().contains("stopped (SIGINT)")
+    });
+    let survived = alive(pid);
+    let _ = tmux(&["kill-server"]);
+    if let Some(p) = rustix::process::Pid::from_raw(pid) {
+        let _ = rustix::process::kill_process(p, rustix::process::Signal::KILL);
+    }
+    assert!(stopped, "{}", said());
+    assert!(survived, "Ctrl-C at the terminal killed the browser");
+    assert!(
+        said().contains("nothing it started is left running"),
+        "{}",
+        said()
+    );
+    let _ = std::fs::remove_dir_all(&root);
+}
