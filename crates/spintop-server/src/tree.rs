@@ -10,7 +10,8 @@
 //! clock, for a server that is stopped) or when the server stops. The
 //! supervisor exits only once its tree is gone, unless it is itself killed:
 //! by the server if it has not ended [`GRACE`] after being told to stop
-//! (it may be stopped: a snippet outside a PID namespace can signal it),
+//! (it may be stopped: a snippet outside a PID namespace can signal it;
+//! or slow, on a loaded machine), what is below it first,
 //! by the kernel's out-of-memory killer, or by the tree itself. Then the
 //! server kills what is left in the tree's cgroup, session and process
 //! group ([`sweep`]); it is a child subreaper too ([`become_subreaper`]),
