@@ -50,46 +50,21 @@ fn rk4_variant(
 /// The plausible wrong answers, at least two per assignment.
 pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
     [
-        section_2_first(seed),
-        section_2_rest(seed),
-        section_3(seed),
-        truncated(seed),
-        reduced(seed),
-        appendix(seed),
-        numerics(seed),
+        section_2,
+        section_2_schott,
+        section_3,
+        section_4_1,
+        section_4_2,
+        appendix,
+        numerics,
     ]
-    .into_iter()
-    .flatten()
+    .iter()
+    .flat_map(|part| part(seed))
     .collect()
 }
 
-fn top_rhs(i: Vec3, d: Vec3, w: Vec3) -> Vec3 {
-    GeneralTop::new(i, d).unwrap().truncated_ale_rhs(&w)
-}
-
-fn cone(th: f64, w: f64, t: f64) -> Jet {
-    PrecessingDipole::new(th, w).unwrap().jet(t)
-}
-
-/// A run of the reduced model (4.12) with Euler's method, or the midpoint
-/// method (order 2), in place of RK4.
-fn reduced_run(euler: bool) -> impl Fn(f64, f64, Vec3, f64, usize) -> Vec3 {
-    move |r: f64, tau: f64, w0: Vec3, t_end: f64, n: usize| {
-        let h = t_end / n as f64;
-        let f = |_t: f64, y: &State<3>| sym::reduced_ale_rhs(&top(r, tau), y);
-        (0..n).fold(w0, |y, _| {
-            if euler {
-                y + f(0.0, &y) * h
-            } else {
-                let k1 = f(0.0, &y);
-                y + f(0.0, &(y + k1 * (h / 2.0))) * h
-            }
-        })
-    }
-}
-
-/// The wrong answers of (2.1), (2.4), (2.2).
-fn section_2_first(seed: u64) -> Vec<Wrong> {
+/// Section 2: the laws (2.1)-(2.4) and the precessing dipole.
+fn section_2(seed: u64) -> Vec<Wrong> {
     vec![
         // (2.1)
         w(
@@ -157,8 +132,9 @@ fn section_2_first(seed: u64) -> Vec<Wrong> {
     ]
 }
 
-/// The wrong answers of (2.3), its axial part, the precessing dipole.
-fn section_2_rest(seed: u64) -> Vec<Wrong> {
+/// Section 2: the Schott rate (2.3), its axial part, and the precessing dipole.
+fn section_2_schott(seed: u64) -> Vec<Wrong> {
+    let cone = |th: f64, w: f64, t: f64| PrecessingDipole::new(th, w).unwrap().jet(t);
     vec![
         // (2.3)
         w(
@@ -238,8 +214,9 @@ fn section_2_rest(seed: u64) -> Vec<Wrong> {
     ]
 }
 
-/// The wrong answers of (3.3) and (3.5).
+/// Section 3: (3.3), its energy, and the Euler angles of (3.5).
 fn section_3(seed: u64) -> Vec<Wrong> {
+    let top_rhs = |i: Vec3, d: Vec3, w: Vec3| GeneralTop::new(i, d).unwrap().truncated_ale_rhs(&w);
     vec![
         // (3.3)
         w(
@@ -329,8 +306,8 @@ fn section_3(seed: u64) -> Vec<Wrong> {
     ]
 }
 
-/// The wrong answers of (4.5)–(4.11).
-fn truncated(seed: u64) -> Vec<Wrong> {
+/// Section 4.1: the truncated model.
+fn section_4_1(seed: u64) -> Vec<Wrong> {
     vec![
         // (4.5)-(4.6)
         w(
@@ -435,8 +412,8 @@ fn truncated(seed: u64) -> Vec<Wrong> {
     ]
 }
 
-/// The wrong answers of (4.12)–(4.16).
-fn reduced(seed: u64) -> Vec<Wrong> {
+/// Section 4.2: the reduced model.
+fn section_4_2(seed: u64) -> Vec<Wrong> {
     vec![
         // (4.12)-(4.14)
         w(
@@ -517,7 +494,7 @@ fn reduced(seed: u64) -> Vec<Wrong> {
     ]
 }
 
-/// The wrong answers of (A.1) and its characteristic root.
+/// The appendix: the shell's masses, its update and its root.
 fn appendix(seed: u64) -> Vec<Wrong> {
     vec![
         // (A.1) masses
@@ -583,8 +560,24 @@ fn appendix(seed: u64) -> Vec<Wrong> {
     ]
 }
 
-/// The wrong answers of the step methods and the runs.
+/// The numerical methods: a step of RK4 and of DP5, a whole run.
 fn numerics(seed: u64) -> Vec<Wrong> {
+    let reduced_run = |euler: bool| {
+        move |r: f64, tau: f64, w0: Vec3, t_end: f64, n: usize| {
+            let h = t_end / n as f64;
+            let f = |_t: f64, y: &State<3>| sym::reduced_ale_rhs(&top(r, tau), y);
+            (0..n).fold(w0, |y, i| {
+                if euler {
+                    y + f(0.0, &y) * h
+                } else {
+                    // The midpoint method: order 2.
+                    let _ = i;
+                    let k1 = f(0.0, &y);
+                    y + f(0.0, &(y + k1 * (h / 2.0))) * h
+                }
+            })
+        }
+    };
     vec![
         // RK4
         w(
