@@ -604,3 +604,62 @@ fn ctrl_c_at_the_terminal_stops_the_book_and_not_the_browser_it_opened() {
     );
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// A snippet (a script) that opens the memory (`/proc/PID/mem`, read and
+/// write, as a debugger would) of its stage, its supervisor and its server,
+/// and of itself, and writes what each open said to `attack`: a same-user
+/// process that may open another's memory may rewrite its code (clear its
+/// death signal, read the token).
+fn opens_their_memory_script() -> String {
+    script(
+        r#"parent() { read -r line < "/proc/$1/stat"; set -- ${line##*) }; echo "$2"; }
+read -r me rest < /proc/self/stat
+stage=$(parent "$me"); supervisor=$(parent "$stage"); server=$(parent "$supervisor")
+for who in self:self stage:$stage supervisor:$supervisor server:$server; do
+  if err=$( (exec 3<>"/proc/${who#*:}/mem") 2>&1 ); then echo "${who%%:*}: opened"; else echo "${who%%:*}: ${err##*: }"; fi
+done > attack.tmp
+mv attack.tmp attack
+"#,
+    )
+}
+
+/// Another user's snippet (uid 65534: not root, so without
+/// `CAP_SYS_PTRACE`) may open its own memory, and not its stage's (in a
+/// PID namespace, the stage is in the snippet's user namespace), its
+/// supervisor's or its server's: each refused with EACCES, since none of
+/// them is dumpable. In each unit that user may have.
+#[test]
+#[ignore = "end-to-end: another user, real time"]
+fn another_users_snippet_cannot_open_the_memory_of_its_stage_supervisor_or_server() {
+    let _one = one_nobody_at_a_time();
+    for unit in UNITS {
+        let root = scratch_root(&format!("mem-nobody-{}", unit.name()));
+        let Some(mut book) = nobody_book(&root, unit, None) else {
+            return;
+        };
+        let got = book.unit();
+        if got != unit.described() {
+            eprintln!("{}: uid {NOBODY} gets {got} here: skipped", unit.name());
+            continue;
+        }
+        book.run(&opens_their_memory_script());
+        let scratch = root.join("scratch");
+        assert!(
+            wait_for(Duration::from_secs(30), || scratch.join("attack").is_file()),
+            "{}: the snippet wrote nothing",
+            unit.name()
+        );
+        let report = attack_report(&scratch);
+        assert!(report.contains("self: opened\n"), "{report}");
+        for who in ["stage", "supervisor", "server"] {
+            assert!(
+                report.contains(&format!("{who}: Permission denied\n")),
+                "{}: {report}",
+                unit.name()
+            );
+        }
+        eprintln!("uid {NOBODY}, {}: {report:?}", unit.name());
+        drop(book);
+        let _ = std::fs::remove_dir_all(&root);
+    }
+}

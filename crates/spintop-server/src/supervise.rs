@@ -33,7 +33,9 @@
 //!    namespace) leaves the tree to the server's sweep.
 //!
 //! The stage asks to die with the supervisor (`PR_SET_PDEATHSIG`,
-//! SIGKILL), waits for the supervisor's word on a socket (whose end,
+//! SIGKILL), turns itself non-dumpable (in a PID namespace it is in the
+//! snippet's user namespace, where it would otherwise be open to the
+//! snippet's `/proc/PID/mem`), waits for the supervisor's word on a socket (whose end,
 //! instead, means the supervisor died before it could ask), becomes a
 //! child subreaper, starts the program, reaps every process that comes to
 //! it, and when the program ends says which limit ended it, if one did,
@@ -237,9 +239,7 @@ fn set_up(spec: Spec, me: Pid) -> Result<Unit, String> {
 fn dies_with_server(spec: Spec, unit: &Unit) -> Result<(), String> {
     #[cfg(target_os = "linux")]
     {
-        use rustix::process::DumpableBehavior;
-        rustix::process::set_dumpable_behavior(DumpableBehavior::NotDumpable)
-            .map_err(|e| format!("cannot turn off tracing: {e}"))?;
+        not_dumpable()?;
         let signal = match unit {
             Unit::Namespace => Signal::KILL,
             Unit::Cgroup(_) | Unit::Group => Signal::CONT,
@@ -251,6 +251,23 @@ fn dies_with_server(spec: Spec, unit: &Unit) -> Result<(), String> {
     let _ = unit;
     if !server_is_parent(spec) {
         return Err("the server is gone".into());
+    }
+    Ok(())
+}
+
+/// Turns this process non-dumpable (`PR_SET_DUMPABLE` 0): another process
+/// of the same user may then neither trace it nor open its `/proc` files
+/// that need it (`mem`, `fd/*`, `environ`), unless it holds
+/// `CAP_SYS_PTRACE` where this process's memory was made. The server, the
+/// supervisor and the stage each call it; what they start is dumpable
+/// again (`execve` resets it), and may do no more to them than a process
+/// of another user.
+pub(crate) fn not_dumpable() -> Result<(), String> {
+    #[cfg(target_os = "linux")]
+    {
+        use rustix::process::DumpableBehavior;
+        rustix::process::set_dumpable_behavior(DumpableBehavior::NotDumpable)
+            .map_err(|e| format!("cannot turn off tracing: {e}"))?;
     }
     Ok(())
 }
@@ -365,6 +382,13 @@ fn stage(args: &[OsString]) -> i32 {
     };
     #[cfg(target_os = "linux")]
     if rustix::process::set_parent_process_death_signal(Some(Signal::KILL)).is_err() {
+        return 2;
+    }
+    // In a PID namespace the stage is in the snippet's user namespace: were
+    // it dumpable, the snippet could write its memory (`/proc/1/mem`) and
+    // make it outlive the supervisor.
+    if let Err(e) = not_dumpable() {
+        eprintln!("spintop book: cannot bound the snippet's processes: {e}");
         return 2;
     }
     // The supervisor's word; the socket's end instead means it is gone,
