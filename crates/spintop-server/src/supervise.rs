@@ -425,7 +425,8 @@ fn stage(args: &[OsString]) -> i32 {
         }
     };
     if let Some(signal) = status.terminating_signal() {
-        eprintln!("{}", signal_note(signal, spec.bounds));
+        let cpu = super::procs::reaped_cpu_time();
+        eprintln!("{}", signal_note(signal, spec.bounds, cpu));
     }
     mirror(status)
 }
