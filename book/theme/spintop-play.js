@@ -24,10 +24,20 @@
         }
     }
 
-    function poll(token, started) {
+    // How long the status may go unanswered (503: the server could not
+    // start a thread, as under a fork bomb; or no connection at all) before
+    // the page gives up: the run itself goes on, bounded by its own limits.
+    var PATIENCE_MS = 60000;
+
+    function poll(token, started, failingSince) {
         setTimeout(function () {
             fetch('/evaluate/status', { headers: { 'X-Spintop-Token': token } })
-                .then(function (r) { return r.json(); })
+                .then(function (r) {
+                    if (r.status === 503) {
+                        throw new Error('the server is busy (503)');
+                    }
+                    return r.json();
+                })
                 .then(function (s) {
                     if (s.done) {
                         show(s.result && s.result.trim() !== '' ? s.result : 'No output');
@@ -43,10 +53,19 @@
                         } else {
                             show('compiling… ' + secs + ' s: ' + progress);
                         }
-                        poll(token, started);
+                        poll(token, started, null);
                     }
-                })
-                .catch(function (err) { show('spintop book: ' + err.message); });
+                }, function (err) {
+                    // Busy or unreachable: not the run's result; ask again.
+                    var since = failingSince || Date.now();
+                    if (Date.now() - since > PATIENCE_MS) {
+                        show('spintop book: no answer for ' + PATIENCE_MS / 1000 + ' s: ' + err.message);
+                        return;
+                    }
+                    var secs = Math.round((Date.now() - started) / 1000);
+                    show('waiting… ' + secs + ' s: ' + err.message + '; asking again');
+                    poll(token, started, since);
+                });
         }, 1000);
     }
 
@@ -60,7 +79,7 @@
                 body: options.body,
             }).then(function (response) {
                 if (response.status === 202) {
-                    poll(token, started);
+                    poll(token, started, null);
                 }
                 return response;
             });

@@ -156,3 +156,36 @@ fn a_fork_burst_that_takes_every_process_leaves_the_server_answering_after() {
     assert!(after < Duration::from_secs(1), "{after:?}");
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// A program killed (SIGKILL) well before its CPU time is used, as the
+/// out-of-memory killer kills, is not said to have used its CPU time: the
+/// note says how much it used (here a snippet that kills itself, as uid
+/// 65534 with the stand-in cargo), short of the limit, and names memory.
+#[test]
+#[ignore = "end-to-end: another user, real time"]
+fn a_kill_before_the_cpu_limit_is_not_blamed_on_it() {
+    let _one = one_nobody_at_a_time();
+    let root = scratch_root("kill-early");
+    let Some(book) = nobody_book(&root, Containment::Group, None) else {
+        return;
+    };
+    book.run(&script("echo started\nkill -KILL $$\n"));
+    let status = [("X-Spintop-Token", book.token.as_str())];
+    let mut shown = String::new();
+    let done = wait_for(Duration::from_secs(30), || {
+        let answer = request(book.port, "GET", "/evaluate/status", &status, b"");
+        let Ok((200, text)) = answer else {
+            return false;
+        };
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        shown = v["result"].as_str().unwrap_or("").to_string();
+        v["done"] == true
+    });
+    assert!(done, "{shown}");
+    eprintln!("{shown}");
+    assert!(shown.contains("killed (signal 9) after 0."), "{shown}");
+    assert!(shown.contains("short of its 11 s"), "{shown}");
+    assert!(shown.contains("out-of-memory killer"), "{shown}");
+    assert!(!shown.contains("may have outlived"), "{shown}");
+    let _ = std::fs::remove_dir_all(&root);
+}

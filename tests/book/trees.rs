@@ -575,3 +575,162 @@ fn a_supervisor_too_slow_to_end_its_tree_is_killed_after_what_is_below_it() {
     );
     both_gone(&scratch);
 }
+
+/// A snippet (a script) that opens the memory (`/proc/PID/mem`, read and
+/// write, as a debugger would) of its stage, its supervisor and its server,
+/// and of itself, and writes what each open said to `attack`: a same-user
+/// process that may open another's memory may rewrite its code (clear its
+/// death signal, read the token).
+fn opens_their_memory_script() -> String {
+    script(
+        r#"parent() { read -r line < "/proc/$1/stat"; set -- ${line##*) }; echo "$2"; }
+read -r me rest < /proc/self/stat
+stage=$(parent "$me"); supervisor=$(parent "$stage"); server=$(parent "$supervisor")
+for who in self:self stage:$stage supervisor:$supervisor server:$server; do
+  if err=$( (exec 3<>"/proc/${who#*:}/mem") 2>&1 ); then echo "${who%%:*}: opened"; else echo "${who%%:*}: ${err##*: }"; fi
+done > attack.tmp
+mv attack.tmp attack
+"#,
+    )
+}
+
+/// Another user's snippet (uid 65534: not root, so without
+/// `CAP_SYS_PTRACE`) may open its own memory, and not its stage's (in a
+/// PID namespace, the stage is in the snippet's user namespace), its
+/// supervisor's or its server's: each refused with EACCES, since none of
+/// them is dumpable. In each unit that user may have.
+#[test]
+#[ignore = "end-to-end: another user, real time"]
+fn another_users_snippet_cannot_open_the_memory_of_its_stage_supervisor_or_server() {
+    let _one = one_nobody_at_a_time();
+    for unit in UNITS {
+        let root = scratch_root(&format!("mem-nobody-{}", unit.name()));
+        let Some(mut book) = nobody_book(&root, unit, None) else {
+            return;
+        };
+        let got = book.unit();
+        if got != unit.described() {
+            eprintln!("{}: uid {NOBODY} gets {got} here: skipped", unit.name());
+            continue;
+        }
+        book.run(&opens_their_memory_script());
+        let scratch = root.join("scratch");
+        assert!(
+            wait_for(Duration::from_secs(30), || scratch.join("attack").is_file()),
+            "{}: the snippet wrote nothing",
+            unit.name()
+        );
+        let report = attack_report(&scratch);
+        assert!(report.contains("self: opened\n"), "{report}");
+        for who in ["stage", "supervisor", "server"] {
+            assert!(
+                report.contains(&format!("{who}: Permission denied\n")),
+                "{}: {report}",
+                unit.name()
+            );
+        }
+        eprintln!("uid {NOBODY}, {}: {report:?}", unit.name());
+        drop(book);
+        let _ = std::fs::remove_dir_all(&root);
+    }
+}
+
+/// A snippet (Python, run by a script) that asks the kernel to stop its
+/// supervisor for it: it makes its supervisor the owner of a pipe's
+/// events (`fcntl` `F_SETOWN`), with SIGSTOP as their signal (`F_SETSIG`)
+/// and asynchronous events on (`O_ASYNC`), so that each write would send
+/// SIGSTOP without `kill`; writes what each call said and whether the
+/// supervisor stopped to `attack`, starts a daemon, writes `snippet.pid`,
+/// and writes to the pipe in a loop.
+fn stops_its_supervisor_by_fcntl_script() -> String {
+    script(
+        r#"exec python3 - <<'PYTHON'
+import fcntl, os, signal, subprocess, time
+def stat(pid):
+    s = open(f"/proc/{pid}/stat").read()
+    return s[s.rfind(")") + 2:].split()
+me = open("/proc/self/stat").read().split()[0]
+supervisor = int(stat(stat(me)[1])[1])
+r, w = os.pipe()
+os.set_blocking(r, False)
+def tried(what, cmd, arg):
+    try:
+        fcntl.fcntl(r, cmd, arg)
+        return f"{what}: allowed"
+    except OSError as e:
+        return f"{what}: {e.strerror}"
+lines = [
+    tried("F_SETOWN", fcntl.F_SETOWN, supervisor),
+    tried("F_SETSIG", fcntl.F_SETSIG, signal.SIGSTOP),
+    tried("O_ASYNC", fcntl.F_SETFL, os.O_ASYNC | os.O_NONBLOCK),
+]
+def poke():
+    os.write(w, b"x")
+    try:
+        os.read(r, 4096)
+    except BlockingIOError:
+        pass
+poke()
+time.sleep(0.3)
+lines.append("stopped it: " + str(stat(supervisor)[0] in ("T", "t")).lower())
+open("attack", "w").write("\n".join(lines) + "\n")
+subprocess.run(["sh", "-c", "setsid sh -c 'read -r pid rest < /proc/self/stat; echo $pid > daemon.pid.tmp; mv daemon.pid.tmp daemon.pid; while :; do sleep 1; done' &"])
+while not os.path.exists("daemon.pid"):
+    time.sleep(0.01)
+open("snippet.pid", "w").write(me)
+while True:
+    poke()
+    time.sleep(0.01)
+PYTHON
+"#,
+    )
+}
+
+/// Whether `python3` with its `fcntl` module is here (said if not).
+fn python_here() -> bool {
+    let here = std::process::Command::new("python3")
+        .args(["-c", "import fcntl; fcntl.F_SETSIG"])
+        .stderr(std::process::Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if !here {
+        eprintln!("no python3 with fcntl.F_SETSIG here: skipped");
+    }
+    here
+}
+
+/// Another user's snippet may not make the kernel stop its supervisor
+/// (`fcntl` `F_SETOWN` and `F_SETSIG`, refused with EPERM by the seccomp
+/// filter), and SIGKILL of its server, while it goes on trying, leaves
+/// nothing of it, in each unit that user may have.
+#[test]
+#[ignore = "end-to-end: another user, real time"]
+fn sigkill_of_the_server_leaves_nothing_of_a_snippet_that_stops_its_supervisor_by_fcntl() {
+    if !python_here() {
+        return;
+    }
+    let _one = one_nobody_at_a_time();
+    for unit in UNITS {
+        let root = scratch_root(&format!("setsig-nobody-{}", unit.name()));
+        let Some(mut book) = nobody_book(&root, unit, None) else {
+            return;
+        };
+        let got = book.unit();
+        if got != unit.described() {
+            eprintln!("{}: uid {NOBODY} gets {got} here: skipped", unit.name());
+            continue;
+        }
+        book.run(&stops_its_supervisor_by_fcntl_script());
+        let scratch = root.join("scratch");
+        wait_for(Duration::from_secs(30), || {
+            scratch.join("snippet.pid").is_file()
+        });
+        let report = attack_report(&scratch);
+        for call in ["F_SETOWN", "F_SETSIG"] {
+            let refused = format!("{call}: Operation not permitted\n");
+            assert!(report.contains(&refused), "{}: {report}", unit.name());
+        }
+        sigkill_ends_the_tree(book, &scratch, &format!("uid {NOBODY}, {}", unit.name()));
+        let _ = std::fs::remove_dir_all(&root);
+    }
+}

@@ -3,6 +3,7 @@
 
 use super::procs::tasks_of;
 use rustix::process::{Resource, Rlimit, Signal};
+use std::time::Duration;
 
 /// How many of the reader's processes and threads a run leaves to
 /// everything else when the reader has a process limit (RLIMIT_NPROC counts
@@ -115,8 +116,10 @@ fn set(resource: Resource, name: &str, soft: u64, hard: u64) -> Result<(), Strin
     .map_err(|e| format!("cannot set the snippet's {name} limit: {e}"))
 }
 
-/// The line shown when the program was ended by `signal`.
-pub(crate) fn signal_note(signal: i32, bounds: Bounds) -> String {
+/// The line shown when the program was ended by `signal`, after `cpu` of
+/// CPU time (its own and that of what it started and reaped; `None`:
+/// unknown).
+pub(crate) fn signal_note(signal: i32, bounds: Bounds, cpu: Option<Duration>) -> String {
     let size = |b: u64| {
         if b.is_multiple_of(1 << 20) {
             format!("{} MiB", b >> 20)
@@ -124,26 +127,33 @@ pub(crate) fn signal_note(signal: i32, bounds: Bounds) -> String {
             format!("{b} bytes")
         }
     };
+    let memory = bounds
+        .address_space
+        .map(|b| format!(" (its memory limit is {})", size(b)))
+        .unwrap_or_default();
+    let limit = bounds.cpu_seconds.unwrap_or(0);
     if signal == Signal::XCPU.as_raw() {
-        format!(
-            "[stopped: the program used its {} s of CPU time]",
-            bounds.cpu_seconds.unwrap_or(0)
-        )
+        format!("[stopped: the program used its {limit} s of CPU time]")
     } else if signal == Signal::XFSZ.as_raw() {
         format!(
             "[stopped: the program wrote a file past the {} limit]",
             size(bounds.file_size.unwrap_or(0))
         )
     } else if signal == Signal::KILL.as_raw() && bounds.cpu_seconds.is_some() {
-        format!(
-            "[stopped: the program was killed (signal 9); it may have outlived its {} s of CPU time]",
-            bounds.cpu_seconds.unwrap_or(0)
-        )
+        // The hard CPU limit is a second past the soft one (see `apply`).
+        match cpu {
+            Some(used) if used < Duration::from_secs(limit) => format!(
+                "[stopped: the program was killed (signal 9) after {:.1} s of CPU time, short of its {limit} s: not by that limit, but most likely by the system's out-of-memory killer{memory}, or by another process]",
+                used.as_secs_f64()
+            ),
+            Some(_) => format!(
+                "[stopped: the program used its {limit} s of CPU time and went on (killed, signal 9)]"
+            ),
+            None => format!(
+                "[stopped: the program was killed (signal 9): by its limit of {limit} s of CPU time, or by the system for lack of memory{memory}]"
+            ),
+        }
     } else {
-        let memory = bounds
-            .address_space
-            .map(|b| format!(" (its memory limit is {})", size(b)))
-            .unwrap_or_default();
         format!("[stopped: the program was ended by signal {signal}{memory}]")
     }
 }
@@ -151,6 +161,28 @@ pub(crate) fn signal_note(signal: i32, bounds: Bounds) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_kill_short_of_the_cpu_limit_is_not_blamed_on_it() {
+        let bounds = Bounds {
+            address_space: Some(4 << 30),
+            cpu_seconds: Some(11),
+            ..Bounds::default()
+        };
+        let kill = Signal::KILL.as_raw();
+        let early = signal_note(kill, bounds, Some(Duration::from_millis(800)));
+        assert!(
+            early.contains("after 0.8 s of CPU time, short of its 11 s"),
+            "{early}"
+        );
+        assert!(early.contains("out-of-memory killer"), "{early}");
+        assert!(early.contains("its memory limit is 4096 MiB"), "{early}");
+        let late = signal_note(kill, bounds, Some(Duration::from_millis(12_010)));
+        assert!(late.contains("used its 11 s of CPU time"), "{late}");
+        assert!(!late.contains("memory"), "{late}");
+        let unknown = signal_note(kill, bounds, None);
+        assert!(unknown.contains("CPU time, or by the system"), "{unknown}");
+    }
 
     #[test]
     fn the_process_limit_stays_within_the_hard_limit_and_below_the_soft_one() {

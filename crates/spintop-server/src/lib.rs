@@ -400,7 +400,12 @@ impl Server {
     /// a scratch folder no other living server holds and makes it fresh, finds the strongest containment the
     /// machine allows ([`Server::containment`]), and listens on
     /// 127.0.0.1:`config.port` (and on [::1] at that port, see [`listen`]).
+    ///
+    /// The process turns non-dumpable first: a snippet runs as the reader,
+    /// and may otherwise read the token from, or write code into, the
+    /// server's memory (`/proc/PID/mem`). (Setting it to 0 cannot fail.)
     pub fn bind(mut config: Config) -> Result<Self, ServerError> {
+        let _ = supervise::not_dumpable();
         config.site = folders::check("--site", &config.site)?;
         let target = &config.runner.target_dir;
         std::fs::create_dir_all(target).map_err(|e| Untrusted {

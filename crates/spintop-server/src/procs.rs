@@ -35,6 +35,25 @@ pub(crate) fn parse_stat(text: &str) -> Option<Proc> {
     })
 }
 
+/// The CPU time (user and system) of the children this process has
+/// reaped, and of theirs that they reaped: `cutime` + `cstime` of
+/// `/proc/self/stat`, in clock ticks (100 a second on Linux).
+pub(crate) fn reaped_cpu_time() -> Option<Duration> {
+    let text = std::fs::read_to_string("/proc/self/stat").ok()?;
+    reaped_cpu_in(&text)
+}
+
+/// [`reaped_cpu_time`] of one `/proc/PID/stat` line.
+fn reaped_cpu_in(text: &str) -> Option<Duration> {
+    let after = &text[text.rfind(')')? + 1..];
+    // state ppid pgrp session tty_nr tpgid flags minflt cminflt majflt
+    // cmajflt utime stime cutime cstime
+    let mut fields = after.split_whitespace().skip(13);
+    let mut ticks = || fields.next()?.parse::<u64>().ok();
+    let sum = ticks()?.checked_add(ticks()?)?;
+    Some(Duration::from_millis(sum.checked_mul(10)?))
+}
+
 /// Every process this user can see.
 pub(crate) fn processes() -> Vec<Proc> {
     let Ok(dir) = std::fs::read_dir("/proc") else {
@@ -132,6 +151,14 @@ mod tests {
         );
         let zombie = "7 (sleep) Z 1 7 7 0";
         assert!(parse_stat(zombie).unwrap().dead);
+    }
+
+    #[test]
+    fn the_reaped_cpu_time_is_cutime_plus_cstime() {
+        // utime 5, stime 6, cutime 1070, cstime 35: 11.05 s.
+        let line = "4242 (a (b) c) S 17 4242 4000 0 -1 4194560 101 0 0 0 5 6 1070 35 20 0 1 0";
+        assert_eq!(reaped_cpu_in(line), Some(Duration::from_millis(11_050)));
+        assert_eq!(reaped_cpu_in("7 (sleep) Z 1 7 7 0"), None);
     }
 
     #[test]

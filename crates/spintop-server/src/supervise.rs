@@ -33,7 +33,9 @@
 //!    namespace) leaves the tree to the server's sweep.
 //!
 //! The stage asks to die with the supervisor (`PR_SET_PDEATHSIG`,
-//! SIGKILL), waits for the supervisor's word on a socket (whose end,
+//! SIGKILL), turns itself non-dumpable (in a PID namespace it is in the
+//! snippet's user namespace, where it would otherwise be open to the
+//! snippet's `/proc/PID/mem`), waits for the supervisor's word on a socket (whose end,
 //! instead, means the supervisor died before it could ask), becomes a
 //! child subreaper, starts the program, reaps every process that comes to
 //! it, and when the program ends says which limit ended it, if one did,
@@ -237,9 +239,7 @@ fn set_up(spec: Spec, me: Pid) -> Result<Unit, String> {
 fn dies_with_server(spec: Spec, unit: &Unit) -> Result<(), String> {
     #[cfg(target_os = "linux")]
     {
-        use rustix::process::DumpableBehavior;
-        rustix::process::set_dumpable_behavior(DumpableBehavior::NotDumpable)
-            .map_err(|e| format!("cannot turn off tracing: {e}"))?;
+        not_dumpable()?;
         let signal = match unit {
             Unit::Namespace => Signal::KILL,
             Unit::Cgroup(_) | Unit::Group => Signal::CONT,
@@ -251,6 +251,23 @@ fn dies_with_server(spec: Spec, unit: &Unit) -> Result<(), String> {
     let _ = unit;
     if !server_is_parent(spec) {
         return Err("the server is gone".into());
+    }
+    Ok(())
+}
+
+/// Turns this process non-dumpable (`PR_SET_DUMPABLE` 0): another process
+/// of the same user may then neither trace it nor open its `/proc` files
+/// that need it (`mem`, `fd/*`, `environ`), unless it holds
+/// `CAP_SYS_PTRACE` where this process's memory was made. The server, the
+/// supervisor and the stage each call it; what they start is dumpable
+/// again (`execve` resets it), and may do no more to them than a process
+/// of another user.
+pub(crate) fn not_dumpable() -> Result<(), String> {
+    #[cfg(target_os = "linux")]
+    {
+        use rustix::process::DumpableBehavior;
+        rustix::process::set_dumpable_behavior(DumpableBehavior::NotDumpable)
+            .map_err(|e| format!("cannot turn off tracing: {e}"))?;
     }
     Ok(())
 }
@@ -367,6 +384,13 @@ fn stage(args: &[OsString]) -> i32 {
     if rustix::process::set_parent_process_death_signal(Some(Signal::KILL)).is_err() {
         return 2;
     }
+    // In a PID namespace the stage is in the snippet's user namespace: were
+    // it dumpable, the snippet could write its memory (`/proc/1/mem`) and
+    // make it outlive the supervisor.
+    if let Err(e) = not_dumpable() {
+        eprintln!("spintop book: cannot bound the snippet's processes: {e}");
+        return 2;
+    }
     // The supervisor's word; the socket's end instead means it is gone,
     // and so the death signal above will never come.
     let mut go = [0u8; 1];
@@ -401,7 +425,8 @@ fn stage(args: &[OsString]) -> i32 {
         }
     };
     if let Some(signal) = status.terminating_signal() {
-        eprintln!("{}", signal_note(signal, spec.bounds));
+        let cpu = super::procs::reaped_cpu_time();
+        eprintln!("{}", signal_note(signal, spec.bounds, cpu));
     }
     mirror(status)
 }
@@ -412,8 +437,15 @@ fn stage(args: &[OsString]) -> i32 {
 /// remove: a stopped supervisor cannot end its tree, and a snippet runs as
 /// the reader, whose processes may otherwise signal each other. (In a PID
 /// namespace the supervisor has no process id to name; outside one, this
-/// is what keeps it running.) Such calls fail with EPERM. Also sets
-/// `no_new_privs`: a set-user-ID program started below gains nothing.
+/// is what keeps it running.) Such calls fail with EPERM. The kernel too
+/// signals the owner a process names for a file's events (`fcntl`
+/// `F_SETOWN`, `F_SETOWN_EX`, `ioctl` `FIOSETOWN`, `SIOCSPGRP`), with a
+/// signal of the process's choosing (`F_SETSIG`): all refused, as is
+/// `prctl` `PR_SET_PDEATHSIG` and `PR_SET_DUMPABLE` (the stage's death
+/// with its supervisor, and its being closed to the snippet, stay as they
+/// are set). On x86_64 the same calls of the x32 ABI are refused whatever
+/// their arguments. Also sets `no_new_privs`: a set-user-ID program
+/// started below gains nothing.
 ///
 /// NOTE: where seccompiler knows no filter for the machine
 /// (x86_64, aarch64 and riscv64 only), nothing is forbidden.
@@ -426,35 +458,21 @@ fn forbid_stopping() -> Result<(), String> {
     let Ok(arch) = TargetArch::try_from(std::env::consts::ARCH) else {
         return Ok(());
     };
-    let stops = [libc::SIGSTOP, libc::SIGTSTP, libc::SIGTTIN, libc::SIGTTOU];
-    // Each system call that sends a signal, and which argument the signal is.
-    let senders = [
-        (libc::SYS_kill, 1),
-        (libc::SYS_tkill, 1),
-        (libc::SYS_tgkill, 2),
-        (libc::SYS_rt_sigqueueinfo, 1),
-        (libc::SYS_rt_tgsigqueueinfo, 2),
-        (libc::SYS_pidfd_send_signal, 1),
-    ];
     let mut rules = std::collections::BTreeMap::new();
-    for (call, arg) in senders {
-        let any_stop = stops
-            .iter()
-            .map(|&signal| {
-                let cmp = SeccompCondition::new(
-                    arg,
-                    SeccompCmpArgLen::Dword,
-                    SeccompCmpOp::Eq,
-                    signal.unsigned_abs().into(),
-                )?;
-                SeccompRule::new(vec![cmp])
-            })
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| e.to_string())?;
-        rules.insert(call, any_stop);
+    for (call, refused) in refused_calls() {
+        // No rule: every call.
+        let rule = |(arg, value): (u8, u64)| {
+            SeccompCondition::new(arg, SeccompCmpArgLen::Dword, SeccompCmpOp::Eq, value)
+                .and_then(|cmp| SeccompRule::new(vec![cmp]))
+        };
+        let refused = refused.into_iter().map(rule).collect::<Result<Vec<_>, _>>();
+        rules.insert(call, refused.map_err(|e| e.to_string())?);
     }
-    // No rule: every call.
-    rules.insert(libc::SYS_ptrace, Vec::new());
+    if arch == TargetArch::x86_64 {
+        for call in x32_calls() {
+            rules.insert(call, Vec::new());
+        }
+    }
     let filter = SeccompFilter::new(
         rules,
         SeccompAction::Allow,
@@ -464,6 +482,50 @@ fn forbid_stopping() -> Result<(), String> {
     .map_err(|e| e.to_string())?;
     let program = BpfProgram::try_from(filter).map_err(|e| e.to_string())?;
     seccompiler::apply_filter(&program).map_err(|e| format!("cannot set its seccomp filter: {e}"))
+}
+
+/// The system calls [`forbid_stopping`] refuses, each with the (argument,
+/// value) pairs it is refused with (none: refused always).
+#[cfg(target_os = "linux")]
+fn refused_calls() -> Vec<(i64, Vec<(u8, u64)>)> {
+    let stops = [libc::SIGSTOP, libc::SIGTSTP, libc::SIGTTIN, libc::SIGTTOU]
+        .map(|s| u64::from(s.unsigned_abs()));
+    let any = |arg: u8, values: &[u64]| values.iter().map(|&v| (arg, v)).collect::<Vec<_>>();
+    // Not in every libc's table: the kernel's numbers (all Linux
+    // architectures seccompiler knows).
+    let (f_setsig, f_setown_ex, fiosetown, siocspgrp) = (10, 15, 0x8901, 0x8902);
+    let f_setown = u64::from(libc::F_SETOWN.unsigned_abs());
+    let prctls =
+        [libc::PR_SET_PDEATHSIG, libc::PR_SET_DUMPABLE].map(|o| u64::from(o.unsigned_abs()));
+    vec![
+        // Each system call that sends a signal, with the signal's argument.
+        (libc::SYS_kill, any(1, &stops)),
+        (libc::SYS_tkill, any(1, &stops)),
+        (libc::SYS_tgkill, any(2, &stops)),
+        (libc::SYS_rt_sigqueueinfo, any(1, &stops)),
+        (libc::SYS_rt_tgsigqueueinfo, any(2, &stops)),
+        (libc::SYS_pidfd_send_signal, any(1, &stops)),
+        (libc::SYS_ptrace, Vec::new()),
+        (libc::SYS_fcntl, any(1, &[f_setown, f_setown_ex, f_setsig])),
+        (libc::SYS_ioctl, any(1, &[fiosetown, siocspgrp])),
+        (libc::SYS_prctl, any(0, &prctls)),
+    ]
+}
+
+/// On x86_64, the x32 ABI's numbers (`__X32_SYSCALL_BIT`) of the calls of
+/// [`refused_calls`], and of the x32 ABI's own `ioctl`, `ptrace`,
+/// `rt_sigqueueinfo` and `rt_tgsigqueueinfo`: a filter on the x86_64
+/// numbers does not see them.
+#[cfg(target_os = "linux")]
+fn x32_calls() -> Vec<i64> {
+    const X32: i64 = 0x4000_0000;
+    let own = [514, 521, 524, 536];
+    refused_calls()
+        .into_iter()
+        .map(|(call, _)| call)
+        .chain(own)
+        .map(|call| call | X32)
+        .collect()
 }
 
 #[cfg(not(target_os = "linux"))]
