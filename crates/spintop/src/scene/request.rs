@@ -99,7 +99,7 @@ mod tests {
                     }
                     _ => {}
                 }
-                request::top(&top, &solve).is_ok()
+                super::top(&top, &solve).is_ok()
             }
             Command::Balance => {
                 let mut raw = RawBalance {
@@ -119,7 +119,7 @@ mod tests {
                     }
                     _ => {}
                 }
-                request::balance(&raw, &solve).is_ok()
+                balance(&raw, &solve).is_ok()
             }
             Command::Orbit => {
                 let mut raw = RawOrbit {
@@ -133,7 +133,7 @@ mod tests {
                     "eccentricity" => raw.eccentricity = g(x),
                     _ => {}
                 }
-                request::orbit(&raw, &solve).is_ok()
+                orbit(&raw, &solve).is_ok()
             }
             Command::Shell => {
                 let mut raw = RawShell {
@@ -145,7 +145,7 @@ mod tests {
                     "delay" => raw.delay = g(x),
                     _ => {}
                 }
-                request::shell(&raw, &solve).is_ok()
+                shell(&raw, &solve).is_ok()
             }
             Command::Plot => spec.range.contains(x),
         }

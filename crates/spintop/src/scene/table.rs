@@ -35,7 +35,6 @@ pub use names::{
 };
 pub use range::{Bound, Range};
 
-
 /// The command, or kind of scene, a key belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Command {
