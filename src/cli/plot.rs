@@ -14,7 +14,7 @@ use spintop::math::Real;
 use spintop::numbers::{fmt_axis, nice_ceiling};
 use spintop::physics::symmetric_top::SymmetricTop;
 use spintop::scene::request::{self, Given, RawSolve, RawTop};
-use spintop::scene::table::{self, Command, MODELS, Tier};
+use spintop::scene::table::{self, Choice, Command, MODELS, ModelAsk, Tier};
 use spintop::sim::{MethodChoice, MethodOptions, Model, Sample, Simulation};
 use std::io::Write;
 use textplots::{AxisBuilder, Chart, LabelBuilder, LabelFormat, LineStyle, Plot, Shape};
@@ -22,14 +22,20 @@ use textplots::{AxisBuilder, Chart, LabelBuilder, LabelFormat, LineStyle, Plot, 
 /// `--model`: the symmetric top's models with a closed form, from the core's
 /// table, and `both`.
 fn plot_models() -> PossibleValuesParser {
-    let closed = |tier| matches!(tier, Some(Tier::Truncated | Tier::Reduced));
-    let mut names: Vec<PossibleValue> = MODELS
-        .iter()
-        .filter(|c| !c.value.asymmetric && closed(c.value.tier))
+    let mut names: Vec<PossibleValue> = closed_models()
         .map(|c| PossibleValue::new(c.name).help(c.help))
         .collect();
     names.push(PossibleValue::new(BOTH).help("Both, truncated first"));
     PossibleValuesParser::new(names)
+}
+
+/// The names of the core's table a plot takes: the symmetric top's models
+/// with a closed form, lightest first (what `both` plots).
+fn closed_models() -> impl Iterator<Item = &'static Choice<ModelAsk>> {
+    let closed = |tier| matches!(tier, Some(Tier::Truncated | Tier::Reduced));
+    MODELS
+        .iter()
+        .filter(move |c| !c.value.asymmetric && closed(c.value.tier))
 }
 
 /// The `--model` that plots the truncated and the reduced model.
@@ -145,7 +151,7 @@ impl PlotArgs {
             .unwrap_or(table::PLOT_T_END);
         // Each model plotted is asked as a top scene would ask it.
         let names: Vec<&str> = if self.model == BOTH {
-            vec!["truncated", "reduced"]
+            closed_models().map(|c| c.name).collect()
         } else {
             vec![self.model.as_str()]
         };

@@ -15,7 +15,7 @@
 //! from the closed form instead, however long it is.
 
 use crate::math::{Real, Vec3};
-use crate::numbers::{fmt_about, fmt_time};
+use crate::numbers::fmt_time;
 use crate::physics::central::Potential;
 use crate::physics::rigid_body::{angular_momentum_body, energy, omega_perp, tilt};
 use crate::physics::shell::ShellModel;
@@ -23,7 +23,7 @@ use crate::physics::symmetric_top::{
     SymmetricTop, reduced_closed_form, reduced_closed_form_many, truncated_clock,
     truncated_closed_form,
 };
-use crate::sim::cost::stepping_error;
+use crate::sim::cost::{Estimate, TooCostly, stepping_error};
 use crate::sim::orbit::{Force, OrbitConfig};
 use crate::sim::{
     InitialState, Method, MethodChoice, MethodOptions, Model, Sample, auto_integrator,
@@ -128,39 +128,119 @@ pub(super) fn plan_top(
     skip_orientation: Option<&str>,
 ) -> Result<TopPlan, Refusal> {
     let omega0 = initial.omega;
-    let angle = turning_angle(model, &omega0, t_last);
-    let mut warnings = Vec::new();
-    if let Model::Reduced(top) = model {
-        let tk = reduced_tau_k(top, &omega0);
-        if tk >= STRONG_SPIN {
-            warnings.push(format!(
-                "tau k = {} >= {STRONG_SPIN}: the reduced model (4.12)-(4.14) is right only through first order in tau k, and its decay rate is off at third order; compare model = \"full\", the physical solution of (3.4)",
-                crate::numbers::fixed_or_exp(tk, 3, 3, 1e5)
-            ));
+    let case = TopCase {
+        model,
+        method,
+        options,
+        omega0,
+        t_last,
+        angle: turning_angle(model, &omega0, t_last),
+    };
+    let warnings: Vec<String> = strong_spin_warning(model, &omega0).into_iter().collect();
+    match (model, method) {
+        (Model::Truncated(top) | Model::Reduced(top), MethodChoice::Auto | MethodChoice::Exact) => {
+            Ok(case.symmetric(top, skip_orientation, warnings))
+        }
+        (_, MethodChoice::Rk4) => case.rk4(warnings),
+        (Model::Full(_) | Model::GeneralFull(_), _) => case.physical(warnings),
+        (Model::General(_) | Model::GeneralReduced(_), MethodChoice::Auto) => {
+            case.general_auto(warnings)
+        }
+        (
+            _,
+            MethodChoice::Dopri5
+            | MethodChoice::Dop853
+            | MethodChoice::Radau5
+            | MethodChoice::Taylor,
+        ) => case.stepped(warnings),
+        (_, MethodChoice::Exact | MethodChoice::Forward) => Err(case.not_planned()),
+    }
+}
+
+/// The reduced model's warning where τk is too large for its first order.
+fn strong_spin_warning(model: &Model, omega0: &Vec3) -> Option<String> {
+    let Model::Reduced(top) = model else {
+        return None;
+    };
+    let tk = reduced_tau_k(top, omega0);
+    (tk >= STRONG_SPIN).then(|| format!(
+        "tau k = {} >= {STRONG_SPIN}: the reduced model (4.12)-(4.14) is right only through first order in tau k, and its decay rate is off at third order; compare model = \"full\", the physical solution of (3.4)",
+        crate::numbers::fixed_or_exp(tk, 3, 3, 1e5)
+    ))
+}
+
+/// What a top scene asks of [`plan_top`], with the turning it implies.
+struct TopCase<'a> {
+    model: &'a Model,
+    method: MethodChoice,
+    options: &'a MethodOptions,
+    omega0: Vec3,
+    t_last: Real,
+    /// The body's turning over the run, in radians.
+    angle: Real,
+}
+
+impl TopCase<'_> {
+    /// The step budget's refusal, the core's (`sim::cost::TooCostly`), with
+    /// the way out a scene has.
+    fn too_many(&self, steps: Real, what: &str) -> String {
+        let cheaper = if self.model.has_closed_form() {
+            "method = \"auto\" answers from the closed forms instead"
+        } else {
+            "ask for shorter times"
+        };
+        TooCostly {
+            estimate: Estimate {
+                steps,
+                what: what.to_string(),
+                cheaper,
+            },
+            t_last: self.t_last,
+        }
+        .to_string()
+    }
+
+    /// The reason of a method the scene asked for.
+    fn asked(&self, name: &str) -> String {
+        let auto = label(self.model, MethodChoice::Auto, self.options);
+        format!("method = \"{name}\" was asked for in [solve]; auto would use {auto}")
+    }
+
+    /// The core's estimate of the run's steps by the method asked for, when
+    /// it is over the budget (or not a number).
+    fn over_budget(&self) -> Option<crate::sim::cost::Estimate> {
+        self.model
+            .method(self.method, self.options)
+            .ok()
+            .and_then(|m| {
+                crate::sim::cost::estimate(self.model, m, self.options, &self.omega0, self.t_last)
+            })
+            .filter(|e| e.steps.is_nan() || e.steps > MAX_STEPS)
+    }
+
+    /// A plan that computes the orientation, with the method's label and
+    /// reason.
+    fn computed(label: &str, reason: String, warnings: Vec<String>) -> TopPlan {
+        TopPlan {
+            chosen: Chosen::new(label, reason),
+            orientation: Orientation::Computed,
+            warnings,
+            rtol: None,
         }
     }
-    let auto = label(model, MethodChoice::Auto, options);
-    let closed = model.has_closed_form();
-    let too_many = |steps: Real, what: &str| -> String {
-        let hint = if closed {
-            "; method = \"auto\" answers from the closed forms instead"
-        } else {
-            "; ask for shorter times"
-        };
-        format!(
-            "{what} would take {} steps to reach t = {} tau, more than the {MAX_STEPS:.0e} allowed{hint}",
-            fmt_about(steps),
-            fmt_time(t_last)
-        )
-    };
-    let asked =
-        |name: &str| format!("method = \"{name}\" was asked for in [solve]; auto would use {auto}");
-    // The symmetric models' path: `top` comes from the match arm below.
-    let mut symmetric_path = |top: &SymmetricTop, exact: bool| -> TopPlan {
-        let truncated = matches!(model, Model::Truncated(_));
+
+    /// The symmetric models from their closed forms (`auto` or `exact`).
+    fn symmetric(
+        &self,
+        top: &SymmetricTop,
+        skip_orientation: Option<&str>,
+        mut warnings: Vec<String>,
+    ) -> TopPlan {
+        let (omega0, t_last) = (self.omega0, self.t_last);
+        let truncated = matches!(self.model, Model::Truncated(_));
         let skip = skip_orientation
             .map(str::to_string)
-            .or_else(|| symmetric_orientation_skip(truncated, angle));
+            .or_else(|| symmetric_orientation_skip(truncated, self.angle));
         let orientation = match skip {
             Some(why) => {
                 let phase = top.omega3_tilde(omega0.z).abs()
@@ -196,7 +276,7 @@ pub(super) fn plan_top(
                 "omega(t) from the closed form (4.15)-(4.16); the orientation has no closed form, so only Q' = Q Omega^(t) is integrated (DOP853 on SO(3)), driven by the closed-form omega(t)".to_string(),
             ),
         };
-        let reason = if exact {
+        let reason = if self.method == MethodChoice::Exact {
             format!("method = \"exact\" was asked for in [solve]: {how}")
         } else {
             how
@@ -204,177 +284,150 @@ pub(super) fn plan_top(
         TopPlan {
             chosen: Chosen::new(method_label, reason),
             orientation,
-            warnings: std::mem::take(&mut warnings),
+            warnings,
             rtol: None,
         }
-    };
-    let plan = match (model, method) {
-        (Model::Truncated(top) | Model::Reduced(top), MethodChoice::Auto | MethodChoice::Exact) => {
-            symmetric_path(top, method == MethodChoice::Exact)
-        }
-        (_, MethodChoice::Rk4) => {
-            let steps = t_last / options.step();
-            if steps > MAX_STEPS {
-                return Err(Refusal {
-                    at: Blame::Method,
-                    message: format!(
-                        "[solve] {}",
-                        too_many(steps, "method = \"rk4\" with this step")
-                    ),
-                });
-            }
-            TopPlan {
-                chosen: Chosen::new("rk4", asked("rk4")),
-                orientation: Orientation::Computed,
-                warnings,
-                rtol: None,
-            }
-        }
-        (Model::Full(_) | Model::GeneralFull(_), _) => {
-            // The simulation's own estimate (one rule: `sim::cost`), so that
-            // a run the simulation would refuse is refused here, with the
-            // scene's line, before anything runs.
-            let estimate = model
-                .method(method, options)
-                .ok()
-                .and_then(|m| crate::sim::cost::estimate(model, m, options, &omega0, t_last));
-            if let Some(e) = &estimate
-                && (e.steps.is_nan() || e.steps > MAX_STEPS)
-            {
-                let at = if method == MethodChoice::Auto {
-                    Blame::Times
-                } else {
-                    Blame::Method
-                };
-                return Err(Refusal {
-                    at,
-                    message: format!("[solve] {}", too_many(e.steps, &e.what)),
-                });
-            }
-            let (label, reason) = match method {
-                MethodChoice::Forward => ("forward", asked("forward")),
-                MethodChoice::Auto => (
-                    "physical",
-                    "(3.4) has no closed form and runs away forward at a rate of about 1/tau: its physical solution by backward shooting (DOP853), the orientation driven by it".to_string(),
-                ),
-                other => ("physical", asked(other.name())),
-            };
-            TopPlan {
-                chosen: Chosen::new(label, reason),
-                orientation: Orientation::Computed,
-                warnings,
-                rtol: None,
-            }
-        }
-        (Model::General(_) | Model::GeneralReduced(_), MethodChoice::Auto) => {
-            let equations = model.equations();
-            match general_path(model, &omega0, t_last, options.rtol()) {
-                GeneralPath::Stepped { rtol, steps } => {
-                    let tighter = if rtol < options.rtol() {
-                        format!(
-                            ", at rtol {rtol:.1e}, tighter than the scene's {:.0e} so that its error over {angle:.1e} rad stays within it (an integrator's error of the phase grows like the square of the turning)",
-                            options.rtol()
-                        )
-                    } else {
-                        String::new()
-                    };
-                    let integrator = auto_integrator(rtol);
-                    TopPlan {
-                        chosen: Chosen::new(
-                            integrator.label(),
-                            format!(
-                                "the asymmetric top ({equations}) has no closed form: omega and the orientation are integrated together by {}{tighter}, about {steps:.1e} steps",
-                                integrator_words(integrator)
-                            ),
-                        ),
-                        orientation: Orientation::Computed,
-                        warnings,
-                        rtol: (rtol < options.rtol()).then_some(rtol),
-                    }
-                }
-                GeneralPath::Secular { error } => {
-                    let eps = radiation_share(model, &omega0);
-                    let why = format!(
-                        "the secular model follows E and |L| only: the phase round the polhode and the orientation after {angle:.1e} rad are beyond what stepping holds within rtol"
-                    );
-                    TopPlan {
-                        chosen: Chosen::new(
-                            "secular",
-                            format!(
-                                "{angle:.1e} rad are too many turns to step within rtol = {:.0e} and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853), good to about {error:.1e} (the swing of E and |L| within a turn, which averaging leaves out)",
-                                options.rtol(),
-                                if matches!(model, Model::General(_)) {
-                                    "(3.3)"
-                                } else {
-                                    "the reduced (3.4)"
-                                }
-                            ),
-                        ),
-                        orientation: Orientation::Skipped(why),
-                        warnings,
-                        rtol: None,
-                    }
-                }
-                GeneralPath::Neither(message) => {
-                    return Err(Refusal {
-                        at: Blame::Times,
-                        message: format!("[solve] {message}"),
-                    });
-                }
-            }
-        }
-        (
-            _,
-            MethodChoice::Dopri5
-            | MethodChoice::Dop853
-            | MethodChoice::Radau5
-            | MethodChoice::Taylor,
-        ) => {
-            let name = label(model, method, options);
-            let resolved = model.method(method, options).ok();
-            let estimate = resolved
-                .and_then(|m| crate::sim::cost::estimate(model, m, options, &omega0, t_last));
-            if let Some(e) = &estimate
-                && (e.steps.is_nan() || e.steps > MAX_STEPS)
-            {
-                return Err(Refusal {
-                    at: Blame::Method,
-                    message: format!(
-                        "[solve] method = \"{name}\": {}",
-                        too_many(e.steps, &e.what)
-                    ),
-                });
-            }
-            let drift = stepping_error(options.rtol(), angle);
-            if !closed && drift > options.rtol() {
-                warnings.push(format!(
-                    "over {angle:.1e} rad an integrator's error of the phase grows like the square of the turning: {name} at rtol {:.0e} may be off by about {drift:.1e}; method = \"auto\" tightens the tolerance or answers with the secular model",
-                    options.rtol()
-                ));
-            }
-            TopPlan {
-                chosen: Chosen::new(name, asked(name)),
-                orientation: Orientation::Computed,
-                warnings,
-                rtol: None,
-            }
-        }
-        (_, MethodChoice::Exact | MethodChoice::Forward) => {
-            // Refused while validating [solve] method; said again here
-            // rather than assumed.
+    }
+
+    /// RK4 at the scene's step, within the step budget.
+    fn rk4(&self, warnings: Vec<String>) -> Result<TopPlan, Refusal> {
+        let steps = self.t_last / self.options.step();
+        if steps > MAX_STEPS {
             return Err(Refusal {
                 at: Blame::Method,
-                message: match model.check_method(method) {
-                    Err(e) => format!("[solve] method = \"{}\": {e}", method.name()),
-                    Ok(()) => format!(
-                        "[solve] method = \"{}\" cannot be planned here",
-                        method.name()
-                    ),
-                },
+                message: format!(
+                    "[solve] {}",
+                    self.too_many(steps, "method = \"rk4\" with this step")
+                ),
             });
         }
-    };
-    Ok(plan)
+        Ok(Self::computed("rk4", self.asked("rk4"), warnings))
+    }
+
+    /// The full ALE (3.4): its physical solution, or forward; refused before
+    /// anything runs where the simulation's own estimate (one rule:
+    /// `sim::cost`) is over the budget.
+    fn physical(&self, warnings: Vec<String>) -> Result<TopPlan, Refusal> {
+        if let Some(e) = self.over_budget() {
+            let at = if self.method == MethodChoice::Auto {
+                Blame::Times
+            } else {
+                Blame::Method
+            };
+            return Err(Refusal {
+                at,
+                message: format!("[solve] {}", self.too_many(e.steps, &e.what)),
+            });
+        }
+        let (label, reason) = match self.method {
+            MethodChoice::Forward => ("forward", self.asked("forward")),
+            MethodChoice::Auto => (
+                "physical",
+                "(3.4) has no closed form and runs away forward at a rate of about 1/tau: its physical solution by backward shooting (DOP853), the orientation driven by it".to_string(),
+            ),
+            other => ("physical", self.asked(other.name())),
+        };
+        Ok(Self::computed(label, reason, warnings))
+    }
+
+    /// An asymmetric top under `auto`: stepped (at a tolerance tight enough
+    /// for the turning), the secular model, or refused.
+    fn general_auto(&self, warnings: Vec<String>) -> Result<TopPlan, Refusal> {
+        let (model, options, angle) = (self.model, self.options, self.angle);
+        let equations = model.equations();
+        match general_path(model, &self.omega0, self.t_last, options.rtol()) {
+            GeneralPath::Stepped { rtol, steps } => {
+                let tighter = if rtol < options.rtol() {
+                    format!(
+                        ", at rtol {rtol:.1e}, tighter than the scene's {:.0e} so that its error over {angle:.1e} rad stays within it (an integrator's error of the phase grows like the square of the turning)",
+                        options.rtol()
+                    )
+                } else {
+                    String::new()
+                };
+                let integrator = auto_integrator(rtol);
+                Ok(TopPlan {
+                    chosen: Chosen::new(
+                        integrator.label(),
+                        format!(
+                            "the asymmetric top ({equations}) has no closed form: omega and the orientation are integrated together by {}{tighter}, about {steps:.1e} steps",
+                            integrator_words(integrator)
+                        ),
+                    ),
+                    orientation: Orientation::Computed,
+                    warnings,
+                    rtol: (rtol < options.rtol()).then_some(rtol),
+                })
+            }
+            GeneralPath::Secular { error } => {
+                let eps = radiation_share(model, &self.omega0);
+                let why = format!(
+                    "the secular model follows E and |L| only: the phase round the polhode and the orientation after {angle:.1e} rad are beyond what stepping holds within rtol"
+                );
+                Ok(TopPlan {
+                    chosen: Chosen::new(
+                        "secular",
+                        format!(
+                            "{angle:.1e} rad are too many turns to step within rtol = {:.0e} and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853), good to about {error:.1e} (the swing of E and |L| within a turn, which averaging leaves out)",
+                            options.rtol(),
+                            if matches!(model, Model::General(_)) {
+                                "(3.3)"
+                            } else {
+                                "the reduced (3.4)"
+                            }
+                        ),
+                    ),
+                    orientation: Orientation::Skipped(why),
+                    warnings,
+                    rtol: None,
+                })
+            }
+            GeneralPath::Neither(message) => Err(Refusal {
+                at: Blame::Times,
+                message: format!("[solve] {message}"),
+            }),
+        }
+    }
+
+    /// An adaptive method the scene named, within the step budget; warned
+    /// where the turning outgrows the tolerance.
+    fn stepped(&self, mut warnings: Vec<String>) -> Result<TopPlan, Refusal> {
+        let (options, angle) = (self.options, self.angle);
+        let name = label(self.model, self.method, options);
+        if let Some(e) = self.over_budget() {
+            return Err(Refusal {
+                at: Blame::Method,
+                message: format!(
+                    "[solve] method = \"{name}\": {}",
+                    self.too_many(e.steps, &e.what)
+                ),
+            });
+        }
+        let drift = stepping_error(options.rtol(), angle);
+        if !self.model.has_closed_form() && drift > options.rtol() {
+            warnings.push(format!(
+                "over {angle:.1e} rad an integrator's error of the phase grows like the square of the turning: {name} at rtol {:.0e} may be off by about {drift:.1e}; method = \"auto\" tightens the tolerance or answers with the secular model",
+                options.rtol()
+            ));
+        }
+        Ok(Self::computed(name, self.asked(name), warnings))
+    }
+
+    /// A method this model does not take: refused while validating
+    /// `[solve] method`, and said again here rather than assumed.
+    fn not_planned(&self) -> Refusal {
+        let method = self.method;
+        Refusal {
+            at: Blame::Method,
+            message: match self.model.check_method(method) {
+                Err(e) => format!("[solve] method = \"{}\": {e}", method.name()),
+                Ok(()) => format!(
+                    "[solve] method = \"{}\" cannot be planned here",
+                    method.name()
+                ),
+            },
+        }
+    }
 }
 
 /// The body-frame observables at one time, where the orientation is skipped.

@@ -58,3 +58,151 @@ pub fn checked_count(
     let given = Some(Given::flag(value));
     Ok(count(&ctx, section, key, &given)?.map_or(0, |(n, _)| n))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::table::{Bound, Range, SPECS, Spec};
+
+    /// Whether the flags of `spec`'s command, a valid question but for
+    /// `spec`'s key set to `x`, are accepted.
+    fn accepts(spec: &Spec, x: Real) -> bool {
+        let g = |v: Real| Some(Given::flag(v));
+        let name = |s: &str| Some(Given::flag(s.to_string()));
+        let mut solve = RawSolve {
+            t_end: g(1.0),
+            ..RawSolve::default()
+        };
+        match (spec.section, spec.key) {
+            ("solve", "rtol") if spec.command == Command::Simulate => solve.rtol = g(x),
+            ("solve", "rtol") => solve.rtol = g(x),
+            ("solve", "step") => {
+                solve.method = name("rk4");
+                solve.step = g(x);
+            }
+            ("solve", "t_end") => solve.t_end = g(x),
+            ("solve", "samples") => solve.samples = Some(Given::flag(x as i64)),
+            _ => {}
+        }
+        match spec.command {
+            Command::Simulate => {
+                let mut top = RawTop {
+                    model: name("truncated"),
+                    ..RawTop::default()
+                };
+                match spec.key {
+                    "ratio" => top.ratio = g(x),
+                    "omega" => top.omega = Some(Given::flag([x, 0.0, 0.0])),
+                    "dipole" => {
+                        top.inertia = Some(Given::flag([1.0, 2.0, 2.5]));
+                        top.dipole = Some(Given::flag([0.0, 0.0, x]));
+                    }
+                    _ => {}
+                }
+                super::top(&top, &solve).is_ok()
+            }
+            Command::Balance => {
+                let mut raw = RawBalance {
+                    dipole: name("precessing"),
+                    ..RawBalance::default()
+                };
+                match spec.key {
+                    "cone" => raw.cone = g(x),
+                    "rate" => raw.rate = g(x),
+                    "masses" | "length" => {
+                        raw.dipole = name("dumbbell");
+                        if spec.key == "length" {
+                            raw.length = g(x);
+                        } else {
+                            raw.masses = Some(Given::flag([1.0, x]));
+                        }
+                    }
+                    _ => {}
+                }
+                balance(&raw, &solve).is_ok()
+            }
+            Command::Orbit => {
+                let mut raw = RawOrbit {
+                    potential: name("harmonic"),
+                    tau0: g(1e-3),
+                    ..RawOrbit::default()
+                };
+                match spec.key {
+                    "tau0" => raw.tau0 = g(x),
+                    "r0" => raw.r0 = g(x),
+                    "eccentricity" => raw.eccentricity = g(x),
+                    _ => {}
+                }
+                orbit(&raw, &solve).is_ok()
+            }
+            Command::Shell => {
+                let mut raw = RawShell {
+                    tau0: g(1e-3),
+                    delay: g(0.03),
+                };
+                match spec.key {
+                    "tau0" => raw.tau0 = g(x),
+                    "delay" => raw.delay = g(x),
+                    _ => {}
+                }
+                shell(&raw, &solve).is_ok()
+            }
+            Command::Plot => spec.range.contains(x),
+        }
+    }
+
+    /// Values at each end of a range, with whether the range holds them:
+    /// the end itself and the double just beyond it.
+    fn probes(range: &Range) -> Vec<(Real, bool)> {
+        let mut out = Vec::new();
+        match *range {
+            Range::Between(lo, hi) => {
+                match lo {
+                    Bound::Open(a) => out.extend([(a, false), (a.next_up(), true)]),
+                    Bound::Closed(a) => out.extend([(a, true), (a.next_down(), false)]),
+                    Bound::None => {}
+                }
+                match hi {
+                    Bound::Open(b) => out.extend([(b, false), (b.next_down(), true)]),
+                    Bound::Closed(b) => out.extend([(b, true), (b.next_up(), false)]),
+                    Bound::None => {}
+                }
+            }
+            Range::NonZero | Range::EachPositive => out.extend([(0.0, false), (1.0, true)]),
+            Range::EachAtMost(m) => out.extend([(m, true), (m.next_up(), false)]),
+            Range::Count(lo, hi) => out.extend([
+                (lo as Real, true),
+                (lo as Real - 1.0, false),
+                (hi as Real, true),
+                (hi as Real + 1.0, false),
+            ]),
+            _ => {}
+        }
+        out
+    }
+
+    /// The ranges `--help` states are the ones the checks enforce: at each
+    /// end of each key's range, the value the range holds is accepted and
+    /// the double beyond it refused, by the validation a flag goes through.
+    #[test]
+    fn each_range_in_the_table_is_what_the_checks_enforce() {
+        let mut wrong = Vec::new();
+        let mut probed = 0;
+        for spec in SPECS {
+            for (x, held) in probes(&spec.range) {
+                probed += 1;
+                if accepts(spec, x) != held {
+                    wrong.push(format!(
+                        "{:?} [{}] {} = {x:e}: the table says {}",
+                        spec.command,
+                        spec.section,
+                        spec.key,
+                        if held { "in range" } else { "out of range" }
+                    ));
+                }
+            }
+        }
+        assert!(probed > 40, "{probed}");
+        assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+    }
+}
