@@ -17,6 +17,7 @@
 use super::{Outcome, Row, RowError};
 use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Rk4, Stats, Stepper, solve};
 use crate::math::{Mat3, Real, State, Vec3};
+use crate::numbers;
 use crate::physics::euler_angles::{EulerAngles, euler_rates};
 use crate::physics::symmetric_top::{SymmetricTop, truncated_closed_form, truncated_orientation};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
@@ -189,8 +190,11 @@ impl Measurement {
         // shown as notes, so the reader sees where the failure sets in.
         let describe = |r: &EulerRun| match &r.result {
             Ok(e) => format!(
-                "orientation error {e:.1e} at t = {}; {} steps, {} evals",
-                self.t_end, r.steps, r.rhs_evals
+                "orientation error {e} at t = {}; {} steps, {} evals",
+                self.t_end,
+                r.steps,
+                r.rhs_evals,
+                e = numbers::exponent(*e, 1)
             ),
             Err(e) => format!("stopped: {e}"),
         };
@@ -232,8 +236,9 @@ impl Measurement {
                     method: format!("rotation matrix on SO(3), {name}, from theta0 = 0"),
                     ok: *error < ACCURATE,
                     result: format!(
-                        "orientation error {error:.1e} at t = {}; {evals} evals",
-                        self.t_end
+                        "orientation error {error} at t = {}; {evals} evals",
+                        self.t_end,
+                        error = numbers::exponent(*error, 1)
                     ),
                 })
                 .collect(),
