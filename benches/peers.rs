@@ -69,6 +69,10 @@ use spintop::workprecision::{
 };
 use std::time::Instant;
 
+#[path = "peers/spread.rs"]
+mod spread;
+use spread::spread_of_runs;
+
 type V3 = SVector<f64, 3>;
 
 /// Something to do with Ω̇ = F(Ω) once F is a concrete closure.
@@ -763,137 +767,6 @@ fn load() -> String {
     std::fs::read_to_string("/proc/loadavg")
         .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
         .unwrap_or_else(|_| "unknown".into())
-}
-
-/// `--spread FILE…`: several runs' `--h2h-out` files side by side. For each
-/// problem and matched error, each peer's ratio to spintop's best and the
-/// best Runge–Kutta method's ratio to the Taylor method, as the median over
-/// the rounds of each run, then across the runs: median [smallest, largest]
-/// of the runs' medians, called stable when the largest run's median is
-/// within 10 % of the smallest's. Each peer is given over spintop's DOP853
-/// (the same method) and over spintop's best method in the same round.
-fn spread_of_runs(files: &[String]) -> Result<(), String> {
-    // (model, error, source method) -> per run: per round times
-    type Key = (String, String, String);
-    let mut runs: Vec<std::collections::BTreeMap<Key, Vec<Real>>> = Vec::new();
-    for f in files {
-        let text = std::fs::read_to_string(f).map_err(|e| format!("{f}: {e}"))?;
-        let mut map: std::collections::BTreeMap<Key, Vec<Real>> = Default::default();
-        for (n, line) in text.lines().enumerate().skip(1) {
-            let c: Vec<&str> = line.split(',').collect();
-            if c.len() != 6 {
-                return Err(format!("{f}:{}: expected 6 fields", n + 1));
-            }
-            let t: Real = c[5].parse().map_err(|_| format!("{f}:{}: time", n + 1))?;
-            map.entry((c[0].into(), c[1].into(), format!("{} {}", c[2], c[3])))
-                .or_default()
-                .push(t);
-        }
-        runs.push(map);
-    }
-    let mut groups: Vec<(String, String)> = Vec::new();
-    for run in &runs {
-        for (m, e, _) in run.keys() {
-            if !groups.contains(&(m.clone(), e.clone())) {
-                groups.push((m.clone(), e.clone()));
-            }
-        }
-    }
-    println!(
-        "# {} runs: per ratio, the median of each run (over its rounds), then across runs: median [smallest, largest]; 'stable' when the runs' medians differ by less than 10 %",
-        runs.len()
-    );
-    for (model, error) in groups {
-        let mut names: Vec<String> = Vec::new();
-        for run in &runs {
-            for (m, e, name) in run.keys() {
-                if *m == model && *e == error && !names.contains(name) {
-                    names.push(name.clone());
-                }
-            }
-        }
-        let of = |run: &std::collections::BTreeMap<Key, Vec<Real>>, name: &str| {
-            run.get(&(model.clone(), error.clone(), name.to_string()))
-                .cloned()
-        };
-        let spintop: Vec<&String> = names.iter().filter(|n| n.starts_with("spintop ")).collect();
-        let report_ratio = |label: String, per_run: Vec<Real>| {
-            let lo = per_run.iter().copied().fold(Real::INFINITY, Real::min);
-            let hi = per_run.iter().copied().fold(0.0, Real::max);
-            if let Some(m) = median(per_run.clone()) {
-                let stable = if hi / lo < 1.1 {
-                    "stable"
-                } else {
-                    "within noise"
-                };
-                let each: Vec<String> = per_run.iter().map(|r| numbers::fixed(r, 2)).collect();
-                println!(
-                    "{model:<9} {error:>6}  {label:<60} {m} [{lo}, {hi}]  {stable}  (runs: {})",
-                    each.join(" "),
-                    m = numbers::fixed(m, 2),
-                    lo = numbers::fixed(lo, 2),
-                    hi = numbers::fixed(hi, 2)
-                );
-            }
-        };
-        // Each peer over spintop's DOP853 (the same method: the historical
-        // ratio), round by round.
-        for peer in names.iter().filter(|n| !n.starts_with("spintop ")) {
-            let per_run: Vec<Real> = runs
-                .iter()
-                .filter_map(|run| {
-                    let (p, d) = (of(run, peer)?, of(run, "spintop dop853")?);
-                    median(p.iter().zip(&d).map(|(a, b)| a / b).collect())
-                })
-                .collect();
-            report_ratio(format!("{peer} / spintop dop853"), per_run);
-        }
-        // Each peer over spintop's best, round by round.
-        for peer in names.iter().filter(|n| !n.starts_with("spintop ")) {
-            let per_run: Vec<Real> = runs
-                .iter()
-                .filter_map(|run| {
-                    let p = of(run, peer)?;
-                    let ratios: Vec<Real> = (0..p.len())
-                        .map(|r| {
-                            let best = spintop
-                                .iter()
-                                .filter_map(|s| of(run, s).and_then(|t| t.get(r).copied()))
-                                .filter(|t| t.is_finite())
-                                .fold(Real::INFINITY, Real::min);
-                            p[r] / best
-                        })
-                        .collect();
-                    median(ratios)
-                })
-                .collect();
-            report_ratio(format!("{peer} / spintop's best"), per_run);
-        }
-        // The best Runge–Kutta method of any crate over the Taylor method.
-        let per_run: Vec<Real> = runs
-            .iter()
-            .filter_map(|run| {
-                let t = of(run, "spintop taylor")?;
-                let ratios: Vec<Real> = (0..t.len())
-                    .map(|r| {
-                        let best = names
-                            .iter()
-                            .filter(|n| *n != "spintop taylor")
-                            .filter_map(|n| of(run, n).and_then(|x| x.get(r).copied()))
-                            .filter(|x| x.is_finite())
-                            .fold(Real::INFINITY, Real::min);
-                        best / t[r]
-                    })
-                    .collect();
-                median(ratios)
-            })
-            .collect();
-        report_ratio(
-            "best Runge-Kutta (any crate) / spintop taylor".into(),
-            per_run,
-        );
-    }
-    Ok(())
 }
 
 /// Correctness first: every peer at [`CHECK_RTOL`] against each problem's

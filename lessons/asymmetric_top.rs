@@ -202,9 +202,9 @@ fn orders(out: &mut dyn Write, omega0: Vec3) -> io::Result<()> {
         writeln!(
             out,
             "  {tau:<8} {truncated:<17} {reduced}",
-            tau = numbers::fixed(tau, 3),
-            truncated = numbers::exponent(truncated, 3),
-            reduced = numbers::exponent(reduced, 3)
+            tau = numbers::fixed(*tau, 3),
+            truncated = numbers::exponent(*truncated, 3),
+            reduced = numbers::exponent(*reduced, 3)
         )?;
     }
     writeln!(

@@ -10,8 +10,9 @@ use spintop::math::{State, Vec3};
 use spintop::numbers;
 use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::symmetric_top::{
-    SymmetricTop, precession_tilt, printed_tilt_4_11, reduced_ale_rhs, reduced_closed_form,
-    reduced_decay_time, truncated_ale_rhs, truncated_closed_form, truncated_orientation,
+    FIGURE_OMEGA0, SymmetricTop, precession_tilt, printed_tilt_4_11, reduced_ale_rhs,
+    reduced_closed_form, reduced_decay_time, truncated_ale_rhs, truncated_closed_form,
+    truncated_orientation,
 };
 use spintop::plot::{Series, chart};
 use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
@@ -23,7 +24,7 @@ type Sampled = Vec<Vec<Vec3>>;
 /// Print the lesson to `out`: its parts in order.
 pub fn run(out: &mut dyn Write) -> io::Result<()> {
     let top = SymmetricTop::figure();
-    let omega0 = Vec3::new(0.0, 0.1, 0.2);
+    let omega0 = Vec3::from(FIGURE_OMEGA0);
     writeln!(out, "Section 4: the symmetric top of the paper's figures")?;
     writeln!(
         out,

@@ -93,7 +93,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         writeln!(
             out,
             "closed form: 0 evaluations, error {e} against the 40-digit reference (rounding)",
-            e = numbers::exponent(e, 1)
+            e = numbers::exponent(*e, 1)
         )?;
     }
 

@@ -75,7 +75,9 @@ pub fn chart(
         })
         .collect();
     let mut c = Chart::new(width, height, x_range.0 as f32, x_range.1 as f32);
-    let mut chart = c.y_label_format(LabelFormat::Custom(Box::new(|v| numbers::exponent(f64::from(v), 3))));
+    let mut chart = c.y_label_format(LabelFormat::Custom(Box::new(|v| {
+        numbers::exponent(f64::from(v), 3)
+    })));
     for shape in &shapes {
         chart = chart.lineplot(shape);
     }

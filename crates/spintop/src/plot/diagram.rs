@@ -30,7 +30,8 @@ use crate::math::{Mat3, Real, Vec3, rot_axis, rot_z};
 use crate::numbers;
 use crate::physics::euler_angles::{EulerAngles, frame_with_z_along};
 use crate::physics::symmetric_top::{
-    SymmetricTop, precession_tilt, truncated_closed_form, truncated_orientation,
+    FIGURE_OMEGA0, FIGURE_RATIO, SymmetricTop, precession_tilt, truncated_closed_form,
+    truncated_orientation,
 };
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::fmt::Write as _;
@@ -663,8 +664,8 @@ struct FreeTop {
 }
 
 fn free_top(t: Real) -> FreeTop {
-    let free = SymmetricTop::new(0.4, 0.0).expect("2/5 is a valid I3/I1");
-    let omega0 = Vec3::new(0.0, 0.1, 0.2);
+    let free = SymmetricTop::new(FIGURE_RATIO, 0.0).expect("2/5 is a valid I3/I1");
+    let omega0 = Vec3::from(FIGURE_OMEGA0);
     let l_body = free.inertia().component_mul(&omega0);
     let o0: Mat3 = frame_with_z_along(&l_body).to_rotation();
     let o = truncated_orientation(&free, &omega0, &o0, t);

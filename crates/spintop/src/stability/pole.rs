@@ -19,7 +19,9 @@ use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Rk4, Stats, Step
 use crate::math::{Mat3, Real, State, Vec3};
 use crate::numbers;
 use crate::physics::euler_angles::{EulerAngles, euler_rates};
-use crate::physics::symmetric_top::{SymmetricTop, truncated_closed_form, truncated_orientation};
+use crate::physics::symmetric_top::{
+    FIGURE_OMEGA0, SymmetricTop, truncated_closed_form, truncated_orientation,
+};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
 
 /// One start of (4.8) near (or at) the pole.
@@ -133,7 +135,7 @@ fn finish<S: Stepper<3>, R: crate::integrate::Rhs<3>>(
 /// Run the experiment of row 2.
 pub fn measure() -> Result<Measurement, RowError> {
     let top = SymmetricTop::figure();
-    let omega0 = Vec3::new(0.0, 0.1, 0.2);
+    let omega0 = Vec3::from(FIGURE_OMEGA0);
     let t_end = 50.0;
     let mut euler = vec![euler_run(&top, &omega0, 0.0, t_end, None)];
     for &theta0 in &THETA0[1..] {

@@ -16,7 +16,9 @@ use crate::integrate::forward_difference_jacobian;
 use crate::math::{Real, State, Vec3};
 use crate::numbers;
 use crate::physics::full_ale::symmetric_full_ale_rhs;
-use crate::physics::symmetric_top::{SymmetricTop, reduced_ale_rhs, reduced_amplitude};
+use crate::physics::symmetric_top::{
+    FIGURE_OMEGA0, SymmetricTop, reduced_ale_rhs, reduced_amplitude,
+};
 use crate::sim::physical::{
     Runaway, integrate_forward, late_time_decay_time, physical_solution, slow_manifold_rate,
 };
@@ -119,7 +121,7 @@ fn reduced_z(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Complex<Real> {
 }
 
 fn strong_spin(rtol: Real) -> Result<StrongSpin, RowError> {
-    let top = SymmetricTop::new(0.4, 1.0).map_err(|e| RowError::new(1, e))?;
+    let top = SymmetricTop::figure();
     let omega0 = Vec3::new(0.0, 0.01, 2.5);
     let k = top.ratio() * omega0.z;
     // The slow root of (3.4) linearised about z = 0 (the u → 0 limit of the
@@ -156,7 +158,7 @@ pub fn slow_root(top: &SymmetricTop, omega3: Real) -> Complex<Real> {
 pub fn measure() -> Result<Measurement, RowError> {
     let err = |e: crate::sim::physical::PhysicalError| RowError::new(1, e);
     let top = SymmetricTop::figure();
-    let omega0 = Vec3::new(0.0, 0.1, 0.2);
+    let omega0 = Vec3::from(FIGURE_OMEGA0);
     let rtol = 1e-11;
     let slope = reduced_ale_rhs(&top, &omega0);
     let y0 = State::<4>::new(omega0.x, omega0.y, slope.x, slope.y);

@@ -61,7 +61,7 @@ pub const LADDER: [Real; 4] = [1.0, 10.0, 100.0, 1000.0];
 /// span).
 pub const RK4_LADDER: [Real; 3] = [10.0, 100.0, 1000.0];
 /// Ω₀ at S = 1: the paper's figure.
-pub const OMEGA0_UNIT: [Real; 3] = [0.0, 0.1, 0.2];
+pub const OMEGA0_UNIT: [Real; 3] = crate::physics::symmetric_top::FIGURE_OMEGA0;
 /// The span [0, SPAN] of every run, in units of τ.
 pub const SPAN: Real = 10.0;
 /// The relative tolerance of DP5 and Radau5; atol = RTOL·|Ω₀|∞.
