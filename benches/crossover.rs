@@ -20,6 +20,7 @@
 //! `benches/results/crossover-*.csv`.
 
 use spintop::math::{Real, Vec3};
+use spintop::numbers;
 use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::general_top::GeneralTop;
 use spintop::sim::{InitialState, Method, MethodOptions, Model, Simulation};
@@ -124,16 +125,23 @@ fn main() {
                     ratios.sort_by(|a, b| a.total_cmp(b));
                     let (median, lo, hi) = (ratios[ROUNDS / 2], ratios[0], ratios[ROUNDS - 1]);
                     println!(
-                        "top {k} {:<16} {outputs:>4} outputs  rtol {rtol:>5.0e}  steps {:>5} / {:>4}  dop853/taylor {median:.2} [{lo:.2}, {hi:.2}]",
+                        "top {k} {:<16} {outputs:>4} outputs  rtol {rtol:>5}  steps {:>5} / {:>4}  dop853/taylor {median} [{lo}, {hi}]",
                         model.name(),
                         steps[0],
                         steps[1],
+                        rtol = numbers::exponent(rtol, 0),
+                        median = numbers::fixed(median, 2),
+                        lo = numbers::fixed(lo, 2),
+                        hi = numbers::fixed(hi, 2)
                     );
                     csv.push_str(&format!(
-                        "{k},{},{outputs},{rtol:e},{},{},{median:.3},{lo:.3},{hi:.3}\n",
+                        "{k},{},{outputs},{rtol:e},{},{},{median},{lo},{hi}\n",
                         model.name(),
                         steps[0],
-                        steps[1]
+                        steps[1],
+                        median = numbers::fixed(median, 3),
+                        lo = numbers::fixed(lo, 3),
+                        hi = numbers::fixed(hi, 3)
                     ));
                 }
             }
@@ -152,12 +160,15 @@ fn main() {
         let lo = all.iter().copied().fold(Real::INFINITY, Real::min);
         let hi = all.iter().copied().fold(0.0, Real::max);
         println!(
-            "#   rtol {rtol:.0e}: medians {lo:.2} to {hi:.2}: {}",
+            "#   rtol {rtol}: medians {lo} to {hi}: {}",
             if lo > 1.0 {
                 "Taylor in every case"
             } else {
                 "DOP853 in some"
-            }
+            },
+            rtol = numbers::exponent(rtol, 0),
+            lo = numbers::fixed(lo, 2),
+            hi = numbers::fixed(hi, 2)
         );
     }
     if let Some(path) = out {

@@ -60,6 +60,7 @@ use diffsol::{NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod, Op};
 use ode_solvers::{OutputType, SVector, System};
 use spintop::integrate::Stats;
 use spintop::math::{Real, Vec3};
+use spintop::numbers;
 use spintop::physics::symmetric_top::{reduced_ale_rhs, truncated_ale_rhs};
 use spintop::workprecision::report;
 use spintop::workprecision::{
@@ -67,6 +68,10 @@ use spintop::workprecision::{
     Target, omega_error,
 };
 use std::time::Instant;
+
+#[path = "peers/spread.rs"]
+mod spread;
+use spread::spread_of_runs;
 
 type V3 = SVector<f64, 3>;
 
@@ -353,17 +358,18 @@ fn final_point_note(peer: &Peer, problem: &Problem, rtol: Real) -> Option<String
     let before_last = sparse.times.iter().rev().nth(1).copied().unwrap_or(0.0);
     let extrapolated = before_last > problem.t_end() - 1.0 && before_last < problem.t_end();
     Some(format!(
-        "{:<9} {:<6} rtol={rtol:.0e}: error at t = 200 {:>9}, over t < 200 {:>9}; last step {:.3} -> 200{}",
+        "{:<9} {:<6} rtol={rtol}: error at t = 200 {:>9}, over t < 200 {:>9}; last step {} -> 200{}",
         problem.name(),
         peer.method(),
         report::sci(Some(last)),
         report::sci(Some(inner)),
-        before_last,
+        numbers::fixed(before_last, 3),
         if extrapolated {
             ": t = 200 extrapolated from the step before"
         } else {
             ""
-        }
+        },
+        rtol = numbers::exponent(rtol, 0)
     ))
 }
 
@@ -381,14 +387,17 @@ const CHECK_LIMIT: Real = 1e-6;
 /// [`CHECK_RTOL`] is right.
 fn wrong_answer(peer: &Peer, problem: &Problem) -> Option<String> {
     match peer.solve(problem, Some(CHECK_RTOL)) {
-        Err(e) => Some(format!("failed at rtol {CHECK_RTOL:.0e}: {e}")),
+        Err(e) => Some(format!(
+            "failed at rtol {CHECK_RTOL}: {e}",
+            CHECK_RTOL = numbers::exponent(CHECK_RTOL, 0)
+        )),
         Ok(s) => {
             let error = omega_error(&problem.reference().omega, &s.omega);
             (error.is_nan() || error > CHECK_LIMIT).then(|| {
                 format!(
-                    "at rtol {CHECK_RTOL:.0e} its largest relative error of Ω is {} (the check accepts up to {CHECK_LIMIT:.0e})",
+                    "at rtol {CHECK_RTOL} its largest relative error of Ω is {} (the check accepts up to {CHECK_LIMIT})",
                     report::sci(Some(error))
-                )
+                , CHECK_RTOL = numbers::exponent(CHECK_RTOL, 0), CHECK_LIMIT = numbers::exponent(CHECK_LIMIT, 0))
             })
         }
     }
@@ -540,6 +549,19 @@ fn head_to_head(
     solvers: &[&dyn Solver],
     rounds: usize,
 ) -> String {
+    let mut entries = h2h_entries(rows, problems, solvers);
+    time_rounds(&mut entries, rounds);
+    print_h2h(&entries, problems, rounds);
+    h2h_csv(&entries)
+}
+
+/// Every (problem, matched error, method) the sweep brackets: the two
+/// tolerances round the matched error, each with its error.
+fn h2h_entries<'a>(
+    rows: &[Row],
+    problems: &'a [Problem],
+    solvers: &[&'a dyn Solver],
+) -> Vec<Entry<'a>> {
     let mut entries: Vec<Entry> = Vec::new();
     for problem in problems {
         for (error_index, &error) in report::MATCHED_ERRORS.iter().enumerate() {
@@ -573,6 +595,12 @@ fn head_to_head(
             }
         }
     }
+    entries
+}
+
+/// One sample of every entry per round, the order rotating from round to
+/// round: each entry's time at its matched error.
+fn time_rounds(entries: &mut [Entry], rounds: usize) {
     let n = entries.len();
     for round in 0..rounds {
         for k in 0..n {
@@ -589,6 +617,11 @@ fn head_to_head(
                 .push(report::cost_at(&points, error).unwrap_or(Real::NAN));
         }
     }
+}
+
+/// Each peer's time over spintop's best adaptive integrator, and the best
+/// Runge–Kutta method's over the Taylor method's, round by round.
+fn print_h2h(entries: &[Entry], problems: &[Problem], rounds: usize) {
     println!(
         "\n# head to head at matched error: {rounds} interleaved rounds (a sample is the fastest of {SOLVES_PER_SAMPLE} back-to-back solves); each peer's time over spintop's best adaptive integrator in the same round, median [smallest, largest]"
     );
@@ -623,14 +656,14 @@ fn head_to_head(
                     continue;
                 };
                 println!(
-                    "{:<9} {:>5.0e}  {:<34} {:>10}  {:<18} {:>10}  {}",
+                    "{:<9} {:>5}  {:<34} {:>10}  {:<18} {:>10}  {}",
                     problem.name(),
-                    error,
+                    numbers::exponent(error, 0),
                     format!("{} {}", peer.solver.source(), peer.solver.method()),
                     report::duration(Some(time)),
                     best_name,
                     report::duration(Some(best_median)),
-                    spread(&ratios),
+                    spread(&ratios)
                 );
             }
             // The goal: the best Runge–Kutta method of any crate over the
@@ -651,13 +684,13 @@ fn head_to_head(
                     .collect();
                 let ratios: Vec<Real> = (0..rounds).map(|r| best_rk[r].0 / t.times[r]).collect();
                 goal_lines.push(format!(
-                    "{:<9} {:>5.0e}  taylor {:>10}  best Runge-Kutta {:<34} {:>10}  {}",
+                    "{:<9} {:>5}  taylor {:>10}  best Runge-Kutta {:<34} {:>10}  {}",
                     problem.name(),
-                    error,
+                    numbers::exponent(error, 0),
                     report::duration(median(t.times.clone())),
                     most_often(&best_rk),
                     report::duration(median(best_rk.iter().map(|b| b.0).collect())),
-                    spread(&ratios),
+                    spread(&ratios)
                 ));
             }
         }
@@ -668,8 +701,12 @@ fn head_to_head(
     for line in goal_lines {
         println!("{line}");
     }
+}
+
+/// The per-round rows `model,error,source,method,round,time_s`.
+fn h2h_csv(entries: &[Entry]) -> String {
     let mut csv = String::from("model,error,source,method,round,time_s\n");
-    for e in &entries {
+    for e in entries {
         for (r, t) in e.times.iter().enumerate() {
             csv.push_str(&format!(
                 "{},{:e},{},{},{r},{t:e}\n",
@@ -709,7 +746,12 @@ fn spread(xs: &[Real]) -> String {
     let lo = finite.iter().copied().fold(Real::INFINITY, Real::min);
     let hi = finite.iter().copied().fold(0.0, Real::max);
     match median(finite) {
-        Some(m) => format!("{m:.2} [{lo:.2}, {hi:.2}]"),
+        Some(m) => format!(
+            "{m} [{lo}, {hi}]",
+            m = numbers::fixed(m, 2),
+            lo = numbers::fixed(lo, 2),
+            hi = numbers::fixed(hi, 2)
+        ),
         None => "-".into(),
     }
 }
@@ -727,132 +769,110 @@ fn load() -> String {
         .unwrap_or_else(|_| "unknown".into())
 }
 
-/// `--spread FILE…`: several runs' `--h2h-out` files side by side. For each
-/// problem and matched error, each peer's ratio to spintop's best and the
-/// best Runge–Kutta method's ratio to the Taylor method, as the median over
-/// the rounds of each run, then across the runs: median [smallest, largest]
-/// of the runs' medians, called stable when the largest run's median is
-/// within 10 % of the smallest's. Each peer is given over spintop's DOP853
-/// (the same method) and over spintop's best method in the same round.
-fn spread_of_runs(files: &[String]) -> Result<(), String> {
-    // (model, error, source method) -> per run: per round times
-    type Key = (String, String, String);
-    let mut runs: Vec<std::collections::BTreeMap<Key, Vec<Real>>> = Vec::new();
-    for f in files {
-        let text = std::fs::read_to_string(f).map_err(|e| format!("{f}: {e}"))?;
-        let mut map: std::collections::BTreeMap<Key, Vec<Real>> = Default::default();
-        for (n, line) in text.lines().enumerate().skip(1) {
-            let c: Vec<&str> = line.split(',').collect();
-            if c.len() != 6 {
-                return Err(format!("{f}:{}: expected 6 fields", n + 1));
-            }
-            let t: Real = c[5].parse().map_err(|_| format!("{f}:{}: time", n + 1))?;
-            map.entry((c[0].into(), c[1].into(), format!("{} {}", c[2], c[3])))
-                .or_default()
-                .push(t);
-        }
-        runs.push(map);
-    }
-    let mut groups: Vec<(String, String)> = Vec::new();
-    for run in &runs {
-        for (m, e, _) in run.keys() {
-            if !groups.contains(&(m.clone(), e.clone())) {
-                groups.push((m.clone(), e.clone()));
-            }
-        }
-    }
+/// Correctness first: every peer at [`CHECK_RTOL`] against each problem's
+/// reference; a problem it answers wrongly (or fails) is left out of its
+/// timings, and the bench says why.
+fn check_peers<'a>(peers: &'a [Peer], problems: &[Problem]) -> Vec<Checked<'a>> {
     println!(
-        "# {} runs: per ratio, the median of each run (over its rounds), then across runs: median [smallest, largest]; 'stable' when the runs' medians differ by less than 10 %",
-        runs.len()
+        "# correctness first: every peer at rtol {CHECK_RTOL} against each problem's reference",
+        CHECK_RTOL = numbers::exponent(CHECK_RTOL, 0)
     );
-    for (model, error) in groups {
-        let mut names: Vec<String> = Vec::new();
-        for run in &runs {
-            for (m, e, name) in run.keys() {
-                if *m == model && *e == error && !names.contains(name) {
-                    names.push(name.clone());
+    let mut checked: Vec<Checked> = Vec::new();
+    for p in peers {
+        let mut excluded = Vec::new();
+        for problem in problems {
+            if let Some(why) = wrong_answer(p, problem) {
+                println!(
+                    "#   left out: {} {} on {}: {why}",
+                    p.source(),
+                    p.method(),
+                    problem.name()
+                );
+                excluded.push(problem.name().to_string());
+            }
+        }
+        checked.push(Checked {
+            solver: p,
+            excluded,
+        });
+    }
+    checked
+}
+
+/// ode_solvers' value at the final time, for every run of its methods.
+fn print_final_points(peers: &[Peer], problems: &[Problem], plan: &Plan) {
+    println!("\n# ode_solvers' value at the final time (dense output every 1 tau to x_end = 200):");
+    for problem in problems {
+        for peer in peers
+            .iter()
+            .filter(|p| p.method.source() == "ode_solvers" && !p.interior)
+        {
+            for &rtol in &plan.rtols {
+                if let Some(line) = final_point_note(peer, problem, rtol) {
+                    println!("{line}");
                 }
             }
         }
-        let of = |run: &std::collections::BTreeMap<Key, Vec<Real>>, name: &str| {
-            run.get(&(model.clone(), error.clone(), name.to_string()))
-                .cloned()
-        };
-        let spintop: Vec<&String> = names.iter().filter(|n| n.starts_with("spintop ")).collect();
-        let report_ratio = |label: String, per_run: Vec<Real>| {
-            let lo = per_run.iter().copied().fold(Real::INFINITY, Real::min);
-            let hi = per_run.iter().copied().fold(0.0, Real::max);
-            if let Some(m) = median(per_run.clone()) {
-                let stable = if hi / lo < 1.1 {
-                    "stable"
-                } else {
-                    "within noise"
-                };
-                let each: Vec<String> = per_run.iter().map(|r| format!("{r:.2}")).collect();
-                println!(
-                    "{model:<9} {error:>6}  {label:<60} {m:.2} [{lo:.2}, {hi:.2}]  {stable}  (runs: {})",
-                    each.join(" ")
-                );
-            }
-        };
-        // Each peer over spintop's DOP853 (the same method: the historical
-        // ratio), round by round.
-        for peer in names.iter().filter(|n| !n.starts_with("spintop ")) {
-            let per_run: Vec<Real> = runs
-                .iter()
-                .filter_map(|run| {
-                    let (p, d) = (of(run, peer)?, of(run, "spintop dop853")?);
-                    median(p.iter().zip(&d).map(|(a, b)| a / b).collect())
-                })
-                .collect();
-            report_ratio(format!("{peer} / spintop dop853"), per_run);
-        }
-        // Each peer over spintop's best, round by round.
-        for peer in names.iter().filter(|n| !n.starts_with("spintop ")) {
-            let per_run: Vec<Real> = runs
-                .iter()
-                .filter_map(|run| {
-                    let p = of(run, peer)?;
-                    let ratios: Vec<Real> = (0..p.len())
-                        .map(|r| {
-                            let best = spintop
-                                .iter()
-                                .filter_map(|s| of(run, s).and_then(|t| t.get(r).copied()))
-                                .filter(|t| t.is_finite())
-                                .fold(Real::INFINITY, Real::min);
-                            p[r] / best
-                        })
-                        .collect();
-                    median(ratios)
-                })
-                .collect();
-            report_ratio(format!("{peer} / spintop's best"), per_run);
-        }
-        // The best Runge–Kutta method of any crate over the Taylor method.
-        let per_run: Vec<Real> = runs
-            .iter()
-            .filter_map(|run| {
-                let t = of(run, "spintop taylor")?;
-                let ratios: Vec<Real> = (0..t.len())
-                    .map(|r| {
-                        let best = names
-                            .iter()
-                            .filter(|n| *n != "spintop taylor")
-                            .filter_map(|n| of(run, n).and_then(|x| x.get(r).copied()))
-                            .filter(|x| x.is_finite())
-                            .fold(Real::INFINITY, Real::min);
-                        best / t[r]
-                    })
-                    .collect();
-                median(ratios)
-            })
-            .collect();
-        report_ratio(
-            "best Runge-Kutta (any crate) / spintop taylor".into(),
-            per_run,
-        );
     }
-    Ok(())
+}
+
+/// The sweep of spintop and the peers, retimed; the table, the join, the
+/// head-to-head; the rows to `out` and the head-to-head's rounds to `h2h_out`.
+fn sweep_and_report(quick: bool, out: Option<String>, h2h_out: Option<String>) {
+    let problems: Vec<Problem> = [
+        ProblemKind::Truncated,
+        ProblemKind::Reduced,
+        ProblemKind::General,
+    ]
+    .into_iter()
+    .map(Problem::new)
+    .collect::<Result<_, _>>()
+    .unwrap_or_else(|e| {
+        eprintln!("peers: {e}");
+        std::process::exit(3);
+    });
+    let plan = if quick { Plan::quick() } else { Plan::full() };
+    let ours: Vec<Spintop> = Spintop::all()
+        .into_iter()
+        .filter(|s| s.target == Target::Omega)
+        .collect();
+    let peer = |method, interior| Peer { method, interior };
+    let peers = [
+        peer(Method::OsDopri5, false),
+        peer(Method::OsDop853, false),
+        peer(Method::OsDop853, true),
+        peer(Method::DeDop853, false),
+        peer(Method::DeVern98, false),
+        peer(Method::DiffsolTsit45, false),
+    ];
+    println!(
+        "# peers: spintop, ode_solvers 0.6.2, differential-equations 0.7.0 and diffsol 0.18.0 on the same problems, same references, one process"
+    );
+    println!("# load average at the start (1, 5, 15 min): {}", load());
+    let checked = check_peers(&peers, &problems);
+    let mut solvers: Vec<&dyn Solver> = ours.iter().map(|s| s as &dyn Solver).collect();
+    solvers.extend(checked.iter().map(|p| p as &dyn Solver));
+    let mut rows = spintop::workprecision::sweep(&problems, &solvers, &plan, Some(&mut WallClock));
+    retime(&mut rows, &problems, &solvers);
+
+    print!("{}", report::table(&rows));
+    print!("{}", report::join_table(&rows));
+    let per_round = head_to_head(&rows, &problems, &solvers, if quick { 5 } else { ROUNDS });
+    println!("# load average at the end (1, 5, 15 min): {}", load());
+    if let Some(path) = &h2h_out
+        && let Err(e) = std::fs::write(path, per_round)
+    {
+        eprintln!("peers: cannot write {path}: {e}");
+        std::process::exit(1);
+    }
+    print_final_points(&peers, &problems, &plan);
+    if let Some(path) = out {
+        if let Err(e) = std::fs::write(&path, report::to_csv(&rows)) {
+            eprintln!("peers: cannot write {path}: {e}");
+            std::process::exit(1);
+        }
+        println!("wrote {} rows to {path}", rows.len());
+    }
 }
 
 fn main() {
@@ -888,91 +908,5 @@ fn main() {
         }
         return;
     }
-    let problems: Vec<Problem> = [
-        ProblemKind::Truncated,
-        ProblemKind::Reduced,
-        ProblemKind::General,
-    ]
-    .into_iter()
-    .map(Problem::new)
-    .collect::<Result<_, _>>()
-    .unwrap_or_else(|e| {
-        eprintln!("peers: {e}");
-        std::process::exit(3);
-    });
-    let plan = if quick { Plan::quick() } else { Plan::full() };
-    let ours: Vec<Spintop> = Spintop::all()
-        .into_iter()
-        .filter(|s| s.target == Target::Omega)
-        .collect();
-    let peer = |method, interior| Peer { method, interior };
-    let peers = [
-        peer(Method::OsDopri5, false),
-        peer(Method::OsDop853, false),
-        peer(Method::OsDop853, true),
-        peer(Method::DeDop853, false),
-        peer(Method::DeVern98, false),
-        peer(Method::DiffsolTsit45, false),
-    ];
-    println!(
-        "# peers: spintop, ode_solvers 0.6.2, differential-equations 0.7.0 and diffsol 0.18.0 on the same problems, same references, one process"
-    );
-    println!("# load average at the start (1, 5, 15 min): {}", load());
-    println!(
-        "# correctness first: every peer at rtol {CHECK_RTOL:.0e} against each problem's reference"
-    );
-    let mut checked: Vec<Checked> = Vec::new();
-    for p in &peers {
-        let mut excluded = Vec::new();
-        for problem in &problems {
-            if let Some(why) = wrong_answer(p, problem) {
-                println!(
-                    "#   left out: {} {} on {}: {why}",
-                    p.source(),
-                    p.method(),
-                    problem.name()
-                );
-                excluded.push(problem.name().to_string());
-            }
-        }
-        checked.push(Checked {
-            solver: p,
-            excluded,
-        });
-    }
-    let mut solvers: Vec<&dyn Solver> = ours.iter().map(|s| s as &dyn Solver).collect();
-    solvers.extend(checked.iter().map(|p| p as &dyn Solver));
-    let mut rows = spintop::workprecision::sweep(&problems, &solvers, &plan, Some(&mut WallClock));
-    retime(&mut rows, &problems, &solvers);
-
-    print!("{}", report::table(&rows));
-    print!("{}", report::join_table(&rows));
-    let per_round = head_to_head(&rows, &problems, &solvers, if quick { 5 } else { ROUNDS });
-    println!("# load average at the end (1, 5, 15 min): {}", load());
-    if let Some(path) = &h2h_out
-        && let Err(e) = std::fs::write(path, per_round)
-    {
-        eprintln!("peers: cannot write {path}: {e}");
-        std::process::exit(1);
-    }
-    println!("\n# ode_solvers' value at the final time (dense output every 1 tau to x_end = 200):");
-    for problem in &problems {
-        for peer in peers
-            .iter()
-            .filter(|p| p.method.source() == "ode_solvers" && !p.interior)
-        {
-            for &rtol in &plan.rtols {
-                if let Some(line) = final_point_note(peer, problem, rtol) {
-                    println!("{line}");
-                }
-            }
-        }
-    }
-    if let Some(path) = out {
-        if let Err(e) = std::fs::write(&path, report::to_csv(&rows)) {
-            eprintln!("peers: cannot write {path}: {e}");
-            std::process::exit(1);
-        }
-        println!("wrote {} rows to {path}", rows.len());
-    }
+    sweep_and_report(quick, out, h2h_out);
 }

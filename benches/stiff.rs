@@ -13,6 +13,7 @@
 use nalgebra::SMatrix;
 use spintop::integrate::{AdaptiveOptions, Radau5, Rhs, Stepper};
 use spintop::math::State;
+use spintop::numbers;
 use std::time::Instant;
 
 struct VanDerPol {
@@ -98,9 +99,11 @@ fn report<const N: usize, R: Rhs<N>>(name: &str, rhs: &R, y0: State<N>, t_end: f
         times.sort_by(f64::total_cmp);
         let [jac, lu, steps, rejected, evals] = counts;
         println!(
-            "{name:<22} rtol {rtol:.0e}: jacobians {jac:>5} ({:>3.0}% of steps)  LUs {lu:>5}  steps {steps:>5}  rejected {rejected:>4}  f evals {evals:>6}  error {err:.1e}  time {:.0} µs",
-            100.0 * jac as f64 / steps as f64,
-            times[3] * 1e6
+            "{name:<22} rtol {rtol}: jacobians {jac:>5} ({:>3}% of steps)  LUs {lu:>5}  steps {steps:>5}  rejected {rejected:>4}  f evals {evals:>6}  error {err}  time {} µs",
+            numbers::fixed(100.0 * jac as f64 / steps as f64, 0),
+            numbers::fixed(times[3] * 1e6, 0),
+            rtol = numbers::exponent(rtol, 0),
+            err = numbers::exponent(err, 1)
         );
     }
 }

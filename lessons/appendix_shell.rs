@@ -5,6 +5,7 @@
 //! The book shows this program's output; `tests/project/book.rs` checks that what the
 //! book shows is what the program prints.
 
+use spintop::numbers;
 use spintop::physics::central::abraham_lorentz_oscillator_roots;
 use spintop::physics::shell::ShellModel;
 use spintop::plot::{Series, chart};
@@ -67,19 +68,20 @@ fn regimes(out: &mut dyn Write) -> io::Result<()> {
             .fold(f64::NEG_INFINITY, f64::max);
         writeln!(
             out,
-            "  {tau0:>7} {delta:>8} {:>9.4} {:>9.4}  {:<20} {max_re:>10.4} {:>21.4}",
-            m.m0(),
-            m.m_em(),
+            "  {tau0:>7} {delta:>8} {:>9} {:>9}  {:<20} {max_re:>10} {:>21}",
+            numbers::fixed(m.m0(), 4),
+            numbers::fixed(m.m_em(), 4),
             m.regime().name(),
-            m.chain_rate()
+            numbers::fixed(m.chain_rate(), 4),
+            max_re = numbers::fixed(max_re, 4)
         )?;
     }
     let m = ShellModel::new(0.04997, 0.1).expect("valid");
     writeln!(
         out,
-        "  tau0 = 0.04997: m0 - m_em = {:.4} > 0, yet unstable: it is below delay^2/pi^2 = {:.5}",
-        m.m0() - m.m_em(),
-        m.stability_threshold()
+        "  tau0 = 0.04997: m0 - m_em = {} > 0, yet unstable: it is below delay^2/pi^2 = {}",
+        numbers::fixed(m.m0() - m.m_em(), 4),
+        numbers::fixed(m.stability_threshold(), 5)
     )?;
     // ANCHOR_END: regimes
     Ok(())
@@ -97,17 +99,17 @@ fn exact_mode(out: &mut dyn Write) -> io::Result<()> {
     let s_al = abraham_lorentz_oscillator_roots(1e-3).0;
     writeln!(
         out,
-        "  root near AL: s = {:.10} + {:.10} i, |P(s)| = {:.1e}",
-        s.re,
-        s.im,
-        m.characteristic(s).norm()
+        "  root near AL: s = {} + {} i, |P(s)| = {}",
+        numbers::fixed(s.re, 10),
+        numbers::fixed(s.im, 10),
+        numbers::exponent(m.characteristic(s).norm(), 1)
     )?;
     writeln!(
         out,
-        "  s - s_AL = {:.3e} + {:.4e} i   (i tau0 delta/4 = {:.4e} i)",
-        (s - s_al).re,
-        (s - s_al).im,
-        1e-3 * 0.1 / 4.0
+        "  s - s_AL = {} + {} i   (i tau0 delta/4 = {} i)",
+        numbers::exponent((s - s_al).re, 3),
+        numbers::exponent((s - s_al).im, 4),
+        numbers::exponent(1e-3 * 0.1 / 4.0, 4)
     )?;
     let sample =
         run_shell(m, History::mode(s), default_steps_per_delay(0.1), &[20.0]).expect("finite")[0];
@@ -145,13 +147,19 @@ fn convergence(out: &mut dyn Write, tau0: f64, t: f64, deltas: &[f64]) -> io::Re
         let predicted = 2.0 * t * s.l_al * (tau0 * d * d / 12.0 - 0.75 * tau0 * tau0 * d);
         let orders = prev.map_or(String::new(), |(d0, ez0, el0)| {
             let k = (d0 / d).ln();
-            format!("{:>9.3} {:>9.3}", (ez0 / ez).ln() / k, (el0 / el).ln() / k)
+            format!(
+                "{:>9} {:>9}",
+                numbers::fixed((ez0 / ez).ln() / k, 3),
+                numbers::fixed((el0 / el).ln() / k, 3)
+            )
         });
         writeln!(
             out,
-            "  {d:>6} {ez:>12.4e} {:>16.4e} {el:>12.4e} {:>32.4e} {orders}",
-            tau0 * d * t / 4.0,
-            predicted.abs()
+            "  {d:>6} {ez:>12} {:>16} {el:>12} {:>32} {orders}",
+            numbers::exponent(tau0 * d * t / 4.0, 4),
+            numbers::exponent(predicted.abs(), 4),
+            ez = numbers::exponent(ez, 4),
+            el = numbers::exponent(el, 4)
         )?;
         prev = Some((d, ez, el));
     }
@@ -164,8 +172,8 @@ fn convergence(out: &mut dyn Write, tau0: f64, t: f64, deltas: &[f64]) -> io::Re
         .collect();
     writeln!(
         out,
-        "  with tau0 = 1e-5 (delay >> 9 tau0 throughout): order of L from 0.1 to 0.01 = {:.3}",
-        (l2[0] / l2[1]).log10()
+        "  with tau0 = 1e-5 (delay >> 9 tau0 throughout): order of L from 0.1 to 0.01 = {}",
+        numbers::fixed((l2[0] / l2[1]).log10(), 3)
     )?;
     let mut z_pts = Vec::new();
     let mut l_pts = Vec::new();
@@ -208,16 +216,16 @@ fn balance(out: &mut dyn Write, tau0: f64, t: f64, deltas: &[f64]) -> io::Result
         let s = run_al(tau0, d, &[t])[0];
         writeln!(
             out,
-            "  {d:>6} {:>12.8} {:>25} {:>28.3e} {:>12.5e} {:>14.5e}",
-            s.j_change,
+            "  {d:>6} {:>12} {:>25} {:>28} {:>12} {:>14}",
+            numbers::fixed(s.j_change, 8),
             if (s.flux_exact - s.j_change).abs() < 1e-10 {
                 "below 1e-10"
             } else {
                 "TOO LARGE"
             },
-            s.flux_paper - s.j_change,
-            s.l_minus_j,
-            s.l_schott
+            numbers::exponent(s.flux_paper - s.j_change, 3),
+            numbers::exponent(s.l_minus_j, 5),
+            numbers::exponent(s.l_schott, 5)
         )?;
     }
     // ANCHOR_END: balance
@@ -231,9 +239,9 @@ fn growth(out: &mut dyn Write) -> io::Result<()> {
     let m = ShellModel::new(tau0, delta).expect("valid");
     writeln!(
         out,
-        "\n5. Growing oscillation: tau0 = {tau0}, delay = {delta}, m0 = {:.2}, m_em = {:.2}",
-        m.m0(),
-        m.m_em()
+        "\n5. Growing oscillation: tau0 = {tau0}, delay = {delta}, m0 = {}, m_em = {}",
+        numbers::fixed(m.m0(), 2),
+        numbers::fixed(m.m_em(), 2)
     )?;
     let mut solver = ShellSolver::new(m, History::abraham_lorentz(tau0), 64).expect("solver");
     let first = solver.jump();
@@ -243,8 +251,9 @@ fn growth(out: &mut dyn Write) -> io::Result<()> {
     let ratio = (solver.jump().norm() / first.norm()).powf(1.0 / 20.0);
     writeln!(
         out,
-        "  jump of Z'' at t = n delay: |ratio| per delay = {ratio:.12} (m_em/m0 = {:.12})",
-        m.m_em() / m.m0()
+        "  jump of Z'' at t = n delay: |ratio| per delay = {ratio} (m_em/m0 = {})",
+        numbers::fixed(m.m_em() / m.m0(), 12),
+        ratio = numbers::fixed(ratio, 12)
     )?;
     let peak = |a: f64| {
         let times: Vec<f64> = (0..=400).map(|k| a + k as f64 / 400.0).collect();
@@ -257,9 +266,11 @@ fn growth(out: &mut dyn Write) -> io::Result<()> {
     let predicted = (m.m_em() / m.m0()).ln() / delta;
     writeln!(
         out,
-        "  |Z - Z_AL| grows at {measured:.4} per unit time; ln(m_em/m0)/delay = {predicted:.4} ({:+.2}%), lowest root {:.4}",
-        100.0 * (measured / predicted - 1.0),
-        m.growth_rate().expect("unstable")
+        "  |Z - Z_AL| grows at {measured} per unit time; ln(m_em/m0)/delay = {predicted} ({}%), lowest root {}",
+        numbers::signed_fixed(100.0 * (measured / predicted - 1.0), 2),
+        numbers::fixed(m.growth_rate().expect("unstable"), 4),
+        measured = numbers::fixed(measured, 4),
+        predicted = numbers::fixed(predicted, 4)
     )?;
     let pts: Vec<(f64, f64)> = run_al(
         tau0,
@@ -293,18 +304,18 @@ fn formal_limit(out: &mut dyn Write) -> io::Result<()> {
     )?;
     writeln!(
         out,
-        "     delay           m0   regime        largest Re s   (AL runaway 1/tau0 + ... = {:.4})",
-        abraham_lorentz_oscillator_roots(1e-3).1
+        "     delay           m0   regime        largest Re s   (AL runaway 1/tau0 + ... = {})",
+        numbers::fixed(abraham_lorentz_oscillator_roots(1e-3).1, 4)
     )?;
     for delta in [0.1, 0.01, 0.0015, 5e-4, 1e-5, 1e-7] {
         let m = ShellModel::new(1e-3, delta).expect("valid");
         let rate = m
             .growth_rate()
-            .map_or("-".to_string(), |r| format!("{r:.4}"));
+            .map_or("-".to_string(), |r| numbers::fixed(r, 4));
         writeln!(
             out,
-            "  {delta:>8} {:>12.1} {:<20} {rate:>14}",
-            m.m0(),
+            "  {delta:>8} {:>12} {:<20} {rate:>14}",
+            numbers::fixed(m.m0(), 1),
             m.regime().name()
         )?;
     }

@@ -11,6 +11,7 @@
 //! book shows is what the program prints.
 
 use spintop::math::{Real, Vec3, least_squares_slope};
+use spintop::numbers;
 use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::general_top::GeneralTop;
 use spintop::physics::rigid_body::energy;
@@ -66,7 +67,8 @@ fn reduced_check(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR_END: reduced_check
     writeln!(
         out,
-        "reduced ALE for any top vs (4.12)-(4.14), I = (1, 1, 0.4), d = (0, 0, 0.5): |difference| = {gap:.1e}"
+        "reduced ALE for any top vs (4.12)-(4.14), I = (1, 1, 0.4), d = (0, 0, 0.5): |difference| = {gap}",
+        gap = numbers::exponent(gap, 1)
     )?;
     Ok(())
 }
@@ -89,7 +91,8 @@ fn polhode(out: &mut dyn Write, omega0: Vec3) -> io::Result<()> {
         .fold(0.0, Real::max);
     writeln!(
         out,
-        "\nfree top, I = (1, 2, 2.5), Omega0 = (0.3, -0.2, 0.1): E and |L| kept to {drift:.0e} over t = 60"
+        "\nfree top, I = (1, 2, 2.5), Omega0 = (0.3, -0.2, 0.1): E and |L| kept to {drift} over t = 60",
+        drift = numbers::exponent(drift, 0)
     )?;
     let polhode: Vec<(f64, f64)> = path.iter().map(|w| (w.y, w.z)).collect();
     write!(
@@ -126,17 +129,17 @@ fn energy_rise(out: &mut dyn Write, omega0: Vec3) -> io::Result<()> {
     let e_at = |t: Real| energy(&i, &path[(t / 0.01).round() as usize]);
     writeln!(
         out,
-        "\ntruncated model (3.3), d = (1, 0.5, 0.2): dE/dt > 0 on {} of 4001 samples, first at t = {:.2}, last at t = {:.2}",
+        "\ntruncated model (3.3), d = (1, 0.5, 0.2): dE/dt > 0 on {} of 4001 samples, first at t = {}, last at t = {}",
         rising.len(),
-        first.unwrap_or(Real::NAN),
-        last.unwrap_or(Real::NAN)
+        numbers::fixed(first.unwrap_or(Real::NAN), 2),
+        numbers::fixed(last.unwrap_or(Real::NAN), 2)
     )?;
     writeln!(
         out,
-        "  E(10.90) = {:.9}, E(11.00) = {:.9}: a rise of {:.2e}",
-        e_at(10.9),
-        e_at(11.0),
-        e_at(11.0) - e_at(10.9)
+        "  E(10.90) = {}, E(11.00) = {}: a rise of {}",
+        numbers::fixed(e_at(10.9), 9),
+        numbers::fixed(e_at(11.0), 9),
+        numbers::exponent(e_at(11.0) - e_at(10.9), 2)
     )?;
     write!(
         out,
@@ -196,13 +199,19 @@ fn orders(out: &mut dyn Write, omega0: Vec3) -> io::Result<()> {
     )?;
     writeln!(out, "  tau_f      truncated (3.3)   reduced")?;
     for (tau, truncated, reduced) in &rows {
-        writeln!(out, "  {tau:<8.3} {truncated:<17.3e} {reduced:.3e}")?;
+        writeln!(
+            out,
+            "  {tau:<8} {truncated:<17} {reduced}",
+            tau = numbers::fixed(*tau, 3),
+            truncated = numbers::exponent(*truncated, 3),
+            reduced = numbers::exponent(*reduced, 3)
+        )?;
     }
     writeln!(
         out,
-        "  log-log slopes: truncated {:.2} (O(tau)), reduced {:.2} (O(tau^2))",
-        slope(|r| r.1),
-        slope(|r| r.2)
+        "  log-log slopes: truncated {} (O(tau)), reduced {} (O(tau^2))",
+        numbers::fixed(slope(|r| r.1), 2),
+        numbers::fixed(slope(|r| r.2), 2)
     )?;
     Ok(())
 }
@@ -214,7 +223,8 @@ fn end_states(out: &mut dyn Write, omega0: Vec3) -> io::Result<()> {
     let e0 = energy(&i, &omega0);
     writeln!(
         out,
-        "\nenergy left at t = 1000 (E0 = {e0:.4}), I = (1, 2, 2.5), Omega0 = (0.3, -0.2, 0.1):"
+        "\nenergy left at t = 1000 (E0 = {e0}), I = (1, 2, 2.5), Omega0 = (0.3, -0.2, 0.1):",
+        e0 = numbers::fixed(e0, 4)
     )?;
     for (what, d) in [
         ("d = (0, 0, 0.5), along axis 3", Vec3::new(0.0, 0.0, 0.5)),
@@ -230,7 +240,10 @@ fn end_states(out: &mut dyn Write, omega0: Vec3) -> io::Result<()> {
         let along = wr.dot(&d).abs() / (wr.norm() * d.norm());
         writeln!(
             out,
-            "  {what}: truncated {et:.3e}, reduced {er:.3e} (its Omega makes |cos| = {along:.4} with d)"
+            "  {what}: truncated {et}, reduced {er} (its Omega makes |cos| = {along} with d)",
+            et = numbers::exponent(et, 3),
+            er = numbers::exponent(er, 3),
+            along = numbers::fixed(along, 4)
         )?;
     }
     Ok(())

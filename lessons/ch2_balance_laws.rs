@@ -7,6 +7,7 @@
 
 use spintop::integrate::{AdaptiveOptions, Dop853, solve};
 use spintop::math::State;
+use spintop::numbers;
 use spintop::physics::balance::{PlanarLoop, PrecessingDipole, balance_at, period_average};
 use spintop::physics::central::{
     ChargeInField, Potential, Vec2, abraham_lorentz_oscillator_roots, abraham_lorentz_rhs,
@@ -52,28 +53,31 @@ fn precessing_dipole(out: &mut dyn Write) -> io::Result<()> {
         let r = b.schott_rate;
         writeln!(
             out,
-            "  {t:>6.2}   ({:>8.5}, {:>8.5}, {:>8.5})   {:>12.8}",
-            r.x,
-            r.y,
-            r.z + 0.0,
-            b.schott_rate_axial
+            "  {t:>6}   ({:>8}, {:>8}, {:>8})   {:>12}",
+            numbers::fixed(r.x, 5),
+            numbers::fixed(r.y, 5),
+            numbers::fixed(r.z, 5),
+            numbers::fixed(b.schott_rate_axial, 8),
+            t = numbers::fixed(t, 2)
         )?;
     }
     let w3s2c = omega.powi(3) * theta.sin().powi(2) * theta.cos();
     writeln!(
         out,
-        "  period average: |<dL_S/dt>| = {:.1e} in the lab, but <n . dL_S/dt> = {:.8}",
-        avg.schott_rate.norm(),
-        avg.schott_rate_axial
+        "  period average: |<dL_S/dt>| = {} in the lab, but <n . dL_S/dt> = {}",
+        numbers::exponent(avg.schott_rate.norm(), 1),
+        numbers::fixed(avg.schott_rate_axial, 8)
     )?;
     writeln!(
         out,
-        "  closed form omega^3 sin^2(theta) cos(theta)            = {w3s2c:.8}"
+        "  closed form omega^3 sin^2(theta) cos(theta)            = {w3s2c}",
+        w3s2c = numbers::fixed(w3s2c, 8)
     )?;
     writeln!(
         out,
-        "  along the dipole: (2.1) gives {:.8}, the torque (2.2) gives {:.1e}\n",
-        avg.larmor_axial, avg.torque_axial
+        "  along the dipole: (2.1) gives {}, the torque (2.2) gives {}\n",
+        numbers::fixed(avg.larmor_axial, 8),
+        numbers::exponent(avg.torque_axial, 1)
     )?;
     // ANCHOR_END: precessing
     Ok(())
@@ -95,15 +99,20 @@ fn planar_loop(out: &mut dyn Write) -> io::Result<()> {
         let s = balance_at(&lp, t);
         writeln!(
             out,
-            "  {t:>6.3} {:>10.5} {:>10.5} {:>9.5}",
-            s.larmor.z, s.torque.z, s.schott_rate.z
+            "  {t:>6} {:>10} {:>10} {:>9}",
+            numbers::fixed(s.larmor.z, 5),
+            numbers::fixed(s.torque.z, 5),
+            numbers::fixed(s.schott_rate.z, 5),
+            t = numbers::fixed(t, 3)
         )?;
     }
     let avg = period_average(&lp).expect("periodic");
     writeln!(
         out,
-        "  period average: (2.1) {:.12}, (2.2) {:.12}, dL_S/dt {:.1e}\n",
-        avg.larmor.z, avg.torque.z, avg.schott_rate.z
+        "  period average: (2.1) {}, (2.2) {}, dL_S/dt {}\n",
+        numbers::fixed(avg.larmor.z, 12),
+        numbers::fixed(avg.torque.z, 12),
+        numbers::exponent(avg.schott_rate.z, 1)
     )?;
     // ANCHOR_END: loop
     Ok(())
@@ -123,16 +132,18 @@ fn coulomb_collapse(out: &mut dyn Write) -> io::Result<()> {
     let run = run_orbit(&config, &times_and_end).expect("the run stops before the collapse");
     writeln!(
         out,
-        "3. Coulomb collapse, tau0 = {tau0}, r0 = 1 (t_c = r0^3/(6 tau0) = {:.4})",
-        1.0 / (6.0 * tau0)
+        "3. Coulomb collapse, tau0 = {tau0}, r0 = 1 (t_c = r0^3/(6 tau0) = {})",
+        numbers::fixed(1.0 / (6.0 * tau0), 4)
     )?;
     for c in run.first_crossing.as_ref().expect("Coulomb") {
         let (t, avg) = (c.t.expect("reached"), c.averaged.expect("circular"));
         writeln!(
             out,
-            "  r = {:.1}: integration t = {t:.4}, closed form t = {avg:.4}, relative difference {:+.1e}",
-            c.r,
-            t / avg - 1.0
+            "  r = {}: integration t = {t}, closed form t = {avg}, relative difference {}",
+            numbers::fixed(c.r, 1),
+            numbers::signed_exponent(t / avg - 1.0, 1),
+            t = numbers::fixed(t, 4),
+            avg = numbers::fixed(avg, 4)
         )?;
     }
     let closed: Vec<(f64, f64)> = (0..=400)
@@ -158,9 +169,9 @@ fn coulomb_collapse(out: &mut dyn Write) -> io::Result<()> {
     )?;
     writeln!(
         out,
-        "  hydrogen from the Bohr radius: tau0 = {:.4e} s, t_c = a0^3/(4 r_e^2 c) = {:.4e} s\n",
-        electron_tau0_seconds(),
-        bohr_collapse_time_seconds()
+        "  hydrogen from the Bohr radius: tau0 = {} s, t_c = a0^3/(4 r_e^2 c) = {} s\n",
+        numbers::exponent(electron_tau0_seconds(), 4),
+        numbers::exponent(bohr_collapse_time_seconds(), 4)
     )?;
     // ANCHOR_END: collapse
     Ok(())
@@ -184,8 +195,13 @@ fn oscillator_roots(out: &mut dyn Write) -> io::Result<()> {
         let d = (s - s_ll) / (tau0 * tau0);
         writeln!(
             out,
-            "  {tau0:>7.0e}   {:.15}   {:.15}   {:+.5} {:+.5} i   {s_run:.6}",
-            s.im, s_ll.im, d.re, d.im
+            "  {tau0:>7}   {}   {}   {} {} i   {s_run}",
+            numbers::fixed(s.im, 15),
+            numbers::fixed(s_ll.im, 15),
+            numbers::signed_fixed(d.re, 5),
+            numbers::signed_fixed(d.im, 5),
+            tau0 = numbers::exponent(tau0, 0),
+            s_run = numbers::fixed(s_run, 6)
         )?;
     }
     // ANCHOR_END: oscillator_roots
@@ -202,15 +218,15 @@ fn runaway(out: &mut dyn Write) -> io::Result<()> {
     let r = run.runaway.expect("forward integration runs away");
     writeln!(
         out,
-        "\n  forward (2.5), tau0 = {tau0}, started with the Newtonian acceleration: runaway at t = {:.4} ({:.1} tau0),",
-        r.t,
-        r.t / tau0
+        "\n  forward (2.5), tau0 = {tau0}, started with the Newtonian acceleration: runaway at t = {} ({} tau0),",
+        numbers::fixed(r.t, 4),
+        numbers::fixed(r.t / tau0, 1)
     )?;
     writeln!(
         out,
-        "  |a - F| growing at rate {:.3} against the real root {:.3}",
-        r.growth_rate.expect("measured"),
-        r.predicted_rate
+        "  |a - F| growing at rate {} against the real root {}",
+        numbers::fixed(r.growth_rate.expect("measured"), 3),
+        numbers::fixed(r.predicted_rate, 3)
     )?;
     // Backward from T = 5 with the same wrong (Newtonian) acceleration.
     let (s, _) = abraham_lorentz_oscillator_roots(tau0);
@@ -235,8 +251,10 @@ fn runaway(out: &mut dyn Write) -> io::Result<()> {
         let off = (Vec2::new(y[4], y[5]) - physical).norm();
         writeln!(
             out,
-            "  {t:>6.2} {:>12.1} {off:>24.3e}",
-            (t_final - t) / tau0
+            "  {t:>6} {:>12} {off:>24}",
+            numbers::fixed((t_final - t) / tau0, 1),
+            t = numbers::fixed(t, 2),
+            off = numbers::exponent(off, 3)
         )?;
     }
     // ANCHOR_END: runaway

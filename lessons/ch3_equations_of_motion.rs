@@ -7,6 +7,7 @@
 //! book shows is what the program prints.
 
 use spintop::math::{Vec3, orthonormality_error, vee};
+use spintop::numbers;
 use spintop::physics::euler_angles::{EulerAngles, EulerRates, body_rate_from_euler, euler_rates};
 use spintop::physics::general_top::GeneralTop;
 use spintop::physics::rigid_body::{energy, lab_velocity};
@@ -44,8 +45,10 @@ fn kinematics(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR_END: kinematics
     writeln!(
         out,
-        "(3.1) at t = {t}: v = O(Omega x rho) = [{:.6}, {:.6}, {:.6}]",
-        v.x, v.y, v.z
+        "(3.1) at t = {t}: v = O(Omega x rho) = [{}, {}, {}]",
+        numbers::fixed(v.x, 6),
+        numbers::fixed(v.y, 6),
+        numbers::fixed(v.z, 6)
     )?;
     writeln!(
         out,
@@ -70,13 +73,17 @@ fn general_reduces_to_symmetric(out: &mut dyn Write) -> io::Result<Vec3> {
     // ANCHOR_END: general_reduces_to_symmetric
     writeln!(
         out,
-        "\n(3.3) with symmetric inputs: dOmega/dt = [{:.6e}, {:.6e}, {:.6e}]",
-        a.x, a.y, a.z
+        "\n(3.3) with symmetric inputs: dOmega/dt = [{}, {}, {}]",
+        numbers::exponent(a.x, 6),
+        numbers::exponent(a.y, 6),
+        numbers::exponent(a.z, 6)
     )?;
     writeln!(
         out,
-        "(4.2)-(4.4):                 dOmega/dt = [{:.6e}, {:.6e}, {:.6e}]",
-        b.x, b.y, b.z
+        "(4.2)-(4.4):                 dOmega/dt = [{}, {}, {}]",
+        numbers::exponent(b.x, 6),
+        numbers::exponent(b.y, 6),
+        numbers::exponent(b.z, 6)
     )?;
     Ok(w)
 }
@@ -101,18 +108,24 @@ fn euler_convention(out: &mut dyn Write, w: &Vec3) -> io::Result<()> {
     // ANCHOR_END: euler_convention
     writeln!(
         out,
-        "\n(3.5) from the Euler rates:  [{:.6}, {:.6}, {:.6}]",
-        from_3_5.x, from_3_5.y, from_3_5.z
+        "\n(3.5) from the Euler rates:  [{}, {}, {}]",
+        numbers::fixed(from_3_5.x, 6),
+        numbers::fixed(from_3_5.y, 6),
+        numbers::fixed(from_3_5.z, 6)
     )?;
     writeln!(
         out,
-        "      body rate (O^T dO/dt):  [{:.6}, {:.6}, {:.6}]",
-        body.x, body.y, body.z
+        "      body rate (O^T dO/dt):  [{}, {}, {}]",
+        numbers::fixed(body.x, 6),
+        numbers::fixed(body.y, 6),
+        numbers::fixed(body.z, 6)
     )?;
     writeln!(
         out,
-        "      lab rate (dO/dt O^T):   [{:.6}, {:.6}, {:.6}]  (not what (3.5) gives)",
-        lab.x, lab.y, lab.z
+        "      lab rate (dO/dt O^T):   [{}, {}, {}]  (not what (3.5) gives)",
+        numbers::fixed(lab.x, 6),
+        numbers::fixed(lab.y, 6),
+        numbers::fixed(lab.z, 6)
     )?;
     let pole = EulerAngles::new(0.4, 0.0, 0.0);
     writeln!(
@@ -164,7 +177,7 @@ fn orientation_on_so3(out: &mut dyn Write) -> io::Result<()> {
             if worst < 1e-14 {
                 "below 1e-14".to_string()
             } else {
-                format!("{worst:.1e}")
+                numbers::exponent(worst, 1)
             }
         )?;
     }
@@ -180,7 +193,9 @@ fn orientation_on_so3(out: &mut dyn Write) -> io::Result<()> {
     let e0 = energy(&asym.inertia(), &initial.omega);
     writeln!(
         out,
-        "  energy E = Omega.I Omega/2 falls from {e0:.4} to {e_end:.4e} by t = 1000"
+        "  energy E = Omega.I Omega/2 falls from {e0} to {e_end} by t = 1000",
+        e0 = numbers::fixed(e0, 4),
+        e_end = numbers::exponent(e_end, 4)
     )?;
     writeln!(out)?;
     write!(

@@ -7,10 +7,12 @@
 
 use spintop::integrate::{AdaptiveOptions, Dop853, Stepper, solve};
 use spintop::math::{State, Vec3};
+use spintop::numbers;
 use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::symmetric_top::{
-    SymmetricTop, precession_tilt, printed_tilt_4_11, reduced_ale_rhs, reduced_closed_form,
-    reduced_decay_time, truncated_ale_rhs, truncated_closed_form, truncated_orientation,
+    FIGURE_OMEGA0, SymmetricTop, precession_tilt, printed_tilt_4_11, reduced_ale_rhs,
+    reduced_closed_form, reduced_decay_time, truncated_ale_rhs, truncated_closed_form,
+    truncated_orientation,
 };
 use spintop::plot::{Series, chart};
 use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
@@ -22,7 +24,7 @@ type Sampled = Vec<Vec<Vec3>>;
 /// Print the lesson to `out`: its parts in order.
 pub fn run(out: &mut dyn Write) -> io::Result<()> {
     let top = SymmetricTop::figure();
-    let omega0 = Vec3::new(0.0, 0.1, 0.2);
+    let omega0 = Vec3::from(FIGURE_OMEGA0);
     writeln!(out, "Section 4: the symmetric top of the paper's figures")?;
     writeln!(
         out,
@@ -103,11 +105,11 @@ fn omega_perp_table(
         let t = times[i];
         writeln!(
             out,
-            "{t:>6} {:>18.10e} {:>18.10e} {:>18.10e} {:>18.10e}",
-            truncated_closed_form(&top, &omega0, t).xy().norm(),
-            sampled[0][i].xy().norm(),
-            reduced_closed_form(&top, &omega0, t).xy().norm(),
-            sampled[1][i].xy().norm(),
+            "{t:>6} {:>18} {:>18} {:>18} {:>18}",
+            numbers::exponent(truncated_closed_form(&top, &omega0, t).xy().norm(), 10),
+            numbers::exponent(sampled[0][i].xy().norm(), 10),
+            numbers::exponent(reduced_closed_form(&top, &omega0, t).xy().norm(), 10),
+            numbers::exponent(sampled[1][i].xy().norm(), 10)
         )?;
     }
     Ok(())
@@ -229,12 +231,18 @@ fn erratum_4_11(out: &mut dyn Write, top: SymmetricTop, omega0: Vec3) -> io::Res
     let (lo, hi) = theta_range(corrected);
     writeln!(
         out,
-        "  corrected arctan(I1 W20/(I3 W30)) = {corrected:.4} rad: theta stays in [{lo:.4}, {hi:.4}]"
+        "  corrected arctan(I1 W20/(I3 W30)) = {corrected} rad: theta stays in [{lo}, {hi}]",
+        corrected = numbers::fixed(corrected, 4),
+        lo = numbers::fixed(lo, 4),
+        hi = numbers::fixed(hi, 4)
     )?;
     let (lo, hi) = theta_range(printed);
     writeln!(
         out,
-        "  printed   arctan(W20/W3~0)       = {printed:.4} rad: theta wanders over [{lo:.4}, {hi:.4}]"
+        "  printed   arctan(W20/W3~0)       = {printed} rad: theta wanders over [{lo}, {hi}]",
+        printed = numbers::fixed(printed, 4),
+        lo = numbers::fixed(lo, 4),
+        hi = numbers::fixed(hi, 4)
     )?;
     Ok(())
 }
@@ -267,12 +275,18 @@ fn tilt_and_end_states(out: &mut dyn Write, top: SymmetricTop, omega0: Vec3) -> 
     for t in [0.0, 250.0, 500.0, 1000.0, 2000.0, 3000.0] {
         let a = trunc.advance_to(t).expect("closed form").tilt;
         let b = red.advance_to(t).expect("smooth").tilt;
-        writeln!(out, "{t:>8} {a:>12.4e} {b:>12.4e}")?;
+        writeln!(
+            out,
+            "{t:>8} {a:>12} {b:>12}",
+            a = numbers::exponent(a, 4),
+            b = numbers::exponent(b, 4)
+        )?;
     }
     let sigma = reduced_decay_time(&top, omega0.z);
     writeln!(
         out,
-        "  reduced decay time sigma = I1^2/(I3^2 Omega3^2 tau) = {sigma:.2}"
+        "  reduced decay time sigma = I1^2/(I3^2 Omega3^2 tau) = {sigma}",
+        sigma = numbers::fixed(sigma, 2)
     )?;
 
     let a = *trunc.current();
@@ -280,23 +294,23 @@ fn tilt_and_end_states(out: &mut dyn Write, top: SymmetricTop, omega0: Vec3) -> 
     writeln!(out, "\nEnd states at t = 3000:")?;
     writeln!(
         out,
-        "  truncated: E = {:.4e}, |L| = {:.4e}, still tilted by {:.4} rad and still slowing",
-        a.energy,
-        Vec3::from(a.l_lab).norm(),
-        a.tilt
+        "  truncated: E = {}, |L| = {}, still tilted by {} rad and still slowing",
+        numbers::exponent(a.energy, 4),
+        numbers::exponent(Vec3::from(a.l_lab).norm(), 4),
+        numbers::fixed(a.tilt, 4)
     )?;
     writeln!(
         out,
-        "  reduced:   E = {:.6}, |L| = {:.6}: the top spins about its axis with E = I3 W3^2/2 = {:.6}, L = I3 W3 = {:.6}",
-        b.energy,
-        Vec3::from(b.l_lab).norm(),
-        0.5 * 0.4 * 0.2f64.powi(2),
-        0.4 * 0.2
+        "  reduced:   E = {}, |L| = {}: the top spins about its axis with E = I3 W3^2/2 = {}, L = I3 W3 = {}",
+        numbers::fixed(b.energy, 6),
+        numbers::fixed(Vec3::from(b.l_lab).norm(), 6),
+        numbers::fixed(0.5 * 0.4 * 0.2f64.powi(2), 6),
+        numbers::fixed(0.4 * 0.2, 6)
     )?;
     writeln!(
         out,
-        "  reduced, lab frame: theta = {:.4} rad, the angle between lab z and L, not 0 (erratum (4.18))",
-        b.euler[1]
+        "  reduced, lab frame: theta = {} rad, the angle between lab z and L, not 0 (erratum (4.18))",
+        numbers::fixed(b.euler[1], 4)
     )?;
     Ok(())
 }

@@ -6,6 +6,7 @@
 //! The book shows this program's output; `tests/project/book.rs` checks that what the
 //! book shows is what the program prints.
 
+use spintop::numbers;
 use spintop::output::Format;
 use spintop::physics::particle::{
     DEBYE_ESU_CM, Milestones, Particle, SECONDS_PER_YEAR, SPEED_OF_LIGHT_CM_S, Shape,
@@ -17,7 +18,7 @@ use std::io::{self, Write};
 
 fn years(tau_units: Option<f64>, tau_s: f64) -> String {
     match tau_units {
-        Some(t) => format!("{:.4e} yr", t * tau_s / SECONDS_PER_YEAR),
+        Some(t) => format!("{} yr", numbers::exponent(t * tau_s / SECONDS_PER_YEAR, 4)),
         None => "never".to_string(),
     }
 }
@@ -42,18 +43,19 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR_END: particle
     writeln!(
         out,
-        "mass      M  = (4/3) pi a^3 rho = {:.4e} g",
-        p.mass_g()
+        "mass      M  = (4/3) pi a^3 rho = {} g",
+        numbers::exponent(p.mass_g(), 4)
     )?;
     writeln!(
         out,
-        "moments   I1 = I3 = (2/5) M a^2 = {i1:.4e} g cm^2 (I3/I1 = {})",
-        i3 / i1
+        "moments   I1 = I3 = (2/5) M a^2 = {i1} g cm^2 (I3/I1 = {})",
+        i3 / i1,
+        i1 = numbers::exponent(i1, 4)
     )?;
     writeln!(
         out,
-        "light     c^3 = {:.4e} cm^3/s^3\n",
-        SPEED_OF_LIGHT_CM_S.powi(3)
+        "light     c^3 = {} cm^3/s^3\n",
+        numbers::exponent(SPEED_OF_LIGHT_CM_S.powi(3), 4)
     )?;
 
     writeln!(
@@ -70,11 +72,13 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         // ANCHOR_END: milestones
         writeln!(
             out,
-            "{debye:>8.0e} {tau_s:>12.4e} {:>11.3e} {:>16} {:>16} {:>16}",
-            omega0.norm(),
+            "{debye:>8} {tau_s:>12} {:>11} {:>16} {:>16} {:>16}",
+            numbers::exponent(omega0.norm(), 3),
             years(m.truncated_half_spin, tau_s),
             years(m.reduced_tilt_decay, tau_s),
             years(m.reduced_upright, tau_s),
+            debye = numbers::exponent(debye, 0),
+            tau_s = numbers::exponent(tau_s, 4)
         )?;
     }
     writeln!(

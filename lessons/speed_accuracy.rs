@@ -8,6 +8,7 @@
 
 use spintop::integrate::{AdaptiveOptions, Dop853, Stepper, solve};
 use spintop::math::{Real, State, Vec3};
+use spintop::numbers;
 use spintop::physics::symmetric_top::{SymmetricTop, reduced_ale_rhs, reduced_closed_form};
 use spintop::workprecision::report::{self, CostAxis, cost_at};
 use spintop::workprecision::{
@@ -71,15 +72,15 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
     )?;
     for method in ["rk4", "dopri5", "dop853", "taylor"] {
         let points = evals_and_errors(&rows, method);
-        let need = |e: Real| cost_at(&points, e).map_or("-".to_string(), |n| format!("{n:.0}"));
+        let need = |e: Real| cost_at(&points, e).map_or("-".to_string(), |n| numbers::fixed(n, 0));
         writeln!(
             out,
-            "{method:<8} {:>9} {:>9} {:>9} {:>9}   {:.1}",
+            "{method:<8} {:>9} {:>9} {:>9} {:>9}   {}",
             need(1e-6),
             need(1e-9),
             need(1e-12),
             need(1e-14),
-            slope(&points)
+            numbers::fixed(slope(&points), 1)
         )?;
     }
     // ANCHOR_END: cost_at_matched_error
@@ -91,7 +92,8 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
     {
         writeln!(
             out,
-            "closed form: 0 evaluations, error {e:.1e} against the 40-digit reference (rounding)"
+            "closed form: 0 evaluations, error {e} against the 40-digit reference (rounding)",
+            e = numbers::exponent(*e, 1)
         )?;
     }
 
@@ -134,7 +136,7 @@ fn digits(out: &mut dyn Write, rows: &[Row]) -> io::Result<()> {
         let gained = (a.omega_error? / b.omega_error?).log10();
         (gained > 0.3).then(|| work.powf(1.0 / gained))
     };
-    let show = |x: Option<Real>| x.map_or("-".to_string(), |v| format!("{v:.2}"));
+    let show = |x: Option<Real>| x.map_or("-".to_string(), |v| numbers::fixed(v, 2));
     for i in 0..taylor.len().min(dop853.len()) {
         let (t, d) = (taylor[i], dop853[i]);
         let rtol = t.value.unwrap_or(Real::NAN);
@@ -146,15 +148,16 @@ fn digits(out: &mut dyn Write, rows: &[Row]) -> io::Result<()> {
         };
         writeln!(
             out,
-            "{rtol:>7.0e} | {order:>6} {:>6} {:>9} {:>9.1e} {:>6} | {:>6} {:>9} {:>9.1e} {:>6}",
+            "{rtol:>7} | {order:>6} {:>6} {:>9} {:>9} {:>6} | {:>6} {:>9} {:>9} {:>6}",
             t.steps.unwrap_or(0),
             t.rhs_evals.unwrap_or(0),
-            t.omega_error.unwrap_or(Real::NAN),
+            numbers::exponent(t.omega_error.unwrap_or(Real::NAN), 1),
             show(tp),
             d.steps.unwrap_or(0),
             d.rhs_evals.unwrap_or(0),
-            d.omega_error.unwrap_or(Real::NAN),
+            numbers::exponent(d.omega_error.unwrap_or(Real::NAN), 1),
             show(dp),
+            rtol = numbers::exponent(rtol, 0)
         )?;
     }
     // ANCHOR_END: digits
@@ -215,11 +218,13 @@ fn stiffness(out: &mut dyn Write) -> io::Result<()> {
         let s = dop853.stats();
         writeln!(
             out,
-            "{t_end:>6} {rtol:>7.0e} {:>8} {:>6} {:>9} {:>15.2}  {error:.1e}",
+            "{t_end:>6} {rtol:>7} {:>8} {:>6} {:>9} {:>15}  {error}",
             s.rhs_evals,
             s.steps,
             s.rejected,
-            t_end / s.steps as Real * lambda,
+            numbers::fixed(t_end / s.steps as Real * lambda, 2),
+            rtol = numbers::exponent(rtol, 0),
+            error = numbers::exponent(error, 1)
         )?;
     }
     // ANCHOR_END: stiffness

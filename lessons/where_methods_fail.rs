@@ -12,7 +12,9 @@ use spintop::math::{Mat3, State, Vec3};
 use spintop::physics::free_top::{FreeRigidBody, RigidBodyState};
 use spintop::physics::full_ale::symmetric_full_ale_rhs;
 use spintop::physics::shell::ShellModel;
-use spintop::physics::symmetric_top::{SymmetricTop, reduced_ale_rhs, reduced_amplitude};
+use spintop::physics::symmetric_top::{
+    FIGURE_OMEGA0, SymmetricTop, reduced_ale_rhs, reduced_amplitude,
+};
 use spintop::plot::{Series, chart};
 use spintop::sim::physical::physical_solution;
 use spintop::sim::shell::{History, default_steps_per_delay, run_shell};
@@ -30,7 +32,7 @@ fn row(out: &mut dyn Write, n: u8) -> io::Result<()> {
 /// monitor, against the physical solution and the reduced model.
 fn runaway_chart() -> String {
     let top = SymmetricTop::figure();
-    let omega0 = Vec3::new(0.0, 0.1, 0.2);
+    let omega0 = Vec3::from(FIGURE_OMEGA0);
     let times: Vec<f64> = (0..=80).map(|i| 0.1 * i as f64).collect();
     // ANCHOR: forward
     let slope = reduced_ale_rhs(&top, &omega0);

@@ -638,15 +638,6 @@ impl Learn {
         self.restore_position();
     }
 
-    /// Marks chapters as visited (progress restored from an earlier session).
-    pub fn mark_visited(&mut self, files: &[String]) {
-        for (i, c) in self.chapters.iter().enumerate() {
-            if files.contains(&c.file) {
-                self.visited[i] = true;
-            }
-        }
-    }
-
     /// Says why nothing is graded in this session (`--no-grading`).
     pub fn grading_off(&mut self, why: impl Into<String>) {
         self.grading_off = Some(why.into());

@@ -15,6 +15,7 @@
 //! | [`table`], [`fixed_or_exp`] | a cell of an aligned table | `0.1000000`, `1.000000e-8` |
 //! | [`significant`], [`short`], [`csv`] | a real particle's report and its CSV | `4.635e-3`, `50`, `1e-26` |
 //! | [`sci`], [`duration`] | the bench table's errors and times | `1.23e-8`, `17.2 µs` |
+//! | [`fixed`], [`exponent`], [`signed_fixed`], [`signed_exponent`] | a measured value to the digits its comparison needs: a lesson's tables, a stability row, a figure's summary, a bench's report, an SVG coordinate | `0.12346`, `1.2e-8`, `+0.00031` |
 //! | [`parse_number`] | a number the user typed | `'x' is not a number` |
 //! | [`non_finite_word`], [`non_finite_in_words`] | a `NaN` or `inf` in prose, found or spelt out | `not-a-number`, `-infinity` |
 //!
@@ -159,16 +160,47 @@ pub fn table(x: Real) -> String {
 /// `x` with `digits` decimals when it is 0 or 1e-3 ≤ |x| < `upper`, else in
 /// exponent notation with `exp_digits` decimals in the mantissa; never `-0`.
 pub fn fixed_or_exp(x: Real, digits: usize, exp_digits: usize, upper: Real) -> String {
-    // A value that rounds to zero in the fixed form is printed as 0, not -0.
-    let x = if x == 0.0 { 0.0 } else { x };
     if x == 0.0 || (1e-3..upper).contains(&x.abs()) {
-        let fixed = format!("{x:.digits$}");
-        if fixed.starts_with('-') && fixed[1..].chars().all(|c| c == '0' || c == '.') {
-            return fixed[1..].to_string();
-        }
-        fixed
+        fixed(x, digits)
     } else {
-        format!("{x:.exp_digits$e}")
+        exponent(x, exp_digits)
+    }
+}
+
+/// A measured value with `decimals` decimals, the digits its comparison
+/// needs (a lesson's column read against a closed form, a row's notes);
+/// never `-0`: a value that rounds to zero is written `0.000`.
+pub fn fixed(x: Real, decimals: usize) -> String {
+    let s = format!("{x:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => s,
+    }
+}
+
+/// A measured value in exponent form with `decimals` decimals in the
+/// mantissa (`1.2e-8` for one); never `-0e0`.
+pub fn exponent(x: Real, decimals: usize) -> String {
+    let x = if x == 0.0 { 0.0 } else { x };
+    format!("{x:.decimals$e}")
+}
+
+/// [`fixed`] with its sign always written (`+0.00031`, `-2.5`): a difference.
+pub fn signed_fixed(x: Real, decimals: usize) -> String {
+    signed(fixed(x, decimals))
+}
+
+/// [`exponent`] with its sign always written (`+1.2e-8`): a difference.
+pub fn signed_exponent(x: Real, decimals: usize) -> String {
+    signed(exponent(x, decimals))
+}
+
+/// A `+` before a number written without its sign (not before `NaN`).
+fn signed(s: String) -> String {
+    if s.starts_with('-') || s == "NaN" {
+        s
+    } else {
+        format!("+{s}")
     }
 }
 
@@ -513,6 +545,25 @@ mod tests {
         assert_eq!(duration(Some(0.25)), "250.000 ms");
         assert_eq!(fmt_count(12000.0), "12000");
         assert_eq!(fmt_count(1.8e19), "1.8e19");
+    }
+
+    /// The measured-value roles write what the format would, but never a
+    /// `-0`, and a sign when asked.
+    #[test]
+    fn measured_values_keep_their_digits_and_never_read_minus_zero() {
+        assert_eq!(fixed(0.123456, 4), "0.1235");
+        assert_eq!(fixed(-2.5, 1), "-2.5");
+        assert_eq!(fixed(-1e-9, 3), "0.000");
+        assert_eq!(fixed(-0.0, 0), "0");
+        assert_eq!(fixed(Real::NAN, 2), "NaN");
+        assert_eq!(exponent(1.234e-8, 1), "1.2e-8");
+        assert_eq!(exponent(-0.0, 2), "0.00e0");
+        assert_eq!(exponent(1e6, 0), "1e6");
+        assert_eq!(signed_fixed(3.1e-4, 5), "+0.00031");
+        assert_eq!(signed_fixed(-1e-9, 2), "+0.00");
+        assert_eq!(signed_exponent(-1.5e-3, 1), "-1.5e-3");
+        assert_eq!(signed_exponent(Real::NAN, 1), "NaN");
+        assert_eq!(signed_exponent(Real::INFINITY, 1), "+inf");
     }
 
     #[test]

@@ -4,6 +4,7 @@
 //! text, so the book can show a lesson's real output and a test can tell when
 //! it goes stale.
 
+use crate::numbers;
 use std::fmt::Write as _;
 
 pub mod diagram;
@@ -74,7 +75,9 @@ pub fn chart(
         })
         .collect();
     let mut c = Chart::new(width, height, x_range.0 as f32, x_range.1 as f32);
-    let mut chart = c.y_label_format(LabelFormat::Custom(Box::new(|v| format!("{v:.3e}"))));
+    let mut chart = c.y_label_format(LabelFormat::Custom(Box::new(|v| {
+        numbers::exponent(f64::from(v), 3)
+    })));
     for shape in &shapes {
         chart = chart.lineplot(shape);
     }

@@ -21,8 +21,9 @@ pub const MAX_BACKWARD_SPAN: Real = 1e6;
 /// A backward integration of (2.5) longer than [`MAX_BACKWARD_SPAN`] τ₀.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[error(
-    "force al for coulomb integrates (2.5) backward in steps of a few tau0, and t_last/tau0, {}, exceeds {MAX_BACKWARD_SPAN:.0e}",
-    crate::numbers::fmt_about(*span)
+    "force al for coulomb integrates (2.5) backward in steps of a few tau0, and t_last/tau0, {}, exceeds {}",
+    crate::numbers::fmt_about(*span),
+    crate::numbers::exponent(MAX_BACKWARD_SPAN, 0)
 )]
 pub struct BackwardTooLong {
     /// t_last/τ₀.
@@ -284,8 +285,9 @@ impl Output for OrbitOutput {
                 if let Some(sh) = &output.shooting {
                     writeln!(
                         out,
-                        "# backward shooting: {} iterations, mismatch {:.1e} at t = 0",
-                        sh.iterations, sh.mismatch
+                        "# backward shooting: {} iterations, mismatch {} at t = 0",
+                        sh.iterations,
+                        numbers::exponent(sh.mismatch, 1)
                     )?;
                 }
                 let head = ["t", "x", "y", "vx", "vy", "r", "L", "energy"];

@@ -32,10 +32,11 @@ impl std::fmt::Display for TooMuchWork {
         use crate::numbers::{fmt_count, fmt_time};
         write!(
             f,
-            "the run needs {} RK4 steps ({} per delay up to t = {}), more than {MAX_STEPS:.0e}",
+            "the run needs {} RK4 steps ({} per delay up to t = {}), more than {MAX_STEPS}",
             fmt_count(self.steps),
             fmt_count(self.per_delay),
-            fmt_time(self.t_last)
+            fmt_time(self.t_last),
+            MAX_STEPS = numbers::exponent(MAX_STEPS, 0)
         )
     }
 }
@@ -211,11 +212,11 @@ impl Output for ShellOutput {
                 if let Some(last) = output.samples.last() {
                     writeln!(
                         out,
-                        "# at t = {}: J - J(0) = {}; exact flux integral {} (difference {:.1e}); paper's (A.2) {}",
+                        "# at t = {}: J - J(0) = {}; exact flux integral {} (difference {}); paper's (A.2) {}",
                         table(last.t),
                         table(last.j_change),
                         table(last.flux_exact),
-                        last.j_change - last.flux_exact,
+                        numbers::exponent(last.j_change - last.flux_exact, 1),
                         table(last.flux_paper)
                     )?;
                 }

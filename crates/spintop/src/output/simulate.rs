@@ -236,9 +236,9 @@ impl Output for SimulateOutput {
                 if let Some(r) = &output.runaway {
                     writeln!(
                         out,
-                        "# runaway at t = {:.3}, growth rate {:.4}: {} later sample(s) omitted; {}",
-                        r.t,
-                        r.growth_rate,
+                        "# runaway at t = {}, growth rate {}: {} later sample(s) omitted; {}",
+                        numbers::fixed(r.t, 3),
+                        numbers::fixed(r.growth_rate, 4),
                         output.samples_omitted.unwrap_or(0),
                         r.advice
                     )?;
@@ -293,16 +293,16 @@ impl Output for SimulateOutput {
         let omitted = self.samples_omitted.unwrap_or(0);
         Some(Stop {
             line: format!(
-                "runaway at t = {}, growth rate {:.4}; {omitted} later sample(s) omitted",
+                "runaway at t = {}, growth rate {}; {omitted} later sample(s) omitted",
                 fmt_time(r.t),
-                r.growth_rate
+                numbers::fixed(r.growth_rate, 4)
             ),
             message: format!(
-                "runaway at t = {:.3}, growing at rate {:.4} per {} (an e-folding time of {:.3}): {omitted} of {} samples omitted; {}",
-                r.t,
-                r.growth_rate,
+                "runaway at t = {}, growing at rate {} per {} (an e-folding time of {}): {omitted} of {} samples omitted; {}",
+                numbers::fixed(r.t, 3),
+                numbers::fixed(r.growth_rate, 4),
                 r.unit,
-                1.0 / r.growth_rate,
+                numbers::fixed(1.0 / r.growth_rate, 3),
                 self.samples.len() + omitted,
                 r.advice
             ),

@@ -93,11 +93,6 @@ impl Potential {
         -self.g(r) * vel - self.dg_dr(r) * (pos.dot(vel) / r) * pos
     }
 
-    /// Speed of the circular orbit of radius r.
-    pub fn circular_speed(&self, r: Real) -> Real {
-        (r * self.dv_dr(r)).sqrt()
-    }
-
     /// Speed at (r₀, 0) of the orbit of eccentricity e that starts there at its
     /// point nearest the centre: the Kepler pericentre speed √((1 + e)/r₀), or
     /// for the oscillator (an ellipse centred on the origin, r₀ its
@@ -277,16 +272,6 @@ pub fn coulomb_collapse_time(tau0: Real, p0: Real, e0: Real) -> Real {
     2.0 * p0.powi(3) * ratio * ratio / (3.0 * tau0 * w)
 }
 // ANCHOR_END: coulomb_collapse
-
-/// The orbit average of (1/r) dV/dr = 1/r³ over a Kepler ellipse (time
-/// average, m = k = 1).
-///
-/// ```text
-/// ⟨1/r³⟩ = 1/(a³(1 − e²)^{3/2})
-/// ```
-pub fn coulomb_mean_inverse_cube(a: Real, e: Real) -> Real {
-    1.0 / (a.powi(3) * (1.0 - e * e).powf(1.5))
-}
 
 // ANCHOR: coulomb_averaged
 /// The orbit-averaged decay of a Kepler ellipse, d(a, e)/dt, from the

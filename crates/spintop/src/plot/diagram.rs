@@ -27,9 +27,11 @@
 //! | `shell-model` | the charge as a shell of radius r₀, the delay δ = r₀/c, (A.1) | – (a plane sketch) |
 
 use crate::math::{Mat3, Real, Vec3, rot_axis, rot_z};
+use crate::numbers;
 use crate::physics::euler_angles::{EulerAngles, frame_with_z_along};
 use crate::physics::symmetric_top::{
-    SymmetricTop, precession_tilt, truncated_closed_form, truncated_orientation,
+    FIGURE_OMEGA0, FIGURE_RATIO, SymmetricTop, precession_tilt, truncated_closed_form,
+    truncated_orientation,
 };
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::fmt::Write as _;
@@ -158,8 +160,11 @@ impl Svg {
     fn line(&mut self, a: (Real, Real), b: (Real, Real), color: &str, width: Real, extra: &str) {
         let _ = writeln!(
             self.body,
-            r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{color}" stroke-width="{width}"{extra}/>"#,
-            a.0, a.1, b.0, b.1
+            r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{color}" stroke-width="{width}"{extra}/>"#,
+            numbers::fixed(a.0, 1),
+            numbers::fixed(a.1, 1),
+            numbers::fixed(b.0, 1),
+            numbers::fixed(b.1, 1)
         );
     }
 
@@ -169,10 +174,10 @@ impl Svg {
         for (i, p) in points.iter().enumerate() {
             let _ = write!(
                 d,
-                "{}{:.1},{:.1} ",
+                "{}{},{} ",
                 if i == 0 { "M" } else { "L" },
-                p.0,
-                p.1
+                numbers::fixed(p.0, 1),
+                numbers::fixed(p.1, 1)
             );
         }
         let _ = writeln!(
@@ -261,9 +266,9 @@ impl Svg {
         for l in self.labels.drain(..) {
             let _ = writeln!(
                 out,
-                r#"<text class="label" x="{:.1}" y="{:.1}" fill="{}" font-size="{}" text-anchor="{}"{}>{}</text>"#,
-                l.x,
-                l.y,
+                r#"<text class="label" x="{}" y="{}" fill="{}" font-size="{}" text-anchor="{}"{}>{}</text>"#,
+                numbers::fixed(l.x, 1),
+                numbers::fixed(l.y, 1),
                 l.color,
                 l.size,
                 l.anchor,
@@ -312,7 +317,8 @@ fn frame(
             color,
             width,
             &format!(
-                r#" class="axis" data-axis="{name}" data-depth="{depth:.2}" marker-end="url(#a)""#
+                r#" class="axis" data-axis="{name}" data-depth="{depth}" marker-end="url(#a)""#,
+                depth = numbers::fixed(depth, 2)
             ),
         );
         if labels {
@@ -362,8 +368,9 @@ fn arc(
         color,
         1.6,
         &format!(
-            r#" class="arc" data-about="{about}" data-cx="{:.1}" data-cy="{:.1}" marker-end="url(#a)""#,
-            c.0, c.1
+            r#" class="arc" data-about="{about}" data-cx="{}" data-cy="{}" marker-end="url(#a)""#,
+            numbers::fixed(c.0, 1),
+            numbers::fixed(c.1, 1)
         ),
     );
     // Where the arc's name goes: beyond its middle, outward.
@@ -657,8 +664,8 @@ struct FreeTop {
 }
 
 fn free_top(t: Real) -> FreeTop {
-    let free = SymmetricTop::new(0.4, 0.0).expect("2/5 is a valid I3/I1");
-    let omega0 = Vec3::new(0.0, 0.1, 0.2);
+    let free = SymmetricTop::new(FIGURE_RATIO, 0.0).expect("2/5 is a valid I3/I1");
+    let omega0 = Vec3::from(FIGURE_OMEGA0);
     let l_body = free.inertia().component_mul(&omega0);
     let o0: Mat3 = frame_with_z_along(&l_body).to_rotation();
     let o = truncated_orientation(&free, &omega0, &o0, t);

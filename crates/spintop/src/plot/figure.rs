@@ -16,6 +16,7 @@
 use super::{Series, chart};
 use crate::figure::{Figure, FigureNumber};
 use crate::math::{Real, Vec3};
+use crate::numbers;
 use crate::physics::symmetric_top::reduced_decay_time;
 use plotters::coord::Shift;
 use plotters::coord::ranged3d::Cartesian3d;
@@ -103,17 +104,17 @@ fn summary(figure: &Figure) -> String {
         let rates = s
             .euler_rates
             .map_or(("-".to_string(), "-".to_string()), |r| {
-                (format!("{:.4e}", r[0]), format!("{:.4e}", r[2]))
+                (numbers::exponent(r[0], 4), numbers::exponent(r[2], 4))
             });
         let _ = writeln!(
             out,
-            "{:>8.1} ({:>8.5}, {:>8.5}, {:>8.5}) {:>10.5} {:>10.4e} {:>10} {:>10}",
-            s.t,
-            w[0],
-            w[1],
-            w[2],
-            w[2] / s.omega_perp,
-            s.euler[1],
+            "{:>8} ({:>8}, {:>8}, {:>8}) {:>10} {:>10} {:>10} {:>10}",
+            numbers::fixed(s.t, 1),
+            numbers::fixed(w[0], 5),
+            numbers::fixed(w[1], 5),
+            numbers::fixed(w[2], 5),
+            numbers::fixed(w[2] / s.omega_perp, 5),
+            numbers::exponent(s.euler[1], 4),
             rates.0,
             rates.1
         );
@@ -482,12 +483,12 @@ fn theta_panel(figure: &Figure, area: &Area) -> DrawResult {
     ))?;
     let note = match figure.number {
         FigureNumber::One => format!(
-            "\u{3b8} = {:.4} rad for ever: arctan(I\u{2081}\u{3a9}\u{22a5}\u{2080}/(I\u{2083}\u{3a9}\u{2083}\u{2080})), (4.11) corrected",
-            figure.samples[0].euler[1]
+            "\u{3b8} = {} rad for ever: arctan(I\u{2081}\u{3a9}\u{22a5}\u{2080}/(I\u{2083}\u{3a9}\u{2083}\u{2080})), (4.11) corrected",
+            numbers::fixed(figure.samples[0].euler[1], 4)
         ),
         FigureNumber::Two => format!(
-            "\u{3b8} \u{2192} 0 like e^(\u{2212}t/\u{3c3}), \u{3c3} = I\u{2081}\u{b2}/(I\u{2083}\u{b2}\u{3a9}\u{2083}\u{b2}\u{3c4}) = {:.2} \u{3c4}, (4.18)",
-            reduced_decay_time(&figure.top(), figure.omega0.z)
+            "\u{3b8} \u{2192} 0 like e^(\u{2212}t/\u{3c3}), \u{3c3} = I\u{2081}\u{b2}/(I\u{2083}\u{b2}\u{3a9}\u{2083}\u{b2}\u{3c4}) = {} \u{3c4}, (4.18)",
+            numbers::fixed(reduced_decay_time(&figure.top(), figure.omega0.z), 2)
         ),
     };
     chart.draw_series(std::iter::once(Text::new(

@@ -4,6 +4,7 @@
 //! Output formatting only. The drawing is deterministic, so the book can
 //! embed what the code draws and a test can tell when it goes stale.
 
+use crate::numbers;
 use plotters::prelude::*;
 
 /// One panel: a caption, axis descriptions and its curves (label, points).
@@ -102,7 +103,7 @@ fn draw(title: &str, panels: &[Panel], legend: SeriesLabelPosition, root: &Area)
                 if v.abs() < 1e-15 {
                     "0".into()
                 } else {
-                    format!("{v:.2e}")
+                    numbers::exponent(*v, 2)
                 }
             })
             .draw()?;

@@ -12,6 +12,7 @@
 
 use super::{Outcome, Row, RowError};
 use crate::math::{Real, Vec3};
+use crate::numbers;
 use crate::physics::symmetric_top::{SymmetricTop, reduced_amplitude, truncated_clock};
 
 // ANCHOR: printed
@@ -141,7 +142,11 @@ impl Measurement {
         let show = |c: &Case, x: Real, e: Real, ok: bool| Outcome {
             method: format!("{} at {}", c.quantity, c.regime),
             ok,
-            result: format!("value {x:.6e}, relative error {e:.1e}"),
+            result: format!(
+                "value {x}, relative error {e}",
+                x = numbers::exponent(x, 6),
+                e = numbers::exponent(e, 1)
+            ),
         };
         Row {
             number: 5,

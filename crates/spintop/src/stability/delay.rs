@@ -13,6 +13,7 @@
 
 use super::{Outcome, Row, RowError};
 use crate::math::Real;
+use crate::numbers;
 use crate::physics::shell::{Regime, ShellModel};
 use crate::sim::shell::{History, default_steps_per_delay, run_shell};
 
@@ -99,8 +100,9 @@ impl Measurement {
                 method: "method of steps, run blind".into(),
                 ok: self.measured_rate <= 0.0,
                 result: format!(
-                    "deviation from Abraham-Lorentz grows at {:.4}/time, |Z - Z_AL| = {:.2e} by t = 7",
-                    self.measured_rate, self.unstable_peak
+                    "deviation from Abraham-Lorentz grows at {}/time, |Z - Z_AL| = {} by t = 7",
+                    numbers::fixed(self.measured_rate, 4),
+                    numbers::exponent(self.unstable_peak, 2)
                 ),
             }],
             fix: vec![
@@ -108,25 +110,25 @@ impl Measurement {
                     method: "characteristic roots, before the first step".into(),
                     ok: self.regime != Regime::Stable && agree < 0.05,
                     result: format!(
-                        "regime '{}', predicted rate {:.4} (measured within {:.1}%); spintop shell warns before any output",
+                        "regime '{}', predicted rate {} (measured within {}%); spintop shell warns before any output",
                         self.regime.name(),
-                        self.predicted_rate,
-                        100.0 * agree
+                        numbers::fixed(self.predicted_rate, 4),
+                        numbers::fixed(100.0 * agree, 1)
                     ),
                 },
                 Outcome {
                     method: "a larger shell, m0 > m_em (tau0 = 0.001)".into(),
                     ok: self.stable_regime == Regime::Stable && self.stable_peak < 1e-2,
                     result: format!(
-                        "regime '{}', |Z - Z_AL| <= {:.1e} over [6, 7]",
+                        "regime '{}', |Z - Z_AL| <= {} over [6, 7]",
                         self.stable_regime.name(),
-                        self.stable_peak
+                        numbers::exponent(self.stable_peak, 1)
                     ),
                 },
             ],
             notes: vec![format!(
-                "chain asymptote ln(m_em/m0)/delay = {:.4}; the lowest chain root grows a little faster",
-                self.chain_rate
+                "chain asymptote ln(m_em/m0)/delay = {}; the lowest chain root grows a little faster",
+                numbers::fixed(self.chain_rate, 4)
             )],
         }
     }

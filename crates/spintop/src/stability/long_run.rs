@@ -23,6 +23,7 @@ use super::{Outcome, Row, RowError};
 use crate::integrate::splitting::Composition;
 use crate::integrate::{AdaptiveOptions, Dop853, Dopri5, Rhs, Rk4, Stats, Stepper};
 use crate::math::{Mat3, Real, State, Vec3, hat, rot_x, rot_z};
+use crate::numbers;
 use crate::physics::free_top::{FreeRigidBody, RigidBodyState};
 use crate::sim::Method;
 use crate::sim::split::RigidBodySplitting;
@@ -331,20 +332,25 @@ fn outcome(d: &Drift) -> Outcome {
     let e = &d.energy_error;
     let result = if d.conserves() {
         format!(
-            "energy error {:.1e} / {:.1e} / {:.1e} at t = 1e2 / 1e3 / 1e4 (bounded); |L| {:.0e}, lab L {:.0e} (rounding); {} steps",
-            e[0], e[1], e[2], d.l_norm_error[2], d.l_lab_error[2], d.stats.steps
+            "energy error {} / {} / {} at t = 1e2 / 1e3 / 1e4 (bounded); |L| {}, lab L {} (rounding); {} steps",
+            numbers::exponent(e[0], 1),
+            numbers::exponent(e[1], 1),
+            numbers::exponent(e[2], 1),
+            numbers::exponent(d.l_norm_error[2], 0),
+            numbers::exponent(d.l_lab_error[2], 0),
+            d.stats.steps
         )
     } else {
         format!(
-            "energy error {:.1e} / {:.1e} / {:.1e} at t = 1e2 / 1e3 / 1e4 (slope {:.2}); |L| {:.1e} (slope {:.2}), lab L {:.1e} (slope {:.2}); {} steps",
-            e[0],
-            e[1],
-            e[2],
-            d.energy_slope,
-            d.l_norm_error[2],
-            d.l_norm_slope,
-            d.l_lab_error[2],
-            d.l_lab_slope,
+            "energy error {} / {} / {} at t = 1e2 / 1e3 / 1e4 (slope {}); |L| {} (slope {}), lab L {} (slope {}); {} steps",
+            numbers::exponent(e[0], 1),
+            numbers::exponent(e[1], 1),
+            numbers::exponent(e[2], 1),
+            numbers::fixed(d.energy_slope, 2),
+            numbers::exponent(d.l_norm_error[2], 1),
+            numbers::fixed(d.l_norm_slope, 2),
+            numbers::exponent(d.l_lab_error[2], 1),
+            numbers::fixed(d.l_lab_slope, 2),
             d.stats.steps
         )
     };
@@ -367,15 +373,15 @@ impl Measurement {
             fix: vec![outcome(&self.strang), outcome(&self.yoshida4)],
             notes: vec![
                 format!(
-                    "observed orders over t = {ORDER_SPAN}, h = {ORDER_STEP} and {}: Strang {:.2}, Yoshida-4 {:.2}",
+                    "observed orders over t = {ORDER_SPAN}, h = {ORDER_STEP} and {}: Strang {}, Yoshida-4 {}",
                     0.5 * ORDER_STEP,
-                    self.strang_order,
-                    self.yoshida4_order
+                    numbers::fixed(self.strang_order, 2),
+                    numbers::fixed(self.yoshida4_order, 2)
                 ),
                 format!(
-                    "RK4's energy error passes Strang's bound near t = {:.0e} and Yoshida-4's near t = {:.0e} (linear extrapolation); after that the splitting stays the more accurate",
-                    crossing_time(&self.rk4, &self.strang),
-                    crossing_time(&self.rk4, &self.yoshida4)
+                    "RK4's energy error passes Strang's bound near t = {} and Yoshida-4's near t = {} (linear extrapolation); after that the splitting stays the more accurate",
+                    numbers::exponent(crossing_time(&self.rk4, &self.strang), 0),
+                    numbers::exponent(crossing_time(&self.rk4, &self.yoshida4), 0)
                 ),
                 format!(
                     "work to t = 1e4: RK4 {} evaluations, DP5 {}, Strang {} sub-flows, Yoshida-4 {}",

@@ -17,8 +17,11 @@
 use super::{Outcome, Row, RowError};
 use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Rk4, Stats, Stepper, solve};
 use crate::math::{Mat3, Real, State, Vec3};
+use crate::numbers;
 use crate::physics::euler_angles::{EulerAngles, euler_rates};
-use crate::physics::symmetric_top::{SymmetricTop, truncated_closed_form, truncated_orientation};
+use crate::physics::symmetric_top::{
+    FIGURE_OMEGA0, SymmetricTop, truncated_closed_form, truncated_orientation,
+};
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
 
 /// One start of (4.8) near (or at) the pole.
@@ -132,7 +135,7 @@ fn finish<S: Stepper<3>, R: crate::integrate::Rhs<3>>(
 /// Run the experiment of row 2.
 pub fn measure() -> Result<Measurement, RowError> {
     let top = SymmetricTop::figure();
-    let omega0 = Vec3::new(0.0, 0.1, 0.2);
+    let omega0 = Vec3::from(FIGURE_OMEGA0);
     let t_end = 50.0;
     let mut euler = vec![euler_run(&top, &omega0, 0.0, t_end, None)];
     for &theta0 in &THETA0[1..] {
@@ -189,8 +192,11 @@ impl Measurement {
         // shown as notes, so the reader sees where the failure sets in.
         let describe = |r: &EulerRun| match &r.result {
             Ok(e) => format!(
-                "orientation error {e:.1e} at t = {}; {} steps, {} evals",
-                self.t_end, r.steps, r.rhs_evals
+                "orientation error {e} at t = {}; {} steps, {} evals",
+                self.t_end,
+                r.steps,
+                r.rhs_evals,
+                e = numbers::exponent(*e, 1)
             ),
             Err(e) => format!("stopped: {e}"),
         };
@@ -232,8 +238,9 @@ impl Measurement {
                     method: format!("rotation matrix on SO(3), {name}, from theta0 = 0"),
                     ok: *error < ACCURATE,
                     result: format!(
-                        "orientation error {error:.1e} at t = {}; {evals} evals",
-                        self.t_end
+                        "orientation error {error} at t = {}; {evals} evals",
+                        self.t_end,
+                        error = numbers::exponent(*error, 1)
                     ),
                 })
                 .collect(),

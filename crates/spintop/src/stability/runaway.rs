@@ -14,8 +14,11 @@
 use super::{Outcome, Row, RowError};
 use crate::integrate::forward_difference_jacobian;
 use crate::math::{Real, State, Vec3};
+use crate::numbers;
 use crate::physics::full_ale::symmetric_full_ale_rhs;
-use crate::physics::symmetric_top::{SymmetricTop, reduced_ale_rhs, reduced_amplitude};
+use crate::physics::symmetric_top::{
+    FIGURE_OMEGA0, SymmetricTop, reduced_ale_rhs, reduced_amplitude,
+};
 use crate::sim::physical::{
     Runaway, integrate_forward, late_time_decay_time, physical_solution, slow_manifold_rate,
 };
@@ -118,7 +121,7 @@ fn reduced_z(top: &SymmetricTop, omega0: &Vec3, t: Real) -> Complex<Real> {
 }
 
 fn strong_spin(rtol: Real) -> Result<StrongSpin, RowError> {
-    let top = SymmetricTop::new(0.4, 1.0).map_err(|e| RowError::new(1, e))?;
+    let top = SymmetricTop::figure();
     let omega0 = Vec3::new(0.0, 0.01, 2.5);
     let k = top.ratio() * omega0.z;
     // The slow root of (3.4) linearised about z = 0 (the u → 0 limit of the
@@ -155,7 +158,7 @@ pub fn slow_root(top: &SymmetricTop, omega3: Real) -> Complex<Real> {
 pub fn measure() -> Result<Measurement, RowError> {
     let err = |e: crate::sim::physical::PhysicalError| RowError::new(1, e);
     let top = SymmetricTop::figure();
-    let omega0 = Vec3::new(0.0, 0.1, 0.2);
+    let omega0 = Vec3::from(FIGURE_OMEGA0);
     let rtol = 1e-11;
     let slope = reduced_ale_rhs(&top, &omega0);
     let y0 = State::<4>::new(omega0.x, omega0.y, slope.x, slope.y);
@@ -207,8 +210,11 @@ impl Measurement {
                 method: "DOP853 forward from the reduced slope".into(),
                 ok: false,
                 result: format!(
-                    "runaway at t = {:.2}, growth rate {:.3}/tau (frozen eigenvalue {:.3}); {} evals",
-                    r.t, r.growth_rate, self.frozen_rate, self.forward_evals
+                    "runaway at t = {}, growth rate {}/tau (frozen eigenvalue {}); {} evals",
+                    numbers::fixed(r.t, 2),
+                    numbers::fixed(r.growth_rate, 3),
+                    numbers::fixed(self.frozen_rate, 3),
+                    self.forward_evals
                 ),
             },
             None => Outcome {
@@ -228,10 +234,10 @@ impl Measurement {
                     method: "backward shooting (physical solution)".into(),
                     ok: self.physical_max_growth <= 1.0 + 1e-9,
                     result: format!(
-                        "bounded to t = 1000 (max |z|/|z0| = {:.6}); |z'/z - f| = {:.1e} against the slow-manifold series through tau^5 (reduced model: {:.1e}); {} shots, {} evals",
-                        self.physical_max_growth,
-                        self.physical_off_manifold,
-                        self.reduced_off_manifold,
+                        "bounded to t = 1000 (max |z|/|z0| = {}); |z'/z - f| = {} against the slow-manifold series through tau^5 (reduced model: {}); {} shots, {} evals",
+                        numbers::fixed(self.physical_max_growth, 6),
+                        numbers::exponent(self.physical_off_manifold, 1),
+                        numbers::exponent(self.reduced_off_manifold, 1),
                         self.physical_shots,
                         self.physical_evals
                     ),
@@ -241,7 +247,7 @@ impl Measurement {
                     ok: last.is_some_and(|d| (d.amplitude_ratio - 1.0).abs() < 0.5),
                     result: format!(
                         "stable by construction; physical/reduced amplitude {} at t = {}",
-                        last.map_or("-".into(), |d| format!("{:.5}", d.amplitude_ratio)),
+                        last.map_or("-".into(), |d| numbers::fixed(d.amplitude_ratio, 5)),
                         last.map_or(0.0, |d| d.t)
                     ),
                 },
@@ -251,22 +257,22 @@ impl Measurement {
             )
             .chain(self.drift.iter().map(|d| {
                 format!(
-                    "  t = {:>6}: {:.6}  {:+.3e}",
-                    d.t, d.amplitude_ratio, d.phase_difference
+                    "  t = {:>6}: {}  {}",
+                    d.t, numbers::fixed(d.amplitude_ratio, 6), numbers::signed_exponent(d.phase_difference, 3)
                 )
             }))
             .chain([
                 format!(
-                    "tau k = {}: reduced decay rate {:.3} vs physical {:.4}; precession {:.3} vs {:.4}",
+                    "tau k = {}: reduced decay rate {} vs physical {}; precession {} vs {}",
                     s.tau_k,
-                    s.reduced_decay_rate,
-                    s.physical_decay_rate,
-                    s.reduced_precession,
-                    s.physical_precession
+                    numbers::fixed(s.reduced_decay_rate, 3),
+                    numbers::fixed(s.physical_decay_rate, 4),
+                    numbers::fixed(s.reduced_precession, 3),
+                    numbers::fixed(s.physical_precession, 4)
                 ),
                 format!(
-                    "  at t = {}: reduced |z|/|z0| = {:.2e}, physical {:.2e} (the reduced model is wrong by orders of magnitude)",
-                    s.t, s.reduced_amplitude, s.physical_amplitude
+                    "  at t = {}: reduced |z|/|z0| = {}, physical {} (the reduced model is wrong by orders of magnitude)",
+                    s.t, numbers::exponent(s.reduced_amplitude, 2), numbers::exponent(s.physical_amplitude, 2)
                 ),
             ])
             .collect(),

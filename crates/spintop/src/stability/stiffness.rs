@@ -30,6 +30,7 @@
 use super::{Outcome, Row, RowError};
 use crate::integrate::{AdaptiveOptions, Dopri5, IntegrateError, Radau5, Rhs, Rk4, Stats, Stepper};
 use crate::math::{Real, State, Vec3};
+use crate::numbers;
 use crate::physics::symmetric_top::{
     SymmetricTop, reduced_ale_jacobian, reduced_ale_rhs, reduced_closed_form,
 };
@@ -60,7 +61,7 @@ pub const LADDER: [Real; 4] = [1.0, 10.0, 100.0, 1000.0];
 /// span).
 pub const RK4_LADDER: [Real; 3] = [10.0, 100.0, 1000.0];
 /// Ω₀ at S = 1: the paper's figure.
-pub const OMEGA0_UNIT: [Real; 3] = [0.0, 0.1, 0.2];
+pub const OMEGA0_UNIT: [Real; 3] = crate::physics::symmetric_top::FIGURE_OMEGA0;
 /// The span [0, SPAN] of every run, in units of τ.
 pub const SPAN: Real = 10.0;
 /// The relative tolerance of DP5 and Radau5; atol = RTOL·|Ω₀|∞.
@@ -508,11 +509,15 @@ impl Measurement {
         let h_star = self.rk4.last().map_or(Real::NAN, |l| l.h_star);
         let rk4_result = match (&above.t_left_envelope, &above.failure) {
             (Some(t), Some(e)) => {
-                format!("leaves |Omega_perp| <= Omega_perp0 at t = {t:.3e}, then {e}")
+                format!(
+                    "leaves |Omega_perp| <= Omega_perp0 at t = {t}, then {e}",
+                    t = numbers::exponent(*t, 3)
+                )
             }
             (Some(t), None) => format!(
-                "leaves |Omega_perp| <= Omega_perp0 at t = {t:.3e} (peak ratio {:.3e})",
-                above.peak_ratio
+                "leaves |Omega_perp| <= Omega_perp0 at t = {t} (peak ratio {})",
+                numbers::exponent(above.peak_ratio, 3),
+                t = numbers::exponent(*t, 3)
             ),
             (None, Some(e)) => e.to_string(),
             (None, None) => "stays bounded".into(),
@@ -526,15 +531,23 @@ impl Measurement {
                 dp5_full.map_or(0, |r| r.stats.steps)
             ),
             None => format!(
-                "{} steps, error {:.1e} |Omega0|",
-                dp5.stats.steps, dp5.max_error
+                "{} steps, error {} |Omega0|",
+                dp5.stats.steps,
+                numbers::exponent(dp5.max_error, 1)
             ),
         };
         vec![
             Outcome {
-                method: format!("RK4, h = {ABOVE} h* = {:.3e}, S = {}", above.h, above.s),
+                method: format!(
+                    "RK4, h = {ABOVE} h* = {}, S = {}",
+                    numbers::exponent(above.h, 3),
+                    above.s
+                ),
                 ok: rk4_ok,
-                result: format!("{rk4_result}; h* = {h_star:.3e}"),
+                result: format!(
+                    "{rk4_result}; h* = {h_star}",
+                    h_star = numbers::exponent(h_star, 3)
+                ),
             },
             Outcome {
                 method: format!("DP5, rtol {RTOL:e}, budget {BUDGET} steps, S = {s_max}"),
@@ -554,12 +567,12 @@ impl Measurement {
                 method: format!("Radau IIA 5, analytic Jacobian, rtol {RTOL:e}, S = {s_max}"),
                 ok: r.run.accurate() && r.run.stats.steps <= BUDGET,
                 result: format!(
-                    "{} steps, {} evals, {} Jacobians, {} LUs; error {:.1e} |Omega0|",
+                    "{} steps, {} evals, {} Jacobians, {} LUs; error {} |Omega0|",
                     r.run.stats.steps,
                     r.run.stats.rhs_evals,
                     r.jacobian_evals,
                     r.lu_decompositions,
-                    r.run.max_error
+                    numbers::exponent(r.run.max_error, 1)
                 ),
             })
             .into_iter()
@@ -570,8 +583,9 @@ impl Measurement {
                 method: format!("exact rotation o damping splitting, S = {}", r.s),
                 ok: r.accurate() && r.stats.steps <= BUDGET,
                 result: format!(
-                    "{} steps, error {:.1e} |Omega0|",
-                    r.stats.steps, r.max_error
+                    "{} steps, error {} |Omega0|",
+                    r.stats.steps,
+                    numbers::exponent(r.max_error, 1)
                 ),
             });
         }
@@ -590,35 +604,38 @@ impl Measurement {
             format!(
                 "RK4 h* at S = {}: {}; S^2 h* = {}",
                 list(&self.rk4, |l| format!("{}", l.s)),
-                list(&self.rk4, |l| format!("{:.3e}", l.h_star)),
-                list(&self.rk4, |l| format!("{:.1}", l.s * l.s * l.h_star)),
+                list(&self.rk4, |l| numbers::exponent(l.h_star, 3)),
+                list(&self.rk4, |l| numbers::fixed(l.s * l.s * l.h_star, 1)),
             ),
             format!(
-                "  linear stability brackets it: S^2 h at Omega0 {}, at Omega_perp -> 0 {}; fitted h* ~ S^{:.3} (expected -2)",
-                list(&self.rk4, |l| format!(
-                    "{:.1}",
-                    l.s * l.s * l.h_linear_start
+                "  linear stability brackets it: S^2 h at Omega0 {}, at Omega_perp -> 0 {}; fitted h* ~ S^{} (expected -2)",
+                list(&self.rk4, |l| numbers::fixed(
+                    l.s * l.s * l.h_linear_start,
+                    1
                 )),
-                list(&self.rk4, |l| format!("{:.1}", l.s * l.s * l.h_linear_late)),
-                self.rk4_exponent
+                list(&self.rk4, |l| numbers::fixed(
+                    l.s * l.s * l.h_linear_late,
+                    1
+                )),
+                numbers::fixed(self.rk4_exponent, 3)
             ),
             format!(
-                "DP5 steps at S = {}: {}; steps ~ S^{:.2} (last two S); errors {}",
+                "DP5 steps at S = {}: {}; steps ~ S^{} (last two S); errors {}",
                 list(&self.dp5, |r| format!("{}", r.s)),
                 list(&self.dp5, |r| r.stats.steps.to_string()),
-                self.dp5_exponent,
-                list(&self.dp5, |r| format!("{:.1e}", r.max_error)),
+                numbers::fixed(self.dp5_exponent, 2),
+                list(&self.dp5, |r| numbers::exponent(r.max_error, 1))
             ),
             format!(
-                "  DP5's stability limit with the late eigenvalues -tau k^2 +- i Omega3~ predicts {:.0} steps at S = {s_max}",
-                self.dp5_predicted_steps
+                "  DP5's stability limit with the late eigenvalues -tau k^2 +- i Omega3~ predicts {} steps at S = {s_max}",
+                numbers::fixed(self.dp5_predicted_steps, 0)
             ),
             format!(
-                "Radau5 steps at S = {}: {}; steps ~ S^{:.2} (last two S); errors {}",
+                "Radau5 steps at S = {}: {}; steps ~ S^{} (last two S); errors {}",
                 list(&self.radau5, |r| format!("{}", r.run.s)),
                 list(&self.radau5, |r| r.run.stats.steps.to_string()),
-                self.radau5_exponent,
-                list(&self.radau5, |r| format!("{:.1e}", r.run.max_error)),
+                numbers::fixed(self.radau5_exponent, 2),
+                list(&self.radau5, |r| numbers::exponent(r.run.max_error, 1))
             ),
         ];
         if !self.splitting.is_empty() {

@@ -13,6 +13,7 @@
 
 use super::{KnobKind, Row, Target};
 use crate::math::Real;
+use crate::numbers;
 use crate::plot::{Marked, loglog_chart};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -195,7 +196,7 @@ fn knob_text(r: &Row) -> String {
     match (r.knob, r.value) {
         (KnobKind::None, _) | (_, None) => "-".into(),
         (KnobKind::Step, Some(h)) => format!("h={h}"),
-        (k, Some(v)) => format!("{}={v:.0e}", k.name()),
+        (k, Some(v)) => format!("{}={v}", k.name(), v = numbers::exponent(v, 0)),
     }
 }
 
@@ -497,7 +498,7 @@ pub fn join_table(rows: &[Row]) -> String {
             sources.push(&x.source);
         }
     }
-    let fmt_evals = |e: Option<Real>| e.map(|v| format!("{v:.0}")).unwrap_or("-".into());
+    let fmt_evals = |e: Option<Real>| e.map(|v| numbers::fixed(v, 0)).unwrap_or("-".into());
     for model in models {
         let _ = writeln!(
             out,
@@ -505,10 +506,18 @@ pub fn join_table(rows: &[Row]) -> String {
         );
         let mut head = format!("{:<12} {:<20}", "source", "method");
         for e in MATCHED_ERRORS {
-            let _ = write!(head, " {:>12}", format!("time @{e:.0e}"));
+            let _ = write!(
+                head,
+                " {:>12}",
+                format!("time @{e}", e = numbers::exponent(e, 0))
+            );
         }
         for e in MATCHED_ERRORS {
-            let _ = write!(head, " {:>11}", format!("evals {e:.0e}"));
+            let _ = write!(
+                head,
+                " {:>11}",
+                format!("evals {e}", e = numbers::exponent(e, 0))
+            );
         }
         let _ = writeln!(out, "{head}");
         for x in m.iter().filter(|x| x.model == model) {
@@ -535,13 +544,19 @@ pub fn join_table(rows: &[Row]) -> String {
                     let ratio =
                         theirs.time[i].unwrap_or(Real::NAN) / ours.time[i].unwrap_or(Real::NAN);
                     parts.push(format!(
-                        "{source} {} {} ({ratio:.1}x)",
+                        "{source} {} {} ({ratio}x)",
                         theirs.method,
-                        duration(theirs.time[i])
+                        duration(theirs.time[i]),
+                        ratio = numbers::fixed(ratio, 1)
                     ));
                 }
             }
-            let _ = writeln!(out, "best integrator at {e:.0e}: {}", parts.join(" | "));
+            let _ = writeln!(
+                out,
+                "best integrator at {e}: {}",
+                parts.join(" | "),
+                e = numbers::exponent(*e, 0)
+            );
         }
     }
     out
