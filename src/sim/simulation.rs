@@ -7,7 +7,8 @@ use super::state::{InitialState, Sample, SimError};
 use super::stepping::{AnyStepper, CoupledRhs, OnGroup, OrientationRhs, TaylorRun};
 use super::cost;
 use crate::integrate::{Stats, Stepper};
-use crate::math::{Quat, Real, State, Vec3, all_finite, rot_z};
+use super::physical::slow::SlowTable;
+use crate::math::{Mat3, Quat, Real, State, Vec3, all_finite, rot_z};
 use crate::physics::general_top;
 use crate::physics::symmetric_top::{
     SymmetricTop,
@@ -23,9 +24,12 @@ enum Engine {
     ReducedOrientation(SymmetricTop, Box<OnGroup<3>>),
     /// Ω and σ integrated together by one of the steppers.
     Coupled(Method, FirstOrder, Box<OnGroup<6>>),
-    /// Full ALE: Ω from a table (the physical solution, or a forward run up to
-    /// its runaway), σ integrated along it.
+    /// Full ALE: Ω from a table (a general top's physical solution, or a
+    /// forward run up to its runaway), σ integrated along it.
     Table(Box<physical::OmegaTable>, TableKind, Stats, Box<OnGroup<3>>),
+    /// The symmetric top's physical solution of (3.4), in the frame that
+    /// turns with the free precession.
+    Slow(Box<SlowRun>),
     /// Ω and the orientation quaternion by the Taylor method.
     Taylor(Box<TaylorRun>),
 }
@@ -39,38 +43,107 @@ enum TableKind {
     Forward(Option<physical::Runaway>),
 }
 
-/// The physical solution of a full model's (3.4) through Ω₀ on [0, span] as a
+/// A general top's physical solution of (3.4) through Ω₀ on [0, span] as a
 /// table, and the work it took.
-fn physical_table(
+fn general_table(
     model: &Model,
     omega0: &Vec3,
     span: Real,
     rtol: Real,
 ) -> Result<(physical::OmegaTable, Stats), SimError> {
-    Ok(match model {
+    match model {
         Model::GeneralFull(top) => {
             let (table, sol) = general::general_physical_table(top, omega0, span, rtol)?;
-            (table, sol.stats)
+            Ok((table, sol.stats))
         }
-        Model::Full(top) => {
-            let (table, sol) = physical::physical_table(top, omega0, span, rtol)?;
-            (table, sol.stats)
-        }
-        _ => {
-            return Err(SimError::MethodNotForModel {
-                method: Method::Physical.label(),
-                model: model.name(),
-            });
-        }
-    })
+        _ => Err(SimError::MethodNotForModel {
+            method: Method::Physical.label(),
+            model: model.name(),
+        }),
+    }
 }
+
+/// The symmetric top's physical solution of (3.4) and its orientation
+/// O = Q·R_z(Ω̃₃t): Q is driven by the slow rate (Re w, Im w, k), and once
+/// w no longer turns it by a rounding, it turns about its third axis at k in
+/// closed form.
+#[derive(Clone, Debug)]
+struct SlowRun {
+    top: SymmetricTop,
+    table: SlowTable,
+    /// The work of the tables built before this one.
+    built: Stats,
+    group: OnGroup<3>,
+    /// From when Q turns at k alone, and Q there.
+    still: Option<(Real, Quat)>,
+}
+
+impl SlowRun {
+    fn stats(&self) -> Stats {
+        let mut total = self.built;
+        total += self.table.stats;
+        total += self.group.stepper.stats();
+        total
+    }
+
+    fn advance(&mut self, t: Real, horizon: Real, rtol: Real) -> Result<(Vec3, Mat3), SimError> {
+        let open = horizon == Real::MAX;
+        // Open-ended: carry Q to the end of the chunk, then tabulate the next
+        // one from the state there.
+        while open && t > self.table.t_end() {
+            let end = self.table.t_end();
+            self.orientation(end, end)?;
+            let omega = self.table.omega_at(end);
+            let next = physical::physical_table(
+                &self.top,
+                &omega,
+                CHUNK_TAUS * self.top.tau(),
+                rtol,
+                cost::MAX_STEPS as u64,
+            )?;
+            self.built += self.table.stats;
+            self.table = next.starting_at(end);
+        }
+        let stop = if open { self.table.t_end().min(Real::MAX) } else { horizon };
+        let q = self.orientation(t, stop)?;
+        let precession = rot_z(self.table.precession() * t);
+        Ok((self.table.omega_at(t), q * precession))
+    }
+
+    /// Q at t, stepping toward `stop`.
+    fn orientation(&mut self, t: Real, stop: Real) -> Result<Mat3, SimError> {
+        if let Some(from) = self.table.still_from()
+            && t >= from
+        {
+            if self.still.is_none() {
+                let q = self.step_to(from, from)?;
+                self.still = Some((from, Quat::from_matrix(&q)));
+            }
+            let (from, q) = self.still.expect("set above");
+            let turn = rot_z(self.table.spin() * (t - from));
+            return Ok(q.to_rotation_matrix().into_inner() * turn);
+        }
+        self.step_to(t, stop)
+    }
+
+    fn step_to(&mut self, t: Real, stop: Real) -> Result<Mat3, SimError> {
+        let table = &self.table;
+        let rhs = OrientationRhs(|t| table.corotating_rate(t));
+        let rate = |t: Real, _: &State<3>| table.corotating_rate(t);
+        let (_, q) = self.group.advance(&rhs, &rate, t, stop)?;
+        Ok(q)
+    }
+}
+
+/// How many τ an open-ended symmetric full model tabulates at a time.
+const CHUNK_TAUS: Real = 50.0;
 
 /// How far ahead an open-ended full model tabulates its physical solution at a
 /// time: 50 fast times (τ, or τ_f = |d|²/min Iᵢ for a general top).
 fn physical_chunk_length(model: &Model) -> Real {
     match model {
         Model::GeneralFull(top) => 50.0 * general::fast_time(top),
-        Model::Full(top) => 50.0 * top.tau(),
+        Model::Full(top) => CHUNK_TAUS * top.tau(),
         _ => Real::MAX,
     }
 }
@@ -160,13 +233,33 @@ impl Simulation {
                 } else {
                     horizon
                 };
-                let (table, stats) = physical_table(&model, omega0, span, rtol)?;
-                Engine::Table(
-                    Box::new(table),
-                    TableKind::Physical,
-                    stats,
-                    orientation_only()?,
-                )
+                match model {
+                    Model::Full(top) => {
+                        let table = physical::physical_table(
+                            &top,
+                            omega0,
+                            span,
+                            rtol,
+                            cost::MAX_STEPS as u64,
+                        )?;
+                        Engine::Slow(Box::new(SlowRun {
+                            top,
+                            table,
+                            built: Stats::default(),
+                            group: *orientation_only()?,
+                            still: None,
+                        }))
+                    }
+                    _ => {
+                        let (table, stats) = general_table(&model, omega0, span, rtol)?;
+                        Engine::Table(
+                            Box::new(table),
+                            TableKind::Physical,
+                            stats,
+                            orientation_only()?,
+                        )
+                    }
+                }
             }
             (Method::Forward, None) if horizon == Real::MAX => {
                 return Err(SimError::NeedsHorizon(model.name()));
@@ -230,7 +323,7 @@ impl Simulation {
             Engine::ClosedForm(_) => Method::ClosedForm,
             Engine::ReducedOrientation(..) => Method::ClosedFormDop853,
             Engine::Coupled(which, ..) => *which,
-            Engine::Table(_, TableKind::Physical, ..) => Method::Physical,
+            Engine::Table(_, TableKind::Physical, ..) | Engine::Slow(_) => Method::Physical,
             Engine::Table(_, TableKind::Forward(_), ..) => Method::Forward,
             Engine::Taylor(_) => Method::Taylor,
         }
@@ -252,6 +345,7 @@ impl Simulation {
                 total
             }
             Engine::Coupled(_, _, g) => g.stepper.stats(),
+            Engine::Slow(run) => run.stats(),
             Engine::Taylor(run) => run.stats(),
         }
     }
@@ -262,6 +356,7 @@ impl Simulation {
             Engine::ClosedForm(_) => 0.0,
             Engine::ReducedOrientation(_, g) | Engine::Table(_, _, _, g) => g.stepper.last_step(),
             Engine::Coupled(_, _, g) => g.stepper.last_step(),
+            Engine::Slow(run) => run.group.stepper.last_step(),
             Engine::Taylor(run) => run.last_step(),
         }
     }
@@ -309,6 +404,7 @@ impl Simulation {
                 (y.fixed_rows::<3>(0).into_owned(), rotation)
             }
             Engine::Taylor(run) => run.advance(t, self.horizon)?,
+            Engine::Slow(run) => run.advance(t, self.horizon, self.options.rtol())?,
             Engine::Table(table, kind, built, g) => {
                 if let TableKind::Forward(Some(runaway)) = kind
                     && t > runaway.t
@@ -325,7 +421,7 @@ impl Simulation {
                     g.advance(&rhs, &omega, end, end)?;
                     let span = physical_chunk_length(&self.model);
                     let (next, stats) =
-                        physical_table(&self.model, &table.omega_at(end), span, self.options.rtol())?;
+                        general_table(&self.model, &table.omega_at(end), span, self.options.rtol())?;
                     **table = next.starting_at(end);
                     *built += stats;
                 }

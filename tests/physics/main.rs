@@ -16,3 +16,5 @@ mod general_full;
 mod general_reduced;
 mod shell_model;
 mod symmetric_top;
+mod invariance;
+mod scratch46;
