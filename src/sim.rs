@@ -20,6 +20,8 @@
 //! | `simulation` | [`Simulation`]: a model and a method, advanced to each time |
 
 pub mod accuracy;
+pub mod claim;
+pub mod measured;
 pub mod cost;
 mod method;
 mod model;

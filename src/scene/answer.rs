@@ -16,6 +16,7 @@ use crate::output::simulate::{Parameters, SimulateConfig, SimulateOutput, simula
 use crate::output::{Entry, Failure, Format};
 use crate::physics::particle::{DEBYE_ESU_CM, Milestones, RigidShape, SPEED_OF_LIGHT_CM_S};
 use crate::sim::Model;
+use crate::sim::claim::{ErrorEstimate, TierEstimate, rounding};
 use crate::sim::secular::{Law, SecularSample, secular};
 use crate::stability::Row;
 use serde::Serialize;
@@ -174,6 +175,8 @@ pub struct OmegaOnlyOutput {
     pub samples: Vec<OmegaSample>,
     /// Why the orientation is not given.
     pub orientation_skipped: String,
+    /// How far Ω may be from the truth over the run.
+    pub error: ErrorEstimate,
 }
 
 /// An asymmetric top answered by the secular model: E and |L| only.
@@ -342,9 +345,18 @@ fn run_top(
                 format: Format::Json,
                 entry: Entry::Scene,
             };
-            let output = simulate(&config)?;
+            let mut output = simulate(&config)?;
             if let Some(w) = pole_warning(&output.samples) {
                 warnings.push(w);
+            }
+            if let Some(model) = &top.model_error {
+                output.error = output
+                    .error
+                    .take()
+                    .map(|error| with_model_error(error, model, &top.model));
+            }
+            if let Some(e) = &output.error {
+                above_rtol(e, top, warnings);
             }
             // NOTE: a runaway is the run's own report (its `runaway` record,
             // the table's line, the gate's `stopped`), not also a warning:
@@ -414,6 +426,20 @@ fn run_top(
             };
             let samples = omega_samples(&top.model, &top.initial.omega, &top.times, tau_per_unit)
                 .ok_or_else(only_symmetric)?;
+            let t_last = top.times.last().copied().unwrap_or(0.0);
+            let angle = crate::sim::cost::turning_angle(&top.model, &top.initial.omega, t_last);
+            let floor = rounding(angle);
+            let mut error = ErrorEstimate {
+                omega: floor,
+                orientation: None,
+                rounding: floor,
+                against: format!("the exact solution of the {} model", top.model.name()),
+                how: format!("closed forms: only rounding, {floor:.0e} over the run's {angle:.1e} rad"),
+            };
+            if let Some(model) = &top.model_error {
+                error = with_model_error(error, model, &top.model);
+            }
+            above_rtol(&error, top, warnings);
             TopRun::OmegaOnly(OmegaOnlyOutput {
                 model: top.model.name(),
                 method: "exact",
@@ -435,6 +461,7 @@ fn run_top(
                 stats: Stats::default(),
                 samples,
                 orientation_skipped: why.clone(),
+                error,
             })
         }
     };
@@ -443,6 +470,32 @@ fn run_top(
         units,
         rigid_units,
     })
+}
+
+/// A run's error with the chosen model's own error against the physical
+/// solution of (3.4) added (`model = "auto"` chose a lighter model).
+fn with_model_error(error: ErrorEstimate, model: &TierEstimate, which: &Model) -> ErrorEstimate {
+    let how = format!(
+        "the {} model's own error against it, estimated before the run ({:.1e}{})",
+        which.name(),
+        model.omega,
+        model
+            .orientation
+            .map_or(String::new(), |o| format!(", {o:.1e} rad"))
+    );
+    error.with_model_error(model.omega, model.orientation.unwrap_or(0.0), &how)
+}
+
+/// A warning when the error of the run is above the scene's rtol.
+fn above_rtol(error: &ErrorEstimate, top: &TopScene, warnings: &mut Vec<String>) {
+    let rtol = top.options.rtol();
+    if error.worst() > rtol && top.method != crate::sim::MethodChoice::Rk4 {
+        warnings.push(format!(
+            "the error over the run, {:.1e}, is above rtol = {rtol:.0e}: {}",
+            error.worst(),
+            error.line()
+        ));
+    }
 }
 
 /// Run a validated scene.

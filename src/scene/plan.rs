@@ -23,6 +23,7 @@ use crate::physics::symmetric_top::{
     SymmetricTop, reduced_closed_form, reduced_closed_form_many, truncated_clock,
     truncated_closed_form,
 };
+use crate::sim::claim::ModelEstimates;
 use crate::sim::cost::stepping_error;
 use crate::sim::orbit::{Force, OrbitConfig};
 use crate::sim::{
@@ -42,13 +43,17 @@ pub use crate::sim::cost::MAX_STEPS;
 pub const POLE_SIN: Real = 1e-2;
 
 /// The method used, as outputs label it, and why.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Chosen {
     /// The label of the method (`exact`, `exact+dop853`, `dop853`, …), the
     /// same as the output's `method` where the output has one.
     pub method: String,
     /// Why, in one sentence.
     pub reason: String,
+    /// With `model = "auto"`: the estimated errors of the two lighter models
+    /// against the physical solution of (3.4), by which it chose.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimates: Option<ModelEstimates>,
 }
 
 impl Chosen {
@@ -56,6 +61,7 @@ impl Chosen {
         Self {
             method: method.to_string(),
             reason: reason.into(),
+            estimates: None,
         }
     }
 }

@@ -47,6 +47,9 @@ pub struct TopScene {
     pub general_units: Option<GeneralUnits>,
     /// Whether the orientation is computed.
     pub orientation: Orientation,
+    /// With `model = "auto"` and a lighter model chosen: its estimated error
+    /// against the physical solution of (3.4), added to what the run prints.
+    pub model_error: Option<crate::sim::claim::TierEstimate>,
 }
 
 /// The model names of `[top] model`.
@@ -334,18 +337,19 @@ pub(super) fn top_scene(
     let (times, times_span) =
         solve_times(ctx, solve.clone(), own, Some((100.0, 11)), false, scale)?;
     let t_last = times.last().copied().unwrap_or(0.0);
-    let (mut model, mut model_choice, without_orientation, mut why_physical) = match asked_tier {
-        Some(tier) => (tiers[tier], None, None, None),
-        None => {
-            let choice = choose::choose_model(&tiers, method, &omega0, &times, options.rtol());
-            (
-                tiers[choice.tier],
-                Some(choice.reason),
-                choice.without_orientation,
-                choice.why_physical,
-            )
-        }
+    let choice = asked_tier
+        .is_none()
+        .then(|| choose::choose_model(&tiers, method, &omega0, &times, options.rtol()));
+    let (mut model, mut model_choice, without_orientation, mut why_physical) = match &choice {
+        None => (tiers[asked_tier.unwrap_or(0)], None, None, None),
+        Some(c) => (
+            tiers[c.tier],
+            Some(c.reason.clone()),
+            c.without_orientation.clone(),
+            c.why_physical.clone(),
+        ),
     };
+    let mut model_error = choice.as_ref().and_then(|c| c.model_error(c.tier));
     let mut planned = plan::plan_top(&model, method, &options, &initial, t_last, None);
     // The physical solution was chosen for the orientation alone and cannot
     // run: a lighter model answers Omega, without the orientation.
@@ -353,6 +357,12 @@ pub(super) fn top_scene(
         && refusal.at == plan::Blame::Times
     {
         model = tiers[*tier];
+        model_error = choice.as_ref().and_then(|c| c.model_error(*tier)).map(|e| {
+            crate::sim::claim::TierEstimate {
+                orientation: None,
+                ..e
+            }
+        });
         model_choice = Some(why.clone());
         why_physical = None;
         let skip = "Omega alone is held within rtol without the physical solution, and the orientation is not";
@@ -375,6 +385,7 @@ pub(super) fn top_scene(
     if let Some(why) = model_choice {
         plan.chosen.reason = format!("{why}; {}", plan.chosen.reason);
     }
+    plan.chosen.estimates = choice.as_ref().map(|c| c.estimates);
     // `auto` may step at a tighter tolerance than the scene's (see plan::general_path).
     let options = match plan.rtol {
         Some(r) => options
@@ -394,6 +405,7 @@ pub(super) fn top_scene(
             units,
             general_units,
             orientation: plan.orientation,
+            model_error,
         })),
         chosen: plan.chosen,
         warnings: plan.warnings,

@@ -291,6 +291,9 @@ impl std::error::Error for MethodRefused {}
 pub struct MethodOptions {
     rtol: Real,
     step: Real,
+    /// The share of their usual size the steps' caps take (1, or ½ for the
+    /// second run that estimates a run's error: see [`crate::sim::claim`]).
+    refine: Real,
 }
 
 /// The smallest relative tolerance accepted: below ~1e-14 a tolerance asks
@@ -381,6 +384,22 @@ impl MethodOptions {
         Ok(options)
     }
 
+    /// These options with every cap on a step (at most 1 rad of turning, the
+    /// physical solution's node spacing) scaled by `factor` in (0, 1]: the
+    /// second run of an error estimate must be finer in everything that
+    /// limits a step, or a cap that holds both runs alike hides its error.
+    pub(crate) fn refined(self, factor: Real) -> Self {
+        Self {
+            refine: self.refine * factor.clamp(1e-3, 1.0),
+            ..self
+        }
+    }
+
+    /// The share of their usual size the steps' caps take (1 unless refined).
+    pub fn refine(&self) -> Real {
+        self.refine
+    }
+
     /// Relative tolerance of the adaptive methods.
     pub fn rtol(&self) -> Real {
         self.rtol
@@ -397,6 +416,7 @@ impl Default for MethodOptions {
         Self {
             rtol: 1e-10,
             step: 0.01,
+            refine: 1.0,
         }
     }
 }

@@ -218,6 +218,7 @@ pub fn physical_solution(
     let mut budget = slow::Budget {
         rtol: internal_rtol(rtol),
         steps: crate::integrate::DEFAULT_MAX_STEPS,
+        refine: 1.0,
     };
     let table = slow::slow_table(top, omega0, span, &mut budget)?;
     let alpha = table.precession();
@@ -482,17 +483,19 @@ pub(crate) fn grid(step: Real, t_end: Real) -> Vec<Real> {
 }
 
 /// The physical solution of (3.4) through Ω₀ as a table on [0, t_end] (and,
-/// where it has reached its closed form, beyond), built within `max_steps`.
+/// where it has reached its closed form, beyond), built within `max_steps`
+/// at the tolerance and refinement of `options`.
 pub fn physical_table(
     top: &SymmetricTop,
     omega0: &Vec3,
     t_end: Real,
-    rtol: Real,
+    options: &crate::sim::MethodOptions,
     max_steps: u64,
 ) -> Result<slow::SlowTable, PhysicalError> {
     let mut budget = slow::Budget {
-        rtol: internal_rtol(rtol),
+        rtol: internal_rtol(options.rtol()),
         steps: max_steps,
+        refine: options.refine(),
     };
     slow::slow_table(top, omega0, t_end, &mut budget)
 }

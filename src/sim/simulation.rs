@@ -4,7 +4,9 @@ use super::method::{Method, MethodChoice, MethodOptions};
 use super::model::{FirstOrder, Model};
 use super::physical::{self, general};
 use super::state::{InitialState, Sample, SimError};
-use super::stepping::{AnyStepper, CoupledRhs, OnGroup, OrientationRhs, TaylorRun};
+use super::stepping::{
+    AnyStepper, CoupledRhs, MAX_TURN_PER_STEP, OnGroup, OrientationRhs, TaylorRun,
+};
 use super::cost;
 use crate::integrate::{Stats, Stepper};
 use super::physical::slow::SlowTable;
@@ -49,11 +51,17 @@ fn general_table(
     model: &Model,
     omega0: &Vec3,
     span: Real,
-    rtol: Real,
+    options: &MethodOptions,
 ) -> Result<(physical::OmegaTable, Stats), SimError> {
     match model {
         Model::GeneralFull(top) => {
-            let (table, sol) = general::general_physical_table(top, omega0, span, rtol)?;
+            let (table, sol) = general::general_physical_table(
+                top,
+                omega0,
+                span,
+                options.rtol(),
+                options.refine(),
+            )?;
             Ok((table, sol.stats))
         }
         _ => Err(SimError::MethodNotForModel {
@@ -86,7 +94,12 @@ impl SlowRun {
         total
     }
 
-    fn advance(&mut self, t: Real, horizon: Real, rtol: Real) -> Result<(Vec3, Mat3), SimError> {
+    fn advance(
+        &mut self,
+        t: Real,
+        horizon: Real,
+        options: &MethodOptions,
+    ) -> Result<(Vec3, Mat3), SimError> {
         let open = horizon == Real::MAX;
         // Open-ended: carry Q to the end of the chunk, then tabulate the next
         // one from the state there.
@@ -98,7 +111,7 @@ impl SlowRun {
                 &self.top,
                 &omega,
                 CHUNK_TAUS * self.top.tau(),
-                rtol,
+                options,
                 cost::MAX_STEPS as u64,
             )?;
             self.built += self.table.stats;
@@ -210,7 +223,11 @@ impl Simulation {
             Ok(Engine::Coupled(
                 method,
                 dynamics,
-                Box::new(OnGroup { stepper, base }),
+                Box::new(OnGroup {
+                    stepper,
+                    base,
+                    max_turn: MAX_TURN_PER_STEP * options.refine(),
+                }),
             ))
         };
         let orientation_only = || -> Result<Box<OnGroup<3>>, SimError> {
@@ -221,7 +238,11 @@ impl Simulation {
             // rtol radians, absolute.
             let stepper = AnyStepper::with_atol(Method::Dop853, zero, &options, options.rtol())?
                 .ok_or_else(not_for_model)?;
-            Ok(Box::new(OnGroup { stepper, base }))
+            Ok(Box::new(OnGroup {
+                stepper,
+                base,
+                max_turn: MAX_TURN_PER_STEP * options.refine(),
+            }))
         };
         let (omega0, rtol) = (&initial.omega, options.rtol());
         let engine = match (method, model.first_order()) {
@@ -239,7 +260,7 @@ impl Simulation {
                             &top,
                             omega0,
                             span,
-                            rtol,
+                            &options,
                             cost::MAX_STEPS as u64,
                         )?;
                         Engine::Slow(Box::new(SlowRun {
@@ -251,7 +272,7 @@ impl Simulation {
                         }))
                     }
                     _ => {
-                        let (table, stats) = general_table(&model, omega0, span, rtol)?;
+                        let (table, stats) = general_table(&model, omega0, span, &options)?;
                         Engine::Table(
                             Box::new(table),
                             TableKind::Physical,
@@ -404,7 +425,7 @@ impl Simulation {
                 (y.fixed_rows::<3>(0).into_owned(), rotation)
             }
             Engine::Taylor(run) => run.advance(t, self.horizon)?,
-            Engine::Slow(run) => run.advance(t, self.horizon, self.options.rtol())?,
+            Engine::Slow(run) => run.advance(t, self.horizon, &self.options)?,
             Engine::Table(table, kind, built, g) => {
                 if let TableKind::Forward(Some(runaway)) = kind
                     && t > runaway.t
@@ -421,7 +442,7 @@ impl Simulation {
                     g.advance(&rhs, &omega, end, end)?;
                     let span = physical_chunk_length(&self.model);
                     let (next, stats) =
-                        general_table(&self.model, &table.omega_at(end), span, self.options.rtol())?;
+                        general_table(&self.model, &table.omega_at(end), span, &self.options)?;
                     **table = next.starting_at(end);
                     *built += stats;
                 }

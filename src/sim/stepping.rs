@@ -34,7 +34,7 @@ const FOLD_ANGLE: Real = 0.5;
 /// ends spinning steadily) σ grows linearly, the error estimate sees nothing,
 /// and unchecked steps would carry σ through the singularity. With the fold at
 /// 0.5 rad and at most 1 rad per step, |σ| stays below 1.5 rad.
-const MAX_TURN_PER_STEP: Real = 1.0;
+pub(super) const MAX_TURN_PER_STEP: Real = 1.0;
 
 /// One of the integrators, chosen at run time.
 #[derive(Clone, Debug)]
@@ -164,6 +164,9 @@ impl<F: Fn(Real) -> Vec3> Rhs<3> for OrientationRhs<F> {
 pub(super) struct OnGroup<const N: usize> {
     pub(super) stepper: AnyStepper<N>,
     pub(super) base: Quat,
+    /// The most the body turns in one step, radians ([`MAX_TURN_PER_STEP`],
+    /// less for a refined run).
+    pub(super) max_turn: Real,
 }
 
 impl<const N: usize> OnGroup<N> {
@@ -184,7 +187,7 @@ impl<const N: usize> OnGroup<N> {
         let y = *self.stepper.y();
         let rate = omega(self.stepper.t(), &y).norm();
         if rate > 0.0 {
-            self.stepper.set_h_max(MAX_TURN_PER_STEP / rate);
+            self.stepper.set_h_max(self.max_turn / rate);
         }
         let sigma = Self::sigma(&y);
         if sigma.norm() > FOLD_ANGLE {

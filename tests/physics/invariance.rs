@@ -47,8 +47,8 @@ pub enum Manifold {
 }
 
 /// The Magnus steps: at most this far in s, and this many radians.
-const MAGNUS_S: Real = 0.0025;
-const MAGNUS_TURN: Real = 0.01;
+const MAGNUS_S: Real = 0.01;
+const MAGNUS_TURN: Real = 0.05;
 
 /// Terms of the series in u.
 const TERMS: usize = 90;
@@ -88,6 +88,10 @@ pub struct Reference {
     omega3: Real,
     chi0: Real,
     s0: Real,
+    /// u at t = 0: s is ln(u/u₀), so that a run that hardly decays keeps its
+    /// digits in s (ln u itself rounds at 1e-15, which dt/ds turns into 1e-9
+    /// of time where u and k² are small).
+    u0: Real,
     series: Vec<C>,
     /// The series holds for s ≤ s_sw.
     s_sw: Real,
@@ -123,7 +127,8 @@ impl Reference {
             alpha,
             omega3: omega0.z,
             chi0: omega0.y.atan2(omega0.x),
-            s0: u0.ln(),
+            s0: 0.0,
+            u0,
             series: Vec::new(),
             s_sw: Real::NEG_INFINITY,
             nodes: Vec::new(),
@@ -138,11 +143,16 @@ impl Reference {
         }
         if manifold == Manifold::Physical {
             r.series = series(tau, k);
-            r.s_sw = r.series_limit(u0).ln();
+            r.s_sw = (r.series_limit(u0) / u0).ln();
             r.integrate_upward();
         }
         r.build_panels(t_max);
         r
+    }
+
+    /// u at s = ln(u/u₀).
+    fn u(&self, s: Real) -> Real {
+        self.u0 * s.exp()
     }
 
     /// The largest u ≤ u₀ where the series has converged to 1e-19.
@@ -162,7 +172,7 @@ impl Reference {
 
     /// dg/ds from the invariance equation.
     fn dg_ds(&self, s: Real, g: C) -> C {
-        let u = s.exp();
+        let u = self.u(s);
         let i = C::new(0.0, 1.0);
         let tau = self.tau;
         let n = g * (C::new(1.0, 0.0) - i * (2.0 * tau * self.k)) + tau * (u + self.k * self.k)
@@ -182,7 +192,7 @@ impl Reference {
         if self.s_sw >= self.s0 {
             return;
         }
-        let g = eval_series(&self.series, self.s_sw.exp());
+        let g = eval_series(&self.series, self.u(self.s_sw));
         // Stiffness of the attraction: |∂(dg/ds)/∂g| ≈ |1 − 2iτk − 2τg|/(2τ|Re g|).
         let lam = (C::new(1.0, -2.0 * self.tau * self.k) - g * (2.0 * self.tau)).norm()
             / (2.0 * self.tau * g.re.abs());
@@ -203,10 +213,10 @@ impl Reference {
     /// g at s (s ≤ s₀).
     pub fn g(&self, s: Real) -> C {
         match self.manifold {
-            Manifold::Reduced => C::new(-self.tau * (s.exp() + self.k * self.k), 0.0),
+            Manifold::Reduced => C::new(-self.tau * (self.u(s) + self.k * self.k), 0.0),
             Manifold::Physical => {
                 if s <= self.s_sw || self.nodes.is_empty() {
-                    return eval_series(&self.series, s.exp());
+                    return eval_series(&self.series, self.u(s));
                 }
                 let j = (((s - self.s_sw) / self.h_ode).floor() as usize).min(self.nodes.len() - 1);
                 let (sj, gj) = self.nodes[j];
@@ -260,7 +270,7 @@ impl Reference {
         let c0 = self.c0();
         // Below this u, g = c₀ to rounding.
         let s_tail = if c0.norm() > 0.0 {
-            Some((1e-18 * c0.norm() / self.c1()).ln())
+            Some((1e-18 * c0.norm() / self.c1() / self.u0).ln())
         } else {
             None
         };
@@ -297,15 +307,18 @@ impl Reference {
         }
     }
 
-    /// s, and Φ, at time t.
-    pub fn s_at(&self, t: Real) -> (Real, Real) {
+    /// s, Φ and t at the s found for time t: Newton's s* is within a
+    /// rounding of s, but dt/ds is large where u and k² are small, so the
+    /// time t* = t(s*) is returned too, and the callers carry the motion the
+    /// remaining t − t* on.
+    pub fn s_at(&self, t: Real) -> (Real, Real, Real) {
         if let Some((st, tt, pt)) = self.tail
             && t >= tt
         {
             let c0 = self.c0();
             let f0 = -1.0 / (2.0 * c0.re);
             let ds = (t - tt) / f0;
-            return (st - ds, pt + ds * c0.im * f0);
+            return (st - ds, pt + ds * c0.im * f0, t);
         }
         // The panel whose span of t holds t.
         let i = self.panels.partition_point(|p| p.t_top <= t).max(1) - 1;
@@ -317,14 +330,14 @@ impl Reference {
             let miss = p.t_top + dt - t;
             let (f, _) = self.rates(s);
             let next = (s + miss / f).clamp(p.s_bot - 1.0, p.s_top);
-            if (next - s).abs() <= 1e-15 * (1.0 + s.abs()) {
+            if (next - s).abs() <= 1e-16 * (1e-300 + s.abs()) {
                 s = next;
                 break;
             }
             s = next;
         }
-        let (_, dp) = self.quad(s, p.s_top);
-        (s, p.phi_top + dp)
+        let (dt, dp) = self.quad(s, p.s_top);
+        (s, p.phi_top + dp, p.t_top + dt)
     }
 
     /// Ω at time t.
@@ -332,16 +345,17 @@ impl Reference {
         if self.steady {
             return Vec3::new(0.0, 0.0, self.omega3);
         }
-        let (s, phi) = self.s_at(t);
-        let amp = (0.5 * s).exp();
-        let z = C::from_polar(amp, self.chi0 + phi - self.alpha * t);
+        let (s, phi, t_s) = self.s_at(t);
+        let g = self.g(s);
+        let w = C::from_polar(self.u(s).sqrt(), self.chi0 + phi) * (g * (t - t_s)).exp();
+        let z = w * C::from_polar(1.0, -self.alpha * t);
         Vec3::new(z.re, z.im, self.omega3)
     }
 
     /// ω_P at s.
     fn omega_p(&self, s: Real) -> Vec3 {
         let g = self.g(s);
-        Vec3::new((0.5 * s).exp(), 0.0, self.k + g.im)
+        Vec3::new(self.u(s).sqrt(), 0.0, self.k + g.im)
     }
 
     /// The orientations at `times` (ascending) from O(0) = `o0`.
@@ -353,22 +367,21 @@ impl Reference {
                 .map(|&t| o0 * rot_z(self.omega3 * t))
                 .collect();
         }
-        let targets: Vec<(Real, Real)> = times.iter().map(|&t| self.s_at(t)).collect();
+        let targets: Vec<(Real, Real, Real)> = times.iter().map(|&t| self.s_at(t)).collect();
         let mut p = rot(o0 * rot_z(self.chi0));
         let mut s = self.s0;
-        let c = 3.0_f64.sqrt() / 6.0;
         // Past this s, √u turns P by less than a rounding: P turns about its
         // third axis at k + Im c₀ alone.
         let c0 = self.c0();
         let s_still = if c0.re < 0.0 {
             let f0 = -1.0 / (2.0 * c0.re);
-            Some((1e-17 / (2.0 * f0)).powi(2).ln())
+            Some(((1e-17 / (2.0 * f0)).powi(2) / self.u0).ln())
         } else {
             None
         };
         let mut still: Option<(Real, Rotation3<Real>)> = None;
         let mut out = Vec::with_capacity(times.len());
-        for (&t, &(target, phi)) in times.iter().zip(&targets) {
+        for (&t, &(target, phi, t_s)) in times.iter().zip(&targets) {
             while still.is_none() && s > target {
                 if let Some(ss) = s_still
                     && s <= ss
@@ -389,25 +402,45 @@ impl Reference {
                 // that the steps add up to the span exactly (dt/ds is large
                 // where u ≪ k², and a rounding of s per step adds up).
                 let h = s - next;
-                // σ = −s increases: Gauss points at s − (½ ∓ c)h.
-                let (s1, s2) = (s - (0.5 - c) * h, s - (0.5 + c) * h);
-                let a1 = self.omega_p(s1) * self.rates(s1).0;
-                let a2 = self.omega_p(s2) * self.rates(s2).0;
-                let theta = (a1 + a2) * (0.5 * h) + a1.cross(&a2) * (3.0_f64.sqrt() * h * h / 12.0);
-                p *= Rotation3::from_scaled_axis(theta);
+                p *= Rotation3::from_scaled_axis(self.magnus6(s, h));
                 s = next;
             }
-            let p_t = match still {
+            let (p_t, phi) = match still {
                 Some((t_still, p_still)) => {
                     let rate = self.k + c0.im;
-                    p_still * Rotation3::from_axis_angle(&Unit::new_unchecked(Vec3::z()), rate * (t - t_still))
+                    let turn = Rotation3::from_axis_angle(&Unit::new_unchecked(Vec3::z()), rate * (t - t_still));
+                    (p_still * turn, phi)
                 }
-                None => p,
+                None => {
+                    // Carried from t* = t(s*) to t at the rate there.
+                    let dt = t - t_s;
+                    let rest = Rotation3::from_scaled_axis(self.omega_p(target) * dt);
+                    (p * rest, phi + self.g(target).im * dt)
+                }
             };
             let beta = self.alpha * t - self.chi0 - phi;
             out.push(p_t.matrix() * rot_z(beta));
         }
         out
+    }
+
+    /// The rotation vector of one sixth-order Magnus step of P′ = P ω̂_P
+    /// along σ = −s, from s to s − h (three Gauss points; Blanes, Casas,
+    /// Oteo and Ros, Phys. Rep. 470 (2009) 151, Sec. 5). For Y = Pᵀ,
+    /// Y′ = −ω̂ Y: the method is written for Y′ = ÂY and P steps by the
+    /// transpose.
+    fn magnus6(&self, s: Real, h: Real) -> Vec3 {
+        let r = 0.15_f64.sqrt();
+        let a = |x: Real| -(self.omega_p(x) * self.rates(x).0);
+        let (b1, b2, b3) = (a(s - (0.5 - r) * h), a(s - 0.5 * h), a(s - (0.5 + r) * h));
+        let al1 = b2 * h;
+        let al2 = (b3 - b1) * (15.0_f64.sqrt() * h / 3.0);
+        let al3 = (b3 - b2 * 2.0 + b1) * (10.0 * h / 3.0);
+        let c12 = al1.cross(&al2);
+        let left = -(al1 * 20.0) - al3 + c12;
+        let right = al2 - al1.cross(&(al3 * 2.0 + c12)) / 60.0;
+        let omega_y = al1 + al3 / 12.0 + left.cross(&right) / 240.0;
+        -omega_y
     }
 
     /// t and Φ at s (s ≤ s₀).

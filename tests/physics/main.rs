@@ -18,3 +18,4 @@ mod shell_model;
 mod symmetric_top;
 mod invariance;
 mod scratch46;
+mod errors_sweep;

@@ -69,7 +69,7 @@ fn scratch_ref_long() {
     let rs: Vec<_> = [1.0, 0.5, 0.25].iter().map(|&sc| Reference::new(Manifold::Physical, ratio, 1.0, w, t, sc)).collect();
     let os: Vec<_> = rs.iter().map(|r| r.orientations(&o0, &times)).collect();
     for j in 0..times.len() {
-        let (s, _) = rs[0].s_at(times[j]);
+        let (s, _, _) = rs[0].s_at(times[j]);
         println!("t {:.4e} s {s:.3} d01 {:.2e} d12 {:.2e}", times[j], angle_between(&os[0][j], &os[1][j]), angle_between(&os[1][j], &os[2][j]));
     }
 }
@@ -124,5 +124,51 @@ fn scratch_al() {
             line += &format!(" {off:.1e}");
         }
         println!("rtol {rtol:e}:{line}");
+    }
+}
+
+#[test]
+#[ignore]
+fn scratch_orient_cmp() {
+    use crate::errors_sweep::Case;
+    for (ratio, theta, strength, t_end) in [(1.5, 0.8, 0.01, 100.0), (0.4, std::f64::consts::FRAC_PI_2, 0.01, 1.0), (0.4, 0.05, 0.3, 100.0)] {
+        let case = Case { ratio, theta, strength, t_end, rtol: 1e-12 };
+        let w = case.omega0();
+        let times = case.times();
+        let o0 = EulerAngles::new(0.3, 0.7, 0.1).to_rotation();
+        let top = SymmetricTop::new(ratio, 1.0).unwrap();
+        let init = InitialState::new(w, EulerAngles::new(0.3, 0.7, 0.1)).unwrap();
+        for (manifold, model) in [(Manifold::Reduced, Model::Reduced(top)), (Manifold::Physical, Model::Full(top))] {
+            let r = Reference::new(manifold, ratio, 1.0, w, t_end, 0.5);
+            let ro = r.orientations(&o0, &times);
+            let opts = MethodOptions::default().with_rtol(1e-12).unwrap();
+            let mut sim = Simulation::new(model, MethodChoice::Auto, opts, init, Some(t_end)).unwrap();
+            let mut line = String::new();
+            for (j, &t) in times.iter().enumerate() {
+                let s = *sim.advance_to(t).unwrap();
+                line += &format!(" {:.1e}", angle_between(&s.rotation_matrix(), &ro[j]));
+            }
+            println!("{ratio} {theta} {strength} {t_end} {manifold:?}:{line}");
+        }
+    }
+}
+
+#[test]
+#[ignore]
+fn scratch_measured() {
+    use spintop::sim::physical::physical_table;
+    let (ratio, w, t_end) = (0.4, Vec3::new(0.6, 0.8, 0.0), 1e4);
+    let top = SymmetricTop::new(ratio, 1.0).unwrap();
+    let r = Reference::new(Manifold::Physical, ratio, 1.0, w, t_end, 1.0);
+    for rtol in [1e-12, 1e-10] {
+        let opts = MethodOptions::default().with_rtol(rtol).unwrap();
+        let table = physical_table(&top, &w, t_end, &opts, 10_000_000).unwrap();
+        let mut worst = (0.0, 0.0);
+        for j in 0..=2000 {
+            let t = t_end * j as Real / 2000.0;
+            let e = (table.omega_at(t) - r.omega(t)).norm();
+            if e > worst.0 { worst = (e, t); }
+        }
+        println!("rtol {rtol:e}: worst {:.2e} at t {}, t_end {} steps {} shots {}", worst.0, worst.1, table.t_end(), table.stats.steps, table.shots);
     }
 }

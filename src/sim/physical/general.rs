@@ -556,8 +556,9 @@ pub fn general_physical_table(
     omega0: &Vec3,
     t_end: Real,
     rtol: Real,
+    refine: Real,
 ) -> Result<(OmegaTable, GeneralPhysicalSolution), PhysicalError> {
-    let step = table_step(fast_time(top), omega0.norm());
+    let step = refine * table_step(fast_time(top), omega0.norm());
     let sol = general_physical_solution(top, omega0, &grid(step, t_end), rtol)?;
     let second = sol
         .omega

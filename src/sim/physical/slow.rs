@@ -248,6 +248,9 @@ pub struct Budget {
     pub rtol: Real,
     /// Steps left (accepted and rejected, over every pass).
     pub steps: u64,
+    /// The share of [`NODE_TURN`] the nodes are apart (1, or less for the
+    /// second run of an error estimate).
+    pub refine: Real,
 }
 
 impl Budget {
@@ -373,7 +376,7 @@ fn along_series(
         }
         let rate = node_rate(series, series.rate(u));
         if rate > 0.0 {
-            stepper.set_h_max(NODE_TURN / rate);
+            stepper.set_h_max(NODE_TURN * budget.refine / rate);
         }
         stepper.step(&rhs, span)?;
         let y = *stepper.y();
@@ -404,6 +407,7 @@ struct Shot<'a> {
     /// The piece's length (local time 0 to `length`).
     length: Real,
     rtol: Real,
+    refine: Real,
 }
 
 impl Shot<'_> {
@@ -453,7 +457,7 @@ impl Shot<'_> {
             let y = stepper.y();
             let rate = node_rate(self.series, C::new(y[2], y[3]) / C::new(y[0], y[1]));
             if rate.is_finite() && rate > 0.0 {
-                stepper.set_h_max(NODE_TURN / rate);
+                stepper.set_h_max(NODE_TURN * self.refine / rate);
             }
             stepper.step(&rhs, 0.0)?;
             if record {
@@ -518,6 +522,7 @@ fn shoot(
         omega3,
         length,
         rtol: budget.rtol,
+        refine: budget.refine,
     };
     let target = a0.ln();
     let mut stats = Stats::default();
