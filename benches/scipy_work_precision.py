@@ -12,7 +12,7 @@ for RK45, DOP853, Radau and LSODA over a ladder of tolerances; the same with
 where scikit-sundae installs, with CVODE's Adams and BDF methods (`cvode-adams`,
 `cvode-bdf`; compiled C, called back into Python for the right-hand side). The start, the
 parameters, the absolute tolerance (1e-6 * rtol * |Omega0|) and the reference
-(benches/reference/*.csv, mpmath at 40 digits) are spintop's, so the errors are
+(crates/spintop/reference/*.csv, mpmath at 40 digits) are spintop's, so the errors are
 measured the same way: the largest relative error of Omega over the 200 points.
 The full ALE (3.4) is not run: its physical solution needs a backward shoot
 that solve_ivp does not offer.

@@ -1,7 +1,7 @@
-//! The `spintop` command line: a thin shell over [`crate::sim`].
+//! The `spintop` command line: a thin shell over [`spintop::sim`].
 //!
 //! Raw arguments are parsed by clap, then validated into the objects the core
-//! runs on ([`crate::output::simulate::SimulateConfig`]), then run; every failure becomes one line on
+//! runs on ([`spintop::output::simulate::SimulateConfig`]), then run; every failure becomes one line on
 //! stderr and an exit code:
 //!
 //! | code | meaning |
@@ -10,12 +10,13 @@
 //! | 2 | bad input: malformed or unphysical arguments |
 //! | 3 | numerical failure: the run was stopped, with the time and what to try |
 
-use crate::math::Real;
-pub(crate) use crate::numbers::parse_number;
-use crate::output::Failure;
-pub use crate::output::Format;
-use crate::sim::SimError;
 use clap::{Parser, Subcommand};
+use spintop::math::Real;
+pub(crate) use spintop::numbers::parse_number;
+use spintop::output::Failure;
+pub use spintop::output::Format;
+use spintop::scene::Refusal;
+use spintop::sim::SimError;
 use std::ffi::OsString;
 use std::io::{self, Write};
 use std::process::ExitCode;
@@ -35,6 +36,7 @@ pub mod shell;
 pub mod simulate;
 pub mod stability;
 pub mod tui;
+pub mod values;
 
 /// Exit code for bad input.
 pub const EXIT_BAD_INPUT: u8 = 2;
@@ -63,15 +65,7 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Integrate or evaluate one model and print samples (table, CSV or JSON).
-    #[command(after_help = "Examples:\n  \
-        spintop simulate --model reduced --t-end 1000 --samples 11\n  \
-        spintop simulate --model truncated --omega 0,0.1,0.2 --times 0,10,100 --format json\n  \
-        spintop simulate --model general --inertia 1,1.5,0.8 --dipole 0.2,0,1 --t-end 100\n  \
-        spintop simulate --model full --method forward --times 0,1,2,5,10   (runs away at t = 3: exit 3)\n\n\
-        Ranges: 0 < --ratio <= 2; each --omega component at most 1e100 (1/tau); --inertia positive \
-        and a rigid body (each at most the sum of the other two); --dipole not zero; times >= 0 and \
-        non-decreasing; 1e-14 <= --rtol < 1; --step > 0. A run over 1e7 steps is refused before it \
-        starts, with the estimate and a cheaper way.")]
+    #[command(after_help = simulate::after_help())]
     Simulate(simulate::SimulateArgs),
     /// Section 2: the two balance laws (2.1), (2.2) and the Schott term (2.4) for a dipole trajectory.
     Balance(balance::BalanceArgs),
@@ -109,15 +103,10 @@ pub(crate) fn parse_list(s: &str) -> Result<Vec<Real>, String> {
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct TimeList(pub(crate) Vec<Real>);
 
-/// Output times of the time-stepping commands: at least one, all >= 0,
-/// non-decreasing (the core steps forward in time only), by the core's one
-/// rule ([`crate::sim::times::check_times`]).
-pub(crate) fn check_output_times(times: &[Real]) -> Result<(), CliError> {
-    crate::sim::times::check_times(times, true).map_err(|e| bad(format!("--{e}")))
-}
-
+/// Times as typed (their rule is the core's, [`spintop::sim::times::check_times`],
+/// applied where a scene's `[solve] times` is).
 pub(crate) fn parse_times(s: &str) -> Result<TimeList, String> {
-    parse_list(s).map(TimeList)
+    values::reals(s).map(TimeList)
 }
 
 pub(crate) fn parse_vec3(s: &str) -> Result<[Real; 3], String> {
@@ -127,17 +116,24 @@ pub(crate) fn parse_vec3(s: &str) -> Result<[Real; 3], String> {
 }
 
 /// A failure of the command line, mapped to one line and an exit code.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
 pub enum CliError {
     /// Malformed or unphysical input.
+    #[error("{0}")]
     BadInput(String),
+    /// A question's flags refused by the core, in the words a scene's keys get.
+    #[error(transparent)]
+    Refused(#[from] Refusal),
     /// A run stopped for a numerical or modelling reason; the message carries
     /// the time and what to try.
+    #[error("{0}")]
     Stopped(String),
     /// Writing the output failed.
+    #[error("cannot write output: {0}")]
     Io(io::Error),
-    /// A terminal session was ended by a signal (the terminal was restored).
-    /// (its number and name).
+    /// A terminal session was ended by a signal (the terminal was restored):
+    /// its number and name.
+    #[error("stopped by {1}; the terminal is restored")]
     Signal(i32, String),
 }
 
@@ -145,7 +141,7 @@ impl CliError {
     /// The exit code.
     pub fn exit_code(&self) -> u8 {
         match self {
-            CliError::BadInput(_) => EXIT_BAD_INPUT,
+            CliError::BadInput(_) | CliError::Refused(_) => EXIT_BAD_INPUT,
             CliError::Stopped(_) => EXIT_NUMERICAL,
             CliError::Io(_) => 1,
             // As a shell reports a process a signal stopped: 128 + its number.
@@ -155,11 +151,7 @@ impl CliError {
 
     /// The one-line message.
     pub fn message(&self) -> String {
-        match self {
-            CliError::BadInput(msg) | CliError::Stopped(msg) => msg.clone(),
-            CliError::Io(e) => format!("cannot write output: {e}"),
-            CliError::Signal(_, name) => format!("stopped by {name}; the terminal is restored"),
-        }
+        self.to_string()
     }
 }
 
@@ -179,17 +171,17 @@ impl From<Failure> for CliError {
 }
 
 /// A simulation's failure, with advice for the model and the method in use
-/// (see [`crate::output::sim_failure`]).
+/// (see [`spintop::output::sim_failure`]).
 pub(crate) fn sim_failure(
     e: SimError,
-    model: &crate::sim::Model,
-    choice: crate::sim::MethodChoice,
+    model: &spintop::sim::Model,
+    choice: spintop::sim::MethodChoice,
 ) -> CliError {
-    CliError::from(crate::output::sim_failure(
+    CliError::from(spintop::output::sim_failure(
         e,
         model,
         choice,
-        crate::output::Entry::CommandLine,
+        spintop::output::Entry::CommandLine,
     ))
 }
 
@@ -254,10 +246,56 @@ pub(crate) fn read_text_file(
     String::from_utf8(bytes).map_err(|_| bad(format!("{shown}: the {what} is not UTF-8 text")))
 }
 
+/// A name a flag does not take, in the words a scene's key gets for it
+/// (`--model xml is not known; expected one of truncated, …`), with clap's
+/// suggestion when it has one.
+fn unknown_name(e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if e.kind() != ErrorKind::InvalidValue {
+        return None;
+    }
+    let text = |kind| match e.get(kind) {
+        Some(ContextValue::String(s)) => Some(s.clone()),
+        _ => None,
+    };
+    let flag = text(ContextKind::InvalidArg)?;
+    let flag = flag.split_whitespace().next()?.to_string();
+    let value = text(ContextKind::InvalidValue)?;
+    let Some(ContextValue::Strings(names)) = e.get(ContextKind::ValidValue) else {
+        return None;
+    };
+    let value = if value.is_empty() {
+        "''".to_string()
+    } else {
+        value
+    };
+    let mut message = format!(
+        "{flag} {value} is not known; expected one of {}",
+        names.join(", ")
+    );
+    if let Some(near) = suggested(e).filter(|_| names.len() > 1) {
+        message = format!("{message} (a similar one: {near})");
+    }
+    Some(message)
+}
+
+/// clap's suggestion of a similar name, if any.
+fn suggested(e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue};
+    match e.get(ContextKind::SuggestedValue)? {
+        ContextValue::String(s) => Some(s.clone()),
+        ContextValue::Strings(v) if !v.is_empty() => Some(v.join(", ")),
+        _ => None,
+    }
+}
+
 /// clap's report on one line: the error, the missing arguments, the possible
 /// values and the tip ("a similar argument exists"), without the usage block
 /// and the pointer to `--help` (the caller adds its own).
 fn clap_message(e: &clap::Error) -> String {
+    if let Some(message) = unknown_name(e) {
+        return message;
+    }
     let rendered = e.render().to_string();
     let mut parts: Vec<String> = Vec::new();
     for line in rendered.lines() {
@@ -300,6 +338,16 @@ where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
 {
+    ExitCode::from(run_code(args, stdout, stderr))
+}
+
+/// [`run`], with the exit code as a number: what the tests read when they
+/// run the command line in their own process.
+pub fn run_code<I, T>(args: I, stdout: &mut impl Write, stderr: &mut impl Write) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
     let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {
@@ -311,13 +359,13 @@ where
                     Err(e) if e.kind() != io::ErrorKind::BrokenPipe => {
                         let e = CliError::from(e);
                         let _ = writeln!(stderr, "spintop: error: {}", e.message());
-                        ExitCode::from(e.exit_code())
+                        e.exit_code()
                     }
-                    _ => ExitCode::SUCCESS,
+                    _ => 0,
                 };
             }
             let _ = writeln!(stderr, "spintop: error: {} (see --help)", clap_message(&e));
-            return ExitCode::from(EXIT_BAD_INPUT);
+            return EXIT_BAD_INPUT;
         }
     };
     // Every command writes its output through the gate, and only through it.
@@ -342,12 +390,12 @@ where
         Some(Command::Book(args)) => book::execute(args, out),
     };
     match result.and_then(|()| gate.flush().map_err(CliError::from)) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => 0,
         // A closed pipe (`spintop … | head`) is the reader's choice, not an error.
-        Err(CliError::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(CliError::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => 0,
         Err(e) => {
             let _ = writeln!(stderr, "spintop: error: {}", e.message());
-            ExitCode::from(e.exit_code())
+            e.exit_code()
         }
     }
 }

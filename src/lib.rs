@@ -1,109 +1,16 @@
-//! # spintop
+//! # spintop-app
 //!
-//! The free rotation of a polarized spinning top under radiation reaction, after
-//! A. Duviryak, "On the free rotation of a polarized spinning-top as a test of the
-//! correct radiation reaction torque". Every equation of the paper that the crate
-//! uses is cited in its doc comment as `Paper: Eq. (N.M).`
+//! The `spintop` application: the shells over the core crate [`spintop`].
 //!
-//! - [`math`]: scalar, vector and rotation types; SO(3) helpers.
-//! - [`numbers`]: how numbers are written (messages, headers, tables, CSV, axes) and read.
-//! - [`physics`]: the paper, one module per concept (pure: no I/O, no clock).
-//! - [`integrate`]: RK4, Dormand–Prince 5(4), DOP853 and Radau IIA 5 over one small trait; Strang and Yoshida-4 splittings.
-//! - [`sim`]: a model plus a method, stepped and sampled (pure).
-//! - [`scene`]: one question in a TOML file, and the lightest model that answers it (pure).
-//! - [`stability`]: where natural methods fail, beside what spintop does instead (pure).
-//! - [`figure`]: the paper's Figures 1 and 2 as point sets (pure).
-//! - [`workprecision`]: error against cost for every method on the paper's problems (pure;
-//!   the clock is injected).
-//! - [`output`]: what `simulate`, `balance`, `orbit` and `shell` answer: the request, the
-//!   computation, the JSON contract and its table and CSV forms (the scene engine prints the same).
-//! - [`plot`]: ASCII charts for the lessons, the book and the command line; the figures as text and SVG.
-//! - [`cli`]: the `spintop` command line, a thin shell over [`sim`].
-//! - [`tui`]: the live terminal view, another thin shell over [`sim`].
+//! - [`cli`]: the `spintop` command line (raw arguments, then validation into
+//!   the core's structures, then a run and an exit code).
+//! - [`tui`]: the live terminal view and the terminal reader of the book.
+//!
+//! The course runner ([`spintop_course`]) and the book server
+//! ([`spintop_server`]) are crates below this one; the physics, the
+//! integrators, the models and the scenes are the core's. This library exists
+//! so that the tests drive the shells in process; nothing imports it.
 #![forbid(unsafe_code)]
-#![warn(missing_docs)]
 
-pub mod assignment;
-#[cfg(feature = "app")]
 pub mod cli;
-#[cfg(feature = "app")]
-pub mod course;
-#[cfg(feature = "app")]
-pub mod figure;
-#[doc(hidden)]
-pub mod grading;
-pub mod integrate;
-pub mod math;
-pub mod numbers;
-#[cfg(feature = "app")]
-pub mod output;
-pub mod physics;
-#[cfg(feature = "app")]
-pub mod plot;
-#[cfg(feature = "app")]
-pub mod scene;
-#[cfg(feature = "app")]
-pub mod server;
-pub mod sim;
-pub mod stability;
-#[cfg(feature = "app")]
 pub mod tui;
-#[cfg(feature = "app")]
-pub mod workprecision;
-
-/// The book's chapters (`book/src`). `cargo test` compiles and runs every Rust
-/// block in them as a doctest; `tests/project/book.rs` checks that every chapter in
-/// `SUMMARY.md` is listed here.
-#[cfg(all(doctest, feature = "app"))]
-pub mod book {
-    #[doc = include_str!("../book/src/preface.md")]
-    pub struct Preface;
-    #[doc = include_str!("../book/src/question-and-scales.md")]
-    pub struct QuestionAndScales;
-    #[doc = include_str!("../book/src/section-2.md")]
-    pub struct Section2;
-    #[doc = include_str!("../book/src/section-3.md")]
-    pub struct Section3;
-    #[doc = include_str!("../book/src/section-4-1.md")]
-    pub struct Section4_1;
-    #[doc = include_str!("../book/src/section-4-2.md")]
-    pub struct Section4_2;
-    #[doc = include_str!("../book/src/section-5.md")]
-    pub struct Section5;
-    #[doc = include_str!("../book/src/appendix.md")]
-    pub struct Appendix;
-    #[doc = include_str!("../book/src/asymmetric-top.md")]
-    pub struct AsymmetricTop;
-    #[doc = include_str!("../book/src/numerical-methods.md")]
-    pub struct NumericalMethods;
-    #[doc = include_str!("../book/src/where-methods-fail.md")]
-    pub struct WhereMethodsFail;
-    #[doc = include_str!("../book/src/real-particles.md")]
-    pub struct RealParticles;
-    #[doc = include_str!("../book/src/assignments.md")]
-    pub struct Assignments;
-    #[doc = include_str!("../book/src/instructors.md")]
-    pub struct Instructors;
-    #[doc = include_str!("../book/src/speed-accuracy.md")]
-    pub struct SpeedAccuracy;
-    #[doc = include_str!("../book/src/solutions-section-2.md")]
-    pub struct SolutionsSection2;
-    #[doc = include_str!("../book/src/solutions-section-3.md")]
-    pub struct SolutionsSection3;
-    #[doc = include_str!("../book/src/solutions-section-4-1.md")]
-    pub struct SolutionsSection4_1;
-    #[doc = include_str!("../book/src/solutions-section-4-2.md")]
-    pub struct SolutionsSection4_2;
-    #[doc = include_str!("../book/src/solutions-section-5.md")]
-    pub struct SolutionsSection5;
-    #[doc = include_str!("../book/src/solutions-appendix.md")]
-    pub struct SolutionsAppendix;
-    #[doc = include_str!("../book/src/glossary.md")]
-    pub struct Glossary;
-    #[doc = include_str!("../book/src/errata.md")]
-    pub struct Errata;
-    #[doc = include_str!("../book/src/symbols.md")]
-    pub struct Symbols;
-    #[doc = include_str!("../book/src/scene-reference.md")]
-    pub struct SceneReference;
-}

@@ -1,4 +1,4 @@
-//! The `spintop` binary: everything lives in the library's [`spintop::cli`].
+//! The `spintop` binary: everything lives in the library's [`spintop_app::cli`].
 
 use std::io::{self, BufWriter};
 use std::process::ExitCode;
@@ -6,5 +6,5 @@ use std::process::ExitCode;
 fn main() -> ExitCode {
     let mut stdout = BufWriter::new(io::stdout().lock());
     let mut stderr = io::stderr().lock();
-    spintop::cli::run(std::env::args_os(), &mut stdout, &mut stderr)
+    spintop_app::cli::run(std::env::args_os(), &mut stdout, &mut stderr)
 }

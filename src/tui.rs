@@ -3,8 +3,8 @@
 //! (asymmetric) top's three models; and `spintop learn`, the book beside
 //! each chapter's own scene.
 //!
-//! A thin shell over [`crate::sim`]: every number on the screen is read from a
-//! [`crate::sim::Sample`] or from the core's closed forms; nothing here redoes
+//! A thin shell over [`spintop::sim`]: every number on the screen is read from a
+//! [`spintop::sim::Sample`] or from the core's closed forms; nothing here redoes
 //! physics. The pieces follow the house style:
 //!
 //! | module | what it holds |

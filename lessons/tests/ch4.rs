@@ -5,7 +5,7 @@
 //! its own, reads its verdict from structure, and first checks the source
 //! rule (lessons/README.md, "No shortcut").
 
-use spintop::graded;
+use spintop_grading::graded;
 use spintop_lessons::ch4;
 
 /// (4.5)-(4.6)

@@ -1,4 +1,4 @@
-//! `spintop bench`: the work-precision sweep of [`crate::workprecision`], with
+//! `spintop bench`: the work-precision sweep of [`spintop::workprecision`], with
 //! the clock, the charts and the files that the pure core leaves out.
 //!
 //! `spintop bench --join A.csv B.csv …` reads runs written by `--out`, by the
@@ -8,12 +8,12 @@
 
 use super::gate::Gate;
 use super::{CliError, bad};
-use crate::math::Real;
-use crate::workprecision::report::{self, CostAxis};
-use crate::workprecision::{
+use clap::{Args, ValueEnum};
+use spintop::math::Real;
+use spintop::workprecision::report::{self, CostAxis};
+use spintop::workprecision::{
     self, Plan, Problem, ProblemKind, Row, Solver, Spintop, Stopwatch, Target,
 };
-use clap::{Args, ValueEnum};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -85,16 +85,16 @@ pub struct BenchArgs {
     #[arg(long, value_enum)]
     chart: Option<ChartModel>,
     /// Timed samples per run, 1 to 1000; the median is reported [default: 7, 3 with --quick]
-    #[arg(long, value_parser = crate::numbers::parse_count::<u32>, allow_hyphen_values = true)]
+    #[arg(long, value_parser = spintop::numbers::parse_count::<u32>, allow_hyphen_values = true)]
     repeats: Option<u32>,
     /// Also write the rows to this file: FILE.csv or FILE.json.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
     /// Width of each chart, in characters (16 to 250).
-    #[arg(long, default_value_t = 60, value_parser = crate::numbers::parse_count::<u32>, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 60, value_parser = spintop::numbers::parse_count::<u32>, allow_hyphen_values = true)]
     width: u32,
     /// Height of each chart, in lines (4 to 100).
-    #[arg(long, default_value_t = 18, value_parser = crate::numbers::parse_count::<u32>, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 18, value_parser = spintop::numbers::parse_count::<u32>, allow_hyphen_values = true)]
     height: u32,
     /// Instead of a sweep: join CSV files of earlier runs, chart every source's methods for one problem (--chart), and print each method's time at matched error 1e-8, 1e-10, 1e-12 and 1e-14, with ratios.
     #[arg(long, value_name = "CSV", num_args = 1..,

@@ -2,13 +2,13 @@
 //! progress, and what to do next, from one grading (each grader in its own
 //! process, its verdict read from structure); and the instructor's tools:
 //! `export`, `grade` (a whole class, CSV or Gradescope), `diagnose`.
-//! The engine is [`crate::course`]; this file validates and prints.
+//! The engine is [`spintop_course`]; this file validates and prints.
 
 use super::gate::Gate;
 use super::{CliError, bad, parse_number};
-use crate::course::{self, Options, State};
-use crate::grading;
 use clap::{Args, Subcommand};
+use spintop_course::{self as course, Options, State};
+use spintop_grading as grading;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -127,7 +127,7 @@ enum CourseAction {
         #[arg(long, value_name = "SECONDS", default_value_t = 30.0, value_parser = parse_number, allow_hyphen_values = true)]
         test_timeout: f64,
         /// Copies graded at once (default: the number of cores)
-        #[arg(long, value_name = "N", value_parser = crate::numbers::parse_count::<usize>, allow_hyphen_values = true)]
+        #[arg(long, value_name = "N", value_parser = spintop::numbers::parse_count::<usize>, allow_hyphen_values = true)]
         jobs: Option<usize>,
         /// Draw every grader's inputs from this seed (default: a fresh one for the class)
         #[arg(long, value_name = "N")]
@@ -357,19 +357,20 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
 fn export(dir: &Path, ci: Option<CiChoice>, out: &mut impl Write) -> Result<(), CliError> {
     let options = course::ExportOptions {
         ci: ci.map(|CiChoice::Github| course::Ci::Github),
+        link: course::Link::Carried,
     };
     let written = course::export_with(course::repository(), dir, &options)
         .map_err(|e| bad(format!("course export: {e}")))?;
     writeln!(
         out,
-        "spintop course export: wrote {} files to {} (stubs, graders, the assignments page; no solutions)",
+        "spintop course export: wrote {} files to {} (stubs, graders' tests, the assignments page, spintop's core and graders in crates/; no solutions)",
         written.files.len(),
         dir.display()
     )?;
     if ci.is_some() {
         writeln!(
             out,
-            "  {} grades it with `cargo test` on every push; spintop's core is copied into spintop/ so that it builds there",
+            "  {} grades it with `cargo test` on every push",
             course::export::GITHUB_WORKFLOW
         )?;
     }
@@ -533,7 +534,7 @@ impl Limits {
             } else {
                 Err(bad(format!(
                     "{flag} {}: give a number of seconds above 0 and at most a day",
-                    crate::numbers::fmt_value(v)
+                    spintop::numbers::fmt_value(v)
                 )))
             }
         };

@@ -2,18 +2,18 @@
 //! `spintop figure NAME --svg FILE`: one of the book's diagrams.
 //!
 //! Prints the figure as text charts; with `--svg FILE` also writes it as an
-//! SVG document. The points come from [`crate::figure`], the drawing from
-//! [`crate::plot::figure`]; the diagrams from [`crate::plot::diagram`], which
+//! SVG document. The points come from [`spintop::figure`], the drawing from
+//! [`spintop::plot::figure`]; the diagrams from [`spintop::plot::diagram`], which
 //! projects spintop's own vectors. A name that is neither 1, 2 nor a diagram,
 //! or a file that cannot be written, is bad input: one line on stderr, exit
 //! code 2, and nothing on stdout.
 
 use super::gate::Gate;
 use super::{CliError, bad};
-use crate::figure::{Figure, FigureNumber};
-use crate::plot::diagram;
-use crate::plot::figure::{ascii, svg};
 use clap::Args;
+use spintop::figure::{Figure, FigureNumber};
+use spintop::plot::diagram;
+use spintop::plot::figure::{ascii, svg};
 use std::io::Write;
 use std::path::PathBuf;
 

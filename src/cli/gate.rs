@@ -6,7 +6,7 @@
 //! - a result ([`Gate::emit`]) is checked first, every number in its
 //!   JSON form finite ([`first_non_finite`]); a number that is not, or a value
 //!   the check cannot walk, stops the command with exit 3 and nothing written;
-//!   then it is written in its format ([`crate::output::write`]), and a run
+//!   then it is written in its format ([`spintop::output::write`]), and a run
 //!   that stopped early says so in every format (`# stopped: …` after a table
 //!   or a CSV file, `"stopped"` in JSON) and exits 3;
 //! - prose (listings, progress, charts: `write!` on the gate) is refused the
@@ -16,10 +16,10 @@
 //! the gate.
 
 use super::CliError;
-use crate::numbers::non_finite_word;
-use crate::output::check::first_non_finite;
-use crate::output::{Format, Output};
 use serde::Serialize;
+use spintop::numbers::non_finite_word;
+use spintop::output::check::first_non_finite;
+use spintop::output::{Format, Output};
 use std::io::{self, Write};
 
 /// Where a command's output goes, checked.
@@ -37,7 +37,7 @@ impl<'a> Gate<'a> {
     /// before giving all that was asked (after writing what it did give).
     pub fn emit<T: Output + ?Sized>(&mut self, value: &T, format: Format) -> Result<(), CliError> {
         self.check(value, value.advice())?;
-        crate::output::write(self.out, value, format)?;
+        spintop::output::write(self.out, value, format)?;
         match value.stopped() {
             Some(stop) => Err(CliError::Stopped(stop.message)),
             None => Ok(()),

@@ -44,7 +44,7 @@ pub struct LearnArgs {
 }
 
 fn repository() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    spintop_course::repository().to_path_buf()
 }
 
 fn book_dir(repo: &Path) -> Result<PathBuf, CliError> {
@@ -98,7 +98,7 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
     // The course to grade beside the book, checked before the screen changes.
     let course = if !args.no_grading
         && (args.course.is_some()
-            || crate::course::lessons_dir(&repo)
+            || spintop_course::lessons_dir(&repo)
                 .join("Cargo.toml")
                 .is_file())
     {
@@ -218,5 +218,7 @@ fn experiments_of(session: &Learn, index: usize) -> Result<usize, CliError> {
     let book = book_dir(&repository())?;
     let file = &session.chapters()[index].file;
     let text = std::fs::read_to_string(book.join(file)).map_err(CliError::Io)?;
-    Ok(text.matches("<!-- spintop:").count())
+    Ok(crate::tui::learn::markdown::render(&text, 80)
+        .experiments
+        .len())
 }

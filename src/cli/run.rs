@@ -8,9 +8,9 @@
 
 use super::gate::Gate;
 use super::{CliError, Format, bad};
-use crate::scene::answer::answer;
-use crate::scene::{Kind, Scene, catalogue};
 use clap::Args;
+use spintop::scene::answer::answer;
+use spintop::scene::{Kind, Scene, catalogue};
 use std::io::Write;
 use std::path::Path;
 
@@ -27,7 +27,7 @@ pub struct RunArgs {
     #[arg(value_name = "SCENE")]
     scene: String,
     /// Output format (stability scenes print table or json).
-    #[arg(long, value_enum, default_value = "table")]
+    #[arg(long, value_parser = super::values::format(), default_value = "table")]
     format: Format,
 }
 
@@ -38,7 +38,7 @@ pub fn load(arg: &str) -> Result<Scene, CliError> {
     // link) is what was meant: read it or say why not.
     if path.symlink_metadata().is_ok() {
         let text = super::read_text_file(path, "scene file", 1 << 20)?;
-        return crate::scene::parse(&text, arg).map_err(|e| bad(e.to_string()));
+        return spintop::scene::parse(&text, arg).map_err(|e| bad(e.to_string()));
     }
     if let Some(entry) = catalogue::find(arg) {
         return entry.scene().map_err(|e| bad(e.to_string()));

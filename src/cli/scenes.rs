@@ -1,12 +1,12 @@
-//! `spintop scenes`: the catalogue of `lessons/scenes/`, one line per scene.
+//! `spintop scenes`: the catalogue of `crates/spintop/scenes/`, one line per scene.
 //!
-//! The files are compiled into the binary (see [`crate::scene::catalogue`]),
+//! The files are compiled into the binary (see [`spintop::scene::catalogue`]),
 //! so the list and `spintop run NAME` work from any directory.
 
 use super::CliError;
 use super::gate::Gate;
-use crate::scene::catalogue::CATALOGUE;
 use clap::Args;
+use spintop::scene::catalogue::CATALOGUE;
 use std::io::Write;
 
 /// The raw arguments of `scenes` (none).

@@ -3,10 +3,10 @@
 
 use super::gate::Gate;
 use super::{CliError, bad};
-use crate::output::{Format, Output};
-use crate::stability::{Row, RowError, all_rows};
 use clap::{Args, ValueEnum};
 use serde::Serialize;
+use spintop::output::{Format, Output};
+use spintop::stability::{Row, RowError, all_rows};
 use std::io::{self, Write};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -61,7 +61,7 @@ impl Output for Report {
 pub(crate) fn execute(args: StabilityArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let rows: Vec<Result<Row, RowError>> = match args.row {
         None => all_rows(),
-        Some(n @ 1..=6) => vec![crate::stability::row(n)],
+        Some(n @ 1..=6) => vec![spintop::stability::row(n)],
         Some(n) => return Err(bad(format!("--row must be 1 to 6, got {n}"))),
     };
     let mut done = Vec::with_capacity(rows.len());

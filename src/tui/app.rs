@@ -23,17 +23,17 @@
 //! | [`TICK`] | Δt | one model step of the view | τ |
 //! | `warp` | – | model time per wall-clock second | τ/s |
 
-use crate::integrate::Stats;
-use crate::math::{Real, Vec3};
-use crate::numbers::{fmt_exact, parse_number};
-use crate::physics::euler_angles::EulerAngles;
-use crate::physics::general_top::GeneralTop;
-use crate::physics::rigid_body::energy;
-use crate::physics::rigid_body::lab_frame;
-use crate::physics::symmetric_top::SymmetricTop;
-use crate::scene::Scene;
-use crate::scene::live::live_scene;
-use crate::sim::{InitialState, Method, MethodChoice, MethodOptions, Model, Sample, SimError};
+use spintop::integrate::Stats;
+use spintop::math::{Real, Vec3};
+use spintop::numbers::{fmt_exact, parse_number};
+use spintop::physics::euler_angles::EulerAngles;
+use spintop::physics::general_top::GeneralTop;
+use spintop::physics::rigid_body::energy;
+use spintop::physics::rigid_body::lab_frame;
+use spintop::physics::symmetric_top::SymmetricTop;
+use spintop::scene::Scene;
+use spintop::scene::live::live_scene;
+use spintop::sim::{InitialState, Method, MethodChoice, MethodOptions, Model, Sample, SimError};
 use std::collections::VecDeque;
 use std::time::Duration;
 
@@ -151,7 +151,7 @@ pub const STAND_IN_BELOW: Real = 1e-2;
 pub const MAX_LAG: Duration = Duration::from_millis(250);
 
 /// The most model steps per wall-clock second the view takes on: settings
-/// whose estimated work (the core's [`crate::sim::cost::estimate`], summed
+/// whose estimated work (the core's [`spintop::sim::cost::estimate`], summed
 /// over the columns) is above it are refused when they are entered, with the
 /// reason and a cheaper way, instead of being started.
 ///
@@ -301,13 +301,13 @@ impl Top {
                 let mut model = slot.model;
                 let mut fixed = slot.fixed;
                 if let Model::GeneralFull(top) = model {
-                    let small = crate::sim::physical::general::fast_time(&top)
+                    let small = spintop::sim::physical::general::fast_time(&top)
                         * Vec3::from(omega0).norm();
                     if small < STAND_IN_BELOW {
                         stand_in = Some(format!(
                             "τ_f|Ω₀| = {}: the physical solution is the reduced model to about {}, so the reduced model stands in",
-                            crate::numbers::fmt_num(small),
-                            crate::numbers::fmt_num(small * small)
+                            spintop::numbers::fmt_num(small),
+                            spintop::numbers::fmt_num(small * small)
                         ));
                         model = Model::GeneralReduced(top);
                         fixed = None;
@@ -382,7 +382,7 @@ impl Settings {
         Self::validated(Top::Full(top), omega0, MethodChoice::Auto, warp)
     }
 
-    /// The settings a top scene opens with (see [`crate::scene::live`]), at
+    /// The settings a top scene opens with (see [`spintop::scene::live`]), at
     /// `warp` τ/s (the default when `None`), and the line the view opens with.
     pub fn for_scene(scene: &Scene, warp: Option<Real>) -> Result<(Self, String), String> {
         let live = live_scene(scene)?;
@@ -466,17 +466,17 @@ impl Settings {
         };
         Err(format!(
             "{what} needs about {} steps a second at {warp} {u}/s, the view {LIVE_STEPS_PER_SECOND:.0e}; {cheaper}",
-            crate::numbers::fmt_count(total),
+            spintop::numbers::fmt_count(total),
         ))
     }
 
     /// The steps per wall-clock second of every column (a column with a
     /// horizon is tabulated once: its whole cost counts), and the costliest
     /// column's estimate.
-    fn live_cost(&self) -> Result<(Real, Option<crate::sim::cost::Estimate>), String> {
+    fn live_cost(&self) -> Result<(Real, Option<spintop::sim::cost::Estimate>), String> {
         let omega0 = Vec3::from(self.omega0);
         let mut total = 0.0;
-        let mut costliest: Option<crate::sim::cost::Estimate> = None;
+        let mut costliest: Option<spintop::sim::cost::Estimate> = None;
         for (plan, _) in self.top.plans(self.method, self.omega0)? {
             // The options the view's simulations run with (`tui::stepper`).
             let options = MethodOptions::default();
@@ -485,7 +485,7 @@ impl Settings {
                 .method(plan.choice, &options)
                 .map_err(|e| e.to_string())?;
             let t = plan.horizon.unwrap_or(self.warp());
-            let Some(e) = crate::sim::cost::estimate(&plan.model, method, &options, &omega0, t)
+            let Some(e) = spintop::sim::cost::estimate(&plan.model, method, &options, &omega0, t)
             else {
                 continue;
             };
@@ -497,7 +497,7 @@ impl Settings {
             };
             total += steps;
             if costliest.as_ref().is_none_or(|c| c.steps < steps) {
-                costliest = Some(crate::sim::cost::Estimate { steps, ..e });
+                costliest = Some(spintop::sim::cost::Estimate { steps, ..e });
             }
         }
         Ok((total, costliest))
@@ -691,8 +691,8 @@ impl Column {
                 self.failure = Some(format!(
                     "ran away at t = {:.3}: it leaves the physical solution at {}/τ, an e-folding time of {}τ, as (3.4) does forward from any start",
                     r.t,
-                    crate::numbers::fmt_num(r.growth_rate),
-                    crate::numbers::fmt_num(1.0 / r.growth_rate)
+                    spintop::numbers::fmt_num(r.growth_rate),
+                    spintop::numbers::fmt_num(1.0 / r.growth_rate)
                 ));
             }
             Err(e) => self.stop(e.to_string()),

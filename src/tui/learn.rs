@@ -24,11 +24,11 @@ pub mod tex;
 pub mod view;
 
 use super::app::{Settings, Top, WARPS};
-use crate::math::Real;
-use crate::numbers::parse_number;
-use crate::sim::MethodChoice;
 use ratatui::layout::{Constraint, Layout, Rect};
 use scene::{SceneKey, Spec, Stage};
+use spintop::math::Real;
+use spintop::numbers::parse_number;
+use spintop::sim::MethodChoice;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -132,7 +132,7 @@ pub fn headings(markdown: &str) -> Vec<(u8, String)> {
     out
 }
 
-/// One experiment, parsed from `<!-- spintop: ratio=1.5 method=rk4 -->`.
+/// One experiment, parsed from the book's `` `spintop: ratio=1.5 method=rk4` ``.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Experiment {
     /// I₃/I₁.
@@ -406,19 +406,19 @@ pub struct Learn {
     visited: Vec<bool>,
     quit: bool,
     /// The course's grader, watching the student's files, if started.
-    watch: Option<crate::course::Watch>,
+    watch: Option<spintop_course::Watch>,
     /// Why nothing is graded, when grading was turned off.
     grading_off: Option<String>,
     /// The last grading, and whether one is running.
-    course: Option<crate::course::Status>,
+    course: Option<spintop_course::Status>,
     grading: bool,
     course_error: Option<String>,
     /// The lessons crate being graded (where the hint rungs are kept).
     course_dir: Option<PathBuf>,
     /// The last hint rung shown (`h`).
-    hint: Option<crate::course::Hint>,
+    hint: Option<spintop_course::Hint>,
     /// The hint rungs used, when there is no course folder to keep them in.
-    hints_used: crate::course::Progress,
+    hints_used: spintop_course::Progress,
     /// The student's function of time being sampled (see [`Self::start_probe`]).
     probe_rx: Option<std::sync::mpsc::Receiver<ProbeReport>>,
     /// The student's function of time, sampled, to draw against the reference.
@@ -427,8 +427,8 @@ pub struct Learn {
 
 /// A probe's request and what it found.
 pub type ProbeReport = (
-    crate::course::ProbeSpec,
-    Result<crate::course::Probed, String>,
+    spintop_course::ProbeSpec,
+    Result<spintop_course::Probed, String>,
 );
 
 impl Learn {
@@ -733,7 +733,7 @@ impl Learn {
     /// that the student has started (passing or failing), in the background;
     /// the scene then draws it against the reference.
     pub fn start_probe(&mut self) {
-        use crate::course::{ProbeSpec, State};
+        use spintop_course::{ProbeSpec, State};
         let (Some(dir), Some(status)) = (&self.course_dir, &self.course) else {
             return;
         };
@@ -749,7 +749,7 @@ impl Learn {
         let (tx, rx) = std::sync::mpsc::channel();
         let dir = dir.clone();
         std::thread::spawn(move || {
-            let _ = tx.send((spec, crate::course::probe(&dir, &spec)));
+            let _ = tx.send((spec, spintop_course::probe(&dir, &spec)));
         });
         self.probe_rx = Some(rx);
     }
@@ -764,11 +764,11 @@ impl Learn {
     pub fn yours(
         &self,
     ) -> Option<(
-        &crate::course::ProbeSpec,
-        &Result<crate::course::Probed, String>,
+        &spintop_course::ProbeSpec,
+        &Result<spintop_course::Probed, String>,
     )> {
         let (spec, probed) = self.yours.as_ref()?;
-        let here = crate::course::ProbeSpec::for_chapter(&self.chapters[self.current].title)?;
+        let here = spintop_course::ProbeSpec::for_chapter(&self.chapters[self.current].title)?;
         (*spec == here).then_some((spec, probed))
     }
 
@@ -846,8 +846,8 @@ impl Learn {
         self.stage.advance(elapsed);
         if self.rendered.figures_pending
             && [
-                crate::figure::FigureNumber::One,
-                crate::figure::FigureNumber::Two,
+                spintop::figure::FigureNumber::One,
+                spintop::figure::FigureNumber::Two,
             ]
             .into_iter()
             .all(figures::ready)
@@ -867,16 +867,16 @@ impl Learn {
     /// Starts grading the lessons crate in `dir` in the background, again on
     /// every save of a file under its `src/`.
     pub fn watch_course(&mut self, dir: &Path) {
-        self.watch = Some(crate::course::Watch::start(dir));
+        self.watch = Some(spintop_course::Watch::start(dir));
         self.course_dir = Some(dir.to_path_buf());
     }
 
     /// The assignment a hint is for: the first of this chapter's assignments
     /// that does not pass yet, else the course's next one.
-    pub fn hint_target(&self) -> Option<&'static crate::course::Assignment> {
-        use crate::course::{COURSE, State};
+    pub fn hint_target(&self) -> Option<&'static spintop_course::Assignment> {
+        use spintop_course::{COURSE, State};
         let title = &self.chapters[self.current].title;
-        let passing = |a: &crate::course::Assignment| {
+        let passing = |a: &spintop_course::Assignment| {
             self.course.as_ref().is_some_and(|s| {
                 s.states
                     .iter()
@@ -892,7 +892,7 @@ impl Learn {
     /// The next hint rung (`h`): for [`Self::hint_target`], kept in the
     /// course's progress file when the course is being graded.
     fn next_hint(&mut self) {
-        use crate::course;
+        use spintop_course as course;
         let Some(a) = self.hint_target() else {
             self.hint = None;
             return;
@@ -912,20 +912,20 @@ impl Learn {
     }
 
     /// The hint on screen, if any.
-    pub fn hint(&self) -> Option<&crate::course::Hint> {
+    pub fn hint(&self) -> Option<&spintop_course::Hint> {
         self.hint.as_ref()
     }
 
     /// Takes one report of the course grader.
-    pub fn course_report(&mut self, report: crate::course::Report) {
-        use crate::course::Report;
+    pub fn course_report(&mut self, report: spintop_course::Report) {
+        use spintop_course::Report;
         match report {
             Report::Grading => self.grading = true,
             Report::Graded(status) => {
                 self.grading = false;
                 self.course_error = None;
                 if let Some(dir) = &self.course_dir {
-                    crate::course::record_passes_now(dir, &status);
+                    spintop_course::record_passes_now(dir, &status);
                 }
                 self.course = Some(status);
                 self.start_probe();
@@ -938,7 +938,7 @@ impl Learn {
     }
 
     /// The last grading of the course, if any.
-    pub fn course(&self) -> Option<&crate::course::Status> {
+    pub fn course(&self) -> Option<&spintop_course::Status> {
         self.course.as_ref()
     }
 

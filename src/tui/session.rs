@@ -8,9 +8,9 @@
 //! way out (quit, an I/O error, an early return, a panic) leaves the shell
 //! usable.
 
-use crate::math::Real;
 use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, Event};
 use ratatui::{DefaultTerminal, Frame, Terminal, backend::Backend};
+use spintop::math::Real;
 use std::io::{self, IsTerminal};
 use std::time::{Duration, Instant};
 

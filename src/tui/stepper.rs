@@ -11,9 +11,11 @@
 //! thread: the old one is told to stop, and stops after the model step it is
 //! in, which the live cost check ([`super::app::Settings`]) keeps short.
 
-use crate::integrate::Stats;
-use crate::math::Real;
-use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
+use spintop::integrate::Stats;
+use spintop::math::Real;
+use spintop::sim::{
+    InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation,
+};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
@@ -64,7 +66,7 @@ impl std::fmt::Display for Stopped {
             Stopped::Horizon(h) => write!(
                 f,
                 "the run reached its last time, t = {}, and ends there",
-                crate::numbers::fmt_num(*h)
+                spintop::numbers::fmt_num(*h)
             ),
         }
     }

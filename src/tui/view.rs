@@ -20,11 +20,11 @@
 use super::app::{App, MIN_HEIGHT, MIN_WIDTH, Mode, SUBSCRIPTS, TICK, Top};
 use super::theme;
 use super::widgets::{OmegaSeries, drift, hodograph, numbers, top_in_space};
-use crate::numbers::fmt_param;
 use ratatui::Frame;
 use ratatui::layout::{Alignment, Constraint, Layout, Rect};
 use ratatui::text::{Line, Span, Text};
 use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Wrap};
+use spintop::numbers::fmt_param;
 
 /// The narrowest a model's column is drawn; below it, one model at a time.
 pub const COLUMN_WIDTH: u16 = 40;
@@ -271,7 +271,7 @@ pub(crate) fn status(app: &App) -> Span<'static> {
         Span::styled(" paused ", theme::status(true))
     } else if let Some(rate) = app.behind() {
         Span::styled(
-            format!(" running, {} {u}/s ", crate::numbers::fmt_num(rate)),
+            format!(" running, {} {u}/s ", spintop::numbers::fmt_num(rate)),
             theme::status(true),
         )
     } else {
@@ -374,7 +374,7 @@ fn draw_header(frame: &mut Frame, area: Rect, app: &App, message: Vec<Line<'stat
 }
 
 /// `(1, 1.5, 0.8)`: a vector as the user would type it.
-fn fmt_triple(v: [crate::math::Real; 3]) -> String {
+fn fmt_triple(v: [spintop::math::Real; 3]) -> String {
     format!(
         "({}, {}, {})",
         fmt_param(v[0]),

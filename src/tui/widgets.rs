@@ -4,18 +4,18 @@
 //! The two 3-D panels use a fixed oblique camera: a vector p is drawn at
 //! (r·p, u·p), with r and u the camera's right and up directions. This is
 //! drawing, not physics: the vectors themselves (Ω, O·e₃, L) come from the
-//! [`crate::sim::Sample`]s.
+//! [`spintop::sim::Sample`]s.
 
 use super::app::{App, Column, Point, TICK, WINDOW};
 use super::theme;
-use crate::math::Real;
-pub use crate::numbers::{fmt_axis, fmt_num, nice_ceiling};
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Context, Line as CanvasLine, Points};
 use ratatui::widgets::{Axis, Block, Borders, Chart, Dataset, GraphType, Paragraph};
+use spintop::math::Real;
+pub use spintop::numbers::{fmt_axis, fmt_num, nice_ceiling};
 
 /// The four curves of one Ω(t) chart and their axes.
 #[derive(Clone, Debug, PartialEq)]
@@ -439,7 +439,7 @@ pub fn numbers(
             "— (none)"
         }
         .to_string(),
-        Some(_) if app.settings().method() == crate::sim::MethodChoice::Exact => {
+        Some(_) if app.settings().method() == spintop::sim::MethodChoice::Exact => {
             if wide { "0 (closed form)" } else { "0 (exact)" }.to_string()
         }
         Some(e) if wide => format!("|ΔΩ| = {}/{u}", fmt_num(e)),

@@ -25,7 +25,7 @@ fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
         ("wrong-type.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nratio = \"big\"\n"), 8, "ratio: invalid type: string \"big\", expected a number"),
         ("ratio-out-of-range.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nratio = 3.0\n"), 8, "0 < I3/I1 <= 2"),
         ("non-finite.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nomega = [0.0, nan, 0.2]\n"), 8, "not a finite number"),
-        ("infinite-ratio.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\nratio = inf\n"), 8, "not a finite number; expected a number in (0, 2]"),
+        ("infinite-ratio.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\nratio = inf\n"), 8, "not a finite number; expected I3/I1 in (0, 2]"),
         ("unknown-kind.toml", "[scene]\nname = \"x\"\nkind = \"spinner\"\ndescription = \"d\"\n".into(), 3, "expected one of top, balance, orbit, shell, stability"),
         ("unknown-method.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\nmethod = \"euler\"\n"), 10, "expected one of auto, exact, rk4"),
         ("bad-time-unit.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n{SPHERE}time_unit = \"fortnight\"\n"), 15, "expected one of s, min, h, d, yr"),
@@ -45,7 +45,7 @@ fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
         ("auto-with-method.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n[solve]\nmethod = \"dop853\"\n"), 10, "model = \"auto\" chooses the model and its method together"),
         ("times-decreasing.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 5.0, 2.0]\n"), 10, "2 comes after 5"),
         ("times-and-t-end.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 1.0]\nt_end = 5.0\n"), 11, "either times"),
-        ("zero-samples.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\nt_end = 5.0\nsamples = 0\n"), 11, "expected 1 to 1000000"),
+        ("zero-samples.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\nt_end = 5.0\nsamples = 0\n"), 11, "expected a whole number from 1 to 1000000"),
         ("empty.toml", String::new(), 1, "there is no [scene] section"),
         ("syntax.toml", "[scene\nname = \"x\"\n".into(), 1, "expected `]`"),
         ("missing-description.toml", "[scene]\nname = \"x\"\nkind = \"top\"\n\n[top]\nmodel = \"truncated\"\n".into(), 1, "missing the key description"),
@@ -181,7 +181,7 @@ fn run_by_name_from_elsewhere_gives_the_simulate_contract_and_chosen() {
 fn run_a_real_particle_reports_units_milestones_and_the_skipped_orientation() {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/lessons/scenes/nanoparticle-1e7-debye.toml"
+        "/crates/spintop/scenes/nanoparticle-1e7-debye.toml"
     );
     let v = support::json("run", &[path]);
     let u = &v["units"];
@@ -280,7 +280,7 @@ fn every_kind_keeps_its_commands_json_keys() {
 fn tui_opens_every_top_scene() {
     for entry in CATALOGUE {
         let scene = entry.scene().unwrap();
-        let got = spintop::tui::app::Settings::for_scene(&scene, None);
+        let got = spintop_app::tui::app::Settings::for_scene(&scene, None);
         match &scene.body {
             Body::Top(top) => {
                 let (settings, note) = got.unwrap_or_else(|e| panic!("{}: {e}", entry.name));
@@ -293,7 +293,7 @@ fn tui_opens_every_top_scene() {
                 } else if general {
                     assert!(note.contains("a general top under (3.3)"), "{note}");
                 }
-                let app = spintop::tui::app::App::new(settings).unwrap();
+                let app = spintop_app::tui::app::App::new(settings).unwrap();
                 assert_eq!(app.columns().len(), if general { 3 } else { 2 });
             }
             _ => assert!(got.is_err(), "{}", entry.name),

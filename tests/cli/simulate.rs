@@ -6,6 +6,8 @@ use crate::support;
 use support::spintop;
 
 use serde_json::Value;
+use spintop::math::Vec3;
+use std::process::Command;
 
 fn json(args: &[&str]) -> Value {
     support::json("simulate", args)
@@ -569,5 +571,42 @@ fn every_example_in_simulate_help_runs() {
         } else {
             assert!(out.status.success(), "{example}: {stderr}");
         }
+    }
+}
+
+/// The same 3·10⁶-rad run on the command line, where DOP853 is asked for
+/// outright: refused before it starts (exit 2, about 1.2e7 steps at 4 per
+/// radian), no longer stopped by the step budget after 24 s. `auto` steps it
+/// with the Taylor method at the default rtol (1.9 steps per radian), so
+/// the same refusal comes at 6·10⁶ rad.
+#[test]
+fn a_long_asymmetric_run_on_the_command_line_is_refused_before_it_starts() {
+    let rate = (Vec3::new(0.1, 0.05, 0.2).dot(&Vec3::new(0.1, 0.075, 0.16)) / 0.8).sqrt();
+    for (method, radians) in [("dop853", 3e6), ("auto", 6e6)] {
+        let t_end = format!("{:e}", radians / rate);
+        let out = Command::new(env!("CARGO_BIN_EXE_spintop"))
+            .args([
+                "simulate",
+                "--model",
+                "general",
+                "--inertia",
+                "1,1.5,0.8",
+                "--dipole",
+                "2e-7,0,1e-6",
+                "--omega",
+                "0.1,0.05,0.2",
+                "--t-end",
+                &t_end,
+                "--method",
+                method,
+            ])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{method}: {err}");
+        assert!(
+            err.contains("steps per radian") && err.contains("more than the 1e7 allowed"),
+            "{method}: {err}"
+        );
     }
 }

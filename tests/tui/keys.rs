@@ -13,8 +13,8 @@ use spintop::physics::symmetric_top::{SymmetricTop, precession_tilt};
 use spintop::scene::catalogue;
 use spintop::sim::Model;
 use spintop::sim::{MethodChoice, MethodOptions, TAYLOR_AUTO_RTOL};
-use spintop::tui::app::{App, Mode, Settings, TICK, Top, WARPS};
-use spintop::tui::{Command, command_for};
+use spintop_app::tui::app::{App, Mode, Settings, TICK, Top, WARPS};
+use spintop_app::tui::{Command, command_for};
 use std::time::Duration;
 
 fn key(code: KeyCode) -> KeyEvent {
@@ -431,7 +431,7 @@ fn general_app() -> App {
         .scene()
         .expect("the scene parses");
     let (settings, note) =
-        spintop::tui::app::Settings::for_scene(&scene, None).expect("the live view opens it");
+        spintop_app::tui::app::Settings::for_scene(&scene, None).expect("the live view opens it");
     assert!(
         note.starts_with("scene asymmetric-top: a general top under (3.3), the reduced ALE and the physical solution of (3.4)"),
         "{note}"
@@ -452,7 +452,7 @@ fn a_general_top_with_the_full_model_opens_with_auto_s_integrator() {
     let live = spintop::scene::live::live_scene(&scene).expect("the live view opens it");
     let auto = spintop::sim::auto_integrator(spintop::sim::MethodOptions::default().rtol());
     assert_eq!(Some(live.method), auto.choice());
-    spintop::tui::app::Settings::for_scene(&scene, None).expect("the live view opens it");
+    spintop_app::tui::app::Settings::for_scene(&scene, None).expect("the live view opens it");
 }
 
 #[test]
@@ -625,7 +625,7 @@ fn sec3_general_top_with_a_tiny_dipole_keeps_energy_and_angular_momentum() {
 fn the_edit_field_says_when_it_is_full() {
     let mut app = App::new(Settings::default()).unwrap();
     app.apply(Command::StartEdit);
-    for _ in 0..spintop::tui::app::EDIT_LIMIT + 5 {
+    for _ in 0..spintop_app::tui::app::EDIT_LIMIT + 5 {
         app.apply(Command::Input('1'));
     }
     let message = app.message().expect("a message").text.clone();
@@ -633,7 +633,7 @@ fn the_edit_field_says_when_it_is_full() {
     let Mode::Edit { buffer, .. } = app.mode() else {
         panic!("still editing")
     };
-    assert_eq!(buffer.len(), spintop::tui::app::EDIT_LIMIT);
+    assert_eq!(buffer.len(), spintop_app::tui::app::EDIT_LIMIT);
 }
 
 /// RK4 (h = 0.01τ) far past its stability limit stops both models; then the
@@ -675,7 +675,7 @@ fn stopped_models_stop_the_clock_and_show_their_whole_advice() {
     let why = app.columns()[0].failure().unwrap().to_string();
     let mut terminal = ratatui::Terminal::new(ratatui::backend::TestBackend::new(120, 40)).unwrap();
     terminal
-        .draw(|f| spintop::tui::view::draw(f, &app))
+        .draw(|f| spintop_app::tui::view::draw(f, &app))
         .unwrap();
     let screen: String = terminal.backend().to_string().replace(['│', '"'], " ");
     let words: Vec<&str> = screen.split_whitespace().collect();

@@ -9,9 +9,9 @@
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use ratatui::{Terminal, backend::TestBackend};
-use spintop::tui::learn::markdown::{self, code_style};
-use spintop::tui::learn::scene::Spec;
-use spintop::tui::learn::{Command, Experiment, Learn, Mode, find_chapter};
+use spintop_app::tui::learn::markdown::{self, code_style};
+use spintop_app::tui::learn::scene::Spec;
+use spintop_app::tui::learn::{Command, Experiment, Learn, Mode, find_chapter};
 use std::path::{Path, PathBuf};
 
 fn book() -> PathBuf {
@@ -27,7 +27,7 @@ fn draw(learn: &mut Learn, width: u16, height: u16) -> String {
     }
     let mut terminal = Terminal::new(TestBackend::new(width, height)).expect("a test terminal");
     terminal
-        .draw(|f| spintop::tui::learn::view::draw(f, learn))
+        .draw(|f| spintop_app::tui::learn::view::draw(f, learn))
         .expect("drawing never fails on a TestBackend");
     terminal.backend().to_string()
 }
@@ -44,7 +44,7 @@ fn press(learn: &mut Learn, code: KeyCode) {
 }
 
 /// The live-view settings of a chapter's scene, if it has them.
-fn top_settings(spec: &Spec) -> Option<spintop::tui::Settings> {
+fn top_settings(spec: &Spec) -> Option<spintop_app::tui::Settings> {
     match spec {
         Spec::Top { settings, .. } => Some(*settings),
         _ => None,
@@ -227,7 +227,7 @@ fn every_page_of_every_chapter_draws_at_both_sizes() {
                 learn.apply(Command::Resize(w, h));
                 let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
                 terminal
-                    .draw(|f| spintop::tui::learn::view::draw(f, &learn))
+                    .draw(|f| spintop_app::tui::learn::view::draw(f, &learn))
                     .unwrap();
                 let buffer = terminal.backend().buffer();
                 for y in 0..h {
@@ -345,7 +345,7 @@ fn library_source_is_folded_until_o() {
     let folded = learn.rendered().lines.len();
     let text = markdown::plain(&learn.rendered().lines);
     assert!(
-        text.contains("▸ src/physics/central.rs:abraham_lorentz"),
+        text.contains("▸ crates/spintop/src/physics/central.rs:abraham_lorentz"),
         "{text}"
     );
     assert!(!text.contains("pub fn abraham_lorentz_rhs"), "folded");
@@ -468,7 +468,7 @@ fn section_4_2_at_80x24_and_160x48() {
 /// gets them from a background grader.)
 #[test]
 fn the_course_panel_shows_the_graders_verdicts() {
-    use spintop::course::{Report, State, Status};
+    use spintop_course::{Report, State, Status};
     let mut learn = Learn::open(&book(), Some("2")).unwrap();
     learn.course_report(Report::Grading);
     assert!(draw(&mut learn, 160, 48).contains("course: grading…"));
@@ -501,7 +501,7 @@ fn the_course_panel_shows_the_graders_verdicts() {
 /// pass yet, one rung per press, and shows the formula only on the third.
 #[test]
 fn h_climbs_the_hint_ladder_of_the_chapters_next_assignment() {
-    use spintop::course::{Report, State, Status};
+    use spintop_course::{Report, State, Status};
     let mut learn = Learn::open(&book(), Some("4.2")).unwrap();
     let status = Status::new(0, |a| {
         if a.function == "reduced_ale_rhs" {
@@ -534,7 +534,7 @@ fn h_climbs_the_hint_ladder_of_the_chapters_next_assignment() {
 
 #[test]
 fn the_progress_bar_fills_in_proportion() {
-    use spintop::tui::learn::progress_bar;
+    use spintop_app::tui::learn::progress_bar;
     assert_eq!(progress_bar(0, 22, 10), "▱▱▱▱▱▱▱▱▱▱");
     assert_eq!(progress_bar(11, 22, 10), "▰▰▰▰▰▱▱▱▱▱");
     assert_eq!(progress_bar(22, 22, 10), "▰▰▰▰▰▰▰▰▰▰");
@@ -546,9 +546,9 @@ fn the_progress_bar_fills_in_proportion() {
 /// the wrong way is seen, and the reference itself agrees.
 #[test]
 fn the_students_function_of_time_is_drawn_against_the_reference() {
-    use spintop::course::{ProbeSpec, Probed};
     use spintop::math::Vec3;
     use spintop::physics::symmetric_top::{self as sym, SymmetricTop};
+    use spintop_course::{ProbeSpec, Probed};
     let mut learn = Learn::open(&book(), Some("4.2")).unwrap();
     let spec = ProbeSpec::for_chapter("Section 4.2").unwrap();
     let top = SymmetricTop::new(spec.ratio, spec.tau).unwrap();
@@ -605,7 +605,7 @@ fn a_frame_of_a_new_size_draws_before_its_resize_event_arrives() {
                     let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
                     let drawn = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                         terminal
-                            .draw(|f| spintop::tui::learn::view::draw(f, &learn))
+                            .draw(|f| spintop_app::tui::learn::view::draw(f, &learn))
                             .unwrap();
                     }));
                     assert!(
@@ -742,11 +742,11 @@ fn prose_and_captions_use_one_subscript_notation() {
 /// A word that is only in folded library source is found: the search shows
 /// the source whole (as `o` does) and goes to it, instead of saying the word
 /// is not in the chapter. A word in neither leaves the folds as they were.
-/// Found under tmux: "k4z" (a variable of the appendix's method of steps)
-/// was "not in this chapter" until `o` was pressed.
+/// Found under tmux: "k4z" (a variable of the method of steps, shown in
+/// Numerical methods) was "not in this chapter" until `o` was pressed.
 #[test]
 fn a_search_finds_words_in_folded_library_source() {
-    let mut learn = Learn::open(&book(), Some("A")).unwrap();
+    let mut learn = Learn::open(&book(), Some("numerical-methods")).unwrap();
     draw(&mut learn, 80, 24);
     assert!(!learn.unfolded(), "library source starts folded");
     let search = |learn: &mut Learn, word: &str| {

@@ -12,11 +12,11 @@ use spintop::math::Vec3;
 use spintop::physics::general_top::GeneralTop;
 use spintop::scene::{Body, Scene, catalogue};
 use spintop::sim::{MethodChoice, Simulation};
-use spintop::tui::Command;
-use spintop::tui::app::{App, Settings};
-use spintop::tui::app::{MIN_HEIGHT, MIN_WIDTH};
-use spintop::tui::view;
-use spintop::tui::widgets::fmt_num;
+use spintop_app::tui::Command;
+use spintop_app::tui::app::{App, Settings};
+use spintop_app::tui::app::{MIN_HEIGHT, MIN_WIDTH};
+use spintop_app::tui::view;
+use spintop_app::tui::widgets::fmt_num;
 
 /// Draw `app` on a `width`×`height` test terminal and return the screen.
 fn screen(app: &App, width: u16, height: u16) -> Terminal<TestBackend> {
@@ -188,7 +188,7 @@ fn asymmetric_scene() -> Scene {
 
 /// The catalogue's asymmetric top as `spintop tui asymmetric-top` opens it.
 fn general_app() -> App {
-    let (settings, note) = spintop::tui::app::Settings::for_scene(&asymmetric_scene(), None)
+    let (settings, note) = spintop_app::tui::app::Settings::for_scene(&asymmetric_scene(), None)
         .expect("the live view opens it");
     App::new(settings)
         .expect("valid settings")

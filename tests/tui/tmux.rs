@@ -15,7 +15,7 @@
 //! In CI (`CI=true`) tmux is required and its absence fails the test; on a
 //! machine without tmux the test says so and passes.
 
-use spintop::tui::app::TICK;
+use spintop_app::tui::app::TICK;
 use std::process::{Command, Output};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
@@ -181,6 +181,7 @@ fn launch_sized(tag: &str, env: &str, args: &str, size: (u16, u16)) -> Option<Tm
 }
 
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn the_live_view_runs_pauses_steps_and_quits_in_a_real_terminal() {
     let Some(tmux) = launch("plain", "") else {
         return;
@@ -240,6 +241,7 @@ fn the_live_view_runs_pauses_steps_and_quits_in_a_real_terminal() {
 /// I₃/I₁ and Ω₀ in the header, its name in the message line; `q` ends it with
 /// exit status 0.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn the_live_view_opens_a_top_scene() {
     let Some(tmux) = launch("scene", "tui reduced-strong-spin") else {
         return;
@@ -278,6 +280,7 @@ fn exit_status(tmux: &Tmux, limit: Duration) -> String {
 /// space and the numbers; `]` is refused with a reason while the clock keeps
 /// running; `q` ends it with exit status 0 and the terminal restored.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn the_live_view_opens_the_asymmetric_top_scene() {
     let Some(tmux) = launch_sized("general", "", "tui asymmetric-top", (300, 45)) else {
         return;
@@ -338,6 +341,7 @@ fn the_live_view_opens_the_asymmetric_top_scene() {
 /// scene (its parameters change on screen), and `q` ends it with exit status
 /// 0, the terminal restored, and the progress written where it was told to.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn spintop_learn_shows_a_chapter_beside_its_scene_and_runs_its_experiments() {
     let progress = std::env::temp_dir().join(format!("spintop-learn-{}.json", std::process::id()));
     let _ = std::fs::remove_file(&progress);
@@ -411,6 +415,7 @@ fn program_pid(tmux: &Tmux, program: &str, limit: Duration) -> String {
 /// `stty` on the pane's own tty after the program ended). The exit status is
 /// 128 + the signal's number, as for any process a signal stopped.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn a_signal_restores_the_terminal() {
     for (signal, number) in [("TERM", 15), ("INT", 2), ("HUP", 1), ("QUIT", 3)] {
         for (args, ready) in [
@@ -457,6 +462,7 @@ fn a_signal_restores_the_terminal() {
 /// `TERM=dumb` cannot draw the full-screen view: on a real terminal with that
 /// TERM, both views refuse with exit code 2 instead of drawing escape codes.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn term_dumb_is_refused_like_a_missing_terminal() {
     for args in ["", "learn --no-grading"] {
         let Some(tmux) = launch_with("dumb", "TERM=dumb", args) else {
@@ -475,6 +481,7 @@ fn term_dumb_is_refused_like_a_missing_terminal() {
 /// On the "please enlarge" screen nothing is visible, so keys other than quit
 /// are ignored: a space pressed there must not pause the models unseen.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn keys_are_ignored_while_the_screen_is_too_small() {
     let Some(tmux) = launch("small", "") else {
         return;
@@ -501,6 +508,7 @@ fn keys_are_ignored_while_the_screen_is_too_small() {
 /// terminal. (The hang-up signal arrives, and the event reader would spin on
 /// end-of-file for ever; the signal's watchdog ends the process.)
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn the_views_end_when_their_terminal_goes_away() {
     for args in ["", "learn --chapter 3 --no-grading"] {
         let Some(tmux) = launch_with("gone", "SPINTOP_LEARN_PROGRESS=/dev/null", args) else {
@@ -544,6 +552,7 @@ fn quit_time(tmux: &Tmux) -> Duration {
 /// top's three columns, the physical solution among them, at warp 1000)
 /// still quits within a second.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn q_is_answered_within_a_second_at_any_parameters() {
     for (tag, args) in [("fast1", ""), ("fast2", "tui --warp 1000 --method radau5")] {
         let Some(tmux) = launch_sized(tag, "", args, (80, 24)) else {
@@ -598,6 +607,7 @@ fn first_text_line(screen: &str) -> String {
 /// its end), highlights it and puts it on the screen; `n` goes on to the next
 /// match and `N` back.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn slash_finds_a_word_deep_in_a_chapter() {
     let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
     let Some(tmux) = launch_sized("search", env, "learn --chapter 2 --no-grading", (80, 24)) else {
@@ -623,6 +633,7 @@ fn slash_finds_a_word_deep_in_a_chapter() {
 /// A chapter reopens where the reader left it: in the session (→ then ←)
 /// and in the next session (the position is kept in the progress file).
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn a_chapter_reopens_where_it_was_left() {
     let progress =
         std::env::temp_dir().join(format!("spintop-learn-pos-{}.json", std::process::id()));
@@ -676,6 +687,7 @@ fn a_chapter_reopens_where_it_was_left() {
 /// (the reduced one included, which used to be dropped), and Section 4.2's
 /// reduced top.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn tab_at_80x24_shows_the_reduced_model() {
     let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
     for chapter in ["5", "4.2"] {
@@ -708,6 +720,7 @@ fn tab_at_80x24_shows_the_reduced_model() {
 /// appendix shows the shell's delay equation against the point charge; and
 /// neither shows the spinning top.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn sections_2_and_a_show_their_own_scenes() {
     let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
     for (chapter, texts) in [
@@ -744,8 +757,9 @@ fn sections_2_and_a_show_their_own_scenes() {
 /// the view holds for the model shown, formatted as the view formats it,
 /// must stand on the screen as a whole word.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn an_80x24_asymmetric_screen_has_every_number_whole() {
-    use spintop::tui::widgets::fmt_num;
+    use spintop_app::tui::widgets::fmt_num;
     let Some(tmux) = launch_sized("whole", "", "tui asymmetric-top", (80, 24)) else {
         return;
     };
@@ -767,8 +781,8 @@ fn an_80x24_asymmetric_screen_has_every_number_whole() {
         .unwrap()
         .scene()
         .unwrap();
-    let (settings, _) = spintop::tui::Settings::for_scene(&scene, None).unwrap();
-    let mut app = spintop::tui::App::new(settings).unwrap();
+    let (settings, _) = spintop_app::tui::Settings::for_scene(&scene, None).unwrap();
+    let mut app = spintop_app::tui::App::new(settings).unwrap();
     app.advance_ticks((t / TICK).round() as u64);
     assert!((app.time() - t).abs() < 1e-9);
     // One model at a time at 80 columns: the first.
@@ -801,6 +815,7 @@ fn an_80x24_asymmetric_screen_has_every_number_whole() {
 /// between two tokens, never inside a name or a number (Section 2's long
 /// `use` line and assertion, at 80×24).
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn no_code_line_breaks_inside_a_token() {
     let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
     let Some(tmux) = launch_sized("wrap", env, "learn --chapter 2 --no-grading", (80, 24)) else {
@@ -820,7 +835,7 @@ fn no_code_line_breaks_inside_a_token() {
     let screen = tmux.wait_for("the long use line", long, |s| s.contains('↪'));
     let book = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src");
     let source = std::fs::read_to_string(book.join("section-2.md")).unwrap();
-    let source = spintop::tui::learn::markdown::resolve_includes(&source, &book);
+    let source = spintop_app::tui::learn::markdown::resolve_includes(&source, &book);
     let lines: Vec<&str> = screen.lines().collect();
     let mut seen = 0;
     for (i, line) in lines.iter().enumerate().skip(1) {
@@ -850,6 +865,7 @@ fn no_code_line_breaks_inside_a_token() {
 /// just before a frame while a scene was shown (that race is pinned
 /// deterministically by `learn::a_frame_of_a_new_size_draws_before_its_resize_event_arrives`).
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn random_keys_and_resizes_crash_neither_view() {
     for (tag, args) in [
         ("fuzz-learn", "learn --chapter 4.2 --no-grading"),

@@ -1,5 +1,5 @@
 //! The paper's Figures 1 and 2 drawn in place in a chapter's text, from the
-//! same points `spintop figure N` plots ([`crate::figure::Figure`]): (a) the
+//! same points `spintop figure N` plots ([`spintop::figure::Figure`]): (a) the
 //! hodograph of Ω with its pale shadow on the floor Ω₃ = 0, (b) the top in
 //! space, the axis tip's path with L in red, (c) θ(t), (d) φ̇(t) and ψ̇(t).
 //!
@@ -8,7 +8,6 @@
 
 use super::super::theme;
 use super::super::widgets::{body_camera, lab_camera};
-use crate::figure::{Figure, FigureNumber};
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Style};
@@ -16,6 +15,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Line as CanvasLine, Points};
 use ratatui::widgets::{Axis, Block, Borders, Chart, Dataset, GraphType, Widget};
+use spintop::figure::{Figure, FigureNumber};
 use std::sync::OnceLock;
 
 /// The colour the book's prose gives L in the figures: red.
@@ -193,7 +193,7 @@ fn in_space(figure: &Figure, area: Rect, buf: &mut Buffer) {
         .samples
         .iter()
         .map(|s| {
-            let l = crate::math::Vec3::from(s.l_lab);
+            let l = spintop::math::Vec3::from(s.l_lab);
             let d = l / l.norm().max(f64::MIN_POSITIVE);
             cam.project([1.1 * d.x, 1.1 * d.y, 1.1 * d.z])
         })
@@ -254,8 +254,8 @@ fn chart_of(
                 .labels(["0".to_string(), format!("{t_end:.0} t/τ")]),
         )
         .y_axis(Axis::default().style(theme::frame()).bounds(y).labels([
-            crate::numbers::fmt_axis(y[0]),
-            crate::numbers::fmt_axis(y[1]),
+            spintop::numbers::fmt_axis(y[0]),
+            spintop::numbers::fmt_axis(y[1]),
         ]))
         .render(area, buf);
 }
@@ -288,7 +288,7 @@ fn rates(figure: &Figure, area: Rect, buf: &mut Buffer) {
         .chain(&psi)
         .map(|p| p.1.abs())
         .fold(0.0, f64::max);
-    let y = crate::numbers::nice_ceiling(top * 1.05);
+    let y = spintop::numbers::nice_ceiling(top * 1.05);
     chart_of(
         "(d) φ̇ yellow, ψ̇ green, 1/τ",
         vec![

@@ -16,12 +16,6 @@
 use super::super::app::{App, Command as LiveCommand, Settings, WARPS};
 use super::super::theme;
 use super::super::view::Cell;
-use crate::math::Real;
-use crate::physics::central::{ChargeInField, Potential, coulomb_circular_radius};
-use crate::physics::shell::ShellModel;
-use crate::sim::MethodChoice;
-use crate::sim::orbit::{Force, OrbitConfig, OrbitRun, OrbitSample, run_orbit};
-use crate::sim::shell::{History, ShellSample, ShellSolver, default_steps_per_delay};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
@@ -29,6 +23,12 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Points};
 use ratatui::widgets::{Axis, Block, BorderType, Chart, Dataset, GraphType, Paragraph, Wrap};
+use spintop::math::Real;
+use spintop::physics::central::{ChargeInField, Potential, coulomb_circular_radius};
+use spintop::physics::shell::ShellModel;
+use spintop::sim::MethodChoice;
+use spintop::sim::orbit::{Force, OrbitConfig, OrbitRun, OrbitSample, run_orbit};
+use spintop::sim::shell::{History, ShellSample, ShellSolver, default_steps_per_delay};
 use std::sync::mpsc::{self, Receiver};
 use std::time::Duration;
 
@@ -113,8 +113,8 @@ impl Scene {
         // The figures' top (I₃/I₁ = 2/5, Ω₀ = (0, 0.1, 0.2)) by `method` at `warp`.
         let figure_by = |method, warp| {
             valid(Settings::new(
-                crate::figure::FIGURE_RATIO,
-                crate::figure::FIGURE_OMEGA0,
+                spintop::figure::FIGURE_RATIO,
+                spintop::figure::FIGURE_OMEGA0,
                 method,
                 warp,
             ))
@@ -156,9 +156,9 @@ impl Scene {
             },
             "asymmetric-top.md" => {
                 // The chapter's top: three models side by side.
-                match crate::physics::general_top::GeneralTop::new(
-                    crate::math::Vec3::new(1.0, 2.0, 2.5),
-                    crate::math::Vec3::new(1.0, 0.5, 0.2),
+                match spintop::physics::general_top::GeneralTop::new(
+                    spintop::math::Vec3::new(1.0, 2.0, 2.5),
+                    spintop::math::Vec3::new(1.0, 0.5, 0.2),
                 )
                 .map_err(|e| e.to_string())
                 .and_then(|t| Settings::general(t, [0.3, -0.2, 0.1], MethodChoice::Dop853, 10.0))
@@ -527,7 +527,7 @@ impl Stage {
     pub fn parameters(&self) -> Vec<Cell> {
         let label = |s: &str| Span::styled(s.to_string(), theme::label());
         let value = |s: String| Span::styled(s, theme::value());
-        let fmt = crate::numbers::fmt_param;
+        let fmt = spintop::numbers::fmt_param;
         let mut cells = Vec::new();
         match self {
             Stage::Top(app) => {
@@ -725,10 +725,10 @@ pub fn draw_orbit(frame: &mut Frame, area: Rect, p: &Playback<OrbitRuns>) {
         format!(
             "t = {:.2}   r = {}   (2.9): {}   L = {}   E = {}",
             s.t,
-            crate::numbers::fmt_num(s.r),
-            crate::numbers::fmt_num(coulomb_circular_radius(runs.tau0, 1.0, s.t)),
-            crate::numbers::fmt_num(s.l),
-            crate::numbers::fmt_num(s.energy)
+            spintop::numbers::fmt_num(s.r),
+            spintop::numbers::fmt_num(coulomb_circular_radius(runs.tau0, 1.0, s.t)),
+            spintop::numbers::fmt_num(s.l),
+            spintop::numbers::fmt_num(s.energy)
         )
     });
     frame.render_widget(
@@ -737,7 +737,7 @@ pub fn draw_orbit(frame: &mut Frame, area: Rect, p: &Playback<OrbitRuns>) {
             Line::from(Span::styled(
                 format!(
                     "collapse by the averaged law at t_c = r₀³/(6τ₀) = {}",
-                    crate::numbers::fmt_num(runs.collapse)
+                    spintop::numbers::fmt_num(runs.collapse)
                 ),
                 theme::label(),
             )),
@@ -758,17 +758,17 @@ pub fn draw_orbit(frame: &mut Frame, area: Rect, p: &Playback<OrbitRuns>) {
             lines.push(Line::from(Span::styled(
                 format!(
                     "runaway at t = {} ({} τ₀): |v̇ − F| passed {} |F(r₀)|",
-                    crate::numbers::fmt_num(r.t),
-                    crate::numbers::fmt_num(r.t / runs.tau0),
-                    crate::numbers::fmt_num(r.threshold)
+                    spintop::numbers::fmt_num(r.t),
+                    spintop::numbers::fmt_num(r.t / runs.tau0),
+                    spintop::numbers::fmt_num(r.threshold)
                 ),
                 theme::error(),
             )));
             lines.push(Line::from(Span::styled(
                 format!(
                     "growth rate {} against 1/τ₀ = {}",
-                    r.growth_rate.map_or("—".into(), crate::numbers::fmt_num),
-                    crate::numbers::fmt_num(r.predicted_rate)
+                    r.growth_rate.map_or("—".into(), spintop::numbers::fmt_num),
+                    spintop::numbers::fmt_num(r.predicted_rate)
                 ),
                 theme::value(),
             )));
@@ -804,8 +804,8 @@ fn draw_shell_run(frame: &mut Frame, area: Rect, run: &ShellRun, t: Real) {
     let stable = m.m0() > m.m_em();
     let title = format!(
         " shell δ = {}, τ₀ = {}: {} ",
-        crate::numbers::fmt_param(m.delta()),
-        crate::numbers::fmt_param(m.tau0()),
+        spintop::numbers::fmt_param(m.delta()),
+        spintop::numbers::fmt_param(m.tau0()),
         if stable {
             "m₀ > mₑₘ, stable"
         } else {
@@ -863,15 +863,15 @@ fn draw_shell_run(frame: &mut Frame, area: Rect, run: &ShellRun, t: Real) {
     let growth = match m.growth_rate() {
         Some(g) => format!(
             "grows at {} (ln(mₑₘ/m₀)/δ = {})",
-            crate::numbers::fmt_num(g),
-            crate::numbers::fmt_num((m.m_em() / m.m0()).abs().ln() / m.delta())
+            spintop::numbers::fmt_num(g),
+            spintop::numbers::fmt_num((m.m_em() / m.m0()).abs().ln() / m.delta())
         ),
         None => "every mode decays: it stays near the point charge".into(),
     };
     let mut text = format!(
         "mₑₘ = {}, m₀ = {}; {growth}",
-        crate::numbers::fmt_num(m.m_em()),
-        crate::numbers::fmt_num(m.m0())
+        spintop::numbers::fmt_num(m.m_em()),
+        spintop::numbers::fmt_num(m.m0())
     );
     if let Some(e) = &run.ended
         && shown.len() == run.samples.len()

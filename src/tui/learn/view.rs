@@ -412,7 +412,7 @@ fn draw_help(frame: &mut Frame, area: Rect) {
 }
 
 fn draw_course(frame: &mut Frame, area: Rect, learn: &Learn) {
-    use crate::course::State;
+    use spintop_course::State;
     let mut lines = Vec::new();
     let grading_on = learn.grading_off_reason().is_none();
     match (
@@ -597,12 +597,12 @@ fn draw_contents(frame: &mut Frame, area: Rect, learn: &Learn, selected: usize) 
 
 /// Ω(t) of the probe's model by spintop's own closed form, the reference
 /// the student's function is drawn against.
-fn reference_omega(spec: &crate::course::ProbeSpec, t: f64) -> [f64; 3] {
-    use crate::physics::symmetric_top::{self as sym, SymmetricTop};
+fn reference_omega(spec: &spintop_course::ProbeSpec, t: f64) -> [f64; 3] {
+    use spintop::physics::symmetric_top::{self as sym, SymmetricTop};
     let Ok(top) = SymmetricTop::new(spec.ratio, spec.tau) else {
         return [f64::NAN; 3];
     };
-    let w0 = crate::math::Vec3::from(spec.omega0);
+    let w0 = spintop::math::Vec3::from(spec.omega0);
     let w = if spec.function == "truncated_closed_form" {
         sym::truncated_closed_form(&top, &w0, t)
     } else {
@@ -612,7 +612,7 @@ fn reference_omega(spec: &crate::course::ProbeSpec, t: f64) -> [f64; 3] {
 }
 
 fn draw_yours(frame: &mut Frame, area: Rect, learn: &Learn) {
-    use crate::course::Probed;
+    use spintop_course::Probed;
     let Some((spec, probed)) = learn.yours() else {
         return;
     };
@@ -681,7 +681,7 @@ fn draw_yours(frame: &mut Frame, area: Rect, learn: &Learn) {
     ]);
     // Ω₁ and Ω₂ are drawn: they stay within Ω⊥₀.
     let perp = spec.omega0[0].hypot(spec.omega0[1]);
-    let y = crate::numbers::nice_ceiling(if perp > 0.0 { perp } else { scale } * 1.05);
+    let y = spintop::numbers::nice_ceiling(if perp > 0.0 { perp } else { scale } * 1.05);
     let chart = Chart::new(datasets)
         .block(Block::new().title(title))
         .legend_position(None)

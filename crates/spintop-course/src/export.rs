@@ -1,0 +1,470 @@
+//! The export: a self-contained student's copy of the course (stubs without
+//! the reference solutions, the graders, the assignments page, a README, a
+//! manifest), optionally with a CI workflow that grades it on every push.
+
+use std::path::{Path, PathBuf};
+
+/// The lessons crate of the repository at `repo` (where `spintop course`
+/// and `spintop learn` look unless told otherwise).
+pub fn lessons_dir(repo: &Path) -> PathBuf {
+    repo.join("lessons")
+}
+
+/// Why `dir` is not a lessons crate spintop can grade, if it is not.
+pub fn check_lessons_dir(dir: &Path) -> Result<(), String> {
+    if !dir.join("Cargo.toml").is_file() || !dir.join("src").is_dir() {
+        return Err(format!(
+            "{} is not a course: it needs a Cargo.toml and a src/ folder (the repository's lessons/, or a copy made by `spintop course export`)",
+            dir.display()
+        ));
+    }
+    Ok(())
+}
+
+/// The files under `dir` whose name ends in `.rs`, every folder deep but the
+/// ones `skip` names (relative to `dir`), sorted; symbolic links are not
+/// followed.
+pub(crate) fn rust_files(dir: &Path, skip: &[&str]) -> Vec<PathBuf> {
+    walk(dir, skip, |kind, path| {
+        kind.is_file() && path.extension().is_some_and(|x| x == "rs")
+    })
+}
+
+/// The symbolic links under `dir` (to files or to folders), every folder
+/// deep but the ones `skip` names, sorted.
+pub(crate) fn symbolic_links(dir: &Path, skip: &[&str]) -> Vec<PathBuf> {
+    walk(dir, skip, |kind, _| kind.is_symlink())
+}
+
+/// The entries under `dir` that `keep` accepts, every real folder deep (a
+/// link to a folder is not entered) but the ones `skip` names, sorted.
+fn walk(
+    dir: &Path,
+    skip: &[&str],
+    keep: impl Fn(std::fs::FileType, &Path) -> bool,
+) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).into_iter().flatten().flatten() {
+            let path = entry.path();
+            let rel = path.strip_prefix(dir).unwrap_or(&path);
+            if skip.iter().any(|s| rel == Path::new(s)) {
+                continue;
+            }
+            let Ok(kind) = entry.file_type() else {
+                continue;
+            };
+            if kind.is_dir() {
+                stack.push(path.clone());
+            }
+            if keep(kind, &path) {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// A student's file with the instructor's solutions taken out: the
+/// `#[cfg(not(feature = "solutions"))]` attributes (always true once the
+/// feature is gone), each `#[cfg(feature = "solutions")]` item, and the
+/// comment that announces it.
+pub fn strip_solutions(source: &str) -> String {
+    let mut out = Vec::new();
+    let mut skip_next = false;
+    for line in source.lines() {
+        let t = line.trim();
+        if skip_next {
+            skip_next = false;
+            continue;
+        }
+        if t == "#[cfg(not(feature = \"solutions\"))]" {
+            continue;
+        }
+        if t == "#[cfg(feature = \"solutions\")]" {
+            skip_next = true;
+            continue;
+        }
+        if t.starts_with("// The instructor's reference solutions")
+            || (t.starts_with("// src/solutions/") && t.contains("handing out"))
+        {
+            continue;
+        }
+        out.push(line);
+    }
+    let mut text = out.join("\n").trim_end().to_string();
+    text.push('\n');
+    text
+}
+
+/// What [`export`] wrote.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Export {
+    /// Every file written, relative to the export's folder.
+    pub files: Vec<PathBuf>,
+}
+
+/// A CI service a copy can be graded on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ci {
+    /// GitHub Actions: `.github/workflows/grade.yml`.
+    Github,
+}
+
+/// Where a copy finds the crates it builds against.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Link {
+    /// Inside the copy: the core and the graders' sources are carried in
+    /// `crates/` (never `lessons/src/solutions/`), so the copy builds and is
+    /// graded on a machine where the repository does not exist. What a
+    /// student is handed.
+    #[default]
+    Carried,
+    /// In the repository, by absolute path: the scratch copies `course grade`
+    /// builds on this machine, which then share one build of the crates.
+    Repository,
+}
+
+/// How to export.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct ExportOptions {
+    /// Add a workflow that grades the copy on every push.
+    pub ci: Option<Ci>,
+    /// Where the copy finds spintop's crates.
+    pub link: Link,
+}
+
+/// The crates a copy builds against, as the repository holds them (the
+/// core, and the graders the tests call).
+pub const CARRIED_CRATES: [&str; 2] = ["crates/spintop", "crates/spintop-grading"];
+
+/// The path of the GitHub workflow in a copy.
+pub const GITHUB_WORKFLOW: &str = ".github/workflows/grade.yml";
+
+/// The workflow that grades a copy on every push with `cargo test`.
+pub const GITHUB_WORKFLOW_TEXT: &str = "\
+# Grades this copy of the spintop course on every push: `cargo test` runs
+# every grader (each with fresh inputs), and the run fails while any does.
+# The instructor's grade comes from `spintop course grade`, which also checks
+# the source rule (lessons/README.md of spintop, \"No shortcut\").
+name: grade
+on:
+  push:
+  pull_request:
+  workflow_dispatch:
+jobs:
+  grade:
+    runs-on: ubuntu-latest
+    timeout-minutes: 30
+    steps:
+      - uses: actions/checkout@v4
+      - name: Rust toolchain
+        run: rustup toolchain install stable --profile minimal && rustup default stable
+      - name: Grade every assignment
+        run: cargo test --no-fail-fast
+";
+
+/// The student's copy's manifest: the lessons package on its own (its own
+/// workspace), depending on the core and the graders in `crates` (a path
+/// inside the copy, or the repository's by absolute path).
+///
+/// NOTE: the package is named after the copy's folder (spintop-lessons-HASH;
+/// the library keeps the name `spintop_lessons`). Cargo keys its build
+/// artifacts on a path package's name, version and place in its own workspace,
+/// not on where the workspace is, so two copies named alike that share a build
+/// folder (`CARGO_TARGET_DIR`, as `course grade` and the tests do) would reuse
+/// each other's test programs when one copy's sources look unchanged: one
+/// student graded with another's code.
+pub(crate) fn export_manifest(crates: &Path, out: &Path) -> String {
+    let key = spintop::numbers::stable_key(
+        &out.canonicalize()
+            .unwrap_or_else(|_| out.to_path_buf())
+            .to_string_lossy(),
+    );
+    format!(
+        r#"[package]
+name = "spintop-lessons-{key:08x}"
+version = "0.1.0"
+edition = "2024"
+publish = false
+description = "Course assignments on Duviryak's polarized spinning top, graded by cargo test."
+
+# A course of its own, not a member of any other workspace.
+[workspace]
+
+[lib]
+name = "spintop_lessons"
+path = "src/lib.rs"
+
+[dependencies]
+# The core only: grading does not compile the terminal UI or the command line.
+spintop = {{ path = {core:?} }}
+
+[dev-dependencies]
+# The graders, which the tests call; never visible to src/.
+spintop-grading = {{ path = {grading:?} }}
+"#,
+        core = crates.join("spintop").display().to_string(),
+        grading = crates.join("spintop-grading").display().to_string(),
+    )
+}
+
+const EXPORT_README: &str = "# The spintop course
+
+Assignments on A. Duviryak's polarized spinning top, graded by `cargo test`.
+Every function under `src/` is a stub that ends in `todo!()`; the chapter of
+the book it comes from is named in its doc comment (the assignments page is in
+`book/`). The copy stands alone: spintop's core and its graders are carried
+in `crates/` (do not edit them: the instructor grades with their own), so it
+builds anywhere Rust is installed.
+
+Two commands:
+
+```sh
+cargo test                     # grade every assignment (fresh inputs each time)
+cargo test --test ch2          # grade one chapter's assignments
+SPINTOP_SEED=123 cargo test    # the inputs of a failure again (its report gives the seed)
+```
+
+With spintop installed, `spintop course --course .` lists the assignments in
+course order with their state and what to do next (it also checks the source
+rule, as the instructor's grading does: your files may use `spintop::math`
+and `spintop::assignment`, and nothing that reads files, the environment or
+other programs), and `spintop learn --course .` opens the book in the
+terminal and re-grades on every save.
+";
+
+/// The largest file a carried crate may hold (its sources and data are a few
+/// hundred kB; anything larger is not spintop's).
+const MAX_CARRIED_FILE: u64 = 4 << 20;
+
+/// The files of the crate at `dir` that a copy carries, relative to it: its
+/// sources and the data they include, not its tests, benchmarks or examples
+/// (which name files outside the crate), and never a build folder.
+fn carried_files(dir: &Path) -> Vec<PathBuf> {
+    let skip = ["tests", "benches", "examples", "target"];
+    walk(dir, &skip, |kind, _| kind.is_file())
+        .into_iter()
+        .filter_map(|p| p.strip_prefix(dir).ok().map(Path::to_path_buf))
+        .filter(|rel| rel != Path::new("Cargo.toml"))
+        .collect()
+}
+
+/// A carried crate's manifest: the repository's, without what names files
+/// the copy does not carry (examples, test targets, benchmarks) and without
+/// the dev-dependencies those need.
+fn carried_manifest(path: &Path) -> Result<String, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut manifest: toml::Table = text
+        .parse()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    for key in ["example", "test", "bench", "dev-dependencies"] {
+        manifest.remove(key);
+    }
+    if let Some(package) = manifest.get_mut("package").and_then(|p| p.as_table_mut()) {
+        package.remove("autotests");
+    }
+    let body = toml::to_string(&manifest).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(format!(
+        "# Carried from spintop's repository by `spintop course export`, so that this\n\
+         # course builds and is graded where the repository is not.\n{body}"
+    ))
+}
+
+/// The carried crates' files: (where in the copy, what it holds).
+fn carried(repo: &Path) -> Result<Vec<(PathBuf, Vec<u8>)>, String> {
+    let mut files = Vec::new();
+    for krate in CARRIED_CRATES {
+        let dir = repo.join(krate);
+        let manifest = carried_manifest(&dir.join("Cargo.toml"))?;
+        files.push((Path::new(krate).join("Cargo.toml"), manifest.into_bytes()));
+        for rel in carried_files(&dir) {
+            let path = dir.join(&rel);
+            let size = std::fs::metadata(&path)
+                .map_err(|e| format!("{}: {e}", path.display()))?
+                .len();
+            if size > MAX_CARRIED_FILE {
+                return Err(format!(
+                    "{}: {size} bytes, more than a carried crate holds",
+                    path.display()
+                ));
+            }
+            let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+            files.push((Path::new(krate).join(rel), bytes));
+        }
+    }
+    Ok(files)
+}
+
+/// Writes a self-contained student's copy of the course in `repo` to `out`
+/// (a folder that must not exist yet, or be empty): the stubs without the
+/// reference solutions, the graders' tests, the book's assignments page, a
+/// README, a manifest, and the sources of spintop's core and graders in
+/// `crates/`, so that the copy builds and grades where the repository is
+/// not. It names no path outside itself.
+pub fn export(repo: &Path, out: &Path) -> Result<Export, String> {
+    export_with(repo, out, &ExportOptions::default())
+}
+
+/// [`export`], with options: `ci` adds a workflow that grades the copy on
+/// every push; `link` says whether the copy carries spintop's crates (what a
+/// student is handed) or names the repository's (a scratch copy graded here).
+pub fn export_with(repo: &Path, out: &Path, options: &ExportOptions) -> Result<Export, String> {
+    let lessons = lessons_dir(repo);
+    check_lessons_dir(&lessons)?;
+    if out.exists() {
+        let empty = std::fs::read_dir(out)
+            .map_err(|e| format!("{}: {e}", out.display()))?
+            .next()
+            .is_none();
+        if !empty {
+            return Err(format!(
+                "{} is not empty; give a new folder, so that nothing is overwritten",
+                out.display()
+            ));
+        }
+    }
+    let repo = repo
+        .canonicalize()
+        .map_err(|e| format!("{}: {e}", repo.display()))?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let crates = match options.link {
+        Link::Carried => PathBuf::from("crates"),
+        Link::Repository => repo.join("crates"),
+    };
+    let mut files: Vec<(PathBuf, Vec<u8>)> = vec![
+        (
+            "Cargo.toml".into(),
+            export_manifest(&crates, out).into_bytes(),
+        ),
+        ("README.md".into(), EXPORT_README.as_bytes().to_vec()),
+        (".gitignore".into(), b"/target\n".to_vec()),
+    ];
+    for (from, strip, skip) in [("src", true, &["solutions"][..]), ("tests", false, &[][..])] {
+        let base = lessons.join(from);
+        for path in rust_files(&base, skip) {
+            let text =
+                std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+            let text = if strip { strip_solutions(&text) } else { text };
+            let rel = path.strip_prefix(&base).unwrap_or(&path);
+            files.push((Path::new(from).join(rel), text.into_bytes()));
+        }
+    }
+    let page = repo.join("book/src/assignments.md");
+    if let Ok(text) = std::fs::read(&page) {
+        files.push(("book/assignments.md".into(), text));
+    }
+    if let Ok(lock) = std::fs::read(repo.join("Cargo.lock")) {
+        files.push(("Cargo.lock".into(), lock));
+    }
+    if options.link == Link::Carried {
+        files.extend(carried(&repo)?);
+    }
+    if options.ci == Some(Ci::Github) {
+        files.push((
+            GITHUB_WORKFLOW.into(),
+            GITHUB_WORKFLOW_TEXT.as_bytes().to_vec(),
+        ));
+    }
+    for (rel, bytes) in &files {
+        let path = out.join(rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+        }
+        std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    Ok(Export {
+        files: files.into_iter().map(|(p, _)| p).collect(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::COURSE;
+
+    #[test]
+    fn an_export_holds_the_stubs_and_graders_and_no_solution() {
+        let root = crate::repository();
+        let out = std::env::temp_dir().join(format!("spintop-export-test-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&out);
+        let written = export(root, &out).unwrap();
+        for a in COURSE {
+            let file = a.file.trim_start_matches("lessons/");
+            let text = std::fs::read_to_string(out.join(file)).unwrap();
+            let start = text.find(&format!("pub fn {}(", a.function)).unwrap();
+            let body = &text[start..start + text[start..].find("\n}").unwrap()];
+            assert!(
+                body.contains("todo!("),
+                "{}: the stub, not a solution",
+                a.function
+            );
+            assert!(out.join("tests").join(format!("{}.rs", a.binary)).is_file());
+        }
+        for rel in &written.files {
+            let text = std::fs::read_to_string(out.join(rel)).unwrap();
+            if rel.starts_with("src") || rel.ends_with("Cargo.toml") {
+                assert!(
+                    !text.contains("solutions"),
+                    "{} mentions the solutions",
+                    rel.display()
+                );
+            }
+        }
+        assert!(!out.join("src/solutions").exists());
+        // Every solution's body is absent from every exported source file.
+        for entry in std::fs::read_dir(root.join("lessons/src/solutions")).unwrap() {
+            let solution = std::fs::read_to_string(entry.unwrap().path()).unwrap();
+            for body in solution.split("\npub fn ").skip(1) {
+                let body = &body[body.find('{').unwrap()..];
+                let body = &body[..body.find("\n}").unwrap_or(body.len())];
+                if body.lines().count() < 3 {
+                    continue;
+                }
+                for rel in written.files.iter().filter(|p| p.starts_with("src")) {
+                    let text = std::fs::read_to_string(out.join(rel)).unwrap();
+                    assert!(!text.contains(body), "{} holds a solution", rel.display());
+                }
+            }
+        }
+        let manifest = std::fs::read_to_string(out.join("Cargo.toml")).unwrap();
+        assert!(
+            manifest.contains("[workspace]")
+                && manifest.contains("spintop = { path")
+                && manifest.contains("spintop-grading = { path")
+        );
+        // A second export into the same folder is refused, nothing overwritten.
+        assert!(export(root, &out).unwrap_err().contains("not empty"));
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+
+    #[test]
+    fn stripping_the_solutions_keeps_the_stub() {
+        let text = "use a;\n#[cfg(not(feature = \"solutions\"))]\npub fn f() {\n    todo!()\n}\n\n#[cfg(feature = \"solutions\")]\npub use crate::solutions::ch2::*;\n";
+        assert_eq!(
+            strip_solutions(text),
+            "use a;\npub fn f() {\n    todo!()\n}\n"
+        );
+    }
+
+    #[test]
+    fn two_copies_never_share_a_package_name() {
+        // Cargo would otherwise reuse one copy's test programs for the other
+        // when they share a build folder (see export_manifest).
+        let spintop = crate::repository();
+        let a = export_manifest(spintop, Path::new("/tmp/course/alice"));
+        let b = export_manifest(spintop, Path::new("/tmp/course/bob"));
+        let name = |m: &str| {
+            m.lines()
+                .find(|l| l.starts_with("name = \"spintop-lessons"))
+                .unwrap()
+                .to_string()
+        };
+        assert_ne!(name(&a), name(&b));
+        for m in [&a, &b] {
+            assert!(m.contains("[lib]\nname = \"spintop_lessons\""), "{m}");
+        }
+    }
+}

@@ -1,0 +1,75 @@
+//! The course: the assignments of `lessons/` in course order, and their state
+//! as their graders judge them.
+//!
+//! A shared layer below the shells: `spintop course` prints it as text and
+//! `spintop learn` shows it in its panel; neither reads the other's output.
+//! It runs cargo and the graders' tests as child processes, so it is not part
+//! of the pure core, and it is built only with the feature `app`: a student's
+//! build (the core) never compiles it.
+//!
+//! | module | what |
+//! |---|---|
+//! | `catalogue` | the 22 assignments, their files, tests and hint ladders |
+//! | `source_rule` | what a copy may not contain, on a parsed syntax tree |
+//! | `harness` | one grading: the rule, the build, one process per grader, verdicts from structure |
+//! | `progress` | hint rungs used and first passes, in the course's own `target/` |
+//! | `hints` | the hint ladder, one rung per request |
+//! | `watch` | grading again on every save |
+//! | `probe` | the student's function of time, sampled for `spintop learn` |
+//! | `export` | a student's copy, optionally with a CI workflow |
+//! | `gradebook` | a class graded: every row, within time limits, CSV and Gradescope |
+//! | `diagnose` | a folder of wrong answers graded, to measure the diagnoses |
+
+mod catalogue;
+pub mod diagnose;
+pub mod export;
+pub mod gradebook;
+pub mod harness;
+mod hints;
+mod probe;
+mod progress;
+pub mod source_rule;
+mod watch;
+
+pub use catalogue::{Assignment, COURSE, COURSE_LEN, Hints, binaries, find};
+pub use export::{
+    CARRIED_CRATES, Ci, Export, ExportOptions, Link, check_lessons_dir, export, export_with,
+    lessons_dir, strip_solutions,
+};
+pub use harness::{Located, Options, State, Status, grade};
+pub use hints::{Hint, next_hint};
+pub use probe::{ProbeSpec, Probed, parse_probe, probe};
+pub use progress::{
+    Progress, load_progress, progress_path, record_passes, record_passes_now, save_progress,
+};
+pub use watch::{Report, Watch, binaries_for, sources_stamps};
+
+use std::path::Path;
+
+/// The repository this spintop was built from.
+pub fn repository() -> &'static Path {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+}
+
+/// The `--course DIR` that commands printed for the course in `dir` must
+/// repeat: none for the repository's own lessons (where `spintop course`
+/// looks by default), the folder otherwise.
+pub fn course_arg_for(dir: &Path) -> Option<String> {
+    let own = lessons_dir(repository());
+    let same = match (dir.canonicalize(), own.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => dir == own,
+    };
+    (!same).then(|| dir.display().to_string())
+}
+
+/// The book's course chapters (`book/src`): `cargo test` compiles and runs
+/// every Rust block in them as a doctest against this crate and the graders
+/// (the other chapters are the core's, `spintop::book`).
+#[cfg(doctest)]
+pub mod book {
+    #[doc = include_str!("../../../book/src/assignments.md")]
+    pub struct Assignments;
+    #[doc = include_str!("../../../book/src/instructors.md")]
+    pub struct Instructors;
+}

@@ -1,0 +1,16 @@
+//! assignment: precessing_dipole_jet
+//! mistake: θ measured from the x-y plane instead of from the z axis: sin θ and cos θ swapped everywhere
+//! says: theta, sin, cos, swapped
+use spintop::assignment::{Jet, Vec3};
+
+pub fn precessing_dipole_jet(theta: f64, omega: f64, t: f64) -> Jet {
+    let (ct, st) = theta.sin_cos();
+    let (s, c) = (omega * t).sin_cos();
+    let w = omega;
+    [
+        Vec3::new(st * c, st * s, ct),
+        Vec3::new(-w * st * s, w * st * c, 0.0),
+        Vec3::new(-w * w * st * c, -w * w * st * s, 0.0),
+        Vec3::new(w * w * w * st * s, -w * w * w * st * c, 0.0),
+    ]
+}

@@ -1,0 +1,19 @@
+//! assignment: reduced_closed_form
+//! mistake: s = τ(I₃Ω₃₀/I₁)²t instead of 2τ(I₃Ω₃₀/I₁)²t, so the decay runs at half the rate
+//! says: factor 2, decay
+use spintop::assignment::Vec3;
+
+pub fn reduced_closed_form(ratio: f64, tau: f64, omega0: Vec3, t: f64) -> Vec3 {
+    let u0 = omega0.x * omega0.x + omega0.y * omega0.y;
+    let k = ratio * omega0.z;
+    let s = tau * k * k * t;
+    let g = if s == 0.0 { 1.0 } else { -(-s).exp_m1() / s };
+    let phi = (-0.5 * s).exp() / (1.0 + 2.0 * tau * u0 * t * g).sqrt();
+    let alpha = (1.0 - ratio) * omega0.z * t;
+    let (sa, ca) = alpha.sin_cos();
+    Vec3::new(
+        phi * (omega0.x * ca + omega0.y * sa),
+        phi * (omega0.y * ca - omega0.x * sa),
+        omega0.z,
+    )
+}

@@ -1,0 +1,14 @@
+//! The `spintop` command line, run as a user runs it: one module per subcommand.
+
+mod bad_input;
+mod balance;
+mod bench;
+mod entry;
+mod figure;
+mod gate;
+mod orbit;
+mod plot;
+mod run;
+mod shell;
+mod simulate;
+mod stability;
