@@ -21,8 +21,8 @@
 
 pub mod accuracy;
 pub mod claim;
-pub mod measured;
 pub mod cost;
+pub mod measured;
 mod method;
 mod model;
 pub mod orbit;
@@ -36,7 +36,7 @@ mod stepping;
 pub mod times;
 
 pub use method::{
-    Method, MethodChoice, MethodOptions, MethodRefused, MIN_RTOL, OptionsError, TAYLOR_AUTO_RTOL,
+    MIN_RTOL, Method, MethodChoice, MethodOptions, MethodRefused, OptionsError, TAYLOR_AUTO_RTOL,
     auto_integrator,
 };
 pub use model::Model;

@@ -8,7 +8,7 @@ use super::{
     omega_samples, pole_warning,
 };
 use crate::integrate::Stats;
-use crate::math::Real;
+use crate::math::{Real, Vec3};
 use crate::numbers::{fmt_value, worked};
 use crate::output::balance::{self, BalanceOutput};
 use crate::output::orbit::{self, OrbitOutput, OrbitRequest};
@@ -18,7 +18,7 @@ use crate::output::{Entry, Failure, Format};
 use crate::physics::general_top::GeneralTop;
 use crate::physics::particle::{DEBYE_ESU_CM, Milestones, RigidShape, SPEED_OF_LIGHT_CM_S};
 use crate::sim::Model;
-use crate::sim::claim::{ErrorEstimate, TierEstimate, rounding};
+use crate::sim::claim::{ErrorEstimate, TierEstimate, omega_rounding, rounding};
 use crate::sim::secular::{Law, SecularSample, secular};
 use crate::stability::Row;
 use serde::Serialize;
@@ -483,12 +483,19 @@ fn run_omega_only(
     let t_last = top.times.last().copied().unwrap_or(0.0);
     let angle = crate::sim::cost::turning_angle(&top.model, &top.initial.omega, t_last);
     let floor = rounding(angle);
+    let omega_floor = omega_rounding(
+        &top.model,
+        &top.initial.omega,
+        samples.iter().map(|s| (s.t, Vec3::from(s.omega))),
+    );
     let mut error = ErrorEstimate {
-        omega: floor,
+        omega: omega_floor,
         orientation: None,
         rounding: floor,
         against: format!("the exact solution of the {} model", top.model.name()),
-        how: format!("closed forms: only rounding, {floor:.0e} over the run's {angle:.1e} rad"),
+        how: format!(
+            "closed forms: only rounding, {omega_floor:.0e} (4 eps per radian of the phase, where Omega_perp still turns)"
+        ),
     };
     if let Some(model) = &top.model_error {
         error = with_model_error(error, model, &top.model);

@@ -8,12 +8,14 @@
 use crate::math::{Real, Vec3};
 use crate::numbers::{fmt_about, fmt_time};
 use crate::physics::symmetric_top::SymmetricTop;
-use crate::sim::accuracy::{ModelErrors, general_errors, secular_errors, symmetric_errors};
-use crate::sim::measured::symmetric_measured;
+use crate::sim::accuracy::{
+    ModelErrors, changes_nothing, general_errors, secular_errors, symmetric_errors,
+};
 use crate::sim::claim::{ModelEstimates, TierEstimate};
 use crate::sim::cost::{
     MAX_STEPS, TIGHTEST_RTOL, stepping_error, steps_per_radian, tolerance_for, turning_angle,
 };
+use crate::sim::measured::symmetric_measured;
 use crate::sim::secular::{Law, averaging_error};
 use crate::sim::{Method, MethodChoice, Model, auto_integrator};
 
@@ -332,7 +334,21 @@ pub(super) fn choose_model(
         (!secular && reports_orientation(&tiers[tier], method, omega0, t_last)).then_some(0.0)
     };
     if errors.exact {
-        let axis = if tiers[0].has_closed_form() {
+        let still = match &tiers[0] {
+            Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
+                changes_nothing(top.tau(), omega0, t_last)
+            }
+            Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
+                changes_nothing(
+                    crate::sim::physical::general::fast_time(top),
+                    omega0,
+                    t_last,
+                )
+            }
+        };
+        let axis = if still {
+            "is so slow that radiation changes no model by a rounding over the run"
+        } else if tiers[0].has_closed_form() {
             "lies along the symmetry axis, which carries the dipole"
         } else {
             "is a steady spin about a principal axis along the dipole"

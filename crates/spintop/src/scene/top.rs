@@ -470,17 +470,17 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
     let choice = tier
         .is_none()
         .then(|| choose::choose_model(tiers, *method, &initial.omega, times, options.rtol()));
-    let (mut model, mut model_choice, without_orientation, mut why_physical) =
-        match (tier, &choice) {
-            (Some(tier), _) => (tiers[tier.index()], None, None, None),
-            (None, Some(c)) => (
-                tiers[c.tier],
-                Some(c.reason.clone()),
-                c.without_orientation.clone(),
-                c.why_physical.clone(),
-            ),
-            (None, None) => (tiers[0], None, None, None),
-        };
+    let (mut model, mut model_choice, without_orientation, mut why_physical) = match (tier, &choice)
+    {
+        (Some(tier), _) => (tiers[tier.index()], None, None, None),
+        (None, Some(c)) => (
+            tiers[c.tier],
+            Some(c.reason.clone()),
+            c.without_orientation.clone(),
+            c.why_physical.clone(),
+        ),
+        (None, None) => (tiers[0], None, None, None),
+    };
     let mut model_error = choice.as_ref().and_then(|c| c.model_error(c.tier));
     let mut planned = plan::plan_top(&model, *method, options, initial, t_last, None);
     // The physical solution was chosen for the orientation alone and cannot
@@ -489,13 +489,12 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
         && refusal.at == plan::Blame::Times
     {
         model = tiers[*tier];
-        model_error = choice
-            .as_ref()
-            .and_then(|c| c.model_error(*tier))
-            .map(|e| crate::sim::claim::TierEstimate {
+        model_error = choice.as_ref().and_then(|c| c.model_error(*tier)).map(|e| {
+            crate::sim::claim::TierEstimate {
                 orientation: None,
                 ..e
-            });
+            }
+        });
         model_choice = Some(why.clone());
         why_physical = None;
         let skip = "Omega alone is held within rtol without the physical solution, and the orientation is not";

@@ -17,12 +17,13 @@
 //! | Ω's error | relative to \|Ω₀\| |
 //! | the orientation's error | radians: the angle of the rotation between the printed O(t) and the true one |
 
+use super::cost::turning_angle;
 use super::method::{MIN_RTOL, Method, MethodOptions};
 use super::model::Model;
 use super::physical::internal_rtol;
 use super::simulation::Simulation;
 use super::state::{InitialState, Sample, SimError};
-use crate::math::{Mat3, Real};
+use crate::math::{Mat3, Real, Vec3};
 use serde::Serialize;
 
 /// The factor between the run's tolerance and the second run's.
@@ -112,6 +113,34 @@ pub fn rounding(angle: Real) -> Real {
     1e-14 + 4.0 * Real::EPSILON * angle.abs()
 }
 
+/// What rounding alone may leave in Ω, relative to |Ω₀|: a phase error
+/// δφ moves Ω by δφ times the part of Ω that turns (Ω⊥ for a symmetric top,
+/// all of Ω for another), so the phase's [`rounding`] at each sample counts
+/// in proportion to that part there (a decayed Ω⊥ has no phase to lose).
+/// `points` are (t, Ω(t)).
+pub fn omega_rounding(
+    model: &Model,
+    omega0: &Vec3,
+    points: impl IntoIterator<Item = (Real, Vec3)>,
+) -> Real {
+    let scale = omega0.norm();
+    if scale == 0.0 {
+        return rounding(0.0);
+    }
+    let symmetric = matches!(
+        model,
+        Model::Truncated(_) | Model::Reduced(_) | Model::Full(_)
+    );
+    let worst = points
+        .into_iter()
+        .map(|(t, w)| {
+            let turning = if symmetric { w.x.hypot(w.y) } else { w.norm() };
+            turning_angle(model, omega0, t) * (turning / scale).min(1.0)
+        })
+        .fold(0.0 as Real, Real::max);
+    rounding(worst)
+}
+
 /// The settings of the second run, or `None` where there is none tighter
 /// (a closed form, or a tolerance already at [`MIN_RTOL`]).
 fn tighter(method: Method, options: &MethodOptions) -> Option<MethodOptions> {
@@ -167,6 +196,11 @@ pub fn numerical_error(
     orientation: bool,
 ) -> Result<ErrorEstimate, SimError> {
     let floor = rounding(angle);
+    let omega_floor = omega_rounding(
+        model,
+        &initial.omega,
+        samples.iter().map(|s| (s.t, s.omega_vec())),
+    );
     let scale = initial.omega.norm().max(Real::MIN_POSITIVE);
     let times: Vec<Real> = samples.iter().map(|s| s.t).collect();
     let horizon = times.last().copied();
@@ -177,7 +211,10 @@ pub fn numerical_error(
         for (s, &t) in samples.iter().zip(&times) {
             let other = again.advance_to(t)?;
             omega = omega.max((s.omega_vec() - other.omega_vec()).norm() / scale);
-            turn = turn.max(angle_between(&s.rotation_matrix(), &other.rotation_matrix()));
+            turn = turn.max(angle_between(
+                &s.rotation_matrix(),
+                &other.rotation_matrix(),
+            ));
         }
         Ok((omega, turn))
     };
@@ -222,9 +259,8 @@ pub fn numerical_error(
     };
     let against = format!("the exact solution of the {} model", model.name());
     Ok(ErrorEstimate {
-        omega: (safety * omega + floor).min(2.0),
-        orientation: orientation
-            .then(|| (safety * turn + floor).min(std::f64::consts::PI as Real)),
+        omega: (safety * omega + omega_floor).min(2.0),
+        orientation: orientation.then(|| (safety * turn + floor).min(std::f64::consts::PI as Real)),
         rounding: floor,
         against,
         how,

@@ -63,6 +63,36 @@ fn angle(a: &Mat3, b: &Mat3) -> Real {
     (0.5 * skew).atan2(0.5 * (r.trace() - 1.0))
 }
 
+/// The truncated and the reduced models' largest angles from the physical
+/// solution of (3.4) over the grid `g`, all from O(0) = 1; `None` where a
+/// run cannot be made.
+fn orientations(
+    top: &SymmetricTop,
+    omega0: &Vec3,
+    options: &MethodOptions,
+    g: &[Real],
+) -> Option<(Real, Real)> {
+    let t_last = g.last().copied().unwrap_or(0.0);
+    let initial = InitialState {
+        omega: *omega0,
+        rotation: Mat3::identity(),
+    };
+    let run = |model: Model, method: Method| {
+        Simulation::with_method(model, method, *options, initial, Some(t_last)).ok()
+    };
+    let mut full = run(Model::Full(*top), Method::Physical)?;
+    let mut reduced = run(Model::Reduced(*top), Method::ClosedFormDop853)?;
+    let (mut ot, mut or) = (0.0 as Real, 0.0 as Real);
+    for &t in g {
+        let p = full.advance_to(t).ok()?.rotation_matrix();
+        let r = reduced.advance_to(t).ok()?.rotation_matrix();
+        let o_t = truncated_orientation(top, omega0, &Mat3::identity(), t);
+        ot = ot.max(angle(&o_t, &p));
+        or = or.max(angle(&r, &p));
+    }
+    Some((ot, or))
+}
+
 /// The truncated and the reduced models' largest distances from the
 /// physical solution of (3.4) over `times`' run, measured, and whether the
 /// orientations were: only where the body turns at most [`DIRECT_TURN`]
@@ -86,34 +116,13 @@ pub fn symmetric_measured(
         dr = dr.max((reduced_closed_form(top, omega0, t) - w).norm());
     }
     let pi = std::f64::consts::PI as Real;
-    let (mut ot, mut or) = (pi, pi);
-    let oriented = rate * t_last <= DIRECT_TURN;
-    if oriented {
-        let initial = InitialState {
-            omega: *omega0,
-            rotation: Mat3::identity(),
-        };
-        let run = |model: Model, method: Method| {
-            Simulation::with_method(model, method, options, initial, Some(t_last)).ok()
-        };
-        let full = run(Model::Full(*top), Method::Physical);
-        let reduced = run(Model::Reduced(*top), Method::ClosedFormDop853);
-        let (Some(mut full), Some(mut reduced)) = (full, reduced) else {
-            return None;
-        };
-        {
-            (ot, or) = (0.0, 0.0);
-            for &t in &g {
-                let (Ok(p), Ok(r)) = (full.advance_to(t), reduced.advance_to(t)) else {
-                    return None;
-                };
-                let (p, r) = (p.rotation_matrix(), r.rotation_matrix());
-                let o_t = truncated_orientation(top, omega0, &Mat3::identity(), t);
-                ot = ot.max(angle(&o_t, &p));
-                or = or.max(angle(&r, &p));
-            }
-        }
-    }
+    // NOTE: where the orientations cannot be measured (a run refused or
+    // failed), Ω's measurement stands and the caller estimates them.
+    let turned = (rate * t_last <= DIRECT_TURN)
+        .then(|| orientations(top, omega0, &options, &g))
+        .flatten();
+    let oriented = turned.is_some();
+    let (ot, or) = turned.unwrap_or((pi, pi));
     let e = |d: Real| (MARGIN * d / scale + FLOOR).min(2.0);
     let o = |d: Real| (MARGIN * d + FLOOR).min(pi);
     let errors = ModelErrors {

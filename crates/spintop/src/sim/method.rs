@@ -414,4 +414,3 @@ impl Default for MethodOptions {
         }
     }
 }
-

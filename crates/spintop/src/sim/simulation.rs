@@ -1,20 +1,19 @@
 //! A simulation: one model, one method, stepped and sampled on demand.
 
-use super::method::{Method, MethodChoice, MethodOptions};
+use super::cost;
+use super::method::{MIN_RTOL, Method, MethodChoice, MethodOptions};
 use super::model::{FirstOrder, Model};
+use super::physical::slow::SlowTable;
 use super::physical::{self, general};
 use super::state::{InitialState, Sample, SimError};
 use super::stepping::{
     AnyStepper, CoupledRhs, MAX_TURN_PER_STEP, OnGroup, OrientationRhs, TaylorRun,
 };
-use super::cost;
 use crate::integrate::{Stats, Stepper};
-use super::physical::slow::SlowTable;
 use crate::math::{Mat3, Quat, Real, State, Vec3, all_finite, rot_z};
 use crate::physics::general_top;
 use crate::physics::symmetric_top::{
-    SymmetricTop,
-    self, reduced_closed_form, reduced_corotating_rate, truncated_closed_form,
+    self, SymmetricTop, reduced_closed_form, reduced_corotating_rate, truncated_closed_form,
     truncated_orientation,
 };
 
@@ -117,7 +116,11 @@ impl SlowRun {
             self.built += self.table.stats;
             self.table = next.starting_at(end);
         }
-        let stop = if open { self.table.t_end().min(Real::MAX) } else { horizon };
+        let stop = if open {
+            self.table.t_end().min(Real::MAX)
+        } else {
+            horizon
+        };
         let q = self.orientation(t, stop)?;
         let precession = rot_z(self.table.precession() * t);
         Ok((self.table.omega_at(t), q * precession))
@@ -147,6 +150,10 @@ impl SlowRun {
         Ok(q)
     }
 }
+
+/// The orientation stepped alone (reduced and physical solutions) holds each
+/// step to rtol over this.
+const ORIENTATION_TIGHTER: Real = 10.0;
 
 /// How many τ an open-ended symmetric full model tabulates at a time.
 const CHUNK_TAUS: Real = 50.0;
@@ -235,8 +242,12 @@ impl Simulation {
             // NOTE: σ alone is a rotation vector of at most 1.5 rad that restarts
             // from 0 at every fold; a tolerance relative to its size would ask
             // for ever more digits right after each fold. Its error is an angle:
-            // rtol radians, absolute.
-            let stepper = AnyStepper::with_atol(Method::Dop853, zero, &options, options.rtol())?
+            // rtol radians, absolute. Its steps' errors add up over the run:
+            // each step is held to a tenth of rtol (DOP853 pays 10^(1/8),
+            // a third more steps), so that the run keeps rtol over it.
+            let tight = (options.rtol() / ORIENTATION_TIGHTER).max(MIN_RTOL);
+            let local = options.with_rtol(tight).unwrap_or(options);
+            let stepper = AnyStepper::with_atol(Method::Dop853, zero, &local, tight)?
                 .ok_or_else(not_for_model)?;
             Ok(Box::new(OnGroup {
                 stepper,
@@ -636,4 +647,3 @@ mod method_rule_tests {
         assert_eq!(MethodChoice::from_name("euler"), None);
     }
 }
-

@@ -228,7 +228,6 @@ impl<const N: usize> OnGroup<N> {
     }
 }
 
-
 /// The Taylor method on (Ω, q), with one model's recurrences.
 ///
 /// NOTE: a unit quaternion, not σ on the group as the Runge–Kutta methods
@@ -307,7 +306,11 @@ impl TaylorRun {
 
     /// Step until `t` lies in the last step (toward `horizon`), then read Ω
     /// and O there from the step's polynomial.
-    pub(super) fn advance(&mut self, t: Real, horizon: Real) -> Result<(Vec3, Mat3), IntegrateError> {
+    pub(super) fn advance(
+        &mut self,
+        t: Real,
+        horizon: Real,
+    ) -> Result<(Vec3, Mat3), IntegrateError> {
         let y = taylor_dispatch!(self, s => {
             while s.t() < t {
                 s.advance(horizon)?;

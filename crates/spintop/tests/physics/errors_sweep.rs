@@ -14,7 +14,7 @@
 //! 1e-13 for the model estimates).
 //!
 //! The coarse grid runs in `cargo test`; the long one is
-//! `cargo test --test physics sweep -- --ignored`.
+//! `cargo test -p spintop --test core errors_sweep -- --ignored`.
 
 use crate::physics::invariance::{Manifold, Reference, angle_between, truncated};
 use serde_json::Value;
@@ -89,11 +89,24 @@ pub struct Outcome {
     pub bad: Vec<String>,
 }
 
+/// What the reference itself may be off by, in Ω relative to |Ω₀| and in
+/// the orientation in radians: below these a real error is not resolved.
+/// Measured: the reference against itself at half its steps (Ω 2e-16, the
+/// orientation 1.3e-13), and its orientation against spintop's reduced
+/// model (which shares no code with it) and spintop's physical solution,
+/// which show the same pattern in time to 1.1e-12 rad at τ|Ω₀| = 0.3 and
+/// T = τ over the coarse grid.
+const REFERENCE_OMEGA: Real = 1e-14;
+const REFERENCE_ORIENTATION: Real = 2e-12;
+
 impl Outcome {
-    /// real ≤ claimed; claimed ≤ 10 real where real > `rounding`.
-    fn check(&mut self, what: &str, real: Real, claimed: Real, rounding: Real) {
+    /// real ≤ claimed (to the reference's own accuracy `resolved`); claimed
+    /// ≤ 10 real where real is above `rounding` and `resolved`.
+    fn check(&mut self, what: &str, real: Real, claimed: Real, rounding: Real, resolved: Real) {
         let line = format!("{what}: real {real:.2e} printed {claimed:.2e}");
-        if real > claimed || (real > rounding && claimed > 10.0 * real) || claimed.is_nan() {
+        let floor = rounding.max(resolved);
+        if real > claimed + resolved || (real > floor && claimed > 10.0 * real) || claimed.is_nan()
+        {
             self.bad.push(line.clone());
         }
         self.lines.push(line);
@@ -127,10 +140,15 @@ pub fn run_case(case: &Case) -> Outcome {
     let physical = Reference::new(Manifold::Physical, case.ratio, 1.0, omega0, case.t_end, 1.0);
     let truth_o = physical.orientations(&o0, &times);
     let error = &v["error"];
-    assert!(!error.is_null(), "{tag}: no error printed: {}", &v.to_string()[..2000.min(v.to_string().len())]);
+    assert!(
+        !error.is_null(),
+        "{tag}: no error printed: {}",
+        &v.to_string()[..2000.min(v.to_string().len())]
+    );
     let rounding = num(&error["rounding"]);
     let model = v["model"].as_str().unwrap().to_string();
-    out.lines.push(format!("{tag}: model {model}, method {}", v["method"]));
+    out.lines
+        .push(format!("{tag}: model {model}, method {}", v["method"]));
     // The printed samples.
     let samples = v["samples"].as_array().unwrap();
     assert_eq!(samples.len(), times.len(), "{tag}");
@@ -143,13 +161,20 @@ pub fn run_case(case: &Case) -> Outcome {
             real_o = real_o.max(angle_between(&rotation(&s["rotation"]), o_true));
         }
     }
-    out.check(&format!("{tag} Omega"), real_w, num(&error["omega"]), rounding);
+    out.check(
+        &format!("{tag} Omega"),
+        real_w,
+        num(&error["omega"]),
+        rounding,
+        REFERENCE_OMEGA,
+    );
     if !error["orientation"].is_null() {
         out.check(
             &format!("{tag} orientation"),
             real_o,
             num(&error["orientation"]),
             rounding,
+            REFERENCE_ORIENTATION,
         );
     }
     // The estimates of the two lighter models, over a fine grid of the run.
@@ -169,15 +194,29 @@ pub fn run_case(case: &Case) -> Outcome {
             ro = ro.max(angle_between(&reduced_o[j], &truth_grid[j]));
         }
         let floor = 1e-13;
-        out.check(&format!("{tag} truncated Omega"), tw, num(&est["truncated"]["omega"]), floor);
-        out.check(&format!("{tag} reduced Omega"), rw, num(&est["reduced"]["omega"]), floor);
+        let (wf, of) = (REFERENCE_OMEGA, REFERENCE_ORIENTATION);
+        let omega_of = |m: &str| num(&est[m]["omega"]);
+        out.check(
+            &format!("{tag} truncated Omega"),
+            tw,
+            omega_of("truncated"),
+            floor,
+            wf,
+        );
+        out.check(
+            &format!("{tag} reduced Omega"),
+            rw,
+            omega_of("reduced"),
+            floor,
+            wf,
+        );
         if !est["truncated"]["orientation"].is_null() {
             let c = num(&est["truncated"]["orientation"]);
-            out.check(&format!("{tag} truncated orientation"), to, c, floor);
+            out.check(&format!("{tag} truncated orientation"), to, c, floor, of);
         }
         if !est["reduced"]["orientation"].is_null() {
             let c = num(&est["reduced"]["orientation"]);
-            out.check(&format!("{tag} reduced orientation"), ro, c, floor);
+            out.check(&format!("{tag} reduced orientation"), ro, c, floor, of);
         }
     }
     out
@@ -215,21 +254,43 @@ pub fn sweep(
     all
 }
 
+/// Print the outcome and fail on any printed error broken.
+fn assert_all_hold(o: &Outcome) {
+    for l in &o.lines {
+        println!("{l}");
+    }
+    assert!(
+        o.bad.is_empty(),
+        "{} printed errors broken:\n{}",
+        o.bad.len(),
+        o.bad.join("\n")
+    );
+}
+
+/// Issue 46, (5): the coarse grid, every printed error true and within 10×.
 #[test]
-#[ignore = "end-to-end: long sweep"]
-fn sweep_scratch_print() {
+fn eq_3_4_every_printed_error_holds_on_a_coarse_grid() {
+    let o = sweep(
+        &[0.05, 1.5],
+        &[0.8, std::f64::consts::FRAC_PI_2],
+        &[0.01, 1.0],
+        &[100.0],
+        &[1e-8, 1e-12],
+    );
+    assert_all_hold(&o);
+}
+
+/// Issue 46, (5): the long sweep, I₃/I₁ from 0.05 to 1.5, Ω₀ near the axis
+/// to across it, τ|Ω₀| to 1, horizons to 10⁶ τ, rtol 1e-4 to 1e-14.
+#[test]
+#[ignore = "end-to-end: the long sweep of issue 46 (a few minutes)"]
+fn eq_3_4_every_printed_error_holds_over_the_long_sweep() {
     let o = sweep(
         &[0.05, 0.4, 1.5],
         &[0.05, 0.8, std::f64::consts::FRAC_PI_2],
         &[0.01, 0.3, 1.0],
-        &[1.0, 100.0, 1e4],
-        &[1e-4, 1e-8, 1e-12],
+        &[1.0, 100.0, 1e4, 1e6],
+        &[1e-4, 1e-8, 1e-12, 1e-14],
     );
-    for l in &o.lines {
-        println!("{l}");
-    }
-    println!("BAD {}:", o.bad.len());
-    for l in &o.bad {
-        println!("  {l}");
-    }
+    assert_all_hold(&o);
 }

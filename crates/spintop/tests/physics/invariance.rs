@@ -362,10 +362,7 @@ impl Reference {
     pub fn orientations(&self, o0: &Mat3, times: &[Real]) -> Vec<Mat3> {
         let rot = |m: Mat3| Rotation3::from_matrix_unchecked(m);
         if self.steady {
-            return times
-                .iter()
-                .map(|&t| o0 * rot_z(self.omega3 * t))
-                .collect();
+            return times.iter().map(|&t| o0 * rot_z(self.omega3 * t)).collect();
         }
         let targets: Vec<(Real, Real, Real)> = times.iter().map(|&t| self.s_at(t)).collect();
         let mut p = rot(o0 * rot_z(self.chi0));
@@ -393,11 +390,7 @@ impl Reference {
                 let (f, _) = self.rates(s);
                 let rate = self.omega_p(s).norm() * f;
                 let step = (MAGNUS_S * self.step_scale).min(MAGNUS_TURN * self.step_scale / rate);
-                let next = if step >= s - target {
-                    target
-                } else {
-                    s - step
-                };
+                let next = if step >= s - target { target } else { s - step };
                 // NOTE: the step is the difference of the rounded ends, so
                 // that the steps add up to the span exactly (dt/ds is large
                 // where u ≪ k², and a rounding of s per step adds up).
@@ -408,7 +401,10 @@ impl Reference {
             let (p_t, phi) = match still {
                 Some((t_still, p_still)) => {
                     let rate = self.k + c0.im;
-                    let turn = Rotation3::from_axis_angle(&Unit::new_unchecked(Vec3::z()), rate * (t - t_still));
+                    let turn = Rotation3::from_axis_angle(
+                        &Unit::new_unchecked(Vec3::z()),
+                        rate * (t - t_still),
+                    );
                     (p_still * turn, phi)
                 }
                 None => {
@@ -452,7 +448,10 @@ impl Reference {
             let f0 = -1.0 / (2.0 * c0.re);
             return (tt + (st - s) * f0, pt + (st - s) * f0 * c0.im);
         }
-        let i = self.panels.partition_point(|p| p.s_bot > s).min(self.panels.len() - 1);
+        let i = self
+            .panels
+            .partition_point(|p| p.s_bot > s)
+            .min(self.panels.len() - 1);
         let p = self.panels[i];
         let (dt, dp) = self.quad(s, p.s_top);
         (p.t_top + dt, p.phi_top + dp)
@@ -482,7 +481,11 @@ fn series(tau: Real, k: Real) -> Vec<C> {
     let root = C::new(1.0, -4.0 * tau * k).sqrt();
     // The slow root −k²/c_fast, with no cancellation as τk → 0.
     let fast = (a + root) / (2.0 * tau);
-    let c0 = if k == 0.0 { C::new(0.0, 0.0) } else { -(k * k) / fast };
+    let c0 = if k == 0.0 {
+        C::new(0.0, 0.0)
+    } else {
+        -(k * k) / fast
+    };
     let mut c = vec![c0];
     for m in 1..TERMS {
         let d = a - c0 * (2.0 * tau) - one * (2.0 * tau * m as Real * c0.re);
@@ -500,13 +503,19 @@ fn series(tau: Real, k: Real) -> Vec<C> {
 }
 
 fn eval_series(c: &[C], u: Real) -> C {
-    c.iter().rev().fold(C::new(0.0, 0.0), |acc, cm| acc * u + cm)
+    c.iter()
+        .rev()
+        .fold(C::new(0.0, 0.0), |acc, cm| acc * u + cm)
 }
 
 /// The angle of the rotation between two orientations.
 pub fn angle_between(a: &Mat3, b: &Mat3) -> Real {
     let r = a.transpose() * b;
-    let skew = Vec3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);
+    let skew = Vec3::new(
+        r[(2, 1)] - r[(1, 2)],
+        r[(0, 2)] - r[(2, 0)],
+        r[(1, 0)] - r[(0, 1)],
+    );
     let cos = 0.5 * (r.trace() - 1.0);
     (0.5 * skew.norm()).atan2(cos)
 }

@@ -89,7 +89,11 @@ impl SlowSeries {
                 .map(|m| self.c[m].norm() * u.powi(m as i32))
                 .fold(0.0, Real::max)
         };
-        let mut u: Real = 1e3 / self.c[TERMS - 1].norm().powf(1.0 / (TERMS - 1) as Real).max(1e-300);
+        let mut u: Real = 1e3
+            / self.c[TERMS - 1]
+                .norm()
+                .powf(1.0 / (TERMS - 1) as Real)
+                .max(1e-300);
         for _ in 0..2000 {
             let g = self.rate(u).norm();
             if g > 0.0 && tail(u) <= CONVERGED * g {
@@ -125,7 +129,9 @@ impl SlowSeries {
             .enumerate()
             .skip(1)
             .rev()
-            .fold(Complex::new(0.0, 0.0), |acc, (m, c)| acc * u + c * m as Real)
+            .fold(Complex::new(0.0, 0.0), |acc, (m, c)| {
+                acc * u + c * m as Real
+            })
     }
 
     /// The coefficient cₘ.
@@ -152,7 +158,10 @@ mod tests {
         let top = SymmetricTop::new(0.4, 1.0).unwrap();
         let s = SlowSeries::new(&top, 0.0);
         for (m, want) in [(0, 0.0), (1, -1.0), (2, 3.0), (3, -24.0)] {
-            assert!((s.coefficient(m) - Complex::new(want, 0.0)).norm() < 1e-12, "{m}");
+            assert!(
+                (s.coefficient(m) - Complex::new(want, 0.0)).norm() < 1e-12,
+                "{m}"
+            );
         }
         let top = SymmetricTop::new(0.5, 0.01).unwrap();
         let s = SlowSeries::new(&top, 1.0);
@@ -160,7 +169,10 @@ mod tests {
         let c0 = s.coefficient(0);
         // Re c₀ = −τk² + 5τ³k⁴ − …, Im c₀ = −2τ²k³ + …
         let re = -tau * k * k + 5.0 * tau.powi(3) * k.powi(4);
-        assert!((c0.re - re).abs() < 1e-3 * 5.0 * tau.powi(3) * k.powi(4), "{c0}");
+        assert!(
+            (c0.re - re).abs() < 1e-3 * 5.0 * tau.powi(3) * k.powi(4),
+            "{c0}"
+        );
         assert!((c0.im + 2.0 * tau * tau * k * k * k).abs() < 1e-3 * tau * tau * k * k * k);
     }
 
@@ -175,7 +187,10 @@ mod tests {
             let g = s.rate(u);
             let lhs = s.slope(u) * (2.0 * u * g.re);
             let rhs = g * Complex::new(1.0, -2.0 * k) + (u + k * k) - g * g;
-            assert!((lhs - rhs).norm() <= 1e-12 * (rhs.norm() + (u + k * k)), "{ratio} {omega3}: {lhs} {rhs}");
+            assert!(
+                (lhs - rhs).norm() <= 1e-12 * (rhs.norm() + (u + k * k)),
+                "{ratio} {omega3}: {lhs} {rhs}"
+            );
             assert!(s.reach_u() > 1e-4, "{}", s.reach_u());
         }
     }

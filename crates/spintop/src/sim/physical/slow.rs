@@ -336,7 +336,9 @@ pub fn slow_table(
         table.nodes.extend_from_slice(&nodes[skip..]);
         let last = table.nodes[table.nodes.len() - 1];
         if last.t <= t0 && t0 < span {
-            return Err(PhysicalError::NoConvergence("a piece of the run made no progress"));
+            return Err(PhysicalError::NoConvergence(
+                "a piece of the run made no progress",
+            ));
         }
         (t0, start) = (last.t, last.w);
         if t0 >= span && !tail_holds(&series, start.norm_sqr()) {
@@ -472,7 +474,13 @@ impl Shot<'_> {
 /// u falls to half the series' reach (then the series takes over), with at
 /// most [`SEGMENT_E_FOLDINGS`] of fall over the piece and its margin; at
 /// least τ, at most `left`.
-fn piece_length(top: &SymmetricTop, series: &SlowSeries, a0: Real, omega3: Real, left: Real) -> Real {
+fn piece_length(
+    top: &SymmetricTop,
+    series: &SlowSeries,
+    a0: Real,
+    omega3: Real,
+    left: Real,
+) -> Real {
     let start = Vec3::new(a0, 0.0, omega3);
     let margin = final_margin(top, omega3);
     let fall = |len: Real| a0.ln() - guessed_log_amplitude(top, &start, len);
@@ -585,7 +593,8 @@ fn shoot(
     let mut best = if -flo < fhi { (lo, flo) } else { (hi, fhi) };
     let mut side = 0;
     for _ in 0..200 {
-        if best.1.abs() <= 4.0 * Real::EPSILON || hi - lo <= 2.0 * Real::EPSILON * (1.0 + lo.abs()) {
+        if best.1.abs() <= 4.0 * Real::EPSILON || hi - lo <= 2.0 * Real::EPSILON * (1.0 + lo.abs())
+        {
             break;
         }
         let x = if fhi.is_finite() {
@@ -613,7 +622,9 @@ fn shoot(
         }
     }
     if !(best.1.abs() <= 1e-10) {
-        return Err(PhysicalError::NoConvergence("the shoot on the final amplitude"));
+        return Err(PhysicalError::NoConvergence(
+            "the shoot on the final amplitude",
+        ));
     }
     passes += 1;
     let (y0, mut nodes, s) = shot.pass(best.0.exp(), true, budget.steps)?;
