@@ -52,12 +52,36 @@ impl Case {
         t.sort_by(Real::total_cmp);
         t
     }
+}
 
-    pub fn scene(&self) -> String {
-        let w = self.omega0();
-        let times: Vec<String> = self.times().iter().map(|t| format!("{t:e}")).collect();
+/// A symmetric top's scene: the top, its times, its rtol and its model.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub ratio: Real,
+    pub omega0: Vec3,
+    pub times: Vec<Real>,
+    pub rtol: Real,
+    /// `auto`, `truncated`, `reduced` or `full`.
+    pub model: &'static str,
+}
+
+impl Scene {
+    pub fn new(ratio: Real, omega0: Vec3, times: Vec<Real>, rtol: Real) -> Self {
+        Self {
+            ratio,
+            omega0,
+            times,
+            rtol,
+            model: "auto",
+        }
+    }
+
+    pub fn text(&self) -> String {
+        let w = self.omega0;
+        let times: Vec<String> = self.times.iter().map(|t| format!("{t:e}")).collect();
         format!(
-            "[scene]\nname = \"sweep\"\nkind = \"top\"\ndescription = \"Issue 46 sweep.\"\n\n[top]\nmodel = \"auto\"\nratio = {:e}\nomega = [{:e}, {:e}, {:e}]\neuler = [0.3, 0.7, 0.1]\n\n[solve]\ntimes = [{}]\nrtol = {:e}\n",
+            "[scene]\nname = \"sweep\"\nkind = \"top\"\ndescription = \"Issue 46 sweep.\"\n\n[top]\nmodel = \"{}\"\nratio = {:e}\nomega = [{:e}, {:e}, {:e}]\neuler = [0.3, 0.7, 0.1]\n\n[solve]\ntimes = [{}]\nrtol = {:e}\n",
+            self.model,
             self.ratio,
             w.x,
             w.y,
@@ -87,6 +111,8 @@ fn rotation(v: &Value) -> Mat3 {
 pub struct Outcome {
     pub lines: Vec<String>,
     pub bad: Vec<String>,
+    /// The answer, as JSON (`None` when the scene was refused).
+    pub json: Option<Value>,
 }
 
 /// What the reference itself may be off by, in Ω relative to |Ω₀| and in
@@ -115,9 +141,17 @@ impl Outcome {
 
 /// Answer the case's scene and check every printed error.
 pub fn run_case(case: &Case) -> Outcome {
+    run_scene(
+        &format!("{case:?}"),
+        &Scene::new(case.ratio, case.omega0(), case.times(), case.rtol),
+    )
+}
+
+/// Answer a scene and check every printed error against the reference.
+pub fn run_scene(tag: &str, case: &Scene) -> Outcome {
     let mut out = Outcome::default();
-    let tag = format!("{case:?}");
-    let scene = match spintop::scene::parse(&case.scene(), "sweep.toml") {
+    let t_end = case.times.last().copied().unwrap_or(0.0);
+    let scene = match spintop::scene::parse(&case.text(), "sweep.toml") {
         Ok(s) => s,
         Err(e) => {
             // A refusal before the run must name the rtol it can meet (or
@@ -133,12 +167,13 @@ pub fn run_case(case: &Case) -> Outcome {
     let report = spintop::scene::answer::answer(&scene)
         .unwrap_or_else(|e| panic!("{tag}: the answer failed: {e}"));
     let v = serde_json::to_value(&report).unwrap();
-    let omega0 = case.omega0();
+    out.json = Some(v.clone());
+    let omega0 = case.omega0;
     let scale = omega0.norm();
-    let times = case.times();
+    let times = &case.times;
     let o0 = EulerAngles::new(0.3, 0.7, 0.1).to_rotation();
-    let physical = Reference::new(Manifold::Physical, case.ratio, 1.0, omega0, case.t_end, 1.0);
-    let truth_o = physical.orientations(&o0, &times);
+    let physical = Reference::new(Manifold::Physical, case.ratio, 1.0, omega0, t_end, 1.0);
+    let truth_o = physical.orientations(&o0, times);
     let error = &v["error"];
     assert!(
         !error.is_null(),
@@ -180,8 +215,8 @@ pub fn run_case(case: &Case) -> Outcome {
     // The estimates of the two lighter models, over a fine grid of the run.
     let est = &v["chosen"]["estimates"];
     if !est.is_null() {
-        let grid: Vec<Real> = (0..=400).map(|j| case.t_end * j as Real / 400.0).collect();
-        let reduced = Reference::new(Manifold::Reduced, case.ratio, 1.0, omega0, case.t_end, 1.0);
+        let grid: Vec<Real> = (0..=400).map(|j| t_end * j as Real / 400.0).collect();
+        let reduced = Reference::new(Manifold::Reduced, case.ratio, 1.0, omega0, t_end, 1.0);
         let truth_grid = physical.orientations(&o0, &grid);
         let reduced_o = reduced.orientations(&o0, &grid);
         let (mut tw, mut to, mut rw, mut ro) = (0.0 as Real, 0.0 as Real, 0.0 as Real, 0.0 as Real);
