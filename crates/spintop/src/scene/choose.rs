@@ -298,27 +298,7 @@ pub(super) fn choose_model(
     let t_last = times.last().copied().unwrap_or(0.0);
     // `secular`: the run will be answered by the secular model, which
     // reports E and |L| and no orientation.
-    let (errors, measured, how, secular) = match &tiers[1] {
-        Model::Reduced(top) | Model::Truncated(top) | Model::Full(top) => {
-            let (errors, how) = symmetric_model_errors(top, omega0, times);
-            (errors, "Omega", how, false)
-        }
-        Model::GeneralReduced(top) | Model::General(top) | Model::GeneralFull(top) => {
-            let secular = matches!(
-                general_path(&tiers[1], omega0, t_last, tol),
-                GeneralPath::Secular { .. }
-            );
-            match secular.then(|| secular_errors(top, omega0, times, tol)) {
-                Some(Ok(e)) => (e, "E and |L|", "along the secular drift of each law", true),
-                _ => (
-                    general_errors(top, omega0, t_last),
-                    "Omega",
-                    "their leading terms integrated along the run",
-                    secular,
-                ),
-            }
-        }
-    };
+    let (errors, measured, how, secular) = model_errors(tiers, omega0, times, tol);
     let strong = match &tiers[1] {
         Model::Reduced(top) => reduced_tau_k(top, omega0) >= STRONG_SPIN,
         _ => radiation_share(&tiers[0], omega0) >= STRONG_SPIN,
@@ -334,45 +314,7 @@ pub(super) fn choose_model(
         (!secular && reports_orientation(&tiers[tier], method, omega0, t_last)).then_some(0.0)
     };
     if errors.exact {
-        let still = match &tiers[0] {
-            Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
-                changes_nothing(top.tau(), omega0, t_last)
-            }
-            Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
-                changes_nothing(
-                    crate::sim::physical::general::fast_time(top),
-                    omega0,
-                    t_last,
-                )
-            }
-        };
-        let axis = if still {
-            "is so slow that radiation changes no model by a rounding over the run"
-        } else if tiers[0].has_closed_form() {
-            "lies along the symmetry axis, which carries the dipole"
-        } else {
-            "is a steady spin about a principal axis along the dipole"
-        };
-        return ModelChoice {
-            tier: 0,
-            reason: format!(
-                "model = \"auto\": Omega0 {axis}, so nothing radiates and every model keeps the same steady spin; the lightest, {}, answers exactly",
-                name(0)
-            ),
-            without_orientation: None,
-            why_physical: None,
-            estimates: ModelEstimates {
-                truncated: TierEstimate {
-                    omega: 0.0,
-                    orientation: oriented_exact(0),
-                },
-                reduced: TierEstimate {
-                    omega: 0.0,
-                    orientation: oriented_exact(1),
-                },
-                measured,
-            },
-        };
+        return exact_choice(tiers, omega0, t_last, measured, oriented_exact);
     }
     // The orientation counts where the tier's run reports it (an angle in
     // radians against a relative rtol: the rotation matrix's entries move by
@@ -460,6 +402,92 @@ pub(super) fn choose_model(
     }
 }
 // ANCHOR_END: choose_model
+
+/// The two lighter models' errors against the physical solution of (3.4)
+/// over the run, what they measure ("Omega" or "E and |L|"), how they were
+/// found, and whether the secular model will answer (it reports E and |L|
+/// and no orientation).
+fn model_errors(
+    tiers: &[Model; 3],
+    omega0: &Vec3,
+    times: &[Real],
+    tol: Real,
+) -> (ModelErrors, &'static str, &'static str, bool) {
+    let t_last = times.last().copied().unwrap_or(0.0);
+    // `secular`: the run will be answered by the secular model, which
+    // reports E and |L| and no orientation.
+    match &tiers[1] {
+        Model::Reduced(top) | Model::Truncated(top) | Model::Full(top) => {
+            let (errors, how) = symmetric_model_errors(top, omega0, times);
+            (errors, "Omega", how, false)
+        }
+        Model::GeneralReduced(top) | Model::General(top) | Model::GeneralFull(top) => {
+            let secular = matches!(
+                general_path(&tiers[1], omega0, t_last, tol),
+                GeneralPath::Secular { .. }
+            );
+            match secular.then(|| secular_errors(top, omega0, times, tol)) {
+                Some(Ok(e)) => (e, "E and |L|", "along the secular drift of each law", true),
+                _ => (
+                    general_errors(top, omega0, t_last),
+                    "Omega",
+                    "their leading terms integrated along the run",
+                    secular,
+                ),
+            }
+        }
+    }
+}
+
+/// Every model is exact: Ω₀ radiates nothing, or too little to change any
+/// model by a rounding over the run. The lightest answers.
+fn exact_choice(
+    tiers: &[Model; 3],
+    omega0: &Vec3,
+    t_last: Real,
+    measured: &'static str,
+    oriented_exact: impl Fn(usize) -> Option<Real>,
+) -> ModelChoice {
+    let still = match &tiers[0] {
+        Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
+            changes_nothing(top.tau(), omega0, t_last)
+        }
+        Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
+            changes_nothing(
+                crate::sim::physical::general::fast_time(top),
+                omega0,
+                t_last,
+            )
+        }
+    };
+    let axis = if still {
+        "is so slow that radiation changes no model by a rounding over the run"
+    } else if tiers[0].has_closed_form() {
+        "lies along the symmetry axis, which carries the dipole"
+    } else {
+        "is a steady spin about a principal axis along the dipole"
+    };
+    ModelChoice {
+        tier: 0,
+        reason: format!(
+            "model = \"auto\": Omega0 {axis}, so nothing radiates and every model keeps the same steady spin; the lightest, {}, answers exactly",
+            "the truncated ALE (3.3)"
+        ),
+        without_orientation: None,
+        why_physical: None,
+        estimates: ModelEstimates {
+            truncated: TierEstimate {
+                omega: 0.0,
+                orientation: oriented_exact(0),
+            },
+            reduced: TierEstimate {
+                omega: 0.0,
+                orientation: oriented_exact(1),
+            },
+            measured,
+        },
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -168,6 +168,48 @@ fn physical_chunk_length(model: &Model) -> Real {
     }
 }
 
+/// Ω and the orientation stepped together by `method` on SO(3) (`None`
+/// for a method that is not a Runge–Kutta one).
+fn coupled_on_group(
+    method: Method,
+    initial: &InitialState,
+    options: &MethodOptions,
+) -> Result<Option<OnGroup<6>>, SimError> {
+    let mut y0 = State::<6>::zeros();
+    y0.fixed_rows_mut::<3>(0).copy_from(&initial.omega);
+    let scale = initial.omega.norm();
+    Ok(
+        AnyStepper::new(method, y0, options, scale)?.map(|stepper| OnGroup {
+            stepper,
+            base: Quat::from_matrix(&initial.rotation),
+            max_turn: MAX_TURN_PER_STEP * options.refine(),
+        }),
+    )
+}
+
+/// The orientation alone on SO(3) by DOP853, driven by a known Ω(t).
+fn orientation_on_group(
+    initial: &InitialState,
+    options: &MethodOptions,
+) -> Result<Option<OnGroup<3>>, SimError> {
+    // NOTE: σ alone is a rotation vector of at most 1.5 rad that restarts
+    // from 0 at every fold; a tolerance relative to its size would ask
+    // for ever more digits right after each fold. Its error is an angle:
+    // rtol radians, absolute. Its steps' errors add up over the run:
+    // each step is held to a tenth of rtol (DOP853 pays 10^(1/8),
+    // a third more steps), so that the run keeps rtol over it.
+    let tight = (options.rtol() / ORIENTATION_TIGHTER).max(MIN_RTOL);
+    let local = options.with_rtol(tight).unwrap_or(*options);
+    let zero = State::<3>::zeros();
+    Ok(
+        AnyStepper::with_atol(Method::Dop853, zero, &local, tight)?.map(|stepper| OnGroup {
+            stepper,
+            base: Quat::from_matrix(&initial.rotation),
+            max_turn: MAX_TURN_PER_STEP * options.refine(),
+        }),
+    )
+}
+
 /// A top, a method and the current time.
 #[derive(Clone, Debug)]
 pub struct Simulation {
@@ -221,39 +263,14 @@ impl Simulation {
             cost::check(&model, method, &options, &initial.omega, horizon)?;
         }
         let base = Quat::from_matrix(&initial.rotation);
-        let scale = initial.omega.norm();
         let on_group = |dynamics: FirstOrder| -> Result<Engine, SimError> {
-            let mut y0 = State::<6>::zeros();
-            y0.fixed_rows_mut::<3>(0).copy_from(&initial.omega);
-            let stepper =
-                AnyStepper::new(method, y0, &options, scale)?.ok_or_else(not_for_model)?;
-            Ok(Engine::Coupled(
-                method,
-                dynamics,
-                Box::new(OnGroup {
-                    stepper,
-                    base,
-                    max_turn: MAX_TURN_PER_STEP * options.refine(),
-                }),
-            ))
+            let group = coupled_on_group(method, &initial, &options)?.ok_or_else(not_for_model)?;
+            Ok(Engine::Coupled(method, dynamics, Box::new(group)))
         };
         let orientation_only = || -> Result<Box<OnGroup<3>>, SimError> {
-            let zero = State::<3>::zeros();
-            // NOTE: σ alone is a rotation vector of at most 1.5 rad that restarts
-            // from 0 at every fold; a tolerance relative to its size would ask
-            // for ever more digits right after each fold. Its error is an angle:
-            // rtol radians, absolute. Its steps' errors add up over the run:
-            // each step is held to a tenth of rtol (DOP853 pays 10^(1/8),
-            // a third more steps), so that the run keeps rtol over it.
-            let tight = (options.rtol() / ORIENTATION_TIGHTER).max(MIN_RTOL);
-            let local = options.with_rtol(tight).unwrap_or(options);
-            let stepper = AnyStepper::with_atol(Method::Dop853, zero, &local, tight)?
-                .ok_or_else(not_for_model)?;
-            Ok(Box::new(OnGroup {
-                stepper,
-                base,
-                max_turn: MAX_TURN_PER_STEP * options.refine(),
-            }))
+            Ok(Box::new(
+                orientation_on_group(&initial, &options)?.ok_or_else(not_for_model)?,
+            ))
         };
         let (omega0, rtol) = (&initial.omega, options.rtol());
         let engine = match (method, model.first_order()) {

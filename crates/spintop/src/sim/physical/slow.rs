@@ -511,6 +511,84 @@ fn piece_length(
     to_series.min(within).max(top.tau().min(left))
 }
 
+/// The root of `miss` (increasing in x, +∞ where a pass blew up) from
+/// `x0`: bracketed by doubling steps (not below `floor`), then regula falsi
+/// (Illinois), bisecting while a side is infinite. The best point found and
+/// its miss.
+fn bracketed_root(
+    mut miss: impl FnMut(Real) -> Result<Real, PhysicalError>,
+    x0: Real,
+    floor: Real,
+) -> Result<(Real, Real), PhysicalError> {
+    let f0 = miss(x0)?;
+    // Bracket: lo with miss < 0, hi with miss > 0, widening by doubling.
+    let (mut lo, mut flo, mut hi, mut fhi) = if f0 < 0.0 {
+        (x0, f0, Real::NAN, Real::INFINITY)
+    } else {
+        (Real::NAN, Real::NEG_INFINITY, x0, f0)
+    };
+    let mut widen = 1.0;
+    while lo.is_nan() {
+        let x = (hi - widen).max(floor);
+        let f = miss(x)?;
+        if f < 0.0 {
+            (lo, flo) = (x, f);
+        } else {
+            (hi, fhi) = (x, f);
+            if x <= floor {
+                return Err(PhysicalError::NoConvergence("no lower bracket"));
+            }
+        }
+        widen *= 2.0;
+    }
+    while hi.is_nan() {
+        let x = lo + widen;
+        let f = miss(x)?;
+        if f > 0.0 {
+            (hi, fhi) = (x, f);
+        } else {
+            (lo, flo) = (x, f);
+        }
+        widen *= 2.0;
+        if widen > 1e4 {
+            return Err(PhysicalError::NoConvergence("no upper bracket"));
+        }
+    }
+    // Regula falsi (Illinois), bisecting while a side is infinite.
+    let mut best = if -flo < fhi { (lo, flo) } else { (hi, fhi) };
+    let mut side = 0;
+    for _ in 0..200 {
+        if best.1.abs() <= 4.0 * Real::EPSILON || hi - lo <= 2.0 * Real::EPSILON * (1.0 + lo.abs())
+        {
+            break;
+        }
+        let x = if fhi.is_finite() {
+            let x = lo - flo * (hi - lo) / (fhi - flo);
+            if x > lo && x < hi { x } else { 0.5 * (lo + hi) }
+        } else {
+            0.5 * (lo + hi)
+        };
+        let f = miss(x)?;
+        if f.abs() < best.1.abs() {
+            best = (x, f);
+        }
+        if f < 0.0 {
+            (lo, flo) = (x, f);
+            if side == -1 && fhi.is_finite() {
+                fhi *= 0.5;
+            }
+            side = -1;
+        } else {
+            (hi, fhi) = (x, f);
+            if side == 1 {
+                flo *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    Ok(best)
+}
+
 /// A shot piece from (t0, start): the nodes (ascending, the first at t0
 /// with w = start exactly), the work, and the number of passes.
 fn shoot(
@@ -537,7 +615,7 @@ fn shoot(
     let mut passes = 0;
     // ln|w(0)| − ln|start| for the final amplitude e^x; a pass that blows up
     // backward asked for too large an amplitude: +∞.
-    let mut miss = |x: Real, budget: &mut Budget| -> Result<Real, PhysicalError> {
+    let miss = |x: Real| -> Result<Real, PhysicalError> {
         passes += 1;
         match shot.pass(x.exp(), false, budget.steps) {
             Ok((y, _, s)) => {
@@ -555,72 +633,7 @@ fn shoot(
     let guess = guessed_log_amplitude(top, &start3, length + final_margin(top, omega3));
     let floor = Real::MIN_POSITIVE.ln();
     let x0 = guess.max(floor + 1.0);
-    let f0 = miss(x0, budget)?;
-    // Bracket: lo with miss < 0, hi with miss > 0, widening by doubling.
-    let (mut lo, mut flo, mut hi, mut fhi) = if f0 < 0.0 {
-        (x0, f0, Real::NAN, Real::INFINITY)
-    } else {
-        (Real::NAN, Real::NEG_INFINITY, x0, f0)
-    };
-    let mut widen = 1.0;
-    while lo.is_nan() {
-        let x = (hi - widen).max(floor);
-        let f = miss(x, budget)?;
-        if f < 0.0 {
-            (lo, flo) = (x, f);
-        } else {
-            (hi, fhi) = (x, f);
-            if x <= floor {
-                return Err(PhysicalError::NoConvergence("no lower bracket"));
-            }
-        }
-        widen *= 2.0;
-    }
-    while hi.is_nan() {
-        let x = lo + widen;
-        let f = miss(x, budget)?;
-        if f > 0.0 {
-            (hi, fhi) = (x, f);
-        } else {
-            (lo, flo) = (x, f);
-        }
-        widen *= 2.0;
-        if widen > 1e4 {
-            return Err(PhysicalError::NoConvergence("no upper bracket"));
-        }
-    }
-    // Regula falsi (Illinois), bisecting while a side is infinite.
-    let mut best = if -flo < fhi { (lo, flo) } else { (hi, fhi) };
-    let mut side = 0;
-    for _ in 0..200 {
-        if best.1.abs() <= 4.0 * Real::EPSILON || hi - lo <= 2.0 * Real::EPSILON * (1.0 + lo.abs())
-        {
-            break;
-        }
-        let x = if fhi.is_finite() {
-            let x = lo - flo * (hi - lo) / (fhi - flo);
-            if x > lo && x < hi { x } else { 0.5 * (lo + hi) }
-        } else {
-            0.5 * (lo + hi)
-        };
-        let f = miss(x, budget)?;
-        if f.abs() < best.1.abs() {
-            best = (x, f);
-        }
-        if f < 0.0 {
-            (lo, flo) = (x, f);
-            if side == -1 && fhi.is_finite() {
-                fhi *= 0.5;
-            }
-            side = -1;
-        } else {
-            (hi, fhi) = (x, f);
-            if side == 1 {
-                flo *= 0.5;
-            }
-            side = 1;
-        }
-    }
+    let best = bracketed_root(miss, x0, floor)?;
     if !(best.1.abs() <= 1e-10) {
         return Err(PhysicalError::NoConvergence(
             "the shoot on the final amplitude",
