@@ -238,9 +238,9 @@ pub fn numerical_error(
             // The tighter run would overrun the step budget: a looser one,
             // whose error is the larger, bounds this run's by its distance.
             Err(SimError::TooCostly(_)) => {
-                let loose = looser(method, options).ok_or_else(|| {
-                    SimError::OutOfRange("no second run fits the step budget to estimate the error")
-                })?;
+                let loose = looser(method, options).ok_or(SimError::OutOfRange(
+                    "no second run fits the step budget to estimate the error",
+                ))?;
                 (omega, turn) = distance(loose)?;
                 safety = 1.0;
                 format!(

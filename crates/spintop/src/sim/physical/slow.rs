@@ -275,7 +275,7 @@ pub fn slow_table(
     span: Real,
     budget: &mut Budget,
 ) -> Result<SlowTable, PhysicalError> {
-    if !(top.tau() > 0.0) {
+    if top.tau().is_nan() || top.tau() <= 0.0 {
         return Err(PhysicalError::BadInput("the full ALE needs tau > 0"));
     }
     if !(span >= 0.0 && span.is_finite()) {
@@ -634,7 +634,7 @@ fn shoot(
     let floor = Real::MIN_POSITIVE.ln();
     let x0 = guess.max(floor + 1.0);
     let best = bracketed_root(miss, x0, floor)?;
-    if !(best.1.abs() <= 1e-10) {
+    if best.1.is_nan() || best.1.abs() > 1e-10 {
         return Err(PhysicalError::NoConvergence(
             "the shoot on the final amplitude",
         ));
