@@ -13,6 +13,5 @@ mod general_full;
 mod general_reduced;
 mod invariance;
 mod printed_errors;
-mod scratch46;
 mod shell_model;
 mod symmetric_top;
