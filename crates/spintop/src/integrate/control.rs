@@ -115,10 +115,16 @@ pub(crate) fn clip_step(t: Real, t_stop: Real, h: Real) -> (Real, Real, bool) {
     let dir = (t_stop - t).signum();
     // NOTE: Hairer's 1.01: a step that would leave less than 1 % of itself before
     // t_stop is stretched to t_stop instead of leaving a sliver step behind.
+    // NOTE: the step taken is the difference of the rounded ends, so that the
+    // clock and the state advance by the same amount: with t + h rounded and
+    // the stages spanning h, every step of a long run (t ~ 1e5, h ~ 60)
+    // moved the state 1e-13 of a step ahead of its clock, and a spin's
+    // phase drifted by 5e-11 rad over 4e4 rad.
     if dir * (t + dir * 1.01 * h - t_stop) >= 0.0 {
         (t_stop - t, t_stop, true)
     } else {
-        (dir * h, t + dir * h, false)
+        let t_new = t + dir * h;
+        (t_new - t, t_new, false)
     }
 }
 

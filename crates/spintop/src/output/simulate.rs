@@ -4,7 +4,10 @@
 use super::{Entry, Failure, Format, Output, Stop, sim_failure, write_aligned};
 use crate::math::{Real, Vec3};
 use crate::numbers::{self, fmt_time, table};
-use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
+use crate::sim::claim::ErrorEstimate;
+use crate::sim::{
+    InitialState, Method, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation,
+};
 use serde::Serialize;
 use std::io::{self, Write};
 
@@ -51,6 +54,10 @@ pub struct SimulateOutput {
     /// Output times after the runaway, not computed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub samples_omitted: Option<usize>,
+    /// How far the samples may be from the truth over the run (every method
+    /// but a forward run, which runs away).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<ErrorEstimate>,
 }
 
 /// A runaway of (3.4) integrated forward.
@@ -138,6 +145,11 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
     }
     let samples_omitted = runaway.map(|_| config.times.len() - samples.len());
     let method = sim.method();
+    let error = if method == Method::Forward {
+        None
+    } else {
+        Some(run_error(config, method, &samples).map_err(failure)?)
+    };
     let (ratio, tau, dipole) = match &config.model {
         Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
             (Some(top.ratio()), Some(top.tau()), None)
@@ -166,7 +178,29 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
         samples,
         runaway,
         samples_omitted,
+        error,
     })
+}
+
+/// The error of a run's samples against its model's exact solution
+/// ([`crate::sim::claim::numerical_error`]), the one estimate `simulate` and
+/// `run` both print.
+pub fn run_error(
+    config: &SimulateConfig,
+    method: Method,
+    samples: &[Sample],
+) -> Result<ErrorEstimate, SimError> {
+    let t_last = samples.last().map_or(0.0, |s| s.t);
+    let angle = crate::sim::cost::turning_angle(&config.model, &config.initial.omega, t_last);
+    crate::sim::claim::numerical_error(
+        &config.model,
+        method,
+        &config.options,
+        &config.initial,
+        samples,
+        angle,
+        true,
+    )
 }
 
 impl Output for SimulateOutput {
@@ -233,6 +267,9 @@ impl Output for SimulateOutput {
                     "# work: {} rhs evaluations, {} steps, {} rejected",
                     output.stats.rhs_evals, output.stats.steps, output.stats.rejected
                 )?;
+                if let Some(e) = &output.error {
+                    writeln!(out, "# error: {}", e.line())?;
+                }
                 if let Some(r) = &output.runaway {
                     writeln!(
                         out,

@@ -8,7 +8,7 @@ use super::{
     omega_samples, pole_warning,
 };
 use crate::integrate::Stats;
-use crate::math::Real;
+use crate::math::{Real, Vec3};
 use crate::numbers::{fmt_value, worked};
 use crate::output::balance::{self, BalanceOutput};
 use crate::output::orbit::{self, OrbitOutput, OrbitRequest};
@@ -18,6 +18,7 @@ use crate::output::{Entry, Failure, Format};
 use crate::physics::general_top::GeneralTop;
 use crate::physics::particle::{DEBYE_ESU_CM, Milestones, RigidShape, SPEED_OF_LIGHT_CM_S};
 use crate::sim::Model;
+use crate::sim::claim::{ErrorEstimate, TierEstimate, omega_rounding, rounding};
 use crate::sim::secular::{Law, SecularSample, secular};
 use crate::stability::Row;
 use serde::Serialize;
@@ -180,6 +181,8 @@ pub struct OmegaOnlyOutput {
     pub samples: Vec<OmegaSample>,
     /// Why the orientation is not given.
     pub orientation_skipped: String,
+    /// How far Ω may be from the truth over the run.
+    pub error: ErrorEstimate,
 }
 
 /// An asymmetric top answered by the secular model: E and |L| only.
@@ -338,9 +341,18 @@ fn run_top(
 ) -> Result<TopAnswer, Failure> {
     let run = match (&top.orientation, top.model) {
         (Orientation::Computed, _) => {
-            let output = run_computed(top)?;
+            let mut output = run_computed(top)?;
             if let Some(w) = pole_warning(&output.samples) {
                 warnings.push(w);
+            }
+            if let Some(model) = &top.model_error {
+                output.error = output
+                    .error
+                    .take()
+                    .map(|error| with_model_error(error, model, &top.model));
+            }
+            if let Some(e) = &output.error {
+                above_rtol(e, top, warnings);
             }
             // NOTE: a runaway is the run's own report (its `runaway` record,
             // the table's line, the gate's `stopped`), not also a warning:
@@ -353,13 +365,39 @@ fn run_top(
         (Orientation::Skipped(why), Model::GeneralReduced(g)) => {
             run_secular(scene, top, &g, Law::Reduced, why)?
         }
-        (Orientation::Skipped(why), _) => run_omega_only(scene, top, why)?,
+        (Orientation::Skipped(why), _) => run_omega_only(scene, top, why, warnings)?,
     };
     Ok(TopAnswer {
         run,
         units: top.units.as_ref().map(physical_report),
         rigid_units: top.general_units.as_ref().map(rigid_report),
     })
+}
+
+/// A run's error with the chosen model's own error against the physical
+/// solution of (3.4) added (`model = "auto"` chose a lighter model).
+fn with_model_error(error: ErrorEstimate, model: &TierEstimate, which: &Model) -> ErrorEstimate {
+    let how = format!(
+        "the {} model's own error against it, estimated before the run ({:.1e}{})",
+        which.name(),
+        model.omega,
+        model
+            .orientation
+            .map_or(String::new(), |o| format!(", {o:.1e} rad"))
+    );
+    error.with_model_error(model.omega, model.orientation.unwrap_or(0.0), &how)
+}
+
+/// A warning when the error of the run is above the scene's rtol.
+fn above_rtol(error: &ErrorEstimate, top: &TopScene, warnings: &mut Vec<String>) {
+    let rtol = top.options.rtol();
+    if error.worst() > rtol && top.method != crate::sim::MethodChoice::Rk4 {
+        warnings.push(format!(
+            "the error over the run, {:.1e}, is above rtol = {rtol:.0e}: {}",
+            error.worst(),
+            error.line()
+        ));
+    }
 }
 
 /// Ω and the orientation: the `simulate` contract.
@@ -424,7 +462,12 @@ fn run_secular(
 }
 
 /// A symmetric top whose orientation is skipped: Ω alone, from its closed form.
-fn run_omega_only(scene: &Scene, top: &TopScene, why: &str) -> Result<TopRun, Failure> {
+fn run_omega_only(
+    scene: &Scene,
+    top: &TopScene,
+    why: &str,
+    warnings: &mut Vec<String>,
+) -> Result<TopRun, Failure> {
     let tau_per_unit = top.units.as_ref().map(RealUnits::tau_per_unit);
     let only_symmetric = || {
         Failure::BadInput(format!(
@@ -437,6 +480,27 @@ fn run_omega_only(scene: &Scene, top: &TopScene, why: &str) -> Result<TopRun, Fa
     };
     let samples = omega_samples(&top.model, &top.initial.omega, &top.times, tau_per_unit)
         .ok_or_else(only_symmetric)?;
+    let t_last = top.times.last().copied().unwrap_or(0.0);
+    let angle = crate::sim::cost::turning_angle(&top.model, &top.initial.omega, t_last);
+    let floor = rounding(angle);
+    let omega_floor = omega_rounding(
+        &top.model,
+        &top.initial.omega,
+        samples.iter().map(|s| (s.t, Vec3::from(s.omega))),
+    );
+    let mut error = ErrorEstimate {
+        omega: omega_floor,
+        orientation: None,
+        rounding: floor,
+        against: format!("the exact solution of the {} model", top.model.name()),
+        how: format!(
+            "closed forms: only rounding, {omega_floor:.0e} (4 eps per radian of the phase, where Omega_perp still turns)"
+        ),
+    };
+    if let Some(model) = &top.model_error {
+        error = with_model_error(error, model, &top.model);
+    }
+    above_rtol(&error, top, warnings);
     Ok(TopRun::OmegaOnly(OmegaOnlyOutput {
         model: top.model.name(),
         method: "exact",
@@ -458,6 +522,7 @@ fn run_omega_only(scene: &Scene, top: &TopScene, why: &str) -> Result<TopRun, Fa
         stats: Stats::default(),
         samples,
         orientation_skipped: why.to_string(),
+        error,
     }))
 }
 

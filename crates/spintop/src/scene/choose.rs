@@ -8,10 +8,14 @@
 use crate::math::{Real, Vec3};
 use crate::numbers::{fmt_about, fmt_time};
 use crate::physics::symmetric_top::SymmetricTop;
-use crate::sim::accuracy::{general_errors, secular_errors, symmetric_errors};
+use crate::sim::accuracy::{
+    ModelErrors, changes_nothing, general_errors, secular_errors, symmetric_errors,
+};
+use crate::sim::claim::{ModelEstimates, TierEstimate};
 use crate::sim::cost::{
     MAX_STEPS, TIGHTEST_RTOL, stepping_error, steps_per_radian, tolerance_for, turning_angle,
 };
+use crate::sim::measured::symmetric_measured;
 use crate::sim::secular::{Law, averaging_error};
 use crate::sim::{Method, MethodChoice, Model, auto_integrator};
 
@@ -217,6 +221,36 @@ fn reports_orientation(model: &Model, method: MethodChoice, omega0: &Vec3, t_las
     }
 }
 
+/// The symmetric top's two lighter models against the physical solution of
+/// (3.4): measured ([`symmetric_measured`]) where the physical solution fits
+/// the step budget, the orientations where the body turns at most
+/// [`crate::sim::measured::DIRECT_TURN`] radians; the leading-order
+/// estimates in closed form ([`symmetric_errors`]) for the rest. With how
+/// they were found, for the reason.
+fn symmetric_model_errors(
+    top: &SymmetricTop,
+    omega0: &Vec3,
+    times: &[Real],
+) -> (ModelErrors, &'static str) {
+    let t_last = times.last().copied().unwrap_or(0.0);
+    let analytic = symmetric_errors(top, omega0, t_last);
+    if analytic.exact {
+        return (analytic, "their leading terms in closed form");
+    }
+    match symmetric_measured(top, omega0, times) {
+        Some((m, true)) => (m, "measured against it over the run"),
+        Some((m, false)) => (
+            ModelErrors {
+                truncated_orientation: analytic.truncated_orientation,
+                reduced_orientation: analytic.reduced_orientation,
+                ..m
+            },
+            "measured against it over the run in Omega, their leading terms in closed form in the orientation",
+        ),
+        None => (analytic, "their leading terms in closed form"),
+    }
+}
+
 /// What `model = "auto"` chose: 0 truncated, 1 reduced, 2 physical.
 pub(super) struct ModelChoice {
     pub tier: usize,
@@ -229,6 +263,21 @@ pub(super) struct ModelChoice {
     /// When the physical solution was chosen: why, for the refusal of a run
     /// it cannot take (the lighter model that holds Ω, if any).
     pub why_physical: Option<String>,
+    /// The estimates of the two lighter models, as printed.
+    pub estimates: ModelEstimates,
+}
+
+impl ModelChoice {
+    /// The estimated error of `tier` against the physical solution (`None`
+    /// for the physical solution itself), with its orientation where the
+    /// run reports it.
+    pub fn model_error(&self, tier: usize) -> Option<TierEstimate> {
+        match tier {
+            0 => Some(self.estimates.truncated),
+            1 => Some(self.estimates.reduced),
+            _ => None,
+        }
+    }
 }
 
 // ANCHOR: choose_model
@@ -249,29 +298,7 @@ pub(super) fn choose_model(
     let t_last = times.last().copied().unwrap_or(0.0);
     // `secular`: the run will be answered by the secular model, which
     // reports E and |L| and no orientation.
-    let (errors, measured, how, secular) = match &tiers[1] {
-        Model::Reduced(top) | Model::Truncated(top) | Model::Full(top) => (
-            symmetric_errors(top, omega0, t_last),
-            "Omega",
-            "in closed form",
-            false,
-        ),
-        Model::GeneralReduced(top) | Model::General(top) | Model::GeneralFull(top) => {
-            let secular = matches!(
-                general_path(&tiers[1], omega0, t_last, tol),
-                GeneralPath::Secular { .. }
-            );
-            match secular.then(|| secular_errors(top, omega0, times, tol)) {
-                Some(Ok(e)) => (e, "E and |L|", "along the secular drift of each law", true),
-                _ => (
-                    general_errors(top, omega0, t_last),
-                    "Omega",
-                    "integrated along the run",
-                    secular,
-                ),
-            }
-        }
-    };
+    let (errors, measured, how, secular) = model_errors(tiers, omega0, times, tol);
     let strong = match &tiers[1] {
         Model::Reduced(top) => reduced_tau_k(top, omega0) >= STRONG_SPIN,
         _ => radiation_share(&tiers[0], omega0) >= STRONG_SPIN,
@@ -283,21 +310,11 @@ pub(super) fn choose_model(
             "the physical solution of (3.4)",
         ][tier]
     };
+    let oriented_exact = |tier: usize| {
+        (!secular && reports_orientation(&tiers[tier], method, omega0, t_last)).then_some(0.0)
+    };
     if errors.exact {
-        let axis = if tiers[0].has_closed_form() {
-            "lies along the symmetry axis, which carries the dipole"
-        } else {
-            "is a steady spin about a principal axis along the dipole"
-        };
-        return ModelChoice {
-            tier: 0,
-            reason: format!(
-                "model = \"auto\": Omega0 {axis}, so nothing radiates and every model keeps the same steady spin; the lightest, {}, answers exactly",
-                name(0)
-            ),
-            without_orientation: None,
-            why_physical: None,
-        };
+        return exact_choice(tiers, omega0, t_last, measured, oriented_exact);
     }
     // The orientation counts where the tier's run reports it (an angle in
     // radians against a relative rtol: the rotation matrix's entries move by
@@ -332,7 +349,7 @@ pub(super) fn choose_model(
         [None, None] => String::new(),
     };
     let estimates = format!(
-        "model = \"auto\": over the run the truncated ALE (3.3), which drops the Schott term, may be off by {:.1e} and the reduced ALE, right through first order, by {:.1e}{strong_note} in {measured}{turned} (their leading errors against the physical solution of (3.4), {how})",
+        "model = \"auto\": over the run the truncated ALE (3.3), which drops the Schott term, may be off by {:.1e} and the reduced ALE, right through first order, by {:.1e}{strong_note} in {measured}{turned} (their errors against the physical solution of (3.4), {how})",
         errors.truncated, errors.reduced,
     );
     let without_orientation = (tier == 2 && omega_tier < 2 && tiers[omega_tier].has_closed_form())
@@ -362,8 +379,20 @@ pub(super) fn choose_model(
             )
         }
     });
+    let model_estimates = ModelEstimates {
+        truncated: TierEstimate {
+            omega: errors.truncated,
+            orientation: oriented[0],
+        },
+        reduced: TierEstimate {
+            omega: errors.reduced,
+            orientation: oriented[1],
+        },
+        measured,
+    };
     ModelChoice {
         tier,
+        estimates: model_estimates,
         why_physical,
         reason: format!(
             "{estimates}; the lightest within rtol = {tol:.0e} is {}, so it answers",
@@ -373,6 +402,92 @@ pub(super) fn choose_model(
     }
 }
 // ANCHOR_END: choose_model
+
+/// The two lighter models' errors against the physical solution of (3.4)
+/// over the run, what they measure ("Omega" or "E and |L|"), how they were
+/// found, and whether the secular model will answer (it reports E and |L|
+/// and no orientation).
+fn model_errors(
+    tiers: &[Model; 3],
+    omega0: &Vec3,
+    times: &[Real],
+    tol: Real,
+) -> (ModelErrors, &'static str, &'static str, bool) {
+    let t_last = times.last().copied().unwrap_or(0.0);
+    // `secular`: the run will be answered by the secular model, which
+    // reports E and |L| and no orientation.
+    match &tiers[1] {
+        Model::Reduced(top) | Model::Truncated(top) | Model::Full(top) => {
+            let (errors, how) = symmetric_model_errors(top, omega0, times);
+            (errors, "Omega", how, false)
+        }
+        Model::GeneralReduced(top) | Model::General(top) | Model::GeneralFull(top) => {
+            let secular = matches!(
+                general_path(&tiers[1], omega0, t_last, tol),
+                GeneralPath::Secular { .. }
+            );
+            match secular.then(|| secular_errors(top, omega0, times, tol)) {
+                Some(Ok(e)) => (e, "E and |L|", "along the secular drift of each law", true),
+                _ => (
+                    general_errors(top, omega0, t_last),
+                    "Omega",
+                    "their leading terms integrated along the run",
+                    secular,
+                ),
+            }
+        }
+    }
+}
+
+/// Every model is exact: Ω₀ radiates nothing, or too little to change any
+/// model by a rounding over the run. The lightest answers.
+fn exact_choice(
+    tiers: &[Model; 3],
+    omega0: &Vec3,
+    t_last: Real,
+    measured: &'static str,
+    oriented_exact: impl Fn(usize) -> Option<Real>,
+) -> ModelChoice {
+    let still = match &tiers[0] {
+        Model::Truncated(top) | Model::Reduced(top) | Model::Full(top) => {
+            changes_nothing(top.tau(), omega0, t_last)
+        }
+        Model::General(top) | Model::GeneralReduced(top) | Model::GeneralFull(top) => {
+            changes_nothing(
+                crate::sim::physical::general::fast_time(top),
+                omega0,
+                t_last,
+            )
+        }
+    };
+    let axis = if still {
+        "is so slow that radiation changes no model by a rounding over the run"
+    } else if tiers[0].has_closed_form() {
+        "lies along the symmetry axis, which carries the dipole"
+    } else {
+        "is a steady spin about a principal axis along the dipole"
+    };
+    ModelChoice {
+        tier: 0,
+        reason: format!(
+            "model = \"auto\": Omega0 {axis}, so nothing radiates and every model keeps the same steady spin; the lightest, {}, answers exactly",
+            "the truncated ALE (3.3)"
+        ),
+        without_orientation: None,
+        why_physical: None,
+        estimates: ModelEstimates {
+            truncated: TierEstimate {
+                omega: 0.0,
+                orientation: oriented_exact(0),
+            },
+            reduced: TierEstimate {
+                omega: 0.0,
+                orientation: oriented_exact(1),
+            },
+            measured,
+        },
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -15,7 +15,7 @@
 //! from the closed form instead, however long it is.
 
 use crate::math::{Real, Vec3};
-use crate::numbers::fmt_time;
+use crate::numbers::{fmt_about, fmt_time};
 use crate::physics::central::Potential;
 use crate::physics::rigid_body::{angular_momentum_body, energy, omega_perp, tilt};
 use crate::physics::shell::ShellModel;
@@ -23,7 +23,7 @@ use crate::physics::symmetric_top::{
     SymmetricTop, reduced_closed_form, reduced_closed_form_many, truncated_clock,
     truncated_closed_form,
 };
-use crate::sim::cost::{Estimate, TooCostly, stepping_error};
+use crate::sim::claim::ModelEstimates;
 use crate::sim::orbit::{Force, OrbitConfig};
 use crate::sim::{
     InitialState, Method, MethodChoice, MethodOptions, Model, Sample, auto_integrator,
@@ -42,13 +42,17 @@ pub use crate::sim::cost::MAX_STEPS;
 pub const POLE_SIN: Real = 1e-2;
 
 /// The method used, as outputs label it, and why.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Chosen {
     /// The label of the method (`exact`, `exact+dop853`, `dop853`, …), the
     /// same as the output's `method` where the output has one.
     pub method: String,
     /// Why, in one sentence.
     pub reason: String,
+    /// With `model = "auto"`: the estimated errors of the two lighter models
+    /// against the physical solution of (3.4), by which it chose.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimates: Option<ModelEstimates>,
 }
 
 impl Chosen {
@@ -56,6 +60,7 @@ impl Chosen {
         Self {
             method: method.to_string(),
             reason: reason.into(),
+            estimates: None,
         }
     }
 }
@@ -117,6 +122,72 @@ fn integrator_words(method: Method) -> String {
     }
 }
 
+/// What a top scene asks of a plan.
+struct Ask<'a> {
+    model: &'a Model,
+    method: MethodChoice,
+    options: &'a MethodOptions,
+    omega0: Vec3,
+    t_last: Real,
+    /// How far the body turns over the run, radians.
+    angle: Real,
+    skip_orientation: Option<&'a str>,
+}
+
+impl Ask<'_> {
+    /// The label `auto` would run under.
+    fn auto(&self) -> &'static str {
+        label(self.model, MethodChoice::Auto, self.options)
+    }
+
+    /// The reason of a method the scene asked for.
+    fn asked(&self, name: &str) -> String {
+        format!(
+            "method = \"{name}\" was asked for in [solve]; auto would use {}",
+            self.auto()
+        )
+    }
+
+    /// The one step-budget rule of a planned run (the simulation's own
+    /// estimate, [`crate::sim::cost`], so that what it would refuse is
+    /// refused here, before anything runs, with the scene's line): `steps`
+    /// for `what` over [`MAX_STEPS`] (or not a number) is refused at `at`.
+    fn within_budget(&self, steps: Real, what: &str, at: Blame) -> Result<(), Refusal> {
+        if !(steps.is_nan() || steps > MAX_STEPS) {
+            return Ok(());
+        }
+        let hint = if self.model.has_closed_form() {
+            "; method = \"auto\" answers from the closed forms instead"
+        } else {
+            "; ask for shorter times"
+        };
+        Err(Refusal {
+            at,
+            message: format!(
+                "[solve] {what} would take {} steps to reach t = {} tau, more than the {MAX_STEPS:.0e} allowed{hint}",
+                fmt_about(steps),
+                fmt_time(self.t_last)
+            ),
+        })
+    }
+
+    /// The simulation's estimate of the run by the chosen method, held to
+    /// the budget ([`Ask::within_budget`]); `prefix` names the method.
+    fn estimate_within_budget(&self, prefix: &str, at: Blame) -> Result<(), Refusal> {
+        let estimate = self
+            .model
+            .method(self.method, self.options)
+            .ok()
+            .and_then(|m| {
+                crate::sim::cost::estimate(self.model, m, self.options, &self.omega0, self.t_last)
+            });
+        match estimate {
+            Some(e) => self.within_budget(e.steps, &format!("{prefix}{}", e.what), at),
+            None => Ok(()),
+        }
+    }
+}
+
 /// Choose how to answer a top scene, refuse what no method can do, and warn
 /// where the model is asked for more than it gives.
 pub(super) fn plan_top(
@@ -128,23 +199,59 @@ pub(super) fn plan_top(
     skip_orientation: Option<&str>,
 ) -> Result<TopPlan, Refusal> {
     let omega0 = initial.omega;
-    let case = TopCase {
+    let ask = Ask {
         model,
         method,
         options,
         omega0,
         t_last,
         angle: turning_angle(model, &omega0, t_last),
+        skip_orientation,
     };
-    let warnings: Vec<String> = strong_spin_warning(model, &omega0).into_iter().collect();
+    let mut warnings = Vec::new();
+    if let Model::Reduced(top) = model {
+        let tk = reduced_tau_k(top, &omega0);
+        if tk >= STRONG_SPIN {
+            warnings.push(format!(
+                "tau k = {} >= {STRONG_SPIN}: the reduced model (4.12)-(4.14) is right only through first order in tau k, and its decay rate is off at third order; compare model = \"full\", the physical solution of (3.4)",
+                crate::numbers::fixed_or_exp(tk, 3, 3, 1e5)
+            ));
+        }
+    }
+    let computed = |chosen: Chosen, warnings: Vec<String>| TopPlan {
+        chosen,
+        orientation: Orientation::Computed,
+        warnings,
+        rtol: None,
+    };
     match (model, method) {
         (Model::Truncated(top) | Model::Reduced(top), MethodChoice::Auto | MethodChoice::Exact) => {
-            Ok(case.symmetric(top, skip_orientation, warnings))
+            Ok(symmetric_plan(&ask, top, warnings))
         }
-        (_, MethodChoice::Rk4) => case.rk4(warnings),
-        (Model::Full(_) | Model::GeneralFull(_), _) => case.physical(warnings),
+        (_, MethodChoice::Rk4) => {
+            let what = "method = \"rk4\" with this step";
+            ask.within_budget(t_last / options.step(), what, Blame::Method)?;
+            Ok(computed(Chosen::new("rk4", ask.asked("rk4")), warnings))
+        }
+        (Model::Full(_) | Model::GeneralFull(_), _) => {
+            let at = if method == MethodChoice::Auto {
+                Blame::Times
+            } else {
+                Blame::Method
+            };
+            ask.estimate_within_budget("", at)?;
+            let (label, reason) = match method {
+                MethodChoice::Forward => ("forward", ask.asked("forward")),
+                MethodChoice::Auto => (
+                    "physical",
+                    "(3.4) has no closed form and runs away forward at a rate of about 1/tau: its physical solution by backward shooting (DOP853), the orientation driven by it".to_string(),
+                ),
+                other => ("physical", ask.asked(other.name())),
+            };
+            Ok(computed(Chosen::new(label, reason), warnings))
+        }
         (Model::General(_) | Model::GeneralReduced(_), MethodChoice::Auto) => {
-            case.general_auto(warnings)
+            general_auto_plan(&ask, warnings)
         }
         (
             _,
@@ -152,281 +259,144 @@ pub(super) fn plan_top(
             | MethodChoice::Dop853
             | MethodChoice::Radau5
             | MethodChoice::Taylor,
-        ) => case.stepped(warnings),
-        (_, MethodChoice::Exact | MethodChoice::Forward) => Err(case.not_planned()),
-    }
-}
-
-/// The reduced model's warning where τk is too large for its first order.
-fn strong_spin_warning(model: &Model, omega0: &Vec3) -> Option<String> {
-    let Model::Reduced(top) = model else {
-        return None;
-    };
-    let tk = reduced_tau_k(top, omega0);
-    (tk >= STRONG_SPIN).then(|| format!(
-        "tau k = {} >= {STRONG_SPIN}: the reduced model (4.12)-(4.14) is right only through first order in tau k, and its decay rate is off at third order; compare model = \"full\", the physical solution of (3.4)",
-        crate::numbers::fixed_or_exp(tk, 3, 3, 1e5)
-    ))
-}
-
-/// What a top scene asks of [`plan_top`], with the turning it implies.
-struct TopCase<'a> {
-    model: &'a Model,
-    method: MethodChoice,
-    options: &'a MethodOptions,
-    omega0: Vec3,
-    t_last: Real,
-    /// The body's turning over the run, in radians.
-    angle: Real,
-}
-
-impl TopCase<'_> {
-    /// The step budget's refusal, the core's (`sim::cost::TooCostly`), with
-    /// the way out a scene has.
-    fn too_many(&self, steps: Real, what: &str) -> String {
-        let cheaper = if self.model.has_closed_form() {
-            "method = \"auto\" answers from the closed forms instead"
-        } else {
-            "ask for shorter times"
-        };
-        TooCostly {
-            estimate: Estimate {
-                steps,
-                what: what.to_string(),
-                cheaper,
-            },
-            t_last: self.t_last,
+        ) => {
+            let name = label(model, method, options);
+            ask.estimate_within_budget(&format!("method = \"{name}\": "), Blame::Method)?;
+            // NOTE: no prediction of the error over the run here: the run
+            // measures it (`sim::claim`) and the answer warns when it is
+            // above rtol (a predicted 2.9e-4 stood beside a real 2.7e-7).
+            Ok(computed(Chosen::new(name, ask.asked(name)), warnings))
         }
-        .to_string()
-    }
-
-    /// The reason of a method the scene asked for.
-    fn asked(&self, name: &str) -> String {
-        let auto = label(self.model, MethodChoice::Auto, self.options);
-        format!("method = \"{name}\" was asked for in [solve]; auto would use {auto}")
-    }
-
-    /// The core's estimate of the run's steps by the method asked for, when
-    /// it is over the budget (or not a number).
-    fn over_budget(&self) -> Option<crate::sim::cost::Estimate> {
-        self.model
-            .method(self.method, self.options)
-            .ok()
-            .and_then(|m| {
-                crate::sim::cost::estimate(self.model, m, self.options, &self.omega0, self.t_last)
+        (_, MethodChoice::Exact | MethodChoice::Forward) => {
+            // Refused while validating [solve] method; said again here
+            // rather than assumed.
+            Err(Refusal {
+                at: Blame::Method,
+                message: match model.check_method(method) {
+                    Err(e) => format!("[solve] method = \"{}\": {e}", method.name()),
+                    Ok(()) => format!(
+                        "[solve] method = \"{}\" cannot be planned here",
+                        method.name()
+                    ),
+                },
             })
-            .filter(|e| e.steps.is_nan() || e.steps > MAX_STEPS)
-    }
-
-    /// A plan that computes the orientation, with the method's label and
-    /// reason.
-    fn computed(label: &str, reason: String, warnings: Vec<String>) -> TopPlan {
-        TopPlan {
-            chosen: Chosen::new(label, reason),
-            orientation: Orientation::Computed,
-            warnings,
-            rtol: None,
         }
     }
+}
 
-    /// The symmetric models from their closed forms (`auto` or `exact`).
-    fn symmetric(
-        &self,
-        top: &SymmetricTop,
-        skip_orientation: Option<&str>,
-        mut warnings: Vec<String>,
-    ) -> TopPlan {
-        let (omega0, t_last) = (self.omega0, self.t_last);
-        let truncated = matches!(self.model, Model::Truncated(_));
-        let skip = skip_orientation
-            .map(str::to_string)
-            .or_else(|| symmetric_orientation_skip(truncated, self.angle));
-        let orientation = match skip {
-            Some(why) => {
-                let phase = top.omega3_tilde(omega0.z).abs()
-                    * if truncated {
-                        truncated_clock(top, omega_perp(&omega0), t_last).vartheta
-                    } else {
-                        t_last
-                    };
-                if phase > MAX_PHASE {
-                    warnings.push(format!(
-                        "the body-frame precession phase of (omega1, omega2) reaches {phase:.1e} rad: their phase is not resolved by a double, while omega_perp, omega3, the tilt and the energy are exact"
-                    ));
-                }
-                Orientation::Skipped(why)
-            }
-            None => Orientation::Computed,
-        };
-        let (method_label, how) = match (&orientation, truncated) {
-            (Orientation::Skipped(why), true) => (
-                "exact",
-                format!("omega(t) from the closed form (4.7), the times from (4.6) and (4.16); {why}, so it is skipped"),
-            ),
-            (Orientation::Skipped(why), false) => (
-                "exact",
-                format!("omega(t) from the closed form (4.15)-(4.16), the times from (4.6) and (4.16); {why}, so it is skipped"),
-            ),
-            (Orientation::Computed, true) => (
-                "exact",
-                "omega(t) from the closed form (4.7) and O(t) from the closed form (4.9), Rot(n_L, |L0| vartheta) O(0) Rz(Omega3~ vartheta): nothing is stepped".to_string(),
-            ),
-            (Orientation::Computed, false) => (
-                "exact+dop853",
-                "omega(t) from the closed form (4.15)-(4.16); the orientation has no closed form, so only Q' = Q Omega^(t) is integrated (DOP853 on SO(3)), driven by the closed-form omega(t)".to_string(),
-            ),
-        };
-        let reason = if self.method == MethodChoice::Exact {
-            format!("method = \"exact\" was asked for in [solve]: {how}")
-        } else {
-            how
-        };
-        TopPlan {
-            chosen: Chosen::new(method_label, reason),
-            orientation,
-            warnings,
-            rtol: None,
-        }
-    }
-
-    /// RK4 at the scene's step, within the step budget.
-    fn rk4(&self, warnings: Vec<String>) -> Result<TopPlan, Refusal> {
-        let steps = self.t_last / self.options.step();
-        if steps > MAX_STEPS {
-            return Err(Refusal {
-                at: Blame::Method,
-                message: format!(
-                    "[solve] {}",
-                    self.too_many(steps, "method = \"rk4\" with this step")
-                ),
-            });
-        }
-        Ok(Self::computed("rk4", self.asked("rk4"), warnings))
-    }
-
-    /// The full ALE (3.4): its physical solution, or forward; refused before
-    /// anything runs where the simulation's own estimate (one rule:
-    /// `sim::cost`) is over the budget.
-    fn physical(&self, warnings: Vec<String>) -> Result<TopPlan, Refusal> {
-        if let Some(e) = self.over_budget() {
-            let at = if self.method == MethodChoice::Auto {
-                Blame::Times
-            } else {
-                Blame::Method
-            };
-            return Err(Refusal {
-                at,
-                message: format!("[solve] {}", self.too_many(e.steps, &e.what)),
-            });
-        }
-        let (label, reason) = match self.method {
-            MethodChoice::Forward => ("forward", self.asked("forward")),
-            MethodChoice::Auto => (
-                "physical",
-                "(3.4) has no closed form and runs away forward at a rate of about 1/tau: its physical solution by backward shooting (DOP853), the orientation driven by it".to_string(),
-            ),
-            other => ("physical", self.asked(other.name())),
-        };
-        Ok(Self::computed(label, reason, warnings))
-    }
-
-    /// An asymmetric top under `auto`: stepped (at a tolerance tight enough
-    /// for the turning), the secular model, or refused.
-    fn general_auto(&self, warnings: Vec<String>) -> Result<TopPlan, Refusal> {
-        let (model, options, angle) = (self.model, self.options, self.angle);
-        let equations = model.equations();
-        match general_path(model, &self.omega0, self.t_last, options.rtol()) {
-            GeneralPath::Stepped { rtol, steps } => {
-                let tighter = if rtol < options.rtol() {
-                    format!(
-                        ", at rtol {rtol:.1e}, tighter than the scene's {:.0e} so that its error over {angle:.1e} rad stays within it (an integrator's error of the phase grows like the square of the turning)",
-                        options.rtol()
-                    )
+/// The symmetric models' closed forms: Ω exact, the orientation computed
+/// or skipped.
+fn symmetric_plan(ask: &Ask, top: &SymmetricTop, mut warnings: Vec<String>) -> TopPlan {
+    let (model, omega0, t_last) = (ask.model, ask.omega0, ask.t_last);
+    let truncated = matches!(model, Model::Truncated(_));
+    let skip = ask
+        .skip_orientation
+        .map(str::to_string)
+        .or_else(|| symmetric_orientation_skip(truncated, ask.angle));
+    let orientation = match skip {
+        Some(why) => {
+            let phase = top.omega3_tilde(omega0.z).abs()
+                * if truncated {
+                    truncated_clock(top, omega_perp(&omega0), t_last).vartheta
                 } else {
-                    String::new()
+                    t_last
                 };
-                let integrator = auto_integrator(rtol);
-                Ok(TopPlan {
-                    chosen: Chosen::new(
-                        integrator.label(),
-                        format!(
-                            "the asymmetric top ({equations}) has no closed form: omega and the orientation are integrated together by {}{tighter}, about {steps:.1e} steps",
-                            integrator_words(integrator)
-                        ),
-                    ),
-                    orientation: Orientation::Computed,
-                    warnings,
-                    rtol: (rtol < options.rtol()).then_some(rtol),
-                })
+            if phase > MAX_PHASE {
+                warnings.push(format!(
+                    "the body-frame precession phase of (omega1, omega2) reaches {phase:.1e} rad: their phase is not resolved by a double, while omega_perp, omega3, the tilt and the energy are exact"
+                ));
             }
-            GeneralPath::Secular { error } => {
-                let eps = radiation_share(model, &self.omega0);
-                let why = format!(
-                    "the secular model follows E and |L| only: the phase round the polhode and the orientation after {angle:.1e} rad are beyond what stepping holds within rtol"
-                );
-                Ok(TopPlan {
-                    chosen: Chosen::new(
-                        "secular",
-                        format!(
-                            "{angle:.1e} rad are too many turns to step within rtol = {:.0e} and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853), good to about {error:.1e} (the swing of E and |L| within a turn, which averaging leaves out)",
-                            options.rtol(),
-                            if matches!(model, Model::General(_)) {
-                                "(3.3)"
-                            } else {
-                                "the reduced (3.4)"
-                            }
-                        ),
+            Orientation::Skipped(why)
+        }
+        None => Orientation::Computed,
+    };
+    let (method_label, how) = match (&orientation, truncated) {
+        (Orientation::Skipped(why), true) => (
+            "exact",
+            format!("omega(t) from the closed form (4.7), the times from (4.6) and (4.16); {why}, so it is skipped"),
+        ),
+        (Orientation::Skipped(why), false) => (
+            "exact",
+            format!("omega(t) from the closed form (4.15)-(4.16), the times from (4.6) and (4.16); {why}, so it is skipped"),
+        ),
+        (Orientation::Computed, true) => (
+            "exact",
+            "omega(t) from the closed form (4.7) and O(t) from the closed form (4.9), Rot(n_L, |L0| vartheta) O(0) Rz(Omega3~ vartheta): nothing is stepped".to_string(),
+        ),
+        (Orientation::Computed, false) => (
+            "exact+dop853",
+            "omega(t) from the closed form (4.15)-(4.16); the orientation has no closed form, so only Q' = Q Omega^(t) is integrated (DOP853 on SO(3)), driven by the closed-form omega(t)".to_string(),
+        ),
+    };
+    let reason = if ask.method == MethodChoice::Exact {
+        format!("method = \"exact\" was asked for in [solve]: {how}")
+    } else {
+        how
+    };
+    TopPlan {
+        chosen: Chosen::new(method_label, reason),
+        orientation,
+        warnings,
+        rtol: None,
+    }
+}
+
+/// An asymmetric top with `method = "auto"`: stepped (at a tighter rtol
+/// where the turning asks for it), or the secular model, or refused.
+fn general_auto_plan(ask: &Ask, warnings: Vec<String>) -> Result<TopPlan, Refusal> {
+    let (model, options, angle) = (ask.model, ask.options, ask.angle);
+    let equations = model.equations();
+    match general_path(model, &ask.omega0, ask.t_last, options.rtol()) {
+        GeneralPath::Stepped { rtol, steps } => {
+            let tighter = if rtol < options.rtol() {
+                format!(
+                    ", at rtol {rtol:.1e}, tighter than the scene's {:.0e} so that its error over {angle:.1e} rad stays within it (an integrator's error of the phase grows like the square of the turning)",
+                    options.rtol()
+                )
+            } else {
+                String::new()
+            };
+            let integrator = auto_integrator(rtol);
+            Ok(TopPlan {
+                chosen: Chosen::new(
+                    integrator.label(),
+                    format!(
+                        "the asymmetric top ({equations}) has no closed form: omega and the orientation are integrated together by {}{tighter}, about {steps:.1e} steps",
+                        integrator_words(integrator)
                     ),
-                    orientation: Orientation::Skipped(why),
-                    warnings,
-                    rtol: None,
-                })
-            }
-            GeneralPath::Neither(message) => Err(Refusal {
-                at: Blame::Times,
-                message: format!("[solve] {message}"),
-            }),
-        }
-    }
-
-    /// An adaptive method the scene named, within the step budget; warned
-    /// where the turning outgrows the tolerance.
-    fn stepped(&self, mut warnings: Vec<String>) -> Result<TopPlan, Refusal> {
-        let (options, angle) = (self.options, self.angle);
-        let name = label(self.model, self.method, options);
-        if let Some(e) = self.over_budget() {
-            return Err(Refusal {
-                at: Blame::Method,
-                message: format!(
-                    "[solve] method = \"{name}\": {}",
-                    self.too_many(e.steps, &e.what)
                 ),
-            });
+                orientation: Orientation::Computed,
+                warnings,
+                rtol: (rtol < options.rtol()).then_some(rtol),
+            })
         }
-        let drift = stepping_error(options.rtol(), angle);
-        if !self.model.has_closed_form() && drift > options.rtol() {
-            warnings.push(format!(
-                "over {angle:.1e} rad an integrator's error of the phase grows like the square of the turning: {name} at rtol {:.0e} may be off by about {drift:.1e}; method = \"auto\" tightens the tolerance or answers with the secular model",
-                options.rtol()
-            ));
-        }
-        Ok(Self::computed(name, self.asked(name), warnings))
-    }
-
-    /// A method this model does not take: refused while validating
-    /// `[solve] method`, and said again here rather than assumed.
-    fn not_planned(&self) -> Refusal {
-        let method = self.method;
-        Refusal {
-            at: Blame::Method,
-            message: match self.model.check_method(method) {
-                Err(e) => format!("[solve] method = \"{}\": {e}", method.name()),
-                Ok(()) => format!(
-                    "[solve] method = \"{}\" cannot be planned here",
-                    method.name()
+        GeneralPath::Secular { error } => {
+            let eps = radiation_share(model, &ask.omega0);
+            let why = format!(
+                "the secular model follows E and |L| only: the phase round the polhode and the orientation after {angle:.1e} rad are beyond what stepping holds within rtol"
+            );
+            Ok(TopPlan {
+                chosen: Chosen::new(
+                    "secular",
+                    format!(
+                        "{angle:.1e} rad are too many turns to step within rtol = {:.0e} and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853), good to about {error:.1e} (the swing of E and |L| within a turn, which averaging leaves out)",
+                        options.rtol(),
+                        if matches!(model, Model::General(_)) {
+                            "(3.3)"
+                        } else {
+                            "the reduced (3.4)"
+                        }
+                    ),
                 ),
-            },
+                orientation: Orientation::Skipped(why),
+                warnings,
+                rtol: None,
+            })
         }
+        GeneralPath::Neither(message) => Err(Refusal {
+            at: Blame::Times,
+            message: format!("[solve] {message}"),
+        }),
     }
 }
 

@@ -50,6 +50,9 @@ pub struct TopScene {
     pub general_units: Option<GeneralUnits>,
     /// Whether the orientation is computed.
     pub orientation: Orientation,
+    /// With `model = "auto"` and a lighter model chosen: its estimated error
+    /// against the physical solution of (3.4), added to what the run prints.
+    pub model_error: Option<crate::sim::claim::TierEstimate>,
 }
 
 /// The keys of a top validated, before any plan: its three models, the one
@@ -464,19 +467,21 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
         ..
     } = &request;
     let t_last = times.last().copied().unwrap_or(0.0);
-    let (mut model, mut model_choice, without_orientation, mut why_physical) = match tier {
-        Some(tier) => (tiers[tier.index()], None, None, None),
-        None => {
-            let choice =
-                choose::choose_model(tiers, *method, &initial.omega, times, options.rtol());
-            (
-                tiers[choice.tier],
-                Some(choice.reason),
-                choice.without_orientation,
-                choice.why_physical,
-            )
-        }
+    let choice = tier
+        .is_none()
+        .then(|| choose::choose_model(tiers, *method, &initial.omega, times, options.rtol()));
+    let (mut model, mut model_choice, without_orientation, mut why_physical) = match (tier, &choice)
+    {
+        (Some(tier), _) => (tiers[tier.index()], None, None, None),
+        (None, Some(c)) => (
+            tiers[c.tier],
+            Some(c.reason.clone()),
+            c.without_orientation.clone(),
+            c.why_physical.clone(),
+        ),
+        (None, None) => (tiers[0], None, None, None),
     };
+    let mut model_error = choice.as_ref().and_then(|c| c.model_error(c.tier));
     let mut planned = plan::plan_top(&model, *method, options, initial, t_last, None);
     // The physical solution was chosen for the orientation alone and cannot
     // run: a lighter model answers Omega, without the orientation.
@@ -484,6 +489,12 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
         && refusal.at == plan::Blame::Times
     {
         model = tiers[*tier];
+        model_error = choice.as_ref().and_then(|c| c.model_error(*tier)).map(|e| {
+            crate::sim::claim::TierEstimate {
+                orientation: None,
+                ..e
+            }
+        });
         model_choice = Some(why.clone());
         why_physical = None;
         let skip = "Omega alone is held within rtol without the physical solution, and the orientation is not";
@@ -502,6 +513,7 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
     if let Some(why) = model_choice {
         plan.chosen.reason = format!("{why}; {}", plan.chosen.reason);
     }
+    plan.chosen.estimates = choice.as_ref().map(|c| c.estimates);
     // `auto` may step at a tighter tolerance than the scene's (see plan::general_path).
     let options = match plan.rtol {
         Some(r) => options
@@ -522,6 +534,7 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
             units: request.units,
             general_units: request.general_units,
             orientation: plan.orientation,
+            model_error,
         })),
         chosen: plan.chosen,
         warnings: plan.warnings,

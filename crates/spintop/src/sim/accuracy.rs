@@ -334,7 +334,10 @@ pub fn symmetric_truncated_orientation_error(top: &SymmetricTop, omega0: &Vec3, 
 
 /// Both estimates for a symmetric top; exact when Ω₀ lies on the axis.
 pub fn symmetric_errors(top: &SymmetricTop, omega0: &Vec3, t: Real) -> ModelErrors {
-    if omega0.x == 0.0 && omega0.y == 0.0 || top.tau() == 0.0 {
+    if omega0.x == 0.0 && omega0.y == 0.0
+        || top.tau() == 0.0
+        || changes_nothing(top.tau(), omega0, t)
+    {
         return ModelErrors::EXACT;
     }
     ModelErrors {
@@ -344,6 +347,17 @@ pub fn symmetric_errors(top: &SymmetricTop, omega0: &Vec3, t: Real) -> ModelErro
         reduced_orientation: symmetric_reduced_orientation_error(top, omega0, t),
         exact: false,
     }
+}
+
+/// True when radiation moves no model's Ω or orientation by a rounding
+/// over `t`: each model's Ω changes at a relative rate of at most a few
+/// τ|Ω|² (τ the fast time), so over t by at most r = 4τ|Ω₀|²t, and the
+/// orientations by r|Ω₀|t radians. Below 1e-18 the models are one (a top
+/// with |Ω₀| ~ 1e-160 does not move, and the estimates' squares underflow).
+pub fn changes_nothing(tau: Real, omega0: &Vec3, t: Real) -> bool {
+    let w = omega0.norm();
+    let r = 4.0 * tau * w * w * t;
+    r < 1e-18 && r * w * t < 1e-18
 }
 
 /// The most steps the integrated estimate of a general top takes; a longer
@@ -395,7 +409,8 @@ pub fn radiates_nothing(inertia: &Vec3, dipole: &Vec3, omega0: &Vec3) -> bool {
 /// error of Ω grows over many turns (a drift of the invariants shifts the
 /// frequency, and the phase error grows as its integral).
 pub fn general_errors(top: &GeneralTop, omega0: &Vec3, t: Real) -> ModelErrors {
-    if radiates_nothing(&top.inertia(), &top.dipole(), omega0) {
+    let tau = crate::sim::physical::general::fast_time(top);
+    if radiates_nothing(&top.inertia(), &top.dipole(), omega0) || changes_nothing(tau, omega0, t) {
         return ModelErrors::EXACT;
     }
     let scale = omega0.norm();

@@ -23,6 +23,8 @@
 //! | `sigma_phys` | σ_phys | exact late-time decay time of \|z\| | τ |
 
 pub mod general;
+pub mod series;
+pub mod slow;
 
 use crate::integrate::{AdaptiveOptions, Dop853, IntegrateError, Stats, Stepper};
 use crate::math::{Real, State, Vec3};
@@ -166,44 +168,6 @@ pub struct PhysicalSolution {
     pub shots: u32,
 }
 
-fn to_state(z: Complex<Real>, v: Complex<Real>) -> State<4> {
-    State::<4>::new(z.re, z.im, v.re, v.im)
-}
-
-/// Integrate (3.4) backward from z(T) = a (real), ż(T) = f(a²)a, to the times
-/// (descending from T), returning (z, ż) there and the work done.
-///
-/// NOTE: the integrator steps exactly onto every requested time instead of
-/// reading them from its continuous extension: integrating backward, the
-/// interpolant still carries about 1e-7 of the damped fast mode between step
-/// ends, while the step ends themselves are clean.
-fn backward(
-    top: &SymmetricTop,
-    omega3: Real,
-    t_final: Real,
-    a: Real,
-    times_desc: &[Real],
-    rtol: Real,
-) -> Result<(Vec<State<4>>, Stats), IntegrateError> {
-    let z = Complex::new(a, 0.0);
-    // NOTE: the final data need not be exact (the margin damps their error
-    // by e^{−40}), but they must be sane at every spin: the series
-    // [`slow_manifold_rate`] gives ż/z ~ −10⁹ at τk = 18, whose transient
-    // stalled the first backward step.
-    let v = near_rest_rate(top, omega3, a * a) * z;
-    let rhs = |_t: Real, y: &State<4>| symmetric_full_ale_rhs(top, omega3, y);
-    let opts = AdaptiveOptions::new(rtol, rtol * 1e-6 * a.max(1e-300))?;
-    let mut stepper = Dop853::new(t_final, to_state(z, v), opts)?;
-    let mut out = Vec::with_capacity(times_desc.len());
-    for &t in times_desc {
-        while stepper.t() > t {
-            stepper.step(&rhs, t)?;
-        }
-        out.push(*stepper.y());
-    }
-    Ok((out, stepper.stats()))
-}
-
 /// The slow decay rate the bracket of the shoot starts from: the physical
 /// solution's own late-time rate 1/σ_phys (exact as u → 0, linear theory),
 /// and the reduced model's τΩ⊥² on top of it for the amplitude.
@@ -214,7 +178,7 @@ fn backward(
 ///
 /// (the reduced amplitude (4.16) with τk² replaced by 1/σ_phys: the two agree
 /// while τk is small, and at τk ≳ 1 the reduced model decays far too fast).
-fn guessed_log_amplitude(top: &SymmetricTop, omega0: &Vec3, span: Real) -> Real {
+pub(super) fn guessed_log_amplitude(top: &SymmetricTop, omega0: &Vec3, span: Real) -> Real {
     let u0 = omega0.x * omega0.x + omega0.y * omega0.y;
     let rate = 1.0 / late_time_decay_time(top, omega0.z);
     let s = 2.0 * rate * span;
@@ -227,294 +191,58 @@ fn guessed_log_amplitude(top: &SymmetricTop, omega0: &Vec3, span: Real) -> Real 
 /// (α − 1)/(2τ), α = Re √(1 − 4iτk) = √((1 + √(1 + 16τ²k²))/2) (the roots of
 /// linear theory, [`late_time_decay_time`]); their ratio falls at α/τ, and
 /// 40τ/α damps the error of the final data by e^{−40}.
-fn final_margin(top: &SymmetricTop, omega3: Real) -> Real {
+pub(super) fn final_margin(top: &SymmetricTop, omega3: Real) -> Real {
     let tau = top.tau();
     let k = top.ratio() * omega3;
     let alpha = ((1.0 + (1.0 + 16.0 * tau * tau * k * k).sqrt()) / 2.0).sqrt();
     40.0 * tau / alpha
 }
 
-/// The most the slow amplitude may fall (in e-foldings) over one segment of
-/// the shoot, margin included: e^{−250} ≈ 10⁻¹⁰⁹, well inside a double,
-/// whatever the guess misses by.
-const SEGMENT_E_FOLDINGS: Real = 250.0;
-
 /// The physical solution of (3.4) through Ω₀ (symmetric top), at `times`
-/// (finite, ≥ 0, ascending).
-///
-/// The final time T lies a margin beyond the last requested time
-/// ([`final_margin`], 40τ for a slow spin), so the error of the approximate
-/// final data has decayed by e^{−40} before any sample. The final amplitude is found by bisection on ln a (|z(0)| grows
-/// monotonically with a), from a bracket around the guess of
-/// [`guessed_log_amplitude`] widened by doubling steps, then matched once
-/// more by the pass that outputs the times ([`match_output_pass`]); the
-/// result is rotated so that z(0) = Ω₁₀ + iΩ₂₀.
-///
-/// A horizon over which the amplitude falls by more than
-/// [`SEGMENT_E_FOLDINGS`] is cut into segments, each shot from the state the
-/// one before ended in (the slow manifold is invariant, so the pieces join
-/// into one physical solution); once τ|z|² is a hundredth of rtol times the
-/// slow rate, the rest is the slow mode of linear theory
-/// ([`linear_theory_rate`]) in closed form.
+/// (finite, ≥ 0, ascending), by [`slow::slow_table`]: shots backward from
+/// final data near the slow manifold while |z| is large, the slow manifold's
+/// own series once it is small, its closed form at the end; the first
+/// sample is Ω₀ itself.
 pub fn physical_solution(
     top: &SymmetricTop,
     omega0: &Vec3,
     times: &[Real],
     rtol: Real,
 ) -> Result<PhysicalSolution, PhysicalError> {
-    let tau = top.tau();
-    if tau <= 0.0 {
-        return Err(PhysicalError::BadInput("the full ALE needs tau > 0"));
-    }
     if times.iter().any(|t| !t.is_finite() || *t < 0.0) || times.windows(2).any(|w| w[1] < w[0]) {
         return Err(PhysicalError::BadInput(
             "times must be finite, >= 0 and ascending",
         ));
     }
+    let span = times.last().copied().unwrap_or(0.0);
+    let mut budget = slow::Budget {
+        rtol: internal_rtol(rtol),
+        steps: crate::integrate::DEFAULT_MAX_STEPS,
+        refine: 1.0,
+    };
+    let table = slow::slow_table(top, omega0, span, &mut budget)?;
+    let alpha = table.precession();
     let mut sol = PhysicalSolution {
         times: times.to_vec(),
         z: Vec::with_capacity(times.len()),
         z_dot: Vec::with_capacity(times.len()),
-        stats: Stats::default(),
-        shots: 0,
+        stats: table.stats,
+        shots: table.shots,
     };
-    let margin = final_margin(top, omega0.z);
-    let start_norm = omega0.x.hypot(omega0.y);
-    let mut start = *omega0;
-    let mut t0 = 0.0;
-    let mut next = 0;
-    while next < times.len() {
-        let z_start = start.x.hypot(start.y);
-        if z_start <= 1e-300 * start_norm || z_start == 0.0 {
-            // z ≡ 0 is the physical solution: the top spins steadily about its axis.
-            sol.z.resize(times.len(), Complex::new(0.0, 0.0));
-            sol.z_dot.resize(times.len(), Complex::new(0.0, 0.0));
-            break;
-        }
-        // Once τ|z|² is far below the slow rate, (3.4) is linear in z for the
-        // rest of the run: its physical solution is the slow mode of linear
-        // theory, in closed form, to a part in 100 of rtol.
-        let f0 = linear_theory_rate(top, omega0.z);
-        if tau * z_start * z_start <= 0.01 * rtol * (-f0.re) {
-            let z_t0 = Complex::new(start.x, start.y);
-            for &t in &times[next..] {
-                let z = z_t0 * (f0 * (t - t0)).exp();
-                sol.z.push(z);
-                sol.z_dot.push(f0 * z);
-            }
-            break;
-        }
-        // The segment: as long as the guessed fall over it and the margin
-        // stays within SEGMENT_E_FOLDINGS (the guess falls monotonically).
-        let t_last = times[times.len() - 1];
-        let fall = |span: Real| z_start.ln() - guessed_log_amplitude(top, &start, span);
-        let end = if fall(t_last - t0 + margin) <= SEGMENT_E_FOLDINGS {
-            t_last
-        } else {
-            let (mut lo, mut hi) = (0.0, t_last - t0);
-            for _ in 0..80 {
-                let mid = 0.5 * (lo + hi);
-                if fall(mid + margin) <= SEGMENT_E_FOLDINGS {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            t0 + lo.max(margin)
-        };
-        let last = times[next..].partition_point(|&t| t <= end) + next;
-        let mut local: Vec<Real> = times[next..last].iter().map(|t| t - t0).collect();
-        if last < times.len() {
-            local.push(end - t0);
-        }
-        let piece = shoot_segment(top, &start, &local, rtol)?;
-        sol.stats += piece.stats;
-        sol.shots += piece.shots;
-        let kept = last - next;
-        sol.z.extend_from_slice(&piece.z[..kept]);
-        sol.z_dot.extend_from_slice(&piece.z_dot[..kept]);
-        if last == times.len() {
-            break;
-        }
-        let z_end = piece.z[piece.z.len() - 1];
-        start = Vec3::new(z_end.re, z_end.im, omega0.z);
-        t0 = end;
-        next = last;
+    for &t in times {
+        let (w, w1) = table.w_at(t);
+        let turn = Complex::from_polar(1.0, -alpha * t);
+        sol.z.push(w * turn);
+        sol.z_dot.push((w1 - w * Complex::new(0.0, alpha)) * turn);
     }
     Ok(sol)
 }
 
-/// One segment of [`physical_solution`]: the physical solution through
-/// `omega0` at `times` (ascending from 0), by one shoot.
-fn shoot_segment(
-    top: &SymmetricTop,
-    omega0: &Vec3,
-    times: &[Real],
-    rtol: Real,
-) -> Result<PhysicalSolution, PhysicalError> {
-    let z0 = Complex::new(omega0.x, omega0.y);
-    let target = z0.norm();
-    let omega3 = omega0.z;
-    let t_last = times.last().copied().unwrap_or(0.0);
-    let t_final = t_last + final_margin(top, omega3);
-    let mut stats = Stats::default();
-    let mut shots = 0;
-    // NOTE: backward in time the slow amplitude grows, and too large a final
-    // amplitude blows up before t = 0 (backward, du/dt ≈ 2τu², a finite-time
-    // blow-up). Such a shot overshoots the target by definition, so it counts as
-    // +∞, not as an error.
-    let mut amplitude_at_zero = |ln_a: Real| -> Result<Real, PhysicalError> {
-        shots += 1;
-        match backward(top, omega3, t_final, ln_a.exp(), &[0.0], rtol) {
-            Ok((out, s)) => {
-                stats += s;
-                Ok(out[0][0].hypot(out[0][1]))
-            }
-            Err(IntegrateError::NonFinite { .. } | IntegrateError::StepSizeUnderflow { .. }) => {
-                Ok(Real::INFINITY)
-            }
-            Err(e) => Err(e.into()),
-        }
-    };
-    // NOTE: bracket ln a around the guess, widening by doubling steps (the
-    // guess may miss by tens of e-foldings at τk ≳ 1, where the slow decay
-    // is far from the reduced model's), never below the smallest normal double.
-    let guess = guessed_log_amplitude(top, omega0, t_final);
-    let floor = Real::MIN_POSITIVE.ln();
-    let (mut lo, mut hi) = ((guess - 1.0).max(floor), (guess + 1.0).max(floor + 2.0));
-    let mut widen = 1.0;
-    while amplitude_at_zero(lo)? > target {
-        if lo <= floor {
-            return Err(PhysicalError::NoConvergence("no lower bracket"));
-        }
-        hi = lo;
-        lo = (lo - widen).max(floor);
-        widen *= 2.0;
-    }
-    widen = 1.0;
-    while amplitude_at_zero(hi)? < target {
-        lo = hi;
-        hi += widen;
-        widen *= 2.0;
-        if widen > 1e4 {
-            return Err(PhysicalError::NoConvergence("no upper bracket"));
-        }
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if amplitude_at_zero(mid)? < target {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        if hi - lo < 1e-15 * (1.0 + mid.abs()) {
-            break;
-        }
-    }
-    let mut desc: Vec<Real> = times.iter().rev().copied().collect();
-    if desc.last() != Some(&0.0) {
-        desc.push(0.0);
-    }
-    let (out, s, passes) = match_output_pass(
-        |ln_a| backward(top, omega3, t_final, ln_a.exp(), &desc, rtol),
-        0.5 * (lo + hi),
-        target,
-        rtol,
-    )?;
-    stats += s;
-    shots += passes;
-    let at_zero = out.last().expect("t = 0 was requested");
-    let rotation = z0 / Complex::new(at_zero[0], at_zero[1]);
-    let rotation = rotation / rotation.norm();
-    let mut z = Vec::with_capacity(times.len());
-    let mut z_dot = Vec::with_capacity(times.len());
-    for y in out.iter().take(times.len()).rev() {
-        z.push(rotation * Complex::new(y[0], y[1]));
-        z_dot.push(rotation * Complex::new(y[2], y[3]));
-    }
-    Ok(PhysicalSolution {
-        times: times.to_vec(),
-        z,
-        z_dot,
-        stats,
-        shots,
-    })
-}
-
-/// The most output passes [`match_output_pass`] makes.
-const OUTPUT_PASSES: u32 = 8;
-
-/// The output pass whose own z(0) has the target amplitude: `pass(ln a)`
-/// integrates back from the final amplitude a to every output time, ending at
-/// t = 0. Returns its states, the work of all passes and their number; an
-/// error when none lands within `rtol` (relative) of the target.
-///
-/// NOTE: the bisection's shots stop only at t = 0, the output pass at every
-/// requested time, so the two take different steps; at a loose rtol the
-/// output pass from the shots' a misses |z(0)| by far more than rtol (35 % at
-/// rtol 1e-3 over 4000 τ) or blows up backward. A few secant steps on ln a
-/// with the output pass itself close that gap; d ln|z(0)|/d ln a = 1 where
-/// (3.4) is linear in z, so that is the first slope. A pass that blows up
-/// asked for too large an a: the next one goes halfway back.
-fn match_output_pass(
-    mut pass: impl FnMut(Real) -> Result<(Vec<State<4>>, Stats), IntegrateError>,
-    ln_a: Real,
-    target: Real,
-    rtol: Real,
-) -> Result<(Vec<State<4>>, Stats, u32), PhysicalError> {
-    let ln_target = target.ln();
-    let mut stats = Stats::default();
-    let (mut x, mut slope) = (ln_a, 1.0);
-    let mut last: Option<(Real, Real)> = None;
-    let mut best: Option<(Real, Vec<State<4>>)> = None;
-    let (mut passes, mut stalled) = (0, 0);
-    while passes < OUTPUT_PASSES {
-        passes += 1;
-        match pass(x) {
-            Ok((out, s)) => {
-                stats += s;
-                let y = out.last().expect("t = 0 is an output time");
-                let miss = y[0].hypot(y[1]).ln() - ln_target;
-                if miss.is_nan() {
-                    return Err(PhysicalError::NoConvergence("an output pass gave NaN"));
-                }
-                if let Some((x0, miss0)) = last {
-                    let secant = (miss - miss0) / (x - x0);
-                    if secant.is_finite() && secant > 0.0 {
-                        slope = secant;
-                    }
-                }
-                // Done at rounding, or when the passes' own noise (their
-                // steps move with a) stops the secant from gaining.
-                let better = best.as_ref().is_none_or(|(b, _)| miss.abs() < *b);
-                stalled = if better { 0 } else { stalled + 1 };
-                if better {
-                    best = Some((miss.abs(), out));
-                }
-                if miss.abs() <= 1e-14 || !miss.is_finite() || stalled >= 2 {
-                    break;
-                }
-                last = Some((x, miss));
-                x -= miss / slope;
-            }
-            Err(IntegrateError::NonFinite { .. } | IntegrateError::StepSizeUnderflow { .. }) => {
-                x = match last {
-                    Some((x0, _)) => 0.5 * (x + x0),
-                    None => x - 1.0,
-                };
-            }
-            Err(e) => return Err(e.into()),
-        }
-    }
-    match best {
-        Some((miss, out)) if miss <= rtol.max(1e-10) => Ok((out, stats, passes)),
-        Some(_) => Err(PhysicalError::NoConvergence(
-            "no final amplitude reaches the given Omega_perp at t = 0",
-        )),
-        None => Err(PhysicalError::NoConvergence(
-            "every output pass blew up backward",
-        )),
-    }
+/// The tolerance the physical solution's integrators run at: the user's, at
+/// most 1e-6 (looser, DOP853 no longer damps the backward passes' fast mode
+/// step by step, and the shoot on the final amplitude fails to converge).
+pub fn internal_rtol(rtol: Real) -> Real {
+    rtol.min(1e-6)
 }
 
 /// A runaway detected by [`integrate_forward`].
@@ -645,6 +373,8 @@ pub struct OmegaTable {
     step: Real,
     omega: Vec<Vec3>,
     omega_dot: Vec<Vec3>,
+    /// Ω̈ at the nodes, where known: then the interpolant is quintic.
+    omega_ddot: Option<Vec<Vec3>>,
 }
 
 impl OmegaTable {
@@ -656,7 +386,16 @@ impl OmegaTable {
             step,
             omega,
             omega_dot,
+            omega_ddot: None,
         }
+    }
+
+    /// The same table with Ω̈ at every node: read back by quintic Hermite
+    /// interpolation, whose error is about (hΩ)⁶|Ω|/46080, 3e-13 at hΩ = 0.05.
+    pub(crate) fn with_second(mut self, omega_ddot: Vec<Vec3>) -> Self {
+        debug_assert_eq!(omega_ddot.len(), self.omega.len());
+        self.omega_ddot = Some(omega_ddot);
+        self
     }
 
     /// The same table starting at `origin` instead of 0 (Ω(t) is autonomous:
@@ -699,6 +438,21 @@ impl OmegaTable {
         let i = (x.floor() as usize).min(last - 1);
         let s = x - i as Real;
         let h = self.step;
+        if let Some(acc) = &self.omega_ddot {
+            let (s2, s3) = (s * s, s * s * s);
+            let (s4, s5) = (s3 * s, s3 * s2);
+            let h0 = 1.0 - 10.0 * s3 + 15.0 * s4 - 6.0 * s5;
+            let h1 = s - 6.0 * s3 + 8.0 * s4 - 3.0 * s5;
+            let h2 = 0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5;
+            let h4 = -4.0 * s3 + 7.0 * s4 - 3.0 * s5;
+            let h5 = 0.5 * s3 - s4 + 0.5 * s5;
+            return self.omega[i] * h0
+                + self.omega_dot[i] * (h * h1)
+                + acc[i] * (h * h * h2)
+                + self.omega[i + 1] * (1.0 - h0)
+                + self.omega_dot[i + 1] * (h * h4)
+                + acc[i + 1] * (h * h * h5);
+        }
         let (h00, h10, h01, h11) = (
             (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s),
             s * (1.0 - s) * (1.0 - s),
@@ -728,23 +482,22 @@ pub(crate) fn grid(step: Real, t_end: Real) -> Vec<Real> {
     (0..=n).map(|i| i as Real * step).collect()
 }
 
-/// The physical solution of (3.4) through Ω₀ as a table on [0, t_end].
+/// The physical solution of (3.4) through Ω₀ as a table on [0, t_end] (and,
+/// where it has reached its closed form, beyond), built within `max_steps`
+/// at the tolerance and refinement of `options`.
 pub fn physical_table(
     top: &SymmetricTop,
     omega0: &Vec3,
     t_end: Real,
-    rtol: Real,
-) -> Result<(OmegaTable, PhysicalSolution), PhysicalError> {
-    let rate = omega0.norm().max(top.omega3_tilde(omega0.z).abs());
-    let step = table_step(top.tau(), rate);
-    let sol = physical_solution(top, omega0, &grid(step, t_end), rtol)?;
-    let table = OmegaTable::symmetric(
-        step,
-        omega0.z,
-        sol.z.iter().copied(),
-        sol.z_dot.iter().copied(),
-    );
-    Ok((table, sol))
+    options: &crate::sim::MethodOptions,
+    max_steps: u64,
+) -> Result<slow::SlowTable, PhysicalError> {
+    let mut budget = slow::Budget {
+        rtol: internal_rtol(options.rtol()),
+        steps: max_steps,
+        refine: options.refine(),
+    };
+    slow::slow_table(top, omega0, t_end, &mut budget)
 }
 
 /// (3.4) integrated forward from Ω₀ with the reduced model's slope as ż(0), the

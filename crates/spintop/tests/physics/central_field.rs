@@ -353,11 +353,14 @@ fn eq_2_5_runaway_is_absent_backward() {
         let y = &solve(&mut back, &rhs, &[t]).unwrap()[0];
         let (x, v) = pos_vel(y);
         let off = (nalgebra::Vector2::new(y[4], y[5]) - physical_a(&x, &v)).norm();
-        // e^{-(T-t)/τ₀}, down to the run's own global error: at rtol 1e-12
-        // that is a few times 1e-12 here (6.8e-12 at t = 0 after the step
-        // controller's power changed by one rounding), bounded by 100 × rtol.
+        // e^{-(T-t)/τ₀}, down to what the last steps leave of the damped
+        // mode: DOP853 steps it near its stability limit, where a step damps
+        // little, so its size is a matter of where the steps fall. Across
+        // rtol 0.9e-12 to 1.2e-12 it was 1e-14 to 2.3e-10 at t = 4 (6.8e-12
+        // at t = 0 once, 1.3e-10 at t = 4 once the clock advanced by the
+        // rounded step): bounded by 1000 × rtol, 6.6 decades below 5e-3.
         assert!(
-            off < 1e-2 * (-(t_final - t) / tau0).exp() + 1e-10,
+            off < 1e-2 * (-(t_final - t) / tau0).exp() + 1e-9,
             "t = {t}: {off}"
         );
         // It is a nearby physical solution: the wrong datum shifted it by O(τ₀²).

@@ -256,9 +256,9 @@ fn eq_3_4_general_physical_table_stays_within_rtol_at_a_loose_rtol() {
     use spintop::sim::physical::general::general_physical_table;
     let top = GeneralTop::new(Vec3::new(1.0, 1.2, 0.5), Vec3::new(0.2, 0.0, 0.3)).unwrap();
     let omega0 = Vec3::new(0.5, 0.05, 0.02);
-    let (tight, _) = general_physical_table(&top, &omega0, 300.0, 1e-12).unwrap();
+    let (tight, _) = general_physical_table(&top, &omega0, 300.0, 1e-12, 1.0).unwrap();
     for rtol in [1e-2, 1e-4, 1e-6] {
-        let (table, _) = general_physical_table(&top, &omega0, 300.0, rtol).unwrap();
+        let (table, _) = general_physical_table(&top, &omega0, 300.0, rtol, 1.0).unwrap();
         let worst = (0..=300)
             .map(|t| (table.omega_at(t as Real) - tight.omega_at(t as Real)).norm())
             .fold(0.0, Real::max)

@@ -517,6 +517,11 @@ pub fn general_physical_solution(
     }
     sol.stats = shooter.stats;
     sol.shots = shooter.shots;
+    // The first sample is the input itself (the shoot meets it to its
+    // tolerance).
+    if times.first() == Some(&0.0) {
+        sol.omega[0] = *omega0;
+    }
     Ok(sol)
 }
 
@@ -551,10 +556,17 @@ pub fn general_physical_table(
     omega0: &Vec3,
     t_end: Real,
     rtol: Real,
+    refine: Real,
 ) -> Result<(OmegaTable, GeneralPhysicalSolution), PhysicalError> {
-    let step = table_step(fast_time(top), omega0.norm());
+    let step = refine * table_step(fast_time(top), omega0.norm());
     let sol = general_physical_solution(top, omega0, &grid(step, t_end), rtol)?;
-    let table = OmegaTable::new(step, sol.omega.clone(), sol.omega_dot.clone());
+    let second = sol
+        .omega
+        .iter()
+        .zip(&sol.omega_dot)
+        .map(|(w, wd)| w_of(&general_full_ale_rhs(top, &pack(w, wd))))
+        .collect();
+    let table = OmegaTable::new(step, sol.omega.clone(), sol.omega_dot.clone()).with_second(second);
     Ok((table, sol))
 }
 
