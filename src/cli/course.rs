@@ -7,7 +7,7 @@
 use super::gate::Gate;
 use super::{CliError, bad, parse_number};
 use clap::{Args, Subcommand};
-use spintop_course::{self as course, Options, State};
+use spintop_course::{self as course, Chosen, Course, Options, State};
 use spintop_grading as grading;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -149,23 +149,19 @@ enum CourseAction {
     },
 }
 
-/// The lessons crate to grade: `--course DIR`, or the repository's.
-pub(crate) fn lessons(chosen: Option<&PathBuf>) -> Result<PathBuf, CliError> {
-    let dir = match chosen {
-        Some(dir) => dir.clone(),
-        None => {
-            let dir = course::lessons_dir(course::repository());
-            if !dir.join("Cargo.toml").is_file() {
-                return Err(bad(format!(
-                    "spintop course grades the assignments in the repository, and {} is missing; run it from a clone of spintop, or name a course with --course DIR",
-                    dir.display()
-                )));
-            }
-            dir
-        }
-    };
-    course::check_lessons_dir(&dir).map_err(|e| bad(format!("--course: {e}")))?;
-    Ok(dir)
+/// The course to grade: `--course DIR`, else the one the current folder
+/// stands in (as cargo finds its manifest), else the repository's lessons.
+pub(crate) fn lessons(chosen: Option<&PathBuf>) -> Result<Course, CliError> {
+    let cwd = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+    let course = Course::choose(chosen.map(PathBuf::as_path), &cwd);
+    if course.chosen == Chosen::Default && !course.dir.join("Cargo.toml").is_file() {
+        return Err(bad(format!(
+            "spintop course grades the course the current folder is in, and there is none here; the repository's lessons ({}) are missing too: run it in a copy made by `spintop course export`, or name one with --course DIR",
+            course.dir.display()
+        )));
+    }
+    course::check_lessons_dir(&course.dir).map_err(|e| bad(format!("--course: {e}")))?;
+    Ok(course)
 }
 
 /// The `--course DIR` a printed command must repeat (as the user typed it).
@@ -214,7 +210,8 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
         })?),
         None => None,
     };
-    let dir = lessons(args.course.as_ref())?;
+    let chosen = lessons(args.course.as_ref())?;
+    let dir = chosen.dir.clone();
     if args.solutions && !dir.join("src/solutions").is_dir() {
         return Err(bad(format!(
             "--solutions: {} is not here (a student's copy has none)",
@@ -223,7 +220,7 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
     }
     let course_arg = given(args.course.as_ref());
     if std::io::stderr().is_terminal() {
-        eprint!("grading (cargo test on {})…\r", dir.display());
+        eprintln!("spintop course: grading {}…", chosen.describe());
     }
     let options = Options {
         solutions: args.solutions,
@@ -245,18 +242,8 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
         )?;
         return Ok(());
     }
-    // In the repository the files are under lessons/; in an export, at its top.
-    let own = args.course.is_none();
-    let file = |a: &course::Assignment| {
-        if own {
-            a.file.to_string()
-        } else {
-            a.file.trim_start_matches("lessons/").to_string()
-        }
-    };
-    if std::io::stderr().is_terminal() {
-        eprint!("{}\r", " ".repeat(48));
-    }
+    // In the repository the files are under lessons/; in a copy, at its top.
+    let file = |a: &course::Assignment| chosen.file(a);
     let n = status.states.len();
     writeln!(
         out,
@@ -264,6 +251,7 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
         status.passing(),
         status.seed
     )?;
+    writeln!(out, "  graded: {}", chosen.describe())?;
     for (a, s) in &status.states {
         writeln!(
             out,
@@ -295,6 +283,19 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
             return Ok(());
         }
     }
+    print_assignment(&chosen, &status, wanted, course_arg.as_deref(), out)
+}
+
+/// The assignment asked for (`wanted`), or the next one, with its state
+/// and what to do, named as the course names its files.
+fn print_assignment(
+    chosen: &Course,
+    status: &course::Status,
+    wanted: Option<&course::Assignment>,
+    course_arg: Option<&str>,
+    out: &mut impl Write,
+) -> Result<(), CliError> {
+    let n = status.states.len();
     let show = match wanted {
         Some(w) => status.states.iter().find(|(a, _)| a.function == w.function),
         None => status.next(),
@@ -312,7 +313,7 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
                 "{label}: {} {} in {} ({})",
                 a.equation,
                 a.function,
-                file(a),
+                chosen.file(a),
                 a.chapter
             )?;
             match s {
@@ -335,17 +336,12 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
                     writeln!(out, "  its grader did not report; run it alone to see why")?
                 }
             }
-            let package = if own { " -p spintop-lessons" } else { "" };
-            writeln!(
-                out,
-                "  grade it alone: cargo test{package} --test {} {}",
-                a.binary, a.test
-            )?;
+            writeln!(out, "  grade it alone: {}", chosen.test_command(a))?;
             if !matches!(s, State::Passing | State::Failing(_)) {
                 writeln!(
                     out,
                     "  stuck? {} (where to look, then the idea, then the formula)",
-                    grading::hint_command(a.function, course_arg.as_deref())
+                    grading::hint_command(a.function, course_arg)
                 )?;
             }
         }
@@ -390,11 +386,12 @@ fn verdict_line(a: &course::Assignment, s: &State) -> String {
 /// `spintop course watch`: grades once, then again on every save, printing
 /// the assignments whose verdict changed and the progress line.
 fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError> {
-    let dir = lessons(chosen)?;
+    let course = lessons(chosen)?;
+    let dir = course.dir.clone();
     writeln!(
         out,
         "spintop course watch: grading {} now and on every save under {} (Ctrl-C stops)",
-        dir.display(),
+        course.describe(),
         dir.join("src").display()
     )?;
     out.flush()?;
@@ -494,7 +491,7 @@ fn hint(name: &str, chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<()
             names.join(", ")
         )));
     };
-    let dir = lessons(chosen)?;
+    let dir = lessons(chosen)?.dir;
     let mut progress = course::load_progress(&dir);
     let h = course::next_hint(&mut progress, a);
     course::save_progress(&dir, &progress).map_err(|e| bad(format!("course hint: {e}")))?;

@@ -15,7 +15,7 @@
 //! In CI (`CI=true`) tmux is required and its absence fails the test; on a
 //! machine without tmux the test says so and passes.
 
-use spintop_app::tui::app::TICK;
+use spintop_app::live::app::TICK;
 use std::process::{Command, Output};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
@@ -745,7 +745,7 @@ fn sections_2_and_a_show_their_own_scenes() {
 /// must stand on the screen as a whole word.
 #[test]
 fn an_80x24_asymmetric_screen_has_every_number_whole() {
-    use spintop_app::tui::widgets::fmt_num;
+    use spintop_app::live::widgets::fmt_num;
     let Some(tmux) = launch_sized("whole", "", "tui asymmetric-top", (80, 24)) else {
         return;
     };
@@ -767,8 +767,8 @@ fn an_80x24_asymmetric_screen_has_every_number_whole() {
         .unwrap()
         .scene()
         .unwrap();
-    let (settings, _) = spintop_app::tui::Settings::for_scene(&scene, None).unwrap();
-    let mut app = spintop_app::tui::App::new(settings).unwrap();
+    let (settings, _) = spintop_app::live::Settings::for_scene(&scene, None).unwrap();
+    let mut app = spintop_app::live::App::new(settings).unwrap();
     app.advance_ticks((t / TICK).round() as u64);
     assert!((app.time() - t).abs() < 1e-9);
     // One model at a time at 80 columns: the first.
@@ -820,7 +820,7 @@ fn no_code_line_breaks_inside_a_token() {
     let screen = tmux.wait_for("the long use line", long, |s| s.contains('↪'));
     let book = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src");
     let source = std::fs::read_to_string(book.join("section-2.md")).unwrap();
-    let source = spintop_app::tui::learn::markdown::resolve_includes(&source, &book);
+    let source = spintop_app::learn::markdown::resolve_includes(&source, &book);
     let lines: Vec<&str> = screen.lines().collect();
     let mut seen = 0;
     for (i, line) in lines.iter().enumerate().skip(1) {

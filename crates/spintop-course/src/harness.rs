@@ -190,6 +190,8 @@ pub struct Options {
     pub jobs: usize,
     /// Set to stop: the running cargo or test is killed.
     pub stop: Option<Arc<AtomicBool>>,
+    /// Where to report how far the grading has got (see [`super::building`]).
+    pub progress: Option<Arc<super::building::Building>>,
 }
 
 impl Default for Options {
@@ -205,6 +207,7 @@ impl Default for Options {
             build_lock: None,
             jobs: std::thread::available_parallelism().map_or(2, |n| n.get()),
             stop: None,
+            progress: None,
         }
     }
 }
@@ -240,6 +243,7 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, String> {
     let absolute = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
     let dir = absolute.as_path();
     let seed = opts.seed.unwrap_or_else(verdict::fresh_seed);
+    report(opts, super::building::Building::start);
     let selected = |a: &Assignment| opts.binaries.is_empty() || opts.binaries.contains(&a.binary);
     // 1. The source rule, before anything is compiled. A file the parser
     // cannot read is left to the compiler, which says more about it; the
@@ -320,6 +324,7 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, String> {
     let verdicts = std::env::temp_dir().join(format!("spintop-verdicts-{token}"));
     std::fs::create_dir_all(&verdicts).map_err(|e| format!("{}: {e}", verdicts.display()))?;
     let todo: Vec<&Assignment> = COURSE.iter().filter(|a| selected(a)).collect();
+    report(opts, |p| p.graders(todo.len()));
     let run = Run {
         dir,
         ctx: &ctx,
@@ -329,13 +334,15 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, String> {
     };
     let results = in_parallel(todo.len(), opts.jobs, |i| {
         let a = todo[i];
-        match programs.iter().find(|(b, _)| b == a.binary) {
+        let state = match programs.iter().find(|(b, _)| b == a.binary) {
             Some((_, exe)) => run.test(exe, a),
             None => State::Failing(format!(
                 "cargo built no test program `{}`: is tests/{}.rs in the copy?",
                 a.binary, a.binary
             )),
-        }
+        };
+        report(opts, super::building::Building::grader_done);
+        state
     });
     let _ = std::fs::remove_dir_all(&verdicts);
     let mut status = Status::new(seed, |_| State::Unknown);
@@ -345,6 +352,13 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, String> {
         }
     }
     Ok(status)
+}
+
+/// Tells the grading's progress, if it is watched.
+fn report(opts: &Options, f: impl FnOnce(&super::building::Building)) {
+    if let Some(p) = &opts.progress {
+        f(p);
+    }
 }
 
 /// `work(0)`, …, `work(count − 1)` on at most `jobs` threads at once, each
@@ -490,6 +504,11 @@ pub(crate) fn cargo_json(
     if let Some(t) = &opts.target_dir {
         cmd.env("CARGO_TARGET_DIR", t);
     }
+    if let Some(p) = &opts.progress {
+        p.phase(super::building::Phase::Building);
+        cmd.envs(super::building::CARGO_PROGRESS_ENV);
+    }
+    let progress = opts.progress.clone();
     cmd.stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped());
@@ -507,6 +526,9 @@ pub(crate) fn cargo_json(
             };
             match msg["reason"].as_str() {
                 Some("compiler-artifact") => {
+                    if let Some(p) = &progress {
+                        p.artifact();
+                    }
                     if let (true, Some(name), Some(exe)) = (
                         wanted(&msg),
                         msg["target"]["name"].as_str(),
@@ -523,7 +545,10 @@ pub(crate) fn cargo_json(
         }
         (programs, first_error)
     });
-    let stderr = drain(child.stderr.take(), 64 * 1024);
+    let stderr = match &opts.progress {
+        Some(p) => super::building::drain_cargo(child.stderr.take(), 64 * 1024, Arc::clone(p)),
+        None => drain(child.stderr.take(), 64 * 1024),
+    };
     let status = wait_within(&mut child, ctx.left(), ctx);
     let (programs, first_error) = reader.join().unwrap_or_default();
     let stderr = String::from_utf8_lossy(&stderr.join().unwrap_or_default()).into_owned();

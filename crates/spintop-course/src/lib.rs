@@ -10,6 +10,8 @@
 //! | module | what |
 //! |---|---|
 //! | `catalogue` | the 22 assignments, their files, tests and hint ladders |
+//! | `locate` | which course a command stands in, and its files and commands as named there |
+//! | `building` | how far a grading has got (cargo's units, the graders), for a screen |
 //! | `source_rule` | what a copy may not contain, on a parsed syntax tree |
 //! | `harness` | one grading: the rule, the build, one process per grader, verdicts from structure |
 //! | `progress` | hint rungs used and first passes, in the course's own `target/` |
@@ -20,12 +22,14 @@
 //! | `gradebook` | a class graded: every row, within time limits, CSV and Gradescope |
 //! | `diagnose` | a folder of wrong answers graded, to measure the diagnoses |
 
+pub mod building;
 mod catalogue;
 pub mod diagnose;
 pub mod export;
 pub mod gradebook;
 pub mod harness;
 mod hints;
+mod locate;
 mod probe;
 mod progress;
 pub mod source_rule;
@@ -38,6 +42,7 @@ pub use export::{
 };
 pub use harness::{Located, Options, State, Status, grade};
 pub use hints::{Hint, next_hint};
+pub use locate::{Chosen, Course, find_course, is_course};
 pub use probe::{ProbeSpec, Probed, parse_probe, probe};
 pub use progress::{
     Progress, load_progress, progress_path, record_passes, record_passes_now, save_progress,

@@ -1,0 +1,392 @@
+//! The tables of the TeX reader: the commands that are one symbol, the
+//! accents, the fonts and the scripts that Unicode has. A table is long
+//! because TeX has many symbols; each entry is one line.
+
+/// A TeX accent command and the combining character it becomes.
+pub(super) fn accent(name: &str) -> Option<char> {
+    Some(match name {
+        "dot" => '\u{307}',
+        "ddot" => '\u{308}',
+        "dddot" => '\u{20DB}',
+        "hat" | "widehat" => '\u{302}',
+        "vec" => '\u{20D7}',
+        "bar" | "overline" => '\u{304}',
+        "tilde" | "widetilde" => '\u{303}',
+        "check" => '\u{30C}',
+        _ => return None,
+    })
+}
+
+pub(super) fn symbol(name: &str) -> Option<&'static str> {
+    Some(match name {
+        // Greek, lower case.
+        "alpha" => "α",
+        "beta" => "β",
+        "gamma" => "γ",
+        "delta" => "δ",
+        "epsilon" => "ϵ",
+        "varepsilon" => "ε",
+        "zeta" => "ζ",
+        "eta" => "η",
+        "theta" => "θ",
+        "vartheta" => "ϑ",
+        "iota" => "ι",
+        "kappa" => "κ",
+        "lambda" => "λ",
+        "mu" => "μ",
+        "nu" => "ν",
+        "xi" => "ξ",
+        "pi" => "π",
+        "varpi" => "ϖ",
+        "rho" => "ρ",
+        "varrho" => "ϱ",
+        "sigma" => "σ",
+        "varsigma" => "ς",
+        "tau" => "τ",
+        "upsilon" => "υ",
+        "phi" => "ϕ",
+        "varphi" => "φ",
+        "chi" => "χ",
+        "psi" => "ψ",
+        "omega" => "ω",
+        // Greek, upper case.
+        "Gamma" => "Γ",
+        "Delta" => "Δ",
+        "Theta" => "Θ",
+        "Lambda" => "Λ",
+        "Xi" => "Ξ",
+        "Pi" => "Π",
+        "Sigma" => "Σ",
+        "Upsilon" => "Υ",
+        "Phi" => "Φ",
+        "Psi" => "Ψ",
+        "Omega" => "Ω",
+        // Operators and relations.
+        "times" => "×",
+        "cdot" => "·",
+        "cdots" => "⋯",
+        "ldots" | "dots" | "dotsc" | "dotsb" => "…",
+        "pm" => "±",
+        "mp" => "∓",
+        "div" => "÷",
+        "ast" => "∗",
+        "star" => "⋆",
+        "circ" => "∘",
+        "bullet" => "∙",
+        "wedge" => "∧",
+        "otimes" => "⊗",
+        "oplus" => "⊕",
+        "le" | "leq" => "≤",
+        "ge" | "geq" => "≥",
+        "ne" | "neq" => "≠",
+        "ll" => "≪",
+        "gg" => "≫",
+        "approx" => "≈",
+        "simeq" => "≃",
+        "sim" => "∼",
+        "equiv" => "≡",
+        "propto" => "∝",
+        "in" => "∈",
+        "notin" => "∉",
+        "subset" => "⊂",
+        "perp" => "⊥",
+        "parallel" => "∥",
+        "mid" => "∣",
+        "to" | "rightarrow" => "→",
+        "leftarrow" | "gets" => "←",
+        "Rightarrow" | "implies" => "⇒",
+        "Leftarrow" => "⇐",
+        "Leftrightarrow" | "iff" => "⇔",
+        "leftrightarrow" => "↔",
+        "mapsto" => "↦",
+        "longrightarrow" => "⟶",
+        "uparrow" => "↑",
+        "downarrow" => "↓",
+        "infty" => "∞",
+        "partial" => "∂",
+        "nabla" => "∇",
+        "sum" => "Σ",
+        "prod" => "Π",
+        "int" => "∫",
+        "oint" => "∮",
+        "forall" => "∀",
+        "exists" => "∃",
+        "emptyset" => "∅",
+        "hbar" => "ℏ",
+        "ell" => "ℓ",
+        "prime" => "′",
+        "dagger" => "†",
+        "top" => "ᵀ",
+        "angle" => "∠",
+        "langle" => "⟨",
+        "rangle" => "⟩",
+        "lvert" | "rvert" | "vert" => "|",
+        "lVert" | "rVert" | "Vert" => "‖",
+        "lfloor" => "⌊",
+        "rfloor" => "⌋",
+        "lceil" => "⌈",
+        "rceil" => "⌉",
+        "backslash" => "\u{2216}",
+        // Named functions, upright in TeX, plain here.
+        "sin" => "sin",
+        "cos" => "cos",
+        "tan" => "tan",
+        "cot" => "cot",
+        "sinh" => "sinh",
+        "cosh" => "cosh",
+        "tanh" => "tanh",
+        "arcsin" => "arcsin",
+        "arccos" => "arccos",
+        "arctan" => "arctan",
+        "exp" => "exp",
+        "ln" => "ln",
+        "log" => "log",
+        "det" => "det",
+        "dim" => "dim",
+        "max" => "max",
+        "min" => "min",
+        "sup" => "sup",
+        "inf" => "inf",
+        "lim" => "lim",
+        "sgn" => "sgn",
+        "Re" => "Re",
+        "Im" => "Im",
+        "tr" => "tr",
+        // Spacing.
+        "quad" => "  ",
+        "qquad" => "    ",
+        "," | ":" | ";" | " " | "enspace" | "thinspace" => " ",
+        "!" | "displaystyle" | "textstyle" | "limits" | "nolimits" | "nonumber" | "notag" => "",
+        // Escaped characters.
+        "{" | "lbrace" => "{",
+        "}" | "rbrace" => "}",
+        "|" => "‖",
+        "%" => "%",
+        "$" => "$",
+        "#" => "#",
+        "&" => "&",
+        "_" => "_",
+        _ => return None,
+    })
+}
+
+/// The fonts whose argument keeps its letters (bold, upright and the like
+/// cannot be shown in every terminal font, and the book's prose names the
+/// vectors in words anyway).
+pub(super) fn is_plain_font(name: &str) -> bool {
+    matches!(
+        name,
+        "mathbf"
+            | "boldsymbol"
+            | "bm"
+            | "mathrm"
+            | "mathit"
+            | "mathsf"
+            | "mathtt"
+            | "operatorname"
+            | "mathnormal"
+            | "pmb"
+    )
+}
+
+pub(super) fn is_text(name: &str) -> bool {
+    matches!(
+        name,
+        "text" | "textrm" | "textit" | "textbf" | "mbox" | "hbox"
+    )
+}
+
+pub(super) fn is_sizing(name: &str) -> bool {
+    matches!(
+        name,
+        "left"
+            | "right"
+            | "big"
+            | "Big"
+            | "bigg"
+            | "Bigg"
+            | "bigl"
+            | "bigr"
+            | "Bigl"
+            | "Bigr"
+            | "biggl"
+            | "biggr"
+            | "middle"
+    )
+}
+
+pub(super) fn fraktur(c: char) -> Option<char> {
+    let table = [
+        ('a', '𝔞'),
+        ('b', '𝔟'),
+        ('c', '𝔠'),
+        ('d', '𝔡'),
+        ('e', '𝔢'),
+        ('f', '𝔣'),
+        ('g', '𝔤'),
+        ('h', '𝔥'),
+        ('i', '𝔦'),
+        ('j', '𝔧'),
+        ('k', '𝔨'),
+        ('l', '𝔩'),
+        ('m', '𝔪'),
+        ('n', '𝔫'),
+        ('o', '𝔬'),
+        ('p', '𝔭'),
+        ('q', '𝔮'),
+        ('r', '𝔯'),
+        ('s', '𝔰'),
+        ('t', '𝔱'),
+        ('u', '𝔲'),
+        ('v', '𝔳'),
+        ('w', '𝔴'),
+        ('x', '𝔵'),
+        ('y', '𝔶'),
+        ('z', '𝔷'),
+    ];
+    table.iter().find(|(k, _)| *k == c).map(|(_, v)| *v)
+}
+
+pub(super) fn calligraphic(c: char) -> Option<char> {
+    Some(match c {
+        'A' => '𝒜',
+        'B' => 'ℬ',
+        'C' => '𝒞',
+        'D' => '𝒟',
+        'E' => 'ℰ',
+        'F' => 'ℱ',
+        'H' => 'ℋ',
+        'L' => 'ℒ',
+        'M' => 'ℳ',
+        'N' => '𝒩',
+        'O' => '𝒪',
+        'P' => '𝒫',
+        'R' => 'ℛ',
+        'S' => '𝒮',
+        'T' => '𝒯',
+        _ => return None,
+    })
+}
+
+pub fn superscript(c: char) -> Option<char> {
+    Some(match c {
+        '0' => '⁰',
+        '1' => '¹',
+        '2' => '²',
+        '3' => '³',
+        '4' => '⁴',
+        '5' => '⁵',
+        '6' => '⁶',
+        '7' => '⁷',
+        '8' => '⁸',
+        '9' => '⁹',
+        '+' => '⁺',
+        '-' | '−' => '⁻',
+        '=' => '⁼',
+        '(' => '⁽',
+        ')' => '⁾',
+        'a' => 'ᵃ',
+        'b' => 'ᵇ',
+        'c' => 'ᶜ',
+        'd' => 'ᵈ',
+        'e' => 'ᵉ',
+        'f' => 'ᶠ',
+        'g' => 'ᵍ',
+        'h' => 'ʰ',
+        'i' => 'ⁱ',
+        'j' => 'ʲ',
+        'k' => 'ᵏ',
+        'l' => 'ˡ',
+        'm' => 'ᵐ',
+        'n' => 'ⁿ',
+        'o' => 'ᵒ',
+        'p' => 'ᵖ',
+        'r' => 'ʳ',
+        's' => 'ˢ',
+        't' => 'ᵗ',
+        'u' => 'ᵘ',
+        'v' => 'ᵛ',
+        'w' => 'ʷ',
+        'x' => 'ˣ',
+        'y' => 'ʸ',
+        'z' => 'ᶻ',
+        'T' => 'ᵀ',
+        'ᵀ' => 'ᵀ',
+        'A' => 'ᴬ',
+        'B' => 'ᴮ',
+        'D' => 'ᴰ',
+        'E' => 'ᴱ',
+        'G' => 'ᴳ',
+        'H' => 'ᴴ',
+        'I' => 'ᴵ',
+        'J' => 'ᴶ',
+        'K' => 'ᴷ',
+        'L' => 'ᴸ',
+        'M' => 'ᴹ',
+        'N' => 'ᴺ',
+        'O' => 'ᴼ',
+        'P' => 'ᴾ',
+        'R' => 'ᴿ',
+        'U' => 'ᵁ',
+        'V' => 'ⱽ',
+        'W' => 'ᵂ',
+        'β' => 'ᵝ',
+        'γ' => 'ᵞ',
+        'δ' => 'ᵟ',
+        'θ' => 'ᶿ',
+        'ϕ' | 'φ' => 'ᵠ',
+        'χ' => 'ᵡ',
+        '′' => '′',
+        '*' | '∗' => '*',
+        _ => return None,
+    })
+}
+
+pub fn subscript(c: char) -> Option<char> {
+    Some(match c {
+        '0' => '₀',
+        '1' => '₁',
+        '2' => '₂',
+        '3' => '₃',
+        '4' => '₄',
+        '5' => '₅',
+        '6' => '₆',
+        '7' => '₇',
+        '8' => '₈',
+        '9' => '₉',
+        '+' => '₊',
+        '-' | '−' => '₋',
+        '=' => '₌',
+        '(' => '₍',
+        ')' => '₎',
+        'a' => 'ₐ',
+        'e' => 'ₑ',
+        'h' => 'ₕ',
+        'i' => 'ᵢ',
+        'j' => 'ⱼ',
+        'k' => 'ₖ',
+        'l' => 'ₗ',
+        'm' => 'ₘ',
+        'n' => 'ₙ',
+        'o' => 'ₒ',
+        'p' => 'ₚ',
+        'r' => 'ᵣ',
+        's' => 'ₛ',
+        't' => 'ₜ',
+        'u' => 'ᵤ',
+        'v' => 'ᵥ',
+        'x' => 'ₓ',
+        'β' => 'ᵦ',
+        'γ' => 'ᵧ',
+        'ρ' => 'ᵨ',
+        'ϕ' | 'φ' => 'ᵩ',
+        'χ' => 'ᵪ',
+        // Marks that read as subscripts when written after a letter.
+        '⊥' => '⊥',
+        '∥' => '∥',
+        '‖' => '‖',
+        '*' => '*',
+        ',' => ',',
+        _ => return None,
+    })
+}
