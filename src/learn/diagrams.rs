@@ -285,7 +285,11 @@ fn read_picture(path: &Path) -> Result<Picture, DiagramError> {
             if node.attribute("transform").is_some() {
                 continue;
             }
-            let text: String = node.descendants().filter_map(|d| d.text()).collect();
+            let text: String = node
+                .descendants()
+                .filter(|d| d.is_text())
+                .filter_map(|d| d.text())
+                .collect();
             let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
             if text.is_empty() {
                 continue;

@@ -98,21 +98,35 @@ impl Learn {
         }
     }
 
-    /// The assignment a hint is for: the first of this chapter's assignments
-    /// that does not pass yet, else the course's next one.
+    /// The assignment the course panel's diagnosis and `h`'s hint are for:
+    /// the first of this chapter's assignments that fails, else the first of
+    /// them not passing yet, else the course's first failing one, else its
+    /// next one.
     pub fn hint_target(&self) -> Option<&'static course::Assignment> {
         let title = &self.chapters[self.current].title;
-        let passing = |a: &course::Assignment| {
-            self.course.status.as_ref().is_some_and(|s| {
+        let state = |a: &course::Assignment| {
+            self.course.status.as_ref().and_then(|s| {
                 s.states
                     .iter()
-                    .any(|(b, st)| b.function == a.function && *st == State::Passing)
+                    .find(|(b, _)| b.function == a.function)
+                    .map(|(_, st)| st.clone())
             })
         };
-        course::COURSE
-            .iter()
-            .find(|a| title.starts_with(a.chapter) && !passing(a))
-            .or_else(|| course::COURSE.iter().find(|a| !passing(a)))
+        let passing = |a: &course::Assignment| state(a) == Some(State::Passing);
+        let failing = |a: &course::Assignment| {
+            matches!(
+                state(a),
+                Some(State::Failing(_) | State::DoesNotCompile(_) | State::TimedOut(_))
+            )
+        };
+        let here = |a: &&course::Assignment| title.starts_with(a.chapter);
+        let all = || course::COURSE.iter();
+        all()
+            .filter(here)
+            .find(|a| failing(a))
+            .or_else(|| all().filter(here).find(|a| !passing(a)))
+            .or_else(|| all().find(|a| failing(a)))
+            .or_else(|| all().find(|a| !passing(a)))
     }
 
     /// The next hint rung (`h`): for [`Self::hint_target`], kept in the

@@ -80,23 +80,40 @@ pub fn draw(frame: &mut Frame, learn: &Learn) {
     }
 }
 
-/// The course's word in the header: "course 3 of 22 ▰▱…", or what it is
-/// doing.
+/// The course's cell in the header: "course 3 of 22 ▰▱…", or how far its
+/// grading has got; short forms keep it on a narrow screen.
 fn course_cell(learn: &Learn) -> Option<Cell> {
     let panel = learn.course_panel();
-    let long = match (panel.status(), panel.grading(), panel.error()) {
-        (_, _, Some(_)) => "course: cannot grade".to_string(),
-        (Some(s), grading, _) => format!(
-            "course {} of {} {}{}",
-            s.passing(),
-            s.states.len(),
-            super::progress_bar(s.passing(), s.states.len(), 10),
-            if grading.is_some() { " grading…" } else { "" }
-        ),
-        (None, Some(g), _) => format!("course: grading {}", g.describe()),
+    let styled = |s: String| vec![Span::styled(s, theme::key())];
+    let clock = |g: &spintop_course::building::Snapshot| {
+        let s = g.elapsed.as_secs();
+        format!("{}:{:02}", s / 60, s % 60)
+    };
+    let (long, short) = match (panel.status(), panel.grading(), panel.error()) {
+        (_, _, Some(_)) => ("course: cannot grade".to_string(), "course ✗".to_string()),
+        (Some(s), grading, _) => {
+            let (k, n) = (s.passing(), s.states.len());
+            let busy = grading
+                .as_ref()
+                .map_or(String::new(), |g| format!(" grading {}", clock(g)));
+            (
+                format!("course {k} of {n} {}{busy}", super::progress_bar(k, n, 10)),
+                format!("course {k}/{n}{busy}"),
+            )
+        }
+        (None, Some(g), _) => {
+            let what = match g.units {
+                Some((done, total)) => format!("compiling {done} of {total}, "),
+                None => String::new(),
+            };
+            (
+                format!("course: grading, {what}{}", clock(&g)),
+                format!("grading {}", clock(&g)),
+            )
+        }
         (None, None, None) => return None,
     };
-    Some(Cell::or(vec![Span::styled(long, theme::key())], Vec::new()))
+    Some(Cell::or(styled(long), styled(short)))
 }
 
 fn draw_header(frame: &mut Frame, area: Rect, learn: &Learn) {
@@ -106,18 +123,19 @@ fn draw_header(frame: &mut Frame, area: Rect, learn: &Learn) {
     let mut cells = vec![
         Cell::fixed(vec![Span::styled(" spintop learn ", theme::status(false))]),
         Cell::fixed(vec![Span::styled(chapter.title.clone(), theme::title())]),
-        Cell::or(
-            vec![Span::styled(
-                format!("chapter {} of {n}, {seen} opened", learn.current() + 1),
-                theme::label(),
-            )],
-            vec![Span::styled(
-                format!("{}/{n}", learn.current() + 1),
-                theme::label(),
-            )],
-        ),
     ];
+    // The course before the chapter's count: the count shortens first.
     cells.extend(course_cell(learn));
+    cells.push(Cell::or(
+        vec![Span::styled(
+            format!("chapter {} of {n}, {seen} opened", learn.current() + 1),
+            theme::label(),
+        )],
+        vec![Span::styled(
+            format!("{}/{n}", learn.current() + 1),
+            theme::label(),
+        )],
+    ));
     frame.render_widget(Paragraph::new(fit_cells(cells, area.width)), area);
 }
 

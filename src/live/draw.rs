@@ -77,9 +77,18 @@ fn draw_column(
     if column.stand_in().is_some() {
         marks.push(Span::styled("│ = reduced here ", theme::info()));
     }
+    let short_title = Span::raw(format!(" {name} {equations} ")).width();
     if let Some((at, n)) = which {
+        // The long form where it fits beside the short title, else "1/2 v▸".
+        let long = format!("│ model {} of {n} ({next}: next) ", at + 1);
+        let fits = short_title + width(&marks) + Span::raw(long.as_str()).width()
+            <= usize::from(area.width.saturating_sub(4));
         marks.push(Span::styled(
-            format!("│ model {} of {n} ({next}: next) ", at + 1),
+            if fits {
+                long
+            } else {
+                format!("│ {}/{n} {next}▸ ", at + 1)
+            },
             theme::key(),
         ));
     }

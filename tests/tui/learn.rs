@@ -14,14 +14,14 @@ use spintop_app::learn::scene::Spec;
 use spintop_app::learn::{Command, Experiment, Learn, Mode, find_chapter};
 use std::path::{Path, PathBuf};
 
-fn book() -> PathBuf {
+pub(super) fn book() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("book")
         .join("src")
 }
 
 /// Draw at `width`×`height`, as the terminal loop does: the size first.
-fn draw(learn: &mut Learn, width: u16, height: u16) -> String {
+pub(super) fn draw(learn: &mut Learn, width: u16, height: u16) -> String {
     if learn.size() != (width, height) {
         learn.apply(Command::Resize(width, height));
     }
@@ -32,12 +32,12 @@ fn draw(learn: &mut Learn, width: u16, height: u16) -> String {
     terminal.backend().to_string()
 }
 
-fn key(code: KeyCode) -> KeyEvent {
+pub(super) fn key(code: KeyCode) -> KeyEvent {
     KeyEvent::new(code, KeyModifiers::NONE)
 }
 
 /// A key, as the terminal loop applies it.
-fn press(learn: &mut Learn, code: KeyCode) {
+pub(super) fn press(learn: &mut Learn, code: KeyCode) {
     if let Some(command) = learn.command_for(&Event::Key(key(code))) {
         learn.apply(command);
     }

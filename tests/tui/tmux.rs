@@ -21,16 +21,16 @@ use std::thread::sleep;
 use std::time::{Duration, Instant};
 
 /// A private tmux server (its own socket), killed when dropped.
-struct Tmux {
-    socket: String,
+pub(super) struct Tmux {
+    pub(super) socket: String,
     /// The socket file, removed when dropped (tmux leaves it behind).
     socket_path: Option<String>,
     /// Where the pane's shell writes the binary's exit status.
-    status_file: std::path::PathBuf,
+    pub(super) status_file: std::path::PathBuf,
 }
 
 impl Tmux {
-    fn run(&self, args: &[&str]) -> Output {
+    pub(super) fn run(&self, args: &[&str]) -> Output {
         Command::new("tmux")
             .arg("-L")
             .arg(&self.socket)
@@ -39,7 +39,7 @@ impl Tmux {
             .expect("tmux runs")
     }
 
-    fn ok(&self, args: &[&str]) {
+    pub(super) fn ok(&self, args: &[&str]) {
         let out = self.run(args);
         assert!(
             out.status.success(),
@@ -48,22 +48,27 @@ impl Tmux {
         );
     }
 
-    fn capture(&self) -> String {
+    pub(super) fn capture(&self) -> String {
         String::from_utf8_lossy(&self.run(&["capture-pane", "-p", "-t", "spintop"]).stdout)
             .into_owned()
     }
 
-    fn format(&self, format: &str) -> String {
+    pub(super) fn format(&self, format: &str) -> String {
         let out = self.run(&["display-message", "-p", "-t", "spintop", format]);
         String::from_utf8_lossy(&out.stdout).trim().to_owned()
     }
 
-    fn keys(&self, keys: &str) {
+    pub(super) fn keys(&self, keys: &str) {
         self.ok(&["send-keys", "-t", "spintop", keys]);
     }
 
     /// Poll the screen until `ready` holds, or fail after `limit`.
-    fn wait_for(&self, what: &str, limit: Duration, ready: impl Fn(&str) -> bool) -> String {
+    pub(super) fn wait_for(
+        &self,
+        what: &str,
+        limit: Duration,
+        ready: impl Fn(&str) -> bool,
+    ) -> String {
         let start = Instant::now();
         loop {
             let screen = self.capture();
@@ -90,7 +95,7 @@ impl Drop for Tmux {
     }
 }
 
-fn tmux_available() -> bool {
+pub(super) fn tmux_available() -> bool {
     Command::new("tmux")
         .arg("-V")
         .output()
@@ -98,13 +103,13 @@ fn tmux_available() -> bool {
 }
 
 /// The model time in the header, `t = 12.30τ`.
-fn header_time(screen: &str) -> Option<f64> {
+pub(super) fn header_time(screen: &str) -> Option<f64> {
     // The clock reads in τ (symmetric top) or u (a general top, κ = 1).
     let rest = &screen[screen.find("t = ")? + 4..];
     rest[..rest.find(['τ', 'u'])?].trim().parse().ok()
 }
 
-fn braille(screen: &str) -> usize {
+pub(super) fn braille(screen: &str) -> usize {
     screen
         .chars()
         .filter(|c| ('\u{2801}'..='\u{28FF}').contains(c))
@@ -113,17 +118,17 @@ fn braille(screen: &str) -> usize {
 
 /// Start `spintop ARGS` in a private tmux server at 120×40; `None` (after
 /// saying so) when tmux is missing outside CI.
-fn launch(tag: &str, args: &str) -> Option<Tmux> {
+pub(super) fn launch(tag: &str, args: &str) -> Option<Tmux> {
     launch_with(tag, "", args)
 }
 
 /// [`launch`] with environment variables (`NAME='value' …`) for the binary.
-fn launch_with(tag: &str, env: &str, args: &str) -> Option<Tmux> {
+pub(super) fn launch_with(tag: &str, env: &str, args: &str) -> Option<Tmux> {
     launch_sized(tag, env, args, (120, 40))
 }
 
 /// [`launch_with`] in a terminal of `size` (columns, rows).
-fn launch_sized(tag: &str, env: &str, args: &str, size: (u16, u16)) -> Option<Tmux> {
+pub(super) fn launch_sized(tag: &str, env: &str, args: &str, size: (u16, u16)) -> Option<Tmux> {
     if !tmux_available() {
         if std::env::var("CI").is_ok_and(|v| !matches!(v.as_str(), "" | "0" | "false")) {
             panic!("CI is set but tmux is missing: .ci/run installs it with apt-get");
@@ -181,6 +186,7 @@ fn launch_sized(tag: &str, env: &str, args: &str, size: (u16, u16)) -> Option<Tm
 }
 
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn the_live_view_runs_pauses_steps_and_quits_in_a_real_terminal() {
     let Some(tmux) = launch("plain", "") else {
         return;
@@ -240,6 +246,7 @@ fn the_live_view_runs_pauses_steps_and_quits_in_a_real_terminal() {
 /// I₃/I₁ and Ω₀ in the header, its name in the message line; `q` ends it with
 /// exit status 0.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn the_live_view_opens_a_top_scene() {
     let Some(tmux) = launch("scene", "tui reduced-strong-spin") else {
         return;
@@ -258,7 +265,7 @@ fn the_live_view_opens_a_top_scene() {
 }
 
 /// Wait for the binary's exit status (written by the pane's shell).
-fn exit_status(tmux: &Tmux, limit: Duration) -> String {
+pub(super) fn exit_status(tmux: &Tmux, limit: Duration) -> String {
     let start = Instant::now();
     loop {
         match std::fs::read_to_string(&tmux.status_file) {
@@ -278,6 +285,7 @@ fn exit_status(tmux: &Tmux, limit: Duration) -> String {
 /// space and the numbers; `]` is refused with a reason while the clock keeps
 /// running; `q` ends it with exit status 0 and the terminal restored.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn the_live_view_opens_the_asymmetric_top_scene() {
     let Some(tmux) = launch_sized("general", "", "tui asymmetric-top", (300, 45)) else {
         return;
@@ -338,6 +346,7 @@ fn the_live_view_opens_the_asymmetric_top_scene() {
 /// scene (its parameters change on screen), and `q` ends it with exit status
 /// 0, the terminal restored, and the progress written where it was told to.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn spintop_learn_shows_a_chapter_beside_its_scene_and_runs_its_experiments() {
     let progress = std::env::temp_dir().join(format!("spintop-learn-{}.json", std::process::id()));
     let _ = std::fs::remove_file(&progress);
@@ -380,7 +389,7 @@ fn spintop_learn_shows_a_chapter_beside_its_scene_and_runs_its_experiments() {
 }
 
 /// The pid of the program running in the pane (the shell's child).
-fn program_pid(tmux: &Tmux, program: &str, limit: Duration) -> String {
+pub(super) fn program_pid(tmux: &Tmux, program: &str, limit: Duration) -> String {
     let shell = tmux.format("#{pane_pid}");
     let start = Instant::now();
     loop {
@@ -411,6 +420,7 @@ fn program_pid(tmux: &Tmux, program: &str, limit: Duration) -> String {
 /// `stty` on the pane's own tty after the program ended). The exit status is
 /// 128 + the signal's number, as for any process a signal stopped.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn a_signal_restores_the_terminal() {
     for (signal, number) in [("TERM", 15), ("INT", 2), ("HUP", 1), ("QUIT", 3)] {
         for (args, ready) in [
@@ -457,6 +467,7 @@ fn a_signal_restores_the_terminal() {
 /// `TERM=dumb` cannot draw the full-screen view: on a real terminal with that
 /// TERM, both views refuse with exit code 2 instead of drawing escape codes.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn term_dumb_is_refused_like_a_missing_terminal() {
     for args in ["", "learn --no-grading"] {
         let Some(tmux) = launch_with("dumb", "TERM=dumb", args) else {
@@ -475,6 +486,7 @@ fn term_dumb_is_refused_like_a_missing_terminal() {
 /// On the "please enlarge" screen nothing is visible, so keys other than quit
 /// are ignored: a space pressed there must not pause the models unseen.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn keys_are_ignored_while_the_screen_is_too_small() {
     let Some(tmux) = launch("small", "") else {
         return;
@@ -501,6 +513,7 @@ fn keys_are_ignored_while_the_screen_is_too_small() {
 /// terminal. (The hang-up signal arrives, and the event reader would spin on
 /// end-of-file for ever; the signal's watchdog ends the process.)
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn the_views_end_when_their_terminal_goes_away() {
     for args in ["", "learn --chapter 3 --no-grading"] {
         let Some(tmux) = launch_with("gone", "SPINTOP_LEARN_PROGRESS=/dev/null", args) else {
@@ -528,7 +541,7 @@ fn the_views_end_when_their_terminal_goes_away() {
 
 /// How long `q` took to end the program: from the key to the exit status
 /// the pane's shell writes.
-fn quit_time(tmux: &Tmux) -> Duration {
+pub(super) fn quit_time(tmux: &Tmux) -> Duration {
     let start = Instant::now();
     tmux.keys("q");
     let code = exit_status(tmux, Duration::from_secs(30));
@@ -544,6 +557,7 @@ fn quit_time(tmux: &Tmux) -> Duration {
 /// top's three columns, the physical solution among them, at warp 1000)
 /// still quits within a second.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn q_is_answered_within_a_second_at_any_parameters() {
     for (tag, args) in [("fast1", ""), ("fast2", "tui --warp 1000 --method radau5")] {
         let Some(tmux) = launch_sized(tag, "", args, (80, 24)) else {
@@ -561,6 +575,10 @@ fn q_is_answered_within_a_second_at_any_parameters() {
             screen.contains("steps a second") && screen.contains("costs less"),
             "the refusal says why and what costs less:\n{screen}"
         );
+        // The field stays open to correct the number; Esc leaves it (q
+        // there is a character, refused, never quit).
+        tmux.keys("Escape");
+        tmux.wait_for("the edit cancelled", long, |s| s.contains("edit cancelled"));
         let took = quit_time(&tmux);
         assert!(
             took < Duration::from_secs(1),
@@ -584,13 +602,16 @@ fn q_is_answered_within_a_second_at_any_parameters() {
 }
 
 /// The first line of a chapter's text on a `learn` screen (the line after
-/// the frame's top border).
-fn first_text_line(screen: &str) -> String {
-    screen
-        .lines()
-        .nth(2)
+/// the frame's top border, inside the text's frame: the scene beside it is
+/// left out).
+pub(super) fn first_text_line(screen: &str) -> String {
+    let row = screen.lines().nth(2).unwrap_or_default();
+    let inside = row.strip_prefix('│').unwrap_or(row);
+    inside
+        .split(['│', '┃'])
+        .next()
         .unwrap_or_default()
-        .trim_matches(|c: char| c == '│' || c == '┃' || c.is_whitespace())
+        .trim()
         .to_string()
 }
 
@@ -598,6 +619,7 @@ fn first_text_line(screen: &str) -> String {
 /// its end), highlights it and puts it on the screen; `n` goes on to the next
 /// match and `N` back.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn slash_finds_a_word_deep_in_a_chapter() {
     let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
     let Some(tmux) = launch_sized("search", env, "learn --chapter 2 --no-grading", (80, 24)) else {
@@ -623,6 +645,7 @@ fn slash_finds_a_word_deep_in_a_chapter() {
 /// A chapter reopens where the reader left it: in the session (→ then ←)
 /// and in the next session (the position is kept in the progress file).
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn a_chapter_reopens_where_it_was_left() {
     let progress =
         std::env::temp_dir().join(format!("spintop-learn-pos-{}.json", std::process::id()));
@@ -672,11 +695,12 @@ fn a_chapter_reopens_where_it_was_left() {
     let _ = std::fs::remove_file(&progress);
 }
 
-/// Tab at 80×24 shows the whole scene: Section 5's two models side by side
+/// `s` at 80×24 shows the whole scene: Section 5's two models side by side
 /// (the reduced one included, which used to be dropped), and Section 4.2's
 /// reduced top.
 #[test]
-fn tab_at_80x24_shows_the_reduced_model() {
+#[ignore = "end-to-end: tmux"]
+fn s_at_80x24_shows_the_reduced_model() {
     let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
     for chapter in ["5", "4.2"] {
         let Some(tmux) = launch_sized(
@@ -691,7 +715,7 @@ fn tab_at_80x24_shows_the_reduced_model() {
         tmux.wait_for("the chapter", long, |s| {
             s.contains(&format!("Section {chapter}"))
         });
-        tmux.keys("Tab");
+        tmux.keys("s");
         let screen = tmux.wait_for("the scene, drawn", long, |s| {
             s.contains("reduced (4.12)–(4.14)") && braille(s) > 20
         });
@@ -708,6 +732,7 @@ fn tab_at_80x24_shows_the_reduced_model() {
 /// appendix shows the shell's delay equation against the point charge; and
 /// neither shows the spinning top.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn sections_2_and_a_show_their_own_scenes() {
     let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
     for (chapter, texts) in [
@@ -744,6 +769,7 @@ fn sections_2_and_a_show_their_own_scenes() {
 /// the view holds for the model shown, formatted as the view formats it,
 /// must stand on the screen as a whole word.
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn an_80x24_asymmetric_screen_has_every_number_whole() {
     use spintop_app::live::widgets::fmt_num;
     let Some(tmux) = launch_sized("whole", "", "tui asymmetric-top", (80, 24)) else {
@@ -801,6 +827,7 @@ fn an_80x24_asymmetric_screen_has_every_number_whole() {
 /// between two tokens, never inside a name or a number (Section 2's long
 /// `use` line and assertion, at 80×24).
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn no_code_line_breaks_inside_a_token() {
     let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
     let Some(tmux) = launch_sized("wrap", env, "learn --chapter 2 --no-grading", (80, 24)) else {
@@ -850,6 +877,7 @@ fn no_code_line_breaks_inside_a_token() {
 /// just before a frame while a scene was shown (that race is pinned
 /// deterministically by `learn::a_frame_of_a_new_size_draws_before_its_resize_event_arrives`).
 #[test]
+#[ignore = "end-to-end: tmux"]
 fn random_keys_and_resizes_crash_neither_view() {
     for (tag, args) in [
         ("fuzz-learn", "learn --chapter 4.2 --no-grading"),

@@ -264,9 +264,9 @@ pub fn course_lines(learn: &Learn, width: u16) -> Vec<Line<'static>> {
             };
             let file = panel.course().map_or(a.file.to_string(), |c| c.file(a));
             let row = if wide {
-                format!("{:<14} {:<24} {:<26} ", a.equation, a.function, file)
+                format!("{:<14} {:<25} {:<26} ", a.equation, a.function, file)
             } else {
-                format!("{:<10} {:<22} ", a.equation, a.function)
+                format!("{:<13} {:<25} ", a.equation, a.function)
             };
             lines.push(Line::from(vec![
                 Span::styled(format!("{here}{m} "), style),
