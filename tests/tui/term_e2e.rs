@@ -244,3 +244,33 @@ fn ctrl_z_suspends_to_the_shell_and_fg_comes_back() {
     wait("the prompt", &|s| !s.contains("? help"));
     let _ = tmux(&["kill-server"]);
 }
+
+/// A place that cannot be saved is said: on the screen as soon as a write
+/// fails, and again when the session ends (exit status 1), never dropped in
+/// silence.
+#[test]
+#[ignore = "end-to-end: tmux"]
+fn a_place_that_cannot_be_saved_is_said_on_screen_and_at_the_end() {
+    // A path under a regular file: no folder can be made there.
+    let blocker =
+        std::env::temp_dir().join(format!("spintop-learn-blocker-{}", std::process::id()));
+    std::fs::write(&blocker, b"not a folder").unwrap();
+    let env = format!(
+        "SPINTOP_LEARN_PROGRESS='{}'",
+        blocker.join("learn.json").display()
+    );
+    let Some(tmux) = launch_sized("unsaved", &env, "learn --chapter 4.1 --no-grading", (80, 24))
+    else {
+        return;
+    };
+    let long = Duration::from_secs(20);
+    tmux.wait_for("the failure on screen", long, |s| {
+        s.contains("could not be saved")
+    });
+    tmux.keys("q");
+    assert_eq!(exit_status(&tmux, long), "1", "a failed save is an error");
+    let after = tmux.capture();
+    assert!(after.contains("could not be saved"), "said at the end:\n{after}");
+    drop(tmux);
+    let _ = std::fs::remove_file(&blocker);
+}

@@ -228,12 +228,13 @@ cargo test --test ch2          # grade one chapter's assignments
 SPINTOP_SEED=123 cargo test    # the inputs of a failure again (its report gives the seed)
 ```
 
-With spintop installed, `spintop course --course .` lists the assignments in
-course order with their state and what to do next (it also checks the source
-rule, as the instructor's grading does: your files may use `spintop::math`
-and `spintop::assignment`, and nothing that reads files, the environment or
-other programs), and `spintop learn --course .` opens the book in the
-terminal and re-grades on every save.
+With spintop installed, `spintop course` run in this folder (or any folder
+in it: it finds the course it stands in, as cargo finds its manifest) lists
+the assignments in course order with their state and what to do next (it
+also checks the source rule, as the instructor's grading does: your files
+may use `spintop::math` and `spintop::assignment`, and nothing that reads
+files, the environment or other programs), and `spintop learn` opens the
+book in the terminal beside this copy's grades, re-grading on every save.
 ";
 
 /// The largest file a carried crate may hold (its sources and data are a few
