@@ -26,14 +26,26 @@ fn dz(s: &ShellSample) -> f64 {
     s.z_minus_z_al[0].hypot(s.z_minus_z_al[1])
 }
 
-/// Print the lesson to `out`.
+/// Print the lesson to `out`: its six parts in order.
 pub fn run(out: &mut dyn Write) -> io::Result<()> {
     writeln!(out, "Appendix: the charge as a small shell")?;
     writeln!(
         out,
         "Units: m = m0 + m_em = 1, k = 1; m0 Z''(t) + Z(t) = -m_em Z''(t - delay), m_em = tau0/delay\n"
     )?;
+    regimes(out)?;
+    exact_mode(out)?;
+    // Parts 3 and 4 read the same runs: tau0 = 1e-3, up to t = 20, three delays.
+    let (tau0, t) = (1e-3, 20.0);
+    let deltas = [0.1, 0.03, 0.01];
+    convergence(out, tau0, t, &deltas)?;
+    balance(out, tau0, t, &deltas)?;
+    growth(out)?;
+    formal_limit(out)
+}
 
+/// Part 1: the three regimes, read off the characteristic roots.
+fn regimes(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: regimes
     writeln!(out, "1. Three regimes, read off the characteristic roots")?;
     writeln!(
@@ -70,7 +82,11 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         m.stability_threshold()
     )?;
     // ANCHOR_END: regimes
+    Ok(())
+}
 
+/// Part 2: an exact mode as history stays exact.
+fn exact_mode(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: exact_mode
     writeln!(
         out,
@@ -107,9 +123,13 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         }
     )?;
     // ANCHOR_END: exact_mode
+    Ok(())
+}
 
+/// Part 3: the shell converges to Abraham-Lorentz at `t` as the delay
+/// shrinks through `deltas` (Z at order 1, L at order 2).
+fn convergence(out: &mut dyn Write, tau0: f64, t: f64, deltas: &[f64]) -> io::Result<()> {
     // ANCHOR: convergence
-    let (tau0, t) = (1e-3, 20.0);
     writeln!(
         out,
         "\n3. Convergence to Abraham-Lorentz at t = {t}, tau0 = {tau0}"
@@ -118,9 +138,8 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         out,
         "   delay   |Z - Z_AL|   tau0*delay*t/4   |L - L_AL|   2tL(tau0 d^2/12 - 3tau0^2 d/4)   order Z   order L"
     )?;
-    let deltas = [0.1, 0.03, 0.01];
     let mut prev: Option<(f64, f64, f64)> = None;
-    for &d in &deltas {
+    for &d in deltas {
         let s = run_al(tau0, d, &[t])[0];
         let (ez, el) = (dz(&s), (s.l - s.l_al).abs());
         let predicted = 2.0 * t * s.l_al * (tau0 * d * d / 12.0 - 0.75 * tau0 * tau0 * d);
@@ -171,7 +190,11 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         )
     )?;
     // ANCHOR_END: convergence
+    Ok(())
+}
 
+/// Part 4: the angular momentum balance (A.2)-(A.3) at `t`, for each delay.
+fn balance(out: &mut dyn Write, tau0: f64, t: f64, deltas: &[f64]) -> io::Result<()> {
     // ANCHOR: balance
     writeln!(
         out,
@@ -181,7 +204,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         out,
         "   delay     J - J(0)   exact flux - (J - J(0))   paper's (A.2) - (J - J(0))        L - J     tau0 dL/dt"
     )?;
-    for &d in &deltas {
+    for &d in deltas {
         let s = run_al(tau0, d, &[t])[0];
         writeln!(
             out,
@@ -198,7 +221,11 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         )?;
     }
     // ANCHOR_END: balance
+    Ok(())
+}
 
+/// Part 5: an unstable shell, its growth measured against the predicted rate.
+fn growth(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: growth
     let (tau0, delta) = (0.06, 0.1);
     let m = ShellModel::new(tau0, delta).expect("valid");
@@ -254,7 +281,11 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         )
     )?;
     // ANCHOR_END: growth
+    Ok(())
+}
 
+/// Part 6: m held fixed while the shell shrinks: the runaway comes back.
+fn formal_limit(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: formal_limit
     writeln!(
         out,

@@ -42,10 +42,20 @@ fn omega_at(model: Model, omega0: Vec3, times: &[Real]) -> Vec<Vec3> {
         .collect()
 }
 
-/// Print the lesson to `out`.
+/// Print the lesson to `out`: its parts in order.
 pub fn run(out: &mut dyn Write) -> io::Result<()> {
     writeln!(out, "The asymmetric top: beyond Section 4\n")?;
+    reduced_check(out)?;
+    // Every part after the first starts the top at the same Omega0.
+    let omega0 = Vec3::new(0.3, -0.2, 0.1);
+    polhode(out, omega0)?;
+    energy_rise(out, omega0)?;
+    orders(out, omega0)?;
+    end_states(out, omega0)
+}
 
+/// The reduced ALE of any top, on a symmetric one, against (4.12)-(4.14).
+fn reduced_check(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: reduced_check
     // The reduced ALE of any top, on a symmetric one (I1 = I2 = 1, d on the
     // axis, so tau = d^2): it must be (4.12)-(4.14).
@@ -58,10 +68,12 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         out,
         "reduced ALE for any top vs (4.12)-(4.14), I = (1, 1, 0.4), d = (0, 0, 0.5): |difference| = {gap:.1e}"
     )?;
+    Ok(())
+}
 
-    // The free top (a dipole a million times smaller): its polhode, the curve
-    // Omega draws in the body, lies where the energy and |L|^2 ellipsoids meet.
-    let omega0 = Vec3::new(0.3, -0.2, 0.1);
+/// The free top (a dipole a million times smaller): its polhode, the curve
+/// Omega draws in the body, lies where the energy and |L|^2 ellipsoids meet.
+fn polhode(out: &mut dyn Write, omega0: Vec3) -> io::Result<()> {
     let free = chapter_top(1e-6);
     let times: Vec<Real> = (0..=600).map(|k| k as Real * 0.1).collect();
     let path = omega_at(Model::General(free), omega0, &times);
@@ -91,11 +103,16 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
             24
         )
     )?;
+    Ok(())
+}
 
+/// The truncated model (3.3) gains energy for a while: its power changes sign.
+fn energy_rise(out: &mut dyn Write, omega0: Vec3) -> io::Result<()> {
     // ANCHOR: energy_rise
     // The truncated model (3.3) of the chapter's top: its power dE/dt =
     // Omega . I dOmega/dt has no fixed sign.
     let top = chapter_top(1.0);
+    let i = top.inertia();
     let times: Vec<Real> = (0..=4000).map(|k| k as Real * 0.01).collect();
     let path = omega_at(Model::General(top), omega0, &times);
     let power: Vec<(f64, f64)> = times
@@ -142,7 +159,12 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
             24
         )
     )?;
+    Ok(())
+}
 
+/// How far the truncated and the reduced models stand from the physical
+/// solution of (3.4): O(tau) and O(tau^2).
+fn orders(out: &mut dyn Write, omega0: Vec3) -> io::Result<()> {
     // ANCHOR: orders
     // How far the truncated (3.3) and the reduced models stand from the
     // physical solution of (3.4) as tau_f = |d|^2 / min I shrinks (d scaled).
@@ -182,9 +204,14 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         slope(|r| r.1),
         slope(|r| r.2)
     )?;
+    Ok(())
+}
 
-    // The end states: with d along a principal axis, the Schott term spares
-    // the spin about d; with d off the axes, both laws drain the energy.
+/// The end states: with d along a principal axis, the Schott term spares
+/// the spin about d; with d off the axes, both laws drain the energy.
+fn end_states(out: &mut dyn Write, omega0: Vec3) -> io::Result<()> {
+    let i = chapter_top(1.0).inertia();
+    let e0 = energy(&i, &omega0);
     writeln!(
         out,
         "\nenergy left at t = 1000 (E0 = {e0:.4}), I = (1, 2, 2.5), Omega0 = (0.3, -0.2, 0.1):"

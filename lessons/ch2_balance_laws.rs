@@ -17,14 +17,23 @@ use spintop::plot::{Series, chart};
 use spintop::sim::orbit::{Force, OrbitConfig, run_orbit};
 use std::io::{self, Write};
 
-/// Print the lesson to `out`.
+/// Print the lesson to `out`: its four parts in order.
 pub fn run(out: &mut dyn Write) -> io::Result<()> {
     writeln!(out, "Section 2: two laws for the loss of angular momentum")?;
     writeln!(
         out,
         "Units: kappa = 2/(3c^3) = 1 for dipoles; m = k = 1 for orbits\n"
     )?;
+    precessing_dipole(out)?;
+    planar_loop(out)?;
+    coulomb_collapse(out)?;
+    oscillator_roots(out)?;
+    runaway(out)
+}
 
+/// Part 1: a dipole in regular precession, where the Schott term's rate
+/// averages to zero in the lab but not along the dipole.
+fn precessing_dipole(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: precessing
     // A rigid dipole on a cone (theta = 0.5, omega = 1): a top in regular precession.
     let (theta, omega) = (0.5_f64, 1.0_f64);
@@ -67,7 +76,11 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         avg.larmor_axial, avg.torque_axial
     )?;
     // ANCHOR_END: precessing
+    Ok(())
+}
 
+/// Part 2: a planar loop, where the two laws agree on the period average only.
+fn planar_loop(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: loop
     // The loop d = (cos t, b sin t + eps sin 2t, 0): the laws agree on average only.
     let (b, eps) = (0.5, 0.2);
@@ -93,7 +106,11 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         avg.larmor.z, avg.torque.z, avg.schott_rate.z
     )?;
     // ANCHOR_END: loop
+    Ok(())
+}
 
+/// Part 3: the Coulomb collapse, integrated against its averaged closed form.
+fn coulomb_collapse(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: collapse
     // Coulomb, circular start at r0 = 1, tau0 = 1e-3: Landau-Lifshitz integration
     // against the averaged closed form r^3 = r0^3 - 6 tau0 t.
@@ -146,7 +163,12 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         bohr_collapse_time_seconds()
     )?;
     // ANCHOR_END: collapse
+    Ok(())
+}
 
+/// Part 4: the oscillator's characteristic roots under Abraham-Lorentz and
+/// Landau-Lifshitz.
+fn oscillator_roots(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: oscillator_roots
     writeln!(
         out,
@@ -167,7 +189,11 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         )?;
     }
     // ANCHOR_END: oscillator_roots
+    Ok(())
+}
 
+/// Part 4, continued: (2.5) runs away forward in time and is damped backward.
+fn runaway(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: runaway
     let tau0 = 1e-2;
     let osc = ChargeInField::new(Potential::Harmonic, tau0).expect("tau0 > 0");

@@ -15,13 +15,20 @@ use spintop::plot::{Series, chart};
 use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
 use std::io::{self, Write};
 
-/// Print the lesson to `out`.
+/// Print the lesson to `out`: its four parts in order.
 pub fn run(out: &mut dyn Write) -> io::Result<()> {
     writeln!(
         out,
         "Section 3: equations of motion of a free polarized top\n"
     )?;
+    kinematics(out)?;
+    let omega = general_reduces_to_symmetric(out)?;
+    euler_convention(out, &omega)?;
+    orientation_on_so3(out)
+}
 
+/// (3.1): the velocity of a body point, against a central difference.
+fn kinematics(out: &mut dyn Write) -> io::Result<()> {
     // ANCHOR: kinematics
     // (3.1): a body point rho moves with v = O (Omega x rho). Check it against a
     // central difference of r(t) = O(t) rho along the truncated top's motion.
@@ -45,10 +52,16 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         "      central difference of O(t)rho:  |difference| below 1e{}",
         (v - v_fd).norm().log10().ceil()
     )?;
+    Ok(())
+}
 
+/// (3.3) for a general top, fed a symmetric one, against (4.2)-(4.4); returns
+/// the body rate it compared them at.
+fn general_reduces_to_symmetric(out: &mut dyn Write) -> io::Result<Vec3> {
     // ANCHOR: general_reduces_to_symmetric
     // (3.3) for a general top, fed a symmetric one (I2 = I1, d along e3, tau = d^2/I1 = 1),
     // is the symmetric top's (4.2)-(4.4).
+    let top = SymmetricTop::figure();
     let general =
         GeneralTop::new(Vec3::new(1.0, 1.0, 0.4), Vec3::new(0.0, 0.0, 1.0)).expect("a rigid body");
     let w = Vec3::new(0.05, 0.1, 0.2);
@@ -65,7 +78,12 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         "(4.2)-(4.4):                 dOmega/dt = [{:.6e}, {:.6e}, {:.6e}]",
         b.x, b.y, b.z
     )?;
+    Ok(w)
+}
 
+/// (3.5) gives the body rate, not the lab rate; at the pole it has no
+/// answer for the body rate `w`.
+fn euler_convention(out: &mut dyn Write, w: &Vec3) -> io::Result<()> {
     // ANCHOR: euler_convention
     // (3.5) holds for O = Rz(phi) Rx(theta) Rz(psi) with the BODY rate Omega^ = O^T dO/dt.
     let angles = |t: f64| EulerAngles::new(0.2 + 0.3 * t, 1.0 - 0.1 * t, 0.5 + 0.7 * t);
@@ -100,10 +118,13 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
     writeln!(
         out,
         "      at the pole theta = 0, (4.8) has no answer: euler_rates(..) = {:?}",
-        euler_rates(&pole, &w)
+        euler_rates(&pole, w)
     )?;
+    Ok(())
+}
 
-    // Why spintop integrates the orientation on SO(3): it stays a rotation.
+/// Why spintop integrates the orientation on SO(3): it stays a rotation.
+fn orientation_on_so3(out: &mut dyn Write) -> io::Result<()> {
     writeln!(
         out,
         "\nAn asymmetric top, I = (1, 1.6, 0.9), d = (0.3, -0.2, 0.8), Omega0 = (0.1, 0.3, 0.5):"

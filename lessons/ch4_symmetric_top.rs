@@ -16,7 +16,10 @@ use spintop::plot::{Series, chart};
 use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, Simulation};
 use std::io::{self, Write};
 
-/// Print the lesson to `out`.
+/// Each model's Ω by DOP853 at the sample times: truncated, then reduced.
+type Sampled = Vec<Vec<Vec3>>;
+
+/// Print the lesson to `out`: its parts in order.
 pub fn run(out: &mut dyn Write) -> io::Result<()> {
     let top = SymmetricTop::figure();
     let omega0 = Vec3::new(0.0, 0.1, 0.2);
@@ -25,7 +28,20 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         out,
         "I3/I1 = 0.4, Omega0 = (0, 0.1, 0.2) in units of 1/tau\n"
     )?;
+    let (times, sampled) = closed_form_vs_integration(out, top, omega0)?;
+    omega_perp_table(out, top, omega0, &times, &sampled)?;
+    omega_charts(out, top, omega0, &times, &sampled)?;
+    erratum_4_11(out, top, omega0)?;
+    tilt_and_end_states(out, top, omega0)
+}
 
+/// Both models' Ω integrated by DOP853 against their closed forms; returns
+/// the sample times and the integrated Ω at them.
+fn closed_form_vs_integration(
+    out: &mut dyn Write,
+    top: SymmetricTop,
+    omega0: Vec3,
+) -> io::Result<(Vec<f64>, Sampled)> {
     // ANCHOR: closed_form_vs_integration
     // Integrate each model's Omega with DOP853 and compare with its closed form.
     let times: Vec<f64> = (1..=200).map(|i| 5.0 * i as f64).collect();
@@ -63,6 +79,17 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         sampled.push(numeric);
     }
     // ANCHOR_END: closed_form_vs_integration
+    Ok((times, sampled))
+}
+
+/// Ω⊥ at five times: each closed form beside its DOP853 value.
+fn omega_perp_table(
+    out: &mut dyn Write,
+    top: SymmetricTop,
+    omega0: Vec3,
+    times: &[f64],
+    sampled: &Sampled,
+) -> io::Result<()> {
     writeln!(
         out,
         "\nOmega_perp: closed form against DOP853 (the dots in the chart below sit on the lines)"
@@ -83,7 +110,17 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
             sampled[1][i].xy().norm(),
         )?;
     }
+    Ok(())
+}
 
+/// Ω⊥(t), Ω₃(t) and the truncated Ω₁(t): closed forms drawn as lines, DOP853 as dots.
+fn omega_charts(
+    out: &mut dyn Write,
+    top: SymmetricTop,
+    omega0: Vec3,
+    times: &[f64],
+    sampled: &Sampled,
+) -> io::Result<()> {
     let grid: Vec<f64> = (0..=400).map(|i| 2.5 * i as f64).collect();
     let curve = |f: &dyn Fn(f64) -> f64| grid.iter().map(|&t| (t, f(t))).collect::<Vec<_>>();
     writeln!(out)?;
@@ -104,7 +141,7 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
                 Series::dots("DOP853, both models", {
                     let every = |ys: &Vec<Vec3>| {
                         ys.iter()
-                            .zip(&times)
+                            .zip(times)
                             .step_by(8)
                             .map(|(y, &t)| (t, y.xy().norm()))
                             .collect::<Vec<_>>()
@@ -167,7 +204,11 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
             32,
         )
     )?;
+    Ok(())
+}
 
+/// Erratum (4.11): the tilt of the particular solution, as printed and corrected.
+fn erratum_4_11(out: &mut dyn Write, top: SymmetricTop, omega0: Vec3) -> io::Result<()> {
     // ANCHOR: erratum_4_11
     // The particular solution (4.11): L along lab z, so the tilt theta should stay fixed.
     let corrected = precession_tilt(&top, &omega0); // arctan(I1 Omega20 / (I3 Omega30))
@@ -195,7 +236,11 @@ pub fn run(out: &mut dyn Write) -> io::Result<()> {
         out,
         "  printed   arctan(W20/W3~0)       = {printed:.4} rad: theta wanders over [{lo:.4}, {hi:.4}]"
     )?;
+    Ok(())
+}
 
+/// The tilt between the axis and L under both models, and where each ends.
+fn tilt_and_end_states(out: &mut dyn Write, top: SymmetricTop, omega0: Vec3) -> io::Result<()> {
     writeln!(
         out,
         "\nThe tilt between the symmetry axis and L, started from (phi, theta, psi) = (0, 0, 0):"

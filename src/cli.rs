@@ -15,6 +15,7 @@ use spintop::math::Real;
 pub(crate) use spintop::numbers::parse_number;
 use spintop::output::Failure;
 pub use spintop::output::Format;
+use spintop::scene::Refusal;
 use spintop::sim::SimError;
 use std::ffi::OsString;
 use std::io::{self, Write};
@@ -64,15 +65,7 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Integrate or evaluate one model and print samples (table, CSV or JSON).
-    #[command(after_help = "Examples:\n  \
-        spintop simulate --model reduced --t-end 1000 --samples 11\n  \
-        spintop simulate --model truncated --omega 0,0.1,0.2 --times 0,10,100 --format json\n  \
-        spintop simulate --model general --inertia 1,1.5,0.8 --dipole 0.2,0,1 --t-end 100\n  \
-        spintop simulate --model full --method forward --times 0,1,2,5,10   (runs away at t = 3: exit 3)\n\n\
-        Ranges: 0 < --ratio <= 2; each --omega component at most 1e100 (1/tau); --inertia positive \
-        and a rigid body (each at most the sum of the other two); --dipole not zero; times >= 0 and \
-        non-decreasing; 1e-14 <= --rtol < 1; --step > 0. A run over 1e7 steps is refused before it \
-        starts, with the estimate and a cheaper way.")]
+    #[command(after_help = simulate::after_help())]
     Simulate(simulate::SimulateArgs),
     /// Section 2: the two balance laws (2.1), (2.2) and the Schott term (2.4) for a dipole trajectory.
     Balance(balance::BalanceArgs),
@@ -110,15 +103,10 @@ pub(crate) fn parse_list(s: &str) -> Result<Vec<Real>, String> {
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct TimeList(pub(crate) Vec<Real>);
 
-/// Output times of the time-stepping commands: at least one, all >= 0,
-/// non-decreasing (the core steps forward in time only), by the core's one
-/// rule ([`spintop::sim::times::check_times`]).
-pub(crate) fn check_output_times(times: &[Real]) -> Result<(), CliError> {
-    spintop::sim::times::check_times(times, true).map_err(|e| bad(format!("--{e}")))
-}
-
+/// Times as typed (their rule is the core's, [`spintop::sim::times::check_times`],
+/// applied where a scene's `[solve] times` is).
 pub(crate) fn parse_times(s: &str) -> Result<TimeList, String> {
-    parse_list(s).map(TimeList)
+    values::reals(s).map(TimeList)
 }
 
 pub(crate) fn parse_vec3(s: &str) -> Result<[Real; 3], String> {
@@ -128,17 +116,24 @@ pub(crate) fn parse_vec3(s: &str) -> Result<[Real; 3], String> {
 }
 
 /// A failure of the command line, mapped to one line and an exit code.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
 pub enum CliError {
     /// Malformed or unphysical input.
+    #[error("{0}")]
     BadInput(String),
+    /// A question's flags refused by the core, in the words a scene's keys get.
+    #[error(transparent)]
+    Refused(#[from] Refusal),
     /// A run stopped for a numerical or modelling reason; the message carries
     /// the time and what to try.
+    #[error("{0}")]
     Stopped(String),
     /// Writing the output failed.
+    #[error("cannot write output: {0}")]
     Io(io::Error),
-    /// A terminal session was ended by a signal (the terminal was restored).
-    /// (its number and name).
+    /// A terminal session was ended by a signal (the terminal was restored):
+    /// its number and name.
+    #[error("stopped by {1}; the terminal is restored")]
     Signal(i32, String),
 }
 
@@ -146,7 +141,7 @@ impl CliError {
     /// The exit code.
     pub fn exit_code(&self) -> u8 {
         match self {
-            CliError::BadInput(_) => EXIT_BAD_INPUT,
+            CliError::BadInput(_) | CliError::Refused(_) => EXIT_BAD_INPUT,
             CliError::Stopped(_) => EXIT_NUMERICAL,
             CliError::Io(_) => 1,
             // As a shell reports a process a signal stopped: 128 + its number.
@@ -156,11 +151,7 @@ impl CliError {
 
     /// The one-line message.
     pub fn message(&self) -> String {
-        match self {
-            CliError::BadInput(msg) | CliError::Stopped(msg) => msg.clone(),
-            CliError::Io(e) => format!("cannot write output: {e}"),
-            CliError::Signal(_, name) => format!("stopped by {name}; the terminal is restored"),
-        }
+        self.to_string()
     }
 }
 
@@ -255,10 +246,56 @@ pub(crate) fn read_text_file(
     String::from_utf8(bytes).map_err(|_| bad(format!("{shown}: the {what} is not UTF-8 text")))
 }
 
+/// A name a flag does not take, in the words a scene's key gets for it
+/// (`--model xml is not known; expected one of truncated, …`), with clap's
+/// suggestion when it has one.
+fn unknown_name(e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if e.kind() != ErrorKind::InvalidValue {
+        return None;
+    }
+    let text = |kind| match e.get(kind) {
+        Some(ContextValue::String(s)) => Some(s.clone()),
+        _ => None,
+    };
+    let flag = text(ContextKind::InvalidArg)?;
+    let flag = flag.split_whitespace().next()?.to_string();
+    let value = text(ContextKind::InvalidValue)?;
+    let Some(ContextValue::Strings(names)) = e.get(ContextKind::ValidValue) else {
+        return None;
+    };
+    let value = if value.is_empty() {
+        "''".to_string()
+    } else {
+        value
+    };
+    let mut message = format!(
+        "{flag} {value} is not known; expected one of {}",
+        names.join(", ")
+    );
+    if let Some(near) = suggested(e).filter(|_| names.len() > 1) {
+        message = format!("{message} (a similar one: {near})");
+    }
+    Some(message)
+}
+
+/// clap's suggestion of a similar name, if any.
+fn suggested(e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue};
+    match e.get(ContextKind::SuggestedValue)? {
+        ContextValue::String(s) => Some(s.clone()),
+        ContextValue::Strings(v) if !v.is_empty() => Some(v.join(", ")),
+        _ => None,
+    }
+}
+
 /// clap's report on one line: the error, the missing arguments, the possible
 /// values and the tip ("a similar argument exists"), without the usage block
 /// and the pointer to `--help` (the caller adds its own).
 fn clap_message(e: &clap::Error) -> String {
+    if let Some(message) = unknown_name(e) {
+        return message;
+    }
     let rendered = e.render().to_string();
     let mut parts: Vec<String> = Vec::new();
     for line in rendered.lines() {
@@ -301,6 +338,16 @@ where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
 {
+    ExitCode::from(run_code(args, stdout, stderr))
+}
+
+/// [`run`], with the exit code as a number: what the tests read when they
+/// run the command line in their own process.
+pub fn run_code<I, T>(args: I, stdout: &mut impl Write, stderr: &mut impl Write) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
     let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {
@@ -312,13 +359,13 @@ where
                     Err(e) if e.kind() != io::ErrorKind::BrokenPipe => {
                         let e = CliError::from(e);
                         let _ = writeln!(stderr, "spintop: error: {}", e.message());
-                        ExitCode::from(e.exit_code())
+                        e.exit_code()
                     }
-                    _ => ExitCode::SUCCESS,
+                    _ => 0,
                 };
             }
             let _ = writeln!(stderr, "spintop: error: {} (see --help)", clap_message(&e));
-            return ExitCode::from(EXIT_BAD_INPUT);
+            return EXIT_BAD_INPUT;
         }
     };
     // Every command writes its output through the gate, and only through it.
@@ -343,12 +390,12 @@ where
         Some(Command::Book(args)) => book::execute(args, out),
     };
     match result.and_then(|()| gate.flush().map_err(CliError::from)) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => 0,
         // A closed pipe (`spintop … | head`) is the reader's choice, not an error.
-        Err(CliError::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(CliError::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => 0,
         Err(e) => {
             let _ = writeln!(stderr, "spintop: error: {}", e.message());
-            ExitCode::from(e.exit_code())
+            e.exit_code()
         }
     }
 }

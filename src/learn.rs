@@ -9,8 +9,8 @@
 //! [`diagrams`]. The scene is the chapter's own ([`scene::Scene::of`]): the
 //! live models ([`crate::live`]) for the chapters about the top; the charge
 //! in a field for Section 2; the shell model for the appendix. A chapter's
-//! experiments ([`experiment`]) are `<!-- spintop: key=value … -->`
-//! comments in its Markdown; `x` applies the next one to the scene.
+//! experiments ([`experiment`]) are inline code `` `spintop: key=value …` ``
+//! in its Markdown; `x` applies the next one to the scene.
 //!
 //! The shape is the live view's: [`Learn`] is the state, keys become a
 //! [`Command`] ([`event`]), [`Learn::apply`] is the one place the state

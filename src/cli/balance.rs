@@ -2,29 +2,16 @@
 //! trajectory, sampled at given times and averaged over a period.
 
 use super::gate::Gate;
-use super::{CliError, Format, TimeList, bad, parse_list, parse_number, parse_times};
-use clap::{Args, ValueEnum};
+use super::values::{self, help, value_name};
+use super::{CliError, Format, TimeList, parse_times};
+use clap::Args;
 use spintop::math::Real;
-use spintop::output::balance::{BalanceConfig, BalanceParameters, DipoleChoice, balance};
-use spintop::physics::balance::{Dumbbell, PlanarLoop, PrecessingDipole};
+use spintop::output::balance::{BalanceConfig, balance};
+use spintop::scene::request::{self, Given, RawBalance, RawSolve};
+use spintop::scene::table::{Command::Balance as B, DIPOLES};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum DipoleArg {
-    /// A rigid unit dipole on a cone about z (--cone, --rate): a top in regular precession.
-    Precessing,
-    /// The planar loop d = (cos t, b sin t + eps sin 2t, 0) (--b, --eps).
-    Loop,
-    /// A rigid dumbbell spinning about an axis perpendicular to its rod (--charges, --masses, --length, --rate).
-    Dumbbell,
-}
-
-fn parse_pair(s: &str) -> Result<[Real; 2], String> {
-    let v = parse_list(s)?;
-    <[Real; 2]>::try_from(v.as_slice())
-        .map_err(|_| format!("expected two comma-separated numbers, got {}", v.len()))
-}
-
-/// The raw arguments of `balance`, before validation.
+/// The raw arguments of `balance`, before validation: the keys of a balance
+/// scene's `[balance]` and `[solve]` (help, ranges and defaults from the table).
 #[derive(Debug, Args)]
 #[command(
     after_help = "Units: kappa = 2/(3c^3) = 1. Output per sample: the Larmor-like rate (2.1) -d'xd'', \
@@ -33,98 +20,64 @@ fn parse_pair(s: &str) -> Result<[Real; 2], String> {
                   Example: spintop balance --dipole precessing --cone 0.5 --rate 1 --times 0,1,2"
 )]
 pub struct BalanceArgs {
-    /// Which dipole trajectory.
-    #[arg(long, value_enum)]
-    dipole: DipoleArg,
-    /// Cone half-angle theta of the precessing dipole, radians, in [0, pi] [default: 0.5]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::names(&DIPOLES, |_| true),
+          help = help(B, "balance", "dipole"))]
+    dipole: String,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(B, "balance", "cone"), help = help(B, "balance", "cone"))]
     cone: Option<Real>,
-    /// Rate omega of the precessing dipole or the dumbbell, non-zero [default: 1]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(B, "balance", "rate"), help = help(B, "balance", "rate"))]
     rate: Option<Real>,
-    /// Loop parameter b [default: 0.5]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(B, "balance", "b"), help = help(B, "balance", "b"))]
     b: Option<Real>,
-    /// Loop parameter eps, the second harmonic [default: 0.2]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(B, "balance", "eps"), help = help(B, "balance", "eps"))]
     eps: Option<Real>,
-    /// Dumbbell charges q1,q2 (kappa = 1 units) [default: 1,-1]
-    #[arg(long, value_name = "Q1,Q2", value_parser = parse_pair, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::array::<2>, allow_hyphen_values = true,
+          value_name = value_name(B, "balance", "charges"), help = help(B, "balance", "charges"))]
     charges: Option<[Real; 2]>,
-    /// Dumbbell masses m1,m2, positive [default: 1,1]
-    #[arg(long, value_name = "M1,M2", value_parser = parse_pair, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::array::<2>, allow_hyphen_values = true,
+          value_name = value_name(B, "balance", "masses"), help = help(B, "balance", "masses"))]
     masses: Option<[Real; 2]>,
-    /// Dumbbell rod length, positive [default: 1]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(B, "balance", "length"), help = help(B, "balance", "length"))]
     length: Option<Real>,
-    /// Sample times, comma-separated (any finite values).
-    #[arg(long, value_name = "T1,T2,...", value_parser = parse_times, allow_hyphen_values = true)]
-    times: TimeList,
+    #[arg(long, value_parser = parse_times, allow_hyphen_values = true,
+          value_name = value_name(B, "solve", "times"), help = help(B, "solve", "times"))]
+    times: Option<TimeList>,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(B, "solve", "t_end"), help = help(B, "solve", "t_end"))]
+    t_end: Option<Real>,
+    #[arg(long, value_parser = values::whole, allow_hyphen_values = true,
+          value_name = value_name(B, "solve", "samples"), help = help(B, "solve", "samples"))]
+    samples: Option<i64>,
     /// Output format.
-    #[arg(long, value_parser = super::values::format(), default_value = "table")]
+    #[arg(long, value_parser = values::format(), default_value = "table")]
     format: Format,
 }
 
 impl BalanceArgs {
+    /// The same validation as a balance scene's.
     fn validate(self) -> Result<BalanceConfig, CliError> {
-        let given = |name: &str, present: bool, kinds: &str| -> Result<(), CliError> {
-            if present {
-                Err(bad(format!("--{name} belongs to --dipole {kinds}")))
-            } else {
-                Ok(())
-            }
+        let raw = RawBalance {
+            dipole: Some(Given::flag(self.dipole)),
+            cone: self.cone.map(Given::flag),
+            rate: self.rate.map(Given::flag),
+            b: self.b.map(Given::flag),
+            eps: self.eps.map(Given::flag),
+            charges: self.charges.map(Given::flag),
+            masses: self.masses.map(Given::flag),
+            length: self.length.map(Given::flag),
         };
-        let param = |e: spintop::physics::ParamError| bad(e.to_string());
-        let mut p = BalanceParameters::default();
-        let dipole = match self.dipole {
-            DipoleArg::Precessing => {
-                given("b", self.b.is_some(), "loop")?;
-                given("eps", self.eps.is_some(), "loop")?;
-                given("charges", self.charges.is_some(), "dumbbell")?;
-                given("masses", self.masses.is_some(), "dumbbell")?;
-                given("length", self.length.is_some(), "dumbbell")?;
-                let (cone, rate) = (self.cone.unwrap_or(0.5), self.rate.unwrap_or(1.0));
-                p.cone = Some(cone);
-                p.rate = Some(rate);
-                DipoleChoice::Precessing(PrecessingDipole::new(cone, rate).map_err(param)?)
-            }
-            DipoleArg::Loop => {
-                given("cone", self.cone.is_some(), "precessing")?;
-                given("rate", self.rate.is_some(), "precessing or dumbbell")?;
-                given("charges", self.charges.is_some(), "dumbbell")?;
-                given("masses", self.masses.is_some(), "dumbbell")?;
-                given("length", self.length.is_some(), "dumbbell")?;
-                let (b, eps) = (self.b.unwrap_or(0.5), self.eps.unwrap_or(0.2));
-                p.b = Some(b);
-                p.eps = Some(eps);
-                DipoleChoice::Loop(PlanarLoop::new(b, eps).map_err(param)?)
-            }
-            DipoleArg::Dumbbell => {
-                given("cone", self.cone.is_some(), "precessing")?;
-                given("b", self.b.is_some(), "loop")?;
-                given("eps", self.eps.is_some(), "loop")?;
-                let charges = self.charges.unwrap_or([1.0, -1.0]);
-                let masses = self.masses.unwrap_or([1.0, 1.0]);
-                let length = self.length.unwrap_or(1.0);
-                let rate = self.rate.unwrap_or(1.0);
-                let dumbbell = Dumbbell::new(charges, masses, length, rate).map_err(param)?;
-                p.charges = Some(charges);
-                p.masses = Some(masses);
-                p.length = Some(length);
-                p.rate = Some(rate);
-                p.dipole_amplitude = Some(dumbbell.amplitude());
-                DipoleChoice::Dumbbell(dumbbell)
-            }
+        let solve = RawSolve {
+            times: self.times.map(|t| Given::flag(t.0)),
+            t_end: self.t_end.map(Given::flag),
+            samples: self.samples.map(Given::flag),
+            ..RawSolve::default()
         };
-        if self.times.0.is_empty() {
-            return Err(bad("--times needs at least one time"));
-        }
-        Ok(BalanceConfig {
-            dipole,
-            parameters: p,
-            times: self.times.0,
-            format: self.format,
-        })
+        Ok(request::balance(&raw, &solve)?.config(self.format))
     }
 }
 

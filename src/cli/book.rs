@@ -7,7 +7,7 @@
 use super::gate::Gate;
 use super::{CliError, bad};
 use clap::Args;
-use spintop_server::{self as server, Config, Server, WarmUp, default_runner};
+use spintop_server::{self as server, Config, Containment, Server, WarmUp, default_runner};
 use std::ffi::OsString;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -39,9 +39,13 @@ pub struct BookArgs {
     /// snippet through the server twice, print the times, exit.
     #[arg(long)]
     self_test: bool,
+    /// The strongest way to end a snippet's tree as a unit: namespace (the
+    /// default), cgroup or group; the machine may allow less (for tests).
+    #[arg(long, hide = true, value_name = "UNIT")]
+    containment: Option<String>,
     /// The supervisor of a snippet's process tree (the server starts it;
     /// see `spintop_server`).
-    #[arg(long = "supervise", hide = true, num_args = 2.., allow_hyphen_values = true, value_name = "BOUNDS PROGRAM ARGS")]
+    #[arg(long = "supervise", hide = true, num_args = 1.., allow_hyphen_values = true, value_name = "SPEC PROGRAM ARGS")]
     supervise: Option<Vec<OsString>>,
 }
 
@@ -136,6 +140,10 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     if let Some(scratch) = args.scratch {
         runner.scratch = scratch;
     }
+    if let Some(name) = &args.containment {
+        runner.containment = Containment::named(name)
+            .ok_or_else(|| bad(format!("--containment {name}: namespace, cgroup or group")))?;
+    }
     let server = Server::bind(Config {
         site,
         port: args.port.unwrap_or(0),
@@ -147,8 +155,9 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     }
     writeln!(
         out,
-        "spintop book: serving {}\n  open this address: the token in it is the key, and the book answers no other (▶ runs each snippet against this spintop; Ctrl-C stops)",
-        server.url()
+        "spintop book: serving {}\n  open this address: the token in it is the key, and the book answers no other (▶ runs each snippet against this spintop, in {}; Ctrl-C stops)",
+        server.url(),
+        server.containment().described()
     )?;
     out.flush()?;
     // Before the server becomes a subreaper (in `serve`): the browser must
@@ -179,54 +188,7 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     )?;
     out.flush()?;
     server.warm_up();
-    std::thread::scope(|scope| -> Result<(), CliError> {
-        scope.spawn(|| server.serve(&stop));
-        let mut shown = false;
-        while !stop.load(Ordering::Relaxed) {
-            if child_ended.swap(false, Ordering::Relaxed) {
-                server.sweep_strays();
-            }
-            if !shown {
-                match server.warm_up_state() {
-                    WarmUp::Ready { took } => {
-                        writeln!(
-                            out,
-                            "spintop book: ▶ is ready (the background build took {:.0} s)",
-                            took.as_secs_f64()
-                        )?;
-                        shown = true;
-                    }
-                    WarmUp::Failed { why } => {
-                        let first = why.lines().next().unwrap_or("").to_string();
-                        writeln!(
-                            out,
-                            "spintop book: the background build failed ({first}); ▶ will show the whole message"
-                        )?;
-                        shown = true;
-                    }
-                    WarmUp::NotStarted | WarmUp::Building { .. } => {}
-                }
-                out.flush()?;
-            }
-            std::thread::sleep(Duration::from_millis(50));
-        }
-        Ok(())
-    })?;
-    // The tree, then whatever a tree left to this process (for up to 3 s:
-    // what is killed may have started more meanwhile).
-    let mut gone = server.shutdown();
-    let start = Instant::now();
-    while server.sweep_strays() > 0 {
-        if start.elapsed() > Duration::from_secs(3) {
-            gone = false;
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    server.sweep_strays();
-    if let Some(file) = forward {
-        let _ = std::fs::remove_file(file);
-    }
+    serve_until_stopped(&server, &stop, &child_ended, out)?;
     let name = match signal.load(Ordering::Relaxed) as i32 {
         signal_hook::consts::SIGINT => "SIGINT",
         signal_hook::consts::SIGTERM => "SIGTERM",
@@ -234,18 +196,89 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
         signal_hook::consts::SIGQUIT => "SIGQUIT",
         _ => "a signal",
     };
-    if gone {
-        writeln!(
-            out,
-            "spintop book: stopped ({name}); nothing it started is left running"
-        )?;
-    } else {
-        writeln!(
-            out,
-            "spintop book: stopped ({name}), but what its last snippet started did not end within 3 s"
-        )?;
+    let said = stop_everything(&server, name);
+    if let Some(file) = forward {
+        let _ = std::fs::remove_file(file);
     }
+    writeln!(out, "{said}")?;
     Ok(())
+}
+
+/// Serves on a thread of its own until `stop`; meanwhile says when the
+/// background build is done, and kills what a snippet left to this process
+/// whenever a child ends (`child_ended`).
+fn serve_until_stopped(
+    server: &Server,
+    stop: &AtomicBool,
+    child_ended: &AtomicBool,
+    out: &mut Gate<'_>,
+) -> Result<(), CliError> {
+    std::thread::scope(|scope| -> Result<(), CliError> {
+        std::thread::Builder::new()
+            .spawn_scoped(scope, || server.serve(stop))
+            .map_err(|e| CliError::Stopped(format!("cannot start the server's thread: {e}")))?;
+        let mut shown = false;
+        while !stop.load(Ordering::Relaxed) {
+            if child_ended.swap(false, Ordering::Relaxed) {
+                server.sweep_strays();
+            }
+            if !shown {
+                shown = say_warm_up(server, out)?;
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        Ok(())
+    })
+}
+
+/// Says how the background build ended, once it has: whether it did.
+fn say_warm_up(server: &Server, out: &mut Gate<'_>) -> Result<bool, CliError> {
+    let said = match server.warm_up_state() {
+        WarmUp::Ready { took } => {
+            writeln!(
+                out,
+                "spintop book: ▶ is ready (the background build took {:.0} s)",
+                took.as_secs_f64()
+            )?;
+            true
+        }
+        WarmUp::Failed { why } => {
+            let first = why.lines().next().unwrap_or("").to_string();
+            writeln!(
+                out,
+                "spintop book: the background build failed ({first}); ▶ will show the whole message"
+            )?;
+            true
+        }
+        WarmUp::NotStarted | WarmUp::Building { .. } => false,
+    };
+    out.flush()?;
+    Ok(said)
+}
+
+/// Stops the running tree, then whatever a tree left to this process (for
+/// up to 3 s: what is killed may have started more meanwhile); the line
+/// that says so, after signal `name`.
+fn stop_everything(server: &Server, name: &str) -> String {
+    let start = Instant::now();
+    let mut gone = server.shutdown();
+    let swept = Instant::now();
+    while server.sweep_strays() > 0 {
+        if swept.elapsed() > Duration::from_secs(3) {
+            gone = false;
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    server.sweep_strays();
+    if gone {
+        format!("spintop book: stopped ({name}); nothing it started is left running")
+    } else {
+        let waited = start.elapsed().as_secs_f64().ceil();
+        format!(
+            "spintop book: stopped ({name}), but what its last snippet started did not end within {waited} s"
+        )
+    }
 }
 
 /// `--open`: writes a page readable by the reader only that forwards to the
@@ -299,7 +332,9 @@ fn self_test(server: Server, out: &mut impl Write) -> Result<(), CliError> {
     let stop = AtomicBool::new(false);
     server.warm_up();
     std::thread::scope(|scope| {
-        scope.spawn(|| server.serve(&stop));
+        std::thread::Builder::new()
+            .spawn_scoped(scope, || server.serve(&stop))
+            .map_err(|e| CliError::Stopped(format!("cannot start the server's thread: {e}")))?;
         let result = measure(&server, out);
         stop.store(true, Ordering::Relaxed);
         result

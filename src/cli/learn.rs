@@ -220,5 +220,7 @@ fn experiments_of(session: &Learn, index: usize) -> Result<usize, CliError> {
     let book = book_dir(&repository())?;
     let file = &session.chapters()[index].file;
     let text = std::fs::read_to_string(book.join(file)).map_err(CliError::Io)?;
-    Ok(text.matches("<!-- spintop:").count())
+    Ok(crate::learn::markdown::render(&text, 80)
+        .experiments
+        .len())
 }

@@ -2,32 +2,16 @@
 //! radiation reaction (§2, (2.5)–(2.9)), sampled at given times.
 
 use super::gate::Gate;
-use super::{CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times};
-use clap::{Args, ValueEnum};
+use super::values::{self, help, value_name};
+use super::{CliError, Format, TimeList, parse_times};
+use clap::Args;
 use spintop::math::Real;
-use spintop::output::orbit::{OrbitRequest, check_backward_span, orbit};
-use spintop::physics::central::{ChargeInField, Potential};
-use spintop::sim::orbit::{Force, OrbitConfig};
+use spintop::output::orbit::{OrbitRequest, orbit};
+use spintop::scene::request::{self, Given, RawOrbit, RawSolve};
+use spintop::scene::table::{Command::Orbit as O, FORCES, POTENTIALS};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum PotentialArg {
-    /// V = -k/r.
-    Coulomb,
-    /// V = k r^2 / 2.
-    Harmonic,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum ForceArg {
-    /// The Landau-Lifshitz reduction of (2.5).
-    Ll,
-    /// The physical (non-runaway) solution of (2.5): exact roots (harmonic), backward integration (Coulomb).
-    Al,
-    /// (2.5) integrated forward from the Newtonian acceleration: the runaway, detected and reported.
-    AlForward,
-}
-
-/// The raw arguments of `orbit`, before validation.
+/// The raw arguments of `orbit`, before validation: the keys of an orbit
+/// scene's `[orbit]` and `[solve]` (help, ranges and defaults from the table).
 #[derive(Debug, Args)]
 #[command(
     after_help = "Units: m = k = 1. The orbit starts at (r0, 0) moving along +y: on the circle, or with \
@@ -36,66 +20,59 @@ enum ForceArg {
                   Example: spintop orbit --potential coulomb --tau0 1e-3 --times 0,50,100,150"
 )]
 pub struct OrbitArgs {
-    /// The central potential.
-    #[arg(long, value_enum)]
-    potential: PotentialArg,
-    /// tau0 = 2q^2/(3mc^3), positive.
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::names(&POTENTIALS, |_| true),
+          help = help(O, "orbit", "potential"))]
+    potential: String,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(O, "orbit", "tau0"), help = help(O, "orbit", "tau0"))]
     tau0: Real,
-    /// The equation of motion.
-    #[arg(long, value_enum, default_value = "ll")]
-    force: ForceArg,
-    /// Starting radius, positive [default: 1]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::names(&FORCES, |_| true),
+          help = help(O, "orbit", "force"))]
+    force: Option<String>,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(O, "orbit", "r0"), help = help(O, "orbit", "r0"))]
     r0: Option<Real>,
-    /// Eccentricity, in [0, 1) [default: 0]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(O, "orbit", "eccentricity"), help = help(O, "orbit", "eccentricity"))]
     eccentricity: Option<Real>,
-    /// Output times, comma-separated, >= 0 and non-decreasing.
-    #[arg(long, value_name = "T1,T2,...", value_parser = parse_times, allow_hyphen_values = true)]
-    times: TimeList,
-    /// Relative tolerance of the integrations, in [1e-14, 1e-3] [default: 1e-11]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse_times, allow_hyphen_values = true,
+          value_name = value_name(O, "solve", "times"), help = help(O, "solve", "times"))]
+    times: Option<TimeList>,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(O, "solve", "t_end"), help = help(O, "solve", "t_end"))]
+    t_end: Option<Real>,
+    #[arg(long, value_parser = values::whole, allow_hyphen_values = true,
+          value_name = value_name(O, "solve", "samples"), help = help(O, "solve", "samples"))]
+    samples: Option<i64>,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(O, "solve", "rtol"), help = help(O, "solve", "rtol"))]
     rtol: Option<Real>,
     /// Output format.
-    #[arg(long, value_parser = super::values::format(), default_value = "table")]
+    #[arg(long, value_parser = values::format(), default_value = "table")]
     format: Format,
 }
 
 impl OrbitArgs {
+    /// The same validation as an orbit scene's.
     fn validate(self) -> Result<OrbitRequest, CliError> {
-        let potential = match self.potential {
-            PotentialArg::Coulomb => Potential::Coulomb,
-            PotentialArg::Harmonic => Potential::Harmonic,
+        let orbit = RawOrbit {
+            potential: Some(Given::flag(self.potential)),
+            tau0: Some(Given::flag(self.tau0)),
+            force: self.force.map(Given::flag),
+            r0: self.r0.map(Given::flag),
+            eccentricity: self.eccentricity.map(Given::flag),
         };
-        let force = match self.force {
-            ForceArg::Ll => Force::LandauLifshitz,
-            ForceArg::Al => Force::AbrahamLorentz,
-            ForceArg::AlForward => Force::AbrahamLorentzForward,
+        let solve = RawSolve {
+            rtol: self.rtol.map(Given::flag),
+            times: self.times.map(|t| Given::flag(t.0)),
+            t_end: self.t_end.map(Given::flag),
+            samples: self.samples.map(Given::flag),
+            ..RawSolve::default()
         };
-        let charge = ChargeInField::new(potential, self.tau0).map_err(|e| bad(e.to_string()))?;
-        let config = OrbitConfig::new(
-            charge,
-            self.r0.unwrap_or(1.0),
-            self.eccentricity.unwrap_or(0.0),
-            force,
-        )
-        .map_err(|e| bad(e.to_string()))?;
-        let config = match self.rtol {
-            Some(rtol) => config.with_rtol(rtol).map_err(|e| bad(format!("--{e}")))?,
-            None => config,
-        };
-        let times = self.times.0;
-        check_output_times(&times)?;
-        let t_last = *times.last().expect("non-empty");
-        check_backward_span(&config, t_last).map_err(|e| {
-            bad(format!(
-                "--{e}; use --force ll (equal to it up to O(tau0^2)) or shorter --times"
-            ))
-        })?;
+        let scene = request::orbit(&orbit, &solve)?;
         Ok(OrbitRequest {
-            config,
-            times,
+            config: scene.config,
+            times: scene.times,
             format: self.format,
             entry: spintop::output::Entry::CommandLine,
         })

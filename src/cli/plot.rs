@@ -6,59 +6,68 @@
 //! L₀) and y ranges as the live view.
 
 use super::gate::Gate;
-use super::{CliError, bad, parse_number, parse_vec3};
-use clap::{Args, ValueEnum};
-use spintop::math::{Real, Vec3};
+use super::values::{self, help, value_name};
+use super::{CliError, bad};
+use clap::Args;
+use clap::builder::{PossibleValue, PossibleValuesParser};
+use spintop::math::Real;
 use spintop::numbers::{fmt_axis, nice_ceiling};
-use spintop::physics::rigid_body::lab_frame;
 use spintop::physics::symmetric_top::SymmetricTop;
-use spintop::sim::{
-    InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation,
-};
+use spintop::scene::request::{self, Given, RawSolve, RawTop};
+use spintop::scene::table::{self, Command, MODELS, Tier};
+use spintop::sim::{MethodChoice, MethodOptions, Model, Sample, Simulation};
 use std::io::Write;
 use textplots::{AxisBuilder, Chart, LabelBuilder, LabelFormat, LineStyle, Plot, Shape};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum PlotModel {
-    /// Eqs. (4.2)-(4.4): no Schott term.
-    Truncated,
-    /// Eqs. (4.12)-(4.14): Schott term kept, reduced.
-    Reduced,
-    /// Both, truncated first.
-    Both,
+/// `--model`: the symmetric top's models with a closed form, from the core's
+/// table, and `both`.
+fn plot_models() -> PossibleValuesParser {
+    let closed = |tier| matches!(tier, Some(Tier::Truncated | Tier::Reduced));
+    let mut names: Vec<PossibleValue> = MODELS
+        .iter()
+        .filter(|c| !c.value.asymmetric && closed(c.value.tier))
+        .map(|c| PossibleValue::new(c.name).help(c.help))
+        .collect();
+    names.push(PossibleValue::new(BOTH).help("Both, truncated first"));
+    PossibleValuesParser::new(names)
 }
 
-/// The raw arguments of `plot`, before validation.
+/// The `--model` that plots the truncated and the reduced model.
+const BOTH: &str = "both";
+
+const S: Command = Command::Simulate;
+const P: Command = Command::Plot;
+
+/// The raw arguments of `plot`, before validation: the keys of a top scene's
+/// `[top]` and `[solve]` (lab z along L0), and the chart's own.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:\n  \
     spintop plot --model both --t-end 500\n  \
     spintop plot --model reduced --log-time --t-end 1e4 --width 100")]
 pub struct PlotArgs {
     /// Which model(s) to plot.
-    #[arg(long, value_enum, default_value = "both")]
-    model: PlotModel,
-    /// I3/I1, in (0, 2].
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true, default_value = "0.4")]
-    ratio: Real,
-    /// Initial body angular velocity, in 1/tau.
-    #[arg(long, value_name = "W1,W2,W3", value_parser = parse_vec3, allow_hyphen_values = true,
-          default_value = "0,0.1,0.2")]
-    omega: [Real; 3],
-    /// Last time of the plot, in tau.
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true, default_value = "500")]
-    t_end: Real,
+    #[arg(long, value_parser = plot_models(), default_value = BOTH)]
+    model: String,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(S, "top", "ratio"), help = help(S, "top", "ratio"))]
+    ratio: Option<Real>,
+    #[arg(long, value_parser = values::array::<3>, allow_hyphen_values = true,
+          value_name = value_name(S, "top", "omega"), help = help(S, "top", "omega"))]
+    omega: Option<[Real; 3]>,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(P, "plot", "t_end"), help = help(P, "plot", "t_end"))]
+    t_end: Option<Real>,
     /// Plot against log10 t over the four decades that end at --t-end.
     #[arg(long)]
     log_time: bool,
-    /// Numerical method.
-    #[arg(long, value_parser = super::values::method(), default_value = "exact")]
-    method: MethodChoice,
-    /// Width of each chart, in characters (16 to 500).
-    #[arg(long, default_value_t = 60, value_parser = spintop::numbers::parse_count::<u32>, allow_hyphen_values = true)]
-    width: u32,
-    /// Height of each chart, in lines (2 to 200).
-    #[arg(long, default_value_t = 10, value_parser = spintop::numbers::parse_count::<u32>, allow_hyphen_values = true)]
-    height: u32,
+    #[arg(long, value_parser = values::method_name(), help = help(P, "solve", "method"))]
+    method: Option<String>,
+    #[arg(long, value_parser = values::whole, allow_hyphen_values = true,
+          value_name = value_name(P, "plot", "width"), help = help(P, "plot", "width"))]
+    width: Option<i64>,
+    #[arg(long, value_parser = values::whole, allow_hyphen_values = true,
+          value_name = value_name(P, "plot", "height"), help = help(P, "plot", "height"))]
+    height: Option<i64>,
 }
 
 /// A validated `plot` request.
@@ -67,6 +76,8 @@ struct PlotConfig {
     top: SymmetricTop,
     models: Vec<Model>,
     omega0: [Real; 3],
+    /// Ω₀ and O(0), lab z along L₀.
+    initial: spintop::sim::InitialState,
     method: MethodChoice,
     times: Vec<Real>,
     log_time: bool,
@@ -89,9 +100,9 @@ fn drawable(value: Real, flag: &str, what: &str, instead: &str) -> Result<(), Cl
         return Ok(());
     }
     Err(bad(format!(
-        "{flag}: plot draws in single precision, so {what} within {:.0e} and {:.0e}, got {}; {instead}",
-        PLOT_RANGE.0,
-        PLOT_RANGE.1,
+        "{flag}: plot draws in single precision, so {what} within {} and {}, got {}; {instead}",
+        spintop::numbers::fmt_value(PLOT_RANGE.0),
+        spintop::numbers::fmt_value(PLOT_RANGE.1),
         spintop::numbers::fmt_value(value)
     )))
 }
@@ -99,29 +110,72 @@ fn drawable(value: Real, flag: &str, what: &str, instead: &str) -> Result<(), Cl
 /// The decades a log-time plot spans.
 const LOG_DECADES: Real = 4.0;
 
+/// The table's default of a key of `plot`.
+fn plot_default(key: &str) -> table::DefaultValue {
+    table::key(P, "plot", key).default
+}
+
 impl PlotArgs {
+    /// The keys of `[top]` and `[solve]` the flags fill, for model `model`.
+    fn keys(&self, model: &str, t_end: Real) -> (RawTop, RawSolve) {
+        let top = RawTop {
+            model: Some(Given::flag(model.to_string())),
+            ratio: self.ratio.map(Given::flag),
+            omega: self.omega.map(Given::flag),
+            frame: Some(Given::flag("paper".to_string())),
+            ..RawTop::default()
+        };
+        let method = self
+            .method
+            .clone()
+            .or_else(|| table::key(P, "solve", "method").default.text());
+        let solve = RawSolve {
+            method: method.map(Given::flag),
+            t_end: Some(Given::flag(t_end)),
+            samples: Some(Given::flag(1)),
+            ..RawSolve::default()
+        };
+        (top, solve)
+    }
+
     fn validate(self) -> Result<PlotConfig, CliError> {
-        let top = SymmetricTop::new(self.ratio, 1.0).map_err(SimError::from)?;
-        InitialState::new(
-            Vec3::from(self.omega),
-            lab_frame(&top.inertia(), &Vec3::from(self.omega)),
-        )?;
-        // parse_number has already refused NaN and infinities.
-        if self.t_end <= 0.0 {
-            return Err(bad(format!(
-                "--t-end must be > 0, got {}",
-                spintop::numbers::fmt_value(self.t_end)
-            )));
+        let t_end = self
+            .t_end
+            .or(plot_default("t_end").number())
+            .unwrap_or(table::PLOT_T_END);
+        // Each model plotted is asked as a top scene would ask it.
+        let names: Vec<&str> = if self.model == BOTH {
+            vec!["truncated", "reduced"]
+        } else {
+            vec![self.model.as_str()]
+        };
+        let mut requests = Vec::new();
+        for name in names {
+            let (top, solve) = self.keys(name, t_end);
+            requests.push(request::top(&top, &solve)?);
         }
+        let first = &requests[0];
+        let count = |key: &str, given: Option<i64>| -> Result<u32, CliError> {
+            let n = match (given, plot_default(key)) {
+                (Some(n), _) => n,
+                (None, table::DefaultValue::Count(n)) => n as i64,
+                (None, _) => 0,
+            };
+            let n = request::checked_count(P, "plot", key, n)?;
+            Ok(u32::try_from(n).unwrap_or(u32::MAX))
+        };
+        let t_end = request::checked_number(P, "plot", "t_end", t_end)?;
+        let (width, height) = (count("width", self.width)?, count("height", self.height)?);
+        let omega0: [Real; 3] = first.initial.omega.into();
         // NOTE: textplots draws in single precision: a curve beyond its
         // range drew as inf (exit 3 after the header) or flat at 0, and so
         // did a linear time axis (a log-time axis draws log10 t, which
         // always fits).
-        let [w1, w2, w3] = self.omega;
+        let [w1, w2, w3] = omega0;
         let reach = w1.hypot(w2).max(w3.abs());
         if !self.log_time {
             drawable(
-                self.t_end,
+                t_end,
                 "--t-end",
                 "a linear time axis must end",
                 "use --log-time, or spintop simulate for the numbers",
@@ -135,50 +189,33 @@ impl PlotArgs {
                 "spintop simulate gives the numbers at any size",
             )?;
         }
-        if !(16..=500).contains(&self.width) {
-            return Err(bad(format!(
-                "--width must be 16 to 500 characters, got {}",
-                self.width
-            )));
-        }
-        if !(2..=200).contains(&self.height) {
-            return Err(bad(format!(
-                "--height must be 2 to 200 lines, got {}",
-                self.height
-            )));
-        }
-        let models = match self.model {
-            PlotModel::Truncated => vec![Model::Truncated(top)],
-            PlotModel::Reduced => vec![Model::Reduced(top)],
-            PlotModel::Both => vec![Model::Truncated(top), Model::Reduced(top)],
+        let Model::Truncated(top) = first.tiers[0] else {
+            return Err(bad("plot draws the symmetric top"));
         };
-        for model in &models {
-            model
-                .check_method(self.method)
-                .map_err(|e| bad(format!("--method {}: {e}", self.method.name())))?;
-        }
+        let models = requests.iter().filter_map(|r| r.model()).collect();
         // NOTE: two samples per Braille dot column, so lines join smoothly.
-        let n = 4 * self.width as usize;
+        let n = 4 * width as usize;
         let times = (0..=n)
             .map(|i| {
                 let f = i as Real / n as Real;
                 if self.log_time {
-                    self.t_end * (10.0 as Real).powf(LOG_DECADES * (f - 1.0))
+                    t_end * (10.0 as Real).powf(LOG_DECADES * (f - 1.0))
                 } else {
-                    self.t_end * f
+                    t_end * f
                 }
             })
             .collect();
         Ok(PlotConfig {
             top,
             models,
-            omega0: self.omega,
-            method: self.method,
+            omega0,
+            initial: first.initial,
+            method: first.method,
             times,
             log_time: self.log_time,
-            width: self.width,
-            height: self.height,
-            t_end: self.t_end,
+            width,
+            height,
+            t_end,
             reach,
         })
     }
@@ -188,21 +225,18 @@ impl PlotArgs {
 type Quantity = (&'static str, fn(&Sample) -> Real);
 
 /// Run one model at the plot's times.
-fn samples(
-    config: &PlotConfig,
-    model: Model,
-    top: &SymmetricTop,
-) -> Result<(Vec<Sample>, &'static str), CliError> {
-    let mut initial = InitialState::new(
-        Vec3::from(config.omega0),
-        lab_frame(&top.inertia(), &Vec3::from(config.omega0)),
-    )?;
-    initial.rotation = lab_frame(&top.inertia(), &Vec3::from(config.omega0)).to_rotation();
+fn samples(config: &PlotConfig, model: Model) -> Result<(Vec<Sample>, &'static str), CliError> {
     let horizon = config.times.last().copied();
     let choice = config.method;
     let failure = |e| super::sim_failure(e, &model, choice);
-    let mut sim = Simulation::new(model, choice, MethodOptions::default(), initial, horizon)
-        .map_err(failure)?;
+    let mut sim = Simulation::new(
+        model,
+        choice,
+        MethodOptions::default(),
+        config.initial,
+        horizon,
+    )
+    .map_err(failure)?;
     let samples = sim.run(&config.times).map_err(failure)?;
     Ok((samples, sim.method().label()))
 }
@@ -216,7 +250,7 @@ fn write_plots(config: &PlotConfig, out: &mut impl Write) -> Result<(), CliError
     let runs = config
         .models
         .iter()
-        .map(|model| samples(config, *model, &config.top))
+        .map(|model| samples(config, *model))
         .collect::<Result<Vec<_>, _>>()?;
     for (model, (samples, method)) in config.models.iter().zip(runs) {
         let top = &config.top;

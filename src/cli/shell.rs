@@ -3,14 +3,17 @@
 //! times.
 
 use super::gate::Gate;
-use super::{CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times};
+use super::values::{self, help, value_name};
+use super::{CliError, Format, TimeList, bad, parse_times};
 use clap::Args;
 use spintop::math::Real;
 use spintop::output::shell::{ShellRequest, instability_warning, shell, steps_per_delay};
-use spintop::physics::shell::ShellModel;
+use spintop::scene::request::{self, Given, RawShell, RawSolve};
+use spintop::scene::table::Command::Shell as H;
 use std::io::Write;
 
-/// The raw arguments of `shell`, before validation.
+/// The raw arguments of `shell`, before validation: the keys of a shell
+/// scene's `[shell]` and `[solve]` (help, ranges and defaults from the table).
 #[derive(Debug, Args)]
 #[command(
     after_help = "Units: m = m0 + m_em = 1, k = 1 (the isotropic oscillator), Z = x + iy. The shell of \
@@ -20,26 +23,42 @@ use std::io::Write;
                   Example: spintop shell --tau0 1e-3 --delay 0.03 --times 0,5,10,20"
 )]
 pub struct ShellArgs {
-    /// tau0 = 2q^2/(3mc^3), positive.
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(H, "shell", "tau0"), help = help(H, "shell", "tau0"))]
     tau0: Real,
-    /// The delay r0/c, positive and different from tau0.
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(H, "shell", "delay"), help = help(H, "shell", "delay"))]
     delay: Real,
-    /// Output times, comma-separated, >= 0 and non-decreasing.
-    #[arg(long, value_name = "T1,T2,...", value_parser = parse_times, allow_hyphen_values = true)]
-    times: TimeList,
+    #[arg(long, value_parser = parse_times, allow_hyphen_values = true,
+          value_name = value_name(H, "solve", "times"), help = help(H, "solve", "times"))]
+    times: Option<TimeList>,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(H, "solve", "t_end"), help = help(H, "solve", "t_end"))]
+    t_end: Option<Real>,
+    #[arg(long, value_parser = values::whole, allow_hyphen_values = true,
+          value_name = value_name(H, "solve", "samples"), help = help(H, "solve", "samples"))]
+    samples: Option<i64>,
     /// Output format.
-    #[arg(long, value_parser = super::values::format(), default_value = "table")]
+    #[arg(long, value_parser = values::format(), default_value = "table")]
     format: Format,
 }
 
 impl ShellArgs {
+    /// The same validation as a shell scene's.
     fn validate(self) -> Result<ShellRequest, CliError> {
-        let model = ShellModel::new(self.tau0, self.delay).map_err(|e| bad(e.to_string()))?;
-        let times = self.times.0;
-        check_output_times(&times)?;
-        let t_last = *times.last().expect("non-empty");
+        let raw = RawShell {
+            tau0: Some(Given::flag(self.tau0)),
+            delay: Some(Given::flag(self.delay)),
+        };
+        let solve = RawSolve {
+            times: self.times.map(|t| Given::flag(t.0)),
+            t_end: self.t_end.map(Given::flag),
+            samples: self.samples.map(Given::flag),
+            ..RawSolve::default()
+        };
+        let scene = request::shell(&raw, &solve)?;
+        let (model, times) = (scene.model, scene.times);
+        let t_last = times.last().copied().unwrap_or(0.0);
         let steps = steps_per_delay(&model, t_last).map_err(|e| {
             bad(format!(
                 "{e}: {}",
@@ -72,7 +91,11 @@ pub(crate) fn execute(
     // The warning comes before any output, so a reader piping stdout still
     // sees it first; a run that failed says so in its one error line instead.
     if let Some(rate) = model.growth_rate() {
-        writeln!(err, "{}", instability_warning(&model, rate))?;
+        writeln!(
+            err,
+            "spintop: warning: {}",
+            instability_warning(&model, rate)
+        )?;
         err.flush()?;
     }
     out.emit(&output, request.format)

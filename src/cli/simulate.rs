@@ -2,154 +2,114 @@
 //! table, CSV or the JSON contract.
 
 use super::gate::Gate;
-use super::{
-    CliError, Format, TimeList, bad, check_output_times, parse_number, parse_times, parse_vec3,
-};
-use clap::{Args, ValueEnum};
-use spintop::math::{Real, Vec3};
-use spintop::numbers::fmt_value;
+use super::values::{self, help, value_name};
+use super::{CliError, Format, TimeList, bad};
+use clap::Args;
+use spintop::math::Real;
 use spintop::output::simulate::{SimulateConfig, simulate};
-use spintop::physics::euler_angles::EulerAngles;
-use spintop::physics::general_top::GeneralTop;
-use spintop::physics::symmetric_top::SymmetricTop;
-use spintop::sim::times::{MAX_SAMPLES, even_times};
-use spintop::sim::{InitialState, MethodChoice, MethodOptions, Model, SimError};
+use spintop::scene::request::{self, Given, RawSolve, RawTop};
+use spintop::scene::table::{self, Command::Simulate as S, MODELS};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum ModelArg {
-    /// Eqs. (4.2)-(4.4): the symmetric top without the Schott term.
-    Truncated,
-    /// Eqs. (4.12)-(4.14): the symmetric top with the Schott term, reduced; with --inertia and --dipole, (3.4) reduced the same way for any top
-    Reduced,
-    /// Eq. (3.3): any top, given --inertia and --dipole.
-    General,
-    /// Eq. (3.4): the symmetric top under the full ALE, Schott term kept (its physical solution).
-    Full,
+/// The examples and the ranges of `simulate --help`, the ranges from the
+/// core's table.
+pub(crate) fn after_help() -> String {
+    format!(
+        "Examples:\n  \
+        spintop simulate --model reduced --t-end 1000 --samples 11\n  \
+        spintop simulate --model truncated --omega 0,0.1,0.2 --times 0,10,100 --format json\n  \
+        spintop simulate --model general --inertia 1,1.5,0.8 --dipole 0.2,0,1 --t-end 100\n  \
+        spintop simulate --model full --method forward --times 0,1,2,5,10   (runs away at t = 3: exit 3)\n\n\
+        Ranges: {}. A run over {} steps is refused before it starts, with the estimate and a cheaper way.",
+        table::ranges_help(S),
+        spintop::numbers::fmt_value(spintop::sim::cost::MAX_STEPS)
+    )
 }
 
-/// The raw arguments of `simulate`, before validation.
+/// The raw arguments of `simulate`, before validation: the keys of a top
+/// scene's `[top]` and `[solve]` (help, ranges and defaults from the table).
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
-    /// Which equations of motion.
-    #[arg(long, value_enum)]
-    model: ModelArg,
-    /// I3/I1 of the symmetric models, in (0, 2] [default: 0.4]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::names(&MODELS, |c| c.value.tier.is_some()),
+          help = help(S, "top", "model"))]
+    model: String,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(S, "top", "ratio"), help = help(S, "top", "ratio"))]
     ratio: Option<Real>,
-    /// Principal moments of the general model (kappa = 1 units).
-    #[arg(long, value_name = "I1,I2,I3", value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::array::<3>, allow_hyphen_values = true,
+          value_name = value_name(S, "top", "inertia"), help = help(S, "top", "inertia"))]
     inertia: Option<[Real; 3]>,
-    /// Body-frame dipole of the general model (kappa = 1 units).
-    #[arg(long, value_name = "D1,D2,D3", value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::array::<3>, allow_hyphen_values = true,
+          value_name = value_name(S, "top", "dipole"), help = help(S, "top", "dipole"))]
     dipole: Option<[Real; 3]>,
-    /// Initial body angular velocity, in 1/tau.
-    #[arg(long, value_name = "W1,W2,W3", value_parser = parse_vec3, allow_hyphen_values = true,
-          default_value = "0,0.1,0.2")]
-    omega: [Real; 3],
-    /// Initial orientation as z-x-z Euler angles, radians.
-    #[arg(long, value_name = "PHI,THETA,PSI", value_parser = parse_vec3, allow_hyphen_values = true,
-          default_value = "0,0,0")]
-    euler: [Real; 3],
-    /// Output times, comma-separated, >= 0 and non-decreasing.
-    #[arg(long, value_name = "T1,T2,...", value_parser = parse_times, allow_hyphen_values = true, conflicts_with_all = ["t_end", "samples"])]
+    #[arg(long, value_parser = values::array::<3>, allow_hyphen_values = true,
+          value_name = value_name(S, "top", "omega"), help = help(S, "top", "omega"))]
+    omega: Option<[Real; 3]>,
+    #[arg(long, value_parser = values::array::<3>, allow_hyphen_values = true,
+          value_name = value_name(S, "top", "euler"), help = help(S, "top", "euler"))]
+    euler: Option<[Real; 3]>,
+    #[arg(long, value_parser = super::parse_times, allow_hyphen_values = true,
+          value_name = value_name(S, "solve", "times"), help = help(S, "solve", "times"))]
     times: Option<TimeList>,
-    /// Last output time (with --samples evenly spaced times from 0) [default: 100]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(S, "solve", "t_end"), help = help(S, "solve", "t_end"))]
     t_end: Option<Real>,
-    /// Number of evenly spaced output times from 0 to --t-end [default: 11]
-    #[arg(long, value_parser = spintop::numbers::parse_count::<usize>, allow_hyphen_values = true)]
-    samples: Option<usize>,
-    /// Numerical method.
-    #[arg(long, value_parser = super::values::method(), default_value = "auto")]
-    method: MethodChoice,
-    /// Relative tolerance of the adaptive methods [default: 1e-10]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::whole, allow_hyphen_values = true,
+          value_name = value_name(S, "solve", "samples"), help = help(S, "solve", "samples"))]
+    samples: Option<i64>,
+    #[arg(long, value_parser = values::method_name(), help = help(S, "solve", "method"))]
+    method: Option<String>,
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(S, "solve", "rtol"), help = help(S, "solve", "rtol"))]
     rtol: Option<Real>,
-    /// Step size of RK4, in tau [default: 0.01]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = value_name(S, "solve", "step"), help = help(S, "solve", "step"))]
     step: Option<Real>,
     /// Output format.
-    #[arg(long, value_parser = super::values::format(), default_value = "table")]
+    #[arg(long, value_parser = values::format(), default_value = "table")]
     format: Format,
 }
 
 impl SimulateArgs {
-    /// Turn raw arguments into a validated configuration.
+    /// The keys of `[top]` and `[solve]` the flags fill.
+    fn keys(self) -> (RawTop, RawSolve, Format) {
+        let top = RawTop {
+            model: Some(Given::flag(self.model)),
+            ratio: self.ratio.map(Given::flag),
+            inertia: self.inertia.map(Given::flag),
+            dipole: self.dipole.map(Given::flag),
+            omega: self.omega.map(Given::flag),
+            euler: self.euler.map(Given::flag),
+            frame: None,
+        };
+        let solve = RawSolve {
+            method: self.method.map(Given::flag),
+            rtol: self.rtol.map(Given::flag),
+            step: self.step.map(Given::flag),
+            times: self.times.map(|t| Given::flag(t.0)),
+            t_end: self.t_end.map(Given::flag),
+            samples: self.samples.map(Given::flag),
+        };
+        (top, solve, self.format)
+    }
+
+    /// Turn raw arguments into a validated configuration: the same
+    /// validation as a top scene's.
     fn validate(self) -> Result<SimulateConfig, CliError> {
-        let symmetric = |ratio: Option<Real>| -> Result<SymmetricTop, CliError> {
-            if self.inertia.is_some() || self.dipole.is_some() {
-                return Err(bad(
-                    "--inertia and --dipole belong to --model general; the symmetric models take --ratio",
-                ));
-            }
-            Ok(SymmetricTop::new(ratio.unwrap_or(0.4), 1.0).map_err(SimError::from)?)
-        };
-        // Any top: --inertia and --dipole, never --ratio.
-        let general = |what: &str| -> Result<GeneralTop, CliError> {
-            if self.ratio.is_some() {
-                return Err(bad(format!(
-                    "--ratio belongs to the symmetric models; {what} takes --inertia and --dipole"
-                )));
-            }
-            let (Some(inertia), Some(dipole)) = (self.inertia, self.dipole) else {
-                return Err(bad(format!(
-                    "{what} needs --inertia I1,I2,I3 and --dipole D1,D2,D3"
-                )));
-            };
-            Ok(GeneralTop::new(Vec3::from(inertia), Vec3::from(dipole)).map_err(SimError::from)?)
-        };
-        let model = match self.model {
-            ModelArg::Truncated => Model::Truncated(symmetric(self.ratio)?),
-            // With --inertia and --dipole: the reduced ALE of any top.
-            ModelArg::Reduced if self.inertia.is_some() || self.dipole.is_some() => {
-                Model::GeneralReduced(general("--model reduced for a general top")?)
-            }
-            ModelArg::Reduced => Model::Reduced(symmetric(self.ratio)?),
-            // With --inertia and --dipole: the full ALE of any top.
-            ModelArg::Full if self.inertia.is_some() || self.dipole.is_some() => {
-                Model::GeneralFull(general("--model full for a general top")?)
-            }
-            ModelArg::Full => Model::Full(symmetric(self.ratio)?),
-            ModelArg::General => Model::General(general("--model general")?),
-        };
-        // Each model takes only the methods that mean something for it; the
-        // others are refused by name rather than silently replaced.
-        let method = self.method;
-        model
-            .check_method(method)
-            .map_err(|e| bad(format!("--method {}: {e}", method.name())))?;
-        let options = MethodOptions::for_choice(method, self.rtol, self.step)
-            .map_err(|e| bad(format!("--{e}")))?;
-        let [phi, theta, psi] = self.euler;
-        let initial = InitialState::new(Vec3::from(self.omega), EulerAngles::new(phi, theta, psi))?;
-        let times = match self.times {
-            Some(TimeList(times)) => times,
-            None => {
-                let t_end = self.t_end.unwrap_or(100.0);
-                let n = self.samples.unwrap_or(11);
-                if t_end < 0.0 {
-                    return Err(bad(format!(
-                        "--t-end must be >= 0, got {}",
-                        fmt_value(t_end)
-                    )));
-                }
-                if !(1..=MAX_SAMPLES).contains(&n) {
-                    return Err(bad(format!(
-                        "--samples must be in 1..={MAX_SAMPLES}, got {n}"
-                    )));
-                }
-                even_times(t_end, n)
-            }
-        };
-        check_output_times(&times)?;
+        let (top, solve, format) = self.keys();
+        let request = request::top(&top, &solve)?;
+        // NOTE: `auto` is a scene's (it plans before running); the flag's
+        // names leave it out.
+        let model = request.model().ok_or_else(|| {
+            bad("--model auto chooses for a scene (spintop run); simulate runs the model named")
+        })?;
         Ok(SimulateConfig {
             model,
-            method,
-            options,
-            initial,
-            euler0: self.euler,
-            times,
-            format: self.format,
+            method: request.method,
+            options: request.options,
+            initial: request.initial,
+            euler0: request.euler0,
+            times: request.times,
+            format,
             entry: spintop::output::Entry::CommandLine,
         })
     }

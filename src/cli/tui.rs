@@ -5,12 +5,16 @@
 //! ([`crate::tui::run`]), which always restores the terminal.
 
 use super::gate::Gate;
+use super::values;
 use super::{CliError, bad, parse_number, parse_vec3};
 use crate::live::settings::{DEFAULT_WARP, WARPS};
 use crate::live::{App, Settings};
 use crate::term::session;
 use clap::Args;
 use spintop::math::Real;
+use spintop::numbers::{fmt_time, significant};
+use spintop::physics::symmetric_top::{FIGURE_OMEGA0, FIGURE_RATIO};
+use spintop::scene::table::Command::Simulate as S;
 use spintop::sim::MethodChoice;
 use std::io::Write;
 use std::time::Duration;
@@ -25,11 +29,11 @@ pub struct TuiArgs {
     /// A top scene to open: a scene file, or a catalogue name (`spintop scenes`).
     #[arg(value_name = "SCENE", conflicts_with_all = ["ratio", "omega", "method"])]
     scene: Option<String>,
-    /// I3/I1 of both models, in (0, 2] [default: 0.4]
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse_number, allow_hyphen_values = true,
+          help = values::help(S, "top", "ratio"))]
     ratio: Option<Real>,
-    /// Initial body angular velocity, in 1/tau [default: 0,0.1,0.2]
-    #[arg(long, value_name = "W1,W2,W3", value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_name = "W1,W2,W3", value_parser = parse_vec3, allow_hyphen_values = true,
+          help = values::help(S, "top", "omega"))]
     omega: Option<[Real; 3]>,
     /// Numerical method of both models [default: exact]
     #[arg(long, value_parser = super::values::method())]
@@ -52,8 +56,8 @@ impl TuiArgs {
             return Ok((settings, Some(note)));
         }
         Settings::new(
-            self.ratio.unwrap_or(0.4),
-            self.omega.unwrap_or([0.0, 0.1, 0.2]),
+            self.ratio.unwrap_or(FIGURE_RATIO),
+            self.omega.unwrap_or(FIGURE_OMEGA0),
             self.method.unwrap_or(MethodChoice::Exact),
             self.warp.unwrap_or(WARPS[DEFAULT_WARP]),
         )
@@ -94,19 +98,19 @@ pub(crate) fn execute(args: TuiArgs, out: &mut Gate<'_>) -> Result<(), CliError>
     if limit.is_some() {
         let cpu = match (report.cpu, report.cpu_share()) {
             (Some(cpu), Some(share)) => format!(
-                "CPU {:.2} s = {:.1}% of one core",
-                cpu.as_secs_f64(),
-                100.0 * share
+                "CPU {} s = {}% of one core",
+                significant(cpu.as_secs_f64()),
+                significant(100.0 * share)
             ),
             _ => "CPU time not available on this platform".into(),
         };
         writeln!(
             out,
-            "spintop tui --bench: {} frames in {:.2} s = {:.1} fps; {cpu}; t = {:.1}τ at {} τ/s",
+            "spintop tui --bench: {} frames in {} s = {} fps; {cpu}; t = {}τ at {} τ/s",
             report.frames,
-            report.wall.as_secs_f64(),
-            report.fps(),
-            app.time(),
+            significant(report.wall.as_secs_f64()),
+            significant(report.fps()),
+            fmt_time(app.time()),
             app.settings().warp(),
         )?;
     }

@@ -1,9 +1,14 @@
-//! clap's value parsers over the core's name tables: the names a flag
-//! accepts, and the help line of each, are the core's (one table for the
-//! flag, the scene key and the live view), never restated here.
+//! clap's value parsers and help lines over the core's tables: the names a
+//! flag accepts, its help line, its range and its default are the core's
+//! ([`spintop::scene::table`]: one table for the flag, the scene key and the
+//! live view), never restated here. Numbers are read as numbers only; what
+//! a value must be (finite, in range) is the core's to say, in the same
+//! words for a flag as for a scene's key.
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use spintop::math::Real;
 use spintop::output::Format;
+use spintop::scene::table::{self, Choice, Command};
 use spintop::sim::MethodChoice;
 
 /// `--method NAME`: the names of [`MethodChoice::NAMES`].
@@ -14,8 +19,82 @@ pub fn method() -> impl TypedValueParser<Value = MethodChoice> {
     .map(|name| MethodChoice::from_name(&name).unwrap_or(MethodChoice::Auto))
 }
 
+/// `--method NAME` as a name, for the structures a scene file fills.
+pub fn method_name() -> PossibleValuesParser {
+    PossibleValuesParser::new(
+        MethodChoice::ALL.map(|m| PossibleValue::new(m.name()).help(m.help())),
+    )
+}
+
 /// `--format NAME`: the names of [`Format::NAMES`].
 pub fn format() -> impl TypedValueParser<Value = Format> {
     PossibleValuesParser::new(Format::ALL.map(|f| PossibleValue::new(f.name()).help(f.help())))
         .map(|name| Format::from_name(&name).unwrap_or(Format::Table))
+}
+
+/// The names of a table of the core that `keep` keeps, each with its help line.
+pub fn names<T>(
+    table: &'static [Choice<T>],
+    keep: impl Fn(&Choice<T>) -> bool,
+) -> PossibleValuesParser {
+    PossibleValuesParser::new(
+        table
+            .iter()
+            .filter(|c| keep(c))
+            .map(|c| PossibleValue::new(c.name).help(c.help)),
+    )
+}
+
+/// The help line of `[section] key` of `command`: what it is, its range and
+/// its default, from the table.
+pub fn help(command: Command, section: &str, key: &str) -> String {
+    table::key(command, section, key).help_line()
+}
+
+/// The value name of `[section] key` of `command` in `--help`.
+pub fn value_name(command: Command, section: &str, key: &str) -> &'static str {
+    table::key(command, section, key).value_name
+}
+
+/// A number as typed: any double, `nan` and `inf` included (what a value
+/// must be is the core's to check, in the words a scene's key gets).
+pub fn real(s: &str) -> Result<Real, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a number"))
+}
+
+/// Numbers separated by commas.
+pub fn reals(s: &str) -> Result<Vec<Real>, String> {
+    s.split(',').map(real).collect()
+}
+
+/// Exactly `N` numbers separated by commas.
+pub fn array<const N: usize>(s: &str) -> Result<[Real; N], String> {
+    let v = reals(s)?;
+    let n = v.len();
+    <[Real; N]>::try_from(v).map_err(|_| {
+        let words = ["no", "one", "two", "three"];
+        let want = words.get(N).copied().unwrap_or("N");
+        format!("expected {want} comma-separated numbers, got {n}")
+    })
+}
+
+/// A whole number as typed, in plain or exponent form, a sign allowed (its
+/// range is the core's to check).
+pub fn whole(s: &str) -> Result<i64, String> {
+    let t = s.trim();
+    let (negative, digits) = match t.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, t),
+    };
+    let n: u64 = spintop::numbers::parse_count(digits).map_err(|e: String| {
+        if e.ends_with("too large") {
+            format!("'{s}' is too large")
+        } else {
+            format!("'{s}' is not a whole number")
+        }
+    })?;
+    let n = i64::try_from(n).map_err(|_| format!("'{s}' is too large"))?;
+    Ok(if negative { -n } else { n })
 }

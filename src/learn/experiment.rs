@@ -1,6 +1,7 @@
-//! A chapter's experiments: `<!-- spintop: ratio=1.5 method=rk4 | caption -->`
-//! comments in its Markdown (mdBook drops them), each a change to the
-//! chapter's own scene that `x` applies.
+//! A chapter's experiments: inline code `` `spintop: ratio=1.5 method=rk4` ``
+//! in its Markdown (the web book shows it as the settings to try, the text
+//! around it is the caption), each a change to the chapter's own scene that
+//! `x` applies.
 
 use crate::live::settings::WARPS;
 use crate::live::{Refusal, Settings, Top};
@@ -40,7 +41,7 @@ pub enum ExperimentError {
     Refused(#[from] Refusal),
 }
 
-/// One experiment, parsed from `<!-- spintop: ratio=1.5 method=rk4 -->`.
+/// One experiment, parsed from the book's `` `spintop: ratio=1.5 method=rk4` ``.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Experiment {
     /// I₃/I₁.

@@ -7,8 +7,9 @@
 //! hidden `# ` lines are dropped from Rust snippets as mdBook hides them,
 //! MathJax-style `\\[ … \\]` and `\\( … \\)` are read as math, every equation
 //! goes through [`super::tex`] to Unicode, and the result is wrapped to the
-//! panel's width as styled ratatui lines. `<!-- spintop: … -->` comments (which
-//! mdBook drops) mark the chapter's experiments.
+//! panel's width as styled ratatui lines. Inline code that starts with
+//! `spintop: ` (`` `spintop: ratio=1.5` ``, visible in the web book as the
+//! settings to try) marks one of the chapter's experiments.
 
 mod include;
 mod wrap;
@@ -406,6 +407,12 @@ impl Renderer {
                     alt.push_str(&t);
                     return;
                 }
+                // `spintop: …` (a space after the colon), not a path such
+                // as `spintop::physics`.
+                if let Some(settings) = t.strip_prefix("spintop: ") {
+                    self.experiment(settings.trim());
+                    return;
+                }
                 let s = self.style().patch(style::code());
                 self.text(&t, s);
             }
@@ -456,30 +463,21 @@ impl Renderer {
         }
     }
 
+    /// An experiment of the live view, written in the book as inline code
+    /// `` `spintop: SETTINGS` `` (its caption is the text around it): the
+    /// marker and the settings, and the line `x` scrolls to.
+    fn experiment(&mut self, settings: &str) {
+        let line = self.out.lines.len();
+        self.out.experiments.push((line, settings.to_string()));
+        self.pieces
+            .push(Piece::new(" ▶ try this ", style::experiment()));
+        self.pieces.push(Piece::new(" ", Style::new()));
+        let s = self.style().patch(style::code());
+        self.text(&format!("[{settings}]"), s);
+    }
+
     fn html(&mut self, html: &str) {
         let h = html.trim();
-        if let Some(body) = h.strip_prefix("<!--").and_then(|b| b.strip_suffix("-->"))
-            && let Some(exp) = body.trim().strip_prefix("spintop:")
-        {
-            self.flush();
-            let line = self.out.lines.len();
-            let text = exp.trim().to_string();
-            self.out.experiments.push((line, text.clone()));
-            let (settings, caption) = match text.split_once('|') {
-                Some((s, c)) => (s.trim().to_string(), c.trim().to_string()),
-                None => (text.clone(), String::new()),
-            };
-            let mut pieces = vec![Piece::new(" ▶ try this ", style::experiment())];
-            pieces.push(Piece::new(" ", Style::new()));
-            for word in caption.split_whitespace() {
-                pieces.push(Piece::new(word.to_string(), style::quote()));
-                pieces.push(Piece::new(" ", style::quote()));
-            }
-            pieces.push(Piece::new(format!("[{settings}]"), style::code()));
-            self.pieces = pieces;
-            self.flush();
-            self.blank();
-        }
         // An <img> (side-by-side figures in raw HTML) is drawn as a Markdown image is.
         let mut rest = h;
         while let Some(at) = rest.find("<img ") {
@@ -966,15 +964,25 @@ mod tests {
 
     #[test]
     fn experiments_are_found_and_shown() {
-        let r = render("Text.\n\n<!-- spintop: ratio=1.5 -->\n\nMore.\n", 40);
+        let r = render("Text.\n\n- `spintop: ratio=1.5`: a flat top\n\nMore.\n", 40);
         assert_eq!(r.experiments.len(), 1);
         assert_eq!(r.experiments[0].1, "ratio=1.5");
-        let r = render("<!-- spintop: ratio=1.5 | a flat top -->\n", 40);
+        let shown = plain(&r.lines);
         assert!(
-            plain(&r.lines).contains("a flat top [ratio=1.5]"),
-            "{}",
-            plain(&r.lines)
+            shown.contains("try this") && shown.contains("[ratio=1.5]: a flat top"),
+            "{shown}"
         );
-        assert!(plain(&r.lines).contains("try this"));
+        // The line recorded is the experiment's own.
+        assert!(
+            plain(&r.lines[r.experiments[0].0..]).starts_with("•"),
+            "{shown}"
+        );
+        // Other inline code, a path in the crate, and HTML comments are not
+        // experiments.
+        let r = render(
+            "`ratio=1.5`, `spintop::physics` and <!-- spintop: ratio=1.5 -->\n",
+            40,
+        );
+        assert!(r.experiments.is_empty());
     }
 }

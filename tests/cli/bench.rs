@@ -5,8 +5,8 @@
 use crate::support;
 use support::spintop;
 
-use spintop::workprecision::report;
-use std::path::PathBuf;
+use spintop::workprecision::{Row, report};
+use std::path::{Path, PathBuf};
 
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
@@ -18,9 +18,20 @@ fn scratch(name: &str) -> PathBuf {
     dir.join(name)
 }
 
+/// The quick sweep, then what `--join` makes of the file it wrote: alone,
+/// beside a peer's file, and asked for a problem the file does not hold.
 #[test]
 fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
     let csv = scratch("reduced.csv");
+    let rows = quick_sweep_prints_and_writes(&csv);
+    join_alone_names_the_fastest_integrator(&csv, &rows);
+    join_with_a_peer_draws_its_curve(&csv, &rows);
+    join_refuses_a_problem_the_files_do_not_hold(&csv);
+}
+
+/// `bench --quick` on the reduced model: both charts, every method, the
+/// table, and rows in `csv` that read back.
+fn quick_sweep_prints_and_writes(csv: &Path) -> Vec<Row> {
     let out = spintop(&[
         "bench",
         "--quick",
@@ -54,19 +65,23 @@ fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
         assert!(stdout.contains(method), "{method} missing:\n{stdout}");
     }
     assert!(stdout.contains("reduced: fastest: at 1e-8"), "{stdout}");
-    let rows = report::parse_csv(&std::fs::read_to_string(&csv).unwrap()).unwrap();
+    let rows = report::parse_csv(&std::fs::read_to_string(csv).unwrap()).unwrap();
     assert!(rows.len() >= 20, "{}", rows.len());
     assert!(rows.iter().all(|r| r.ok() && r.model == "reduced"));
     assert!(rows.iter().all(|r| r.time_s.is_some_and(|t| t > 0.0)));
+    rows
+}
 
-    // The join reads it back (alone here: a run joined with itself, ratio 1).
+/// The join reads the file back (alone here: a run joined with itself,
+/// ratio 1) and names the best integrator at 1e-12 the file's.
+fn join_alone_names_the_fastest_integrator(csv: &Path, rows: &[Row]) {
     let out = spintop(&["bench", "--join", csv.to_str().unwrap()]);
     let stdout = text(&out.stdout);
     assert!(out.status.success(), "{}", text(&out.stderr));
     // The best integrator at 1e-12 is the one whose matched time is least
     // in the file (which one depends on the machine's timing that day: the
     // join must name the file's, whichever it is).
-    let matched = report::matched(&rows);
+    let matched = report::matched(rows);
     let i = report::MATCHED_ERRORS
         .iter()
         .position(|&e| e == 1e-12)
@@ -85,10 +100,12 @@ fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
             )),
         "{stdout}"
     );
+}
 
-    // Joined with a peer's file, the chart draws the peer's curve beside
-    // spintop's: here a copy of the DOP853 rows under another source's name,
-    // twice as slow.
+/// Joined with a peer's file, the chart draws the peer's curve beside
+/// spintop's: here a copy of the DOP853 rows under another source's name,
+/// twice as slow.
+fn join_with_a_peer_draws_its_curve(csv: &Path, rows: &[Row]) {
     let mut peer: Vec<_> = rows
         .iter()
         .filter(|r| r.method == "dop853" && r.target == spintop::workprecision::Target::Omega)
@@ -121,57 +138,66 @@ fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
         .find(|l| l.contains("8 dop853"))
         .expect("a legend");
     assert!(legend.contains("e elsewhere dop853"), "{legend}");
-    // The peer's marker is drawn on the time chart (the first chart).
-    let time_chart: String = stdout
+    peer_markers_sit_where_spintops_do(csv, &stdout);
+    assert!(stdout.contains("elsewhere    dop853"), "{stdout}");
+}
+
+/// The lines of the time chart (the first chart) below its legend.
+fn time_chart_lines(stdout: &str) -> Vec<&str> {
+    stdout
         .split("against RHS evaluations")
         .next()
         .unwrap()
         .lines()
         .skip_while(|l| !l.contains("8 dop853"))
         .skip(1)
-        .collect();
-    // Where: the peer's rows are spintop's DOP853 rows with the same RHS
-    // evaluations, so on the evaluations chart every 'e' must sit exactly
-    // where spintop's '8' sits when its file is charted alone (at the same
-    // width; the evaluations set the same axis). On the time chart, twice
-    // the time puts each 'e' log10(2) of a decade right of its '8' (about 4
-    // columns of this 50-column chart; the times are measured, so a marker
-    // may hide another: at least two pairs must show it).
-    let markers = |text: &str, mark: fn(char) -> bool| -> Vec<(usize, usize)> {
-        let chart = text.split_once("against RHS evaluations").unwrap().1;
-        chart
-            .lines()
-            .skip_while(|l| !l.contains("8 dop853"))
-            .skip(1)
-            .take_while(|l| l.starts_with(|c| ('\u{2800}'..='\u{28FF}').contains(&c)))
-            .filter(|l| !l.contains("1e"))
-            .enumerate()
-            .flat_map(|(row, l)| {
-                l.chars()
-                    .enumerate()
-                    .filter(move |&(_, c)| mark(c))
-                    .map(move |(col, _)| (row, col))
-            })
-            .collect()
-    };
+        .collect()
+}
+
+/// (row, column) of each character of the evaluations chart (the second
+/// chart) that `mark` picks, on its plot lines.
+fn evaluation_markers(text: &str, mark: fn(char) -> bool) -> Vec<(usize, usize)> {
+    let chart = text.split_once("against RHS evaluations").unwrap().1;
+    chart
+        .lines()
+        .skip_while(|l| !l.contains("8 dop853"))
+        .skip(1)
+        .take_while(|l| l.starts_with(|c| ('\u{2800}'..='\u{28FF}').contains(&c)))
+        .filter(|l| !l.contains("1e"))
+        .enumerate()
+        .flat_map(|(row, l)| {
+            l.chars()
+                .enumerate()
+                .filter(move |&(_, c)| mark(c))
+                .map(move |(col, _)| (row, col))
+        })
+        .collect()
+}
+
+/// Where the peer's markers are drawn in `stdout` (the join of `csv` with
+/// the peer's file): the peer's rows are spintop's DOP853 rows with the same
+/// RHS evaluations, so on the evaluations chart every 'e' must sit exactly
+/// where spintop's '8' sits when its file is charted alone (at the same
+/// width; the evaluations set the same axis). On the time chart, twice the
+/// time puts each 'e' log10(2) of a decade right of its '8' (about 4 columns
+/// of this 50-column chart; the times are measured, so a marker may hide
+/// another: at least two pairs must show it).
+fn peer_markers_sit_where_spintops_do(csv: &Path, stdout: &str) {
     let alone = spintop(&["bench", "--join", csv.to_str().unwrap(), "--width", "50"]);
     let alone = text(&alone.stdout);
     // (Where two methods share a point one marker hides the other.)
-    let peer = markers(&stdout, |c| c == 'e');
-    let eights = markers(&alone, |c| c == '8');
-    let any = markers(&alone, |c| c.is_ascii_alphanumeric());
+    let peer = evaluation_markers(stdout, |c| c == 'e');
+    let eights = evaluation_markers(&alone, |c| c == '8');
+    let any = evaluation_markers(&alone, |c| c.is_ascii_alphanumeric());
     assert_eq!(peer.len(), 4, "one marker per tolerance:\n{stdout}");
     assert!(
         eights.iter().all(|p| peer.contains(p)) && peer.iter().all(|p| any.contains(p)),
         "peer {peer:?}, spintop's 8 {eights:?}\n{stdout}\n{alone}"
     );
-    let time_lines: Vec<&str> = stdout
-        .split("against RHS evaluations")
-        .next()
-        .unwrap()
-        .lines()
-        .skip_while(|l| !l.contains("8 dop853"))
-        .skip(1)
+    let time_chart = time_chart_lines(stdout);
+    let time_lines: Vec<&str> = time_chart
+        .iter()
+        .copied()
         .filter(|l| !l.contains("1e-"))
         .collect();
     let pairs = time_lines
@@ -189,13 +215,15 @@ fn bench_quick_prints_both_charts_the_table_and_writes_csv() {
         "'e' about 4 columns right of '8':\n{}",
         time_lines.join("\n")
     );
+    let time_chart: String = time_chart.concat();
     assert!(
         time_chart.contains('e') && time_chart.contains('8'),
         "{stdout}"
     );
-    assert!(stdout.contains("elsewhere    dop853"), "{stdout}");
+}
 
-    // A problem the files do not hold cannot be charted.
+/// A problem the files do not hold cannot be charted: one line, exit 2.
+fn join_refuses_a_problem_the_files_do_not_hold(csv: &Path) {
     let out = spintop(&[
         "bench",
         "--join",

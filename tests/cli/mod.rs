@@ -3,6 +3,7 @@
 mod bad_input;
 mod balance;
 mod bench;
+mod entry;
 mod figure;
 mod gate;
 mod orbit;

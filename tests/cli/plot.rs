@@ -178,11 +178,14 @@ fn plot_log_time_spans_four_decades() {
 fn bad_plot_input_is_one_line_and_exit_code_2() {
     let cases: [(&[&str], &str); 6] = [
         (&["plot", "--ratio", "0"], "not a rigid body"),
-        (&["plot", "--t-end", "0"], "--t-end must be > 0"),
+        (&["plot", "--t-end", "0"], "--t-end 0 is out of range"),
         (&["plot", "--t-end", "inf"], "not a finite number"),
         (&["plot", "--width", "3"], "--width"),
         (&["plot", "--height", "1000"], "--height"),
-        (&["plot", "--model", "general"], "invalid value"),
+        (
+            &["plot", "--model", "general"],
+            "--model general is not known",
+        ),
     ];
     for (args, needle) in cases {
         let out = spintop(args);

@@ -12,6 +12,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
+mod diagnose;
+
 /// The seeds the grading tests run at: the same assertions must hold for
 /// any grading's inputs.
 const SEEDS: [u64; 3] = [2026, 7, 918_273_645];
@@ -86,6 +88,7 @@ fn spintop(args: &[&str]) -> std::process::Output {
 }
 
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn a_stub_that_prints_the_harness_lines_grades_zero_of_22() {
     let dir = scratch("printing-stub").join("copy");
     export_linked(&dir);
@@ -203,6 +206,7 @@ fn check_gradescope(json: &serde_json::Value) {
 }
 
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn course_grade_writes_every_row_of_a_class_within_its_time_limits() {
     let class = scratch("class");
     // alice solved (2.1); bob's (2.2) never returns; carol's ch3.rs does not
@@ -336,6 +340,7 @@ fn course_grade_writes_every_row_of_a_class_within_its_time_limits() {
 /// (and never "does not compile" for want of the file).
 #[cfg(unix)]
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn course_grade_names_a_symbolic_link_to_the_solution_in_the_reason() {
     let class = scratch("link");
     let frank = class.join("frank");
@@ -374,6 +379,7 @@ fn course_grade_names_a_symbolic_link_to_the_solution_in_the_reason() {
 }
 
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn an_export_for_github_grades_itself_with_cargo_test_on_every_push() {
     let dir = scratch("ci").join("copy");
     let written = course::export_with(
@@ -464,6 +470,7 @@ fn an_export_for_github_grades_itself_with_cargo_test_on_every_push() {
 }
 
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn every_printed_command_repeats_the_course_it_was_given() {
     let dir = scratch("hint").join("copy");
     export_linked(&dir);
@@ -496,80 +503,11 @@ fn every_printed_command_repeats_the_course_it_was_given() {
     std::fs::remove_dir_all(dir.parent().unwrap()).ok();
 }
 
-/// Every assignment of the course has at least one of `answers`.
-fn assert_every_assignment_has_a_wrong_answer(answers: &[course::diagnose::WrongAnswer]) {
-    for a in COURSE {
-        assert!(
-            answers.iter().any(|w| w.assignment.function == a.function),
-            "no wrong answer for {}",
-            a.function
-        );
-    }
-}
-
-#[test]
-fn the_example_wrong_answers_are_rejected_and_their_diagnoses_name_the_mistake() {
-    let answers = course::diagnose::read_folder(&repo().join("lessons/wrong")).unwrap();
-    assert!(answers.len() >= 30, "{}", answers.len());
-    // Every assignment has at least one.
-    assert_every_assignment_has_a_wrong_answer(&answers);
-    let work = scratch("diagnose");
-    for seed in SEEDS {
-        let results = course::diagnose::run(repo(), &answers, seed, &work.join("build")).unwrap();
-        let mut misses = Vec::new();
-        for r in &results {
-            if r.passed || r.says_it() != Some(true) {
-                misses.push(r.text());
-            }
-        }
-        assert!(misses.is_empty(), "seed {seed}:\n{}", misses.join("\n"));
-    }
-    std::fs::remove_dir_all(&work).ok();
-}
-
-/// The independent set (lessons/wrong/independent/): 73 wrong answers over
-/// the 22 assignments, written by a reviewer who had not read the graders,
-/// as a student would make them. Measured in lessons/README.md ("Diagnoses,
-/// measured"): every one is rejected, and all but one diagnosis contain the
-/// words that name the mistake. Neither count may fall.
-#[test]
-fn the_independent_wrong_answers_are_all_rejected_and_their_diagnoses_name_the_mistake() {
-    let answers = course::diagnose::read_folder(&repo().join("lessons/wrong/independent")).unwrap();
-    assert!(answers.len() >= 60, "{}", answers.len());
-    assert_every_assignment_has_a_wrong_answer(&answers);
-    let work = scratch("independent");
-    for seed in SEEDS {
-        let results = course::diagnose::run(repo(), &answers, seed, &work.join("build")).unwrap();
-        let passed: Vec<String> = results
-            .iter()
-            .filter(|r| r.passed)
-            .map(|r| r.text())
-            .collect();
-        assert!(
-            passed.is_empty(),
-            "seed {seed}: accepted\n{}",
-            passed.join("\n")
-        );
-        let unnamed: Vec<String> = results
-            .iter()
-            .filter(|r| r.says_it() != Some(true))
-            .map(|r| r.text())
-            .collect();
-        assert!(
-            unnamed.len() <= 1,
-            "seed {seed}: {} of {} diagnoses do not name the mistake:\n{}",
-            unnamed.len(),
-            results.len(),
-            unnamed.join("\n")
-        );
-    }
-    std::fs::remove_dir_all(&work).ok();
-}
-
 /// A copy that allocates without bound fails alone, within its memory
 /// limit, instead of taking the (shared) machine and the class's grading
 /// with it: 4 GiB asked for by one grader is refused, and the row says why.
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn a_grader_that_allocates_without_bound_is_stopped_by_its_memory_limit() {
     let class = scratch("memory");
     let greedy = class.join("greedy");
@@ -605,6 +543,7 @@ fn a_grader_that_allocates_without_bound_is_stopped_by_its_memory_limit() {
 /// student beside their copy) grades the copy; cargo must not look for the
 /// manifest relative to the copy itself ("does not compile", Cargo.toml:1).
 #[test]
+#[ignore = "end-to-end: builds copies of the course"]
 fn a_copy_named_by_a_relative_path_is_graded() {
     let parent = scratch("relative");
     export_linked(&parent.join("mine"));

@@ -11,6 +11,9 @@ It starts `spintop book` on a free port and, in headless Chromium:
 0. opens the server's address without its token and sees the 403 page that
    says to open the printed address; then opens the printed address, as a
    reader does, and lands on the book at the address without the token;
+   then overwrites the cookie (as another server's page on 127.0.0.1 can),
+   sees the 403 page, pastes the address into its form and lands on the
+   page it asked for;
 1. opens Section 4.2 through the server and saves a screenshot;
 2. once the background build has finished ("▶ is ready" in the terminal),
    presses ▶ on its first snippet and waits for the answer (no compiler error,
@@ -137,6 +140,22 @@ def check(book: Book, shots: pathlib.Path) -> int:
         page.goto(book.address)
         assert page.url == url, page.url
         assert "403" not in (page.title() or ""), page.title()
+        # 0b. The cookie overwritten, as a page of another server on
+        # 127.0.0.1 can (cookies do not separate ports): the 403 page takes
+        # the printed address again in its form, and the book opens at the
+        # page asked for.
+        port = url.rstrip("/").rsplit(":", 1)[1]
+        page.context.add_cookies([{"name": f"spintop-book-{port}", "value": "0" * 32, "url": url}])
+        response = page.goto(url + "section-4-2.html")
+        assert response is not None and response.status == 403, response
+        assert "browser lost the key" in page.inner_text("body")
+        page.screenshot(path=str(shots / "lost-cookie.png"))
+        page.fill("#key", book.address)
+        with page.expect_navigation():
+            page.click("button[type=submit]")
+        assert page.url == url + "section-4-2.html", page.url
+        assert page.evaluate("window.spintopBook && window.spintopBook.token") == book.token
+        print("book_server: a lost cookie was taken again by the 403 page's form")
         # 1. Section 4.2 through the server.
         page.goto(url + "section-4-2.html")
         page.locator("pre.playground >> visible=true").first.wait_for(timeout=20000)

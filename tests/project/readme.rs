@@ -20,7 +20,8 @@ fn readme() -> String {
 /// Every command the README shows: the lines of its `sh` blocks (comments
 /// dropped) and the `spintop …` examples of its tables, as arguments of
 /// `spintop` (`cargo run --release -- ARGS` and `spintop ARGS` alike; `None`
-/// for `cargo test`, the suite itself).
+/// for `cargo test` and its end-to-end tier `cargo test -- --ignored`, the
+/// suite itself, which `.ci/run` runs).
 fn commands(text: &str) -> Vec<(String, Option<Vec<String>>)> {
     let mut found = Vec::new();
     let mut in_sh = false;
@@ -47,7 +48,7 @@ fn commands(text: &str) -> Vec<(String, Option<Vec<String>>)> {
             }
         }
         for command in shown {
-            let args = if command == "cargo test" {
+            let args = if command == "cargo test" || command == "cargo test -- --ignored" {
                 None
             } else if let Some(rest) = command.strip_prefix("cargo run --release --") {
                 Some(rest.split_whitespace().map(String::from).collect())

@@ -745,11 +745,11 @@ fn prose_and_captions_use_one_subscript_notation() {
 /// A word that is only in folded library source is found: the search shows
 /// the source whole (as `o` does) and goes to it, instead of saying the word
 /// is not in the chapter. A word in neither leaves the folds as they were.
-/// Found under tmux: "k4z" (a variable of the appendix's method of steps)
-/// was "not in this chapter" until `o` was pressed.
+/// Found under tmux: "k4z" (a variable of the method of steps, shown in
+/// Numerical methods) was "not in this chapter" until `o` was pressed.
 #[test]
 fn a_search_finds_words_in_folded_library_source() {
-    let mut learn = Learn::open(&book(), Some("A")).unwrap();
+    let mut learn = Learn::open(&book(), Some("numerical-methods")).unwrap();
     draw(&mut learn, 80, 24);
     assert!(!learn.unfolded(), "library source starts folded");
     let search = |learn: &mut Learn, word: &str| {

@@ -105,10 +105,35 @@ pub struct Diagnosed {
 
 impl Diagnosed {
     /// Whether the diagnosis contains the words the answer's file expects
-    /// (`None` when it expects none).
+    /// (`None` when it expects none): a phrase, or a list of words separated
+    /// by commas of which more than half must be there (see [`contains`]).
     pub fn says_it(&self) -> Option<bool> {
         let says = self.answer.says.as_ref()?;
-        Some(self.diagnosis.to_lowercase().contains(&says.to_lowercase()))
+        let words: Vec<&str> = says
+            .split(',')
+            .map(str::trim)
+            .filter(|w| !w.is_empty())
+            .collect();
+        let found = words
+            .iter()
+            .filter(|w| contains(&self.diagnosis, w))
+            .count();
+        Some(2 * found > words.len())
+    }
+
+    /// How many of the expected words the diagnosis contains, of how many.
+    pub fn words_found(&self) -> Option<(usize, usize)> {
+        let says = self.answer.says.as_ref()?;
+        let words: Vec<&str> = says
+            .split(',')
+            .map(str::trim)
+            .filter(|w| !w.is_empty())
+            .collect();
+        let found = words
+            .iter()
+            .filter(|w| contains(&self.diagnosis, w))
+            .count();
+        Some((found, words.len()))
     }
 
     /// One block of text.
@@ -124,11 +149,14 @@ impl Diagnosed {
         } else {
             self.diagnosis.clone()
         };
-        let check = match self.says_it() {
-            Some(true) => " [says it]",
-            Some(false) => " [does not say it]",
-            None => "",
+        let check = match (self.says_it(), self.words_found()) {
+            (Some(true), Some((f, n))) if n > 1 => format!(" [says it: {f} of {n} words]"),
+            (Some(false), Some((f, n))) if n > 1 => format!(" [does not say it: {f} of {n} words]"),
+            (Some(true), _) => " [says it]".to_string(),
+            (Some(false), _) => " [does not say it]".to_string(),
+            (None, _) => String::new(),
         };
+
         format!(
             "{name} ({}): {}\n  diagnosis: {verdict}{check}",
             self.answer.assignment.function, self.answer.mistake
@@ -147,6 +175,37 @@ impl Diagnosed {
             "says_it": self.says_it(),
         })
     }
+}
+
+/// Text as the word test reads it: lower case, a hyphen as a space (so
+/// "left-hand" is "left hand"), the cross product's `×` as `x`.
+fn normal(text: &str) -> String {
+    text.to_lowercase().replace('-', " ").replace('×', "x")
+}
+
+/// Whether `text` contains `word` as a word (or words): not inside another
+/// word ("p" is not found in "step", "d'" not in "d''"), though a plural or
+/// a possessive counts ("rows" for "row", "Euler's" for "euler").
+/// Letters, digits, `_` and `'` make up words.
+pub fn contains(text: &str, word: &str) -> bool {
+    let (text, word) = (normal(text), normal(word));
+    let is_word = |c: char| c.is_alphanumeric() || c == '_' || c == '\'';
+    let (first, last) = match (word.chars().next(), word.chars().last()) {
+        (Some(f), Some(l)) => (f, l),
+        _ => return false,
+    };
+    text.match_indices(&word).any(|(i, _)| {
+        let before = text[..i].chars().next_back();
+        let after = &text[i + word.len()..];
+        let starts = !is_word(first) || before.is_none_or(|c| !is_word(c));
+        let ends = !is_word(last)
+            || ["'s", "es", "s", "ed", "d", ""].iter().any(|suffix| {
+                after
+                    .strip_prefix(suffix)
+                    .is_some_and(|r| r.chars().next().is_none_or(|c| !is_word(c)))
+            });
+        starts && ends
+    })
 }
 
 /// The program that grades answer number ARG at seed ARG.

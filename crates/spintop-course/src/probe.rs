@@ -144,6 +144,7 @@ mod tests {
     }
 
     #[test]
+    #[ignore = "end-to-end: builds the lessons with the solutions"]
     fn the_probe_samples_the_reference_solution() {
         // The instructor's solution through the real probe: cargo runs it.
         let spec = ProbeSpec::for_chapter("Section 4.2").unwrap();

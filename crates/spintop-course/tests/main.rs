@@ -6,8 +6,10 @@
 //! application's tests (`tests/course`), since they run `spintop course` as
 //! an instructor does.
 
+mod diagnoses;
 mod graders;
 mod source_rule;
+mod wrong_answers;
 
 /// The seeds every grader test runs at: the same assertions must hold for
 /// any grading's inputs.

@@ -249,9 +249,20 @@ fn proportional(k: Real, what: &str, kind: Kind) -> String {
             "{what} is {words} times the right one: an angle in {yours} where {right} belong (Rust's sin, cos and atan2 work in radians)"
         );
     }
+    if simple && (k - 0.5).abs() < 1e-9 {
+        return format!(
+            "right up to a factor {words}: {what} is half the right one (a factor 2 missing?)"
+        );
+    }
+    if simple && (k - 2.0).abs() < 1e-9 {
+        return format!(
+            "right up to a factor {words}: {what} is twice the right one (a factor 2 too many?)"
+        );
+    }
     if simple {
         return format!("right up to a factor {words}: {what} is {words} times the right one");
     }
+
     let off = (k - 1.0).abs();
     if off < 1e-3 {
         return format!(

@@ -24,8 +24,8 @@
 //! before anything is compiled; the graders themselves stay in the core, so
 //! that a student's build compiles neither a parser nor the terminal UI.
 //!
-//! The graders, one per assignment, are in `grading/graders.rs` and are
-//! re-exported here.
+//! The graders, one per assignment, are in `graders/` (one file per chapter)
+//! and are re-exported here.
 
 use spintop::math::{Real, State, Vec3};
 use spintop::physics::shell::C;
@@ -37,6 +37,7 @@ use std::sync::Once;
 
 mod diagnosis;
 mod graders;
+mod parts;
 pub mod verdict;
 pub use diagnosis::{factor_words, shape_diagnosis};
 pub use graders::*;
@@ -363,7 +364,7 @@ pub(crate) fn mistake<'a, I, T>(
 }
 
 /// A comparison of two answers.
-pub(crate) type Close<'a, T> = Box<dyn Fn(&T, &T) -> bool + 'a>;
+pub(crate) type Close<'a, T> = Rc<dyn Fn(&T, &T) -> bool + 'a>;
 
 /// The student's function called again on another input (`None`: it panicked).
 pub(crate) type Again<'a, I, T> = dyn Fn(&I) -> Option<T> + 'a;
@@ -401,7 +402,7 @@ impl<'a, I: fmt::Debug + 'a, T: Answer + 'a> Grader<'a, I, T> {
             seed,
             inputs,
             reference: Rc::new(reference),
-            close: Box::new(close),
+            close: Rc::new(close),
             mistakes: Vec::new(),
             probes: Vec::new(),
             labels: None,

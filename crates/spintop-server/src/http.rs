@@ -166,6 +166,25 @@ impl Connection {
         })
     }
 
+    /// Before a connection answered without reading its request (503 from
+    /// the accept loop) is closed: reads, without waiting, what has
+    /// arrived of the request, and ends the writing half, so that the
+    /// close sends the client no reset that could discard the answer.
+    pub fn close_unread(mut self) {
+        let socket = self.reader.get_ref();
+        if socket.set_nonblocking(true).is_ok() {
+            let mut buf = [0u8; 8192];
+            let mut left: usize = 64 * 1024;
+            while left > 0 {
+                match self.reader.read(&mut buf) {
+                    Ok(n) if n > 0 => left = left.saturating_sub(n),
+                    _ => break,
+                }
+            }
+        }
+        let _ = self.writer.shutdown(Shutdown::Write);
+    }
+
     /// The time a whole request may take to arrive from its first byte.
     pub fn set_request_time(&mut self, limit: Duration) {
         self.request_time = limit;

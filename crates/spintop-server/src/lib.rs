@@ -5,7 +5,7 @@
 //! are parsed by `httparse`; each connection has a thread of its own
 //! (`http.rs` says why no pooled server crate). Because it runs code on the
 //! reader's machine, this is what holds, each point tested against the real
-//! server in `tests/server.rs`:
+//! server in `tests/book/` (of the application, whose binary supervises):
 //!
 //! # Who can run code: the reader, holding the printed address
 //!
@@ -27,44 +27,109 @@
 //! - Every request needs it, pages and static files included. The first
 //!   visit with `?token=` sets a cookie (HttpOnly, SameSite=Strict, named
 //!   after the port, since a host's cookies are shared by all its ports) and
-//!   redirects to the address without the token; a request with neither gets
-//!   a 403 page that says to open the address printed in the terminal.
+//!   redirects to the address without the token. A request with neither
+//!   gets a 403 page that says to open the printed address, and takes the
+//!   key again in a form (posted to `/login` from the book's own origin
+//!   only): such a page may overwrite the cookie, which cookies' sharing of
+//!   ports allows, and the reader then pastes the address or the token
+//!   there instead of restarting the book.
 //! - A run (`/evaluate.json`, `/evaluate/status`) carries the token in a
 //!   header (`X-Spintop-Token`) that the served pages add; a cookie alone
-//!   does not start a run.
+//!   does not start a run. A page asked with that header is served too.
 //! - Tokens are compared in constant time (`subtle`).
-//! - Other origins: the server listens on 127.0.0.1 only; a `Host` other
-//!   than `127.0.0.1:PORT`/`localhost:PORT` (DNS rebinding) or a foreign
-//!   `Origin` is refused (403); no CORS headers; every answer forbids framing
-//!   (`X-Frame-Options: DENY`, CSP `frame-ancestors 'none'`) and sniffing
-//!   (`nosniff`), and sends no referrer and `Cache-Control: no-store`.
+//! - Other origins: the server listens on 127.0.0.1, and on ::1 at the same
+//!   port where the machine has IPv6 loopback, so that no other process can
+//!   listen there: a browser resolves `localhost` to ::1 first, and would
+//!   send the address to whoever held it. It refuses to start if another
+//!   process holds [::1] at the port asked for (with a free port asked for,
+//!   it takes one free on both). A `Host` other than
+//!   `127.0.0.1:PORT`, `localhost:PORT` or `[::1]:PORT` (DNS rebinding) or a
+//!   foreign `Origin` is refused (403); no CORS headers; every answer
+//!   forbids framing (`X-Frame-Options: DENY`, CSP `frame-ancestors
+//!   'none'`) and sniffing (`nosniff`), sends a referrer only to itself
+//!   (`same-origin`: with `no-referrer` a browser sends `Origin: null` on
+//!   a form's POST, and the 403 page's form could not prove its origin),
+//!   and `Cache-Control: no-store`.
+//!
+//! # Folders: the reader's own
+//!
+//! The built book it serves with the token, the scratch project it builds
+//! and the build folder whose programs it runs must each be the reader's,
+//! and neither they nor any folder above them writable by another user or
+//! owned by one but root; a sticky folder above (as /tmp) is allowed when
+//! the next one down is the reader's (`src/server/folders.rs`). Else
+//! [`Server::bind`] refuses, saying which folder and why. The scratch folder
+//! is made fresh at each start, mode 0700. Cargo runs in `/` and finds the
+//! scratch project by its path, so that no `.cargo/config.toml` in a folder
+//! above the scratch (which cargo reads from the folder it runs in upward,
+//! whoever wrote it, and whatever `--config` or `CARGO_HOME` say) is read;
+//! the reader's own `CARGO_HOME` configuration is.
 //!
 //! # What a snippet can do: anything the reader can, within limits
 //!
 //! A snippet runs as the reader, with the reader's files and network. Each
-//! build and each run is a process tree under a supervisor
-//! (`src/server/tree.rs` says how): its own session and process group, a
-//! child subreaper so that what it starts (daemons, double forks, `setsid`,
-//! `nohup`) stays in the tree, and for a run resource limits ([`Limits`]):
-//! per process 4 GiB of address space and 11 CPU seconds, files up to
-//! 64 MiB each, no core dumps, and at most 512 processes and threads more
-//! than the reader had when it started (the kernel does not hold root to
-//! that one). These bound each process, not the tree's sum: its processes
-//! together may take more memory, and its files more disk (or `/dev/shm`,
-//! which is memory). A compile (cargo, rustc) has only its time limit. One
-//! tree at a time: a second ▶ gets 429 with what is busy and for how long.
-//! A run is killed, whole, after 10 s; a compile after 120 s once the
-//! scratch project is built (900 s for the first, cold build); the output
-//! is cut at 64 KiB.
+//! build and each run is a process tree under a supervisor and its stage
+//! (`src/server/supervise.rs` says how), with resource limits for a run
+//! ([`Limits`]): per process 4 GiB of address space and 11 CPU seconds,
+//! files up to 64 MiB each, no core dumps, and at most 512 processes and
+//! threads more than the reader had when it started, within the reader's
+//! own hard limit and leaving 96 below the soft one for the server's
+//! threads (the kernel does not hold root to this one). These bound each
+//! process, not the tree's sum: its processes together may take more
+//! memory, and its files more disk (or `/dev/shm`, which is memory). A
+//! compile (cargo, rustc) has only its time limit. One tree at a time: a
+//! second ▶ gets 429 with what is busy and for how long. A run is killed,
+//! whole, after 10 s; a compile after 120 s once the scratch project is
+//! built (900 s for the first, cold build); the output is cut at 64 KiB.
 //!
-//! A snippet may kill its own supervisor (it runs as the reader): what it
-//! started then lands on the server, and `spintop book` kills every process
-//! below it but the running tree as soon as it sees a child end
-//! ([`Server::sweep_strays`]). What a snippet hands to a service outside
-//! its tree (cron, `systemd-run`, an already running tmux server), or a
-//! program written to outrun the kill (each process forking the next and
-//! ending faster than `/proc` can be read), is beyond these limits, as it
-//! would be for any program the reader runs.
+//! Each tree is ended as a unit, the strongest the machine allows
+//! ([`Containment`], `src/server/unit.rs`; [`Server::containment`] says
+//! which, and `spintop book` prints it):
+//!
+//! - **Linux where the reader may make a user namespace** (most
+//!   distributions; not Ubuntu 23.10 and later by default, whose AppArmor
+//!   restricts them, nor where `user.max_user_namespaces` is 0), **or as
+//!   root: a PID namespace.** No process leaves it; when its init (the
+//!   stage) dies, the kernel kills every process in it; the stage dies with
+//!   the supervisor, and the supervisor with the server (SIGKILL by
+//!   `PR_SET_PDEATHSIG`). From inside, neither has a process id, so a
+//!   snippet can neither signal nor trace them.
+//! - **Linux where the reader may make a cgroup v2 below the server's** (a
+//!   systemd user session's terminal; Linux 5.14 for `cgroup.kill`): the
+//!   tree's own cgroup, killed at once, forks under way included. The
+//!   reader owns the parent cgroup, so a snippet may move itself out; the
+//!   supervisor then still finds it below itself.
+//! - **Other Linux: the process group and session**, the supervisor and
+//!   the stage child subreapers (`PR_SET_CHILD_SUBREAPER`), so that what a
+//!   snippet starts (daemons, double forks, `setsid`, `nohup`) stays below
+//!   them; every process below the supervisor or in its session is killed,
+//!   again and again until none is left.
+//!
+//! Whatever the unit, on Linux: the supervisor is not dumpable (a process
+//! of the reader, root aside, can neither trace it nor open its `/proc`
+//! files, such as its control pipe), ends its tree when the server dies
+//! (`PR_SET_PDEATHSIG`, checked at once, since a server gone before would
+//! send nothing; outside a namespace the signal only wakes it, and it sees
+//! its parent gone within 10 ms and ends the tree first), and keeps the
+//! time limit on its own clock, so a tree ends on time while the server is
+//! stopped (Ctrl-Z) and as soon as the server is killed (SIGKILL, the OOM
+//! killer). A snippet may not stop or trace any process (a seccomp filter:
+//! SIGSTOP, SIGTSTP, SIGTTIN and SIGTTOU by any call, and `ptrace`, fail
+//! with EPERM; on x86_64, aarch64 and riscv64, where seccompiler has a
+//! filter), so it cannot stop its supervisor. It may kill it (it runs as
+//! the reader) outside a namespace: what it started then lands on the
+//! server, which kills the tree's cgroup, session and group, and
+//! `spintop book` every process below it but the running tree
+//! ([`Server::sweep_strays`]).
+//!
+//! Beyond these limits, as for any program the reader runs: what a snippet
+//! hands to a service outside its tree (cron, `systemd-run`, an already
+//! running tmux server); outside a namespace, a program written to outrun
+//! the kill (each process forking the next faster than `/proc` is read) or
+//! killing its supervisor at the instant the server is killed; and
+//! whatever root's snippets do (root may trace and signal anything).
+//! Elsewhere than Linux (macOS, the BSDs; not tested) a tree has only its
+//! session, process group and limits, and the server's kill of its group.
 //!
 //! # Slow clients
 //!
@@ -75,20 +140,25 @@
 //! among them). Malformed requests get a 4xx with a one-line
 //! reason: 400, 405, 404, 411, 413 (over 64 KiB).
 //!
-//! # Stops
+//! # Stops and exhaustion
 //!
 //! [`Server::shutdown`] (also on drop) kills the running tree, a snippet or
 //! cargo with its compilers, and waits until it is gone; `spintop book`
 //! calls it on SIGINT, SIGTERM, SIGHUP and SIGQUIT, then kills whatever a
 //! snippet left to it, and says whether anything survived. If the server
-//! itself is killed (SIGKILL), each supervisor sees its control pipe close
-//! and kills its tree; what a snippet had already left to the server then
-//! goes to init.
+//! itself is killed, its trees end with it (above).
+//!
+//! A thread the system refuses (the reader's process limit taken by a fork
+//! bomb outside the tree) is no panic: the connection is answered 503 and
+//! the server goes on; a run's output is read by the thread that waits for
+//! it, and the supervisor starts none.
 //!
 //! # What is written where
 //!
 //! The built book (`target/spintop-book/site`, by mdBook), the scratch
-//! project (`target/spintop-book/scratch`), the build folder it shares with
+//! project (`target/spintop-book/scratch`), in a cgroup unit a cgroup
+//! `spintop-book-PID` below the server's for each tree (removed with it),
+//! the build folder it shares with
 //! the workspace (`target/debug`: spintop's debug build and the snippet's
 //! program), and with `--open` a page readable by the reader only that
 //! forwards the browser to the address (removed at stop). And whatever a
@@ -105,19 +175,33 @@
 //! snippet; a ▶ pressed meanwhile waits for that build and shows its
 //! progress.
 
+mod answer;
+mod bounds;
+mod client;
+mod drain;
+mod folders;
 #[doc(hidden)]
 pub mod http;
+mod jobs;
 mod peer;
+mod procs;
 mod run;
+mod supervise;
 mod tree;
+mod unit;
 
+pub use answer::site_file;
+pub use client::{Response, fetch, request};
+pub use folders::Untrusted;
 pub use run::{Limits, Outcome, OutcomeKind, Runner, SNIPPET_CRATES, default_runner};
-pub use tree::{SUPERVISE_FLAG, supervise};
+pub use supervise::{SUPERVISE_FLAG, supervise};
+pub use unit::Containment;
 
+use jobs::Job;
 use run::{Shared, Stage};
 use std::io::Read;
 use std::net::{TcpListener, TcpStream};
-use std::path::{Component, Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
@@ -134,6 +218,20 @@ pub enum ServerError {
         /// The system's reason.
         reason: String,
     },
+    /// Another process holds the port on ::1, where a browser that resolves
+    /// `localhost` to ::1 first would send it the address with the token.
+    #[error(
+        "cannot listen on [::1]:{port} ({reason}): another process holds it there, and a browser that opens localhost:{port} would send it the book's key; choose another --port"
+    )]
+    Localhost {
+        /// The port asked for.
+        port: u16,
+        /// The system's reason.
+        reason: String,
+    },
+    /// A folder another user could write, or not the reader's.
+    #[error(transparent)]
+    Folder(#[from] Untrusted),
 }
 
 /// What the server serves and where it runs snippets.
@@ -156,48 +254,15 @@ const REFUSING: usize = 8;
 /// one, and if none is (all are being answered), the new one gets 503.
 pub const MAX_CONNECTIONS: usize = 64;
 
-/// The headers of every answer: no framing, no sniffing, no referrer, no
-/// copy kept (the pages carry the token).
+/// The headers of every answer: no framing, no sniffing, no referrer to
+/// another origin, no copy kept (the pages carry the token).
 const SECURITY_HEADERS: [(&str, &str); 5] = [
     ("X-Frame-Options", "DENY"),
     ("Content-Security-Policy", "frame-ancestors 'none'"),
     ("X-Content-Type-Options", "nosniff"),
-    ("Referrer-Policy", "no-referrer"),
+    ("Referrer-Policy", "same-origin"),
     ("Cache-Control", "no-store"),
 ];
-
-/// Where the one ▶ run that may be going on is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Phase {
-    /// Waiting for the background build (or another tree) to end.
-    Waiting,
-    /// Cargo compiles it.
-    Compiling,
-    /// The program runs.
-    Running,
-}
-
-/// The state of the one ▶ run that may be going on, and the last outcome.
-#[derive(Debug)]
-struct Job {
-    running: bool,
-    phase: Phase,
-    since: Instant,
-    progress: String,
-    last: Option<Outcome>,
-}
-
-impl Default for Job {
-    fn default() -> Self {
-        Self {
-            running: false,
-            phase: Phase::Waiting,
-            since: Instant::now(),
-            progress: String::new(),
-            last: None,
-        }
-    }
-}
 
 /// The background build of the scratch project ([`Server::warm_up`]).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -234,7 +299,8 @@ enum WarmState {
 
 /// A running server.
 pub struct Server {
-    listener: TcpListener,
+    /// 127.0.0.1 and, where the machine has it, ::1.
+    listeners: Vec<TcpListener>,
     inner: Arc<Inner>,
 }
 
@@ -279,21 +345,67 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-impl Server {
-    /// Binds 127.0.0.1:`config.port`.
-    pub fn bind(config: Config) -> Result<Self, ServerError> {
-        let bind_error = |e: std::io::Error| ServerError::Bind {
-            port: config.port,
-            reason: e.to_string(),
+/// Listens on 127.0.0.1:`port` and on [::1] at the same port, so that no
+/// other process can listen there (a browser resolves `localhost` to ::1
+/// first); with port 0, on a free port where both are free. The listeners,
+/// and the port.
+fn listen(port: u16) -> Result<(Vec<TcpListener>, u16), ServerError> {
+    let bind_error = |e: std::io::Error| ServerError::Bind {
+        port,
+        reason: e.to_string(),
+    };
+    for _ in 0..32 {
+        let v4 = TcpListener::bind(("127.0.0.1", port)).map_err(bind_error)?;
+        let got = v4.local_addr().map_err(bind_error)?.port();
+        let listeners = match TcpListener::bind(("::1", got)) {
+            Ok(v6) => vec![v4, v6],
+            // No IPv6 loopback: no process can listen there either.
+            Err(e)
+                if e.kind() == std::io::ErrorKind::AddrNotAvailable
+                    || e.raw_os_error() == Some(rustix::io::Errno::AFNOSUPPORT.raw_os_error()) =>
+            {
+                vec![v4]
+            }
+            // Taken there: another free port.
+            Err(_) if port == 0 => continue,
+            Err(e) => {
+                return Err(ServerError::Localhost {
+                    port,
+                    reason: e.to_string(),
+                });
+            }
         };
-        let listener = TcpListener::bind(("127.0.0.1", config.port)).map_err(bind_error)?;
-        listener.set_nonblocking(true).map_err(bind_error)?;
-        let port = listener
-            .local_addr()
-            .map(|a| a.port())
-            .unwrap_or(config.port);
+        for l in &listeners {
+            l.set_nonblocking(true).map_err(bind_error)?;
+        }
+        return Ok((listeners, got));
+    }
+    Err(ServerError::Localhost {
+        port,
+        reason: "no port tried was free on both 127.0.0.1 and ::1".into(),
+    })
+}
+
+impl Server {
+    /// Checks the folders (each the reader's own, see `folders.rs`), makes
+    /// the scratch folder fresh, finds the strongest containment the
+    /// machine allows ([`Server::containment`]), and listens on
+    /// 127.0.0.1:`config.port` (and on [::1] at that port, see [`listen`]).
+    pub fn bind(mut config: Config) -> Result<Self, ServerError> {
+        config.site = folders::check("--site", &config.site)?;
+        let target = &config.runner.target_dir;
+        std::fs::create_dir_all(target).map_err(|e| Untrusted {
+            what: "the build folder".into(),
+            path: target.clone(),
+            why: format!("cannot be made: {e}"),
+        })?;
+        config.runner.target_dir = folders::check("the build folder", target)?;
+        config.runner.scratch = folders::fresh_scratch(&config.runner.scratch)?;
+        config.runner.containment =
+            supervise::strongest(config.runner.containment, &config.runner.launcher);
+        let (listeners, port) = listen(config.port)?;
         Ok(Self {
-            listener,
+            listeners,
             inner: Arc::new(Inner {
                 port,
                 token: new_token(),
@@ -310,6 +422,17 @@ impl Server {
     /// The port it listens on.
     pub fn port(&self) -> u16 {
         self.inner.port
+    }
+
+    /// How each tree is ended as a unit here: the strongest of those up to
+    /// [`Runner::containment`] that this machine allows.
+    pub fn containment(&self) -> Containment {
+        self.inner.config.runner.containment
+    }
+
+    /// Whether it also listens on [::1] (the machine has IPv6 loopback).
+    pub fn holds_localhost6(&self) -> bool {
+        self.listeners.len() > 1
     }
 
     /// The address to open, the key included: the only address that
@@ -347,7 +470,7 @@ impl Server {
             };
         }
         let inner = Arc::clone(&self.inner);
-        std::thread::spawn(move || {
+        let spawned = std::thread::Builder::new().spawn(move || {
             let outcome = inner.config.runner.warm_up(&inner.shared, &mut |stage| {
                 if let Stage::Line(line) = stage
                     && let WarmState::Building { progress, .. } = &mut *lock(&inner.warm)
@@ -365,6 +488,11 @@ impl Server {
                 }
             };
         });
+        if let Err(e) = spawned {
+            *lock(&self.inner.warm) = WarmState::Failed {
+                why: format!("cannot start a thread for the background build: {e}"),
+            };
+        }
     }
 
     /// Where the background build is.
@@ -382,51 +510,80 @@ impl Server {
 
     /// Accepts connections until `stop` is set (checked every 20 ms); each
     /// connection is served on a thread of its own, so that one a browser
-    /// keeps open never holds up another. This process becomes a child
-    /// subreaper first (see `src/server/tree.rs`).
+    /// keeps open never holds up another. A connection that cannot have a
+    /// thread (the reader's process limit is reached: a fork bomb) is
+    /// answered 503 at once, and the next is tried again. This process
+    /// becomes a child subreaper first (see `src/server/tree.rs`).
     pub fn serve(&self, stop: &AtomicBool) {
         tree::become_subreaper();
         while !stop.load(Ordering::Relaxed) {
-            match self.listener.accept() {
-                Ok((stream, _)) => {
-                    let peer = peer::peer(&stream);
-                    let Ok(mut conn) = http::Connection::new(stream) else {
-                        continue;
-                    };
-                    if let Some(why) = refusal(peer) {
-                        self.inner.refuse(conn, why);
-                        continue;
-                    }
-                    if !self.inner.admit(&conn) {
-                        let _ = conn.respond(
-                            503,
-                            &SECURITY_HEADERS,
-                            b"too many connections",
-                            false,
-                            false,
-                        );
-                        continue;
-                    }
-                    let inner = Arc::clone(&self.inner);
-                    std::thread::spawn(move || {
-                        let watch = conn.watch();
-                        inner.connection(conn);
-                        lock(&inner.connections).retain(|w| !Arc::ptr_eq(w, &watch));
-                    });
-                }
+            let mut accepted = false;
+            for listener in &self.listeners {
                 // Nothing waiting (the listener does not block), or a
                 // transient failure such as too many open files.
-                Err(_) => std::thread::sleep(Duration::from_millis(20)),
+                if let Ok((stream, _)) = listener.accept() {
+                    accepted = true;
+                    self.accept(stream);
+                }
+            }
+            if !accepted {
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        }
+    }
+
+    /// Takes one connection: refused, answered 503, or served on a thread
+    /// of its own.
+    fn accept(&self, stream: TcpStream) {
+        let peer = peer::peer(&stream);
+        let Ok(mut conn) = http::Connection::new(stream) else {
+            return;
+        };
+        if let Some(why) = refusal(peer) {
+            self.inner.refuse(conn, why);
+            return;
+        }
+        if !self.inner.admit(&conn) {
+            send(
+                &mut conn,
+                &reason(503, "too many connections"),
+                false,
+                false,
+            );
+            return;
+        }
+        let watch = conn.watch();
+        // The connection goes to its thread once the thread exists; if it
+        // cannot be made, it stays here for the 503.
+        let (hand, take) = std::sync::mpsc::channel::<http::Connection>();
+        let inner = Arc::clone(&self.inner);
+        let spawned = std::thread::Builder::new().spawn(move || {
+            if let Ok(conn) = take.recv() {
+                let watch = conn.watch();
+                inner.connection(conn);
+                lock(&inner.connections).retain(|w| !Arc::ptr_eq(w, &watch));
+            }
+        });
+        match spawned {
+            Ok(_) => {
+                let _ = hand.send(conn);
+            }
+            Err(e) => {
+                lock(&self.inner.connections).retain(|w| !Arc::ptr_eq(w, &watch));
+                send(&mut conn, &jobs::unavailable(&e), false, false);
             }
         }
     }
 
     /// Stops: kills the running process tree (a snippet, or cargo and its
     /// compilers) and refuses new ones; returns once it is gone (true), or
-    /// after 3 s without seeing it go (false).
+    /// after [`Server::STOP_WAIT`] without seeing it go (false).
     pub fn shutdown(&self) -> bool {
-        self.inner.shared.slot.close(Duration::from_secs(1))
+        self.inner.shared.slot.close()
     }
+
+    /// How long [`Server::shutdown`] waits for the tree to be gone.
+    pub const STOP_WAIT: Duration = tree::STOP_WAIT;
 
     /// For a process that serves this server and starts nothing else
     /// (`spintop book`): kills every process below this one but the running
@@ -477,17 +634,18 @@ impl Inner {
             return;
         }
         let inner = Arc::clone(self);
-        std::thread::spawn(move || {
+        let spawned = std::thread::Builder::new().spawn(move || {
             conn.set_request_time(Duration::from_secs(1));
             let limit = inner.config.runner.limits.request_bytes;
             if !matches!(conn.next_request(limit), Err(http::ReadError::Closed)) {
-                let reply = reason(403, &why);
-                let mut headers: Vec<(&str, &str)> = vec![("Content-Type", reply.content_type)];
-                headers.extend(SECURITY_HEADERS);
-                let _ = conn.respond(403, &headers, &reply.body, false, false);
+                send(&mut conn, &reason(403, &why), false, false);
             }
             inner.refusing.fetch_sub(1, Ordering::SeqCst);
         });
+        // No thread: closed unanswered, like those past the limit.
+        if spawned.is_err() {
+            self.refusing.fetch_sub(1, Ordering::SeqCst);
+        }
     }
 
     /// Makes room for `conn`: at [`MAX_CONNECTIONS`], the connection idle or
@@ -533,290 +691,21 @@ impl Inner {
                     false,
                 ),
             };
-            let mut headers: Vec<(&str, &str)> = vec![("Content-Type", reply.content_type)];
-            headers.extend(SECURITY_HEADERS);
-            headers.extend(reply.headers.iter().map(|(k, v)| (*k, v.as_str())));
-            let sent = conn.respond(reply.code, &headers, &reply.body, keep_alive, head_only);
-            if sent.is_err() || !keep_alive {
+            if !send(&mut conn, &reply, keep_alive, head_only) || !keep_alive {
                 return;
             }
         }
     }
+}
 
-    fn handle(self: &Arc<Self>, request: &http::Request) -> Reply {
-        let host = request.header("Host").unwrap_or_default();
-        let allowed_hosts = [
-            format!("127.0.0.1:{}", self.port),
-            format!("localhost:{}", self.port),
-        ];
-        if !allowed_hosts.iter().any(|h| h == host) {
-            return reason(403, &format!("refused: Host {host:?} is not this server"));
-        }
-        if let Some(origin) = request.header("Origin") {
-            let own = allowed_hosts
-                .iter()
-                .any(|h| origin == format!("http://{h}"));
-            if !own {
-                return reason(403, &format!("refused: Origin {origin:?} is not this book"));
-            }
-        }
-        let (path, query) = request.url.split_once('?').unwrap_or((&request.url, ""));
-        let method = request.method.as_str();
-        let header_token = request.header("X-Spintop-Token");
-        match path {
-            "/evaluate.json" | "/evaluate/status" => {
-                if !header_token.is_some_and(|t| self.is_token(t)) {
-                    return reason(
-                        403,
-                        "refused: no valid token (runs are accepted only from this book's own pages)",
-                    );
-                }
-                if path == "/evaluate/status" {
-                    if method != "GET" {
-                        return reason(405, "use GET for /evaluate/status");
-                    }
-                    return self.status();
-                }
-                if method != "POST" {
-                    return reason(405, "use POST for /evaluate.json");
-                }
-                let limit = self.config.runner.limits.request_bytes;
-                match &request.body {
-                    http::Body::Read(body) => self.evaluate(body),
-                    http::Body::TooLong => reason(
-                        413,
-                        &format!("the snippet is larger than {} KiB", limit / 1024),
-                    ),
-                    http::Body::Chunked => reason(411, "send the snippet with a Content-Length"),
-                }
-            }
-            _ => {
-                let (token, rest) = split_token(query);
-                if let Some(token) = token {
-                    if !self.is_token(token) {
-                        return self.forbidden();
-                    }
-                    // The printed address: keep the key in a cookie, and
-                    // the address bar (and history) without it.
-                    // One leading slash: a browser reads `//host/` (or
-                    // `/\host/`) as another host.
-                    let path = format!("/{}", path.trim_start_matches(['/', '\\']));
-                    let clean = if rest.is_empty() {
-                        path
-                    } else {
-                        format!("{path}?{rest}")
-                    };
-                    let mut reply = reason(303, "the book is at the address without its token");
-                    reply.headers = vec![
-                        ("Location", clean),
-                        (
-                            "Set-Cookie",
-                            format!(
-                                "{}={}; HttpOnly; SameSite=Strict; Path=/",
-                                self.cookie_name(),
-                                self.token
-                            ),
-                        ),
-                    ];
-                    return reply;
-                }
-                let keyed =
-                    self.has_cookie(request) || header_token.is_some_and(|t| self.is_token(t));
-                if !keyed {
-                    return self.forbidden();
-                }
-                if method != "GET" && method != "HEAD" {
-                    return reason(405, "the book is read with GET");
-                }
-                self.file(path)
-            }
-        }
-    }
-
-    /// The page for a request without the key.
-    fn forbidden(&self) -> Reply {
-        let page = format!(
-            "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>spintop book: open the printed address</title></head>\n<body><h1>Open the address printed in the terminal</h1>\n<p>This book runs code on your machine, so it answers only the address that <code>spintop book</code> printed in the terminal when it started: <code>http://127.0.0.1:{}/?token=…</code>, with its token (the key, not shown here). Copy that whole address into the browser, or start it with <code>spintop book --open</code>.</p></body></html>\n",
-            self.port
-        );
-        Reply {
-            code: 403,
-            content_type: "text/html; charset=utf-8",
-            headers: Vec::new(),
-            body: page.into_bytes(),
-        }
-    }
-
-    /// A file of the built book; HTML pages receive the token, for their ▶.
-    fn file(&self, path: &str) -> Reply {
-        let Some(file) = site_file(&self.config.site, path) else {
-            return reason(404, &format!("no such page: {path}"));
-        };
-        let Ok(mut bytes) = std::fs::read(&file) else {
-            return reason(404, &format!("no such page: {path}"));
-        };
-        let ext = file.extension().and_then(|e| e.to_str()).unwrap_or("");
-        if ext == "html" {
-            let text = String::from_utf8_lossy(&bytes);
-            let script = format!(
-                "<script>window.spintopBook = {{ token: \"{}\" }};</script>",
-                self.token
-            );
-            bytes = match text.find("<head>") {
-                Some(i) => format!("{}{script}{}", &text[..i + 6], &text[i + 6..]),
-                None => format!("{script}{text}"),
-            }
-            .into_bytes();
-        }
-        Reply {
-            code: 200,
-            content_type: content_type(ext),
-            headers: Vec::new(),
-            body: bytes,
-        }
-    }
-
-    /// What is busy, for how long, and its limit: the 429 answer.
-    fn busy(&self, job: &Job) -> Reply {
-        let limits = self.config.runner.limits;
-        let secs = job.since.elapsed().as_secs();
-        let what = match job.phase {
-            Phase::Waiting => {
-                format!("is waiting for the background build of spintop ({secs} s so far)")
-            }
-            Phase::Compiling => {
-                let limit = if self.shared.warm.load(Ordering::SeqCst) {
-                    limits.compile_warm
-                } else {
-                    limits.compile
-                };
-                format!(
-                    "is compiling ({secs} s so far; the compile limit is {} s)",
-                    limit.as_secs()
-                )
-            }
-            Phase::Running => format!(
-                "is running ({secs} s so far; the time limit is {} s)",
-                limits.run.as_secs()
-            ),
-        };
-        json(
-            429,
-            serde_json::json!({
-                "result": format!("busy: another snippet {what}; press ▶ again when it has finished"),
-                "error": "busy",
-            }),
-        )
-    }
-
-    /// `/evaluate.json`: start a run, answer within [`Limits::answer_within`].
-    fn evaluate(self: &Arc<Self>, body: &[u8]) -> Reply {
-        #[derive(serde::Deserialize)]
-        struct Params {
-            code: String,
-            #[serde(default)]
-            edition: Option<String>,
-        }
-        let params: Params = match serde_json::from_slice(body) {
-            Ok(p) => p,
-            Err(e) => return reason(400, &format!("malformed request: {e}")),
-        };
-        {
-            let mut job = lock(&self.job);
-            if job.running {
-                return self.busy(&job);
-            }
-            *job = Job {
-                running: true,
-                progress: "waiting for its turn".into(),
-                ..Job::default()
-            };
-        }
-        let inner = Arc::clone(self);
-        let edition = params.edition.unwrap_or_else(|| "2024".into());
-        let answer_within = self.config.runner.limits.answer_within;
-        let (done_tx, done_rx) = std::sync::mpsc::channel();
-        // The run on a thread of its own: this connection answers within
-        // `answer_within` (202 and "pending" if the run goes on), and other
-        // connections meanwhile are told "busy", not queued.
-        std::thread::spawn(move || {
-            let outcome =
-                inner
-                    .config
-                    .runner
-                    .run(&params.code, &edition, &inner.shared, &mut |stage| {
-                        let mut job = lock(&inner.job);
-                        match stage {
-                            Stage::Compiling => {
-                                job.phase = Phase::Compiling;
-                                job.since = Instant::now();
-                                job.progress = "compiling".into();
-                            }
-                            Stage::Line(line) => {
-                                let secs = job.since.elapsed().as_secs();
-                                job.progress = format!("{line} ({secs} s)");
-                            }
-                            Stage::Running => {
-                                job.phase = Phase::Running;
-                                job.since = Instant::now();
-                                job.progress = "running".into();
-                            }
-                        }
-                    });
-            let mut job = lock(&inner.job);
-            job.running = false;
-            job.last = Some(outcome.clone());
-            drop(job);
-            let _ = done_tx.send(outcome);
-        });
-        match done_rx.recv_timeout(answer_within) {
-            Ok(outcome) => json(200, outcome_json(&outcome)),
-            Err(_) => {
-                // What holds it up: only a build of spintop itself takes
-                // minutes.
-                let phase = lock(&self.job).phase;
-                let result = match phase {
-                    Phase::Running => format!(
-                        "running… (its time limit is {} s)",
-                        self.config.runner.limits.run.as_secs()
-                    ),
-                    Phase::Compiling if self.shared.warm.load(Ordering::SeqCst) => {
-                        "compiling…".to_string()
-                    }
-                    Phase::Waiting | Phase::Compiling => "compiling… (the first run builds spintop for the book: a minute or two on a small machine; later runs take a second or two)".to_string(),
-                };
-                json(
-                    202,
-                    serde_json::json!({ "result": result, "pending": true }),
-                )
-            }
-        }
-    }
-
-    /// `/evaluate/status`: the run's progress, or its outcome once done.
-    fn status(&self) -> Reply {
-        let job = lock(&self.job);
-        let value = match (&job.running, &job.last) {
-            (true, _) => {
-                let progress = match (job.phase, lock(&self.warm).clone()) {
-                    (Phase::Waiting, WarmState::Building { started, progress }) => format!(
-                        "waiting for the background build of spintop ({} s): {progress}",
-                        started.elapsed().as_secs()
-                    ),
-                    _ => job.progress.clone(),
-                };
-                serde_json::json!({ "done": false, "progress": progress })
-            }
-            (false, Some(outcome)) => {
-                let mut v = outcome_json(outcome);
-                v["done"] = serde_json::Value::Bool(true);
-                v
-            }
-            (false, None) => serde_json::json!({ "done": true, "result": "" }),
-        };
-        drop(job);
-        json(200, value)
-    }
+/// Writes `reply` on `conn` with the [`SECURITY_HEADERS`]; whether it was
+/// written.
+fn send(conn: &mut http::Connection, reply: &Reply, keep_alive: bool, head_only: bool) -> bool {
+    let mut headers: Vec<(&str, &str)> = vec![("Content-Type", reply.content_type)];
+    headers.extend(SECURITY_HEADERS);
+    headers.extend(reply.headers.iter().map(|(k, v)| (*k, v.as_str())));
+    conn.respond(reply.code, &headers, &reply.body, keep_alive, head_only)
+        .is_ok()
 }
 
 /// Why a connection from `peer` is refused, if it is: another user's
@@ -835,81 +724,6 @@ fn refusal(peer: peer::Peer) -> Option<String> {
     }
 }
 
-/// A query's `token` parameter, and the query without it.
-fn split_token(query: &str) -> (Option<&str>, String) {
-    let mut token = None;
-    let mut rest = Vec::new();
-    for pair in query.split('&').filter(|p| !p.is_empty()) {
-        match pair.strip_prefix("token=") {
-            Some(t) if token.is_none() => token = Some(t),
-            _ => rest.push(pair),
-        }
-    }
-    (token, rest.join("&"))
-}
-
-/// The playground's answer shape: `result` is what the page shows.
-fn outcome_json(outcome: &Outcome) -> serde_json::Value {
-    serde_json::json!({
-        "result": outcome.shown(),
-        "error": outcome.error_kind(),
-        "success": outcome.success(),
-    })
-}
-
-/// The file under `site` that `path` names, if it stays inside `site`.
-pub fn site_file(site: &Path, path: &str) -> Option<PathBuf> {
-    let decoded = percent_decode(path)?;
-    let rel = decoded.trim_start_matches('/');
-    let rel = if rel.is_empty() || rel.ends_with('/') {
-        format!("{rel}index.html")
-    } else {
-        rel.to_string()
-    };
-    let rel = Path::new(&rel);
-    if rel.components().any(|c| !matches!(c, Component::Normal(_))) {
-        return None;
-    }
-    let file = site.join(rel);
-    file.is_file().then_some(file)
-}
-
-/// `%xx` decoding; `None` for a malformed escape or a NUL.
-fn percent_decode(s: &str) -> Option<String> {
-    let bytes = s.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        if bytes[i] == b'%' {
-            let hex = s.get(i + 1..i + 3)?;
-            out.push(u8::from_str_radix(hex, 16).ok()?);
-            i += 3;
-        } else {
-            out.push(bytes[i]);
-            i += 1;
-        }
-    }
-    let text = String::from_utf8(out).ok()?;
-    (!text.contains('\0')).then_some(text)
-}
-
-fn content_type(ext: &str) -> &'static str {
-    match ext {
-        "html" => "text/html; charset=utf-8",
-        "css" => "text/css; charset=utf-8",
-        "js" => "text/javascript; charset=utf-8",
-        "svg" => "image/svg+xml",
-        "png" => "image/png",
-        "json" => "application/json",
-        "woff" => "font/woff",
-        "woff2" => "font/woff2",
-        "ttf" => "font/ttf",
-        "ico" => "image/x-icon",
-        "txt" | "md" => "text/plain; charset=utf-8",
-        _ => "application/octet-stream",
-    }
-}
-
 /// A one-line reason, as JSON in the playground's shape (the page shows it).
 fn reason(code: u16, why: &str) -> Reply {
     json(code, serde_json::json!({ "result": why, "error": why }))
@@ -924,116 +738,9 @@ fn json(code: u16, value: serde_json::Value) -> Reply {
     }
 }
 
-/// An answer read by [`fetch`].
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Response {
-    /// The status code (0 if the answer was not HTTP).
-    pub code: u16,
-    /// The headers, in order.
-    pub headers: Vec<(String, String)>,
-    /// The body.
-    pub body: String,
-}
-
-impl Response {
-    /// The first value of header `name` (case-insensitive).
-    pub fn header(&self, name: &str) -> Option<&str> {
-        http::values(&self.headers, name).next()
-    }
-}
-
-/// A minimal HTTP/1.1 client for the server's own checks (`spintop book
-/// --self-test` and the tests): one request, `Connection: close`, the
-/// answer back.
-pub fn fetch(
-    port: u16,
-    method: &str,
-    path: &str,
-    headers: &[(&str, &str)],
-    body: &[u8],
-) -> std::io::Result<Response> {
-    use std::io::Write;
-    let mut stream = TcpStream::connect(("127.0.0.1", port))?;
-    stream.set_read_timeout(Some(Duration::from_secs(1200)))?;
-    let mut head = format!(
-        "{method} {path} HTTP/1.1\r\nConnection: close\r\nContent-Length: {}\r\n",
-        body.len()
-    );
-    if !headers.iter().any(|(k, _)| k.eq_ignore_ascii_case("Host")) {
-        head.push_str(&format!("Host: 127.0.0.1:{port}\r\n"));
-    }
-    for (k, v) in headers {
-        head.push_str(&format!("{k}: {v}\r\n"));
-    }
-    head.push_str("\r\n");
-    stream.write_all(head.as_bytes())?;
-    stream.write_all(body)?;
-    let mut raw = Vec::new();
-    stream.read_to_end(&mut raw)?;
-    let text = String::from_utf8_lossy(&raw).into_owned();
-    let (head, body) = text.split_once("\r\n\r\n").unwrap_or((&text, ""));
-    let mut lines = head.lines();
-    let code = lines
-        .next()
-        .and_then(|l| l.split_whitespace().nth(1))
-        .and_then(|c| c.parse().ok())
-        .unwrap_or(0);
-    let headers = lines
-        .filter_map(|l| l.split_once(':'))
-        .map(|(k, v)| (k.trim().to_string(), v.trim().to_string()))
-        .collect();
-    Ok(Response {
-        code,
-        headers,
-        body: body.to_string(),
-    })
-}
-
-/// [`fetch`], the status code and the body only.
-pub fn request(
-    port: u16,
-    method: &str,
-    path: &str,
-    headers: &[(&str, &str)],
-    body: &[u8],
-) -> std::io::Result<(u16, String)> {
-    fetch(port, method, path, headers, body).map(|r| (r.code, r.body))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_path_outside_the_site_is_never_a_file() {
-        let site = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../book/src"));
-        assert!(site_file(site, "/SUMMARY.md").is_some());
-        assert!(
-            site_file(site, "/figures/").is_none(),
-            "no index.html there"
-        );
-        for bad in [
-            "/../Cargo.toml",
-            "/figures/../../Cargo.toml",
-            "/%2e%2e/Cargo.toml",
-            "//etc/passwd",
-            "/a%00b",
-            "/%zz",
-        ] {
-            assert!(site_file(site, bad).is_none(), "{bad}");
-        }
-    }
-
-    #[test]
-    fn the_token_parameter_is_split_from_the_rest_of_the_query() {
-        assert_eq!(split_token(""), (None, String::new()));
-        assert_eq!(split_token("token=ab"), (Some("ab"), String::new()));
-        assert_eq!(
-            split_token("x=1&token=ab&y=2"),
-            (Some("ab"), "x=1&y=2".to_string())
-        );
-        assert_eq!(split_token("tokens=ab"), (None, "tokens=ab".to_string()));
-    }
 
     #[test]
     fn tokens_are_long_and_differ() {

@@ -4,12 +4,14 @@
 //! process trees under a supervisor ([`super::tree`]): bounded, one at a
 //! time, and killed whole.
 
-use super::tree::{Bounds, Ended, Slot};
-use std::io::{BufRead, BufReader, Read};
+use super::bounds::Bounds;
+use super::drain::{Capped, Drain, Lines, finish};
+use super::tree::{Ended, Slot};
+use super::unit::Containment;
+use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// The server's limits: of a request, and of one build and run.
@@ -37,8 +39,9 @@ pub struct Limits {
     /// How many processes and threads a run may start beyond those the
     /// reader has when it starts (RLIMIT_NPROC counts every task of a user,
     /// so it is set from that count): a fork bomb stops there, with the
-    /// machine's other programs still able to start theirs. The kernel does
-    /// not hold root to it.
+    /// machine's other programs still able to start theirs. Within the
+    /// reader's hard limit, and 96 below the soft one, which the server's
+    /// threads need. The kernel does not hold root to it.
     pub processes: u64,
     /// The most output kept; the rest is dropped, with a note.
     pub output_bytes: usize,
@@ -82,10 +85,14 @@ pub struct Runner {
     /// The build folder shared with the workspace.
     pub target_dir: PathBuf,
     /// The spintop binary, which supervises each build and run
-    /// (`spintop book --supervise`, see `src/server/tree.rs`).
+    /// (`spintop book --supervise`, see `src/server/supervise.rs`).
     pub launcher: PathBuf,
     /// The limits.
     pub limits: Limits,
+    /// The strongest way to end a tree as a unit that the server may use;
+    /// it uses the strongest of those up to this one that the machine
+    /// allows ([`super::Server::containment`]).
+    pub containment: Containment,
 }
 
 /// What the builds and runs of one server share: the one process tree at a
@@ -193,41 +200,6 @@ impl Outcome {
     }
 }
 
-/// Output kept up to a limit, the rest read and dropped (so a child that
-/// prints forever never blocks on a full pipe).
-#[derive(Default)]
-struct Capped {
-    text: Vec<u8>,
-    truncated: bool,
-}
-
-/// Reads `from` to its end into `into`; the returned receiver gets a message
-/// then.
-fn pump(
-    mut from: impl Read + Send + 'static,
-    into: Arc<Mutex<Capped>>,
-    limit: usize,
-) -> std::sync::mpsc::Receiver<()> {
-    let (done, finished) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let mut buf = [0u8; 8192];
-        while let Ok(n) = from.read(&mut buf) {
-            if n == 0 {
-                break;
-            }
-            let mut c = into.lock().unwrap_or_else(|e| e.into_inner());
-            let room = limit.saturating_sub(c.text.len());
-            if n > room {
-                c.truncated = true;
-            }
-            let take = n.min(room);
-            c.text.extend_from_slice(&buf[..take]);
-        }
-        let _ = done.send(());
-    });
-    finished
-}
-
 /// The trivial program the background build compiles: it makes cargo
 /// build spintop and its dependencies, so that a reader's first ▶ compiles
 /// only the snippet.
@@ -276,11 +248,11 @@ impl Runner {
         std::fs::write(self.scratch.join("src/main.rs"), code)
     }
 
-    /// The supervisor's command, in the scratch folder.
-    fn supervised(&self) -> Command {
+    /// The supervisor's command, in folder `dir`.
+    fn supervised(&self, dir: &Path) -> Command {
         let mut command = Command::new(&self.launcher);
         command
-            .current_dir(&self.scratch)
+            .current_dir(dir)
             .env("CARGO_TARGET_DIR", &self.target_dir);
         command
     }
@@ -355,47 +327,58 @@ impl Runner {
         progress: &mut dyn FnMut(Stage<'_>),
     ) -> Result<(), Outcome> {
         let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-        let mut command = self.supervised();
+        // NOTE: cargo reads `.cargo/config.toml` in the folder it runs in
+        // and in every folder above it, whoever wrote them, whatever
+        // `--config` or CARGO_HOME say; not above the manifest. So it runs
+        // in `/` (whose config only root can write), and finds the scratch
+        // project by its path: a `rustc-wrapper` planted above a scratch
+        // folder under /tmp is never read (`tests/book/folders.rs`).
+        let mut command = self.supervised(Path::new("/"));
         command.stdout(Stdio::null()).stderr(Stdio::piped());
-        let started = shared.slot.start(
-            command,
-            // Core dumps off; cargo and rustc need their memory and CPU.
-            Bounds::default(),
-            &cargo,
-            &["build", "--color", "never", "--message-format", "short"],
-        );
-        let mut build = match started {
+        let manifest = self.scratch.join("Cargo.toml");
+        let args: [&OsStr; 7] = [
+            "build".as_ref(),
+            "--manifest-path".as_ref(),
+            manifest.as_os_str(),
+            "--color".as_ref(),
+            "never".as_ref(),
+            "--message-format".as_ref(),
+            "short".as_ref(),
+        ];
+        // Core dumps off; cargo and rustc need their memory and CPU.
+        let bounds = (Bounds::default(), limit, self.containment);
+        let mut build = match shared.slot.start(command, bounds, &cargo, &args) {
             Ok(s) => s,
-            Err(e) => return Err(internal(format!("cannot run cargo: {e}"), start)),
+            Err(e) => {
+                return Err(internal(
+                    format!("cannot run cargo: {}", why_not(&e)),
+                    start,
+                ));
+            }
         };
-        let (tx, rx) = std::sync::mpsc::channel::<String>();
-        if let Some(err) = build.stderr() {
-            std::thread::spawn(move || {
-                for line in BufReader::new(err).lines().map_while(Result::ok) {
-                    if tx.send(line).is_err() {
-                        break;
-                    }
+        let mut stderr = Drain::new(build.stderr());
+        let (mut lines, mut errors) = (Lines::default(), Vec::new());
+        let mut take = |bytes: &[u8], errors: &mut Vec<String>| {
+            for line in lines.feed(bytes) {
+                let t = line.trim();
+                if t.starts_with("Compiling") || t.starts_with("Checking") {
+                    progress(Stage::Line(t));
+                } else if !t.starts_with("Finished") && !t.starts_with("Blocking") && !t.is_empty()
+                {
+                    errors.push(line);
                 }
-            });
-        }
-        let mut errors = Vec::new();
-        let mut take = |line: String, errors: &mut Vec<String>| {
-            let t = line.trim();
-            if t.starts_with("Compiling") || t.starts_with("Checking") {
-                progress(Stage::Line(t));
-            } else if !t.starts_with("Finished") && !t.starts_with("Blocking") && !t.is_empty() {
-                errors.push(line);
             }
         };
         let ended = build.wait(&shared.slot, limit, || {
-            for line in rx.try_iter() {
-                take(line, &mut errors);
-            }
+            let mut bytes = Vec::new();
+            stderr.pull(&mut bytes);
+            take(&bytes, &mut errors);
         });
         // The last lines, after the exit (the pipe is closed by now, or soon).
-        while let Ok(line) = rx.recv_timeout(Duration::from_millis(200)) {
-            take(line, &mut errors);
-        }
+        let mut bytes = Vec::new();
+        finish(std::slice::from_mut(&mut stderr), &mut bytes);
+        take(&bytes, &mut errors);
+        errors.extend(lines.rest());
         let status = match ended {
             Ended::Exited(status) => status,
             Ended::TimedOut => {
@@ -434,7 +417,7 @@ impl Runner {
     /// 2. Run, under the time, output and resource limits.
     fn execute(&self, shared: &Shared, start: Instant) -> Outcome {
         let binary = self.target_dir.join("debug").join(self.binary_name());
-        let mut command = self.supervised();
+        let mut command = self.supervised(&self.scratch);
         command
             .env("RUST_BACKTRACE", "0")
             .stdout(Stdio::piped())
@@ -446,25 +429,27 @@ impl Runner {
             file_size: Some(self.limits.file_size),
             processes: Some(self.limits.processes),
         };
-        let mut run = match shared.slot.start(command, bounds, binary.as_os_str(), &[]) {
+        let spec = (bounds, self.limits.run, self.containment);
+        let mut run = match shared.slot.start(command, spec, binary.as_os_str(), &[]) {
             Ok(r) => r,
-            Err(e) => return internal(format!("cannot start {}: {e}", binary.display()), start),
+            Err(e) => {
+                return internal(
+                    format!("cannot start {}: {}", binary.display(), why_not(&e)),
+                    start,
+                );
+            }
         };
-        let captured = Arc::new(Mutex::new(Capped::default()));
-        let pumps: Vec<_> = [run.stdout().map(|o| Box::new(o) as Box<dyn Read + Send>)]
-            .into_iter()
-            .chain([run.stderr().map(|e| Box::new(e) as Box<dyn Read + Send>)])
-            .flatten()
-            .map(|from| pump(from, Arc::clone(&captured), self.limits.output_bytes))
-            .collect();
+        let mut captured = Capped::new(self.limits.output_bytes);
+        let mut pipes = [Drain::new(run.stdout()), Drain::new(run.stderr())];
         let run_start = Instant::now();
-        let ended = run.wait(&shared.slot, self.limits.run, || {});
-        // The tree is gone, so the pipes are closed: let the pumps drain them.
-        for done in pumps {
-            let _ = done.recv_timeout(Duration::from_secs(1));
-        }
-        let c = captured.lock().unwrap_or_else(|e| e.into_inner());
-        let output = String::from_utf8_lossy(&c.text).into_owned();
+        let ended = run.wait(&shared.slot, self.limits.run, || {
+            for pipe in &mut pipes {
+                pipe.pull(&mut captured);
+            }
+        });
+        // The tree is gone, so the pipes are closed: read what is left.
+        finish(&mut pipes, &mut captured);
+        let output = String::from_utf8_lossy(&captured.text).into_owned();
         let kind = match ended {
             Ended::TimedOut => OutcomeKind::RunTimeout,
             Ended::Exited(s) if s.success() => OutcomeKind::Success,
@@ -474,7 +459,7 @@ impl Runner {
         Outcome {
             kind,
             output,
-            truncated: c.truncated,
+            truncated: captured.truncated,
             elapsed: if kind == OutcomeKind::RunTimeout {
                 run_start.elapsed()
             } else {
@@ -482,6 +467,18 @@ impl Runner {
             },
             limit: (kind == OutcomeKind::RunTimeout).then_some(self.limits.run),
         }
+    }
+}
+
+/// Why a process could not be started, in the reader's terms where the
+/// system's words are obscure.
+fn why_not(e: &std::io::Error) -> String {
+    if e.raw_os_error() == Some(rustix::io::Errno::AGAIN.raw_os_error()) {
+        format!(
+            "{e}: the system refused another process (your process limit, or the machine's, is reached); press ▶ again once other programs have ended"
+        )
+    } else {
+        e.to_string()
     }
 }
 
@@ -517,5 +514,6 @@ pub fn default_runner(repo: &Path) -> Runner {
         target_dir,
         launcher: std::env::current_exe().unwrap_or_else(|_| PathBuf::from("spintop")),
         limits: Limits::default(),
+        containment: Containment::Namespace,
     }
 }

@@ -36,11 +36,8 @@ use crate::physics::symmetric_top::SymmetricTop;
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, Sample, SimError, Simulation};
 use thiserror::Error;
 
-/// I₃/I₁ of both figures.
-pub const FIGURE_RATIO: Real = 0.4;
-
-/// Ω₀ of both figures, in units of 1/τ.
-pub const FIGURE_OMEGA0: [Real; 3] = [0.0, 0.1, 0.2];
+/// I₃/I₁ and Ω₀ (in units of 1/τ) of both figures.
+pub use crate::physics::symmetric_top::{FIGURE_OMEGA0, FIGURE_RATIO};
 
 /// Which of the paper's two figures.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

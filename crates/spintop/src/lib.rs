@@ -93,4 +93,8 @@ pub mod book {
     pub struct Symbols;
     #[doc = include_str!("../../../book/src/scene-reference.md")]
     pub struct SceneReference;
+    #[doc = include_str!("../../../book/src/using-spintop.md")]
+    pub struct UsingSpintop;
+    #[doc = include_str!("../../../book/src/bibliography.md")]
+    pub struct Bibliography;
 }

@@ -144,6 +144,12 @@ pub fn fmt_about(x: Real) -> String {
     }
 }
 
+/// A quantity written into a worked formula (a conversion with its numbers
+/// put in): five significant digits in exponent form (`2.1476e-28`).
+pub fn worked(x: Real) -> String {
+    format!("{x:.4e}")
+}
+
 /// A cell of the commands' aligned tables: seven decimals where that reads
 /// well, else exponent notation.
 pub fn table(x: Real) -> String {

@@ -18,29 +18,32 @@
 //! | [`Orientation`] | whether the orientation is computed, or skipped and why |
 //! | [`RealUnits`] | the particle of `[units]`, τ in seconds, the output time unit |
 
-use std::ops::Range;
 use thiserror::Error;
-use toml::Spanned;
 
 pub mod answer;
 pub mod catalogue;
 pub mod choose;
-mod format;
+pub mod format;
 mod keys;
 mod kinds;
 pub mod live;
 pub mod plan;
+pub mod request;
+pub mod table;
 mod top;
 mod units;
 pub mod write;
 
-use format::RawFile;
+use format::{At, Key, RawFile};
+pub use keys::Refusal;
 use keys::{Ctx, choice, key_on_line, missing};
 pub use kinds::{BalanceDipole, BalanceScene, OrbitScene, ShellScene, StabilityScene};
 use kinds::{balance_scene, orbit_scene, shell_scene};
 pub use plan::{Chosen, OmegaSample, Orientation, omega_samples, pole_warning};
+use table::Command;
+pub use table::MODELS;
 use top::top_scene;
-pub use top::{Frame, METHODS, MODELS, TopScene};
+pub use top::{Frame, TopRequest, TopScene};
 pub use units::{GENERAL_SHAPES, GeneralUnits, RealUnits, SHAPES, TIME_UNITS, TimeUnit};
 
 /// A scene file that cannot be run: where, and what was expected.
@@ -74,9 +77,42 @@ pub enum Kind {
 pub const KINDS: [&str; 5] = ["top", "balance", "orbit", "shell", "stability"];
 
 impl Kind {
+    /// Every kind, in the order of [`KINDS`].
+    pub const ALL: [Kind; 5] = [
+        Kind::Top,
+        Kind::Balance,
+        Kind::Orbit,
+        Kind::Shell,
+        Kind::Stability,
+    ];
+}
+
+impl Kind {
     /// `top`, `balance`, `orbit`, `shell` or `stability`.
     pub fn name(&self) -> &'static str {
         KINDS[*self as usize]
+    }
+
+    /// The command whose keys a scene of this kind takes (`None`: stability).
+    fn command(&self) -> Option<Command> {
+        match self {
+            Kind::Top => Some(Command::Simulate),
+            Kind::Balance => Some(Command::Balance),
+            Kind::Orbit => Some(Command::Orbit),
+            Kind::Shell => Some(Command::Shell),
+            Kind::Stability => None,
+        }
+    }
+
+    /// Its section (`top`, …) and the others it may have.
+    fn allowed(&self) -> &'static [&'static str] {
+        match self {
+            Kind::Top => &["top", "solve", "units"],
+            Kind::Balance => &["balance", "solve"],
+            Kind::Orbit => &["orbit", "solve"],
+            Kind::Shell => &["shell", "solve"],
+            Kind::Stability => &["stability"],
+        }
     }
 
     fn sections(&self) -> &'static str {
@@ -201,8 +237,43 @@ fn short_floats(message: &str) -> String {
 ///
 /// `file` names the text in messages (a path, or `catalogue:NAME`).
 pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
-    let ctx = Ctx { file, text };
-    let raw: RawFile = toml::from_str(text).map_err(|e| {
+    let raw = read_toml(text, file)?;
+    // The kind's command is not known yet; the header reads no table key.
+    let ctx = Ctx::file(text, Command::Simulate);
+    let located = |r: Refusal| SceneError {
+        file: file.to_string(),
+        line: ctx.line(&r.at),
+        message: r.message,
+    };
+    let header = read_header(&ctx, &raw).map_err(located)?;
+    let own = own_section(&ctx, &raw, header.kind).map_err(located)?;
+    let ctx = match header.kind.command() {
+        Some(command) => ctx.of(command),
+        None => ctx,
+    };
+    let solve_line = raw
+        .solve
+        .as_ref()
+        .map_or(ctx.line(&own), |s| ctx.line(&s.at));
+    let built = build(&ctx, &raw, header.kind, &own).map_err(located)?;
+    Ok(Scene {
+        file: file.to_string(),
+        name: header.name,
+        description: header.description,
+        body: built.body,
+        chosen: built.chosen,
+        warnings: built.warnings,
+        lines: Lines {
+            solve: solve_line,
+            times: built.times_at.map_or(solve_line, |at| ctx.line(&at)),
+        },
+    })
+}
+
+/// The TOML of a scene, as serde reads it: a syntax error, an unknown key or
+/// a value of the wrong type is refused at its line, naming the key.
+fn read_toml(text: &str, file: &str) -> Result<RawFile, SceneError> {
+    toml::from_str(text).map_err(|e| {
         let start = e.span().map_or(0, |s| s.start);
         let mut message = e
             .message()
@@ -220,98 +291,104 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
         }
         SceneError {
             file: file.to_string(),
-            line: ctx.line(start),
+            line: Ctx::file(text, Command::Simulate).line(&At::Text(start..start)),
             message,
         }
-    })?;
-    let whole = 0..0;
+    })
+}
+
+/// `[scene]`, validated.
+struct Header {
+    name: String,
+    kind: Kind,
+    description: String,
+}
+
+fn read_header(ctx: &Ctx, raw: &RawFile) -> Result<Header, Refusal> {
     let Some(scene) = &raw.scene else {
         return Err(ctx.at(
-            &whole,
+            &At::Text(0..0),
             "there is no [scene] section; expected [scene] with name, kind and description",
         ));
     };
-    let header = scene.span();
-    let scene = scene.get_ref();
+    let header = &scene.at;
+    let scene = &scene.value;
     let name = scene.name.as_ref().ok_or_else(|| {
         missing(
-            &ctx,
-            &header,
+            ctx,
+            header,
             "scene",
             "name",
             "a name of lower-case letters, digits and dashes",
         )
     })?;
-    let name_ok = !name.get_ref().is_empty()
-        && name.get_ref().len() <= 60
+    let name_ok = !name.value.is_empty()
+        && name.value.len() <= 60
         && name
-            .get_ref()
+            .value
             .chars()
             .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-');
     if !name_ok {
         return Err(ctx.at(
-            &name.span(),
+            &name.at,
             format!(
                 "[scene] name = \"{}\" is not a scene name; expected 1 to 60 lower-case letters, digits and dashes",
-                name.get_ref()
+                name.value
             ),
         ));
     }
-    let (kind, _) = choice(&ctx, "scene", "kind", &scene.kind, &KINDS)?.ok_or_else(|| {
+    let (kind, _) = choice(ctx, "scene", "kind", &scene.kind, &KINDS)?.ok_or_else(|| {
         missing(
-            &ctx,
-            &header,
+            ctx,
+            header,
             "scene",
             "kind",
             &format!("one of {}", KINDS.join(", ")),
         )
     })?;
-    let kind = [
-        Kind::Top,
-        Kind::Balance,
-        Kind::Orbit,
-        Kind::Shell,
-        Kind::Stability,
-    ][kind];
     let description = scene.description.as_ref().ok_or_else(|| {
         missing(
-            &ctx,
-            &header,
+            ctx,
+            header,
             "scene",
             "description",
             "a paragraph saying what the scene asks",
         )
     })?;
-    if description.get_ref().trim().is_empty() {
+    if description.value.trim().is_empty() {
         return Err(ctx.at(
-            &description.span(),
+            &description.at,
             "[scene] description is empty; expected a paragraph saying what the scene asks",
         ));
     }
+    Ok(Header {
+        name: name.value.clone(),
+        kind: Kind::ALL[kind],
+        description: description.value.trim().to_string(),
+    })
+}
 
-    // Sections that belong to another kind are refused, not ignored.
-    let present: [(&str, Option<Range<usize>>); 7] = [
-        ("top", raw.top.as_ref().map(Spanned::span)),
-        ("balance", raw.balance.as_ref().map(Spanned::span)),
-        ("orbit", raw.orbit.as_ref().map(Spanned::span)),
-        ("shell", raw.shell.as_ref().map(Spanned::span)),
-        ("stability", raw.stability.as_ref().map(Spanned::span)),
-        ("solve", raw.solve.as_ref().map(Spanned::span)),
-        ("units", raw.units.as_ref().map(Spanned::span)),
+/// The section of the scene's kind (where its refusals point when no key
+/// does); a section of another kind is refused, not ignored.
+fn own_section(ctx: &Ctx, raw: &RawFile, kind: Kind) -> Result<At, Refusal> {
+    fn at<T>(k: &Key<T>) -> Option<&At> {
+        k.as_ref().map(|g| &g.at)
+    }
+    let present: [(&str, Option<&At>); 7] = [
+        ("top", at(&raw.top)),
+        ("balance", at(&raw.balance)),
+        ("orbit", at(&raw.orbit)),
+        ("shell", at(&raw.shell)),
+        ("stability", at(&raw.stability)),
+        ("solve", at(&raw.solve)),
+        ("units", at(&raw.units)),
     ];
-    let allowed: &[&str] = match kind {
-        Kind::Top => &["top", "solve", "units"],
-        Kind::Balance => &["balance", "solve"],
-        Kind::Orbit => &["orbit", "solve"],
-        Kind::Shell => &["shell", "solve"],
-        Kind::Stability => &["stability"],
-    };
-    for (section, span) in &present {
-        if let Some(span) = span
-            && !allowed.contains(section)
+    for (section, given) in &present {
+        if let Some(given) = given
+            && !kind.allowed().contains(section)
         {
             return Err(ctx.at(
-                span,
+                given,
                 format!(
                     "[{section}] does not belong in a scene of kind = \"{}\"; expected {}",
                     kind.name(),
@@ -320,11 +397,12 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
             ));
         }
     }
-    let own = present
+    present
         .iter()
         .find(|(s, _)| *s == kind.name())
-        .and_then(|(_, span)| span.clone())
+        .and_then(|(_, at)| at.cloned())
         .ok_or_else(|| {
+            let header = at(&raw.scene).cloned().unwrap_or(At::Text(0..0));
             ctx.at(
                 &header,
                 format!(
@@ -334,70 +412,57 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
                     kind.sections()
                 ),
             )
-        })?;
-    let solve_line = raw
-        .solve
-        .as_ref()
-        .map_or(ctx.line(own.start), |s| ctx.line(s.span().start));
-    let solve = raw.solve.as_ref().map(|s| (s.get_ref(), s.span()));
+        })
+}
 
-    let built = match kind {
+/// The body of a scene of `kind`, validated and planned.
+fn build(ctx: &Ctx, raw: &RawFile, kind: Kind, own: &At) -> Result<Built, Refusal> {
+    let solve = raw.solve.as_ref().map(|s| (&s.value, s.at.clone()));
+    // own_section has found the kind's section.
+    let absent = || {
+        ctx.at(
+            own,
+            format!("a scene of kind = \"{}\" needs its section", kind.name()),
+        )
+    };
+    match kind {
         Kind::Top => {
-            let top = raw.top.as_ref().expect("checked above");
-            let units = raw.units.as_ref().map(|u| (u.get_ref(), u.span()));
-            top_scene(&ctx, top.get_ref(), &own, solve, units)?
+            let units = raw.units.as_ref().map(|u| (&u.value, u.at.clone()));
+            let top = raw.top.as_ref().ok_or_else(absent)?;
+            top_scene(ctx, &top.value, own, solve, units)
         }
-        Kind::Balance => balance_scene(
-            &ctx,
-            raw.balance.as_ref().expect("checked").get_ref(),
-            &own,
-            solve,
-        )?,
-        Kind::Orbit => orbit_scene(
-            &ctx,
-            raw.orbit.as_ref().expect("checked").get_ref(),
-            &own,
-            solve,
-        )?,
-        Kind::Shell => shell_scene(
-            &ctx,
-            raw.shell.as_ref().expect("checked").get_ref(),
-            &own,
-            solve,
-        )?,
+        Kind::Balance => {
+            let b = raw.balance.as_ref().ok_or_else(absent)?;
+            balance_scene(ctx, &b.value, own, solve)
+        }
+        Kind::Orbit => {
+            let o = raw.orbit.as_ref().ok_or_else(absent)?;
+            orbit_scene(ctx, &o.value, own, solve)
+        }
+        Kind::Shell => {
+            let s = raw.shell.as_ref().ok_or_else(absent)?;
+            shell_scene(ctx, &s.value, own, solve)
+        }
         Kind::Stability => {
-            let raw_row = &raw.stability.as_ref().expect("checked").get_ref().row;
+            let raw_row = raw.stability.as_ref().and_then(|s| s.value.row.as_ref());
             let row = raw_row
-                .as_ref()
-                .ok_or_else(|| missing(&ctx, &own, "stability", "row", "a row number, 1 to 6"))?;
-            let n = *row.get_ref();
+                .ok_or_else(|| missing(ctx, own, "stability", "row", "a row number, 1 to 6"))?;
+            let n = row.value;
             if !(1..=6).contains(&n) {
                 return Err(ctx.at(
-                    &row.span(),
+                    &row.at,
                     format!("[stability] row = {n} is out of range; expected a row number, 1 to 6"),
                 ));
             }
             let n = n as u8;
-            Built {
+            Ok(Built {
                 body: Body::Stability(StabilityScene { row: n }),
                 chosen: plan::stability_choice(n),
                 warnings: Vec::new(),
-                times_line: None,
-            }
+                times_at: None,
+            })
         }
-    };
-    Ok(Scene {
-        file: file.to_string(),
-        name: name.get_ref().clone(),
-        description: description.get_ref().trim().to_string(),
-        body: built.body,
-        chosen: built.chosen,
-        warnings: built.warnings,
-        lines: Lines {
-            solve: solve_line,
-            times: built.times_line.map_or(solve_line, |s| ctx.line(s.start)),
-        },
-    })
+    }
 }
 
 /// A validated body with its choice.
@@ -405,5 +470,5 @@ struct Built {
     body: Body,
     chosen: Chosen,
     warnings: Vec<String>,
-    times_line: Option<Range<usize>>,
+    times_at: Option<At>,
 }

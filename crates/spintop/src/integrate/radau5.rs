@@ -282,6 +282,20 @@ enum NewtonFailure {
     Slow { factor: Real },
 }
 
+/// What one attempt at an adaptive step gave.
+enum Attempt<const N: usize> {
+    /// No error estimate (a singular matrix, a Newton iteration that failed, a
+    /// result that is not finite): the step is rejected; try this magnitude.
+    Retry(Real),
+    /// The stages, the Newton iterations they took, and the scaled error
+    /// (finite, at least 1e-10).
+    Estimated {
+        z: [State<N>; 3],
+        newt: u32,
+        err: Real,
+    },
+}
+
 /// The settings of one Newton iteration.
 #[derive(Clone, Copy, Debug)]
 struct NewtonSettings<const N: usize> {
@@ -672,6 +686,84 @@ impl<const N: usize> Radau5<N> {
         }
     }
 
+    /// One attempt at a step of signed size `hs` from the current point: the
+    /// Newton iteration for the stages, then Hairer's filtered error
+    /// estimate. `after_rejection`: a step was rejected since the last
+    /// accepted one.
+    fn attempt<R: Rhs<N>>(
+        &mut self,
+        rhs: &R,
+        hs: Real,
+        f0: State<N>,
+        settings: &NewtonSettings<N>,
+        (atol, rtol): (Real, Real),
+        after_rejection: bool,
+    ) -> Result<Attempt<N>, IntegrateError> {
+        self.ensure_jacobian(rhs)?;
+        if !self.ensure_lus(hs) {
+            return Ok(Attempt::Retry(0.5 * hs.abs()));
+        }
+        let (z, newt) = match self.newton(rhs, hs, settings) {
+            Ok(ok) => ok,
+            Err(failure) => {
+                // NOTE: RADAU5's "unexpected step rejection": shorten the
+                // step, and evaluate a fresh Jacobian if the one in use is
+                // from an earlier point.
+                if self.jac_state == Jac::Old {
+                    self.jac_state = Jac::Missing;
+                }
+                let cut = match failure {
+                    NewtonFailure::Slow { factor } => factor,
+                    NewtonFailure::Diverged => 0.5,
+                    NewtonFailure::NonFinite => NONFINITE_CUT,
+                };
+                return Ok(Attempt::Retry(hs.abs() * cut));
+            }
+        };
+        let y_new = self.y + z[2];
+        let Some(lus) = &self.lus else {
+            // Unreachable (the Newton iteration needs the decompositions),
+            // but never a loop that does not shorten the step.
+            return Ok(Attempt::Retry(0.5 * hs.abs()));
+        };
+        // Hairer's filtered error estimate (HW II, (8.19)–(8.20)).
+        let v = (z[0] * DD1 + z[1] * DD2 + z[2] * DD3) / hs;
+        let scale = error_scale(atol, rtol, &self.y, &y_new);
+        let err_vec = lus.real.solve(&(f0 + v));
+        let mut err = rms_scaled(&err_vec, &scale);
+        if (err >= 1.0 || err.is_nan()) && (self.h_acc == 0.0 || after_rejection) {
+            // NOTE: (8.20'): on a stiff problem the first estimate can be
+            // far too pessimistic after a rejection or at the start; one
+            // more evaluation at y + err sharpens it.
+            let f1 = rhs.eval(self.t, &(self.y + err_vec));
+            self.stats.rhs_evals += 1;
+            err = rms_scaled(&lus.real.solve(&(f1 + v)), &scale);
+        }
+        if !err.is_finite() || !all_finite(&y_new) {
+            return Ok(Attempt::Retry(hs.abs() * NONFINITE_CUT));
+        }
+        Ok(Attempt::Estimated {
+            z,
+            newt,
+            err: err.max(1e-10),
+        })
+    }
+
+    /// The step magnitude that the scaled error `err` of a step of magnitude
+    /// `h`, whose Newton iteration took `newt` iterations, asks for next.
+    fn proposed_step(&self, h: Real, err: Real, newt: u32) -> Real {
+        let fac = SAFETY.min(SAFETY * (1 + 2 * NIT) as Real / (newt + 2 * NIT) as Real);
+        let mut quot = (err.powf(0.25) / fac).clamp(FAC_R, FAC_L);
+        if err < 1.0 && self.h_acc > 0.0 {
+            // NOTE: the predictive controller of Gustafsson (HW II, (8.25)),
+            // which RADAU5 uses by default: it avoids the rejections the
+            // classical controller makes when the error jumps.
+            let facgus = (self.h_acc / h) * (err * err / self.err_acc).powf(0.25) / SAFETY;
+            quot = quot.max(facgus.clamp(FAC_R, FAC_L));
+        }
+        h / quot
+    }
+
     #[allow(clippy::too_many_arguments)]
     fn step_adaptive<R: Rhs<N>>(
         &mut self,
@@ -708,75 +800,19 @@ impl<const N: usize> Radau5<N> {
                 return Err(e);
             }
             let (hs, t_new, clipped) = clip_step(self.t, t_stop, h);
-            self.ensure_jacobian(rhs)?;
-            if !self.ensure_lus(hs) {
-                self.stats.rejected += 1;
-                rejected_here = true;
-                h = 0.5 * hs.abs();
-                continue;
-            }
-            let (z, newt) = match self.newton(rhs, hs, &settings) {
-                Ok(ok) => ok,
-                Err(failure) => {
-                    // NOTE: RADAU5's "unexpected step rejection": shorten the
-                    // step, and evaluate a fresh Jacobian if the one in use is
-                    // from an earlier point.
-                    self.stats.rejected += 1;
-                    rejected_here = true;
-                    h = hs.abs()
-                        * match failure {
-                            NewtonFailure::Slow { factor } => factor,
-                            NewtonFailure::Diverged => 0.5,
-                            NewtonFailure::NonFinite => NONFINITE_CUT,
-                        };
-                    if self.jac_state == Jac::Old {
-                        self.jac_state = Jac::Missing;
+            let tolerances = (atol, rtol);
+            let (z, newt, err) =
+                match self.attempt(rhs, hs, f0, &settings, tolerances, rejected_here)? {
+                    Attempt::Estimated { z, newt, err } => (z, newt, err),
+                    Attempt::Retry(shorter) => {
+                        self.stats.rejected += 1;
+                        rejected_here = true;
+                        h = shorter;
+                        continue;
                     }
-                    continue;
-                }
-            };
-            let y_new = self.y + z[2];
-            let Some(lus) = &self.lus else {
-                // Unreachable (the Newton iteration needs the decompositions),
-                // but never a loop that does not shorten the step.
-                self.stats.rejected += 1;
-                rejected_here = true;
-                h = 0.5 * hs.abs();
-                continue;
-            };
-            // Hairer's filtered error estimate (HW II, (8.19)–(8.20)).
-            let v = (z[0] * DD1 + z[1] * DD2 + z[2] * DD3) / hs;
-            let scale = error_scale(atol, rtol, &self.y, &y_new);
-            let err_vec = lus.real.solve(&(f0 + v));
-            let mut err = rms_scaled(&err_vec, &scale);
-            if (err >= 1.0 || err.is_nan()) && (self.h_acc == 0.0 || rejected_here) {
-                // NOTE: (8.20'): on a stiff problem the first estimate can be
-                // far too pessimistic after a rejection or at the start; one
-                // more evaluation at y + err sharpens it.
-                let f1 = rhs.eval(self.t, &(self.y + err_vec));
-                self.stats.rhs_evals += 1;
-                err = rms_scaled(&lus.real.solve(&(f1 + v)), &scale);
-            }
-            if !err.is_finite() || !all_finite(&y_new) {
-                self.stats.rejected += 1;
-                rejected_here = true;
-                h = hs.abs() * NONFINITE_CUT;
-                continue;
-            }
-            let err = err.max(1e-10);
-            let fac = SAFETY.min(SAFETY * (1 + 2 * NIT) as Real / (newt + 2 * NIT) as Real);
-            let mut quot = (err.powf(0.25) / fac).clamp(FAC_R, FAC_L);
-            let mut h_new = hs.abs() / quot;
+                };
+            let mut h_new = self.proposed_step(hs.abs(), err, newt);
             if err < 1.0 {
-                // NOTE: the predictive controller of Gustafsson (HW II, (8.25)),
-                // which RADAU5 uses by default: it avoids the rejections the
-                // classical controller makes when the error jumps.
-                if self.h_acc > 0.0 {
-                    let facgus =
-                        (self.h_acc / hs.abs()) * (err * err / self.err_acc).powf(0.25) / SAFETY;
-                    quot = quot.max(facgus.clamp(FAC_R, FAC_L));
-                    h_new = hs.abs() / quot;
-                }
                 self.h_acc = hs.abs();
                 self.err_acc = err.max(1e-2);
                 self.accept(hs, t_new, &z);

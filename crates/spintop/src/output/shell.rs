@@ -102,7 +102,8 @@ pub struct ShellOutput {
     pub samples: Vec<ShellSample>,
 }
 
-/// The one-line warning printed before an unstable run.
+/// The one-line warning of an unstable run (the command line prints it
+/// before the run, a scene among its warnings).
 pub fn instability_warning(model: &ShellModel, rate: Real) -> String {
     let (m0, m_em) = (model.m0(), model.m_em());
     let why = if m0 < 0.0 {
@@ -124,7 +125,7 @@ pub fn instability_warning(model: &ShellModel, rate: Real) -> String {
         )
     };
     format!(
-        "spintop: warning: (A.1) is unstable here: {why}; the solution grows like exp({} t) (predicted growth rate)",
+        "(A.1) is unstable here: {why}; the solution grows like exp({} t) (predicted growth rate)",
         table(rate)
     )
 }

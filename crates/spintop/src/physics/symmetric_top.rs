@@ -25,6 +25,14 @@ use super::rigid_body::{BodyDynamics, angular_momentum_body};
 use super::{ParamError, finite};
 use crate::math::{Mat3, Real, Vec3, all_finite, rot_axis, rot_z};
 
+/// I₃/I₁ of the paper's Figures 1 and 2 (a prolate top): the default of every
+/// entry point that takes a symmetric top.
+pub const FIGURE_RATIO: Real = 0.4;
+
+/// Ω₀ of the paper's Figures 1 and 2, in units of 1/τ: the default of every
+/// entry point that takes a top.
+pub const FIGURE_OMEGA0: [Real; 3] = [0.0, 0.1, 0.2];
+
 /// An axially symmetric top with its dipole on the symmetry axis (4.1), in units I₁ = 1.
 ///
 /// Built only through [`SymmetricTop::new`], so 0 < I₃/I₁ ≤ 2 and τ ≥ 0 always hold.
@@ -48,10 +56,10 @@ impl SymmetricTop {
         Ok(Self { ratio, tau })
     }
 
-    /// The top of the paper's figures: I₃/I₁ = 2/5, τ = 1.
+    /// The top of the paper's figures: I₃/I₁ = 2/5 ([`FIGURE_RATIO`]), τ = 1.
     pub fn figure() -> Self {
         Self {
-            ratio: 0.4,
+            ratio: FIGURE_RATIO,
             tau: 1.0,
         }
     }

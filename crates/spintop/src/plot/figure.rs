@@ -54,6 +54,25 @@ fn model_label(figure: &Figure) -> &'static str {
 /// The figure as text: a summary of the start and the end, then one chart per
 /// projection of the hodograph, the axis tip seen from above, θ(t), φ̇ and ψ̇.
 pub fn ascii(figure: &Figure) -> String {
+    [
+        summary(figure),
+        hodograph_charts(figure),
+        axis_tip_chart(figure),
+        theta_chart(figure),
+        rates_chart(figure),
+    ]
+    .concat()
+}
+
+/// The smallest and largest first coordinate of `pts`.
+fn x_span(pts: &[(f64, f64)]) -> (f64, f64) {
+    let lo = pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
+    let hi = pts.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+    (lo, hi)
+}
+
+/// The model, the start, the caption, and a table of three samples.
+fn summary(figure: &Figure) -> String {
     let mut out = String::new();
     let first = figure.samples.first().expect("a figure has points");
     let last = figure.samples.last().expect("a figure has points");
@@ -100,18 +119,18 @@ pub fn ascii(figure: &Figure) -> String {
         );
     }
     let _ = writeln!(out);
+    out
+}
 
+/// The hodograph of Ω projected on the three coordinate planes of the body.
+fn hodograph_charts(figure: &Figure) -> String {
+    let mut out = String::new();
     let project = |i: usize, j: usize| -> Vec<(f64, f64)> {
         figure
             .samples
             .iter()
             .map(|s| (s.omega[i], s.omega[j]))
             .collect()
-    };
-    let span = |pts: &[(f64, f64)]| {
-        let lo = pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
-        let hi = pts.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
-        (lo, hi)
     };
     let names = ["Omega_1", "Omega_2", "Omega_3"];
     for (i, j, plane) in [
@@ -120,7 +139,7 @@ pub fn ascii(figure: &Figure) -> String {
         (0, 2, "Omega_2 = 0"),
     ] {
         let pts = project(i, j);
-        let x_range = span(&pts);
+        let x_range = x_span(&pts);
         let mut series = vec![Series::line("Omega(t)", pts)];
         if j == 2 {
             // The side views start at Omega_3 = 0, so the cone reaches down to
@@ -145,6 +164,11 @@ pub fn ascii(figure: &Figure) -> String {
             )
         );
     }
+    out
+}
+
+/// The path of the axis tip seen from above, along L∞.
+fn axis_tip_chart(figure: &Figure) -> String {
     let tip: Vec<(f64, f64)> = figure
         .samples
         .iter()
@@ -154,11 +178,10 @@ pub fn ascii(figure: &Figure) -> String {
         })
         .collect();
     let centre = vec![(0.0, 0.0)];
-    let mut x_range = span(&tip);
+    let mut x_range = x_span(&tip);
     x_range = (x_range.0.min(0.0), x_range.1.max(0.0));
-    let _ = writeln!(
-        out,
-        "{}",
+    format!(
+        "{}\n",
         chart(
             "The top in space, seen from above along L_inf = lab z: the axis tip, y (up) against x (across)",
             &[
@@ -169,23 +192,31 @@ pub fn ascii(figure: &Figure) -> String {
             100,
             48,
         )
-    );
-    let t_range = (0.0, last.t);
+    )
+}
+
+/// θ(t), the tilt of the axis from L∞.
+fn theta_chart(figure: &Figure) -> String {
+    let last = figure.samples.last().expect("a figure has points");
     let theta: Vec<(f64, f64)> = figure.samples.iter().map(|s| (s.t, s.euler[1])).collect();
-    let _ = writeln!(
-        out,
-        "{}",
+    format!(
+        "{}\n",
         chart(
             "theta(t), the tilt of the axis from L_inf, rad",
             &[
                 Series::line("theta", theta),
                 Series::line("upright, theta = 0", vec![(0.0, 0.0), (last.t, 0.0)]),
             ],
-            t_range,
+            (0.0, last.t),
             120,
             32,
         )
-    );
+    )
+}
+
+/// The precession rate φ̇(t) and the proper rotation rate ψ̇(t).
+fn rates_chart(figure: &Figure) -> String {
+    let last = figure.samples.last().expect("a figure has points");
     let rate = |k: usize| -> Vec<(f64, f64)> {
         figure
             .samples
@@ -193,22 +224,17 @@ pub fn ascii(figure: &Figure) -> String {
             .filter_map(|s| s.euler_rates.map(|r| (s.t, r[k])))
             .collect()
     };
-    let _ = write!(
-        out,
-        "{}",
-        chart(
-            "precession rate phi_dot(t) and proper rotation rate psi_dot(t), 1/tau",
-            &[
-                Series::line("phi_dot", rate(0)),
-                Series::line("psi_dot", rate(2)),
-                Series::line("0", vec![(0.0, 0.0), (last.t, 0.0)]),
-            ],
-            t_range,
-            120,
-            32,
-        )
-    );
-    out
+    chart(
+        "precession rate phi_dot(t) and proper rotation rate psi_dot(t), 1/tau",
+        &[
+            Series::line("phi_dot", rate(0)),
+            Series::line("psi_dot", rate(2)),
+            Series::line("0", vec![(0.0, 0.0), (last.t, 0.0)]),
+        ],
+        (0.0, last.t),
+        120,
+        32,
+    )
 }
 
 /// The figure as an SVG document, `SVG_SIZE` pixels.

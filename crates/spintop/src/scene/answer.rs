@@ -4,16 +4,18 @@
 //! prints; the lessons, the benches and the tests call [`answer`] directly.
 
 use super::{
-    BalanceDipole, Body, Chosen, GeneralUnits, OmegaSample, Orientation, RealUnits, Scene,
-    TopScene, omega_samples, pole_warning,
+    Body, Chosen, GeneralUnits, OmegaSample, Orientation, RealUnits, Scene, TopScene,
+    omega_samples, pole_warning,
 };
 use crate::integrate::Stats;
 use crate::math::Real;
-use crate::output::balance::{self, BalanceConfig, BalanceOutput, BalanceParameters, DipoleChoice};
+use crate::numbers::{fmt_value, worked};
+use crate::output::balance::{self, BalanceOutput};
 use crate::output::orbit::{self, OrbitOutput, OrbitRequest};
 use crate::output::shell::{self, ShellOutput, ShellRequest};
 use crate::output::simulate::{Parameters, SimulateConfig, SimulateOutput, simulate};
 use crate::output::{Entry, Failure, Format};
+use crate::physics::general_top::GeneralTop;
 use crate::physics::particle::{DEBYE_ESU_CM, Milestones, RigidShape, SPEED_OF_LIGHT_CM_S};
 use crate::sim::Model;
 use crate::sim::secular::{Law, SecularSample, secular};
@@ -138,7 +140,11 @@ pub fn physical_report(units: &RealUnits) -> PhysicalReport {
         spin_tilt_deg: units.spin_tilt_deg,
         tau_s,
         conversion: format!(
-            "tau = 2 d^2/(3 I1 c^3) = 2 ({d:.4e} statC cm)^2 / (3 x {i1:.4e} g cm^2 x ({SPEED_OF_LIGHT_CM_S:.6e} cm/s)^3) = {tau_s:.4e} s (Gaussian units)"
+            "tau = 2 d^2/(3 I1 c^3) = 2 ({} statC cm)^2 / (3 x {} g cm^2 x ({} cm/s)^3) = {} s (Gaussian units)",
+            worked(d),
+            worked(i1),
+            fmt_value(SPEED_OF_LIGHT_CM_S),
+            worked(tau_s)
         ),
         tau_omega: omega0.norm(),
         time_unit: units.time_unit.name(),
@@ -259,9 +265,11 @@ pub fn rigid_report(units: &GeneralUnits) -> RigidReport {
         omega_hz: units.omega_hz,
         fast_time_s: tau_f,
         conversion: format!(
-            "tau_f = 2 |D|^2/(3 c^3 min I) = 2 ({:.4e} statC cm)^2 / (3 x ({SPEED_OF_LIGHT_CM_S:.6e} cm/s)^3 x {:.4e} g cm^2) = {tau_f:.4e} s (Gaussian units)",
-            d.norm(),
-            i.min()
+            "tau_f = 2 |D|^2/(3 c^3 min I) = 2 ({} statC cm)^2 / (3 x ({} cm/s)^3 x {} g cm^2) = {} s (Gaussian units)",
+            worked(d.norm()),
+            fmt_value(SPEED_OF_LIGHT_CM_S),
+            worked(i.min()),
+            worked(tau_f)
         ),
         share_per_radian: omega0.norm(),
         time_unit: units.time_unit.name(),
@@ -328,21 +336,9 @@ fn run_top(
     top: &TopScene,
     warnings: &mut Vec<String>,
 ) -> Result<TopAnswer, Failure> {
-    let units = top.units.as_ref().map(physical_report);
-    let rigid_units = top.general_units.as_ref().map(rigid_report);
-    let run = match &top.orientation {
-        Orientation::Computed => {
-            let config = SimulateConfig {
-                model: top.model,
-                method: top.method,
-                options: top.options,
-                initial: top.initial,
-                euler0: top.euler0,
-                times: top.times.clone(),
-                format: Format::Json,
-                entry: Entry::Scene,
-            };
-            let output = simulate(&config)?;
+    let run = match (&top.orientation, top.model) {
+        (Orientation::Computed, _) => {
+            let output = run_computed(top)?;
             if let Some(w) = pole_warning(&output.samples) {
                 warnings.push(w);
             }
@@ -351,98 +347,118 @@ fn run_top(
             // it was said three times.
             TopRun::Full(output)
         }
-        Orientation::Skipped(why)
-            if matches!(top.model, Model::General(_) | Model::GeneralReduced(_)) =>
-        {
-            let (Model::General(g) | Model::GeneralReduced(g)) = top.model else {
-                unreachable!("matched above")
-            };
-            let law = if matches!(top.model, Model::General(_)) {
-                Law::Truncated
-            } else {
-                Law::Reduced
-            };
-            let run = secular(&g, law, &top.initial.omega, &top.times, top.options.rtol())
-                .map_err(|e| {
-                    Failure::Stopped(format!(
-                        "{}: the secular model stopped: {e}; it follows the slow drift of a weakly radiating top, so try fewer decay times or a larger rtol",
-                        scene.file
-                    ))
-                })?;
-            let u_per_unit = top.general_units.as_ref().map(GeneralUnits::u_per_unit);
-            TopRun::Secular(SecularOutput {
-                model: top.model.name(),
-                method: "secular",
-                method_detail: if law == Law::Truncated {
-                    "E and |L| drift at their rates under (3.3) averaged over the free motion (closed form, Jacobi's elliptic functions); the orientation is not computed (see orientation_skipped)"
-                } else {
-                    "E and |L| drift at their rates under the reduced (3.4) averaged over the free motion (closed form, Jacobi's elliptic functions); the orientation is not computed (see orientation_skipped)"
-                },
-                parameters: Parameters {
-                    ratio: None,
-                    tau: None,
-                    inertia: g.inertia().into(),
-                    dipole: Some(g.dipole().into()),
-                    omega0: top.initial.omega.into(),
-                    euler0: top.euler0,
-                    rtol: Some(top.options.rtol()),
-                    step: None,
-                },
-                stats: run.stats,
-                max_quadrature_points: run.max_points,
-                samples: run
-                    .samples
-                    .into_iter()
-                    .map(|sample| SecularRow {
-                        t_unit: u_per_unit.map(|k| sample.t / k),
-                        sample,
-                    })
-                    .collect(),
-                orientation_skipped: why.clone(),
-            })
+        (Orientation::Skipped(why), Model::General(g)) => {
+            run_secular(scene, top, &g, Law::Truncated, why)?
         }
-        Orientation::Skipped(why) => {
-            let tau_per_unit = top.units.as_ref().map(RealUnits::tau_per_unit);
-            let only_symmetric = || {
-                Failure::BadInput(format!(
-                    "{}: only the symmetric models can skip the orientation",
-                    scene.file
-                ))
-            };
-            let (Model::Truncated(t) | Model::Reduced(t)) = top.model else {
-                return Err(only_symmetric());
-            };
-            let samples = omega_samples(&top.model, &top.initial.omega, &top.times, tau_per_unit)
-                .ok_or_else(only_symmetric)?;
-            TopRun::OmegaOnly(OmegaOnlyOutput {
-                model: top.model.name(),
-                method: "exact",
-                method_detail: if matches!(top.model, Model::Truncated(_)) {
-                    "omega from the closed form (4.7); the orientation is not computed (see orientation_skipped)"
-                } else {
-                    "omega from the closed form (4.15)-(4.16); the orientation is not computed (see orientation_skipped)"
-                },
-                parameters: Parameters {
-                    ratio: Some(t.ratio()),
-                    tau: Some(t.tau()),
-                    inertia: t.inertia().into(),
-                    dipole: None,
-                    omega0: top.initial.omega.into(),
-                    euler0: top.euler0,
-                    rtol: None,
-                    step: None,
-                },
-                stats: Stats::default(),
-                samples,
-                orientation_skipped: why.clone(),
-            })
+        (Orientation::Skipped(why), Model::GeneralReduced(g)) => {
+            run_secular(scene, top, &g, Law::Reduced, why)?
         }
+        (Orientation::Skipped(why), _) => run_omega_only(scene, top, why)?,
     };
     Ok(TopAnswer {
         run,
-        units,
-        rigid_units,
+        units: top.units.as_ref().map(physical_report),
+        rigid_units: top.general_units.as_ref().map(rigid_report),
     })
+}
+
+/// Ω and the orientation: the `simulate` contract.
+fn run_computed(top: &TopScene) -> Result<SimulateOutput, Failure> {
+    simulate(&SimulateConfig {
+        model: top.model,
+        method: top.method,
+        options: top.options,
+        initial: top.initial,
+        euler0: top.euler0,
+        times: top.times.clone(),
+        format: Format::Json,
+        entry: Entry::Scene,
+    })
+}
+
+/// An asymmetric top by the secular model: E and |L| under `law`.
+fn run_secular(
+    scene: &Scene,
+    top: &TopScene,
+    g: &GeneralTop,
+    law: Law,
+    why: &str,
+) -> Result<TopRun, Failure> {
+    let run = secular(g, law, &top.initial.omega, &top.times, top.options.rtol()).map_err(|e| {
+        Failure::Stopped(format!(
+            "{}: the secular model stopped: {e}; it follows the slow drift of a weakly radiating top, so try fewer decay times or a larger rtol",
+            scene.file
+        ))
+    })?;
+    let u_per_unit = top.general_units.as_ref().map(GeneralUnits::u_per_unit);
+    Ok(TopRun::Secular(SecularOutput {
+        model: top.model.name(),
+        method: "secular",
+        method_detail: if law == Law::Truncated {
+            "E and |L| drift at their rates under (3.3) averaged over the free motion (closed form, Jacobi's elliptic functions); the orientation is not computed (see orientation_skipped)"
+        } else {
+            "E and |L| drift at their rates under the reduced (3.4) averaged over the free motion (closed form, Jacobi's elliptic functions); the orientation is not computed (see orientation_skipped)"
+        },
+        parameters: Parameters {
+            ratio: None,
+            tau: None,
+            inertia: g.inertia().into(),
+            dipole: Some(g.dipole().into()),
+            omega0: top.initial.omega.into(),
+            euler0: top.euler0,
+            rtol: Some(top.options.rtol()),
+            step: None,
+        },
+        stats: run.stats,
+        max_quadrature_points: run.max_points,
+        samples: run
+            .samples
+            .into_iter()
+            .map(|sample| SecularRow {
+                t_unit: u_per_unit.map(|k| sample.t / k),
+                sample,
+            })
+            .collect(),
+        orientation_skipped: why.to_string(),
+    }))
+}
+
+/// A symmetric top whose orientation is skipped: Ω alone, from its closed form.
+fn run_omega_only(scene: &Scene, top: &TopScene, why: &str) -> Result<TopRun, Failure> {
+    let tau_per_unit = top.units.as_ref().map(RealUnits::tau_per_unit);
+    let only_symmetric = || {
+        Failure::BadInput(format!(
+            "{}: only the symmetric models can skip the orientation",
+            scene.file
+        ))
+    };
+    let (Model::Truncated(t) | Model::Reduced(t)) = top.model else {
+        return Err(only_symmetric());
+    };
+    let samples = omega_samples(&top.model, &top.initial.omega, &top.times, tau_per_unit)
+        .ok_or_else(only_symmetric)?;
+    Ok(TopRun::OmegaOnly(OmegaOnlyOutput {
+        model: top.model.name(),
+        method: "exact",
+        method_detail: if matches!(top.model, Model::Truncated(_)) {
+            "omega from the closed form (4.7); the orientation is not computed (see orientation_skipped)"
+        } else {
+            "omega from the closed form (4.15)-(4.16); the orientation is not computed (see orientation_skipped)"
+        },
+        parameters: Parameters {
+            ratio: Some(t.ratio()),
+            tau: Some(t.tau()),
+            inertia: t.inertia().into(),
+            dipole: None,
+            omega0: top.initial.omega.into(),
+            euler0: top.euler0,
+            rtol: None,
+            step: None,
+        },
+        stats: Stats::default(),
+        samples,
+        orientation_skipped: why.to_string(),
+    }))
 }
 
 /// Run a validated scene.
@@ -450,54 +466,9 @@ pub fn answer(scene: &Scene) -> Result<Report, Failure> {
     let mut warnings = scene.warnings.clone();
     let answer = match &scene.body {
         Body::Top(top) => Answer::Top(Box::new(run_top(scene, top, &mut warnings)?)),
-        Body::Balance(b) => {
-            let mut p = BalanceParameters::default();
-            let dipole = match b.dipole {
-                BalanceDipole::Precessing { cone, rate, dipole } => {
-                    p.cone = Some(cone);
-                    p.rate = Some(rate);
-                    DipoleChoice::Precessing(dipole)
-                }
-                BalanceDipole::Loop { b, eps, dipole } => {
-                    p.b = Some(b);
-                    p.eps = Some(eps);
-                    DipoleChoice::Loop(dipole)
-                }
-                BalanceDipole::Dumbbell {
-                    charges,
-                    masses,
-                    length,
-                    rate,
-                    dipole,
-                } => {
-                    p.charges = Some(charges);
-                    p.masses = Some(masses);
-                    p.length = Some(length);
-                    p.rate = Some(rate);
-                    p.dipole_amplitude = Some(dipole.amplitude());
-                    DipoleChoice::Dumbbell(dipole)
-                }
-            };
-            let config = BalanceConfig {
-                dipole,
-                parameters: p,
-                times: b.times.clone(),
-                format: Format::Json,
-            };
-            Answer::Balance(balance::balance(&config))
-        }
+        Body::Balance(b) => Answer::Balance(balance::balance(&b.config(Format::Json))),
         Body::Orbit(o) => {
-            let t_last = o.times.last().copied().unwrap_or(0.0);
-            orbit::check_backward_span(&o.config, t_last).map_err(|e| {
-                Failure::BadInput(
-                    scene
-                        .error_at(
-                            scene.lines.times,
-                            format!("[solve] {e}; expected shorter times, or force = \"ll\""),
-                        )
-                        .to_string(),
-                )
-            })?;
+            // The span of a backward integration was checked with the times.
             let request = OrbitRequest {
                 config: o.config,
                 times: o.times.clone(),

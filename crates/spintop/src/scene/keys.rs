@@ -1,65 +1,172 @@
-//! Reading the keys of a scene file: each number finite and in range, each
-//! name one of those offered, each key in its own section, and every refusal
-//! a [`SceneError`] that points at the line it came from. Also the output
-//! times of `[solve]`, which every kind reads the same way.
+//! Reading the keys of a question, from a scene file or from a command's
+//! flags alike: each number finite and in range, each name one of those
+//! offered, each key in its own section, and every refusal a [`Refusal`]
+//! that names the key as its source does (`[top] ratio = 3` in a file,
+//! `--ratio 3` on the command line) and points at where it came from. Also
+//! the output times of `[solve]`, which every kind reads the same way.
 
-use super::SceneError;
-use super::format::{Key, RawSolve};
+use super::format::{At, Given, Key, RawSolve};
+use super::table::{self, Choice, Command, Range, Spec};
 use crate::math::Real;
 use crate::numbers::fmt_value;
 use crate::physics::ParamError;
 use crate::sim::MethodChoice;
-use crate::sim::times::{MAX_SAMPLES, check_times, even_times};
-use std::ops::Range;
-use toml::Spanned;
+use crate::sim::times::{check_times, even_times};
+use thiserror::Error;
 
-/// A value that was given, with the byte range it came from.
-pub(super) type At<T> = Option<(T, Range<usize>)>;
-
-/// The file name and text, to turn byte offsets into lines.
-pub(super) struct Ctx<'a> {
-    pub(super) file: &'a str,
-    pub(super) text: &'a str,
+/// A question refused: where the value came from, and one line that says
+/// what is wrong and what was expected, naming the key as its source does.
+#[derive(Clone, Debug, Error, PartialEq, Eq)]
+#[error("{message}")]
+pub struct Refusal {
+    /// Where the value at fault was given.
+    pub at: At,
+    /// What is wrong and what was expected.
+    pub message: String,
 }
 
-impl Ctx<'_> {
-    pub(super) fn line(&self, offset: usize) -> usize {
-        let end = offset.min(self.text.len());
-        1 + self.text.as_bytes()[..end]
-            .iter()
-            .filter(|b| **b == b'\n')
-            .count()
+/// A value that was given, with where it came from.
+pub(super) type Read<T> = Option<(T, At)>;
+
+/// Where the question came from, which decides how a message names a key.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Dialect<'a> {
+    /// A scene file: its text (to turn byte offsets into lines).
+    File {
+        /// Its text.
+        text: &'a str,
+    },
+    /// The flags of a command.
+    Flags,
+}
+
+/// How to read and name the keys of one question.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Ctx<'a> {
+    pub(super) dialect: Dialect<'a>,
+    /// Whose keys (for the table).
+    pub(super) command: Command,
+}
+
+impl<'a> Ctx<'a> {
+    /// The keys of `command` in a scene file of text `text`.
+    pub(super) fn file(text: &'a str, command: Command) -> Self {
+        Self {
+            dialect: Dialect::File { text },
+            command,
+        }
     }
 
-    pub(super) fn at(&self, span: &Range<usize>, message: impl Into<String>) -> SceneError {
-        SceneError {
-            file: self.file.to_string(),
-            line: self.line(span.start),
+    /// The keys of `command` given as flags.
+    pub(super) fn flags(command: Command) -> Self {
+        Self {
+            dialect: Dialect::Flags,
+            command,
+        }
+    }
+
+    /// The same source, for another command's keys.
+    pub(super) fn of(self, command: Command) -> Self {
+        Self { command, ..self }
+    }
+
+    /// The line of a byte offset of the file (1 for a flag).
+    pub(super) fn line(&self, at: &At) -> usize {
+        match (self.dialect, at) {
+            (Dialect::File { text, .. }, At::Text(span)) => {
+                let end = span.start.min(text.len());
+                1 + text.as_bytes()[..end]
+                    .iter()
+                    .filter(|b| **b == b'\n')
+                    .count()
+            }
+            _ => 1,
+        }
+    }
+
+    pub(super) fn at(&self, at: &At, message: impl Into<String>) -> Refusal {
+        Refusal {
+            at: at.clone(),
             message: message.into(),
+        }
+    }
+
+    /// The table's entry for a key of this command.
+    pub(super) fn spec(&self, section: &str, key: &str) -> &'static Spec {
+        table::key(self.command, section, key)
+    }
+
+    /// A key as the subject of a message: `[top] ratio`, or `--ratio`.
+    pub(super) fn key(&self, section: &str, key: &str) -> String {
+        match self.dialect {
+            Dialect::File { .. } => format!("[{section}] {key}"),
+            Dialect::Flags => table::flag_of(key),
+        }
+    }
+
+    /// A key named inside a sentence: `ratio`, or `--ratio`.
+    pub(super) fn name(&self, key: &str) -> String {
+        match self.dialect {
+            Dialect::File { .. } => key.to_string(),
+            Dialect::Flags => table::flag_of(key),
+        }
+    }
+
+    /// A key with its value: `[top] ratio = 3`, or `--ratio 3`.
+    pub(super) fn set(&self, section: &str, key: &str, value: &str) -> String {
+        match self.dialect {
+            Dialect::File { .. } => format!("[{section}] {key} = {value}"),
+            Dialect::Flags => format!("{} {value}", table::flag_of(key)),
+        }
+    }
+
+    /// A key with a value inside a sentence: `model = "auto"`, or `--model auto`.
+    pub(super) fn set_inline(&self, key: &str, value: &str) -> String {
+        match self.dialect {
+            Dialect::File { .. } => format!("{key} = {}", self.word(value)),
+            Dialect::Flags => format!("{} {value}", table::flag_of(key)),
+        }
+    }
+
+    /// A name as written in the source: `"auto"` in a file, `auto` on the
+    /// command line.
+    pub(super) fn word(&self, name: &str) -> String {
+        match self.dialect {
+            Dialect::File { .. } => format!("\"{name}\""),
+            Dialect::Flags => name.to_string(),
+        }
+    }
+
+    /// A section as the subject of a message: `[solve]`; nothing for flags.
+    pub(super) fn section(&self, section: &str) -> String {
+        match self.dialect {
+            Dialect::File { .. } => format!("[{section}] "),
+            Dialect::Flags => String::new(),
         }
     }
 }
 
-/// A plain number key: finite, or refused with the key and what it expects.
+/// A number key: finite, or refused with the key and what it expects.
 pub(super) fn num(
     ctx: &Ctx,
     section: &str,
     key: &str,
     v: &Key<Real>,
     expected: &str,
-) -> Result<At<Real>, SceneError> {
-    let Some(v) = v else { return Ok(None) };
-    let x = *v.get_ref();
+) -> Result<Read<Real>, Refusal> {
+    let Some(Given { value: x, at }) = v else {
+        return Ok(None);
+    };
     if !x.is_finite() {
         return Err(ctx.at(
-            &v.span(),
+            at,
             format!(
-                "[{section}] {key} = {} is not a finite number; expected {expected}",
-                fmt_value(x)
+                "{} is not a finite number; expected {expected}",
+                ctx.set(section, key, &fmt_value(*x))
             ),
         ));
     }
-    Ok(Some((x, v.span())))
+    Ok(Some((*x, at.clone())))
 }
 
 /// A number key that must satisfy `ok`.
@@ -70,20 +177,63 @@ pub(super) fn num_in(
     v: &Key<Real>,
     ok: impl Fn(Real) -> bool,
     expected: &str,
-) -> Result<At<Real>, SceneError> {
+) -> Result<Read<Real>, Refusal> {
     let got = num(ctx, section, key, v, expected)?;
-    if let Some((x, span)) = &got
+    if let Some((x, at)) = &got
         && !ok(*x)
     {
         return Err(ctx.at(
-            span,
+            at,
             format!(
-                "[{section}] {key} = {} is out of range; expected {expected}",
-                fmt_value(*x)
+                "{} is out of range; expected {expected}",
+                ctx.set(section, key, &fmt_value(*x))
             ),
         ));
     }
     Ok(got)
+}
+
+/// A number key of the table: finite; in range when `check` (the table's
+/// range is the check where no constructor of the core makes it).
+pub(super) fn number(
+    ctx: &Ctx,
+    section: &str,
+    key: &str,
+    v: &Key<Real>,
+    check: bool,
+) -> Result<Read<Real>, Refusal> {
+    let spec = ctx.spec(section, key);
+    let expected = spec.expected();
+    if check {
+        num_in(ctx, section, key, v, |x| spec.range.contains(x), &expected)
+    } else {
+        num(ctx, section, key, v, &expected)
+    }
+}
+
+/// A whole-number key of the table, in the table's range.
+pub(super) fn count(
+    ctx: &Ctx,
+    section: &str,
+    key: &str,
+    v: &Key<i64>,
+) -> Result<Read<usize>, Refusal> {
+    let Some(Given { value: n, at }) = v else {
+        return Ok(None);
+    };
+    let spec = ctx.spec(section, key);
+    let fits = *n >= 0 && spec.range.contains(*n as Real);
+    if !fits {
+        return Err(ctx.at(
+            at,
+            format!(
+                "{} is out of range; expected {}",
+                ctx.set(section, key, &n.to_string()),
+                spec.expected()
+            ),
+        ));
+    }
+    Ok(Some((*n as usize, at.clone())))
 }
 
 /// An array key whose entries must all be finite.
@@ -93,16 +243,30 @@ pub(super) fn finite_array<const N: usize>(
     key: &str,
     v: &Key<[Real; N]>,
     expected: &str,
-) -> Result<At<[Real; N]>, SceneError> {
-    let Some(v) = v else { return Ok(None) };
-    let a = *v.get_ref();
+) -> Result<Read<[Real; N]>, Refusal> {
+    let Some(Given { value: a, at }) = v else {
+        return Ok(None);
+    };
     if let Some(x) = a.iter().find(|x| !x.is_finite()) {
         return Err(ctx.at(
-            &v.span(),
-            format!("[{section}] {key} holds {x}, not a finite number; expected {expected}"),
+            at,
+            format!(
+                "{} holds {x}, which is not a finite number; expected {expected}",
+                ctx.key(section, key)
+            ),
         ));
     }
-    Ok(Some((a, v.span())))
+    Ok(Some((*a, at.clone())))
+}
+
+/// An array key of the table whose entries must all be finite.
+pub(super) fn numbers<const N: usize>(
+    ctx: &Ctx,
+    section: &str,
+    key: &str,
+    v: &Key<[Real; N]>,
+) -> Result<Read<[Real; N]>, Refusal> {
+    finite_array(ctx, section, key, v, &ctx.spec(section, key).expected())
 }
 
 /// A string key that must be one of `options`; returns its index.
@@ -112,31 +276,52 @@ pub(super) fn choice(
     key: &str,
     v: &Key<String>,
     options: &[&str],
-) -> Result<At<usize>, SceneError> {
-    let Some(v) = v else { return Ok(None) };
-    let s = v.get_ref();
+) -> Result<Read<usize>, Refusal> {
+    let Some(Given { value: s, at }) = v else {
+        return Ok(None);
+    };
     match options.iter().position(|o| o == s) {
-        Some(i) => Ok(Some((i, v.span()))),
+        Some(i) => Ok(Some((i, at.clone()))),
         None => Err(ctx.at(
-            &v.span(),
+            at,
             format!(
-                "[{section}] {key} = \"{s}\" is not known; expected one of {}",
+                "{} is not known; expected one of {}",
+                ctx.set(section, key, &ctx.word(s)),
                 options.join(", ")
             ),
         )),
     }
 }
 
-pub(super) fn missing(
+/// A string key that must be a name of `table`; returns what it stands for.
+pub(super) fn named<T: Copy>(
     ctx: &Ctx,
-    header: &Range<usize>,
     section: &str,
     key: &str,
-    expected: &str,
-) -> SceneError {
-    ctx.at(
+    v: &Key<String>,
+    table: &[Choice<T>],
+) -> Result<Read<T>, Refusal> {
+    let names = table::names(table);
+    Ok(choice(ctx, section, key, v, &names)?.map(|(i, at)| (table[i].value, at)))
+}
+
+/// A key the question needs and does not give.
+pub(super) fn missing(ctx: &Ctx, header: &At, section: &str, key: &str, expected: &str) -> Refusal {
+    let subject = match ctx.dialect {
+        Dialect::File { .. } => format!("[{section}] is missing the key {key}"),
+        Dialect::Flags => format!("{} is missing", table::flag_of(key)),
+    };
+    ctx.at(header, format!("{subject}; expected {expected}"))
+}
+
+/// A key the question needs, with what the table says it expects.
+pub(super) fn missing_key(ctx: &Ctx, header: &At, section: &str, key: &str) -> Refusal {
+    missing(
+        ctx,
         header,
-        format!("[{section}] is missing the key {key}; expected {expected}"),
+        section,
+        key,
+        &ctx.spec(section, key).expected(),
     )
 }
 
@@ -147,21 +332,22 @@ pub(super) fn not_here<T>(
     section: &str,
     key: &str,
     why: &str,
-) -> Result<(), SceneError> {
+) -> Result<(), Refusal> {
     match v {
-        Some(v) => Err(ctx.at(&v.span(), format!("[{section}] {key} {why}"))),
+        Some(v) => Err(ctx.at(&v.at, format!("{} {why}", ctx.key(section, key)))),
         None => Ok(()),
     }
 }
 
-/// Point a refused physical parameter at the key it came from.
+/// Point a refused physical parameter at the key it came from: each
+/// parameter's name in the core (`I3/I1`, `m1`) and the key that gave it.
 pub(super) fn param(
     ctx: &Ctx,
     e: ParamError,
-    spans: &[(&str, Option<&Range<usize>>)],
-    fallback: &Range<usize>,
+    keys: &[(&str, &str, Option<&At>)],
+    fallback: &At,
     section: &str,
-) -> SceneError {
+) -> Refusal {
     let name = match &e {
         ParamError::NotFinite { name, .. } | ParamError::OutOfRange { name, .. } => *name,
         ParamError::RatioOutOfRange(_) => "I3/I1",
@@ -169,13 +355,17 @@ pub(super) fn param(
         ParamError::ZeroDipole => "dipole",
         ParamError::NegativeTau(_) => "tau",
     };
-    let found = spans
+    let found = keys
         .iter()
-        .find(|(n, _)| *n == name || name.starts_with(n))
-        .and_then(|(n, s)| s.map(|s| (n, s)));
+        .find(|(n, _, _)| *n == name || name.starts_with(n));
     match found {
-        Some((_, span)) => ctx.at(span, format!("[{section}] {e}")),
-        None => ctx.at(fallback, format!("[{section}] {e}")),
+        Some((_, key, Some(at))) => ctx.at(at, format!("{}: {e}", ctx.key(section, key))),
+        // A default the other keys given make wrong.
+        Some((_, key, None)) => ctx.at(
+            fallback,
+            format!("{} (its default): {e}", ctx.key(section, key)),
+        ),
+        None => ctx.at(fallback, format!("{}{e}", ctx.section(section))),
     }
 }
 
@@ -193,119 +383,152 @@ pub(super) fn key_on_line(text: &str, offset: usize) -> Option<&str> {
     bare.then_some(key)
 }
 
+/// The output times of a question.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Times {
+    /// The times, scaled to the model's unit.
+    pub(super) times: Vec<Real>,
+    /// Where they were given (`times` or `t_end`), if they were.
+    pub(super) at: Option<At>,
+}
+
 /// The output times of `[solve]`: `times`, or `t_end` with `samples` evenly
-/// spaced from 0, scaled by `scale` (τ per time unit). Returns the times and
-/// the span to point at in later complaints.
+/// spaced from 0 (the table's defaults where the command has them), scaled
+/// by `scale` (model time units per time unit).
 pub(super) fn solve_times(
     ctx: &Ctx,
-    solve: Option<(&RawSolve, Range<usize>)>,
-    section: &Range<usize>,
-    default: Option<(Real, usize)>,
-    any_order: bool,
+    solve: Option<(&RawSolve, At)>,
+    section: &At,
     scale: Real,
-) -> Result<(Vec<Real>, Option<Range<usize>>), SceneError> {
-    let none = RawSolve {
-        method: None,
-        rtol: None,
-        step: None,
-        times: None,
-        t_end: None,
-        samples: None,
-    };
+) -> Result<Times, Refusal> {
+    let none = RawSolve::default();
     let (s, header) = match &solve {
-        Some((s, span)) => (*s, span.clone()),
+        Some((s, at)) => (*s, at.clone()),
         None => (&none, section.clone()),
     };
     let t_end_or_samples = s
         .t_end
         .as_ref()
-        .map(Spanned::span)
-        .or(s.samples.as_ref().map(Spanned::span));
+        .map(|g| g.at.clone())
+        .or(s.samples.as_ref().map(|g| g.at.clone()));
     if s.times.is_some()
         && let Some(other) = t_end_or_samples
     {
         return Err(ctx.at(
             &other,
-            "[solve] gives both times and t_end/samples; expected either times = [...] or t_end (with samples)",
+            format!(
+                "{}gives both {times} and {t_end}/{samples}; expected either {times} or {t_end} (with {samples})",
+                ctx.section("solve"),
+                times = ctx.name("times"),
+                t_end = ctx.name("t_end"),
+                samples = ctx.name("samples"),
+            ),
         ));
     }
-    if let Some(times) = &s.times {
-        let list = times.get_ref();
-        let span = times.span();
-        check_times(list, !any_order).map_err(|e| {
-            let expected = if any_order {
-                "finite numbers"
-            } else {
-                "finite times >= 0, in increasing order"
-            };
-            ctx.at(&span, format!("[solve] {e}; expected {expected}"))
-        })?;
-        let scaled: Vec<Real> = list.iter().map(|t| t * scale).collect();
-        if scaled.iter().any(|t| !t.is_finite()) {
-            return Err(ctx.at(
-                &span,
-                "[solve] times overflow when converted to units of tau; expected shorter times",
-            ));
-        }
-        return Ok((scaled, Some(span)));
+    if let Some(Given { value: list, at }) = &s.times {
+        return listed_times(ctx, list, at, scale);
     }
-    let t_end = num_in(ctx, "solve", "t_end", &s.t_end, |t| t >= 0.0, "a time >= 0")?;
-    let samples = match &s.samples {
-        Some(n) => {
-            let v = *n.get_ref();
-            if !(1..=MAX_SAMPLES as i64).contains(&v) {
-                return Err(ctx.at(
-                    &n.span(),
-                    format!("[solve] samples = {v} is out of range; expected 1 to {MAX_SAMPLES}"),
-                ));
-            }
-            Some(v as usize)
-        }
-        None => None,
+    let t_end = number(ctx, "solve", "t_end", &s.t_end, true)?;
+    let samples = count(ctx, "solve", "samples", &s.samples)?;
+    let n = match (&samples, ctx.spec("solve", "samples").default) {
+        (Some((n, _)), _) => *n,
+        (None, table::DefaultValue::Count(n)) => n,
+        (None, _) => 1,
     };
-    let (t_end, span, n) = match (t_end, default) {
-        (Some((t, span)), d) => (t, Some(span), samples.unwrap_or(d.map_or(11, |d| d.1))),
-        (None, Some((t, n))) => {
-            if let Some(sp) = &s.samples {
+    let (t_end, at) = match (t_end, ctx.spec("solve", "t_end").default.number()) {
+        (Some((t, at)), _) => (t, Some(at)),
+        (None, Some(t)) => {
+            if let Some((_, at)) = &samples {
                 return Err(ctx.at(
-                    &sp.span(),
-                    "[solve] samples needs t_end; expected t_end = ... beside it",
+                    at,
+                    format!(
+                        "{} needs {t_end}; expected {t_end} beside it",
+                        ctx.key("solve", "samples"),
+                        t_end = ctx.name("t_end")
+                    ),
                 ));
             }
-            (t, None, samples.unwrap_or(n))
+            (t, None)
         }
         (None, None) => {
             return Err(ctx.at(
                 &header,
-                "[solve] gives no output times; expected times = [...] or t_end = ... (with samples)",
+                format!(
+                    "{}gives no output times; expected {} or {} (with {})",
+                    ctx.section("solve"),
+                    ctx.name("times"),
+                    ctx.name("t_end"),
+                    ctx.name("samples")
+                ),
             ));
         }
     };
-    let t_end = t_end * scale;
-    if !t_end.is_finite() {
+    let scaled = t_end * scale;
+    if !scaled.is_finite() {
         return Err(ctx.at(
             &header,
-            "[solve] t_end overflows when converted to units of tau; expected a shorter time",
+            format!(
+                "{} overflows when converted to units of tau; expected a shorter time",
+                ctx.key("solve", "t_end")
+            ),
         ));
     }
-    Ok((even_times(t_end, n), span))
+    Ok(Times {
+        times: even_times(scaled, n),
+        at,
+    })
+}
+
+/// Times given as a list, checked by the core's one rule and scaled.
+fn listed_times(ctx: &Ctx, list: &[Real], at: &At, scale: Real) -> Result<Times, Refusal> {
+    let range = &ctx.spec("solve", "times").range;
+    let forward = matches!(range, Range::Times { forward: true });
+    check_times(list, forward).map_err(|e| {
+        let rest = e.to_string();
+        let rest = rest.strip_prefix("times").unwrap_or(&rest);
+        ctx.at(
+            at,
+            format!(
+                "{}{rest}; expected {}",
+                ctx.key("solve", "times"),
+                range.expected("")
+            ),
+        )
+    })?;
+    let scaled: Vec<Real> = list.iter().map(|t| t * scale).collect();
+    if scaled.iter().any(|t| !t.is_finite()) {
+        return Err(ctx.at(
+            at,
+            format!(
+                "{} overflow when converted to units of tau; expected shorter times",
+                ctx.key("solve", "times")
+            ),
+        ));
+    }
+    Ok(Times {
+        times: scaled,
+        at: Some(at.clone()),
+    })
 }
 
 /// Refuse `method`, `rtol` and `step` where the kind fixes its own method.
 pub(super) fn fixed_method(
     ctx: &Ctx,
-    solve: Option<(&RawSolve, Range<usize>)>,
+    solve: Option<(&RawSolve, At)>,
     kind: &str,
     why: &str,
     rtol_ok: bool,
-) -> Result<(), SceneError> {
+) -> Result<(), Refusal> {
     let Some((s, _)) = solve else { return Ok(()) };
-    if let Some((m, span)) = choice(ctx, "solve", "method", &s.method, &MethodChoice::NAMES)?
+    if let Some((m, at)) = choice(ctx, "solve", "method", &s.method, &MethodChoice::NAMES)?
         && m != 0
     {
         return Err(ctx.at(
-            &span,
-            format!("[solve] method = \"{}\" does not apply to kind = \"{kind}\" ({why}); expected auto", MethodChoice::NAMES[m]),
+            &at,
+            format!(
+                "{} does not apply to kind = \"{kind}\" ({why}); expected auto",
+                ctx.set("solve", "method", &ctx.word(MethodChoice::NAMES[m]))
+            ),
         ));
     }
     not_here(

@@ -3,15 +3,20 @@
 //! (`orbit`), the charge as a small shell (`shell`) and a row of the
 //! stability suite (`stability`).
 
-use super::format::{RawBalance, RawOrbit, RawShell, RawSolve};
-use super::keys::{At, Ctx, choice, finite_array, fixed_method, missing, num, param, solve_times};
-use super::{Body, Built, SceneError, plan};
+use super::format::{At, Key, RawBalance, RawOrbit, RawShell, RawSolve};
+use super::keys::{
+    Ctx, Read, Refusal, fixed_method, missing_key, named, number, numbers, param, solve_times,
+};
+use super::table::{Command, DIPOLES, DefaultValue, DipoleKind, FORCES, POTENTIALS};
+use super::{Body, Built, plan};
 use crate::math::Real;
+use crate::output::Format;
+use crate::output::balance::{BalanceConfig, BalanceParameters, DipoleChoice};
+use crate::output::orbit::check_backward_span;
 use crate::physics::balance::{Dumbbell, PlanarLoop, PrecessingDipole};
-use crate::physics::central::{ChargeInField, Potential};
+use crate::physics::central::ChargeInField;
 use crate::physics::shell::ShellModel;
-use crate::sim::orbit::{Force, OrbitConfig};
-use std::ops::Range;
+use crate::sim::orbit::OrbitConfig;
 
 /// A dipole trajectory of `balance`, with the parameters as given.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,6 +63,45 @@ pub struct BalanceScene {
     pub times: Vec<Real>,
 }
 
+impl BalanceScene {
+    /// The `balance` request it stands for, printed in `format`.
+    pub fn config(&self, format: Format) -> BalanceConfig {
+        let mut p = BalanceParameters::default();
+        let dipole = match self.dipole {
+            BalanceDipole::Precessing { cone, rate, dipole } => {
+                p.cone = Some(cone);
+                p.rate = Some(rate);
+                DipoleChoice::Precessing(dipole)
+            }
+            BalanceDipole::Loop { b, eps, dipole } => {
+                p.b = Some(b);
+                p.eps = Some(eps);
+                DipoleChoice::Loop(dipole)
+            }
+            BalanceDipole::Dumbbell {
+                charges,
+                masses,
+                length,
+                rate,
+                dipole,
+            } => {
+                p.charges = Some(charges);
+                p.masses = Some(masses);
+                p.length = Some(length);
+                p.rate = Some(rate);
+                p.dipole_amplitude = Some(dipole.amplitude());
+                DipoleChoice::Dumbbell(dipole)
+            }
+        };
+        BalanceConfig {
+            dipole,
+            parameters: p,
+            times: self.times.clone(),
+            format,
+        }
+    }
+}
+
 /// An `orbit` scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OrbitScene {
@@ -83,99 +127,145 @@ pub struct StabilityScene {
     pub row: u8,
 }
 
-pub(super) fn balance_scene(
+/// The table's default of a number key of `command`.
+fn default_number(ctx: &Ctx, section: &str, key: &str) -> Real {
+    ctx.spec(section, key).default.number().unwrap_or(0.0)
+}
+
+/// The table's default of a pair key of `command`.
+fn default_pair(ctx: &Ctx, section: &str, key: &str) -> [Real; 2] {
+    match ctx.spec(section, key).default {
+        DefaultValue::Numbers(&[a, b]) => [a, b],
+        _ => [0.0; 2],
+    }
+}
+
+/// The keys of `[balance]` that belong to some trajectories only: each
+/// key, where it was given, and the trajectories that take it.
+fn balance_owners(raw: &RawBalance) -> [(&'static str, Option<&At>, &'static [DipoleKind]); 7] {
+    use DipoleKind::{Dumbbell as D, Loop as L, Precessing as P};
+    fn at<T>(k: &Key<T>) -> Option<&At> {
+        k.as_ref().map(|g| &g.at)
+    }
+    [
+        ("cone", at(&raw.cone), &[P]),
+        ("rate", at(&raw.rate), &[P, D]),
+        ("b", at(&raw.b), &[L]),
+        ("eps", at(&raw.eps), &[L]),
+        ("charges", at(&raw.charges), &[D]),
+        ("masses", at(&raw.masses), &[D]),
+        ("length", at(&raw.length), &[D]),
+    ]
+}
+
+/// The names of the trajectories in `kinds`: `precessing or dumbbell`.
+fn dipole_names(kinds: &[DipoleKind]) -> String {
+    DIPOLES
+        .iter()
+        .filter(|c| kinds.contains(&c.value))
+        .map(|c| c.name)
+        .collect::<Vec<_>>()
+        .join(" or ")
+}
+
+/// The trajectory of `[balance]`, from its own keys and the table's defaults.
+fn balance_dipole(
     ctx: &Ctx,
     raw: &RawBalance,
-    own: &Range<usize>,
-    solve: Option<(&RawSolve, Range<usize>)>,
-) -> Result<Built, SceneError> {
+    own: &At,
+    which: DipoleKind,
+) -> Result<BalanceDipole, Refusal> {
     let s = "balance";
-    let kinds = ["precessing", "loop", "dumbbell"];
-    let (which, _) = choice(ctx, s, "dipole", &raw.dipole, &kinds)?
-        .ok_or_else(|| missing(ctx, own, s, "dipole", "one of precessing, loop, dumbbell"))?;
-    let cone = num(ctx, s, "cone", &raw.cone, "a cone angle in [0, pi]")?;
-    let rate = num(ctx, s, "rate", &raw.rate, "a non-zero rate")?;
-    let b = num(ctx, s, "b", &raw.b, "a number")?;
-    let eps = num(ctx, s, "eps", &raw.eps, "a number")?;
-    let charges = finite_array(ctx, s, "charges", &raw.charges, "two charges")?;
-    let masses = finite_array(ctx, s, "masses", &raw.masses, "two positive masses")?;
-    let length = num(ctx, s, "length", &raw.length, "a positive length")?;
-    let sp = |x: &At<Real>| x.as_ref().map(|(_, s)| s.clone());
-    let spa = |x: &At<[Real; 2]>| x.as_ref().map(|(_, s)| s.clone());
-    let (cs, rs, bs, es, qs, ms, ls) = (
-        sp(&cone),
-        sp(&rate),
-        sp(&b),
-        sp(&eps),
-        spa(&charges),
-        spa(&masses),
-        sp(&length),
-    );
-    // Keys of another trajectory are refused, not ignored: each key, where it
-    // was given, which trajectories (by index) take it, and their names.
-    type Owner<'a> = (&'a str, &'a Option<Range<usize>>, &'a [usize], &'a str);
-    let owners: [Owner; 7] = [
-        ("cone", &cs, &[0], "precessing"),
-        ("rate", &rs, &[0, 2], "precessing or dumbbell"),
-        ("b", &bs, &[1], "loop"),
-        ("eps", &es, &[1], "loop"),
-        ("charges", &qs, &[2], "dumbbell"),
-        ("masses", &ms, &[2], "dumbbell"),
-        ("length", &ls, &[2], "dumbbell"),
-    ];
-    for (key, span, belongs, owner) in owners {
-        if let Some(span) = span
-            && !belongs.contains(&which)
+    let given = |k: &str, v: &Key<Real>| -> Result<(Real, Option<At>), Refusal> {
+        Ok(match number(ctx, s, k, v, false)? {
+            Some((x, at)) => (x, Some(at)),
+            None => (default_number(ctx, s, k), None),
+        })
+    };
+    let pair = |k: &str, v: &Key<[Real; 2]>| -> Result<([Real; 2], Option<At>), Refusal> {
+        Ok(match numbers(ctx, s, k, v)? {
+            Some((x, at)) => (x, Some(at)),
+            None => (default_pair(ctx, s, k), None),
+        })
+    };
+    Ok(match which {
+        DipoleKind::Precessing => {
+            let ((cone, c_at), (rate, r_at)) =
+                (given("cone", &raw.cone)?, given("rate", &raw.rate)?);
+            let keys = [
+                ("cone", "cone", c_at.as_ref()),
+                ("rate", "rate", r_at.as_ref()),
+            ];
+            BalanceDipole::Precessing {
+                cone,
+                rate,
+                dipole: PrecessingDipole::new(cone, rate)
+                    .map_err(|e| param(ctx, e, &keys, own, s))?,
+            }
+        }
+        DipoleKind::Loop => {
+            let ((b, b_at), (eps, e_at)) = (given("b", &raw.b)?, given("eps", &raw.eps)?);
+            let keys = [("b", "b", b_at.as_ref()), ("eps", "eps", e_at.as_ref())];
+            BalanceDipole::Loop {
+                b,
+                eps,
+                dipole: PlanarLoop::new(b, eps).map_err(|e| param(ctx, e, &keys, own, s))?,
+            }
+        }
+        DipoleKind::Dumbbell => {
+            let (charges, q_at) = pair("charges", &raw.charges)?;
+            let (masses, m_at) = pair("masses", &raw.masses)?;
+            let (length, l_at) = given("length", &raw.length)?;
+            let (rate, r_at) = given("rate", &raw.rate)?;
+            let keys = [
+                ("q", "charges", q_at.as_ref()),
+                ("m", "masses", m_at.as_ref()),
+                ("length", "length", l_at.as_ref()),
+                ("rate", "rate", r_at.as_ref()),
+            ];
+            BalanceDipole::Dumbbell {
+                charges,
+                masses,
+                length,
+                rate,
+                dipole: Dumbbell::new(charges, masses, length, rate)
+                    .map_err(|e| param(ctx, e, &keys, own, s))?,
+            }
+        }
+    })
+}
+
+/// A balance question: a trajectory and its sample times.
+fn balance_body(
+    ctx: &Ctx,
+    raw: &RawBalance,
+    own: &At,
+    solve: Option<(&RawSolve, At)>,
+) -> Result<(BalanceScene, Option<At>), Refusal> {
+    let s = "balance";
+    let (which, _) = named(ctx, s, "dipole", &raw.dipole, &DIPOLES)?
+        .ok_or_else(|| missing_key(ctx, own, s, "dipole"))?;
+    // Keys of another trajectory are refused, not ignored.
+    for (key, at, takes) in balance_owners(raw) {
+        if let Some(at) = at
+            && !takes.contains(&which)
         {
+            let this = DIPOLES
+                .iter()
+                .find(|c| c.value == which)
+                .map_or("", |c| c.name);
             return Err(ctx.at(
-                span,
+                at,
                 format!(
-                    "[balance] {key} belongs to dipole = \"{owner}\"; expected only the keys of dipole = \"{}\"",
-                    kinds[which]
+                    "{} belongs to {}; expected only the keys of {}",
+                    ctx.key(s, key),
+                    ctx.set_inline("dipole", &dipole_names(takes)),
+                    ctx.set_inline("dipole", this)
                 ),
             ));
         }
     }
-    let spans = [
-        ("cone", cs.as_ref()),
-        ("rate", rs.as_ref()),
-        ("b", bs.as_ref()),
-        ("eps", es.as_ref()),
-        ("q", qs.as_ref()),
-        ("m", ms.as_ref()),
-        ("length", ls.as_ref()),
-    ];
-    let dipole = match which {
-        0 => {
-            let (c, r) = (cone.map_or(0.5, |x| x.0), rate.map_or(1.0, |x| x.0));
-            BalanceDipole::Precessing {
-                cone: c,
-                rate: r,
-                dipole: PrecessingDipole::new(c, r).map_err(|e| param(ctx, e, &spans, own, s))?,
-            }
-        }
-        1 => {
-            let (bb, ee) = (b.map_or(0.5, |x| x.0), eps.map_or(0.2, |x| x.0));
-            BalanceDipole::Loop {
-                b: bb,
-                eps: ee,
-                dipole: PlanarLoop::new(bb, ee).map_err(|e| param(ctx, e, &spans, own, s))?,
-            }
-        }
-        _ => {
-            let q = charges.map_or([1.0, -1.0], |x| x.0);
-            let m = masses.map_or([1.0, 1.0], |x| x.0);
-            let l = length.map_or(1.0, |x| x.0);
-            let r = rate.map_or(1.0, |x| x.0);
-            BalanceDipole::Dumbbell {
-                charges: q,
-                masses: m,
-                length: l,
-                rate: r,
-                dipole: Dumbbell::new(q, m, l, r).map_err(|e| param(ctx, e, &spans, own, s))?,
-            }
-        }
-    };
+    let dipole = balance_dipole(ctx, raw, own, which)?;
     fixed_method(
         ctx,
         solve.clone(),
@@ -183,110 +273,126 @@ pub(super) fn balance_scene(
         "the trajectory is given in closed form",
         false,
     )?;
-    let (times, times_span) = solve_times(ctx, solve, own, None, true, 1.0)?;
+    let times = solve_times(ctx, solve, own, 1.0)?;
+    Ok((
+        BalanceScene {
+            dipole,
+            times: times.times,
+        },
+        times.at,
+    ))
+}
+
+pub(super) fn balance_scene(
+    ctx: &Ctx,
+    raw: &RawBalance,
+    own: &At,
+    solve: Option<(&RawSolve, At)>,
+) -> Result<Built, Refusal> {
+    let (body, times_at) = balance_body(ctx, raw, own, solve)?;
     Ok(Built {
-        body: Body::Balance(BalanceScene { dipole, times }),
+        body: Body::Balance(body),
         chosen: plan::balance_choice(),
         warnings: Vec::new(),
-        times_line: times_span,
+        times_at,
     })
+}
+
+/// An orbit question: the charge, its orbit, the tolerance and the times.
+fn orbit_body(
+    ctx: &Ctx,
+    raw: &RawOrbit,
+    own: &At,
+    solve: Option<(&RawSolve, At)>,
+) -> Result<(OrbitScene, Option<At>), Refusal> {
+    let s = "orbit";
+    let (potential, _) = named(ctx, s, "potential", &raw.potential, &POTENTIALS)?
+        .ok_or_else(|| missing_key(ctx, own, s, "potential"))?;
+    let (tau0, tau0_at) = number(ctx, s, "tau0", &raw.tau0, false)?
+        .ok_or_else(|| missing_key(ctx, own, s, "tau0"))?;
+    let force = named(ctx, s, "force", &raw.force, &FORCES)?.map_or(FORCES[0].value, |f| f.0);
+    let r0 = number(ctx, s, "r0", &raw.r0, false)?;
+    let e = number(ctx, s, "eccentricity", &raw.eccentricity, false)?;
+    let at = |x: &Read<Real>| x.as_ref().map(|(_, at)| at.clone());
+    let (r0_at, e_at) = (at(&r0), at(&e));
+    let keys = [
+        ("tau0", "tau0", Some(&tau0_at)),
+        ("r0", "r0", r0_at.as_ref()),
+        ("eccentricity", "eccentricity", e_at.as_ref()),
+    ];
+    let charge =
+        ChargeInField::new(potential, tau0).map_err(|err| param(ctx, err, &keys, own, s))?;
+    let mut config = OrbitConfig::new(
+        charge,
+        r0.map_or(default_number(ctx, s, "r0"), |x| x.0),
+        e.map_or(default_number(ctx, s, "eccentricity"), |x| x.0),
+        force,
+    )
+    .map_err(|err| param(ctx, err, &keys, own, s))?;
+    fixed_method(ctx, solve.clone(), s, "its method follows from force", true)?;
+    if let Some((sv, _)) = &solve
+        && let Some((rtol, at)) = number(ctx, "solve", "rtol", &sv.rtol, false)?
+    {
+        config = config
+            .with_rtol(rtol)
+            .map_err(|e| ctx.at(&at, format!("{}: {e}", ctx.key("solve", "rtol"))))?;
+    }
+    let times = solve_times(ctx, solve, own, 1.0)?;
+    let t_last = times.times.last().copied().unwrap_or(0.0);
+    check_backward_span(&config, t_last).map_err(|e| {
+        let at = times.at.clone().unwrap_or(own.clone());
+        ctx.at(
+            &at,
+            format!(
+                "{}{e}; expected shorter {}, or {} (equal to it up to O(tau0^2))",
+                ctx.section("solve"),
+                ctx.name("times"),
+                ctx.set_inline("force", FORCES[0].name)
+            ),
+        )
+    })?;
+    Ok((
+        OrbitScene {
+            config,
+            times: times.times,
+        },
+        times.at,
+    ))
 }
 
 pub(super) fn orbit_scene(
     ctx: &Ctx,
     raw: &RawOrbit,
-    own: &Range<usize>,
-    solve: Option<(&RawSolve, Range<usize>)>,
-) -> Result<Built, SceneError> {
-    let s = "orbit";
-    let (potential, _) = choice(
-        ctx,
-        s,
-        "potential",
-        &raw.potential,
-        &["coulomb", "harmonic"],
-    )?
-    .ok_or_else(|| missing(ctx, own, s, "potential", "coulomb or harmonic"))?;
-    let potential = if potential == 0 {
-        Potential::Coulomb
-    } else {
-        Potential::Harmonic
-    };
-    let (tau0, tau0_span) = num(ctx, s, "tau0", &raw.tau0, "a positive tau0 = 2q^2/(3mc^3)")?
-        .ok_or_else(|| missing(ctx, own, s, "tau0", "a positive tau0 = 2q^2/(3mc^3)"))?;
-    let force = match choice(ctx, s, "force", &raw.force, &["ll", "al", "al-forward"])? {
-        None | Some((0, _)) => Force::LandauLifshitz,
-        Some((1, _)) => Force::AbrahamLorentz,
-        Some(_) => Force::AbrahamLorentzForward,
-    };
-    let r0 = num(ctx, s, "r0", &raw.r0, "a positive radius")?;
-    let e = num(
-        ctx,
-        s,
-        "eccentricity",
-        &raw.eccentricity,
-        "an eccentricity in [0, 1)",
-    )?;
-    let r0_span = r0.as_ref().map(|(_, s)| s.clone());
-    let e_span = e.as_ref().map(|(_, s)| s.clone());
-    let spans = [
-        ("tau0", Some(&tau0_span)),
-        ("r0", r0_span.as_ref()),
-        ("eccentricity", e_span.as_ref()),
-    ];
-    let charge =
-        ChargeInField::new(potential, tau0).map_err(|err| param(ctx, err, &spans, own, s))?;
-    let mut config = OrbitConfig::new(
-        charge,
-        r0.map_or(1.0, |x| x.0),
-        e.map_or(0.0, |x| x.0),
-        force,
-    )
-    .map_err(|err| param(ctx, err, &spans, own, s))?;
-    fixed_method(ctx, solve.clone(), s, "its method follows from force", true)?;
-    if let Some((sv, _)) = &solve
-        && let Some((rtol, span)) = num(ctx, "solve", "rtol", &sv.rtol, "a relative tolerance")?
-    {
-        config = config
-            .with_rtol(rtol)
-            .map_err(|e| ctx.at(&span, format!("[solve] {e}")))?;
-    }
-    let (times, times_span) = solve_times(ctx, solve, own, None, false, 1.0)?;
+    own: &At,
+    solve: Option<(&RawSolve, At)>,
+) -> Result<Built, Refusal> {
+    let (body, times_at) = orbit_body(ctx, raw, own, solve)?;
     Ok(Built {
-        body: Body::Orbit(OrbitScene { config, times }),
-        chosen: plan::orbit_choice(&config),
+        chosen: plan::orbit_choice(&body.config),
+        body: Body::Orbit(body),
         warnings: Vec::new(),
-        times_line: times_span,
+        times_at,
     })
 }
 
-pub(super) fn shell_scene(
+/// A shell question: the model and its times.
+fn shell_body(
     ctx: &Ctx,
     raw: &RawShell,
-    own: &Range<usize>,
-    solve: Option<(&RawSolve, Range<usize>)>,
-) -> Result<Built, SceneError> {
+    own: &At,
+    solve: Option<(&RawSolve, At)>,
+) -> Result<(ShellScene, Option<At>), Refusal> {
     let s = "shell";
-    let (tau0, tau0_span) = num(ctx, s, "tau0", &raw.tau0, "a positive tau0")?
-        .ok_or_else(|| missing(ctx, own, s, "tau0", "a positive tau0 = 2q^2/(3mc^3)"))?;
-    let (delay, delay_span) = num(ctx, s, "delay", &raw.delay, "a positive delay r0/c")?
-        .ok_or_else(|| {
-            missing(
-                ctx,
-                own,
-                s,
-                "delay",
-                "a positive delay r0/c, different from tau0",
-            )
-        })?;
+    let (tau0, tau0_at) = number(ctx, s, "tau0", &raw.tau0, false)?
+        .ok_or_else(|| missing_key(ctx, own, s, "tau0"))?;
+    let (delay, delay_at) = number(ctx, s, "delay", &raw.delay, false)?
+        .ok_or_else(|| missing_key(ctx, own, s, "delay"))?;
     let model = ShellModel::new(tau0, delay).map_err(|e| {
-        param(
-            ctx,
-            e,
-            &[("tau0", Some(&tau0_span)), ("delay", Some(&delay_span))],
-            own,
-            s,
-        )
+        let keys = [
+            ("tau0", "tau0", Some(&tau0_at)),
+            ("delay", "delay", Some(&delay_at)),
+        ];
+        param(ctx, e, &keys, own, s)
     })?;
     fixed_method(
         ctx,
@@ -295,19 +401,49 @@ pub(super) fn shell_scene(
         "a delay equation is solved by RK4 on each delay interval",
         false,
     )?;
-    let (times, times_span) = solve_times(ctx, solve, own, None, false, 1.0)?;
+    let times = solve_times(ctx, solve, own, 1.0)?;
+    Ok((
+        ShellScene {
+            model,
+            times: times.times,
+        },
+        times.at,
+    ))
+}
+
+pub(super) fn shell_scene(
+    ctx: &Ctx,
+    raw: &RawShell,
+    own: &At,
+    solve: Option<(&RawSolve, At)>,
+) -> Result<Built, Refusal> {
+    let (body, times_at) = shell_body(ctx, raw, own, solve)?;
     let mut warnings = Vec::new();
-    if let Some(rate) = model.growth_rate() {
-        warnings.push(format!(
-            "(A.1) is unstable here (m0 = {:.4}, m_em = {:.4}): solutions grow like exp({rate:.4} t)",
-            model.m0(),
-            model.m_em()
-        ));
+    if let Some(rate) = body.model.growth_rate() {
+        warnings.push(crate::output::shell::instability_warning(&body.model, rate));
     }
     Ok(Built {
-        body: Body::Shell(ShellScene { model, times }),
-        chosen: plan::shell_choice(&model),
+        chosen: plan::shell_choice(&body.model),
+        body: Body::Shell(body),
         warnings,
-        times_line: times_span,
+        times_at,
     })
+}
+
+/// `balance`'s flags, validated like a `[balance]` scene.
+pub(super) fn balance_flags(raw: &RawBalance, solve: &RawSolve) -> Result<BalanceScene, Refusal> {
+    let ctx = Ctx::flags(Command::Balance);
+    Ok(balance_body(&ctx, raw, &At::Flag, Some((solve, At::Flag)))?.0)
+}
+
+/// `orbit`'s flags, validated like an `[orbit]` scene.
+pub(super) fn orbit_flags(raw: &RawOrbit, solve: &RawSolve) -> Result<OrbitScene, Refusal> {
+    let ctx = Ctx::flags(Command::Orbit);
+    Ok(orbit_body(&ctx, raw, &At::Flag, Some((solve, At::Flag)))?.0)
+}
+
+/// `shell`'s flags, validated like a `[shell]` scene.
+pub(super) fn shell_flags(raw: &RawShell, solve: &RawSolve) -> Result<ShellScene, Refusal> {
+    let ctx = Ctx::flags(Command::Shell);
+    Ok(shell_body(&ctx, raw, &At::Flag, Some((solve, At::Flag)))?.0)
 }

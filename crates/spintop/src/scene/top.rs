@@ -1,18 +1,21 @@
-//! A top scene: the `simulate` parameters of `[top]` and `[solve]`,
-//! validated, the real particle of `[units]` turned into τ units, and the plan
+//! A top: the keys of `[top]` and `[solve]` (a scene file's, or the flags
+//! of `simulate` and `plot`), validated into a [`TopRequest`]; for a scene,
+//! also the real particle of `[units]` turned into τ units, and the plan
 //! (which model and method answer it, and why).
 
-use super::format::{RawSolve, RawTop, RawUnits};
-use super::keys::{Ctx, choice, finite_array, missing, not_here, num, param, solve_times};
+use super::format::{At, RawSolve, RawTop, RawUnits};
+use super::keys::{
+    Ctx, Dialect, Refusal, choice, missing, named, not_here, number, numbers, param, solve_times,
+};
+use super::table::{self, FRAMES, MODELS, ModelAsk, Tier};
 use super::units::{GENERAL_SHAPES, GeneralUnits, RealUnits, real_units, rigid_units};
-use super::{Body, Built, Orientation, SceneError, choose, plan};
+use super::{Body, Built, Orientation, choose, plan};
 use crate::math::{Real, Vec3};
 use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
 use crate::physics::rigid_body::lab_frame;
 use crate::physics::symmetric_top::SymmetricTop;
 use crate::sim::{InitialState, MethodChoice, MethodOptions, Model};
-use std::ops::Range;
 
 /// How the initial orientation was given.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,295 +52,423 @@ pub struct TopScene {
     pub orientation: Orientation,
 }
 
-/// The model names of `[top] model`.
-pub const MODELS: [&str; 5] = ["truncated", "reduced", "general", "full", "auto"];
-/// The method names of `[solve] method` (see [`MethodChoice::NAMES`]).
-pub const METHODS: [&str; MethodChoice::NAMES.len()] = MethodChoice::NAMES;
-pub(super) fn top_scene(
+/// The keys of a top validated, before any plan: its three models, the one
+/// asked for, the method and the times.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TopRequest {
+    /// The top's three models, lightest first ([`Tier`]).
+    pub tiers: [Model; 3],
+    /// The model asked for; `None` for `auto`.
+    pub tier: Option<Tier>,
+    /// The method asked for.
+    pub method: MethodChoice,
+    /// Tolerance and step.
+    pub options: MethodOptions,
+    /// Ω₀ and O(0).
+    pub initial: InitialState,
+    /// The Euler angles of O(0).
+    pub euler0: [Real; 3],
+    /// How O(0) was given.
+    pub frame: Frame,
+    /// Output times, in the model's unit of time.
+    pub times: Vec<Real>,
+    /// The real particle of a sphere's or a cylinder's `[units]`.
+    pub units: Option<RealUnits>,
+    /// The real particle of an ellipsoid's or a molecule's `[units]`.
+    pub general_units: Option<GeneralUnits>,
+    /// Where the method was asked for (the section's header if not).
+    method_at: At,
+    /// Where the times were given, if they were.
+    times_at: Option<At>,
+}
+
+impl TopRequest {
+    /// The model asked for; `None` for `auto`.
+    pub fn model(&self) -> Option<Model> {
+        self.tier.map(|t| self.tiers[t.index()])
+    }
+}
+
+/// The real particle of `[units]`, if any.
+enum Particle {
+    None,
+    Symmetric(RealUnits),
+    Asymmetric(GeneralUnits),
+}
+
+impl Particle {
+    /// Model time units per output time unit.
+    fn scale(&self) -> Real {
+        match self {
+            Particle::None => 1.0,
+            Particle::Symmetric(u) => u.tau_per_unit(),
+            Particle::Asymmetric(g) => g.u_per_unit(),
+        }
+    }
+}
+
+/// Validate the keys of a top (`[top]`, `[solve]` and `[units]`).
+pub(super) fn top_request(
     ctx: &Ctx,
     raw: &RawTop,
-    own: &Range<usize>,
-    solve: Option<(&RawSolve, Range<usize>)>,
-    units: Option<(&RawUnits, Range<usize>)>,
-) -> Result<Built, SceneError> {
-    let (model_index, model_span) =
-        choice(ctx, "top", "model", &raw.model, &MODELS)?.ok_or_else(|| {
-            missing(
-                ctx,
-                own,
-                "top",
-                "model",
-                &format!("one of {}", MODELS.join(", ")),
-            )
-        })?;
-    let auto_model = model_index == 4;
+    own: &At,
+    solve: Option<(&RawSolve, At)>,
+    units: Option<(&RawUnits, At)>,
+) -> Result<TopRequest, Refusal> {
+    let (ask, model_at) = named(ctx, "top", "model", &raw.model, &MODELS)?
+        .ok_or_else(|| super::keys::missing_key(ctx, own, "top", "model"))?;
     let general_shape = units
         .as_ref()
         .and_then(|(u, _)| u.shape.as_ref())
-        .is_some_and(|s| GENERAL_SHAPES.contains(&s.get_ref().as_str()));
-    let general =
-        model_index == 2 || raw.inertia.is_some() || raw.dipole.is_some() || general_shape;
-    let mut general_units = None;
-    let units = match units {
-        Some((u, span)) if general => {
-            if model_index == 3 {
-                return Err(ctx.at(
-                    &model_span,
-                    "[top] model = \"full\" cannot take [units]: a real particle turns 10^15 times or more before its radiation shows, and the physical solution steps every turn; expected auto, truncated or reduced",
-                ));
-            }
-            let why = "follows from [units]; remove it";
-            not_here(
-                ctx,
-                &raw.inertia,
-                "top",
-                "inertia",
-                &format!("{why} (the particle's moments)"),
-            )?;
-            not_here(
-                ctx,
-                &raw.dipole,
-                "top",
-                "dipole",
-                &format!("{why} (dipole_vector_debye)"),
-            )?;
-            not_here(
-                ctx,
-                &raw.omega,
-                "top",
-                "omega",
-                &format!("{why} (omega_hz)"),
-            )?;
-            not_here(
-                ctx,
-                &raw.ratio,
-                "top",
-                "ratio",
-                "belongs to the symmetric models",
-            )?;
-            general_units = Some(rigid_units(ctx, u, &span)?);
-            None
-        }
-        Some((u, span)) => {
-            if !(model_index == 0 || model_index == 1 || auto_model) {
-                return Err(ctx.at(
-                    &model_span,
-                    format!(
-                        "[top] model = \"{}\" cannot take [units]; expected auto, truncated or reduced (the closed-form models of a real sphere or cylinder)",
-                        MODELS[model_index]
-                    ),
-                ));
-            }
-            let why = "follows from [units]; remove it";
-            not_here(
-                ctx,
-                &raw.ratio,
-                "top",
-                "ratio",
-                &format!("{why} (I3/I1 of the shape)"),
-            )?;
-            not_here(
-                ctx,
-                &raw.omega,
-                "top",
-                "omega",
-                &format!("{why} (spin_hz and spin_tilt_deg)"),
-            )?;
-            Some(real_units(ctx, u, &span)?)
-        }
-        None => None,
+        .is_some_and(|s| GENERAL_SHAPES.contains(&s.value.as_str()));
+    let asymmetric =
+        ask.asymmetric || raw.inertia.is_some() || raw.dipole.is_some() || general_shape;
+    let particle = match units {
+        Some((u, at)) => read_units(ctx, raw, (ask, &model_at), asymmetric, (u, &at))?,
+        None => Particle::None,
     };
-    let ratio = num(ctx, "top", "ratio", &raw.ratio, "a number in (0, 2]")?;
-    let inertia = finite_array(
-        ctx,
-        "top",
-        "inertia",
-        &raw.inertia,
-        "three positive principal moments",
-    )?;
-    let dipole = finite_array(
-        ctx,
-        "top",
-        "dipole",
-        &raw.dipole,
-        "three numbers, the body-frame dipole",
-    )?;
-    // The three models of this top, lightest first: the truncated ALE, the
-    // reduced ALE, the physical solution of (3.4).
-    let tiers: [Model; 3] = if !general {
-        let general_only = "belongs to an asymmetric top (model = \"general\", or inertia and dipole with any model); the symmetric models take ratio";
-        not_here(ctx, &raw.inertia, "top", "inertia", general_only)?;
-        not_here(ctx, &raw.dipole, "top", "dipole", general_only)?;
-        let r = match (&units, &ratio) {
-            (Some(u), _) => u.particle.ratio(),
-            (None, Some((r, _))) => *r,
-            (None, None) => 0.4,
-        };
-        let top = SymmetricTop::new(r, 1.0).map_err(|e| {
-            let span = ratio.as_ref().map(|(_, s)| s);
-            param(ctx, e, &[("I3/I1", span)], own, "top")
-        })?;
-        Model::Truncated(top).tiers()
+    let tiers = if asymmetric {
+        asymmetric_tiers(ctx, raw, own, &particle)?
     } else {
+        symmetric_tiers(ctx, raw, own, &particle)?
+    };
+    let omega0 = read_omega0(ctx, raw, &particle)?;
+    let (euler, frame) = read_orientation(ctx, raw, &tiers[0], &omega0)?;
+    let initial = InitialState::new(omega0, euler)
+        .map_err(|e| ctx.at(own, format!("{}{e}", ctx.section("top"))))?;
+    let solve_ref = solve.as_ref().map(|(s, _)| *s);
+    let (method, method_at) = read_method(ctx, solve_ref, own, ask, &tiers)?;
+    let options = read_options(ctx, solve_ref, own, method)?;
+    let times = solve_times(ctx, solve, own, particle.scale())?;
+    let (units, general_units) = match particle {
+        Particle::None => (None, None),
+        Particle::Symmetric(u) => (Some(u), None),
+        Particle::Asymmetric(g) => (None, Some(g)),
+    };
+    Ok(TopRequest {
+        tiers,
+        tier: ask.tier,
+        method,
+        options,
+        initial,
+        euler0: [euler.phi, euler.theta, euler.psi],
+        frame,
+        times: times.times,
+        units,
+        general_units,
+        method_at,
+        times_at: times.at,
+    })
+}
+
+/// `[units]`: refuse the keys of `[top]` the particle decides, and read it.
+fn read_units(
+    ctx: &Ctx,
+    raw: &RawTop,
+    (ask, model_at): (ModelAsk, &At),
+    asymmetric: bool,
+    (u, at): (&RawUnits, &At),
+) -> Result<Particle, Refusal> {
+    let why = "follows from [units]; remove it";
+    if asymmetric {
+        if ask.tier == Some(Tier::Physical) {
+            return Err(ctx.at(
+                model_at,
+                "[top] model = \"full\" cannot take [units]: a real particle turns 10^15 times or more before its radiation shows, and the physical solution steps every turn; expected auto, truncated or reduced",
+            ));
+        }
+        let because = [
+            ("inertia", "the particle's moments"),
+            ("dipole", "dipole_vector_debye"),
+            ("omega", "omega_hz"),
+        ];
+        for (key, source) in because {
+            let given = match key {
+                "inertia" => raw.inertia.as_ref().map(|g| &g.at),
+                "dipole" => raw.dipole.as_ref().map(|g| &g.at),
+                _ => raw.omega.as_ref().map(|g| &g.at),
+            };
+            if let Some(at) = given {
+                return Err(ctx.at(at, format!("[top] {key} {why} ({source})")));
+            }
+        }
         not_here(
             ctx,
             &raw.ratio,
             "top",
             "ratio",
-            "belongs to the symmetric models; an asymmetric top takes inertia and dipole",
+            "belongs to the symmetric models",
         )?;
-        let top = match &general_units {
-            Some(g) => g.particle.top(),
-            None => {
-                let (i, i_span) = inertia.clone().ok_or_else(|| {
-                    missing(
-                        ctx,
-                        own,
-                        "top",
-                        "inertia",
-                        "inertia = [I1, I2, I3] for an asymmetric top",
-                    )
-                })?;
-                let (d, d_span) = dipole.clone().ok_or_else(|| {
-                    missing(
-                        ctx,
-                        own,
-                        "top",
-                        "dipole",
-                        "dipole = [d1, d2, d3] for an asymmetric top",
-                    )
-                })?;
-                GeneralTop::new(Vec3::from(i), Vec3::from(d)).map_err(|e| {
-                    param(
-                        ctx,
-                        e,
-                        &[
-                            ("inertia", Some(&i_span)),
-                            ("I", Some(&i_span)),
-                            ("dipole", Some(&d_span)),
-                            ("d", Some(&d_span)),
-                        ],
-                        own,
-                        "top",
-                    )
-                })?
-            }
-        };
-        Model::General(top).tiers()
-    };
-    let asked_tier = match model_index {
-        0 | 2 => Some(0),
-        1 => Some(1),
-        3 => Some(2),
-        _ => None,
-    };
-
-    // Ω₀: given, or from the particle's spin.
-    let omega_key = finite_array(
-        ctx,
-        "top",
-        "omega",
-        &raw.omega,
-        "three body-frame rates in 1/tau",
-    )?;
-    let omega0 = match (&units, &general_units, &omega_key) {
-        (Some(u), _, _) => u
-            .particle
-            .omega0_per_tau(u.spin_hz, u.spin_tilt_deg.to_radians()),
-        (None, Some(g), _) => g.particle.omega0(g.omega_hz),
-        (None, None, Some((w, span))) => {
-            let w = Vec3::from(*w);
-            crate::sim::check_rate(&w).map_err(|e| ctx.at(span, format!("[top] omega: {e}")))?;
-            w
-        }
-        (None, None, None) => Vec3::new(0.0, 0.1, 0.2),
-    };
-    let inertia_of_top = tiers[0].inertia();
-
-    // O(0): Euler angles, or the paper's frame.
-    let euler_key = finite_array(
-        ctx,
-        "top",
-        "euler",
-        &raw.euler,
-        "three z-x-z Euler angles in radians",
-    )?;
-    let frame_key = choice(ctx, "top", "frame", &raw.frame, &["paper"])?;
-    if let (Some(_), Some((_, span))) = (&euler_key, &frame_key) {
+        return Ok(Particle::Asymmetric(rigid_units(ctx, u, at)?));
+    }
+    if !matches!(ask.tier, None | Some(Tier::Truncated | Tier::Reduced)) {
+        let name = raw.model.as_ref().map_or("", |g| g.value.as_str());
         return Err(ctx.at(
-            span,
-            "[top] gives both euler and frame; expected one of them",
+            model_at,
+            format!(
+                "[top] model = \"{name}\" cannot take [units]; expected auto, truncated or reduced (the closed-form models of a real sphere or cylinder)"
+            ),
         ));
     }
-    let (euler, frame) = match (&euler_key, &frame_key) {
-        (Some((e, _)), _) => (EulerAngles::new(e[0], e[1], e[2]), Frame::Euler),
-        (None, Some(_)) => (lab_frame(&inertia_of_top, &omega0), Frame::Paper),
-        (None, None) => (EulerAngles::new(0.0, 0.0, 0.0), Frame::Euler),
-    };
-    let initial =
-        InitialState::new(omega0, euler).map_err(|e| ctx.at(own, format!("[top] {e}")))?;
+    not_here(
+        ctx,
+        &raw.ratio,
+        "top",
+        "ratio",
+        &format!("{why} (I3/I1 of the shape)"),
+    )?;
+    not_here(
+        ctx,
+        &raw.omega,
+        "top",
+        "omega",
+        &format!("{why} (spin_hz and spin_tilt_deg)"),
+    )?;
+    Ok(Particle::Symmetric(real_units(ctx, u, at)?))
+}
 
-    // [solve]
-    let s = solve.as_ref().map(|(s, _)| *s);
-    let method_key = match s {
-        Some(s) => choice(ctx, "solve", "method", &s.method, &METHODS)?,
+/// The three models of a symmetric top (I₃/I₁ from `ratio`, the particle,
+/// or the table's default), lightest first.
+fn symmetric_tiers(
+    ctx: &Ctx,
+    raw: &RawTop,
+    own: &At,
+    particle: &Particle,
+) -> Result<[Model; 3], Refusal> {
+    let ratio = number(ctx, "top", "ratio", &raw.ratio, false)?;
+    let r = match (particle, &ratio) {
+        (Particle::Symmetric(u), _) => u.particle.ratio(),
+        (_, Some((r, _))) => *r,
+        _ => ctx
+            .spec("top", "ratio")
+            .default
+            .number()
+            .unwrap_or(crate::physics::symmetric_top::FIGURE_RATIO),
+    };
+    let top = SymmetricTop::new(r, 1.0).map_err(|e| {
+        let at = ratio.as_ref().map(|(_, at)| at);
+        param(ctx, e, &[("I3/I1", "ratio", at)], own, "top")
+    })?;
+    Ok(Model::Truncated(top).tiers())
+}
+
+/// The three models of an asymmetric top (from `inertia` and `dipole`, or
+/// the particle), lightest first.
+fn asymmetric_tiers(
+    ctx: &Ctx,
+    raw: &RawTop,
+    own: &At,
+    particle: &Particle,
+) -> Result<[Model; 3], Refusal> {
+    not_here(
+        ctx,
+        &raw.ratio,
+        "top",
+        "ratio",
+        &format!(
+            "belongs to the symmetric models; an asymmetric top takes {} and {}",
+            ctx.name("inertia"),
+            ctx.name("dipole")
+        ),
+    )?;
+    let inertia = numbers(ctx, "top", "inertia", &raw.inertia)?;
+    let dipole = numbers(ctx, "top", "dipole", &raw.dipole)?;
+    let top = match particle {
+        Particle::Asymmetric(g) => g.particle.top(),
+        _ => {
+            let needs = |key: &str, what: &str, beside: &str| {
+                let given = if beside.is_empty() {
+                    String::new()
+                } else {
+                    format!(" (given {})", ctx.name(beside))
+                };
+                missing(
+                    ctx,
+                    own,
+                    "top",
+                    key,
+                    &format!(
+                        "{}, {what} of an asymmetric top{given}",
+                        example(ctx, "top", key)
+                    ),
+                )
+            };
+            let beside = |given: bool, key| if given { key } else { "" };
+            let (i, i_at) = inertia.clone().ok_or_else(|| {
+                needs(
+                    "inertia",
+                    "the principal moments",
+                    beside(dipole.is_some(), "dipole"),
+                )
+            })?;
+            let (d, d_at) = dipole
+                .clone()
+                .ok_or_else(|| needs("dipole", "the body-frame dipole", beside(true, "inertia")))?;
+            GeneralTop::new(Vec3::from(i), Vec3::from(d)).map_err(|e| {
+                let keys = [
+                    ("inertia", "inertia", Some(&i_at)),
+                    ("I", "inertia", Some(&i_at)),
+                    ("dipole", "dipole", Some(&d_at)),
+                    ("d", "dipole", Some(&d_at)),
+                ];
+                param(ctx, e, &keys, own, "top")
+            })?
+        }
+    };
+    Ok(Model::General(top).tiers())
+}
+
+/// A key with its value name, as the source writes it: `inertia = [I1, I2,
+/// I3]` in a file, `--inertia I1,I2,I3` on the command line.
+fn example(ctx: &Ctx, section: &str, key: &str) -> String {
+    let shape = ctx.spec(section, key).value_name;
+    match ctx.dialect {
+        Dialect::File { .. } => format!("{key} = [{}]", shape.replace(',', ", ")),
+        Dialect::Flags => format!("{} {shape}", table::flag_of(key)),
+    }
+}
+
+/// Ω₀: given, from the particle's spin, or the table's default.
+fn read_omega0(ctx: &Ctx, raw: &RawTop, particle: &Particle) -> Result<Vec3, Refusal> {
+    let given = numbers(ctx, "top", "omega", &raw.omega)?;
+    Ok(match (particle, given) {
+        (Particle::Symmetric(u), _) => u
+            .particle
+            .omega0_per_tau(u.spin_hz, u.spin_tilt_deg.to_radians()),
+        (Particle::Asymmetric(g), _) => g.particle.omega0(g.omega_hz),
+        (Particle::None, Some((w, at))) => {
+            let w = Vec3::from(w);
+            crate::sim::check_rate(&w)
+                .map_err(|e| ctx.at(&at, format!("{}: {e}", ctx.key("top", "omega"))))?;
+            w
+        }
+        (Particle::None, None) => match ctx.spec("top", "omega").default {
+            table::DefaultValue::Numbers(&[w1, w2, w3]) => Vec3::new(w1, w2, w3),
+            _ => Vec3::from(crate::physics::symmetric_top::FIGURE_OMEGA0),
+        },
+    })
+}
+
+/// O(0): Euler angles, or the paper's frame (lab z along L₀).
+fn read_orientation(
+    ctx: &Ctx,
+    raw: &RawTop,
+    lightest: &Model,
+    omega0: &Vec3,
+) -> Result<(EulerAngles, Frame), Refusal> {
+    let euler = numbers(ctx, "top", "euler", &raw.euler)?;
+    let frame = named(ctx, "top", "frame", &raw.frame, &FRAMES)?;
+    if let (Some(_), Some((_, at))) = (&euler, &frame) {
+        return Err(ctx.at(
+            at,
+            format!(
+                "{}gives both {} and {}; expected one of them",
+                ctx.section("top"),
+                ctx.name("euler"),
+                ctx.name("frame")
+            ),
+        ));
+    }
+    Ok(match (euler, frame) {
+        (Some((e, _)), _) => (EulerAngles::new(e[0], e[1], e[2]), Frame::Euler),
+        (None, Some(_)) => (lab_frame(&lightest.inertia(), omega0), Frame::Paper),
+        (None, None) => (EulerAngles::new(0.0, 0.0, 0.0), Frame::Euler),
+    })
+}
+
+/// `[solve] method`, refused where the model asked for does not take it.
+fn read_method(
+    ctx: &Ctx,
+    solve: Option<&RawSolve>,
+    own: &At,
+    ask: ModelAsk,
+    tiers: &[Model; 3],
+) -> Result<(MethodChoice, At), Refusal> {
+    let given = match solve {
+        Some(s) => choice(ctx, "solve", "method", &s.method, &MethodChoice::NAMES)?,
         None => None,
     };
-    let method = MethodChoice::ALL[method_key.as_ref().map_or(0, |(m, _)| *m)];
-    let method_span = method_key.as_ref().map_or(own.clone(), |(_, s)| s.clone());
-    let method_name = method.name();
-    if auto_model && method != MethodChoice::Auto {
-        return Err(ctx.at(&method_span, format!("[solve] method = \"{method_name}\": model = \"auto\" chooses the model and its method together; remove method, or name the model in [top]")));
+    let method = MethodChoice::ALL[given.as_ref().map_or(0, |(m, _)| *m)];
+    let at = given.map_or(own.clone(), |(_, at)| at);
+    let subject = ctx.set("solve", "method", &ctx.word(method.name()));
+    match ask.tier {
+        None if method != MethodChoice::Auto => Err(ctx.at(
+            &at,
+            format!(
+                "{subject}: {} chooses the model and its method together; remove {}, or name the model",
+                ctx.set_inline("model", "auto"),
+                ctx.name("method")
+            ),
+        )),
+        None => Ok((method, at)),
+        Some(tier) => {
+            tiers[tier.index()]
+                .check_method(method)
+                .map_err(|e| ctx.at(&at, format!("{subject}: {e}")))?;
+            Ok((method, at))
+        }
     }
-    if let Some(tier) = asked_tier {
-        tiers[tier].check_method(method).map_err(|e| {
-            ctx.at(
-                &method_span,
-                format!("[solve] method = \"{method_name}\": {e}"),
-            )
-        })?;
-    }
-    let (rtol, step) = match s {
+}
+
+/// `[solve] rtol` and `step`, for the method they apply to.
+fn read_options(
+    ctx: &Ctx,
+    solve: Option<&RawSolve>,
+    own: &At,
+    method: MethodChoice,
+) -> Result<MethodOptions, Refusal> {
+    let (rtol, step) = match solve {
         Some(s) => (
-            num(
-                ctx,
-                "solve",
-                "rtol",
-                &s.rtol,
-                "a relative tolerance in [1e-14, 1)",
-            )?,
-            num(
-                ctx,
-                "solve",
-                "step",
-                &s.step,
-                "a positive step in units of tau",
-            )?,
+            number(ctx, "solve", "rtol", &s.rtol, false)?,
+            number(ctx, "solve", "step", &s.step, false)?,
         ),
         None => (None, None),
     };
-    let options = MethodOptions::for_choice(
+    MethodOptions::for_choice(
         method,
         rtol.as_ref().map(|(x, _)| *x),
         step.as_ref().map(|(x, _)| *x),
     )
     .map_err(|e| {
-        let at = if e.key() == "rtol" { &rtol } else { &step };
-        let span = at.as_ref().map_or(own, |(_, span)| span);
-        ctx.at(span, format!("[solve] {e}"))
-    })?;
-    let scale = match (&units, &general_units) {
-        (Some(u), _) => u.tau_per_unit(),
-        (None, Some(g)) => g.u_per_unit(),
-        (None, None) => 1.0,
-    };
-    let (times, times_span) =
-        solve_times(ctx, solve.clone(), own, Some((100.0, 11)), false, scale)?;
+        let given = if e.key() == "rtol" { &rtol } else { &step };
+        let at = given.as_ref().map_or(own, |(_, at)| at);
+        let text = e.to_string();
+        let rest = text.strip_prefix(e.key()).unwrap_or(&text);
+        ctx.at(at, format!("{}{rest}", ctx.key("solve", e.key())))
+    })
+}
+
+/// A top scene: its keys validated, then planned.
+pub(super) fn top_scene(
+    ctx: &Ctx,
+    raw: &RawTop,
+    own: &At,
+    solve: Option<(&RawSolve, At)>,
+    units: Option<(&RawUnits, At)>,
+) -> Result<Built, Refusal> {
+    let solve_at = solve.as_ref().map_or(own.clone(), |(_, at)| at.clone());
+    let request = top_request(ctx, raw, own, solve, units)?;
+    plan_request(ctx, request, own, &solve_at)
+}
+
+/// Which model and method answer a validated top, and why; the refusal of
+/// what no method can do, at the key to change.
+fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Result<Built, Refusal> {
+    let TopRequest {
+        tiers,
+        tier,
+        method,
+        options,
+        initial,
+        times,
+        ..
+    } = &request;
     let t_last = times.last().copied().unwrap_or(0.0);
-    let (mut model, mut model_choice, without_orientation, mut why_physical) = match asked_tier {
-        Some(tier) => (tiers[tier], None, None, None),
+    let (mut model, mut model_choice, without_orientation, mut why_physical) = match tier {
+        Some(tier) => (tiers[tier.index()], None, None, None),
         None => {
-            let choice = choose::choose_model(&tiers, method, &omega0, &times, options.rtol());
+            let choice =
+                choose::choose_model(tiers, *method, &initial.omega, times, options.rtol());
             (
                 tiers[choice.tier],
                 Some(choice.reason),
@@ -346,7 +477,7 @@ pub(super) fn top_scene(
             )
         }
     };
-    let mut planned = plan::plan_top(&model, method, &options, &initial, t_last, None);
+    let mut planned = plan::plan_top(&model, *method, options, initial, t_last, None);
     // The physical solution was chosen for the orientation alone and cannot
     // run: a lighter model answers Omega, without the orientation.
     if let (Err(refusal), Some((tier, why))) = (&planned, &without_orientation)
@@ -356,20 +487,16 @@ pub(super) fn top_scene(
         model_choice = Some(why.clone());
         why_physical = None;
         let skip = "Omega alone is held within rtol without the physical solution, and the orientation is not";
-        planned = plan::plan_top(&model, method, &options, &initial, t_last, Some(skip));
+        planned = plan::plan_top(&model, *method, options, initial, t_last, Some(skip));
     }
     let mut plan = planned.map_err(|r| {
-        let span = match r.at {
-            plan::Blame::Method => method_span.clone(),
-            plan::Blame::Times => times_span
-                .clone()
-                .unwrap_or_else(|| solve.as_ref().map_or(own.clone(), |(_, s)| s.clone())),
+        let at = match r.at {
+            plan::Blame::Method => request.method_at.clone(),
+            plan::Blame::Times => request.times_at.clone().unwrap_or(solve_at.clone()),
         };
         match &why_physical {
-            Some(why) if r.at == plan::Blame::Times => {
-                ctx.at(&span, format!("{}; {why}", r.message))
-            }
-            _ => ctx.at(&span, r.message),
+            Some(why) if r.at == plan::Blame::Times => ctx.at(&at, format!("{}; {why}", r.message)),
+            _ => ctx.at(&at, r.message),
         }
     })?;
     if let Some(why) = model_choice {
@@ -379,24 +506,32 @@ pub(super) fn top_scene(
     let options = match plan.rtol {
         Some(r) => options
             .with_rtol(r)
-            .map_err(|e| ctx.at(own, format!("[solve] {e}")))?,
-        None => options,
+            .map_err(|e| ctx.at(own, format!("{}{e}", ctx.section("solve"))))?,
+        None => *options,
     };
+    let times_at = request.times_at.clone();
     Ok(Built {
         body: Body::Top(Box::new(TopScene {
             model,
-            method,
+            method: request.method,
             options,
-            initial,
-            euler0: [euler.phi, euler.theta, euler.psi],
-            frame,
-            times,
-            units,
-            general_units,
+            initial: request.initial,
+            euler0: request.euler0,
+            frame: request.frame,
+            times: request.times,
+            units: request.units,
+            general_units: request.general_units,
             orientation: plan.orientation,
         })),
         chosen: plan.chosen,
         warnings: plan.warnings,
-        times_line: times_span,
+        times_at,
     })
+}
+
+/// A top asked by flags: the keys of `[top]` and `[solve]` the flags fill,
+/// validated like a scene's, with messages that name the flags.
+pub(super) fn top_flags(raw: &RawTop, solve: &RawSolve) -> Result<TopRequest, Refusal> {
+    let ctx = Ctx::flags(table::Command::Simulate);
+    top_request(&ctx, raw, &At::Flag, Some((solve, At::Flag)), None)
 }

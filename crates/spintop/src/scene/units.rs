@@ -4,14 +4,12 @@
 //! output's times are shown in. Sizes in nm, density in kg/m³, dipoles in
 //! debye, rates in Hz; the particle itself works in Gaussian units.
 
-use super::SceneError;
-use super::format::{Key, RawUnits};
-use super::keys::{Ctx, choice, finite_array, missing, not_here, num_in};
+use super::format::{At, Key, RawUnits};
+use super::keys::{Ctx, Refusal, choice, finite_array, missing, not_here, num_in};
 use crate::math::Real;
 use crate::physics::particle::{
     DEBYE_ESU_CM, Particle, RigidParticle, RigidShape, SECONDS_PER_YEAR, Shape,
 };
-use std::ops::Range;
 
 /// A time unit for the output of a real particle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -105,11 +103,7 @@ pub const SHAPES: [&str; 4] = ["sphere", "cylinder", "ellipsoid", "molecule"];
 /// The shapes of `[units]` that make an asymmetric top.
 pub const GENERAL_SHAPES: [&str; 2] = ["ellipsoid", "molecule"];
 
-pub(super) fn real_units(
-    ctx: &Ctx,
-    u: &RawUnits,
-    header: &Range<usize>,
-) -> Result<RealUnits, SceneError> {
+pub(super) fn real_units(ctx: &Ctx, u: &RawUnits, header: &At) -> Result<RealUnits, Refusal> {
     let s = "units";
     let (shape, _) = choice(ctx, s, "shape", &u.shape, &SHAPES)?
         .ok_or_else(|| missing(ctx, header, s, "shape", "sphere or cylinder"))?;
@@ -118,7 +112,7 @@ pub(super) fn real_units(
     } else {
         Shape::Cylinder
     };
-    let positive = |key: &str, v: &Key<Real>, what: &str| -> Result<Real, SceneError> {
+    let positive = |key: &str, v: &Key<Real>, what: &str| -> Result<Real, Refusal> {
         num_in(ctx, s, key, v, |x| x > 0.0, &format!("a positive {what}"))?
             .map(|(x, _)| x)
             .ok_or_else(|| missing(ctx, header, s, key, &format!("a positive {what}")))
@@ -191,7 +185,7 @@ pub(super) fn real_units(
     let per_tau = particle.omega0_per_tau(spin_hz, 0.0).norm();
     rate_fits(
         ctx,
-        u.spin_hz.as_ref().map_or(header.clone(), |v| v.span()),
+        u.spin_hz.as_ref().map_or(header.clone(), |v| v.at.clone()),
         (
             &format!("spin_hz = {}", crate::numbers::short(spin_hz)),
             "tau",
@@ -211,14 +205,14 @@ pub(super) fn real_units(
 /// A particle's time scale in seconds must be a positive, finite double.
 pub(super) fn time_scale_fits(
     ctx: &Ctx,
-    header: &Range<usize>,
+    header: &At,
     name: &str,
     seconds: Real,
-) -> Result<(), SceneError> {
+) -> Result<(), Refusal> {
     if seconds > 0.0 && seconds.is_finite() {
         Ok(())
     } else {
-        Err(ctx.at(header, format!("[units] give {name} = {seconds:e} s, which a double cannot hold; expected sizes and a dipole of laboratory scale")))
+        Err(ctx.at(header, format!("[units] give {name} = {} s, which a double cannot hold; expected sizes and a dipole of laboratory scale", crate::numbers::fmt_value(seconds))))
     }
 }
 
@@ -229,24 +223,25 @@ pub(super) fn time_scale_fits(
 /// `seconds` the unit of time; `in_units` is the largest rate in it.
 fn rate_fits(
     ctx: &Ctx,
-    span: Range<usize>,
+    at: At,
     (key, unit, seconds): (&str, &str, Real),
     in_units: Real,
-) -> Result<(), SceneError> {
+) -> Result<(), Refusal> {
     if in_units >= Real::MIN_POSITIVE {
         return Ok(());
     }
     Err(ctx.at(
-        &span,
+        &at,
         format!(
-            "[units] {key} is {} in the model's unit of time, {unit} = {seconds:.3e} s, below what a double holds; expected faster rates",
-            crate::numbers::short(in_units)
+            "[units] {key} is {} in the model's unit of time, {unit} = {} s, below what a double holds; expected faster rates",
+            crate::numbers::short(in_units),
+            crate::numbers::worked(seconds)
         ),
     ))
 }
 
 /// The time unit of `[units] time_unit` (seconds by default).
-pub(super) fn time_unit(ctx: &Ctx, u: &RawUnits) -> Result<TimeUnit, SceneError> {
+pub(super) fn time_unit(ctx: &Ctx, u: &RawUnits) -> Result<TimeUnit, Refusal> {
     Ok(
         choice(ctx, "units", "time_unit", &u.time_unit, &TIME_UNITS)?.map_or(
             TimeUnit::Second,
@@ -264,17 +259,70 @@ pub(super) fn time_unit(ctx: &Ctx, u: &RawUnits) -> Result<TimeUnit, SceneError>
 }
 
 /// `[units]` of an ellipsoid or a molecule.
-pub(super) fn rigid_units(
-    ctx: &Ctx,
-    u: &RawUnits,
-    header: &Range<usize>,
-) -> Result<GeneralUnits, SceneError> {
+pub(super) fn rigid_units(ctx: &Ctx, u: &RawUnits, header: &At) -> Result<GeneralUnits, Refusal> {
     let s = "units";
     let (shape, _) = choice(ctx, s, "shape", &u.shape, &SHAPES)?
         .ok_or_else(|| missing(ctx, header, s, "shape", "ellipsoid or molecule"))?;
     if !GENERAL_SHAPES.contains(&SHAPES[shape]) {
         return Err(ctx.at(header, format!("[units] shape = \"{}\" is a symmetric top with its dipole on the axis; an asymmetric top (inertia and dipole, or model = \"general\") takes shape = \"ellipsoid\" or \"molecule\"", SHAPES[shape])));
     }
+    refuse_symmetric_keys(ctx, u)?;
+    let shape = if SHAPES[shape] == "ellipsoid" {
+        ellipsoid(ctx, u, header)?
+    } else {
+        molecule(ctx, u, header)?
+    };
+    let dipole = three(
+        ctx,
+        header,
+        ("dipole_vector_debye", &u.dipole_vector_debye),
+        "three numbers, the body-frame dipole in debye",
+    )?;
+    let omega_hz = three(
+        ctx,
+        header,
+        ("omega_hz", &u.omega_hz),
+        "three body-frame rates in turns per second",
+    )?;
+    if omega_hz.iter().any(|x| x.abs() > 1e30) {
+        return Err(ctx.at(
+            header,
+            "[units] omega_hz is out of range; expected each rate at most 1e30 Hz",
+        ));
+    }
+    let particle =
+        RigidParticle::new(shape, dipole).map_err(|e| ctx.at(header, format!("[units] {e}")))?;
+    time_scale_fits(ctx, header, "tau_f", particle.fast_time_seconds())?;
+    if omega_hz.iter().any(|&f| f != 0.0) {
+        rate_fits(
+            ctx,
+            u.omega_hz.as_ref().map_or(header.clone(), |v| v.at.clone()),
+            ("omega_hz", "tau_f", particle.fast_time_seconds()),
+            particle.omega0(omega_hz).amax(),
+        )?;
+    }
+    Ok(GeneralUnits {
+        particle,
+        omega_hz,
+        time_unit: time_unit(ctx, u)?,
+    })
+}
+
+/// Three finite numbers a key of `[units]` must give.
+fn three(
+    ctx: &Ctx,
+    header: &At,
+    (key, v): (&str, &Key<[Real; 3]>),
+    what: &str,
+) -> Result<[Real; 3], Refusal> {
+    finite_array(ctx, "units", key, v, what)?
+        .map(|(x, _)| x)
+        .ok_or_else(|| missing(ctx, header, "units", key, what))
+}
+
+/// Refuse the keys of a sphere or a cylinder in an asymmetric particle's `[units]`.
+fn refuse_symmetric_keys(ctx: &Ctx, u: &RawUnits) -> Result<(), Refusal> {
+    let s = "units";
     let symmetric_only = "belongs to shape = \"sphere\" or \"cylinder\"";
     not_here(
         ctx,
@@ -307,110 +355,71 @@ pub(super) fn rigid_units(
         "spin_tilt_deg",
         &format!("{symmetric_only}; give omega_hz = [f1, f2, f3]"),
     )?;
-    not_here(ctx, &u.upright_deg, s, "upright_deg", symmetric_only)?;
-    let three = |key: &str, v: &Key<[Real; 3]>, what: &str| -> Result<[Real; 3], SceneError> {
-        finite_array(ctx, s, key, v, what)?
-            .map(|(x, _)| x)
-            .ok_or_else(|| missing(ctx, header, s, key, what))
-    };
-    let shape = if SHAPES[shape] == "ellipsoid" {
-        not_here(
-            ctx,
-            &u.moments_amu_a2,
-            s,
-            "moments_amu_a2",
-            "belongs to shape = \"molecule\"; an ellipsoid's moments follow from semi_axes_nm and density_kg_m3",
-        )?;
-        let density = num_in(
-            ctx,
-            s,
-            "density_kg_m3",
-            &u.density_kg_m3,
-            |x| x > 0.0,
-            "a positive density in kg/m^3",
-        )?
-        .map(|(x, _)| x)
-        .ok_or_else(|| {
-            missing(
-                ctx,
-                header,
-                s,
-                "density_kg_m3",
-                "a positive density in kg/m^3",
-            )
-        })?;
-        RigidShape::Ellipsoid {
-            semi_axes_nm: three(
-                "semi_axes_nm",
-                &u.semi_axes_nm,
-                "three positive semi-axes in nm, along the body axes",
-            )?,
-            density_kg_m3: density,
-        }
-    } else {
-        not_here(
-            ctx,
-            &u.semi_axes_nm,
-            s,
-            "semi_axes_nm",
-            "belongs to shape = \"ellipsoid\"; a molecule gives moments_amu_a2",
-        )?;
-        not_here(
-            ctx,
-            &u.density_kg_m3,
-            s,
-            "density_kg_m3",
-            "belongs to shape = \"ellipsoid\"; a molecule gives moments_amu_a2",
-        )?;
-        let m = three(
-            "moments_amu_a2",
-            &u.moments_amu_a2,
-            "three principal moments in amu A^2",
-        )?;
-        for (k, &mk) in m.iter().enumerate() {
-            // NOTE: the other two summed, not the total less this one, which
-            // cancels to 0 beside a moment of 1e300.
-            let others = m[(k + 1) % 3] + m[(k + 2) % 3];
-            if mk > others * (1.0 + 1e-12) {
-                let span = u
-                    .moments_amu_a2
-                    .as_ref()
-                    .map_or(header.clone(), |v| v.span());
-                return Err(ctx.at(&span, format!("[units] moments_amu_a2: I{} = {} exceeds the sum of the other two, {}, by {:.3e} amu A^2, which no rigid body does; measured moments carry the inertia defect of vibration, so give the rigid ones (I_C = I_A + I_B for a planar molecule)", k + 1, crate::numbers::short(mk), crate::numbers::short(others), mk - others)));
-            }
-        }
-        RigidShape::Molecule { moments_amu_a2: m }
-    };
-    let dipole = three(
-        "dipole_vector_debye",
-        &u.dipole_vector_debye,
-        "three numbers, the body-frame dipole in debye",
+    not_here(ctx, &u.upright_deg, s, "upright_deg", symmetric_only)
+}
+
+/// An ellipsoid: its semi-axes and density.
+fn ellipsoid(ctx: &Ctx, u: &RawUnits, header: &At) -> Result<RigidShape, Refusal> {
+    let s = "units";
+    not_here(
+        ctx,
+        &u.moments_amu_a2,
+        s,
+        "moments_amu_a2",
+        "belongs to shape = \"molecule\"; an ellipsoid's moments follow from semi_axes_nm and density_kg_m3",
     )?;
-    let omega_hz = three(
-        "omega_hz",
-        &u.omega_hz,
-        "three body-frame rates in turns per second",
-    )?;
-    if omega_hz.iter().any(|x| x.abs() > 1e30) {
-        return Err(ctx.at(
+    let density = num_in(
+        ctx,
+        s,
+        "density_kg_m3",
+        &u.density_kg_m3,
+        |x| x > 0.0,
+        "a positive density in kg/m^3",
+    )?
+    .map(|(x, _)| x)
+    .ok_or_else(|| {
+        missing(
+            ctx,
             header,
-            "[units] omega_hz is out of range; expected each rate at most 1e30 Hz",
-        ));
-    }
-    let particle =
-        RigidParticle::new(shape, dipole).map_err(|e| ctx.at(header, format!("[units] {e}")))?;
-    time_scale_fits(ctx, header, "tau_f", particle.fast_time_seconds())?;
-    if omega_hz.iter().any(|&f| f != 0.0) {
-        rate_fits(
+            s,
+            "density_kg_m3",
+            "a positive density in kg/m^3",
+        )
+    })?;
+    Ok(RigidShape::Ellipsoid {
+        semi_axes_nm: three(
             ctx,
-            u.omega_hz.as_ref().map_or(header.clone(), |v| v.span()),
-            ("omega_hz", "tau_f", particle.fast_time_seconds()),
-            particle.omega0(omega_hz).amax(),
-        )?;
-    }
-    Ok(GeneralUnits {
-        particle,
-        omega_hz,
-        time_unit: time_unit(ctx, u)?,
+            header,
+            ("semi_axes_nm", &u.semi_axes_nm),
+            "three positive semi-axes in nm, along the body axes",
+        )?,
+        density_kg_m3: density,
     })
+}
+
+/// A molecule: its rigid principal moments.
+fn molecule(ctx: &Ctx, u: &RawUnits, header: &At) -> Result<RigidShape, Refusal> {
+    let s = "units";
+    let belongs = "belongs to shape = \"ellipsoid\"; a molecule gives moments_amu_a2";
+    not_here(ctx, &u.semi_axes_nm, s, "semi_axes_nm", belongs)?;
+    not_here(ctx, &u.density_kg_m3, s, "density_kg_m3", belongs)?;
+    let m = three(
+        ctx,
+        header,
+        ("moments_amu_a2", &u.moments_amu_a2),
+        "three principal moments in amu A^2",
+    )?;
+    for (k, &mk) in m.iter().enumerate() {
+        // NOTE: the other two summed, not the total less this one, which
+        // cancels to 0 beside a moment of 1e300.
+        let others = m[(k + 1) % 3] + m[(k + 2) % 3];
+        if mk > others * (1.0 + 1e-12) {
+            let at = u
+                .moments_amu_a2
+                .as_ref()
+                .map_or(header.clone(), |v| v.at.clone());
+            return Err(ctx.at(&at, format!("[units] moments_amu_a2: I{} = {} exceeds the sum of the other two, {}, by {} amu A^2, which no rigid body does; measured moments carry the inertia defect of vibration, so give the rigid ones (I_C = I_A + I_B for a planar molecule)", k + 1, crate::numbers::short(mk), crate::numbers::short(others), crate::numbers::sci(Some(mk - others)))));
+        }
+    }
+    Ok(RigidShape::Molecule { moments_amu_a2: m })
 }

@@ -492,6 +492,17 @@ fn list<T>(items: &[T], f: impl Fn(&T) -> String) -> String {
 impl Measurement {
     /// The printable row.
     pub fn row(&self) -> Row {
+        Row {
+            number: 3,
+            problem: "Stiffness: reduced ALE (4.12)-(4.14) at tau Omega^2 >> 1".into(),
+            naive: self.naive(),
+            fix: self.fixes(),
+            notes: self.notes(),
+        }
+    }
+
+    /// The naive methods: RK4 just above its limit h*, DP5 under a budget.
+    fn naive(&self) -> Vec<Outcome> {
         let s_max = LADDER[LADDER.len() - 1];
         let above = &self.rk4_above;
         let h_star = self.rk4.last().map_or(Real::NAN, |l| l.h_star);
@@ -519,6 +530,23 @@ impl Measurement {
                 dp5.stats.steps, dp5.max_error
             ),
         };
+        vec![
+            Outcome {
+                method: format!("RK4, h = {ABOVE} h* = {:.3e}, S = {}", above.h, above.s),
+                ok: rk4_ok,
+                result: format!("{rk4_result}; h* = {h_star:.3e}"),
+            },
+            Outcome {
+                method: format!("DP5, rtol {RTOL:e}, budget {BUDGET} steps, S = {s_max}"),
+                ok: dp5.accurate(),
+                result: dp5_result,
+            },
+        ]
+    }
+
+    /// The fixes at the largest S: Radau IIA 5, then the exact splitting.
+    fn fixes(&self) -> Vec<Outcome> {
+        let s_max = LADDER[LADDER.len() - 1];
         let mut fix: Vec<Outcome> = self
             .radau5
             .last()
@@ -547,6 +575,12 @@ impl Measurement {
                 ),
             });
         }
+        fix
+    }
+
+    /// The measurements behind the outcomes, at every S.
+    fn notes(&self) -> Vec<String> {
+        let s_max = LADDER[LADDER.len() - 1];
         let mut notes = vec![
             format!(
                 "Omega0 = S (0, 0.1, 0.2), I3/I1 = {}, tau = {}, t in [0, {SPAN}]; errors at the step points against (4.15)-(4.16)",
@@ -594,23 +628,6 @@ impl Measurement {
                 list(&self.splitting, |r| r.stats.steps.to_string()),
             ));
         }
-        Row {
-            number: 3,
-            problem: "Stiffness: reduced ALE (4.12)-(4.14) at tau Omega^2 >> 1".into(),
-            naive: vec![
-                Outcome {
-                    method: format!("RK4, h = {ABOVE} h* = {:.3e}, S = {}", above.h, above.s),
-                    ok: rk4_ok,
-                    result: format!("{rk4_result}; h* = {h_star:.3e}"),
-                },
-                Outcome {
-                    method: format!("DP5, rtol {RTOL:e}, budget {BUDGET} steps, S = {s_max}"),
-                    ok: dp5.accurate(),
-                    result: dp5_result,
-                },
-            ],
-            fix,
-            notes,
-        }
+        notes
     }
 }

@@ -42,10 +42,10 @@ use super::SweepError;
 pub const T_END: Real = 200.0;
 /// The number of output points, at t = 1, 2, …, [`T_END`].
 pub const SAMPLES: usize = 200;
-/// The initial body rate of every problem, (Ω₁₀, Ω₂₀, Ω₃₀) in 1/τ.
-pub const OMEGA0: [Real; 3] = [0.0, 0.1, 0.2];
+/// The initial body rate of every problem, (Ω₁₀, Ω₂₀, Ω₃₀) in 1/τ: the paper's figures'.
+pub const OMEGA0: [Real; 3] = crate::physics::symmetric_top::FIGURE_OMEGA0;
 /// I₃/I₁ of the symmetric problems (the paper's figures).
-pub const RATIO: Real = 0.4;
+pub const RATIO: Real = crate::physics::symmetric_top::FIGURE_RATIO;
 /// Principal moments of the general problem (κ = 1 units).
 pub const GENERAL_INERTIA: [Real; 3] = [1.0, 1.5, 0.8];
 /// Body dipole of the general problem (κ = 1 units).
