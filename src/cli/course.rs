@@ -372,7 +372,8 @@ fn export(dir: &Path, ci: Option<CiChoice>, out: &mut impl Write) -> Result<(), 
     }
     writeln!(
         out,
-        "  hand it out; a student runs `cargo test` in it, or `spintop course --course {}`",
+        "  hand it out; a student runs `cargo test`, `spintop course` or `spintop learn` in it \
+         (they find the course they stand in), or `spintop course --course {}` from elsewhere",
         dir.display()
     )?;
     Ok(())

@@ -153,7 +153,7 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
     let saved = session.save_progress();
     let report = ran?;
     if let Err(e) = saved {
-        return Err(CliError::Io(io::Error::other(e.to_string())));
+        return Err(CliError::NotSaved(e.to_string()));
     }
     if let Some(signal) = report.signal {
         return Err(CliError::Signal(signal, crate::term::signals::name(signal)));
@@ -220,7 +220,5 @@ fn experiments_of(session: &Learn, index: usize) -> Result<usize, CliError> {
     let book = book_dir(&repository())?;
     let file = &session.chapters()[index].file;
     let text = std::fs::read_to_string(book.join(file)).map_err(CliError::Io)?;
-    Ok(crate::learn::markdown::render(&text, 80)
-        .experiments
-        .len())
+    Ok(crate::learn::markdown::render(&text, 80).experiments.len())
 }

@@ -97,6 +97,12 @@ impl Learn {
             KeyCode::Char('d' | 'D') if reading => Some(Command::HalfDown),
             KeyCode::Char('u' | 'U') if reading => Some(Command::HalfUp),
             KeyCode::Char('r' | 'R') if reading => Some(Command::SearchBackStart),
+            // less's lines forward and back, and its other page down.
+            KeyCode::Char('e' | 'E' | 'n' | 'N' | 'j' | 'J') if reading => Some(Command::Scroll(1)),
+            KeyCode::Char('y' | 'Y' | 'p' | 'P' | 'k' | 'K') if reading => {
+                Some(Command::Scroll(-1))
+            }
+            KeyCode::Char('v' | 'V') if reading => Some(Command::PageDown),
             _ => None,
         }
     }
@@ -104,9 +110,15 @@ impl Learn {
     fn reading_command(&self, code: KeyCode) -> Option<Command> {
         use Command as C;
         Some(match code {
-            KeyCode::Char('q') => C::Quit,
+            KeyCode::Char('q' | 'Q') => C::Quit,
             KeyCode::Esc => C::Close,
             KeyCode::Tab => C::NextLink,
+            // less's other names for a line, a page, the top and the end.
+            KeyCode::Char('e') => C::Scroll(1),
+            KeyCode::Char('y') => C::Scroll(-1),
+            KeyCode::Char('z') => C::PageDown,
+            KeyCode::Char('<') => C::Top,
+            KeyCode::Char('>') => C::End,
             KeyCode::BackTab => C::PreviousLink,
             KeyCode::Enter => C::FollowLink,
             KeyCode::Char('s') => C::ToggleScene,

@@ -10,7 +10,7 @@ use ratatui::text::{Line, Span};
 pub const HELP_WIDTH: u16 = 78;
 
 /// The keys and what they do.
-const KEYS: [(&str, &str); 12] = [
+const KEYS: [(&str, &str); 13] = [
     ("space", "pause / resume"),
     (". or →", "one step of Δt while paused"),
     ("+ / -", "time warp (τ per wall-clock second)"),
@@ -37,6 +37,7 @@ const KEYS: [(&str, &str); 12] = [
         "?",
         "this help: ↑ ↓ j k PgUp PgDn scroll it, any other key closes",
     ),
+    ("^L", "draw the whole screen again"),
     ("q Esc ^C", "quit"),
 ];
 

@@ -225,6 +225,13 @@ fn is_suspend(event: &Event) -> bool {
         && matches!(k.code, KeyCode::Char('z' | 'Z')))
 }
 
+/// True for Ctrl-L, which the loop takes for itself: draw everything again.
+fn is_repaint(event: &Event) -> bool {
+    matches!(event, Event::Key(k) if k.kind != KeyEventKind::Release
+        && k.modifiers.contains(KeyModifiers::CONTROL)
+        && matches!(k.code, KeyCode::Char('l' | 'L')))
+}
+
 /// Run `screen` on `terminal` until it quits (or for `limit`, for the
 /// benchmark): draw about 30 times a second, let the wall clock pass, and
 /// apply the events in between. The screen learns its size before the
@@ -289,6 +296,12 @@ where
                 terminal.clear().map_err(io::Error::other)?;
                 // The time stopped is not the models' to run through.
                 last = Instant::now();
+                continue;
+            }
+            if is_repaint(&event) {
+                // Ctrl-L, as in less: whatever wrote over the screen (a
+                // message from another program) is drawn over again.
+                terminal.clear().map_err(io::Error::other)?;
                 continue;
             }
             if let Some(command) = screen.command(&event) {

@@ -125,6 +125,38 @@ fn half_pages_and_the_position_as_less_has_them() {
     assert!(shown.contains(" END "), "{shown}");
 }
 
+/// less's other names for the same moves: `e` `y` and Ctrl-E Ctrl-N
+/// Ctrl-Y Ctrl-P a line, `z` and Ctrl-V a page, `<` `>` the top and the
+/// end, `Q` quits.
+#[test]
+fn less_s_other_names_for_a_line_a_page_the_ends_and_quit() {
+    let mut learn = Learn::open(&book(), Some("4.1")).unwrap();
+    draw(&mut learn, 80, 24);
+    let page = 19;
+    press(&mut learn, KeyCode::Char('e'));
+    assert_eq!(learn.scroll(), 1, "e");
+    press(&mut learn, KeyCode::Char('y'));
+    assert_eq!(learn.scroll(), 0, "y");
+    for (down, up) in [('e', 'y'), ('n', 'p'), ('j', 'k')] {
+        ctrl(&mut learn, down);
+        assert_eq!(learn.scroll(), 1, "^{down}");
+        ctrl(&mut learn, up);
+        assert_eq!(learn.scroll(), 0, "^{up}");
+    }
+    press(&mut learn, KeyCode::Char('z'));
+    assert_eq!(learn.scroll(), page - 2);
+    ctrl(&mut learn, 'v');
+    assert_eq!(learn.scroll(), 2 * (page - 2));
+    press(&mut learn, KeyCode::Char('<'));
+    assert_eq!(learn.scroll(), 0);
+    press(&mut learn, KeyCode::Char('>'));
+    let shown = draw(&mut learn, 80, 24);
+    assert!(shown.contains(" END "), "{shown}");
+    assert!(!learn.should_quit());
+    press(&mut learn, KeyCode::Char('Q'));
+    assert!(learn.should_quit());
+}
+
 /// The contents page with PgDn and number their chapters as the header
 /// does; typing a number goes to that chapter, Enter opens it.
 #[test]

@@ -259,8 +259,12 @@ fn a_place_that_cannot_be_saved_is_said_on_screen_and_at_the_end() {
         "SPINTOP_LEARN_PROGRESS='{}'",
         blocker.join("learn.json").display()
     );
-    let Some(tmux) = launch_sized("unsaved", &env, "learn --chapter 4.1 --no-grading", (80, 24))
-    else {
+    let Some(tmux) = launch_sized(
+        "unsaved",
+        &env,
+        "learn --chapter 4.1 --no-grading",
+        (80, 24),
+    ) else {
         return;
     };
     let long = Duration::from_secs(20);
@@ -269,8 +273,14 @@ fn a_place_that_cannot_be_saved_is_said_on_screen_and_at_the_end() {
     });
     tmux.keys("q");
     assert_eq!(exit_status(&tmux, long), "1", "a failed save is an error");
-    let after = tmux.capture();
-    assert!(after.contains("could not be saved"), "said at the end:\n{after}");
+    // The whole message, its wrapped lines joined, the scrolled-off first
+    // one included.
+    let out = tmux.run(&["capture-pane", "-p", "-J", "-S", "-100", "-t", "spintop"]);
+    let after = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        after.contains("spintop: error: your place could not be saved to"),
+        "said at the end, as what it is:\n{after}"
+    );
     drop(tmux);
     let _ = std::fs::remove_file(&blocker);
 }

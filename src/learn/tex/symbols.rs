@@ -157,7 +157,9 @@ pub(super) fn symbol(name: &str) -> Option<&'static str> {
         "quad" => Some("  "),
         "qquad" => Some("    "),
         "," | ":" | ";" | " " | "enspace" | "thinspace" => Some(" "),
-        "!" | "displaystyle" | "textstyle" | "limits" | "nolimits" | "nonumber" | "notag" => Some(""),
+        "!" | "displaystyle" | "textstyle" | "limits" | "nolimits" | "nonumber" | "notag" => {
+            Some("")
+        }
         // Escaped characters.
         "{" | "lbrace" => Some("{"),
         "}" | "rbrace" => Some("}"),

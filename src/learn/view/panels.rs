@@ -17,15 +17,18 @@ pub const HELP_WIDTH: u16 = 78;
 pub const COURSE_WIDTH: u16 = 100;
 
 /// The help's lines: every key, grouped.
-const HELP: [(&str, &str); 24] = [
+const HELP: [(&str, &str); 25] = [
     (
         "space f b",
-        "a page down, a page up (also PgDn PgUp, Ctrl-F Ctrl-B)",
+        "a page down, a page up (also PgDn PgUp z, ^F ^V ^B)",
     ),
-    ("d u", "half a page down, up (also Ctrl-D Ctrl-U)"),
-    ("j k ↓ ↑", "a line; the mouse wheel three, once M lets it"),
+    ("d u", "half a page down, up (also ^D ^U)"),
     (
-        "g G",
+        "j k ↓ ↑",
+        "a line (also e y, ^E ^N ^Y ^P); the mouse wheel three, once M lets it",
+    ),
+    (
+        "g G < >",
         "the top, the end of the chapter (the frame says where: %, END)",
     ),
     (
@@ -69,7 +72,8 @@ const HELP: [(&str, &str); 24] = [
         "this help (↑ ↓ PgUp PgDn scroll it, any other key closes)",
     ),
     ("^Z", "suspend to the shell; fg comes back"),
-    ("q ^C", "quit: the chapter reopens where you left it"),
+    ("^L", "draw the whole screen again"),
+    ("q Q ^C", "quit: the chapter reopens where you left it"),
     ("", ""),
     (
         "--chapter",
