@@ -200,7 +200,7 @@ pub fn lines(top: &Top) -> Vec<Line<'static>> {
         .collect();
     let mut lines = title(top);
     lines.extend(table("Keys", &keys, 9));
-    lines.extend(table("Each column: the panels", &PANELS, 14));
+    lines.extend(table("Each column: the panels", &PANELS, 15));
     lines.extend(table("Each column: the numbers", &ROWS, 11));
     lines
 }

@@ -7,49 +7,102 @@
 use super::theme;
 use ratatui::Frame;
 use ratatui::layout::Rect;
+use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, BorderType, Clear, Paragraph, Wrap};
-use unicode_width::UnicodeWidthStr;
+use unicode_width::{UnicodeWidthChar, UnicodeWidthStr};
 
-/// A key's row (two spans: the key padded with spaces, then what it does)
-/// wrapped to `inner` columns with its continuations under the words, not
-/// under the key; other lines as they are.
+/// Where a line's continuations start: under the words after its first
+/// gap of two spaces (a key's row, `label:   value`), or under its own
+/// indent; `None` for a line of prose, which wraps as it is.
+fn hanging_indent(text: &str, inner: usize) -> Option<usize> {
+    let chars: Vec<char> = text.chars().collect();
+    let leading = chars.iter().take_while(|c| **c == ' ').count();
+    let mut i = leading;
+    while i + 1 < chars.len() {
+        if chars[i] == ' ' && chars[i + 1] == ' ' {
+            let end = i + chars[i..].iter().take_while(|c| **c == ' ').count();
+            let width = chars[..end].iter().collect::<String>().width();
+            if width * 2 <= inner {
+                return Some(width);
+            }
+            break;
+        }
+        i += 1;
+    }
+    (leading > 0 && leading * 2 <= inner).then_some(leading)
+}
+
+/// Characters with their styles, as spans again (one per run of a style).
+fn spans(cells: &[(char, Style)]) -> Vec<Span<'static>> {
+    let mut out: Vec<Span<'static>> = Vec::new();
+    for &(c, style) in cells {
+        match out.last_mut() {
+            Some(last) if last.style == style => last.content.to_mut().push(c),
+            _ => out.push(Span::styled(c.to_string(), style)),
+        }
+    }
+    out
+}
+
+/// Lines wrapped to `inner` columns with their continuations hung under
+/// their words ([`hanging_indent`]): a key's row under what the key does,
+/// a diagnosis's `expected:  (…)` under its value. Prose and lines that fit
+/// are left to the paragraph.
 fn hang(lines: Vec<Line<'static>>, inner: u16) -> Vec<Line<'static>> {
     let inner = usize::from(inner.max(1));
     let mut out = Vec::with_capacity(lines.len());
     for line in lines {
-        let [key, what] = line.spans.as_slice() else {
-            out.push(line);
-            continue;
+        let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
+        let indent = match hanging_indent(&text, inner) {
+            Some(indent) if text.width() > inner => indent,
+            _ => {
+                out.push(line);
+                continue;
+            }
         };
-        let indent = key.content.width();
-        if !key.content.ends_with(' ')
-            || indent + what.content.width() <= inner
-            || indent * 2 > inner
-        {
-            out.push(line);
-            continue;
+        let cells: Vec<(char, Style)> = line
+            .spans
+            .iter()
+            .flat_map(|s| {
+                s.content
+                    .chars()
+                    .map(move |c| (c, line.style.patch(s.style)))
+            })
+            .collect();
+        // The head up to the indent, then the words after it.
+        let mut at = 0;
+        let mut width = 0;
+        while at < cells.len() && width < indent {
+            width += cells[at].0.width().unwrap_or(0);
+            at += 1;
         }
         let room = inner - indent;
-        let mut rows: Vec<String> = vec![String::new()];
-        for word in what.content.split(' ') {
+        let mut rows: Vec<Vec<(char, Style)>> = vec![Vec::new()];
+        for word in cells[at..]
+            .split(|(c, _)| *c == ' ')
+            .filter(|w| !w.is_empty())
+        {
             let row = rows.last_mut().expect("one row at least");
-            if !row.is_empty() && row.width() + 1 + word.width() > room {
-                rows.push(word.to_string());
+            let used: usize = row.iter().map(|(c, _)| c.width().unwrap_or(0)).sum();
+            let more: usize = word.iter().map(|(c, _)| c.width().unwrap_or(0)).sum();
+            if !row.is_empty() && used + 1 + more > room {
+                rows.push(word.to_vec());
             } else {
-                if !row.is_empty() {
-                    row.push(' ');
+                if let Some(&(_, style)) = row.last() {
+                    row.push((' ', style));
                 }
-                row.push_str(word);
+                row.extend_from_slice(word);
             }
         }
-        for (i, row) in rows.into_iter().enumerate() {
-            let head = if i == 0 {
-                key.clone()
+        for (i, row) in rows.iter().enumerate() {
+            let mut head = if i == 0 {
+                spans(&cells[..at])
             } else {
-                Span::raw(" ".repeat(indent))
+                vec![Span::raw(" ".repeat(indent))]
             };
-            out.push(Line::from(vec![head, Span::styled(row, what.style)]));
+            head.extend(spans(row));
+            out.push(Line::from(head));
         }
     }
     out
@@ -136,7 +189,8 @@ mod tests {
     }
 
     /// A key's row too long for the box goes on under its words; a line of
-    /// prose, and a row that fits, are left as they are.
+    /// prose, and a row that fits, are left as they are; a labelled value
+    /// goes on under the value.
     #[test]
     fn a_long_keys_row_hangs_under_its_words() {
         let row = Line::from(vec![
@@ -145,7 +199,7 @@ mod tests {
         ]);
         let prose = Line::from("a line of prose that is longer than the box is wide");
         let short = Line::from(vec![Span::raw("q  "), Span::raw("quit")]);
-        let out = hang(vec![row, prose.clone(), short.clone()], 30);
+        let out = hang(vec![row, prose.clone(), short], 30);
         let shown: Vec<String> = out.iter().map(text).collect();
         assert_eq!(
             shown,
@@ -158,5 +212,14 @@ mod tests {
             ]
         );
         assert!(shown[..3].iter().all(|r| r.width() <= 30), "{shown:?}");
+        let value = Line::from("    got:       (4.04e-1, 8.33e-1, 4.76e-1)");
+        let shown: Vec<String> = hang(vec![value], 34).iter().map(text).collect();
+        assert_eq!(
+            shown,
+            [
+                "    got:       (4.04e-1, 8.33e-1,",
+                "               4.76e-1)"
+            ]
+        );
     }
 }
