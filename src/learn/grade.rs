@@ -99,9 +99,9 @@ impl Learn {
     }
 
     /// The assignment the course panel's diagnosis and `h`'s hint are for:
-    /// the first of this chapter's assignments that fails, else the first of
-    /// them not passing yet, else the course's first failing one, else its
-    /// next one.
+    /// the first of this chapter's assignments that fails, else the course's
+    /// first failing one, else the first of this chapter's not passing yet,
+    /// else the course's next one.
     pub fn hint_target(&self) -> Option<&'static course::Assignment> {
         let title = &self.chapters[self.current].title;
         let state = |a: &course::Assignment| {
@@ -121,11 +121,13 @@ impl Learn {
         };
         let here = |a: &&course::Assignment| title.starts_with(a.chapter);
         let all = || course::COURSE.iter();
+        // A wrong answer anywhere is what the student is working on: its
+        // diagnosis comes before a stub of the chapter on screen.
         all()
             .filter(here)
             .find(|a| failing(a))
-            .or_else(|| all().filter(here).find(|a| !passing(a)))
             .or_else(|| all().find(|a| failing(a)))
+            .or_else(|| all().filter(here).find(|a| !passing(a)))
             .or_else(|| all().find(|a| !passing(a)))
     }
 

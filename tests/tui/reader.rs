@@ -454,6 +454,36 @@ fn the_course_panel_fits_80x24_diagnosis_first_and_scrolls() {
     assert!(end.contains("reduced_rk4"), "the last assignment:\n{end}");
 }
 
+/// A wrong answer in another chapter comes before the stubs of the chapter
+/// on screen: the student broke it, its diagnosis is what they need.
+#[test]
+fn a_failing_answer_elsewhere_comes_before_this_chapters_stubs() {
+    use spintop_course::{Report, State, Status};
+    let mut learn = Learn::open(&book(), Some("4.1")).unwrap();
+    draw(&mut learn, 80, 24);
+    let report =
+        "larmor_rate, Eq. (2.1): wrong answer at 1 of 300 inputs\n  diagnosis: a sign flip";
+    let status = Status::new(0, |a| match a.function {
+        "larmor_rate" => State::Failing(report.into()),
+        _ => State::NotStarted,
+    });
+    learn.course_report(Report::Graded(status));
+    assert_eq!(learn.hint_target().unwrap().function, "larmor_rate");
+    press(&mut learn, KeyCode::Char('a'));
+    let shown = draw(&mut learn, 80, 24);
+    assert!(
+        shown.contains("next: (2.1) larmor_rate") && shown.contains("a sign flip"),
+        "{shown}"
+    );
+    // Once nothing fails, the chapter's own next assignment.
+    let status = Status::new(0, |a| match a.function {
+        "larmor_rate" => State::Passing,
+        _ => State::NotStarted,
+    });
+    learn.course_report(Report::Graded(status));
+    assert_eq!(learn.hint_target().unwrap().chapter, "Section 4.1");
+}
+
 /// The place is written to the progress file as the reader moves, before
 /// any quit: a terminal that goes away loses nothing.
 #[test]
