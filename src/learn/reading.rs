@@ -216,22 +216,34 @@ impl Learn {
         }
     }
 
-    /// Tab (Shift-Tab): the next (previous) link on the page, in focus.
+    /// Tab (Shift-Tab): the next (previous) link in focus, as a browser
+    /// moves it: from the one in focus, or from the page's top (bottom);
+    /// a link below (above) the page is scrolled to.
     pub(super) fn focus_link(&mut self, forward: bool) {
-        let on_page = self.links_on_page();
-        if on_page.is_empty() {
-            self.inform("no link on this page");
-            return;
-        }
-        let at = self.link.and_then(|l| on_page.iter().position(|i| *i == l));
-        let next = match (at, forward) {
-            (None, true) => 0,
-            (None, false) => on_page.len() - 1,
-            (Some(k), true) => (k + 1) % on_page.len(),
-            (Some(k), false) => (k + on_page.len() - 1) % on_page.len(),
+        let links = &self.rendered.links;
+        let line_of = |i: usize| links[i].parts.first().map_or(0, |(line, _)| *line);
+        let end = self.scroll + self.page();
+        let next = match (self.link, forward) {
+            (Some(l), true) => (l + 1 < links.len()).then_some(l + 1),
+            (Some(l), false) => l.checked_sub(1),
+            (None, true) => (0..links.len()).find(|&i| line_of(i) >= self.scroll),
+            (None, false) => (0..links.len()).rev().find(|&i| line_of(i) < end),
         };
-        self.link = Some(on_page[next]);
-        let target = self.rendered.links[on_page[next]].target.clone();
+        let Some(next) = next else {
+            self.inform(match (links.is_empty(), forward) {
+                (true, _) => "no link in this chapter",
+                (false, true) => "no link further down in this chapter (g goes to the top)",
+                (false, false) => "no link further up in this chapter",
+            });
+            return;
+        };
+        let line = line_of(next);
+        let target = links[next].target.clone();
+        self.link = Some(next);
+        if !(self.scroll..end).contains(&line) {
+            self.scroll = line.saturating_sub(self.page() / 3);
+            self.clamp_scroll();
+        }
         self.inform(format!("link: {target} (Enter follows it, Esc leaves it)"));
     }
 

@@ -554,15 +554,12 @@ impl App {
             Command::Input(c) => self.input(c),
             Command::Backspace => {
                 if let Mode::Edit {
-                    buffer,
-                    component,
-                    pristine,
+                    buffer, pristine, ..
                 } = &mut self.mode
                 {
                     *pristine = false;
                     buffer.pop();
-                    let hint = edit_hint(*component, self.settings.top().time_unit());
-                    self.inform(hint);
+                    self.say_edit();
                 }
             }
             Command::NudgeUp => self.nudge(NUDGE),
@@ -724,29 +721,43 @@ impl App {
         ));
     }
 
-    /// A character typed into the Ω₀ field: taken, or refused with why
-    /// (never dropped; `q` is a character here, and Esc leaves the edit).
+    /// A character typed into the Ω₀ field: kept as typed (never dropped;
+    /// `q` is a character here, and Esc leaves the edit), with why at once
+    /// when no number holds it; only a full field refuses it.
     fn input(&mut self, c: char) {
         let Mode::Edit {
-            buffer,
-            component,
-            pristine,
+            buffer, pristine, ..
         } = &mut self.mode
         else {
             return;
         };
         let base = if *pristine { "" } else { buffer.as_str() };
-        match entry::check_char(base, c) {
-            Ok(()) => {
-                if *pristine {
-                    buffer.clear();
-                    *pristine = false;
-                }
-                buffer.push(c);
-                let hint = edit_hint(*component, self.settings.top().time_unit());
-                self.inform(hint);
-            }
-            Err(e) => self.refuse(format!("refused: {e}")),
+        let checked = entry::check_char(base, c);
+        if checked == Err(entry::EntryError::Full) {
+            self.refuse(format!("refused: {}", entry::EntryError::Full));
+            return;
+        }
+        if *pristine {
+            buffer.clear();
+            *pristine = false;
+        }
+        buffer.push(c);
+        self.say_edit();
+    }
+
+    /// What the Ω₀ field's line says: how to edit it, or why its text is no
+    /// number for as long as it holds a character no number holds.
+    fn say_edit(&mut self) {
+        let Mode::Edit {
+            buffer, component, ..
+        } = &self.mode
+        else {
+            return;
+        };
+        let component = *component;
+        match entry::first_foreign(buffer) {
+            None => self.inform(edit_hint(component, self.settings.top().time_unit())),
+            Some(e) => self.refuse(format!("{e}; Enter refuses it")),
         }
     }
 

@@ -52,20 +52,29 @@ fn refusal(app: &App) -> String {
 #[test]
 fn the_omega_field_refuses_what_it_cannot_read_and_never_quits() {
     let mut app = App::new(Settings::default()).unwrap();
-    app.apply(Command::StartEdit);
-    typed(&mut app, "0");
-    for (c, says) in [
-        (',', "point"),
-        ('x', "decimal"),
-        ('_', "digits together"),
-        ('q', "Esc cancels"),
-        (' ', "cannot be part of a number"),
+    for (text, says) in [
+        ("0,1", "point"),
+        ("0x10", "decimal"),
+        ("1_000", "digits together"),
+        ("0.1q", "Esc cancels"),
+        ("0 1", "cannot be part of a number"),
     ] {
-        app.apply(Command::Input(c));
-        assert!(refusal(&app).contains(says), "{c}: {}", refusal(&app));
-        assert_eq!(buffer(&app), "0", "{c} is not dropped silently, nor taken");
+        app.apply(Command::StartEdit);
+        typed(&mut app, text);
+        // Kept as typed (a paste of 0,1 must not become 01), and said at once.
+        assert_eq!(buffer(&app), text, "nothing dropped");
+        assert!(refusal(&app).contains(says), "{text}: {}", refusal(&app));
         assert!(!app.should_quit());
+        // Enter refuses the whole text by name, and the field stays open.
+        app.apply(Command::Commit);
+        assert!(refusal(&app).contains(says), "{text}: {}", refusal(&app));
+        assert!(matches!(app.mode(), Mode::Edit { .. }), "{text}");
+        assert_eq!(app.settings().omega0(), [0.0, 0.1, 0.2], "{text}");
+        app.apply(Command::Cancel);
     }
+    app.apply(Command::StartEdit);
+    typed(&mut app, "0,");
+    app.apply(Command::Backspace);
     typed(&mut app, ".5");
     assert_eq!(buffer(&app), "0.5");
     app.apply(Command::Commit);

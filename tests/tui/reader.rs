@@ -217,6 +217,43 @@ fn chapter_takes_the_headers_number_and_words_in_any_case() {
     assert!(message(&learn).contains("'#3'"), "{}", message(&learn));
 }
 
+/// Tab from the top of a chapter whose first link is further down scrolls
+/// to it, as a browser moves the focus; Shift-Tab before the first link,
+/// and Tab after the last, say so.
+#[test]
+fn tab_scrolls_to_a_link_below_the_page() {
+    let mut learn = Learn::open(&book(), Some("asymmetric-top")).unwrap();
+    draw(&mut learn, 100, 30);
+    let first = learn.rendered().links[0].parts[0].0;
+    assert!(
+        first > 28,
+        "the first link is below the first page: {first}"
+    );
+    press(&mut learn, KeyCode::Tab);
+    assert_eq!(learn.focused_link(), Some(0), "{}", message(&learn));
+    assert!(
+        learn.scroll() <= first && first < learn.scroll() + 26,
+        "scrolled to it: {} for line {first}",
+        learn.scroll()
+    );
+    press(&mut learn, KeyCode::BackTab);
+    assert!(
+        message(&learn).contains("no link further up"),
+        "{}",
+        message(&learn)
+    );
+    press(&mut learn, KeyCode::Char('G'));
+    let last = learn.rendered().links.len() - 1;
+    for _ in 0..=last {
+        press(&mut learn, KeyCode::Tab);
+    }
+    assert!(
+        message(&learn).contains("no link further down"),
+        "{}",
+        message(&learn)
+    );
+}
+
 /// Tab puts the links of the page in focus one by one, Enter follows the
 /// one in focus: another chapter, at the heading its anchor names.
 #[test]

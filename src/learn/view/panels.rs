@@ -44,7 +44,7 @@ const HELP: [(&str, &str); 25] = [
         "in c",
         "↑ ↓ PgUp PgDn g G move; a chapter's number jumps; Enter opens",
     ),
-    ("Tab ⇧Tab", "the next, the previous link on the page"),
+    ("Tab ⇧Tab", "the next, the previous link, scrolled to"),
     (
         "Enter",
         "follow the link in focus (another chapter, or its heading)",
