@@ -9,7 +9,7 @@
 //! what `spintop figure N --svg FILE` draws now.
 //!
 //! After a deliberate change to a lesson or a figure, refresh the book's copies
-//! with `UPDATE_BOOK=1 cargo test --test project`, and review the diff.
+//! with `UPDATE_BOOK=1 cargo test -p spintop-app --test app project::`, and review the diff.
 
 mod diagrams;
 mod figures;
@@ -54,7 +54,7 @@ fn stale(name: &str, output: &str, shown: &Path) -> Option<String> {
         .position(|(a, b)| a != b)
         .map_or_else(|| "its length".to_string(), |i| format!("line {}", i + 1));
     Some(format!(
-        "the book's copy of `{name}` output ({}) is stale at {line}; run UPDATE_BOOK=1 cargo test --test project",
+        "the book's copy of `{name}` output ({}) is stale at {line}; run UPDATE_BOOK=1 cargo test -p spintop-app --test app project::",
         shown.display()
     ))
 }
@@ -69,7 +69,7 @@ fn figure_is_current(name: &str, fresh: &str, chapter: &str, drawn_by: &str) -> 
     }
     assert!(
         fs::read_to_string(&shown).unwrap_or_default() == fresh,
-        "the book's {name} is not what {drawn_by} draws now; run UPDATE_BOOK=1 cargo test --test project"
+        "the book's {name} is not what {drawn_by} draws now; run UPDATE_BOOK=1 cargo test -p spintop-app --test app project::"
     );
     let text = fs::read_to_string(book_src().join(chapter)).unwrap();
     assert!(

@@ -234,6 +234,57 @@ pub fn run(
     seed: u64,
     work: &Path,
 ) -> Result<Vec<Diagnosed>, String> {
+    write_scratch(repo, answers, work)?;
+    let options = Options {
+        target_dir: Some(
+            std::env::var_os("CARGO_TARGET_DIR")
+                .map(PathBuf::from)
+                .unwrap_or_else(|| repo.join("target")),
+        ),
+        ..Options::default()
+    };
+    let ctx = Ctx {
+        opts: &options,
+        deadline: Some(Instant::now() + Duration::from_secs(1800)),
+    };
+    let exe = build(work, answers, &ctx)?;
+    let mut out = Vec::new();
+    for (i, a) in answers.iter().enumerate() {
+        let mut cmd = Command::new(&exe);
+        cmd.args([i.to_string(), seed.to_string()])
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null());
+        let mut child =
+            harness::spawn_group(&mut cmd).map_err(|e| format!("{}: {e}", exe.display()))?;
+        let stdout = harness::drain(child.stdout.take(), 64 * 1024);
+        let status = harness::wait_within(&mut child, Duration::from_secs(60), &ctx);
+        let text = String::from_utf8_lossy(&stdout.join().unwrap_or_default()).into_owned();
+        let line = text.lines().next().unwrap_or_default();
+        let (passed, diagnosis) = match (status, line.split_once('\t')) {
+            (None, _) => (
+                false,
+                "(no verdict within 60 s: the grader or the answer loops)".into(),
+            ),
+            (Some(_), None) if line == "passed" => (true, String::new()),
+            (Some(_), Some(("failed", d))) => (false, d.to_string()),
+            (Some(s), _) => (
+                false,
+                format!("(the grading process ended without a verdict: {s})"),
+            ),
+        };
+        out.push(Diagnosed {
+            answer: a.clone(),
+            passed,
+            diagnosis,
+        });
+    }
+    Ok(out)
+}
+
+/// Writes the scratch crate: a manifest on the repository's core and graders,
+/// the reference solutions and one module per wrong answer.
+fn write_scratch(repo: &Path, answers: &[WrongAnswer], work: &Path) -> Result<(), String> {
     if work.exists() {
         std::fs::remove_dir_all(work).map_err(|e| format!("{}: {e}", work.display()))?;
     }
@@ -280,19 +331,13 @@ pub fn run(
     for (path, text) in &files {
         std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
     }
-    let options = Options {
-        target_dir: Some(
-            std::env::var_os("CARGO_TARGET_DIR")
-                .map(PathBuf::from)
-                .unwrap_or_else(|| repo.join("target")),
-        ),
-        ..Options::default()
-    };
-    let ctx = Ctx {
-        opts: &options,
-        deadline: Some(Instant::now() + Duration::from_secs(1800)),
-    };
-    let exe = match harness::cargo_json(work, &["build"], &ctx, |m| {
+    Ok(())
+}
+
+/// Builds the scratch crate and returns its program, or the first compile
+/// error named by the wrong answer's own file.
+fn build(work: &Path, answers: &[WrongAnswer], ctx: &Ctx) -> Result<PathBuf, String> {
+    let exe = match harness::cargo_json(work, &["build"], ctx, |m| {
         m["target"]["kind"]
             .as_array()
             .is_some_and(|k| k.iter().any(|x| x == "bin"))
@@ -319,36 +364,5 @@ pub fn run(
         }
         Built::OutOfTime => return Err("the build did not finish in 30 minutes".into()),
     };
-    let mut out = Vec::new();
-    for (i, a) in answers.iter().enumerate() {
-        let mut cmd = Command::new(&exe);
-        cmd.args([i.to_string(), seed.to_string()])
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null());
-        let mut child =
-            harness::spawn_group(&mut cmd).map_err(|e| format!("{}: {e}", exe.display()))?;
-        let stdout = harness::drain(child.stdout.take(), 64 * 1024);
-        let status = harness::wait_within(&mut child, Duration::from_secs(60), &ctx);
-        let text = String::from_utf8_lossy(&stdout.join().unwrap_or_default()).into_owned();
-        let line = text.lines().next().unwrap_or_default();
-        let (passed, diagnosis) = match (status, line.split_once('\t')) {
-            (None, _) => (
-                false,
-                "(no verdict within 60 s: the grader or the answer loops)".into(),
-            ),
-            (Some(_), None) if line == "passed" => (true, String::new()),
-            (Some(_), Some(("failed", d))) => (false, d.to_string()),
-            (Some(s), _) => (
-                false,
-                format!("(the grading process ended without a verdict: {s})"),
-            ),
-        };
-        out.push(Diagnosed {
-            answer: a.clone(),
-            passed,
-            diagnosis,
-        });
-    }
-    Ok(out)
+    Ok(exe)
 }

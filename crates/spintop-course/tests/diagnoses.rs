@@ -138,9 +138,12 @@ fn a_wrong_stage_of_rk4_is_named_with_its_time() {
     }
 }
 
+/// A slip written into a Butcher table.
+type Slip = Box<dyn Fn(&mut Table)>;
+
 #[test]
 fn a_wrong_coefficient_of_dormand_prince_is_named_with_its_stage() {
-    let cases: Vec<(Box<dyn Fn(&mut Table)>, &[&str])> = vec![
+    let cases: Vec<(Slip, &[&str])> = vec![
         (
             Box::new(|t: &mut Table| t.b[4] = -t.b[4]),
             &["weight of stage 5 (k5)", "wrong sign"],

@@ -49,24 +49,22 @@ fn rk4_variant(
 
 /// The plausible wrong answers, at least two per assignment.
 pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
-    let top_rhs = |i: Vec3, d: Vec3, w: Vec3| GeneralTop::new(i, d).unwrap().truncated_ale_rhs(&w);
-    let cone = |th: f64, w: f64, t: f64| PrecessingDipole::new(th, w).unwrap().jet(t);
-    let reduced_run = |euler: bool| {
-        move |r: f64, tau: f64, w0: Vec3, t_end: f64, n: usize| {
-            let h = t_end / n as f64;
-            let f = |_t: f64, y: &State<3>| sym::reduced_ale_rhs(&top(r, tau), y);
-            (0..n).fold(w0, |y, i| {
-                if euler {
-                    y + f(0.0, &y) * h
-                } else {
-                    // The midpoint method: order 2.
-                    let _ = i;
-                    let k1 = f(0.0, &y);
-                    y + f(0.0, &(y + k1 * (h / 2.0))) * h
-                }
-            })
-        }
-    };
+    [
+        section_2,
+        section_2_schott,
+        section_3,
+        section_4_1,
+        section_4_2,
+        appendix,
+        numerics,
+    ]
+    .iter()
+    .flat_map(|part| part(seed))
+    .collect()
+}
+
+/// Section 2: the laws (2.1)-(2.4) and the precessing dipole.
+fn section_2(seed: u64) -> Vec<Wrong> {
     vec![
         // (2.1)
         w(
@@ -131,6 +129,13 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             grading::torque_rate(seed, |j: &Jet| j[3].cross(&j[0])),
             "sign flip",
         ),
+    ]
+}
+
+/// Section 2: the Schott rate (2.3), its axial part, and the precessing dipole.
+fn section_2_schott(seed: u64) -> Vec<Wrong> {
+    let cone = |th: f64, w: f64, t: f64| PrecessingDipole::new(th, w).unwrap().jet(t);
+    vec![
         // (2.3)
         w(
             "schott_rate",
@@ -206,6 +211,13 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             }),
             "d''' has the wrong sign",
         ),
+    ]
+}
+
+/// Section 3: (3.3), its energy, and the Euler angles of (3.5).
+fn section_3(seed: u64) -> Vec<Wrong> {
+    let top_rhs = |i: Vec3, d: Vec3, w: Vec3| GeneralTop::new(i, d).unwrap().truncated_ale_rhs(&w);
+    vec![
         // (3.3)
         w(
             "truncated_ale_rhs",
@@ -291,6 +303,12 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             }),
             "phi and psi are swapped",
         ),
+    ]
+}
+
+/// Section 4.1: the truncated model.
+fn section_4_1(seed: u64) -> Vec<Wrong> {
+    vec![
         // (4.5)-(4.6)
         w(
             "truncated_omega_perp",
@@ -391,6 +409,12 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             grading::precession_tilt(seed, |r: f64, w0: Vec3| (r * w0.x.hypot(w0.y)).atan2(w0.z)),
             "swapped",
         ),
+    ]
+}
+
+/// Section 4.2: the reduced model.
+fn section_4_2(seed: u64) -> Vec<Wrong> {
+    vec![
         // (4.12)-(4.14)
         w(
             "reduced_ale_rhs",
@@ -467,6 +491,12 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             }),
             "turns the wrong way",
         ),
+    ]
+}
+
+/// The appendix: the shell's masses, its update and its root.
+fn appendix(seed: u64) -> Vec<Wrong> {
+    vec![
         // (A.1) masses
         w(
             "shell_masses",
@@ -527,6 +557,28 @@ pub(crate) fn wrong_answers(seed: u64) -> Vec<Wrong> {
             }),
             "wrong sign in the exponent",
         ),
+    ]
+}
+
+/// The numerical methods: a step of RK4 and of DP5, a whole run.
+fn numerics(seed: u64) -> Vec<Wrong> {
+    let reduced_run = |euler: bool| {
+        move |r: f64, tau: f64, w0: Vec3, t_end: f64, n: usize| {
+            let h = t_end / n as f64;
+            let f = |_t: f64, y: &State<3>| sym::reduced_ale_rhs(&top(r, tau), y);
+            (0..n).fold(w0, |y, i| {
+                if euler {
+                    y + f(0.0, &y) * h
+                } else {
+                    // The midpoint method: order 2.
+                    let _ = i;
+                    let k1 = f(0.0, &y);
+                    y + f(0.0, &(y + k1 * (h / 2.0))) * h
+                }
+            })
+        }
+    };
+    vec![
         // RK4
         w(
             "rk4_step",

@@ -23,7 +23,7 @@ fn book_diagrams_are_what_the_generator_draws_now_and_are_shown() {
             fs::write(&path, &d.svg).unwrap();
         } else if fs::read_to_string(&path).unwrap_or_default() != d.svg {
             problems.push(format!(
-                "the book's figures/{}.svg is not what the diagram generator draws now; run UPDATE_BOOK=1 cargo test --test project",
+                "the book's figures/{}.svg is not what the diagram generator draws now; run UPDATE_BOOK=1 cargo test -p spintop-app --test app project::",
                 d.name
             ));
         }

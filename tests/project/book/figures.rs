@@ -36,7 +36,7 @@ fn book_figures_are_what_spintop_figure_draws_now() {
             fs::write(&shown, &fresh).unwrap();
         } else if fs::read_to_string(&shown).unwrap_or_default() != fresh {
             problems.push(format!(
-                "the book's {name} is not what `spintop figure {n} --svg` draws now; run UPDATE_BOOK=1 cargo test --test project"
+                "the book's {name} is not what `spintop figure {n} --svg` draws now; run UPDATE_BOOK=1 cargo test -p spintop-app --test app project::"
             ));
         }
         let embedded = summary_chapters().iter().any(|c| {

@@ -92,7 +92,7 @@ const SYMBOL_MODULES: &[(&str, &str, &str, &str)] = &[
 /// copied from the source so that the page cannot drift from the code.
 fn symbol_table() -> String {
     let mut out = String::from(
-        "<!-- Generated from the module headers by tests/project/book.rs; refresh with UPDATE_BOOK=1 cargo test --test project -->\n",
+        "<!-- Generated from the module headers by tests/project/book/symbols.rs; refresh with UPDATE_BOOK=1 cargo test -p spintop-app --test app project:: -->\n",
     );
     for (file, module, chapter, title) in SYMBOL_MODULES {
         let source = fs::read_to_string(root().join(file)).expect("a listed module exists");

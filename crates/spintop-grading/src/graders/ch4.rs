@@ -226,7 +226,6 @@ fn decay_probe(
 }
 
 /// Grade Ω⊥(t) of the truncated model.
-
 ///
 /// Paper: Eq. (4.5), Eq. (4.6).
 pub fn truncated_omega_perp(seed: u64, student: impl Fn(Real, Real, Real, Real) -> Real) -> Grade {

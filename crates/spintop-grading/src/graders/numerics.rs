@@ -565,13 +565,17 @@ mod tests {
         let _ = Entry::C(0);
     }
 
+    /// A table, the entries a student changed (to the value given), and the
+    /// words the diagnosis must say.
+    type Case<'a> = (&'a Tableau, Vec<(Entry, Real)>, &'a [&'a str]);
+
     /// The slips students make, each named by its stage and its entry.
     #[test]
     fn a_wrong_stage_is_named_with_its_entry() {
         let x = step_inputs(7)[0];
         let rk4 = Tableau::rk4();
         let dp5 = Tableau::dp5();
-        let cases: Vec<(&Tableau, Vec<(Entry, Real)>, &[&str])> = vec![
+        let cases: Vec<Case> = vec![
             (
                 &rk4,
                 vec![(Entry::C(1), 0.0)],

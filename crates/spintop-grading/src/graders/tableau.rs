@@ -370,7 +370,7 @@ pub(crate) fn find_slip(right: &Tableau, seen: &Observed<'_>) -> Option<Slip> {
 /// "−56/15"), else in decimals.
 pub(crate) fn fraction(v: Real) -> String {
     let text = match convergent(v, 1e-12) {
-        Some((p, _)) if p == 0.0 => "0".to_string(),
+        Some((0.0, _)) => "0".to_string(),
         Some((p, 1.0)) => format!("{}", v.signum() * p),
         Some((p, q)) => format!("{}{p}/{q}", if v < 0.0 { "-" } else { "" }),
         None => format!("{v:.6}"),

@@ -33,7 +33,7 @@ pub type C = Complex<Real>;
 
 /// How many members of the neutral chain are searched for the largest Re s.
 /// NOTE: along the chain Re s falls towards its asymptote as Im s grows (the
-/// force term k/s² fades), so the first few members hold the maximum; 16 is a
+/// force term, k/s² in P(s)/s², fades), so the first few members hold the maximum; 16 is a
 /// wide margin, checked by a test against 200 members.
 pub const CHAIN_SEARCH: usize = 16;
 
@@ -197,8 +197,8 @@ impl ShellModel {
 
     // ANCHOR: chain
     /// The asymptotic growth rate of the neutral chain of roots, ln(m_em/|m₀|)/δ:
-    /// as |s| → ∞ the force term k/s² fades and P(s) = 0 becomes
-    /// e^{−sδ} = −m₀/m_em.
+    /// as |s| → ∞ the force term fades (k/s² in P(s)/s²), and P(s)/s² = 0
+    /// becomes e^{−sδ} = −m₀/m_em.
     ///
     /// Paper: Eq. (A.1) with Z ∝ e^{st}, |s| → ∞.
     ///

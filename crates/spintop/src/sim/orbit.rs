@@ -155,8 +155,9 @@ impl OrbitConfig {
     }
 
     /// The radius below which a Coulomb run stops: where the orbital time
-    /// r^{3/2} comes within 10 τ₀, so that neither the Landau–Lifshitz reduction
-    /// nor a point charge on a slowly decaying orbit makes sense any more.
+    /// r^{3/2} (the time to turn one radian) falls below 10 τ₀, so that
+    /// neither the Landau–Lifshitz reduction nor a point charge on a slowly
+    /// decaying orbit makes sense any more.
     pub fn floor_radius(&self) -> Real {
         match self.charge.potential() {
             Potential::Coulomb => (10.0 * self.charge.tau0()).powf(2.0 / 3.0),
@@ -246,7 +247,7 @@ pub enum OrbitError {
     Integrate(#[from] IntegrateError),
     /// The orbit fell inside [`OrbitConfig::floor_radius`].
     #[error(
-        "the orbit fell to r = {r:.3e} at t = {}, where the orbital time comes within 10 tau0 and the model ends",
+        "the orbit fell to r = {r:.3e} at t = {}, where the orbital time r^(3/2) (the time to turn one radian) is below 10 tau0 and the model ends",
         crate::numbers::fmt_time(*t)
     )]
     Collapsed {
