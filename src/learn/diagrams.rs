@@ -376,10 +376,13 @@ fn draw(picture: &Picture, width: u16) -> Vec<Line<'static>> {
         .collect()
 }
 
+/// The pictures drawn so far, by file and width.
+type Drawn = HashMap<(PathBuf, u16), Vec<Line<'static>>>;
+
 /// The picture at `path` drawn `width` columns wide at most; a picture
 /// that cannot be read is one line saying why. Drawn once per width.
 pub fn lines(path: &Path, width: u16) -> Vec<Line<'static>> {
-    static DRAWN: Mutex<Option<HashMap<(PathBuf, u16), Vec<Line<'static>>>>> = Mutex::new(None);
+    static DRAWN: Mutex<Option<Drawn>> = Mutex::new(None);
     let key = (path.to_path_buf(), width);
     if let Some(lines) = DRAWN
         .lock()

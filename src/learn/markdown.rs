@@ -56,13 +56,31 @@ pub struct Link {
 
 /// `\\[ … \\]` → `$$ … $$` and `\\( … \\)` → `$ … $`, outside code, so that
 /// MathJax-style math (which needs doubled backslashes in mdBook's Markdown)
-/// reaches the same math events as `$` math.
+/// reaches the same math events as `$` math. A display block between lines
+/// that are `$$` alone is joined into one line, as the book's KaTeX reads it
+/// before Markdown does: a line of it that starts `- ` is no list item.
 fn normalise_math_delimiters(source: &str) -> String {
     let mut out = String::with_capacity(source.len());
     let mut in_fence = false;
+    let mut display: Option<String> = None;
     for line in source.split_inclusive('\n') {
-        if line.trim_start().starts_with("```") {
+        if line.trim_start().starts_with("```") && display.is_none() {
             in_fence = !in_fence;
+        }
+        if !in_fence && line.trim() == "$$" {
+            match display.take() {
+                None => display = Some("$$".to_string()),
+                Some(math) => {
+                    out.push_str(&math);
+                    out.push_str(" $$\n");
+                }
+            }
+            continue;
+        }
+        if let Some(math) = &mut display {
+            math.push(' ');
+            math.push_str(line.trim());
+            continue;
         }
         if in_fence {
             out.push_str(line);
@@ -75,6 +93,9 @@ fn normalise_math_delimiters(source: &str) -> String {
                     .replace(r"\\)", "$"),
             );
         }
+    }
+    if let Some(math) = display {
+        out.push_str(&math);
     }
     out
 }
@@ -960,6 +981,19 @@ mod tests {
         let s = resolve_includes("```rust\n{{#include x.rs:part}}\n```", &dir);
         assert_eq!(s, "```rust\nfn kept() {}\n```");
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    /// A display block's line that starts `- ` is a minus, not a list item
+    /// (the book's KaTeX reads the block before Markdown does).
+    #[test]
+    fn a_display_block_is_read_whole() {
+        let r = render("Text:\n\n$$\na = b\n- c\n$$\n\nMore.\n", 60);
+        let shown = plain(&r.lines);
+        assert!(!shown.contains('•') && !shown.contains("$$"), "{shown}");
+        assert!(
+            shown.contains("a = b − c") || shown.contains("a = b - c"),
+            "{shown}"
+        );
     }
 
     #[test]

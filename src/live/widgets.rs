@@ -242,7 +242,8 @@ impl Labels {
                 && r < i32::from(self.size.1)
                 && taken
                     .iter()
-                    .all(|&(tc, tr, tw)| tr != r || c + width + 1 <= tc || tc + tw + 1 <= c)
+                    // A column of space between two labels.
+                    .all(|&(tc, tr, tw)| tr != r || c + width < tc || tc + tw < c)
         };
         let tries = [
             (col, row),

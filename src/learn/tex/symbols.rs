@@ -110,6 +110,8 @@ pub(super) fn symbol(name: &str) -> Option<&'static str> {
         "prod" => Some("Π"),
         "int" => Some("∫"),
         "oint" => Some("∮"),
+        "iint" => Some("∬"),
+        "iiint" => Some("∭"),
         "forall" => Some("∀"),
         "exists" => Some("∃"),
         "emptyset" => Some("∅"),
