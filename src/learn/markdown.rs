@@ -12,6 +12,7 @@
 //! settings to try) marks one of the chapter's experiments.
 
 mod include;
+mod math;
 mod wrap;
 
 pub use include::resolve_includes;
@@ -19,6 +20,7 @@ pub use wrap::{CONTINUATION, prose_subscripts, without_colours, wrap_code};
 
 use super::tex;
 use include::FOLD;
+use math::normalise_math_delimiters;
 use pulldown_cmark::{Alignment, CodeBlockKind, Event, HeadingLevel, Parser, Tag, TagEnd};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
@@ -52,52 +54,6 @@ pub struct Link {
     pub target: String,
     /// Each part: (line, byte range in the line's text).
     pub parts: Vec<(usize, std::ops::Range<usize>)>,
-}
-
-/// `\\[ … \\]` → `$$ … $$` and `\\( … \\)` → `$ … $`, outside code, so that
-/// MathJax-style math (which needs doubled backslashes in mdBook's Markdown)
-/// reaches the same math events as `$` math. A display block between lines
-/// that are `$$` alone is joined into one line, as the book's KaTeX reads it
-/// before Markdown does: a line of it that starts `- ` is no list item.
-fn normalise_math_delimiters(source: &str) -> String {
-    let mut out = String::with_capacity(source.len());
-    let mut in_fence = false;
-    let mut display: Option<String> = None;
-    for line in source.split_inclusive('\n') {
-        if line.trim_start().starts_with("```") && display.is_none() {
-            in_fence = !in_fence;
-        }
-        if !in_fence && line.trim() == "$$" {
-            match display.take() {
-                None => display = Some("$$".to_string()),
-                Some(math) => {
-                    out.push_str(&math);
-                    out.push_str(" $$\n");
-                }
-            }
-            continue;
-        }
-        if let Some(math) = &mut display {
-            math.push(' ');
-            math.push_str(line.trim());
-            continue;
-        }
-        if in_fence {
-            out.push_str(line);
-        } else {
-            out.push_str(
-                &line
-                    .replace(r"\\[", "$$")
-                    .replace(r"\\]", "$$")
-                    .replace(r"\\(", "$")
-                    .replace(r"\\)", "$"),
-            );
-        }
-    }
-    if let Some(math) = display {
-        out.push_str(&math);
-    }
-    out
 }
 
 /// The styles of the rendered text.
