@@ -65,6 +65,11 @@ fn newest(dir: &Path) -> Option<SystemTime> {
 }
 
 /// Builds the book into `site` unless it is newer than its sources.
+///
+/// mdBook empties its output folder first: built there, a second `spintop
+/// book` of the same clone would pull the pages from under the first one
+/// for the length of the build. So the build goes to a folder of its own
+/// beside `site`, which then takes `site`'s place in two renames.
 fn build(repo: &Path, site: &Path, out: &mut impl Write) -> Result<(), CliError> {
     let book = repo.join("book");
     let built = std::fs::metadata(site.join("index.html"))
@@ -89,20 +94,42 @@ fn build(repo: &Path, site: &Path, out: &mut impl Write) -> Result<(), CliError>
     }
     writeln!(out, "spintop book: building the book (mdbook build)…")?;
     out.flush()?;
+    let fresh = site.with_extension(format!("new-{}", std::process::id()));
     let result = Command::new("mdbook")
         .arg("build")
         .arg(&book)
         .arg("--dest-dir")
-        .arg(site)
+        .arg(&fresh)
         .output()
         .map_err(|e| bad(format!("cannot run mdbook: {e}")))?;
     if !result.status.success() {
+        let _ = std::fs::remove_dir_all(&fresh);
         let text = String::from_utf8_lossy(&result.stderr);
         let first = text
             .lines()
             .find(|l| l.contains("ERROR") || l.contains("error"))
             .unwrap_or("mdbook build failed");
         return Err(bad(format!("the book does not build: {first}")));
+    }
+    swap_in(&fresh, site)
+}
+
+/// Puts the built book `fresh` in `site`'s place; the old one is removed.
+/// If another `spintop book` put its own build there meanwhile (built from
+/// the same sources), that one stays and `fresh` is removed.
+fn swap_in(fresh: &Path, site: &Path) -> Result<(), CliError> {
+    let old = site.with_extension(format!("old-{}", std::process::id()));
+    let _ = std::fs::rename(site, &old);
+    let placed = std::fs::rename(fresh, site);
+    let _ = std::fs::remove_dir_all(&old);
+    if let Err(e) = placed {
+        let _ = std::fs::remove_dir_all(fresh);
+        if !site.join("index.html").is_file() {
+            return Err(bad(format!(
+                "cannot put the built book in {}: {e}",
+                site.display()
+            )));
+        }
     }
     Ok(())
 }
@@ -289,6 +316,7 @@ fn stop_everything(server: &Server, name: &str) -> String {
 /// for as long as it runs. Jupyter opens such a file for the same reason.
 fn open_browser(dir: &Path, server: &Server, out: &mut impl Write) -> Result<PathBuf, CliError> {
     use std::os::unix::fs::OpenOptionsExt;
+    use std::os::unix::process::CommandExt;
     let page = dir.join(format!("open-{}.html", server.port()));
     let url = server.url();
     let html = format!(
@@ -303,7 +331,10 @@ fn open_browser(dir: &Path, server: &Server, out: &mut impl Write) -> Result<Pat
         .open(&page)?
         .write_all(html.as_bytes())?;
     // Through a shell that exits at once, so the opener (and a browser it
-    // starts) is nobody's child here.
+    // starts) is nobody's child here; in a process group of its own, so
+    // that Ctrl-C or Ctrl-Z at the terminal, which signal the foreground
+    // group, stop the book and not the browser (as Python's `webbrowser`
+    // starts one in a session of its own).
     let opener = if cfg!(target_os = "macos") {
         "open"
     } else {
@@ -313,6 +344,7 @@ fn open_browser(dir: &Path, server: &Server, out: &mut impl Write) -> Result<Pat
         .is_some_and(|path| std::env::split_paths(&path).any(|d| d.join(opener).is_file()));
     let opened = found
         && Command::new("sh")
+            .process_group(0)
             .args(["-c", "\"$0\" \"$1\" >/dev/null 2>&1 &", opener])
             .arg(&page)
             .status()

@@ -25,13 +25,19 @@ fn a_page_carries_the_token_and_other_files_do_not() {
 /// One raw request over bash's `/dev/tcp`, as uid 65534 (`nobody`) if
 /// `other_user`, else as this user: the answer, as sent.
 fn over_dev_tcp(port: u16, raw: String, other_user: bool) -> String {
+    over_dev_tcp_at("127.0.0.1", port, raw, other_user)
+}
+
+/// [`over_dev_tcp`] to `host` (`127.0.0.1` or `::1`).
+fn over_dev_tcp_at(host: &str, port: u16, raw: String, other_user: bool) -> String {
     use std::os::unix::process::CommandExt;
     let mut command = std::process::Command::new("bash");
     command
         .args([
             "-c",
-            "exec 3<>/dev/tcp/127.0.0.1/$PORT || exit 9; printf '%s' \"$REQUEST\" >&3; cat <&3",
+            "exec 3<>/dev/tcp/$HOST/$PORT || exit 9; printf '%s' \"$REQUEST\" >&3; cat <&3",
         ])
+        .env("HOST", host)
         .env("PORT", port.to_string())
         .env("REQUEST", raw)
         .current_dir("/");
@@ -114,22 +120,35 @@ fn another_local_user_holding_the_printed_address_can_neither_read_a_page_nor_ru
             s.cookie()
         )
     };
-    for (what, raw) in [
-        ("the printed address", get(&format!("/?token={}", s.token))),
-        ("a page with the cookie", cookie("/")),
-        ("a stylesheet with the cookie", cookie("/css/book.css")),
-        ("a run with the token", run(&s.token)),
-    ] {
-        let answer = over_dev_tcp(s.port, raw, true);
-        assert!(answer.starts_with("HTTP/1.1 403 "), "{what}: {answer}");
-        assert!(answer.contains("another user"), "{what}: {answer}");
-        assert!(!answer.contains("Set-Cookie"), "{what}: {answer}");
-        assert!(!answer.contains("window.spintopBook"), "{what}: {answer}");
-        assert!(!answer.contains("uid="), "{what}: code ran: {answer}");
+    // Over IPv4 and, where the server holds it, [::1] (localhost).
+    let hosts: &[&str] = match s.server.holds_localhost6() {
+        true => &["127.0.0.1", "::1"],
+        false => &["127.0.0.1"],
+    };
+    for host in hosts {
+        for (what, raw) in [
+            ("the printed address", get(&format!("/?token={}", s.token))),
+            ("a page with the cookie", cookie("/")),
+            ("a stylesheet with the cookie", cookie("/css/book.css")),
+            ("a run with the token", run(&s.token)),
+        ] {
+            let answer = over_dev_tcp_at(host, s.port, raw, true);
+            assert!(
+                answer.starts_with("HTTP/1.1 403 "),
+                "{host} {what}: {answer}"
+            );
+            assert!(answer.contains("another user"), "{host} {what}: {answer}");
+            assert!(!answer.contains("Set-Cookie"), "{host} {what}: {answer}");
+            assert!(!answer.contains("window.spintopBook"), "{what}: {answer}");
+            assert!(
+                !answer.contains("uid="),
+                "{host} {what}: code ran: {answer}"
+            );
+        }
+        // The reader, with the same request over the same client.
+        let page = over_dev_tcp_at(host, s.port, cookie("/"), false);
+        assert!(page.starts_with("HTTP/1.1 200 "), "{host}: {page}");
     }
-    // The reader, with the same request over the same client.
-    let page = over_dev_tcp(s.port, cookie("/"), false);
-    assert!(page.starts_with("HTTP/1.1 200 "), "{page}");
 }
 
 #[test]

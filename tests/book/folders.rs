@@ -54,9 +54,18 @@ fn site_and_scratch_in_a_folder_others_can_write_are_refused() {
         why.contains("plant code that the build runs as you"),
         "{why}"
     );
-    // The site folder itself writable by its group, or sticky and open
-    // (a sticky bit protects entries, not the creation of index.html).
+    // The site folder itself writable by a group shared with another user
+    // (as root: uid 65534's primary group, which two system users share
+    // too), or sticky and open (a sticky bit protects entries, not the
+    // creation of index.html).
+    let shared_group = can_become_another_user();
+    if shared_group {
+        std::os::unix::fs::chown(&own_site, None, Some(NOBODY)).unwrap();
+    }
     for mode in [0o775, 0o1777] {
+        if mode == 0o775 && !shared_group {
+            continue;
+        }
         chmod(&own_site, mode);
         let why = refusal(config(own_site.clone(), root.join("scratch")));
         assert!(why.contains("can be written by"), "{mode:o}: {why}");
@@ -198,5 +207,177 @@ fn a_cargo_config_above_the_scratch_folder_is_not_read() {
     assert_eq!(status, 200, "{text}");
     assert!(text.contains("built without the wrapper"), "{text}");
     assert!(!marker.exists(), "the planted rustc-wrapper ran");
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// Two `spintop book` at once with one scratch folder (two in one clone:
+/// both take `target/spintop-book/scratch`) each compile in a folder of
+/// their own and run their own program: the second takes the folder
+/// beside the first's, and neither ever runs the other's snippet, however
+/// their ▶ interleave; once the first is killed (SIGKILL), the next
+/// server takes its folder. With the stand-in cargo (no compiler), the real
+/// servers and supervisors.
+#[test]
+fn two_servers_at_once_never_run_each_others_snippet() {
+    let root = scratch_root("two-servers");
+    let site = site(&root);
+    let cargo = fake_cargo(&root);
+    let target = root.join("target");
+    std::fs::create_dir_all(&target).unwrap();
+    let scratch = root.join("scratch");
+    let options = || BookOptions {
+        env: vec![
+            ("CARGO".into(), cargo.clone().into()),
+            ("CARGO_TARGET_DIR".into(), target.clone().into()),
+        ],
+        ..BookOptions::default()
+    };
+    let books = [
+        Book::start_with(&site, &scratch, options()),
+        Book::start_with(&site, &scratch, options()),
+    ];
+    // Each says where it is, and which server it is.
+    let run = |(port, token): (u16, &str), who: &str| -> String {
+        let code = script(&format!("sleep 0.05; echo \"{who} in $(pwd)\""));
+        let (status, text) = request(
+            port,
+            "POST",
+            "/evaluate.json",
+            &[("X-Spintop-Token", token)],
+            &body(&code),
+        )
+        .unwrap();
+        assert_eq!(status, 200, "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        v["result"].as_str().unwrap_or("").trim().to_string()
+    };
+    let mut folders = [Vec::new(), Vec::new()];
+    for round in 0..6 {
+        let said: Vec<String> = std::thread::scope(|scope| {
+            let runs: Vec<_> = books
+                .iter()
+                .zip(["first", "second"])
+                .map(|(book, who)| {
+                    let key = (book.port, book.token.as_str());
+                    scope.spawn(move || run(key, who))
+                })
+                .collect();
+            runs.into_iter().map(|r| r.join().unwrap()).collect()
+        });
+        for (i, (said, who)) in said.iter().zip(["first", "second"]).enumerate() {
+            assert!(
+                said.starts_with(&format!("{who} in ")),
+                "round {round}: the {who} server ran {said:?}"
+            );
+            folders[i].push(said.split(" in ").nth(1).unwrap().to_string());
+        }
+    }
+    let first = std::fs::canonicalize(&scratch).unwrap();
+    let second = first.with_file_name("scratch-2");
+    assert!(
+        folders[0].iter().all(|f| Path::new(f) == first),
+        "{folders:?}"
+    );
+    assert!(
+        folders[1].iter().all(|f| Path::new(f) == second),
+        "{folders:?}"
+    );
+    let programs = std::fs::read_dir(target.join("debug"))
+        .unwrap()
+        .filter(|e| {
+            e.as_ref().is_ok_and(|e| {
+                e.file_name()
+                    .to_string_lossy()
+                    .starts_with("spintop-snippet-")
+            })
+        })
+        .count();
+    assert_eq!(programs, 2, "one program each");
+    // SIGKILL frees the first's folder (the kernel drops its lock): the
+    // next server takes it again, while the second still holds its own.
+    let mut books = books;
+    books[0].stop(rustix::process::Signal::KILL);
+    let third = Book::start_with(&site, &scratch, options());
+    let said = run((third.port, third.token.as_str()), "third");
+    assert_eq!(said, format!("third in {}", first.display()));
+    drop((books, third));
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// In a sticky folder others may write (as /tmp), another user (uid 65534,
+/// when this runs as root) who puts a file or a link where the scratch
+/// folder's lock goes can neither have the server follow the link nor
+/// share the lock: refused, saying whose it is, and nothing is made.
+#[test]
+fn a_lock_file_another_user_planted_beside_the_scratch_is_refused() {
+    if !can_become_another_user() {
+        return;
+    }
+    let root = scratch_root("planted-lock");
+    let open = root.join("open");
+    std::fs::create_dir_all(&open).unwrap();
+    chmod(&open, 0o1777);
+    let planted = open.join("scratch.lock");
+    std::fs::write(&planted, "").unwrap();
+    std::os::unix::fs::chown(&planted, Some(NOBODY), Some(NOBODY)).unwrap();
+    let why = refusal(config(site(&root), open.join("scratch")));
+    assert!(
+        why.contains("lock file scratch.lock belongs to uid 65534"),
+        "{why}"
+    );
+    std::fs::remove_file(&planted).unwrap();
+    let target = root.join("elsewhere");
+    std::os::unix::fs::symlink(&target, &planted).unwrap();
+    std::os::unix::fs::lchown(&planted, Some(NOBODY), Some(NOBODY)).unwrap();
+    let why = refusal(config(site(&root), open.join("scratch")));
+    assert!(why.contains("cannot make its lock file"), "{why}");
+    assert!(!target.exists(), "the link was followed");
+    assert!(!open.join("scratch").exists());
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// Whether group `gid` has user `uid` as its one member, asked of the
+/// system's databases (`getent`, NSS included) independently of the
+/// server's reading of `/etc/group` and `/etc/passwd`.
+fn private_group(gid: u32, uid: u32) -> bool {
+    let sh = |script: String| {
+        std::process::Command::new("sh")
+            .args(["-c", &script])
+            .output()
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+            .unwrap_or_default()
+    };
+    let primary = sh(format!(
+        "getent passwd | awk -F: '$4 == {gid} {{ print $3 }}' | sort -u"
+    ));
+    let name = sh(format!("getent passwd {uid} | cut -d: -f1"));
+    let listed = sh(format!("getent group {gid} | cut -d: -f4"));
+    let listed_ok = listed.is_empty() || listed == name;
+    let primary_ok = primary.is_empty() || primary == uid.to_string();
+    listed_ok && primary_ok && (!primary.is_empty() || !listed.is_empty())
+}
+
+/// Debian, Ubuntu and Fedora give each user a private group and a umask of
+/// 002, so a clone's folders are writable by their group, which is the
+/// reader's alone: `spintop book` serves such a clone's book and builds in
+/// its scratch and build folders (as Debian's OpenSSH takes such a home).
+#[test]
+fn a_clone_made_with_umask_002_in_a_private_group_is_taken() {
+    use std::os::unix::fs::MetadataExt;
+    let root = scratch_root("umask-002");
+    let site = site(&root);
+    for folder in [&root, &site, &site.join("css")] {
+        chmod(folder, 0o775);
+    }
+    let meta = std::fs::metadata(&root).unwrap();
+    let me = rustix::process::geteuid().as_raw();
+    if !private_group(meta.gid(), me) {
+        eprintln!("gid {} is not uid {me}'s alone here: skipped", meta.gid());
+        let _ = std::fs::remove_dir_all(&root);
+        return;
+    }
+    let server = Server::bind(config(site, root.join("scratch")))
+        .unwrap_or_else(|e| panic!("a private group's folder refused: {e}"));
+    drop(server);
     let _ = std::fs::remove_dir_all(&root);
 }

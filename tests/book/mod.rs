@@ -22,6 +22,7 @@ mod connections;
 mod exhaustion;
 mod folders;
 mod runs;
+mod terminal;
 mod trees;
 
 use spintop_server::{Config, Containment, Limits, Runner, Server, request};

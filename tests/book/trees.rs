@@ -394,6 +394,8 @@ fn sigkill_of_the_server_leaves_nothing_of_another_users_attacking_snippet() {
         let got = book.unit();
         if got != unit.described() {
             eprintln!("{}: uid {NOBODY} gets {got} here: skipped", unit.name());
+            drop(book);
+            let _ = std::fs::remove_dir_all(&root);
             continue;
         }
         book.run(&attacks_its_supervisor_script());
@@ -531,4 +533,45 @@ fn a_snippet_cannot_stop_its_supervisor_in_any_unit() {
             unit.name()
         );
     }
+}
+
+/// A supervisor that cannot end its tree in time (stopped here from
+/// outside, again and again, as another process of the reader may stop it,
+/// or slowed by a loaded machine) is killed by the server after its grace,
+/// and what is below it first: a daemon in a session of its own, which the
+/// supervisor's session and group do not hold, is gone too, even for a
+/// library user that cannot sweep its strays. Process group unit, where
+/// nothing else would reach that daemon.
+#[test]
+#[ignore = "end-to-end: compiles snippets"]
+fn a_supervisor_too_slow_to_end_its_tree_is_killed_after_what_is_below_it() {
+    let s = start_in("slow-supervisor", limits(), Containment::Group);
+    let scratch = s.root.join("scratch");
+    let me = std::process::id() as i32;
+    let started = Instant::now();
+    std::thread::scope(|scope| {
+        let run = scope.spawn(|| s.run(LEAVES_CHILDREN));
+        assert!(
+            wait_for(Duration::from_secs(900), || left_children(&scratch).len()
+                == 2),
+            "the snippet did not start"
+        );
+        let supervisor = processes()
+            .into_iter()
+            .find(|&(p, ppid, _)| ppid == me && cmdline(p).contains("--supervise"))
+            .map(|(p, _, _)| p)
+            .expect("no supervisor");
+        let pid = rustix::process::Pid::from_raw(supervisor).unwrap();
+        while !run.is_finished() {
+            let _ = rustix::process::kill_process(pid, Signal::STOP);
+            std::thread::sleep(Duration::from_millis(2));
+        }
+        let (status, v) = run.join().unwrap();
+        assert_eq!(status, 200, "{v}");
+    });
+    eprintln!(
+        "the run with a stopped supervisor ended {:?} after it was asked",
+        started.elapsed()
+    );
+    both_gone(&scratch);
 }

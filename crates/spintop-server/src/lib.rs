@@ -16,7 +16,7 @@
 //!
 //! - On Linux, only the reader's processes (and root's) are served: the
 //!   kernel's socket tables say whose process made each connection
-//!   (`src/server/peer.rs`), and another user's gets 403 whatever it
+//!   (`crates/spintop-server/src/peer.rs`), and another user's gets 403 whatever it
 //!   holds, without taking one of the reader's connections. The token alone
 //!   would not do: a browser sends a host's cookies to every port of it, so
 //!   a page of another user's server on 127.0.0.1 that the reader opens (by
@@ -56,10 +56,16 @@
 //! The built book it serves with the token, the scratch project it builds
 //! and the build folder whose programs it runs must each be the reader's,
 //! and neither they nor any folder above them writable by another user or
-//! owned by one but root; a sticky folder above (as /tmp) is allowed when
-//! the next one down is the reader's (`src/server/folders.rs`). Else
+//! owned by one but root (a group that is the reader's alone, as the
+//! private group of a umask-002 system, is no other user); a sticky folder
+//! above (as /tmp) is allowed when the next one down is the reader's
+//! (`crates/spintop-server/src/folders.rs`). Else
 //! [`Server::bind`] refuses, saying which folder and why. The scratch folder
-//! is made fresh at each start, mode 0700. Cargo runs in `/` and finds the
+//! is made fresh at each start, mode 0700, and is the server's alone while
+//! it lives (a lock beside it): a second server started with the same one
+//! takes `NAME-2` (and so on) instead, with a program name of its own, so
+//! that two `spintop book` in one clone never remove each other's project
+//! nor run each other's snippet. Cargo runs in `/` and finds the
 //! scratch project by its path, so that no `.cargo/config.toml` in a folder
 //! above the scratch (which cargo reads from the folder it runs in upward,
 //! whoever wrote it, and whatever `--config` or `CARGO_HOME` say) is read;
@@ -69,7 +75,7 @@
 //!
 //! A snippet runs as the reader, with the reader's files and network. Each
 //! build and each run is a process tree under a supervisor and its stage
-//! (`src/server/supervise.rs` says how), with resource limits for a run
+//! (`crates/spintop-server/src/supervise.rs` says how), with resource limits for a run
 //! ([`Limits`]): per process 4 GiB of address space and 11 CPU seconds,
 //! files up to 64 MiB each, no core dumps, and at most 512 processes and
 //! threads more than the reader had when it started, within the reader's
@@ -83,7 +89,7 @@
 //! built (900 s for the first, cold build); the output is cut at 64 KiB.
 //!
 //! Each tree is ended as a unit, the strongest the machine allows
-//! ([`Containment`], `src/server/unit.rs`; [`Server::containment`] says
+//! ([`Containment`], `crates/spintop-server/src/unit.rs`; [`Server::containment`] says
 //! which, and `spintop book` prints it):
 //!
 //! - **Linux where the reader may make a user namespace** (most
@@ -156,7 +162,8 @@
 //! # What is written where
 //!
 //! The built book (`target/spintop-book/site`, by mdBook), the scratch
-//! project (`target/spintop-book/scratch`), in a cgroup unit a cgroup
+//! project (`target/spintop-book/scratch`, or `scratch-2` and on while
+//! other servers hold it) and its lock file beside it (`scratch.lock`), in a cgroup unit a cgroup
 //! `spintop-book-PID` below the server's for each tree (removed with it),
 //! the build folder it shares with
 //! the workspace (`target/debug`: spintop's debug build and the snippet's
@@ -314,6 +321,8 @@ struct Inner {
     warm: Mutex<WarmState>,
     connections: Mutex<Vec<Arc<http::Watch>>>,
     refusing: AtomicUsize,
+    /// Held while anything of this server may use it.
+    _scratch: folders::Scratch,
 }
 
 /// An answer: status, content type, further headers, body.
@@ -387,8 +396,8 @@ fn listen(port: u16) -> Result<(Vec<TcpListener>, u16), ServerError> {
 }
 
 impl Server {
-    /// Checks the folders (each the reader's own, see `folders.rs`), makes
-    /// the scratch folder fresh, finds the strongest containment the
+    /// Checks the folders (each the reader's own, see `folders.rs`), claims
+    /// a scratch folder no other living server holds and makes it fresh, finds the strongest containment the
     /// machine allows ([`Server::containment`]), and listens on
     /// 127.0.0.1:`config.port` (and on [::1] at that port, see [`listen`]).
     pub fn bind(mut config: Config) -> Result<Self, ServerError> {
@@ -400,7 +409,8 @@ impl Server {
             why: format!("cannot be made: {e}"),
         })?;
         config.runner.target_dir = folders::check("the build folder", target)?;
-        config.runner.scratch = folders::fresh_scratch(&config.runner.scratch)?;
+        let scratch = folders::claim_scratch(&config.runner.scratch)?;
+        config.runner.scratch = scratch.path.clone();
         config.runner.containment =
             supervise::strongest(config.runner.containment, &config.runner.launcher);
         let (listeners, port) = listen(config.port)?;
@@ -415,8 +425,16 @@ impl Server {
                 warm: Mutex::new(WarmState::NotStarted),
                 connections: Mutex::default(),
                 refusing: AtomicUsize::new(0),
+                _scratch: scratch,
             }),
         })
+    }
+
+    /// The scratch folder it compiles snippets in: the one asked for, or
+    /// beside it if another living server holds that one (see
+    /// `folders.rs`).
+    pub fn scratch(&self) -> &std::path::Path {
+        &self.inner.config.runner.scratch
     }
 
     /// The port it listens on.
@@ -513,7 +531,7 @@ impl Server {
     /// keeps open never holds up another. A connection that cannot have a
     /// thread (the reader's process limit is reached: a fork bomb) is
     /// answered 503 at once, and the next is tried again. This process
-    /// becomes a child subreaper first (see `src/server/tree.rs`).
+    /// becomes a child subreaper first (see `crates/spintop-server/src/tree.rs`).
     pub fn serve(&self, stop: &AtomicBool) {
         tree::become_subreaper();
         while !stop.load(Ordering::Relaxed) {
@@ -589,7 +607,7 @@ impl Server {
     /// (`spintop book`): kills every process below this one but the running
     /// tree, and reaps those that have ended; returns how many living ones
     /// it found. A snippet that kills its own supervisor leaves what it
-    /// started to this process (see `src/server/tree.rs`); calling this
+    /// started to this process (see `crates/spintop-server/src/tree.rs`); calling this
     /// when a child ends (SIGCHLD) keeps one tree at a time, and after
     /// [`Server::shutdown`], nothing running.
     pub fn sweep_strays(&self) -> usize {
@@ -709,7 +727,7 @@ fn send(conn: &mut http::Connection, reply: &Reply, keep_alive: bool, head_only:
 }
 
 /// Why a connection from `peer` is refused, if it is: another user's
-/// process, or a peer already gone (see `src/server/peer.rs`).
+/// process, or a peer already gone (see `crates/spintop-server/src/peer.rs`).
 fn refusal(peer: peer::Peer) -> Option<String> {
     match peer {
         peer::Peer::Trusted | peer::Peer::Unknown => None,

@@ -85,7 +85,7 @@ pub struct Runner {
     /// The build folder shared with the workspace.
     pub target_dir: PathBuf,
     /// The spintop binary, which supervises each build and run
-    /// (`spintop book --supervise`, see `src/server/supervise.rs`).
+    /// (`spintop book --supervise`, see `crates/spintop-server/src/supervise.rs`).
     pub launcher: PathBuf,
     /// The limits.
     pub limits: Limits,

@@ -10,7 +10,8 @@
 //! clock, for a server that is stopped) or when the server stops. The
 //! supervisor exits only once its tree is gone, unless it is itself killed:
 //! by the server if it has not ended [`GRACE`] after being told to stop
-//! (it may be stopped: a snippet outside a PID namespace can signal it),
+//! (it may be stopped: a snippet outside a PID namespace can signal it;
+//! or slow, on a loaded machine), what is below it first,
 //! by the kernel's out-of-memory killer, or by the tree itself. Then the
 //! server kills what is left in the tree's cgroup, session and process
 //! group ([`sweep`]); it is a child subreaper too ([`become_subreaper`]),
@@ -23,7 +24,7 @@
 //! supervisor's death ends the namespace.
 
 use super::bounds::Bounds;
-use super::procs::{Proc, processes, tree};
+use super::procs::{Proc, kill_tree, processes, tree};
 use super::supervise::{Spec, launcher_args, subreaper};
 use super::unit::{Containment, cgroup_of, remove_cgroup};
 use rustix::process::{Pid, Signal, WaitOptions};
@@ -256,6 +257,11 @@ impl Started {
                 && sent.elapsed() > GRACE
             {
                 if let Some(group) = i32::try_from(leader).ok().and_then(Pid::from_raw) {
+                    // What is below it first (a slow supervisor, on a
+                    // loaded machine, may be killing it still): killed
+                    // after it, a daemon in a session of its own would
+                    // land on this process, out of the sweep's reach.
+                    kill_tree(group);
                     let _ = rustix::process::kill_process_group(group, Signal::KILL);
                 }
                 group_killed = true;
