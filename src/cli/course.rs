@@ -8,6 +8,8 @@ use super::gate::Gate;
 use super::{CliError, bad, parse_number};
 use clap::{Args, Subcommand};
 use spintop_course::{self as course, Chosen, Course, Options, State};
+
+mod grade;
 use spintop_grading as grading;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -44,6 +46,10 @@ pub struct CourseArgs {
     /// seed; the same seed gives the same inputs). Default: a fresh one.
     #[arg(long, value_name = "N")]
     seed: Option<u64>,
+    /// The launcher of a student's build or runner: it restricts itself and
+    /// becomes the program (see `spintop_course::sandbox`).
+    #[arg(long = "sandbox", hide = true, num_args = 2.., allow_hyphen_values = true, value_name = "SPEC PROGRAM ARGS")]
+    sandbox: Option<Vec<std::ffi::OsString>>,
 }
 
 /// How `spintop course` prints the status.
@@ -58,7 +64,7 @@ enum Format {
 
 /// How `spintop course grade` writes the grades.
 #[derive(Debug, Default, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum GradeFormat {
+pub(crate) enum GradeFormat {
     /// One CSV row per student and assignment.
     #[default]
     Csv,
@@ -179,10 +185,15 @@ fn mark(state: &State) -> &'static str {
 
 /// Runs `spintop course`.
 pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
+    if let Some(launched) = &args.sandbox {
+        // The launcher: it becomes the program, or exits saying why not.
+        out.flush()?;
+        std::process::exit(course::sandbox::launch(launched));
+    }
     match args.action {
-        Some(CourseAction::Export { out: dir, ci }) => return export(&dir, ci, out),
-        Some(CourseAction::Watch { course }) => return watch(course.as_ref(), out),
-        Some(CourseAction::Hint { name, course }) => return hint(&name, course.as_ref(), out),
+        Some(CourseAction::Export { out: dir, ci }) => export(&dir, ci, out),
+        Some(CourseAction::Watch { course }) => watch(course.as_ref(), out),
+        Some(CourseAction::Hint { name, course }) => hint(&name, course.as_ref(), out),
         Some(CourseAction::Grade {
             copies,
             out: path,
@@ -192,14 +203,23 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
             jobs,
             seed,
         }) => {
-            let limits = Limits::new(timeout, test_timeout, jobs)?;
-            return grade_copies(&copies, path.as_ref(), format, limits, seed, out);
+            let limits = grade::Limits::new(timeout, test_timeout, jobs)?;
+            grade::grade_copies(&copies, path.as_ref(), format, limits, seed, out)
         }
-        Some(CourseAction::Diagnose { dir, seed, format }) => {
-            return diagnose(&dir, seed, format, out);
-        }
-        None => {}
+        Some(CourseAction::Diagnose { dir, seed, format }) => diagnose(&dir, seed, format, out),
+        None => status(&args, out),
     }
+}
+
+/// The `spintop` binary that launches the sandbox of a student's build and
+/// runner (this program).
+pub(crate) fn launcher() -> Option<PathBuf> {
+    std::env::current_exe().ok()
+}
+
+/// `spintop course`: grades the course once and prints every assignment's
+/// state and what to do next.
+fn status(args: &CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     let wanted = match args.assignment.as_deref() {
         Some(w) => Some(course::find(w).ok_or_else(|| {
             let names: Vec<&str> = course::COURSE.iter().map(|a| a.function).collect();
@@ -226,9 +246,10 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
         solutions: args.solutions,
         seed: args.seed,
         course_arg: course_arg.clone(),
+        launcher: launcher(),
         ..Options::default()
     };
-    let status = course::grade(&dir, &options).map_err(bad)?;
+    let status = course::grade(&dir, &options).map_err(|e| bad(e.to_string()))?;
     if !args.solutions {
         course::record_passes_now(&dir, &status);
     }
@@ -242,8 +263,19 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
         )?;
         return Ok(());
     }
-    // In the repository the files are under lessons/; in a copy, at its top.
-    let file = |a: &course::Assignment| chosen.file(a);
+    print_status(&chosen, &status, wanted, course_arg.as_deref(), out)
+}
+
+/// The status as text: the table, then what to fix or do next, named as
+/// the course names its files (in the repository under lessons/; in a
+/// copy, at its top).
+fn print_status(
+    chosen: &Course,
+    status: &course::Status,
+    wanted: Option<&course::Assignment>,
+    course_arg: Option<&str>,
+    out: &mut Gate<'_>,
+) -> Result<(), CliError> {
     let n = status.states.len();
     writeln!(
         out,
@@ -260,11 +292,11 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
             a.equation,
             a.chapter,
             a.function,
-            file(a),
+            chosen.file(a),
             s.word()
         )?;
     }
-    // A compile error or a shortcut comes first: nothing else can be graded.
+    // A compile error or a shortcut comes first.
     if let Some(place) = status.next_place() {
         let what = if status.compile_error.is_some() {
             "the lessons do not compile"
@@ -283,68 +315,60 @@ pub(crate) fn execute(args: CourseArgs, out: &mut Gate<'_>) -> Result<(), CliErr
             return Ok(());
         }
     }
-    print_assignment(&chosen, &status, wanted, course_arg.as_deref(), out)
-}
-
-/// The assignment asked for (`wanted`), or the next one, with its state
-/// and what to do, named as the course names its files.
-fn print_assignment(
-    chosen: &Course,
-    status: &course::Status,
-    wanted: Option<&course::Assignment>,
-    course_arg: Option<&str>,
-    out: &mut impl Write,
-) -> Result<(), CliError> {
-    let n = status.states.len();
     let show = match wanted {
         Some(w) => status.states.iter().find(|(a, _)| a.function == w.function),
         None => status.next(),
     };
     match show {
         None => writeln!(out, "all {n} assignments pass: the course is done")?,
-        Some((a, s)) => {
-            let label = if wanted.is_some() {
-                "assignment"
-            } else {
-                "next"
-            };
-            writeln!(
-                out,
-                "{label}: {} {} in {} ({})",
-                a.equation,
-                a.function,
-                chosen.file(a),
-                a.chapter
-            )?;
-            match s {
-                State::NotStarted => writeln!(
-                    out,
-                    "  the stub is untouched: read {} in the book, then replace its todo!()",
-                    a.chapter
-                )?,
-                State::Failing(report) => {
-                    // The whole report for one assignment; its first lines for "next".
-                    let limit = if wanted.is_some() { usize::MAX } else { 9 };
-                    for line in report.lines().take(limit) {
-                        writeln!(out, "  {line}")?;
-                    }
-                }
-                State::DoesNotCompile(e) => writeln!(out, "  the lessons do not compile: {e}")?,
-                State::TimedOut(why) => writeln!(out, "  {why}")?,
-                State::Passing => writeln!(out, "  passing")?,
-                State::Unknown => {
-                    writeln!(out, "  its grader did not report; run it alone to see why")?
-                }
-            }
-            writeln!(out, "  grade it alone: {}", chosen.test_command(a))?;
-            if !matches!(s, State::Passing | State::Failing(_)) {
-                writeln!(
-                    out,
-                    "  stuck? {} (where to look, then the idea, then the formula)",
-                    grading::hint_command(a.function, course_arg)
-                )?;
+        Some((a, s)) => print_next(chosen, a, s, wanted.is_some(), course_arg, out)?,
+    }
+    Ok(())
+}
+
+/// The next assignment (or the one asked for), its state and what to do.
+fn print_next(
+    chosen: &Course,
+    a: &course::Assignment,
+    s: &State,
+    asked: bool,
+    course_arg: Option<&str>,
+    out: &mut Gate<'_>,
+) -> Result<(), CliError> {
+    let label = if asked { "assignment" } else { "next" };
+    writeln!(
+        out,
+        "{label}: {} {} in {} ({})",
+        a.equation,
+        a.function,
+        chosen.file(a),
+        a.chapter
+    )?;
+    match s {
+        State::NotStarted => writeln!(
+            out,
+            "  the stub is untouched: read {} in the book, then replace its todo!()",
+            a.chapter
+        )?,
+        State::Failing(report) => {
+            // The whole report for one assignment; its first lines for "next".
+            let limit = if asked { usize::MAX } else { 9 };
+            for line in report.lines().take(limit) {
+                writeln!(out, "  {line}")?;
             }
         }
+        State::DoesNotCompile(e) => writeln!(out, "  the lessons do not compile: {e}")?,
+        State::TimedOut(why) => writeln!(out, "  {why}")?,
+        State::Passing => writeln!(out, "  passing")?,
+        State::Unknown => writeln!(out, "  its grader did not report; run it alone to see why")?,
+    }
+    writeln!(out, "  grade it alone: {}", chosen.test_command(a))?;
+    if !matches!(s, State::Passing | State::Failing(_)) {
+        writeln!(
+            out,
+            "  stuck? {} (where to look, then the idea, then the formula)",
+            grading::hint_command(a.function, course_arg)
+        )?;
     }
     Ok(())
 }
@@ -401,6 +425,7 @@ fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError>
         &dir,
         Options {
             course_arg: course_arg.clone(),
+            launcher: launcher(),
             ..Options::default()
         },
     );
@@ -512,210 +537,6 @@ fn hint(name: &str, chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<()
             "  (run `{}` again for the next rung)",
             grading::hint_command(a.function, given(chosen).as_deref())
         )?;
-    }
-    Ok(())
-}
-
-/// The time limits and parallelism of `course grade`, validated.
-#[derive(Debug, Clone, Copy)]
-struct Limits {
-    timeout: Duration,
-    test_timeout: Duration,
-    jobs: usize,
-}
-
-impl Limits {
-    fn new(timeout: f64, test_timeout: f64, jobs: Option<usize>) -> Result<Self, CliError> {
-        let seconds = |v: f64, flag: &str| {
-            if v.is_finite() && v > 0.0 && v <= 86_400.0 {
-                Ok(Duration::from_secs_f64(v))
-            } else {
-                Err(bad(format!(
-                    "{flag} {}: give a number of seconds above 0 and at most a day",
-                    spintop::numbers::fmt_value(v)
-                )))
-            }
-        };
-        let jobs = match jobs {
-            Some(0) => return Err(bad("--jobs 0: give at least 1 copy at a time")),
-            Some(n) if n > 256 => return Err(bad(format!("--jobs {n}: at most 256"))),
-            Some(n) => n,
-            None => std::thread::available_parallelism().map_or(2, |n| n.get()),
-        };
-        Ok(Self {
-            timeout: seconds(timeout, "--timeout")?,
-            test_timeout: seconds(test_timeout, "--test-timeout")?,
-            jobs,
-        })
-    }
-}
-
-/// `spintop course grade DIR...`: each copy graded with the repository's
-/// graders, one row per student and assignment, whatever happens.
-fn grade_copies(
-    copies: &[PathBuf],
-    path: Option<&PathBuf>,
-    format: GradeFormat,
-    limits: Limits,
-    seed: Option<u64>,
-    out: &mut impl Write,
-) -> Result<(), CliError> {
-    let repo = course::repository();
-    if !course::lessons_dir(repo).join("Cargo.toml").is_file() {
-        return Err(bad(
-            "spintop course grade needs the repository's graders (lessons/); run it from a clone of spintop",
-        ));
-    }
-    if let Some(why) = course::gradebook::same_names(copies) {
-        return Err(bad(why));
-    }
-    // Where the grades go is checked before any copy is graded.
-    let several = copies.len() > 1;
-    if let Some(p) = path {
-        if format == GradeFormat::Gradescope && several {
-            if p.exists() && !p.is_dir() {
-                return Err(bad(format!(
-                    "--out {}: with several copies, Gradescope's results go to a folder (one STUDENT/results.json each)",
-                    p.display()
-                )));
-            }
-        } else {
-            let parent = p.parent().filter(|q| !q.as_os_str().is_empty());
-            if parent.is_some_and(|q| !q.is_dir()) {
-                return Err(bad(format!(
-                    "--out {}: the folder {} does not exist",
-                    p.display(),
-                    parent.map(|q| q.display().to_string()).unwrap_or_default()
-                )));
-            }
-            if p.is_dir() {
-                return Err(bad(format!("--out {}: a folder; give a file", p.display())));
-            }
-        }
-    } else if format == GradeFormat::Gradescope && several {
-        return Err(bad(
-            "--format gradescope with several copies writes one results.json each: give --out FOLDER",
-        ));
-    }
-    let options = course::gradebook::ClassOptions {
-        timeout: limits.timeout,
-        test_limit: limits.test_timeout,
-        jobs: limits.jobs,
-        seed,
-        // The repository's own build folder: spintop is already compiled there.
-        target_dir: std::env::var_os("CARGO_TARGET_DIR")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| repo.join("target")),
-        work: repo.join("target").join("course-grade"),
-    };
-    let terminal = std::io::stderr().is_terminal();
-    // Spintop itself is built once, before any copy's clock starts (only when
-    // some copy will be built at all).
-    if copies.iter().any(|c| course::check_lessons_dir(c).is_ok()) {
-        if terminal {
-            eprint!("preparing the graders (the first build of spintop can take a minute)…\r");
-        }
-        // A failed warm-up is said, not fatal: each copy's rows then say why.
-        if let Err(e) = course::gradebook::warm_up(repo, &options) {
-            eprintln!("spintop course grade: preparing the graders failed: {e}");
-        }
-    }
-    let bar = terminal.then(|| {
-        let bar = indicatif::ProgressBar::new(copies.len() as u64);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "grading {bar:30} {pos}/{len} copies, {elapsed} ({msg})",
-            )
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        bar
-    });
-    let class = course::gradebook::grade_class(repo, copies, &options, &|copy| {
-        if let Some(bar) = &bar {
-            bar.set_message(copy.student.clone());
-            bar.inc(1);
-        }
-    });
-    if let Some(bar) = &bar {
-        bar.finish_and_clear();
-    }
-    match format {
-        GradeFormat::Csv => {
-            let text = class.csv();
-            match path {
-                Some(p) => {
-                    std::fs::write(p, &text)
-                        .map_err(|e| bad(format!("course grade --out {}: {e}", p.display())))?;
-                    writeln!(
-                        out,
-                        "spintop course grade: {} students, {} rows written to {} (inputs from seed {})",
-                        class.copies.len(),
-                        class.copies.len() * course::COURSE_LEN,
-                        p.display(),
-                        class.seed
-                    )?;
-                }
-                None => write!(out, "{text}")?,
-            }
-        }
-        GradeFormat::Gradescope => {
-            for copy in &class.copies {
-                let json =
-                    serde_json::to_string_pretty(&class.gradescope(copy)).unwrap_or_default();
-                match (path, several) {
-                    (None, _) => writeln!(out, "{json}")?,
-                    (Some(p), false) => std::fs::write(p, json + "\n")
-                        .map_err(|e| bad(format!("course grade --out {}: {e}", p.display())))?,
-                    (Some(p), true) => {
-                        let file = p.join(&copy.student).join("results.json");
-                        if let Some(parent) = file.parent() {
-                            std::fs::create_dir_all(parent)
-                                .map_err(|e| bad(format!("{}: {e}", parent.display())))?;
-                        }
-                        std::fs::write(&file, json + "\n")
-                            .map_err(|e| bad(format!("{}: {e}", file.display())))?;
-                    }
-                }
-            }
-            if let Some(p) = path {
-                writeln!(
-                    out,
-                    "spintop course grade: Gradescope results for {} students written to {}",
-                    class.copies.len(),
-                    p.display()
-                )?;
-            }
-        }
-    }
-    let ungraded = class.ungraded();
-    if ungraded > 0 {
-        let names: Vec<String> = class
-            .copies
-            .iter()
-            .filter(|c| !c.fully_graded())
-            .map(|c| {
-                let words: Vec<&str> = course::COURSE
-                    .iter()
-                    .map(|a| c.row(a).0)
-                    .filter(|w| {
-                        !matches!(
-                            *w,
-                            "passing" | "failing" | "not started" | "does not compile"
-                        )
-                    })
-                    .collect();
-                format!(
-                    "{} ({})",
-                    c.student,
-                    words.first().copied().unwrap_or("not graded")
-                )
-            })
-            .collect();
-        return Err(CliError::Stopped(format!(
-            "course grade: {ungraded} of {} copies could not be fully graded: {}; their rows say why",
-            class.copies.len(),
-            names.join(", ")
-        )));
     }
     Ok(())
 }

@@ -136,7 +136,7 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
         ))
     })?;
     match course {
-        Some(c) => session.watch_course(c),
+        Some(c) => session.watch_course(c, super::course::launcher()),
         None if args.no_grading => session.grading_off(
             "--no-grading turned the grader off; run spintop learn without it to grade the \
              assignments beside the book, or `spintop course` to grade them once",

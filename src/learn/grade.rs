@@ -7,17 +7,20 @@ use super::course::ProbeReport;
 use super::{Learn, Mode};
 use spintop_course::building::Building;
 use spintop_course::{self as course, Course, Hint, ProbeSpec, Probed, State, Status, Watch};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
 impl Learn {
     /// Starts grading `course` in the background, again on every save of a
-    /// file under its `src/`.
-    pub fn watch_course(&mut self, course: Course) {
+    /// file under its `src/`, the student's build and runner in the sandbox
+    /// that `launcher` (the `spintop` binary) sets up.
+    pub fn watch_course(&mut self, course: Course, launcher: Option<PathBuf>) {
         let building = Building::shared();
         let options = course::Options {
             course_arg: course.course_arg(),
             progress: Some(Arc::clone(&building)),
+            launcher,
             ..course::Options::default()
         };
         self.course.watch = Some(Watch::with_options(&course.dir, options));

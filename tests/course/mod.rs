@@ -1,11 +1,16 @@
-//! The harness and the grade book on real copies of the course, built by
-//! cargo in the repository's build folder (shared by every copy, so spintop
-//! is compiled once): a stub that prints the test harness's own lines grades
+//! The harness and the grade book on real copies of the course, each built
+//! in a workspace of its own from the warm build of the stubs (so spintop is
+//! compiled once): a stub that prints the test harness's own lines grades
 //! 0 of 22; a class with a copy that loops, one that does not compile, one
 //! missing and one that is not a course gets every row, with reasons, within
 //! its time limits, and an exit code that says so; Gradescope's results.json
 //! has the documented fields; an export for GitHub holds a workflow that
 //! grades with `cargo test`; every printed command repeats `--course DIR`.
+//! `sandbox` tries the launcher as an attacker; `class` grades a class of
+//! adversarial copies, two runs at once, and a run on a terminal.
+
+mod class;
+mod sandbox;
 
 use spintop_course::{self as course, COURSE, Options, State};
 use std::path::{Path, PathBuf};
@@ -65,6 +70,26 @@ pub(crate) fn solution(module: &str, function: &str) -> String {
     text[start..end].to_string()
 }
 
+/// The reference solutions' whole `module` (a file a student could hand in).
+pub(super) fn solution_file(module: &str) -> String {
+    std::fs::read_to_string(
+        repo()
+            .join("lessons/src/solutions")
+            .join(format!("{module}.rs")),
+    )
+    .unwrap()
+}
+
+/// How the tests grade a copy in process: through the `spintop` binary's
+/// sandbox, in the workspace `work`.
+fn options(work: &Path) -> Options {
+    Options {
+        launcher: Some(PathBuf::from(env!("CARGO_BIN_EXE_spintop"))),
+        work: Some(work.to_path_buf()),
+        ..Options::default()
+    }
+}
+
 /// Replaces the stub `pub fn NAME(…) { todo!(…) }` of the copy's `module`
 /// with `replacement`.
 pub(crate) fn write_function(dir: &Path, module: &str, function: &str, replacement: &str) {
@@ -79,7 +104,7 @@ pub(crate) fn write_function(dir: &Path, module: &str, function: &str, replaceme
     .unwrap();
 }
 
-fn spintop(args: &[&str]) -> std::process::Output {
+pub(super) fn spintop(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_spintop"))
         .args(args)
         .env("CARGO_TARGET_DIR", target())
@@ -113,9 +138,8 @@ fn a_stub_that_prints_the_harness_lines_grades_zero_of_22() {
         .unwrap();
     }
     let options = Options {
-        target_dir: Some(target()),
         seed: Some(1),
-        ..Options::default()
+        ..options(&dir.parent().unwrap().join("work"))
     };
     let status = course::grade(&dir, &options).expect("the harness runs");
     assert_eq!(status.compile_error, None);
@@ -259,34 +283,41 @@ fn course_grade_writes_every_row_of_a_class_within_its_time_limits() {
     );
     let grades = std::fs::read_to_string(&csv).expect("the CSV is written");
     let rows: Vec<&str> = grades.lines().collect();
-    assert_eq!(rows[0], course::gradebook::CSV_HEADER);
-    assert_eq!(rows.len(), 1 + 5 * COURSE.len(), "{grades}");
+    assert_eq!(rows[0], course::sheet::CSV_HEADER);
+    assert_eq!(rows.len(), 1 + 5 * (COURSE.len() + 1), "{grades}");
     let row = |student: &str, function: &str| -> Vec<String> {
         let line = rows
             .iter()
             .find(|r| r.starts_with(&format!("{student},{function},")))
             .unwrap_or_else(|| panic!("no row {student} {function}"));
-        // The reason may hold commas (quoted); the first six fields do not.
-        let mut fields: Vec<String> = line.splitn(7, ',').map(String::from).collect();
-        fields[6] = fields[6].trim_matches('"').to_string();
+        // The reason may hold commas (quoted); the first seven fields do not.
+        let mut fields: Vec<String> = line.splitn(8, ',').map(String::from).collect();
+        fields[7] = fields[7].trim_matches('"').to_string();
         fields
     };
     assert_eq!(row("alice", "larmor_rate")[3], "passing");
-    assert_eq!(row("alice", "larmor_rate")[5], "3", "the seed");
+    assert_eq!(row("alice", "larmor_rate")[4], "1", "the score");
+    assert_eq!(row("alice", "larmor_rate")[6], "3", "the seed");
     assert_eq!(row("alice", "torque_rate")[3], "not started");
+    assert_eq!(row("alice", "total")[4], "1", "alice's total");
     let hang = row("bob", "torque_rate");
     assert_eq!(hang[3], "timed out");
-    assert!(hang[6].contains("no verdict within 5 s"), "{hang:?}");
+    assert!(hang[7].contains("no verdict within 5 s"), "{hang:?}");
     // The rest of bob's copy is graded all the same.
     assert_eq!(row("bob", "larmor_rate")[3], "not started");
     assert_eq!(row("bob", "characteristic_root")[3], "not started");
     for a in COURSE {
+        // Carol's syntax error costs the assignments of ch3.rs alone.
         let c = row("carol", a.function);
-        assert_eq!(c[3], "does not compile");
-        assert!(
-            c[6].starts_with(&format!("src/ch3.rs:{broken_line}:")),
-            "{c:?}"
-        );
+        if a.binary == "ch3" {
+            assert_eq!(c[3], "does not compile");
+            assert!(
+                c[7].starts_with(&format!("src/ch3.rs:{broken_line}:")),
+                "{c:?}"
+            );
+        } else {
+            assert_eq!(c[3], "not started", "{c:?}");
+        }
         assert_eq!(row("dave", a.function)[3], "missing");
         assert_eq!(row("erin", a.function)[3], "not a course");
     }
@@ -302,7 +333,13 @@ fn course_grade_writes_every_row_of_a_class_within_its_time_limits() {
         )),
         "{text}"
     );
-    // Gradescope's results.json for one copy, with the documented fields.
+    gradescope_of_one(&alice, &class);
+    std::fs::remove_dir_all(&class).ok();
+}
+
+/// Gradescope's results.json for the one copy `alice` (one assignment
+/// solved), with the documented fields.
+fn gradescope_of_one(alice: &Path, class: &Path) {
     let results = class.join("results.json");
     let out = spintop(&[
         "course",
@@ -331,7 +368,6 @@ fn course_grade_writes_every_row_of_a_class_within_its_time_limits() {
             .unwrap()
             .starts_with("not started")
     );
-    std::fs::remove_dir_all(&class).ok();
 }
 
 /// The instructor's clean checkout keeps a submission's symbolic link as a
@@ -367,8 +403,8 @@ fn course_grade_names_a_symbolic_link_to_the_solution_in_the_reason() {
     );
     let grades = std::fs::read_to_string(&csv).unwrap();
     let rows: Vec<&str> = grades.lines().skip(1).collect();
-    assert_eq!(rows.len(), COURSE.len(), "{grades}");
-    for row in rows {
+    assert_eq!(rows.len(), COURSE.len() + 1, "{grades}");
+    for row in rows.iter().filter(|r| !r.starts_with("frank,total,")) {
         assert!(row.contains(",failing,"), "{row}");
         assert!(
             row.contains("no shortcut") && row.contains("src/done.rs:1: a symbolic link"),
@@ -652,5 +688,63 @@ fn a_copy_exported_from_a_deleted_clone_builds_and_is_graded() {
         "{grades}"
     );
     assert_eq!(grades.matches(",passing,").count(), 1, "{grades}");
+    graded_where_it_was_moved(&root, &copy);
     std::fs::remove_dir_all(&root).ok();
+}
+
+/// The copy at `copy`, moved below `root` elsewhere: the student's own
+/// `spintop course` builds the runner against the crates the copy carries
+/// (the repository's are not needed) and grades it the same.
+fn graded_where_it_was_moved(root: &Path, copy: &Path) {
+    let moved = root.join("elsewhere").join("mine");
+    std::fs::create_dir_all(moved.parent().unwrap()).unwrap();
+    std::fs::rename(copy, &moved).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_spintop"))
+        .args([
+            "course",
+            "--course",
+            moved.to_str().unwrap(),
+            "--format",
+            "json",
+        ])
+        .env_remove("CARGO_TARGET_DIR")
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let status: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let states: Vec<(&str, &str)> = status["assignments"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| {
+            (
+                a["function"].as_str().unwrap(),
+                a["state"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    assert!(states.contains(&("larmor_rate", "passing")), "{states:?}");
+    assert_eq!(
+        states.iter().filter(|(_, s)| *s == "passing").count(),
+        1,
+        "{states:?}"
+    );
+    let ws = course::default_work(&moved);
+    for manifest in ["course/Cargo.toml", "runner/Cargo.toml"] {
+        let text = std::fs::read_to_string(ws.join(manifest)).unwrap();
+        let carried = moved.canonicalize().unwrap().join("crates");
+        assert!(
+            text.contains(carried.to_str().unwrap()),
+            "{manifest}: {text}"
+        );
+        assert!(
+            !text.contains(&repo().display().to_string()),
+            "{manifest}: {text}"
+        );
+    }
 }

@@ -1,6 +1,6 @@
 //! The direction of imports inside a crate, read from the sources: what
 //! the compiler cannot see. Between crates the manifests hold the layers
-//! (`crates/spintop` → `spintop-grading` → `spintop-course`,
+//! (`crates/spintop` → `spintop-runner` → `spintop-grading` → `spintop-course`,
 //! `spintop-server` → the application), and cargo refuses a circle; inside
 //! one crate any module may name any other, so this test holds the order:
 //!

@@ -1,6 +1,7 @@
 //! How far a grading has got, for a screen to show while it runs: the
-//! first grading of a copy compiles spintop's core and the graders, which
-//! takes minutes, and "grading…" alone for minutes looks like a hang.
+//! first grading of a copy compiles spintop's core and the copy's runner
+//! (in the build sandbox), which takes minutes, and "grading…" alone for
+//! minutes looks like a hang.
 //!
 //! The harness reports into a shared [`Building`]: cargo's own count of
 //! the units it compiles (its progress line, `Building [==> ] 45/120:
@@ -18,11 +19,11 @@ pub enum Phase {
     /// Not started, or between gradings.
     #[default]
     Idle,
-    /// Reading the copy's files for the source rule.
+    /// Taking the copy's snapshot and reading it for the source rule.
     Checking,
-    /// cargo builds the graders' programs.
+    /// cargo builds the copy's runner.
     Building,
-    /// The graders run, each in a process of its own.
+    /// The graders run, each calling the student's functions in a runner.
     Grading,
 }
 

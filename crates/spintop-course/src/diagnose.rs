@@ -22,7 +22,8 @@
 //! solutions (so `crate::ch4::reduced_ale_rhs` and the like are right), and
 //! each is graded in a process of its own, under a time limit.
 
-use super::harness::{self, Built, Ctx, Options};
+use super::compile::{self, Built};
+use super::process::{self, Ctx};
 use super::{Assignment, find};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -234,57 +235,19 @@ pub fn run(
     seed: u64,
     work: &Path,
 ) -> Result<Vec<Diagnosed>, String> {
-    write_scratch(repo, answers, work)?;
-    let options = Options {
-        target_dir: Some(
-            std::env::var_os("CARGO_TARGET_DIR")
-                .map(PathBuf::from)
-                .unwrap_or_else(|| repo.join("target")),
-        ),
-        ..Options::default()
-    };
+    lay_out(repo, answers, work)?;
     let ctx = Ctx {
-        opts: &options,
+        stop: None,
         deadline: Some(Instant::now() + Duration::from_secs(1800)),
     };
-    let exe = build(work, answers, &ctx)?;
-    let mut out = Vec::new();
-    for (i, a) in answers.iter().enumerate() {
-        let mut cmd = Command::new(&exe);
-        cmd.args([i.to_string(), seed.to_string()])
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null());
-        let mut child =
-            harness::spawn_group(&mut cmd).map_err(|e| format!("{}: {e}", exe.display()))?;
-        let stdout = harness::drain(child.stdout.take(), 64 * 1024);
-        let status = harness::wait_within(&mut child, Duration::from_secs(60), &ctx);
-        let text = String::from_utf8_lossy(&stdout.join().unwrap_or_default()).into_owned();
-        let line = text.lines().next().unwrap_or_default();
-        let (passed, diagnosis) = match (status, line.split_once('\t')) {
-            (None, _) => (
-                false,
-                "(no verdict within 60 s: the grader or the answer loops)".into(),
-            ),
-            (Some(_), None) if line == "passed" => (true, String::new()),
-            (Some(_), Some(("failed", d))) => (false, d.to_string()),
-            (Some(s), _) => (
-                false,
-                format!("(the grading process ended without a verdict: {s})"),
-            ),
-        };
-        out.push(Diagnosed {
-            answer: a.clone(),
-            passed,
-            diagnosis,
-        });
-    }
-    Ok(out)
+    let exe = build(repo, answers, work, &ctx)?;
+    grade_each(&exe, answers, seed, &ctx)
 }
 
-/// Writes the scratch crate: a manifest on the repository's core and graders,
-/// the reference solutions and one module per wrong answer.
-fn write_scratch(repo: &Path, answers: &[WrongAnswer], work: &Path) -> Result<(), String> {
+/// Writes the scratch crate in `work` (emptied first): the reference
+/// solutions as the course's modules, each answer a module of `wrong`, and
+/// a `main` that grades one by its number.
+fn lay_out(repo: &Path, answers: &[WrongAnswer], work: &Path) -> Result<(), String> {
     if work.exists() {
         std::fs::remove_dir_all(work).map_err(|e| format!("{}: {e}", work.display()))?;
     }
@@ -334,20 +297,26 @@ fn write_scratch(repo: &Path, answers: &[WrongAnswer], work: &Path) -> Result<()
     Ok(())
 }
 
-/// Builds the scratch crate and returns its program, or the first compile
-/// error named by the wrong answer's own file.
-fn build(work: &Path, answers: &[WrongAnswer], ctx: &Ctx) -> Result<PathBuf, String> {
-    let exe = match harness::cargo_json(work, &["build"], ctx, |m| {
-        m["target"]["kind"]
-            .as_array()
-            .is_some_and(|k| k.iter().any(|x| x == "bin"))
-    })? {
+/// Builds the scratch crate in `work` (in the repository's build folder):
+/// its program, or the first error, named by the wrong answer's own file.
+fn build(repo: &Path, answers: &[WrongAnswer], work: &Path, ctx: &Ctx) -> Result<PathBuf, String> {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| repo.join("target"));
+    let built =
+        compile::cargo_json(work, &["build"], Some(&target), ctx).map_err(|e| e.to_string())?;
+    match built {
         Built::Programs(p) => p
             .into_iter()
             .next()
             .map(|(_, exe)| exe)
-            .ok_or("cargo built no program")?,
-        Built::Failed(e) => {
+            .ok_or_else(|| "cargo built no program".to_string()),
+        Built::Failed(errors) => {
+            let e = errors.first().cloned().unwrap_or_else(|| super::Located {
+                file: "?".into(),
+                line: 1,
+                message: "the build failed".into(),
+            });
             // Name the wrong answer's own file, not the scratch copy.
             let file = Path::new(&e.file)
                 .file_stem()
@@ -357,12 +326,54 @@ fn build(work: &Path, answers: &[WrongAnswer], ctx: &Ctx) -> Result<PathBuf, Str
                 .and_then(|i| answers.get(i))
                 .map(|a| a.file.display().to_string())
                 .unwrap_or(e.file.clone());
-            return Err(format!(
+            Err(format!(
                 "{file}:{}: {} (fix it, or leave it out)",
                 e.line, e.message
-            ));
+            ))
         }
-        Built::OutOfTime => return Err("the build did not finish in 30 minutes".into()),
-    };
-    Ok(exe)
+        Built::OutOfTime | Built::Bounded(_) => {
+            Err("the build did not finish in 30 minutes".into())
+        }
+    }
+}
+
+/// Runs the program `exe` once per answer at `seed`: what each grader said.
+fn grade_each(
+    exe: &Path,
+    answers: &[WrongAnswer],
+    seed: u64,
+    ctx: &Ctx,
+) -> Result<Vec<Diagnosed>, String> {
+    let mut out = Vec::new();
+    for (i, a) in answers.iter().enumerate() {
+        let mut cmd = Command::new(exe);
+        cmd.args([i.to_string(), seed.to_string()])
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null());
+        let mut child =
+            process::spawn_group(&mut cmd).map_err(|e| format!("{}: {e}", exe.display()))?;
+        let stdout = process::drain(child.stdout.take(), 64 * 1024);
+        let status = process::wait_within(&mut child, Duration::from_secs(60), ctx);
+        let text = String::from_utf8_lossy(&stdout.join().unwrap_or_default()).into_owned();
+        let line = text.lines().next().unwrap_or_default();
+        let (passed, diagnosis) = match (status, line.split_once('\t')) {
+            (None, _) => (
+                false,
+                "(no verdict within 60 s: the grader or the answer loops)".into(),
+            ),
+            (Some(_), None) if line == "passed" => (true, String::new()),
+            (Some(_), Some(("failed", d))) => (false, d.to_string()),
+            (Some(s), _) => (
+                false,
+                format!("(the grading process ended without a verdict: {s})"),
+            ),
+        };
+        out.push(Diagnosed {
+            answer: a.clone(),
+            passed,
+            diagnosis,
+        });
+    }
+    Ok(out)
 }

@@ -137,8 +137,12 @@ pub struct ExportOptions {
 }
 
 /// The crates a copy builds against, as the repository holds them (the
-/// core, and the graders the tests call).
-pub const CARRIED_CRATES: [&str; 2] = ["crates/spintop", "crates/spintop-grading"];
+/// core, and the graders the tests call with the wire they speak).
+pub const CARRIED_CRATES: [&str; 3] = [
+    "crates/spintop",
+    "crates/spintop-runner",
+    "crates/spintop-grading",
+];
 
 /// The path of the GitHub workflow in a copy.
 pub const GITHUB_WORKFLOW: &str = ".github/workflows/grade.yml";

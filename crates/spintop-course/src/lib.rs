@@ -13,40 +13,62 @@
 //! | `locate` | which course a command stands in, and its files and commands as named there |
 //! | `building` | how far a grading has got (cargo's units, the graders), for a screen |
 //! | `source_rule` | what a copy may not contain, on a parsed syntax tree |
-//! | `harness` | one grading: the rule, the build, one process per grader, verdicts from structure |
+//! | `harness` | one grading: the snapshot, the rule, the build, the graders calling the runner |
+//! | `workspace` | the private folder one grading builds in, and its generated runner |
+//! | `compile` | cargo in the build sandbox, read through its JSON |
+//! | `runner` | the student's runner, reached over a pipe ([`spintop_grading::Remote`]) |
+//! | `warm` | the stubs' build, shared by every class grading under a lock |
 //! | `progress` | hint rungs used and first passes, in the course's own `target/` |
 //! | `hints` | the hint ladder, one rung per request |
 //! | `watch` | grading again on every save |
 //! | `probe` | the student's function of time, sampled for `spintop learn` |
 //! | `export` | a student's copy, optionally with a CI workflow |
-//! | `gradebook` | a class graded: every row, within time limits, CSV and Gradescope |
+//! | `gradebook` | a class graded: every row, within time limits, each run in a folder of its own |
+//! | `sheet` | the CSV and Gradescope files, safe to open, with totals |
 //! | `diagnose` | a folder of wrong answers graded, to measure the diagnoses |
+//! | `snapshot` | a student's `src/` copied once, no link followed, sizes checked first |
+//! | `sandbox` | the launcher that bounds a student's build and runner |
+
+#![forbid(unsafe_code)]
 
 pub mod building;
 mod catalogue;
+mod compile;
 pub mod diagnose;
+mod error;
 pub mod export;
 pub mod gradebook;
 pub mod harness;
 mod hints;
 mod locate;
 mod probe;
+mod process;
 mod progress;
+pub mod runner;
+pub mod sandbox;
+pub mod sheet;
+pub mod snapshot;
 pub mod source_rule;
+mod status;
+mod warm;
 mod watch;
+pub mod workspace;
 
 pub use catalogue::{Assignment, COURSE, COURSE_LEN, Hints, binaries, find};
+pub use error::CourseError;
 pub use export::{
     CARRIED_CRATES, Ci, Export, ExportOptions, Link, check_lessons_dir, export, export_with,
     lessons_dir, strip_solutions,
 };
-pub use harness::{Located, Options, State, Status, grade};
+pub use harness::{Crates, Options, default_work, grade};
 pub use hints::{Hint, next_hint};
 pub use locate::{Chosen, Course, find_course, is_course};
 pub use probe::{ProbeSpec, Probed, parse_probe, probe};
 pub use progress::{
-    Progress, load_progress, progress_path, record_passes, record_passes_now, save_progress,
+    Progress, load_progress, progress_path, read_progress, record_passes, record_passes_now,
+    save_progress,
 };
+pub use status::{Failure, Located, State, Status};
 pub use watch::{Report, Watch, binaries_for, sources_stamps};
 
 use std::path::Path;

@@ -28,13 +28,32 @@ pub fn progress_path(dir: &Path) -> std::path::PathBuf {
         .join("spintop-course.json")
 }
 
+/// The largest progress file read (a real one is a few hundred bytes).
+const MAX_PROGRESS: u64 = 64 * 1024;
+
+/// The course's [`Progress`], or why it could not be read: a missing file
+/// is a fresh start; a link, a FIFO, a device or a file larger than 64 kB
+/// is refused without being read (a FIFO is not waited on, `/dev/zero` is
+/// not read at all).
+pub fn read_progress(dir: &Path) -> Result<Progress, String> {
+    let path = progress_path(dir);
+    let (Some(parent), Some(name)) = (path.parent().and_then(Path::parent), path.file_name())
+    else {
+        return Ok(Progress::default());
+    };
+    let rel = Path::new("target").join(name);
+    match super::snapshot::read_bounded(parent, &rel, MAX_PROGRESS) {
+        Ok(bytes) => {
+            serde_json::from_slice(&bytes).map_err(|e| format!("is not a progress file: {e}"))
+        }
+        Err(super::snapshot::ReadError::Missing) => Ok(Progress::default()),
+        Err(e) => Err(format!("is refused: {e}")),
+    }
+}
+
 /// The course's [`Progress`]; a missing or unreadable file is a fresh start.
 pub fn load_progress(dir: &Path) -> Progress {
-    std::fs::read(progress_path(dir))
-        .ok()
-        .filter(|b| b.len() < 1 << 20)
-        .and_then(|b| serde_json::from_slice(&b).ok())
-        .unwrap_or_default()
+    read_progress(dir).unwrap_or_default()
 }
 
 /// Writes the course's [`Progress`].

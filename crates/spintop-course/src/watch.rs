@@ -1,7 +1,8 @@
 //! Watch mode: the course graded again on every save, in the background,
 //! re-running only the graders of the assignments in the saved file.
 
-use super::harness::{self, Options, Status};
+use super::Status;
+use super::harness::{self, Options};
 use super::{COURSE, State};
 use std::path::Path;
 use std::sync::Arc;
@@ -116,7 +117,7 @@ impl Watch {
                         Err(e) => {
                             // Try again on the next save, from scratch.
                             graded = Some((stamps, Status::new(0, |_| State::Unknown)));
-                            Report::Failed(e)
+                            Report::Failed(e.to_string())
                         }
                     };
                     if tx.send(report).is_err() {

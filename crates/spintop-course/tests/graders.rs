@@ -25,8 +25,21 @@ fn top(r: f64, tau: f64) -> SymmetricTop {
 
 /// spintop's own answer to every assignment, graded, by function name.
 pub(crate) fn references(seed: u64) -> Vec<(&'static str, Grade)> {
-    let top_rhs = |i: Vec3, d: Vec3, w: Vec3| GeneralTop::new(i, d).unwrap().truncated_ale_rhs(&w);
-    let reduced_rhs = |r: f64, tau: f64, w: Vec3| sym::reduced_ale_rhs(&top(r, tau), &w);
+    let mut all = references_to_section_3(seed);
+    all.extend(references_from_section_4(seed));
+    all
+}
+
+fn top_rhs(i: Vec3, d: Vec3, w: Vec3) -> Vec3 {
+    GeneralTop::new(i, d).unwrap().truncated_ale_rhs(&w)
+}
+
+fn reduced_rhs(r: f64, tau: f64, w: Vec3) -> Vec3 {
+    sym::reduced_ale_rhs(&top(r, tau), &w)
+}
+
+/// spintop's own answers of Sections 2 and 3, graded.
+fn references_to_section_3(seed: u64) -> Vec<(&'static str, Grade)> {
     vec![
         (
             "larmor_rate",
@@ -73,6 +86,13 @@ pub(crate) fn references(seed: u64) -> Vec<(&'static str, Grade)> {
                 (a.phi, a.theta, a.psi)
             }),
         ),
+    ]
+}
+
+/// spintop's own answers of Section 4, the appendix and the step methods,
+/// graded.
+fn references_from_section_4(seed: u64) -> Vec<(&'static str, Grade)> {
+    vec![
         (
             "truncated_omega_perp",
             grading::truncated_omega_perp(seed, |r, tau, w, t| {

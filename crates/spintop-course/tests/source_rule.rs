@@ -300,11 +300,28 @@ fn a_src_folder_that_is_a_symbolic_link_is_refused() {
     assert_refused(&dir, "src", 1, "src/ a symbolic link");
 }
 
+/// A build script, a manifest that names one, and edited tests count for
+/// nothing: a grading takes the copy's `src/` alone into a workspace whose
+/// manifests are spintop's.
 #[test]
-fn a_build_script_is_refused() {
+fn a_build_script_and_a_manifest_of_the_copy_count_for_nothing() {
     let dir = copy("build-script");
     std::fs::write(dir.join("build.rs"), "fn main() {}\n").unwrap();
-    assert_refused(&dir, "build.rs", 1, "a build.rs");
+    append(
+        &dir,
+        "Cargo.toml",
+        "\n[package.metadata]\nx = 1\nbuild = \"build.rs\"\n",
+    );
+    let ws = course::workspace::Workspace::at(&dir.join("graded"));
+    ws.lay_out(repo()).unwrap();
+    let snap = course::snapshot::take(&dir, &ws.course(), &Default::default()).unwrap();
+    assert!(snap.refused.is_empty(), "{snap:?}");
+    assert!(snap.files.iter().all(|f| f.starts_with("src")), "{snap:?}");
+    assert!(!ws.course().join("build.rs").exists());
+    let manifest = std::fs::read_to_string(ws.course().join("Cargo.toml")).unwrap();
+    assert!(!manifest.contains("build"), "{manifest}");
+    assert!(source_rule::check_copy(&ws.course()).is_empty());
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

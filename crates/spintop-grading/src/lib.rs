@@ -38,9 +38,11 @@ use std::sync::Once;
 mod diagnosis;
 mod graders;
 mod parts;
+pub mod remote;
 pub mod verdict;
 pub use diagnosis::{factor_words, shape_diagnosis};
 pub use graders::*;
+pub use remote::{Fault, Remote, grade_remote};
 pub use verdict::assert_graded;
 
 pub use spintop::assignment::DynField;

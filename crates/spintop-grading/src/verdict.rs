@@ -2,47 +2,18 @@
 //!
 //! A test calls its grader through [`graded!`](crate::graded), which draws a
 //! seed (`SPINTOP_SEED`, or a fresh one), grades, and panics with the report
-//! on a failure, as any test does. When `spintop course` runs the test it
-//! also names a file (`SPINTOP_GRADE_OUT`) and a random token
-//! (`SPINTOP_GRADE_NONCE`): the grader writes its [`Verdict`] there, with the
-//! token. The course reads a pass only from that file *and* the test's exit
-//! status; nothing the student's code prints counts, and the student's code
-//! can neither read the token nor write the file (the source rule forbids
-//! `std::env`, `std::fs`, `std::process` and `unsafe`).
+//! on a failure, as any test does: feedback on the student's machine, where
+//! the grader runs in the test's own process. A grade an instructor counts
+//! never comes from here: `spintop course` and `course grade` run the
+//! graders in `spintop` itself and call the student's functions in a runner,
+//! another process (`spintop_runner`), so no verdict file, token or folder
+//! exists that the student's code could list or write.
 
 use super::Grade;
 use std::path::Path;
 
 /// The seed of a grading (a whole number); a fresh one when unset.
 pub const SEED_VAR: &str = "SPINTOP_SEED";
-/// Where the grader writes its verdict (set by `spintop course`).
-pub const OUT_VAR: &str = "SPINTOP_GRADE_OUT";
-/// The token the verdict must carry (set by `spintop course`).
-pub const NONCE_VAR: &str = "SPINTOP_GRADE_NONCE";
-/// The `--course DIR` a report's commands repeat (set by `spintop course`;
-/// empty for none).
-pub const COURSE_VAR: &str = "SPINTOP_GRADE_COURSE";
-
-/// One grader's verdict, as written for `spintop course`.
-#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub struct Verdict {
-    /// The token of the run that asked for it.
-    pub nonce: String,
-    /// The assignment (its function's name).
-    pub assignment: String,
-    /// The seed of the inputs.
-    pub seed: u64,
-    /// Whether every input was answered right.
-    pub passed: bool,
-    /// Whether the function is still the `todo!()` stub.
-    pub stub: bool,
-    /// Inputs checked, when it passed.
-    pub cases: usize,
-    /// What is wrong, when it failed.
-    pub diagnosis: String,
-    /// The whole report, when it failed.
-    pub report: String,
-}
 
 /// 64 bits nobody chose: the time, the process and the process's random
 /// hash keys mixed.
@@ -74,13 +45,9 @@ fn seed() -> u64 {
     }
 }
 
-/// The `--course DIR` a report repeats: the one `spintop course` was given,
-/// else the lessons crate at `manifest_dir` unless it is the repository's own
+/// The `--course DIR` a report repeats: the lessons crate at `manifest_dir` unless it is the repository's own
 /// (where `spintop course` looks by default).
 fn course_arg(manifest_dir: &str) -> Option<String> {
-    if let Ok(given) = std::env::var(COURSE_VAR) {
-        return (!given.is_empty()).then_some(given);
-    }
     let own = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../lessons"));
     let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
         (Ok(a), Ok(b)) => a == b,
@@ -89,46 +56,14 @@ fn course_arg(manifest_dir: &str) -> Option<String> {
     (!same(Path::new(manifest_dir), own)).then(|| manifest_dir.to_string())
 }
 
-/// The graders' tests' entry: grade with this grading's seed, write the
-/// verdict when `spintop course` asked for one, and panic with the report
-/// unless the assignment passed. `manifest_dir` is the lessons crate's.
+/// The graders' tests' entry: grade with this grading's seed and panic with
+/// the report unless the assignment passed. `manifest_dir` is the lessons crate's.
 pub fn assert_graded(manifest_dir: &str, grade: impl FnOnce(u64) -> Grade) {
     let seed = seed();
     let grade = grade(seed).map_err(|mut failed| {
         failed.course = course_arg(manifest_dir);
         failed
     });
-    if let Some(path) = std::env::var_os(OUT_VAR) {
-        let verdict = match &grade {
-            Ok(p) => Verdict {
-                nonce: std::env::var(NONCE_VAR).unwrap_or_default(),
-                assignment: p.assignment.into(),
-                seed,
-                passed: true,
-                stub: false,
-                cases: p.cases,
-                diagnosis: String::new(),
-                report: String::new(),
-            },
-            Err(f) => Verdict {
-                nonce: std::env::var(NONCE_VAR).unwrap_or_default(),
-                assignment: f.assignment.into(),
-                seed,
-                passed: false,
-                stub: f.is_stub(),
-                cases: 0,
-                diagnosis: f.diagnosis.clone(),
-                report: f.to_string(),
-            },
-        };
-        let json = serde_json::to_vec(&verdict).unwrap_or_default();
-        if let Err(e) = std::fs::write(&path, json) {
-            panic!(
-                "cannot write the verdict to {}: {e}",
-                Path::new(&path).display()
-            );
-        }
-    }
     if let Err(failed) = grade {
         panic!("\n{failed}\n");
     }

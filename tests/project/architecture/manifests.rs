@@ -4,15 +4,17 @@ use super::root;
 
 /// The workspace's crates, bottom up, with the layer of each: a crate may
 /// depend on crates of lower layers only.
-const WORKSPACE: [(&str, &str, u8); 7] = [
+const WORKSPACE: [(&str, &str, u8); 8] = [
     ("crates/spintop", "spintop", 0),
-    ("crates/spintop-grading", "spintop-grading", 1),
-    ("crates/spintop-course", "spintop-course", 2),
-    ("crates/spintop-server", "spintop-server", 2),
-    (".", "spintop-app", 3),
+    // The wire a student's runner and the graders share (no answer in it).
+    ("crates/spintop-runner", "spintop-runner", 1),
+    ("crates/spintop-grading", "spintop-grading", 2),
+    ("crates/spintop-course", "spintop-course", 3),
+    ("crates/spintop-server", "spintop-server", 3),
+    (".", "spintop-app", 4),
     // What a student builds and what measures speed: the core (and the graders).
-    ("lessons", "spintop-lessons", 2),
-    ("benches", "spintop-benches", 2),
+    ("lessons", "spintop-lessons", 3),
+    ("benches", "spintop-benches", 3),
 ];
 
 /// The crates only a shell may depend on: a terminal, a command line, a

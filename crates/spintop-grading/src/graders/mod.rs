@@ -43,7 +43,7 @@ pub use ch4::{
     precession_tilt, reduced_ale_rhs, reduced_closed_form, reduced_decay_time,
     truncated_closed_form, truncated_omega_perp, truncated_time_to_factor,
 };
-pub use numerics::{dp5_step, rk4_step};
+pub use numerics::{dp5_step, dp5_step_on, rk4_step, rk4_step_on};
 pub use run::reduced_rk4;
 
 /// The body-frame rates' names, for reports.

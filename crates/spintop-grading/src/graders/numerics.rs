@@ -7,57 +7,17 @@ use crate::CASES;
 use crate::{Again, Grade, Grader, Rng, close, mistake};
 use spintop::assignment::DynField;
 use spintop::integrate::{dopri5::dopri5_step, rk4::rk4_step as reference_rk4_step};
-use spintop::math::{Real, State, Vec3};
-use spintop::physics::symmetric_top::{self as sym, SymmetricTop};
+use spintop::math::{Real, State};
+use spintop_runner::fields::Field;
 use std::fmt;
 
-/// The test problems of the step graders: a non-autonomous linear system and
-/// the reduced ALE (4.12), as `(name, f)`.
-type Field = fn(Real, &State<3>) -> State<3>;
-
-fn fields() -> [(&'static str, Field); 2] {
-    fn linear(t: Real, y: &State<3>) -> State<3> {
-        State::<3>::new(
-            -0.5 * y[0] + 2.0 * y[1] + t.sin(),
-            -2.0 * y[0] - 0.5 * y[1],
-            -y[2] + t * t,
-        )
-    }
-    fn reduced(_t: Real, y: &State<3>) -> State<3> {
-        let top = SymmetricTop::figure();
-        sym::reduced_ale_rhs(&top, &Vec3::new(y[0], y[1], y[2]))
-    }
-    [("linear", linear), ("reduced ALE (4.12), tau = 1", reduced)]
-}
-
-/// The right-hand side a step grader hands the student's step: one of the
-/// test problems, or a probe y' = A y + p(t) (A by rows, p a cubic in t for
-/// each component, constant term first), chosen to single out the stages.
-#[derive(Clone, Copy, PartialEq)]
-enum StepField {
-    Test(usize),
-    Affine {
-        a: [[Real; 3]; 3],
-        p: [[Real; 4]; 3],
-    },
-}
-
-impl StepField {
-    fn eval(&self, t: Real, y: &State<3>) -> State<3> {
-        match self {
-            StepField::Test(i) => fields()[*i].1(t, y),
-            StepField::Affine { a, p } => State::<3>::from_fn(|i, _| {
-                let ay: Real = (0..3).map(|j| a[i][j] * y[j]).sum();
-                let [p0, p1, p2, p3] = p[i];
-                ay + p0 + t * (p1 + t * (p2 + t * p3))
-            }),
-        }
-    }
-}
-
+/// A step's input. Its right-hand side is one of the test problems
+/// ([`Field::TESTS`]) or a probe y' = A y + p(t) chosen to single out the
+/// stages: named, never passed as a function, so that a student's runner in
+/// another process builds the same one (and no field is an answer).
 #[derive(Clone, Copy)]
 struct StepInput {
-    field: StepField,
+    field: Field,
     t: Real,
     y: State<3>,
     h: Real,
@@ -73,13 +33,10 @@ impl StepInput {
 
 impl fmt::Debug for StepInput {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let name = match self.field {
-            StepField::Test(i) => fields()[i].0.to_string(),
-            StepField::Affine { a, p } => format!("y' = A y + p(t), A = {a:?}, p = {p:?}"),
-        };
         write!(
             f,
-            "f = {name}, t = {}, y = {:?}, h = {}",
+            "f = {}, t = {}, y = {:?}, h = {}",
+            self.field.describe(),
             self.t,
             self.y.as_slice(),
             self.h
@@ -91,7 +48,7 @@ fn step_inputs(seed: u64) -> Vec<StepInput> {
     let mut rng = Rng::new(seed);
     (0..CASES)
         .map(|i| StepInput {
-            field: StepField::Test(i % 2),
+            field: Field::TESTS[i % 2],
             t: rng.uniform(-1.0, 3.0),
             y: State::<3>::new(
                 rng.uniform(-1.0, 1.0),
@@ -225,6 +182,17 @@ pub(super) fn rk4_slips() -> Vec<(Rk4Shape, &'static str)> {
 
 /// Grade one classical RK4 step.
 pub fn rk4_step(seed: u64, student: impl Fn(DynField, Real, &State<3>, Real) -> State<3>) -> Grade {
+    rk4_step_on(seed, |f: &Field, t, y: &State<3>, h| {
+        student(&|t: Real, y: &State<3>| f.eval(t, y), t, y, h)
+    })
+}
+
+/// [`rk4_step`], with the right-hand side given by name: how a runner in
+/// another process is graded (it builds the named field on its side).
+pub fn rk4_step_on(
+    seed: u64,
+    student: impl Fn(&Field, Real, &State<3>, Real) -> State<3>,
+) -> Grade {
     let reference = |x: &StepInput| reference_rk4_step(&x.rhs(), x.t, &x.y, x.h);
     let mut mistakes: Vec<_> = rk4_slips()
         .into_iter()
@@ -267,7 +235,7 @@ pub fn rk4_step(seed: u64, student: impl Fn(DynField, Real, &State<3>, Real) -> 
         |y: &State<3>| *y,
     ))
     .labels(&["y₁", "y₂", "y₃"])
-    .run(|x| student(&x.rhs(), x.t, &x.y, x.h))
+    .run(|x| student(&x.field, x.t, &x.y, x.h))
 }
 
 /// The inputs a step probe tries beside `x`: the same field, nearby starts.
@@ -294,7 +262,7 @@ fn nearby_steps(x: &StepInput) -> [StepInput; 3] {
 /// diagonal (the products of the stages' coefficients), and with a mixed A.
 fn stage_inputs(x: &StepInput) -> Vec<StepInput> {
     let affine = |a: [[Real; 3]; 3], p: [[Real; 4]; 3], h: Real| StepInput {
-        field: StepField::Affine { a, p },
+        field: Field::Affine { a, p },
         t: x.t,
         y: x.y,
         h,
@@ -443,6 +411,16 @@ pub fn dp5_step(
     seed: u64,
     student: impl Fn(DynField, Real, &State<3>, Real) -> (State<3>, State<3>),
 ) -> Grade {
+    dp5_step_on(seed, |f: &Field, t, y: &State<3>, h| {
+        student(&|t: Real, y: &State<3>| f.eval(t, y), t, y, h)
+    })
+}
+
+/// [`dp5_step`], with the right-hand side given by name (see [`rk4_step_on`]).
+pub fn dp5_step_on(
+    seed: u64,
+    student: impl Fn(&Field, Real, &State<3>, Real) -> (State<3>, State<3>),
+) -> Grade {
     let reference = |x: &StepInput| dopri5_step(&x.rhs(), x.t, &x.y, x.h);
     Grader::new(
         "dp5_step",
@@ -504,7 +482,7 @@ pub fn dp5_step(
         "the estimate's y₂",
         "the estimate's y₃",
     ])
-    .run(|x| student(&x.rhs(), x.t, &x.y, x.h))
+    .run(|x| student(&x.field, x.t, &x.y, x.h))
 }
 
 #[cfg(test)]

@@ -1,0 +1,39 @@
+//! The course's errors: why a grading could not be done at all (what a
+//! grading finds wrong with a copy is a state in its status instead).
+
+use std::path::{Path, PathBuf};
+
+/// Why a grading, an export or a snapshot could not be done.
+#[derive(Debug, thiserror::Error)]
+pub enum CourseError {
+    /// A file or folder of spintop's own could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// Where.
+        path: PathBuf,
+        /// What.
+        source: std::io::Error,
+    },
+    /// Cargo could not be started.
+    #[error("cannot run cargo: {0}")]
+    Cargo(std::io::Error),
+    /// The copy could not be snapshotted.
+    #[error(transparent)]
+    Snapshot(#[from] super::snapshot::SnapshotError),
+    /// The sandbox could not be started.
+    #[error(transparent)]
+    Sandbox(#[from] super::sandbox::SandboxError),
+    /// An export failed (its own words).
+    #[error("{0}")]
+    Export(String),
+}
+
+impl CourseError {
+    /// A closure that makes an I/O error at `path`.
+    pub(crate) fn io(path: &Path) -> impl FnOnce(std::io::Error) -> CourseError + '_ {
+        move |source| CourseError::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+}
