@@ -131,6 +131,10 @@ pub enum CliError {
     /// Writing the output failed.
     #[error("cannot write output: {0}")]
     Io(io::Error),
+    /// A file the command keeps (the reader's place) could not be written:
+    /// the message names it and the system's reason.
+    #[error("{0}")]
+    NotSaved(String),
     /// A terminal session was ended by a signal (the terminal was restored):
     /// its number and name.
     #[error("stopped by {1}; the terminal is restored")]
@@ -143,7 +147,7 @@ impl CliError {
         match self {
             CliError::BadInput(_) | CliError::Refused(_) => EXIT_BAD_INPUT,
             CliError::Stopped(_) => EXIT_NUMERICAL,
-            CliError::Io(_) => 1,
+            CliError::Io(_) | CliError::NotSaved(_) => 1,
             // As a shell reports a process a signal stopped: 128 + its number.
             CliError::Signal(n, _) => u8::try_from(128 + n).unwrap_or(EXIT_NUMERICAL),
         }

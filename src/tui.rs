@@ -1,33 +1,26 @@
-//! The live terminal UI: the truncated and the reduced top side by side, the
-//! full ALE's physical solution beside its runaway, or a general
-//! (asymmetric) top's three models; and `spintop learn`, the book beside
-//! each chapter's own scene.
+//! The live view (`spintop tui`, and `spintop` alone): the truncated and the
+//! reduced top side by side, the full ALE's physical solution beside its
+//! runaway, or a general (asymmetric) top's three models, full screen.
 //!
-//! A thin shell over [`spintop::sim`]: every number on the screen is read from a
-//! [`spintop::sim::Sample`] or from the core's closed forms; nothing here redoes
-//! physics. The pieces follow the house style:
+//! The models and their columns are [`crate::live`]'s (`spintop learn`
+//! shows them beside its chapters too); the terminal, its loop and its
+//! restoring are [`crate::term`]'s. What is the live view's own:
 //!
 //! | module | what it holds |
 //! |---|---|
-//! | [`app`] | the live view's state: [`app::App`] (what it shows of each model, the view, the mode), its [`app::Command`]s and the one [`app::App::apply`] that changes it |
-//! | [`stepper`] | the models, stepped tick by tick on a thread of their own (or inline, for tests) |
-//! | [`event`] | terminal events → [`app::Command`] values |
-//! | [`view`] | the live view's layout; drawing only reads the state |
-//! | [`widgets`] | the charts, the hodograph, the top in space, the live numbers |
-//! | [`theme`] | every colour and style, in one place |
-//! | [`session`] | the terminal: checked, set up, the one loop of both views, restored |
-//! | [`signals`] | the signals that end a session, turned into a flag |
-//! | [`learn`] | `spintop learn`: the book's chapters beside their live scenes |
+//! | [`event`] | terminal events → [`crate::live::Command`] values |
+//! | [`view`] | the full-screen layout: header, columns, footer, help; drawing only reads the state |
 
-pub mod app;
 pub mod event;
-pub mod learn;
-pub mod session;
-pub mod signals;
-pub mod stepper;
-pub mod theme;
 pub mod view;
-pub mod widgets;
 
-pub use app::{App, Command, Settings};
-pub use event::command_for;
+use crate::live::App;
+use crate::term::session::{LoopReport, Session};
+use std::time::Duration;
+
+/// Runs the live view on `app` in the terminal until it quits, a signal
+/// arrives, or `limit` has passed (the benchmark); the terminal is restored
+/// whichever way it ends.
+pub fn run(app: &mut App, limit: Option<Duration>) -> std::io::Result<LoopReport> {
+    Session::start()?.run(app, limit)
+}

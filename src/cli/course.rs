@@ -7,7 +7,7 @@
 use super::gate::Gate;
 use super::{CliError, bad, parse_number};
 use clap::{Args, Subcommand};
-use spintop_course::{self as course, Options, State};
+use spintop_course::{self as course, Chosen, Course, Options, State};
 
 mod grade;
 use spintop_grading as grading;
@@ -155,23 +155,19 @@ enum CourseAction {
     },
 }
 
-/// The lessons crate to grade: `--course DIR`, or the repository's.
-pub(crate) fn lessons(chosen: Option<&PathBuf>) -> Result<PathBuf, CliError> {
-    let dir = match chosen {
-        Some(dir) => dir.clone(),
-        None => {
-            let dir = course::lessons_dir(course::repository());
-            if !dir.join("Cargo.toml").is_file() {
-                return Err(bad(format!(
-                    "spintop course grades the assignments in the repository, and {} is missing; run it from a clone of spintop, or name a course with --course DIR",
-                    dir.display()
-                )));
-            }
-            dir
-        }
-    };
-    course::check_lessons_dir(&dir).map_err(|e| bad(format!("--course: {e}")))?;
-    Ok(dir)
+/// The course to grade: `--course DIR`, else the one the current folder
+/// stands in (as cargo finds its manifest), else the repository's lessons.
+pub(crate) fn lessons(chosen: Option<&PathBuf>) -> Result<Course, CliError> {
+    let cwd = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+    let course = Course::choose(chosen.map(PathBuf::as_path), &cwd);
+    if course.chosen == Chosen::Default && !course.dir.join("Cargo.toml").is_file() {
+        return Err(bad(format!(
+            "spintop course grades the course the current folder is in, and there is none here; the repository's lessons ({}) are missing too: run it in a copy made by `spintop course export`, or name one with --course DIR",
+            course.dir.display()
+        )));
+    }
+    course::check_lessons_dir(&course.dir).map_err(|e| bad(format!("--course: {e}")))?;
+    Ok(course)
 }
 
 /// The `--course DIR` a printed command must repeat (as the user typed it).
@@ -234,7 +230,8 @@ fn status(args: &CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
         })?),
         None => None,
     };
-    let dir = lessons(args.course.as_ref())?;
+    let chosen = lessons(args.course.as_ref())?;
+    let dir = chosen.dir.clone();
     if args.solutions && !dir.join("src/solutions").is_dir() {
         return Err(bad(format!(
             "--solutions: {} is not here (a student's copy has none)",
@@ -243,7 +240,7 @@ fn status(args: &CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     }
     let course_arg = given(args.course.as_ref());
     if std::io::stderr().is_terminal() {
-        eprint!("grading {}…\r", dir.display());
+        eprintln!("spintop course: grading {}…", chosen.describe());
     }
     let options = Options {
         solutions: args.solutions,
@@ -256,9 +253,6 @@ fn status(args: &CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     if !args.solutions {
         course::record_passes_now(&dir, &status);
     }
-    if std::io::stderr().is_terminal() {
-        eprint!("{}\r", " ".repeat(48));
-    }
     let progress = course::load_progress(&dir);
     if args.format == Format::Json {
         let json = status_json(&status, &progress);
@@ -269,26 +263,19 @@ fn status(args: &CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
         )?;
         return Ok(());
     }
-    // In the repository the files are under lessons/; in an export, at its top.
-    let own = args.course.is_none();
-    print_status(&status, wanted, own, course_arg.as_deref(), out)
+    print_status(&chosen, &status, wanted, course_arg.as_deref(), out)
 }
 
-/// The status as text: the table, then what to fix or do next.
+/// The status as text: the table, then what to fix or do next, named as
+/// the course names its files (in the repository under lessons/; in a
+/// copy, at its top).
 fn print_status(
+    chosen: &Course,
     status: &course::Status,
     wanted: Option<&course::Assignment>,
-    own: bool,
     course_arg: Option<&str>,
     out: &mut Gate<'_>,
 ) -> Result<(), CliError> {
-    let file = |a: &course::Assignment| {
-        if own {
-            a.file.to_string()
-        } else {
-            a.file.trim_start_matches("lessons/").to_string()
-        }
-    };
     let n = status.states.len();
     writeln!(
         out,
@@ -296,6 +283,7 @@ fn print_status(
         status.passing(),
         status.seed
     )?;
+    writeln!(out, "  graded: {}", chosen.describe())?;
     for (a, s) in &status.states {
         writeln!(
             out,
@@ -304,7 +292,7 @@ fn print_status(
             a.equation,
             a.chapter,
             a.function,
-            file(a),
+            chosen.file(a),
             s.word()
         )?;
     }
@@ -333,26 +321,28 @@ fn print_status(
     };
     match show {
         None => writeln!(out, "all {n} assignments pass: the course is done")?,
-        Some((a, s)) => print_next(a, s, wanted.is_some(), own, course_arg, &file(a), out)?,
+        Some((a, s)) => print_next(chosen, a, s, wanted.is_some(), course_arg, out)?,
     }
     Ok(())
 }
 
 /// The next assignment (or the one asked for), its state and what to do.
 fn print_next(
+    chosen: &Course,
     a: &course::Assignment,
     s: &State,
     asked: bool,
-    own: bool,
     course_arg: Option<&str>,
-    file: &str,
     out: &mut Gate<'_>,
 ) -> Result<(), CliError> {
     let label = if asked { "assignment" } else { "next" };
     writeln!(
         out,
-        "{label}: {} {} in {file} ({})",
-        a.equation, a.function, a.chapter
+        "{label}: {} {} in {} ({})",
+        a.equation,
+        a.function,
+        chosen.file(a),
+        a.chapter
     )?;
     match s {
         State::NotStarted => writeln!(
@@ -372,12 +362,7 @@ fn print_next(
         State::Passing => writeln!(out, "  passing")?,
         State::Unknown => writeln!(out, "  its grader did not report; run it alone to see why")?,
     }
-    let package = if own { " -p spintop-lessons" } else { "" };
-    writeln!(
-        out,
-        "  grade it alone: cargo test{package} --test {} {}",
-        a.binary, a.test
-    )?;
+    writeln!(out, "  grade it alone: {}", chosen.test_command(a))?;
     if !matches!(s, State::Passing | State::Failing(_)) {
         writeln!(
             out,
@@ -411,7 +396,8 @@ fn export(dir: &Path, ci: Option<CiChoice>, out: &mut impl Write) -> Result<(), 
     }
     writeln!(
         out,
-        "  hand it out; a student runs `cargo test` in it, or `spintop course --course {}`",
+        "  hand it out; a student runs `cargo test`, `spintop course` or `spintop learn` in it \
+         (they find the course they stand in), or `spintop course --course {}` from elsewhere",
         dir.display()
     )?;
     Ok(())
@@ -425,11 +411,12 @@ fn verdict_line(a: &course::Assignment, s: &State) -> String {
 /// `spintop course watch`: grades once, then again on every save, printing
 /// the assignments whose verdict changed and the progress line.
 fn watch(chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<(), CliError> {
-    let dir = lessons(chosen)?;
+    let course = lessons(chosen)?;
+    let dir = course.dir.clone();
     writeln!(
         out,
         "spintop course watch: grading {} now and on every save under {} (Ctrl-C stops)",
-        dir.display(),
+        course.describe(),
         dir.join("src").display()
     )?;
     out.flush()?;
@@ -530,7 +517,7 @@ fn hint(name: &str, chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<()
             names.join(", ")
         )));
     };
-    let dir = lessons(chosen)?;
+    let dir = lessons(chosen)?.dir;
     let mut progress = course::load_progress(&dir);
     let h = course::next_hint(&mut progress, a);
     course::save_progress(&dir, &progress).map_err(|e| bad(format!("course hint: {e}")))?;

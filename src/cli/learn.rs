@@ -1,16 +1,21 @@
 //! `spintop learn`: the book's chapters in the terminal beside their live
-//! scenes (the screen itself is [`crate::tui::learn`]; this file validates,
-//! keeps the progress file and restores the terminal).
+//! scenes (the screen itself is [`crate::learn`]; this file validates,
+//! chooses the course to grade, and says how the session ended).
 //!
 //! The chapters are read from the repository's `book/src` (one source: the
 //! same Markdown mdBook builds), so `spintop learn` needs the repository, as
-//! the course does. Progress is one small file, `target/spintop-learn.json`.
+//! the course does. The course graded beside the book is the one the
+//! command stands in (a student's copy, or the repository's lessons), as
+//! `spintop course` finds it. Progress is one small file,
+//! `target/spintop-learn.json`, kept as the reader reads.
 
 use super::gate::Gate;
 use super::{CliError, bad};
-use crate::tui::learn::{Learn, Progress};
-use crate::tui::session::{self, Session};
+use crate::learn::scene::{Scene, Spec};
+use crate::learn::{Learn, progress};
+use crate::term::session;
 use clap::Args;
+use spintop_course::Course;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
@@ -19,10 +24,13 @@ use std::path::{Path, PathBuf};
 #[command(after_help = "Examples:\n  \
     spintop learn                                    the book in the terminal, where you left it\n  \
     spintop learn --chapter 4.2                      Section 4.2 beside its scene\n  \
+    spintop learn --chapter 9                        the ninth chapter, as the header counts\n  \
     spintop learn --list")]
 pub struct LearnArgs {
-    /// Open this chapter: a section of the paper (2, 3, 4.1, 4.2, 5, A) or a
-    /// file name of the book (section-4-2, numerical-methods, …).
+    /// Open this chapter: a section of the paper (2, 3, 4.1, 4.2, 5, A), the
+    /// chapter's number as the header shows it (9; '#3' where 3 is also a
+    /// section), a file name of the book (section-4-2, numerical-methods) or
+    /// words of its title (where methods fail), in any case.
     #[arg(long, value_name = "CHAPTER")]
     chapter: Option<String>,
     /// Print the chapters, their scenes and experiments, and the progress, as
@@ -32,13 +40,14 @@ pub struct LearnArgs {
     /// Forget the progress (the chapters opened) and exit.
     #[arg(long, conflicts_with_all = ["list", "chapter"])]
     reset: bool,
-    /// Do not grade the course in the background (by default the assignments
-    /// are graded at the start and again whenever a file in lessons/src is saved).
+    /// Do not grade the course in the background (by default the course you
+    /// stand in is graded at the start and again whenever one of its files
+    /// is saved).
     #[arg(long)]
     no_grading: bool,
     /// The course to grade beside the book: a lessons crate (default: the
-    /// repository's lessons/; a student's copy made by `spintop course export`
-    /// also works).
+    /// one the current folder is in, as cargo finds its manifest; else the
+    /// repository's lessons/).
     #[arg(long, value_name = "DIR", conflicts_with = "no_grading")]
     course: Option<PathBuf>,
 }
@@ -67,13 +76,20 @@ fn progress_file(repo: &Path) -> PathBuf {
     }
 }
 
-fn read_progress(path: &Path) -> Progress {
-    // A missing or unreadable file is a fresh start, never an error.
-    std::fs::read(path)
-        .ok()
-        .filter(|b| b.len() < 1 << 20)
-        .and_then(|b| serde_json::from_slice(&b).ok())
-        .unwrap_or_default()
+/// The course to grade beside the book, checked before the screen changes:
+/// the one named, or the one the current folder stands in.
+fn course(args: &LearnArgs) -> Result<Option<Course>, CliError> {
+    if args.no_grading {
+        return Ok(None);
+    }
+    let cwd = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+    let course = Course::choose(args.course.as_deref(), &cwd);
+    match spintop_course::check_lessons_dir(&course.dir) {
+        Ok(()) => Ok(Some(course)),
+        Err(e) if args.course.is_some() => Err(bad(format!("--course: {e}"))),
+        // No course here, and the repository's is missing: the book alone.
+        Err(_) => Ok(None),
+    }
 }
 
 /// Runs `spintop learn`.
@@ -95,33 +111,24 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
         return Ok(());
     }
     let book = book_dir(&repo)?;
-    // The course to grade beside the book, checked before the screen changes.
-    let course = if !args.no_grading
-        && (args.course.is_some()
-            || spintop_course::lessons_dir(&repo)
-                .join("Cargo.toml")
-                .is_file())
-    {
-        Some(super::course::lessons(args.course.as_ref())?)
-    } else {
-        None
-    };
-    let progress = read_progress(&progress_path);
-    let start = args.chapter.clone().or(if args.list {
-        None
-    } else {
-        progress.last.clone()
-    });
+    let course = course(&args)?;
+    let read = progress::read(&progress_path);
+    let start = args
+        .chapter
+        .clone()
+        .or(if args.list { None } else { read.last.clone() });
     // The scenes run on threads of their own: the screen never waits on them.
     let mut session = match Learn::open_in_background(&book, start.as_deref()) {
         Ok(s) => s,
         // A stale "last chapter" in the progress file falls back to the preface.
-        Err(_) if args.chapter.is_none() => Learn::open_in_background(&book, None).map_err(bad)?,
-        Err(e) => return Err(bad(e)),
+        Err(_) if args.chapter.is_none() => {
+            Learn::open_in_background(&book, None).map_err(|e| bad(e.to_string()))?
+        }
+        Err(e) => return Err(bad(e.to_string())),
     };
-    session.restore(&progress);
+    session.restore(&read);
     if args.list {
-        return list(&mut session, &progress, out);
+        return list(&mut session, &read, out);
     }
     session::check().map_err(|e| {
         bad(format!(
@@ -129,41 +136,36 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
         ))
     })?;
     match course {
-        Some(dir) => session.watch_course(&dir),
+        Some(c) => session.watch_course(c, super::course::launcher()),
         None if args.no_grading => session.grading_off(
             "--no-grading turned the grader off; run spintop learn without it to grade the \
              assignments beside the book, or `spintop course` to grade them once",
         ),
         None => session.grading_off(
-            "there is no lessons/ crate here to grade; a copy made by `spintop course export` \
-             is graded with --course DIR",
+            "there is no course here to grade: run spintop learn in a copy made by \
+             `spintop course export`, or name one with --course DIR",
         ),
     }
-    let signal = Session::start(true)?.run(&mut session, None)?.signal;
-    let progress = Progress::of(&session);
-    if let Some(dir) = progress_path.parent() {
-        // Progress is a convenience: failing to save it is reported, not fatal.
-        let saved = std::fs::create_dir_all(dir).and_then(|()| {
-            std::fs::write(
-                &progress_path,
-                serde_json::to_vec_pretty(&progress).unwrap_or_default(),
-            )
-        });
-        if let Err(e) = saved {
-            writeln!(
-                out,
-                "spintop learn: progress not saved to {}: {e}",
-                progress_path.display()
-            )?;
-        }
+    session.keep_progress(progress_path, read);
+    // However the session ends (q, a signal, a terminal gone), the place is
+    // saved before anything else is said.
+    let ran = crate::learn::run(&mut session);
+    let saved = session.save_progress();
+    let report = ran?;
+    if let Err(e) = saved {
+        return Err(CliError::NotSaved(e.to_string()));
     }
-    if let Some(signal) = signal {
-        return Err(CliError::Signal(signal, crate::tui::signals::name(signal)));
+    if let Some(signal) = report.signal {
+        return Err(CliError::Signal(signal, crate::term::signals::name(signal)));
     }
     Ok(())
 }
 
-fn list(session: &mut Learn, progress: &Progress, out: &mut impl Write) -> Result<(), CliError> {
+fn list(
+    session: &mut Learn,
+    progress: &progress::Progress,
+    out: &mut impl Write,
+) -> Result<(), CliError> {
     let opened = progress.opened.len();
     writeln!(
         out,
@@ -201,15 +203,15 @@ fn list(session: &mut Learn, progress: &Progress, out: &mut impl Write) -> Resul
     }
     writeln!(
         out,
-        "open one with: spintop learn --chapter 4.2 (a section) or --chapter numerical-methods (a file)"
+        "open one with: spintop learn --chapter 4.2 (a section), --chapter 9 (its number) or --chapter numerical-methods (a file)"
     )?;
     Ok(())
 }
 
 /// "scene: …", or "no scene: why".
-fn scene_line(scene: &crate::tui::learn::scene::Scene) -> String {
+fn scene_line(scene: &Scene) -> String {
     match scene.spec {
-        crate::tui::learn::scene::Spec::None => scene.describe(),
+        Spec::None => scene.describe(),
         _ => format!("scene: {}", scene.about),
     }
 }
@@ -218,7 +220,5 @@ fn experiments_of(session: &Learn, index: usize) -> Result<usize, CliError> {
     let book = book_dir(&repository())?;
     let file = &session.chapters()[index].file;
     let text = std::fs::read_to_string(book.join(file)).map_err(CliError::Io)?;
-    Ok(crate::tui::learn::markdown::render(&text, 80)
-        .experiments
-        .len())
+    Ok(crate::learn::markdown::render(&text, 80).experiments.len())
 }

@@ -1,14 +1,15 @@
 //! `spintop tui` (and `spintop` with no arguments): the live view.
 //!
 //! Validates the starting parameters, refuses to start when stdout is not a
-//! terminal (pointing at the text commands instead), and runs the view in a
-//! [`crate::tui::session::Session`], which always restores the terminal.
+//! terminal (pointing at the text commands instead), and runs the view
+//! ([`crate::tui::run`]), which always restores the terminal.
 
 use super::gate::Gate;
 use super::values;
 use super::{CliError, bad, parse_number, parse_vec3};
-use crate::tui::app::{App, Settings, WARPS};
-use crate::tui::session::{self, Session};
+use crate::live::settings::{DEFAULT_WARP, WARPS};
+use crate::live::{App, Settings};
+use crate::term::session;
 use clap::Args;
 use spintop::math::Real;
 use spintop::numbers::{fmt_time, significant};
@@ -50,17 +51,18 @@ impl TuiArgs {
     fn settings(&self) -> Result<(Settings, Option<String>), CliError> {
         if let Some(arg) = &self.scene {
             let scene = super::run::load(arg)?;
-            let (settings, note) = Settings::for_scene(&scene, self.warp).map_err(bad)?;
+            let (settings, note) =
+                Settings::for_scene(&scene, self.warp).map_err(|e| bad(e.to_string()))?;
             return Ok((settings, Some(note)));
         }
         Settings::new(
             self.ratio.unwrap_or(FIGURE_RATIO),
             self.omega.unwrap_or(FIGURE_OMEGA0),
             self.method.unwrap_or(MethodChoice::Exact),
-            self.warp.unwrap_or(WARPS[crate::tui::app::DEFAULT_WARP]),
+            self.warp.unwrap_or(WARPS[DEFAULT_WARP]),
         )
         .map(|s| (s, None))
-        .map_err(bad)
+        .map_err(|e| bad(e.to_string()))
     }
 }
 
@@ -82,13 +84,16 @@ pub(crate) fn execute(args: TuiArgs, out: &mut Gate<'_>) -> Result<(), CliError>
              `spintop simulate` (numbers) or `spintop plot` (ASCII charts)"
         ))
     })?;
-    let mut app = App::new(settings).map_err(bad)?.in_background();
+    let mut app = App::new(settings)
+        .map_err(|e| bad(e.to_string()))?
+        .in_background()
+        .monochrome(crate::term::theme::no_color());
     if let Some(note) = note {
         app = app.with_message(note);
     }
-    let report = Session::start(false)?.run(&mut app, limit)?;
+    let report = crate::tui::run(&mut app, limit)?;
     if let Some(signal) = report.signal {
-        return Err(CliError::Signal(signal, crate::tui::signals::name(signal)));
+        return Err(CliError::Signal(signal, crate::term::signals::name(signal)));
     }
     if limit.is_some() {
         let cpu = match (report.cpu, report.cpu_share()) {

@@ -2,18 +2,19 @@
 //!
 //! Keys come from `crossterm`, the same version ratatui's backend is built
 //! on (one copy in the dependency tree), so its events and ratatui's agree.
-//! The loop that reads them is [`super::session`]'s, shared with `spintop
-//! learn`.
+//! The loop that reads them is [`crate::term::session`]'s, shared with
+//! `spintop learn`.
 
-use super::app::{App, Command, Mode};
-use super::session::Screen;
 use super::view;
+use crate::live::{App, Command, Mode};
+use crate::term::session::Screen;
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use ratatui::Frame;
 use std::time::Duration;
 
-/// The command a key asks for in a mode, if any.
-pub fn command_for(key: KeyEvent, mode: &Mode) -> Option<Command> {
+/// The command a key asks for in a mode, if any; `page` is the rows a page
+/// of the help scrolls.
+pub fn command_for(key: KeyEvent, mode: &Mode, page: u16) -> Option<Command> {
     if key.kind == KeyEventKind::Release {
         return None;
     }
@@ -22,8 +23,14 @@ pub fn command_for(key: KeyEvent, mode: &Mode) -> Option<Command> {
     }
     match mode {
         Mode::Quitting => None,
-        Mode::Help => Some(match key.code {
+        Mode::Help(_) => Some(match key.code {
             KeyCode::Char('q') => Command::Quit,
+            KeyCode::Down | KeyCode::Char('j') => Command::ScrollHelp(1),
+            KeyCode::Up | KeyCode::Char('k') => Command::ScrollHelp(-1),
+            KeyCode::PageDown | KeyCode::Char(' ') => Command::ScrollHelp(i64::from(page)),
+            KeyCode::PageUp | KeyCode::Char('b') => Command::ScrollHelp(-i64::from(page)),
+            KeyCode::Home | KeyCode::Char('g') => Command::ScrollHelp(i64::MIN / 2),
+            KeyCode::End | KeyCode::Char('G') => Command::ScrollHelp(i64::MAX / 2),
             // Any other key closes the overlay.
             _ => Command::ToggleHelp,
         }),
@@ -33,11 +40,9 @@ pub fn command_for(key: KeyEvent, mode: &Mode) -> Option<Command> {
             KeyCode::Backspace => Some(Command::Backspace),
             KeyCode::Up => Some(Command::NudgeUp),
             KeyCode::Down => Some(Command::NudgeDown),
-            KeyCode::Char(c) if c.is_ascii_digit() || ".eE+-".contains(c) => {
-                Some(Command::Input(c))
-            }
-            // No number holds a q: it quits here too, as everywhere.
-            KeyCode::Char('q') => Some(Command::Quit),
+            // Every character goes to the field, which takes it or says
+            // why not (`q` included: it never quits from inside an edit).
+            KeyCode::Char(c) => Some(Command::Input(c)),
             _ => None,
         },
         Mode::Normal => match key.code {
@@ -69,7 +74,8 @@ impl Screen for App {
         match event {
             Event::Resize(w, h) => Some(Command::Resize(*w, *h)),
             Event::Key(key) => {
-                let command = command_for(*key, self.mode())?;
+                let page = self.view().size.1.saturating_sub(6).max(1);
+                let command = command_for(*key, self.mode(), page)?;
                 // On the "please enlarge" screen nothing is visible, so only
                 // quit is taken; other keys would change the models unseen.
                 (!self.view().too_small() || command == Command::Quit).then_some(command)

@@ -280,7 +280,7 @@ fn every_kind_keeps_its_commands_json_keys() {
 fn tui_opens_every_top_scene() {
     for entry in CATALOGUE {
         let scene = entry.scene().unwrap();
-        let got = spintop_app::tui::app::Settings::for_scene(&scene, None);
+        let got = spintop_app::live::Settings::for_scene(&scene, None);
         match &scene.body {
             Body::Top(top) => {
                 let (settings, note) = got.unwrap_or_else(|e| panic!("{}: {e}", entry.name));
@@ -293,7 +293,7 @@ fn tui_opens_every_top_scene() {
                 } else if general {
                     assert!(note.contains("a general top under (3.3)"), "{note}");
                 }
-                let app = spintop_app::tui::app::App::new(settings).unwrap();
+                let app = spintop_app::live::App::new(settings).unwrap();
                 assert_eq!(app.columns().len(), if general { 3 } else { 2 });
             }
             _ => assert!(got.is_err(), "{}", entry.name),

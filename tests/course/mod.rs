@@ -23,18 +23,18 @@ mod diagnose;
 /// any grading's inputs.
 const SEEDS: [u64; 3] = [2026, 7, 918_273_645];
 
-pub(super) fn repo() -> &'static Path {
+pub(crate) fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
 /// The build folder the copies share.
-pub(super) fn target() -> PathBuf {
+pub(crate) fn target() -> PathBuf {
     std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
         .unwrap_or_else(|| repo().join("target"))
 }
 
-pub(super) fn scratch(name: &str) -> PathBuf {
+pub(crate) fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("spintop-harness-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
@@ -45,7 +45,7 @@ pub(super) fn scratch(name: &str) -> PathBuf {
 /// tests' copies share one build of them); what a student is handed carries
 /// them instead, as `a_copy_exported_from_a_deleted_clone_builds_and_is_graded`
 /// checks.
-pub(super) fn export_linked(dir: &Path) {
+pub(crate) fn export_linked(dir: &Path) {
     course::export_with(
         repo(),
         dir,
@@ -58,7 +58,7 @@ pub(super) fn export_linked(dir: &Path) {
 }
 
 /// The reference solution of `function` (its text in lessons/src/solutions/).
-fn solution(module: &str, function: &str) -> String {
+pub(crate) fn solution(module: &str, function: &str) -> String {
     let text = std::fs::read_to_string(
         repo()
             .join("lessons/src/solutions")
@@ -92,7 +92,7 @@ fn options(work: &Path) -> Options {
 
 /// Replaces the stub `pub fn NAME(…) { todo!(…) }` of the copy's `module`
 /// with `replacement`.
-fn write_function(dir: &Path, module: &str, function: &str, replacement: &str) {
+pub(crate) fn write_function(dir: &Path, module: &str, function: &str, replacement: &str) {
     let path = dir.join("src").join(format!("{module}.rs"));
     let text = std::fs::read_to_string(&path).unwrap();
     let start = text.find(&format!("pub fn {function}(")).unwrap();

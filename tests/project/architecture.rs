@@ -9,7 +9,8 @@
 //!   math, numbers → physics → integrate → sim
 //!     → {assignment, figure, output, plot, scene, stability, workprecision}
 //! the application (src/):
-//!   cli, tui side by side (the command line launches the live view)
+//!   term → live → cli, tui, learn side by side (the command line launches
+//!   the live view and the reader; they never import each other)
 //! ```
 //!
 //! A module may use what lies in a lower layer, a service the neighbours

@@ -1,6 +1,11 @@
-//! The live view: keys, screens drawn headless, and the real binary under tmux.
+//! The live view and `spintop learn`: keys, screens drawn headless, the
+//! reader against `less`, and the real binary under tmux (the end-to-end
+//! tier: `tmux`, `term_e2e`).
 
 mod keys;
 mod learn;
+mod live_view;
+mod reader;
 mod screens;
+mod term_e2e;
 mod tmux;

@@ -3,6 +3,7 @@
 //! its file and line), its build folder bounded in size.
 
 use super::CourseError;
+use super::building::{self, Building};
 use super::process::{self, Ctx, Waited};
 use super::sandbox::{self, Kind, Limits, Spec};
 use super::status::Located;
@@ -11,6 +12,7 @@ use std::ffi::OsString;
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::sync::Arc;
 
 /// The most a build folder may hold: the stubs' build takes about 300 MB;
 /// a 2 GiB `static` would write gigabytes.
@@ -56,13 +58,15 @@ fn build_env(ws: &Workspace) -> Vec<(String, OsString)> {
 
 /// Builds the runner of the workspace `ws` (with the `solutions` feature
 /// when asked), in the build sandbox through `launcher` when there is one,
-/// within `ctx`'s time and `cpu_seconds` of CPU per process.
+/// within `ctx`'s time and `cpu_seconds` of CPU per process; cargo's
+/// count of the units it compiles goes to `progress` when it is watched.
 pub(crate) fn build_runner(
     ws: &Workspace,
     launcher: Option<&Path>,
     solutions: bool,
     cpu_seconds: u64,
     ctx: &Ctx,
+    progress: Option<&Arc<Building>>,
 ) -> Result<Built, CourseError> {
     let mut args: Vec<OsString> = [
         "rustc",
@@ -91,10 +95,20 @@ pub(crate) fn build_runner(
         },
         limits: Limits::build(cpu_seconds),
     };
-    let mut cmd = sandbox::command(launcher, &spec, &cargo_program(), &args, &build_env(ws));
+    let mut env = build_env(ws);
+    if let Some(p) = progress {
+        p.phase(building::Phase::Building);
+        // cargo's progress line, written to the pipe (it reads no terminal).
+        env.extend(
+            building::CARGO_PROGRESS_ENV
+                .iter()
+                .map(|(k, v)| (k.to_string(), OsString::from(v))),
+        );
+    }
+    let mut cmd = sandbox::command(launcher, &spec, &cargo_program(), &args, &env);
     cmd.current_dir(ws.root());
     let target = ws.target();
-    run_cargo(cmd, &spec.limits, ctx, move || {
+    run_cargo(cmd, &spec.limits, ctx, progress.cloned(), move || {
         let size = tree_size(&target);
         (size > MAX_TARGET).then(|| {
             format!(
@@ -131,11 +145,13 @@ pub(crate) fn tree_size(dir: &Path) -> u64 {
 }
 
 /// Runs the cargo command `cmd` (which prints JSON), reading the programs
-/// it builds and its errors; `watch` may stop it.
+/// it builds and its errors (and its progress, to `progress`); `watch` may
+/// stop it.
 fn run_cargo(
     mut cmd: Command,
     limits: &Limits,
     ctx: &Ctx,
+    progress: Option<Arc<Building>>,
     watch: impl FnMut() -> Option<String>,
 ) -> Result<Built, CourseError> {
     cmd.stdin(Stdio::null())
@@ -144,8 +160,12 @@ fn run_cargo(
     let mut child = process::spawn_group(&mut cmd).map_err(CourseError::Cargo)?;
     sandbox::bound_from_outside(&child, limits);
     let stdout = child.stdout.take();
-    let reader = std::thread::spawn(move || read_messages(stdout));
-    let stderr = process::drain(child.stderr.take(), 64 * 1024);
+    let artifacts = progress.clone();
+    let reader = std::thread::spawn(move || read_messages(stdout, artifacts.as_deref()));
+    let stderr = match progress {
+        Some(p) => building::drain_cargo(child.stderr.take(), 64 * 1024, p),
+        None => process::drain(child.stderr.take(), 64 * 1024),
+    };
     let waited = process::wait_watched(&mut child, ctx.left(), ctx, watch);
     let (programs, errors) = reader.join().unwrap_or_default();
     let stderr = String::from_utf8_lossy(&stderr.join().unwrap_or_default()).into_owned();
@@ -187,9 +207,10 @@ fn cargo_refused(stderr: &str, status: std::process::ExitStatus) -> Located {
 }
 
 /// Cargo's JSON messages: the programs built, and the first error of each
-/// place, in order.
+/// place, in order (each artifact counted in `progress`).
 fn read_messages(
     stdout: Option<std::process::ChildStdout>,
+    progress: Option<&Building>,
 ) -> (Vec<(String, PathBuf)>, Vec<Located>) {
     let mut programs = Vec::new();
     let mut errors: Vec<Located> = Vec::new();
@@ -202,6 +223,9 @@ fn read_messages(
         };
         match msg["reason"].as_str() {
             Some("compiler-artifact") => {
+                if let Some(p) = progress {
+                    p.artifact();
+                }
                 if let (Some(name), Some(exe)) =
                     (msg["target"]["name"].as_str(), msg["executable"].as_str())
                 {
@@ -276,5 +300,5 @@ pub(crate) fn cargo_json(
     if let Some(t) = target_dir {
         cmd.env("CARGO_TARGET_DIR", t);
     }
-    run_cargo(cmd, &Limits::build(3600), ctx, || None)
+    run_cargo(cmd, &Limits::build(3600), ctx, None, || None)
 }

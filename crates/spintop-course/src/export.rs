@@ -239,12 +239,13 @@ SPINTOP_SEED=123 cargo test --no-fail-fast   # the inputs of a failure again (it
 (Without `--no-fail-fast`, cargo stops at the first chapter with a failing
 test and never runs the others.)
 
-With spintop installed, `spintop course --course .` lists the assignments in
-course order with their state and what to do next (it also checks the source
-rule, as the instructor's grading does: your files may use `spintop::math`
-and `spintop::assignment`, and nothing that reads files, the environment or
-other programs), and `spintop learn --course .` opens the book in the
-terminal and re-grades on every save.
+With spintop installed, `spintop course` run in this folder (or any folder
+in it: it finds the course it stands in, as cargo finds its manifest) lists
+the assignments in course order with their state and what to do next (it
+also checks the source rule, as the instructor's grading does: your files
+may use `spintop::math` and `spintop::assignment`, and nothing that reads
+files, the environment or other programs), and `spintop learn` opens the
+book in the terminal beside this copy's grades, re-grading on every save.
 ";
 
 /// The largest file a carried crate may hold (its sources and data are a few

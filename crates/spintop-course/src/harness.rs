@@ -63,6 +63,8 @@ pub struct Options {
     pub jobs: usize,
     /// Set to stop: the running build or runner is killed.
     pub stop: Option<Arc<AtomicBool>>,
+    /// Where to report how far the grading has got (see [`super::building`]).
+    pub progress: Option<Arc<super::building::Building>>,
     /// Which spintop crates the runner is built against.
     pub crates: Crates,
 }
@@ -110,6 +112,7 @@ impl Default for Options {
             build_lock: None,
             jobs: std::thread::available_parallelism().map_or(2, |n| n.get()),
             stop: None,
+            progress: None,
             crates: Crates::default(),
         }
     }
@@ -152,6 +155,7 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, CourseError> {
     let seed = opts
         .seed
         .unwrap_or_else(spintop_grading::verdict::fresh_seed);
+    report(opts, super::building::Building::start);
     let ws = Workspace::at(&opts.work.clone().unwrap_or_else(|| default_work(&dir)));
     let crates = opts.crates.root(&dir);
     ws.lay_out(&crates)?;
@@ -249,6 +253,7 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, CourseError> {
     let mut status = Status::new(seed, |_| State::Unknown);
     status.compile_error = compile_error;
     let todo: Vec<&Assignment> = COURSE.iter().filter(|a| selected(a)).collect();
+    report(opts, |p| p.graders(todo.len()));
     let graded = grade_all(&todo, &exe, &broken, seed, opts, &ctx);
     for (a, state) in todo.iter().zip(graded) {
         if let Some(slot) = status.states.iter_mut().find(|(b, _)| b.test == a.test) {
@@ -256,6 +261,13 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, CourseError> {
         }
     }
     Ok(status)
+}
+
+/// Tells the grading's progress, if it is watched.
+fn report(opts: &Options, f: impl FnOnce(&super::building::Building)) {
+    if let Some(p) = &opts.progress {
+        f(p);
+    }
 }
 
 /// What the build came to.
@@ -315,6 +327,7 @@ fn build_with_stubs(ws: &Workspace, opts: &Options, ctx: &Ctx) -> Result<Outcome
             opts.solutions,
             cpu_seconds(opts.time_limit),
             ctx,
+            opts.progress.as_ref(),
         )?;
         let errors = match built {
             Built::Programs(_) => {
@@ -409,7 +422,11 @@ fn grade_all(
         todo.iter()
             .enumerate()
             .filter(|(i, _)| i % jobs == k)
-            .map(|(i, a)| (i, grade_one(a, exe, broken, seed, opts, ctx, &mut runner)))
+            .map(|(i, a)| {
+                let state = grade_one(a, exe, broken, seed, opts, ctx, &mut runner);
+                report(opts, super::building::Building::grader_done);
+                (i, state)
+            })
             .collect::<Vec<_>>()
     });
     let mut states = vec![State::Unknown; todo.len()];

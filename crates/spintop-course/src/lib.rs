@@ -10,6 +10,8 @@
 //! | module | what |
 //! |---|---|
 //! | `catalogue` | the 22 assignments, their files, tests and hint ladders |
+//! | `locate` | which course a command stands in, and its files and commands as named there |
+//! | `building` | how far a grading has got (cargo's units, the graders), for a screen |
 //! | `source_rule` | what a copy may not contain, on a parsed syntax tree |
 //! | `harness` | one grading: the snapshot, the rule, the build, the graders calling the runner |
 //! | `workspace` | the private folder one grading builds in, and its generated runner |
@@ -29,6 +31,7 @@
 
 #![forbid(unsafe_code)]
 
+pub mod building;
 mod catalogue;
 mod compile;
 pub mod diagnose;
@@ -37,6 +40,7 @@ pub mod export;
 pub mod gradebook;
 pub mod harness;
 mod hints;
+mod locate;
 mod probe;
 mod process;
 mod progress;
@@ -58,6 +62,7 @@ pub use export::{
 };
 pub use harness::{Crates, Options, default_work, grade};
 pub use hints::{Hint, next_hint};
+pub use locate::{Chosen, Course, find_course, is_course};
 pub use probe::{ProbeSpec, Probed, parse_probe, probe};
 pub use progress::{
     Progress, load_progress, progress_path, read_progress, record_passes, record_passes_now,

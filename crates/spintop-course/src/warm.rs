@@ -62,7 +62,7 @@ pub(crate) fn prepare(
     let ws = Workspace::at(&cache.join("workspace"));
     ws.lay_out(repo)?;
     write_stubs(repo, &ws)?;
-    match compile::build_runner(&ws, launcher, false, 3600, ctx)? {
+    match compile::build_runner(&ws, launcher, false, 3600, ctx, None)? {
         Built::Programs(_) => {}
         Built::Failed(errors) => {
             let first = errors.first().map(|e| e.to_string()).unwrap_or_default();

@@ -274,11 +274,18 @@ pub fn parse_number(s: &str) -> Result<Real, String> {
         .trim()
         .parse()
         .map_err(|_| format!("'{s}' is not a number"))?;
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(format!("'{s}' is not a finite number"))
+    if !x.is_finite() {
+        return Err(format!("'{s}' is not a finite number"));
     }
+    // NOTE: the parser reads a number below the smallest double (1e-400) as
+    // 0; a value the user typed must not silently become another one.
+    let mantissa = s.trim().split(['e', 'E']).next().unwrap_or("");
+    if x == 0.0 && mantissa.chars().any(|c| ('1'..='9').contains(&c)) {
+        return Err(format!(
+            "'{s}' is below the smallest double (about 5e-324) and would be read as 0; type 0 if that is meant"
+        ));
+    }
+    Ok(x)
 }
 
 /// A count the user typed (`--samples 1e3` as well as `1000`): a whole number
@@ -424,6 +431,20 @@ mod tests {
     }
 
     use super::*;
+
+    /// A number below the smallest double is refused, not read as 0; a
+    /// zero typed in any form is still 0.
+    #[test]
+    fn an_underflowing_number_is_refused_not_read_as_zero() {
+        for tiny in ["1e-400", "-2.5e-330", "0.0001e-320"] {
+            let e = parse_number(tiny).unwrap_err();
+            assert!(e.contains("below the smallest double"), "{tiny}: {e}");
+        }
+        for zero in ["0", "-0", "0.0", "0e-400", "000"] {
+            assert_eq!(parse_number(zero), Ok(0.0), "{zero}");
+        }
+        assert_eq!(parse_number("5e-324"), Ok(5e-324));
+    }
 
     #[test]
     fn an_estimate_beyond_a_double_is_said_in_words() {

@@ -235,18 +235,25 @@ pub(super) fn import_circle(edges: &[(String, String)]) -> Option<String> {
         .map(|c| from_smallest(&c))
 }
 
-/// The live view and `spintop learn` have no import circle among their
-/// modules: each command lives beside the state it changes (app.rs, not
-/// event.rs), and a view or an event map imports its state, never the other
-/// way round.
+/// The live view, `spintop learn` and what they share have no import
+/// circle among their modules: each command lives beside the state it
+/// changes, and a view or an event map imports its state, never the other
+/// way round (the reader's commands are in files its state never imports).
 #[test]
-fn no_import_circle_inside_the_live_view() {
-    let edges = module_edges(&root(), "tui");
-    assert!(
-        edges
-            .iter()
-            .any(|(a, b)| a == "tui::event" && b == "tui::app"),
-        "the edges are read (event imports app): {edges:?}"
-    );
-    assert_eq!(import_circle(&edges), None, "edges: {edges:?}");
+fn no_import_circle_inside_the_full_screen_shells() {
+    for (shell, edge) in [
+        ("tui", ("tui::event", "tui::view")),
+        ("learn", ("learn::event", "learn")),
+        ("live", ("live::app", "live::settings")),
+        ("term", ("term::session", "term::signals")),
+    ] {
+        let edges = module_edges(&root(), shell);
+        assert!(
+            edges.iter().any(|(a, b)| (a.as_str(), b.as_str()) == edge),
+            "the edges of {shell} are read ({} imports {}): {edges:?}",
+            edge.0,
+            edge.1
+        );
+        assert_eq!(import_circle(&edges), None, "{shell}: edges: {edges:?}");
+    }
 }

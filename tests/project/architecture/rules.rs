@@ -65,12 +65,21 @@ const CORE: Rules = Rules {
     launchers: &[],
 };
 
-/// The application (`src/`): shells side by side.
+/// The application (`src/`): shells side by side. The two full-screen
+/// shells, the live view (`tui`) and the reader (`learn`), never import each
+/// other: what both need sits below them, the live models (`live`) over the
+/// terminal (`term`). The command line launches each.
 const APP: Rules = Rules {
-    layers: &[("cli", 5), ("tui", 5)],
+    layers: &[
+        ("term", 3),
+        ("live", 4),
+        ("cli", 5),
+        ("learn", 5),
+        ("tui", 5),
+    ],
     shell: 5,
     neighbours: &[],
-    launchers: &[("src/cli/tui.rs", "tui"), ("src/cli/learn.rs", "tui")],
+    launchers: &[("src/cli/tui.rs", "tui"), ("src/cli/learn.rs", "learn")],
 };
 
 /// The rules of the crate when it was one package (every kind of module at

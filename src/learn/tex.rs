@@ -100,399 +100,15 @@ fn tokenize(tex: &str) -> Vec<Token> {
     out
 }
 
+mod symbols;
+
+use symbols::{accent, calligraphic, fraktur, is_plain_font, is_sizing, is_text, symbol};
+pub use symbols::{subscript, superscript};
+
 struct Parser {
     tokens: Vec<Token>,
     pos: usize,
     unknown: Vec<String>,
-}
-
-/// A TeX accent command and the combining character it becomes.
-fn accent(name: &str) -> Option<char> {
-    Some(match name {
-        "dot" => '\u{307}',
-        "ddot" => '\u{308}',
-        "dddot" => '\u{20DB}',
-        "hat" | "widehat" => '\u{302}',
-        "vec" => '\u{20D7}',
-        "bar" | "overline" => '\u{304}',
-        "tilde" | "widetilde" => '\u{303}',
-        "check" => '\u{30C}',
-        _ => return None,
-    })
-}
-
-fn symbol(name: &str) -> Option<&'static str> {
-    Some(match name {
-        // Greek, lower case.
-        "alpha" => "α",
-        "beta" => "β",
-        "gamma" => "γ",
-        "delta" => "δ",
-        "epsilon" => "ϵ",
-        "varepsilon" => "ε",
-        "zeta" => "ζ",
-        "eta" => "η",
-        "theta" => "θ",
-        "vartheta" => "ϑ",
-        "iota" => "ι",
-        "kappa" => "κ",
-        "lambda" => "λ",
-        "mu" => "μ",
-        "nu" => "ν",
-        "xi" => "ξ",
-        "pi" => "π",
-        "varpi" => "ϖ",
-        "rho" => "ρ",
-        "varrho" => "ϱ",
-        "sigma" => "σ",
-        "varsigma" => "ς",
-        "tau" => "τ",
-        "upsilon" => "υ",
-        "phi" => "ϕ",
-        "varphi" => "φ",
-        "chi" => "χ",
-        "psi" => "ψ",
-        "omega" => "ω",
-        // Greek, upper case.
-        "Gamma" => "Γ",
-        "Delta" => "Δ",
-        "Theta" => "Θ",
-        "Lambda" => "Λ",
-        "Xi" => "Ξ",
-        "Pi" => "Π",
-        "Sigma" => "Σ",
-        "Upsilon" => "Υ",
-        "Phi" => "Φ",
-        "Psi" => "Ψ",
-        "Omega" => "Ω",
-        // Operators and relations.
-        "times" => "×",
-        "cdot" => "·",
-        "cdots" => "⋯",
-        "ldots" | "dots" | "dotsc" | "dotsb" => "…",
-        "pm" => "±",
-        "mp" => "∓",
-        "div" => "÷",
-        "ast" => "∗",
-        "star" => "⋆",
-        "circ" => "∘",
-        "bullet" => "∙",
-        "wedge" => "∧",
-        "otimes" => "⊗",
-        "oplus" => "⊕",
-        "le" | "leq" => "≤",
-        "ge" | "geq" => "≥",
-        "ne" | "neq" => "≠",
-        "ll" => "≪",
-        "gg" => "≫",
-        "approx" => "≈",
-        "simeq" => "≃",
-        "sim" => "∼",
-        "equiv" => "≡",
-        "propto" => "∝",
-        "in" => "∈",
-        "notin" => "∉",
-        "subset" => "⊂",
-        "perp" => "⊥",
-        "parallel" => "∥",
-        "mid" => "∣",
-        "to" | "rightarrow" => "→",
-        "leftarrow" | "gets" => "←",
-        "Rightarrow" | "implies" => "⇒",
-        "Leftarrow" => "⇐",
-        "Leftrightarrow" | "iff" => "⇔",
-        "leftrightarrow" => "↔",
-        "mapsto" => "↦",
-        "longrightarrow" => "⟶",
-        "uparrow" => "↑",
-        "downarrow" => "↓",
-        "infty" => "∞",
-        "partial" => "∂",
-        "nabla" => "∇",
-        "sum" => "Σ",
-        "prod" => "Π",
-        "int" => "∫",
-        "oint" => "∮",
-        "forall" => "∀",
-        "exists" => "∃",
-        "emptyset" => "∅",
-        "hbar" => "ℏ",
-        "ell" => "ℓ",
-        "prime" => "′",
-        "dagger" => "†",
-        "top" => "ᵀ",
-        "angle" => "∠",
-        "langle" => "⟨",
-        "rangle" => "⟩",
-        "lvert" | "rvert" | "vert" => "|",
-        "lVert" | "rVert" | "Vert" => "‖",
-        "lfloor" => "⌊",
-        "rfloor" => "⌋",
-        "lceil" => "⌈",
-        "rceil" => "⌉",
-        "backslash" => "\u{2216}",
-        // Named functions, upright in TeX, plain here.
-        "sin" => "sin",
-        "cos" => "cos",
-        "tan" => "tan",
-        "cot" => "cot",
-        "sinh" => "sinh",
-        "cosh" => "cosh",
-        "tanh" => "tanh",
-        "arcsin" => "arcsin",
-        "arccos" => "arccos",
-        "arctan" => "arctan",
-        "exp" => "exp",
-        "ln" => "ln",
-        "log" => "log",
-        "det" => "det",
-        "dim" => "dim",
-        "max" => "max",
-        "min" => "min",
-        "sup" => "sup",
-        "inf" => "inf",
-        "lim" => "lim",
-        "sgn" => "sgn",
-        "Re" => "Re",
-        "Im" => "Im",
-        "tr" => "tr",
-        // Spacing.
-        "quad" => "  ",
-        "qquad" => "    ",
-        "," | ":" | ";" | " " | "enspace" | "thinspace" => " ",
-        "!" | "displaystyle" | "textstyle" | "limits" | "nolimits" | "nonumber" | "notag" => "",
-        // Escaped characters.
-        "{" | "lbrace" => "{",
-        "}" | "rbrace" => "}",
-        "|" => "‖",
-        "%" => "%",
-        "$" => "$",
-        "#" => "#",
-        "&" => "&",
-        "_" => "_",
-        _ => return None,
-    })
-}
-
-/// The fonts whose argument keeps its letters (bold, upright and the like
-/// cannot be shown in every terminal font, and the book's prose names the
-/// vectors in words anyway).
-fn is_plain_font(name: &str) -> bool {
-    matches!(
-        name,
-        "mathbf"
-            | "boldsymbol"
-            | "bm"
-            | "mathrm"
-            | "mathit"
-            | "mathsf"
-            | "mathtt"
-            | "operatorname"
-            | "mathnormal"
-            | "pmb"
-    )
-}
-
-fn is_text(name: &str) -> bool {
-    matches!(
-        name,
-        "text" | "textrm" | "textit" | "textbf" | "mbox" | "hbox"
-    )
-}
-
-fn is_sizing(name: &str) -> bool {
-    matches!(
-        name,
-        "left"
-            | "right"
-            | "big"
-            | "Big"
-            | "bigg"
-            | "Bigg"
-            | "bigl"
-            | "bigr"
-            | "Bigl"
-            | "Bigr"
-            | "biggl"
-            | "biggr"
-            | "middle"
-    )
-}
-
-fn fraktur(c: char) -> Option<char> {
-    let table = [
-        ('a', '𝔞'),
-        ('b', '𝔟'),
-        ('c', '𝔠'),
-        ('d', '𝔡'),
-        ('e', '𝔢'),
-        ('f', '𝔣'),
-        ('g', '𝔤'),
-        ('h', '𝔥'),
-        ('i', '𝔦'),
-        ('j', '𝔧'),
-        ('k', '𝔨'),
-        ('l', '𝔩'),
-        ('m', '𝔪'),
-        ('n', '𝔫'),
-        ('o', '𝔬'),
-        ('p', '𝔭'),
-        ('q', '𝔮'),
-        ('r', '𝔯'),
-        ('s', '𝔰'),
-        ('t', '𝔱'),
-        ('u', '𝔲'),
-        ('v', '𝔳'),
-        ('w', '𝔴'),
-        ('x', '𝔵'),
-        ('y', '𝔶'),
-        ('z', '𝔷'),
-    ];
-    table.iter().find(|(k, _)| *k == c).map(|(_, v)| *v)
-}
-
-fn calligraphic(c: char) -> Option<char> {
-    Some(match c {
-        'A' => '𝒜',
-        'B' => 'ℬ',
-        'C' => '𝒞',
-        'D' => '𝒟',
-        'E' => 'ℰ',
-        'F' => 'ℱ',
-        'H' => 'ℋ',
-        'L' => 'ℒ',
-        'M' => 'ℳ',
-        'N' => '𝒩',
-        'O' => '𝒪',
-        'P' => '𝒫',
-        'R' => 'ℛ',
-        'S' => '𝒮',
-        'T' => '𝒯',
-        _ => return None,
-    })
-}
-
-pub(crate) fn superscript(c: char) -> Option<char> {
-    Some(match c {
-        '0' => '⁰',
-        '1' => '¹',
-        '2' => '²',
-        '3' => '³',
-        '4' => '⁴',
-        '5' => '⁵',
-        '6' => '⁶',
-        '7' => '⁷',
-        '8' => '⁸',
-        '9' => '⁹',
-        '+' => '⁺',
-        '-' | '−' => '⁻',
-        '=' => '⁼',
-        '(' => '⁽',
-        ')' => '⁾',
-        'a' => 'ᵃ',
-        'b' => 'ᵇ',
-        'c' => 'ᶜ',
-        'd' => 'ᵈ',
-        'e' => 'ᵉ',
-        'f' => 'ᶠ',
-        'g' => 'ᵍ',
-        'h' => 'ʰ',
-        'i' => 'ⁱ',
-        'j' => 'ʲ',
-        'k' => 'ᵏ',
-        'l' => 'ˡ',
-        'm' => 'ᵐ',
-        'n' => 'ⁿ',
-        'o' => 'ᵒ',
-        'p' => 'ᵖ',
-        'r' => 'ʳ',
-        's' => 'ˢ',
-        't' => 'ᵗ',
-        'u' => 'ᵘ',
-        'v' => 'ᵛ',
-        'w' => 'ʷ',
-        'x' => 'ˣ',
-        'y' => 'ʸ',
-        'z' => 'ᶻ',
-        'T' => 'ᵀ',
-        'ᵀ' => 'ᵀ',
-        'A' => 'ᴬ',
-        'B' => 'ᴮ',
-        'D' => 'ᴰ',
-        'E' => 'ᴱ',
-        'G' => 'ᴳ',
-        'H' => 'ᴴ',
-        'I' => 'ᴵ',
-        'J' => 'ᴶ',
-        'K' => 'ᴷ',
-        'L' => 'ᴸ',
-        'M' => 'ᴹ',
-        'N' => 'ᴺ',
-        'O' => 'ᴼ',
-        'P' => 'ᴾ',
-        'R' => 'ᴿ',
-        'U' => 'ᵁ',
-        'V' => 'ⱽ',
-        'W' => 'ᵂ',
-        'β' => 'ᵝ',
-        'γ' => 'ᵞ',
-        'δ' => 'ᵟ',
-        'θ' => 'ᶿ',
-        'ϕ' | 'φ' => 'ᵠ',
-        'χ' => 'ᵡ',
-        '′' => '′',
-        '*' | '∗' => '*',
-        _ => return None,
-    })
-}
-
-pub(crate) fn subscript(c: char) -> Option<char> {
-    Some(match c {
-        '0' => '₀',
-        '1' => '₁',
-        '2' => '₂',
-        '3' => '₃',
-        '4' => '₄',
-        '5' => '₅',
-        '6' => '₆',
-        '7' => '₇',
-        '8' => '₈',
-        '9' => '₉',
-        '+' => '₊',
-        '-' | '−' => '₋',
-        '=' => '₌',
-        '(' => '₍',
-        ')' => '₎',
-        'a' => 'ₐ',
-        'e' => 'ₑ',
-        'h' => 'ₕ',
-        'i' => 'ᵢ',
-        'j' => 'ⱼ',
-        'k' => 'ₖ',
-        'l' => 'ₗ',
-        'm' => 'ₘ',
-        'n' => 'ₙ',
-        'o' => 'ₒ',
-        'p' => 'ₚ',
-        'r' => 'ᵣ',
-        's' => 'ₛ',
-        't' => 'ₜ',
-        'u' => 'ᵤ',
-        'v' => 'ᵥ',
-        'x' => 'ₓ',
-        'β' => 'ᵦ',
-        'γ' => 'ᵧ',
-        'ρ' => 'ᵨ',
-        'ϕ' | 'φ' => 'ᵩ',
-        'χ' => 'ᵪ',
-        // Marks that read as subscripts when written after a letter.
-        '⊥' => '⊥',
-        '∥' => '∥',
-        '‖' => '‖',
-        '*' => '*',
-        ',' => ',',
-        _ => return None,
-    })
 }
 
 impl Parser {
@@ -687,21 +303,7 @@ impl Parser {
             return with_accent(&arg, mark);
         }
         if let Some(s) = symbol(name) {
-            // A named function before its argument gets TeX's thin space,
-            // written as a space: sin α, not sinα; sin(α) and sin² stay tight.
-            let named = s.chars().all(|c| c.is_ascii_alphabetic()) && s.len() > 1;
-            let tight = matches!(
-                self.peek(),
-                None | Some(Token::Char('(' | '^' | '_' | ')' | ',' | '.' | ' '))
-                    | Some(Token::Sup)
-                    | Some(Token::Sub)
-                    | Some(Token::Space)
-            );
-            return if named && !tight {
-                format!("{s} ")
-            } else {
-                s.to_string()
-            };
+            return self.named_symbol(s);
         }
         if is_plain_font(name) {
             return self.argument();
@@ -711,85 +313,16 @@ impl Parser {
         }
         if is_sizing(name) {
             // The delimiter that follows is printed as itself; `.` is none.
-            return match self.peek() {
-                Some(Token::Char('.')) => {
-                    self.next();
-                    String::new()
-                }
-                _ => String::new(),
-            };
+            if self.peek() == Some(&Token::Char('.')) {
+                self.next();
+            }
+            return String::new();
         }
         match name {
-            "frac" | "dfrac" | "tfrac" | "cfrac" => {
-                let num = self.argument();
-                let den = self.argument();
-                // d/dt and dφ/dϑ as written, without brackets; d/dt keeps a
-                // space before what it acts on.
-                if is_differential(&den) && (is_differential(&num) || is_d(&num)) {
-                    let text = format!("{}/{}", num.trim(), den.trim());
-                    return match (is_d(&num), self.next_is_factor()) {
-                        (true, true) => format!("{text} "),
-                        // dV/dr r/r would read as one fraction: (dV/dr) r/r.
-                        (false, true) => format!("({text}) "),
-                        _ => text,
-                    };
-                }
-                // A denominator of more than one symbol is bracketed: 2/(3c³),
-                // never 2/3c³, which reads as (2/3)c³.
-                let text = format!("{}/{}", wrap(&num), wrap_denominator(&den));
-                // A fraction followed by a factor is bracketed as a whole:
-                // (Ω₂₀/R) sin α, never Ω₂₀/R sin α.
-                if self.next_is_factor() {
-                    format!("({text})")
-                } else {
-                    text
-                }
-            }
-            "sqrt" => {
-                let mut index = String::new();
-                if self.peek() == Some(&Token::Char('[')) {
-                    self.next();
-                    while let Some(t) = self.next() {
-                        match t {
-                            Token::Char(']') => break,
-                            Token::Char(c) => index.push(c),
-                            _ => {}
-                        }
-                    }
-                }
-                let arg = self.argument();
-                let root = match index.as_str() {
-                    "" | "2" => "√",
-                    "3" => "∛",
-                    "4" => "∜",
-                    _ => {
-                        return format!("{}√{}", raise(&index), wrap(&arg));
-                    }
-                };
-                format!("{root}{}", wrap(&arg))
-            }
+            "frac" | "dfrac" | "tfrac" | "cfrac" => self.fraction(),
+            "sqrt" => self.root(),
             // `\bfrak` is the book's bold Fraktur (book/macros.txt).
-            "mathfrak" | "bfrak" => {
-                let arg = self.argument();
-                arg.chars().map(|c| fraktur(c).unwrap_or(c)).collect()
-            }
-            "mathcal" | "mathscr" => {
-                let arg = self.argument();
-                arg.chars().map(|c| calligraphic(c).unwrap_or(c)).collect()
-            }
-            "mathbb" => {
-                let arg = self.argument();
-                arg.chars()
-                    .map(|c| match c {
-                        'R' => 'ℝ',
-                        'C' => 'ℂ',
-                        'N' => 'ℕ',
-                        'Z' => 'ℤ',
-                        'Q' => 'ℚ',
-                        c => c,
-                    })
-                    .collect()
-            }
+            "mathfrak" | "bfrak" | "mathcal" | "mathscr" | "mathbb" => self.font(name),
             "underbrace" | "overbrace" | "boxed" | "underline" | "phantom_skip" => self.argument(),
             // The book's own macros (book/macros.txt).
             "ret" => lower("ret"),
@@ -804,40 +337,7 @@ impl Parser {
                 let _ = self.argument_raw();
                 String::new()
             }
-            "begin" => {
-                let env = self.argument_raw();
-                if matches!(env.as_str(), "array" | "tabular") {
-                    let _ = self.argument_raw();
-                }
-                let body = self.sequence(Some(&env));
-                // Consume `\end{env}`.
-                if let Some(Token::Command(n)) = self.peek()
-                    && n == "end"
-                {
-                    self.next();
-                    let _ = self.argument_raw();
-                }
-                match env.as_str() {
-                    "pmatrix" | "bmatrix" | "vmatrix" | "matrix" => {
-                        let rows: Vec<String> = body
-                            .split('\n')
-                            .map(|r| r.split_whitespace().collect::<Vec<_>>().join(", "))
-                            .collect();
-                        let (open, close) = match env.as_str() {
-                            "bmatrix" => ("[", "]"),
-                            "vmatrix" => ("|", "|"),
-                            _ => ("(", ")"),
-                        };
-                        format!("{open}{}{close}", rows.join("; "))
-                    }
-                    "cases" => body
-                        .split('\n')
-                        .map(|r| format!("{{ {}", r.trim()))
-                        .collect::<Vec<_>>()
-                        .join("\n"),
-                    _ => body,
-                }
-            }
+            "begin" => self.environment(),
             "not" => {
                 let arg = self.argument();
                 match arg.as_str() {
@@ -855,6 +355,130 @@ impl Parser {
                 self.unknown.push(format!("\\{name}"));
                 name.to_string()
             }
+        }
+    }
+
+    /// A symbol; a named function before its argument gets TeX's thin
+    /// space, written as a space: sin α, not sinα; sin(α) and sin² stay tight.
+    fn named_symbol(&self, s: &str) -> String {
+        let named = s.chars().all(|c| c.is_ascii_alphabetic()) && s.len() > 1;
+        let tight = matches!(
+            self.peek(),
+            None | Some(Token::Char('(' | '^' | '_' | ')' | ',' | '.' | ' '))
+                | Some(Token::Sup)
+                | Some(Token::Sub)
+                | Some(Token::Space)
+        );
+        if named && !tight {
+            format!("{s} ")
+        } else {
+            s.to_string()
+        }
+    }
+
+    /// `\frac{a}{b}` on one line.
+    fn fraction(&mut self) -> String {
+        let num = self.argument();
+        let den = self.argument();
+        // d/dt and dφ/dϑ as written, without brackets; d/dt keeps a space
+        // before what it acts on.
+        if is_differential(&den) && (is_differential(&num) || is_d(&num)) {
+            let text = format!("{}/{}", num.trim(), den.trim());
+            return match (is_d(&num), self.next_is_factor()) {
+                (true, true) => format!("{text} "),
+                // dV/dr r/r would read as one fraction: (dV/dr) r/r.
+                (false, true) => format!("({text}) "),
+                _ => text,
+            };
+        }
+        // A denominator of more than one symbol is bracketed: 2/(3c³), never
+        // 2/3c³, which reads as (2/3)c³.
+        let text = format!("{}/{}", wrap(&num), wrap_denominator(&den));
+        // A fraction followed by a factor is bracketed as a whole:
+        // (Ω₂₀/R) sin α, never Ω₂₀/R sin α.
+        if self.next_is_factor() {
+            format!("({text})")
+        } else {
+            text
+        }
+    }
+
+    /// `\sqrt[n]{x}`.
+    fn root(&mut self) -> String {
+        let mut index = String::new();
+        if self.peek() == Some(&Token::Char('[')) {
+            self.next();
+            while let Some(t) = self.next() {
+                match t {
+                    Token::Char(']') => break,
+                    Token::Char(c) => index.push(c),
+                    _ => {}
+                }
+            }
+        }
+        let arg = self.argument();
+        let root = match index.as_str() {
+            "" | "2" => "√",
+            "3" => "∛",
+            "4" => "∜",
+            _ => return format!("{}√{}", raise(&index), wrap(&arg)),
+        };
+        format!("{root}{}", wrap(&arg))
+    }
+
+    /// The letter fonts Unicode has: Fraktur, script, blackboard bold.
+    fn font(&mut self, name: &str) -> String {
+        let arg = self.argument();
+        arg.chars()
+            .map(|c| match name {
+                "mathfrak" | "bfrak" => fraktur(c).unwrap_or(c),
+                "mathcal" | "mathscr" => calligraphic(c).unwrap_or(c),
+                _ => match c {
+                    'R' => 'ℝ',
+                    'C' => 'ℂ',
+                    'N' => 'ℕ',
+                    'Z' => 'ℤ',
+                    'Q' => 'ℚ',
+                    c => c,
+                },
+            })
+            .collect()
+    }
+
+    /// `\begin{env} … \end{env}`: matrices on one line, cases and aligned
+    /// rows as lines.
+    fn environment(&mut self) -> String {
+        let env = self.argument_raw();
+        if matches!(env.as_str(), "array" | "tabular") {
+            let _ = self.argument_raw();
+        }
+        let body = self.sequence(Some(&env));
+        // Consume `\end{env}`.
+        if let Some(Token::Command(n)) = self.peek()
+            && n == "end"
+        {
+            self.next();
+            let _ = self.argument_raw();
+        }
+        match env.as_str() {
+            "pmatrix" | "bmatrix" | "vmatrix" | "matrix" => {
+                let rows: Vec<String> = body
+                    .split('\n')
+                    .map(|r| r.split_whitespace().collect::<Vec<_>>().join(", "))
+                    .collect();
+                let (open, close) = match env.as_str() {
+                    "bmatrix" => ("[", "]"),
+                    "vmatrix" => ("|", "|"),
+                    _ => ("(", ")"),
+                };
+                format!("{open}{}{close}", rows.join("; "))
+            }
+            "cases" => body
+                .split('\n')
+                .map(|r| format!("{{ {}", r.trim()))
+                .collect::<Vec<_>>()
+                .join("\n"),
+            _ => body,
         }
     }
 }

@@ -9,7 +9,7 @@
 //! stepper is handed a target tick and works toward it; the view collects
 //! what is done each frame. A new start (a restart, an edit) replaces the
 //! thread: the old one is told to stop, and stops after the model step it is
-//! in, which the live cost check ([`super::app::Settings`]) keeps short.
+//! in, which the live cost check ([`super::Settings`]) keeps short.
 
 use spintop::integrate::Stats;
 use spintop::math::Real;
@@ -19,6 +19,10 @@ use spintop::sim::{
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
+
+/// One model step of the view, in units of τ: the size of every increment of
+/// model time, and what `.` or → advances while paused.
+pub const TICK: Real = 0.1;
 
 /// How one model is run: the model (after any stand-in), the method it was
 /// asked for and its start. Built once per start; the view keeps one for its
@@ -38,7 +42,7 @@ pub struct Plan {
 
 impl Plan {
     /// The simulation of this plan, open-ended, at t = 0.
-    pub fn build(&self) -> Result<Simulation, String> {
+    pub fn build(&self) -> Result<Simulation, SimError> {
         Simulation::new(
             self.model,
             self.choice,
@@ -46,7 +50,6 @@ impl Plan {
             self.initial,
             self.horizon,
         )
-        .map_err(|e| e.to_string())
     }
 }
 
@@ -96,7 +99,7 @@ pub struct Tick {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Report {
     /// A model could not be built; it stays stopped.
-    NotBuilt(usize, String),
+    NotBuilt(usize, SimError),
     /// One more tick done.
     Tick(Tick),
     /// The stepper's thread ended without being told to (it panicked).

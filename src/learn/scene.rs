@@ -13,24 +13,46 @@
 //! [`ShellSolver`]), on a thread of their own, and played back at a warp:
 //! the screen shows "computing" until they are there, and never waits.
 
-use super::super::app::{App, Command as LiveCommand, Settings, WARPS};
-use super::super::theme;
-use super::super::view::Cell;
-use ratatui::Frame;
-use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::Style;
-use ratatui::symbols::Marker;
-use ratatui::text::{Line, Span};
-use ratatui::widgets::canvas::{Canvas, Points};
-use ratatui::widgets::{Axis, Block, BorderType, Chart, Dataset, GraphType, Paragraph, Wrap};
+pub mod draw;
+
+use crate::live::app::TICK;
+use crate::live::settings::WARPS;
+use crate::live::{App, Command as LiveCommand, Refusal, Settings, Top};
+use crate::term::cells::Cell;
+use crate::term::theme;
+use ratatui::text::Span;
 use spintop::math::Real;
-use spintop::physics::central::{ChargeInField, Potential, coulomb_circular_radius};
+use spintop::physics::central::{ChargeInField, Potential};
 use spintop::physics::shell::ShellModel;
 use spintop::sim::MethodChoice;
-use spintop::sim::orbit::{Force, OrbitConfig, OrbitRun, OrbitSample, run_orbit};
-use spintop::sim::shell::{History, ShellSample, ShellSolver, default_steps_per_delay};
+use spintop::sim::orbit::{Force, OrbitConfig, OrbitError, OrbitRun, OrbitSample, run_orbit};
+use spintop::sim::shell::{History, ShellError, ShellSample, ShellSolver, default_steps_per_delay};
 use std::sync::mpsc::{self, Receiver};
 use std::time::Duration;
+
+/// Why a chapter's scene could not start or compute.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SceneError {
+    /// The live models refused the settings.
+    #[error(transparent)]
+    Refused(#[from] Refusal),
+    /// An experiment of the chapter is wrong.
+    #[error(transparent)]
+    Experiment(#[from] super::experiment::ExperimentError),
+    /// A parameter of the charge or the shell.
+    #[error(transparent)]
+    Param(#[from] spintop::physics::ParamError),
+    /// The orbit could not be computed.
+    #[error(transparent)]
+    Orbit(#[from] OrbitError),
+    /// The shell's delay equation could not be solved.
+    #[error(transparent)]
+    Shell(#[from] ShellError),
+}
+
+/// The unit of time of the played-back scenes (the charge's orbit and the
+/// shell: m = k = 1, so the oscillator's and the circular orbit's ω₀ = 1).
+pub const PLAYBACK_UNIT: &str = "1/ω₀";
 
 /// What a chapter shows beside its text.
 #[derive(Debug, Clone, PartialEq)]
@@ -109,7 +131,7 @@ impl Scene {
             Some(rest) => rest,
             None => file,
         };
-        let valid = |s: Result<Settings, String>| s.unwrap_or(figure);
+        let valid = |s: Result<Settings, Refusal>| s.unwrap_or(figure);
         // The figures' top (I₃/I₁ = 2/5, Ω₀ = (0, 0.1, 0.2)) by `method` at `warp`.
         let figure_by = |method, warp| {
             valid(Settings::new(
@@ -160,7 +182,7 @@ impl Scene {
                     spintop::math::Vec3::new(1.0, 2.0, 2.5),
                     spintop::math::Vec3::new(1.0, 0.5, 0.2),
                 )
-                .map_err(|e| e.to_string())
+                .map_err(Refusal::from)
                 .and_then(|t| Settings::general(t, [0.3, -0.2, 0.1], MethodChoice::Dop853, 10.0))
                 {
                     Ok(settings) => top(
@@ -197,8 +219,8 @@ impl Scene {
 
 /// A computation done once on its own thread and played back by the clock.
 pub struct Playback<T> {
-    rx: Option<Receiver<Result<T, String>>>,
-    data: Option<Result<T, String>>,
+    rx: Option<Receiver<Result<T, SceneError>>>,
+    data: Option<Result<T, SceneError>>,
     t: Real,
     t_end: Real,
     paused: bool,
@@ -210,7 +232,7 @@ impl<T: Send + 'static> Playback<T> {
     /// Compute `f` (on its own thread when `background`), to be played from
     /// t = 0 to `t_end` at `WARPS[warp]` per second.
     fn new(
-        f: impl FnOnce() -> Result<T, String> + Send + 'static,
+        f: impl FnOnce() -> Result<T, SceneError> + Send + 'static,
         t_end: Real,
         warp: usize,
         background: bool,
@@ -248,7 +270,7 @@ impl<T: Send + 'static> Playback<T> {
     }
 
     /// The result, once computed.
-    pub fn data(&self) -> Option<&Result<T, String>> {
+    pub fn data(&self) -> Option<&Result<T, SceneError>> {
         self.data.as_ref()
     }
 
@@ -275,22 +297,20 @@ pub struct OrbitRuns {
 /// floor where the model ends ((10τ₀)^{2/3}).
 const ORBIT_LAST_R: Real = 0.1;
 
-fn orbit_runs(tau0: Real) -> Result<OrbitRuns, String> {
-    let charge = ChargeInField::new(Potential::Coulomb, tau0).map_err(|e| e.to_string())?;
-    let ll =
-        OrbitConfig::new(charge, 1.0, 0.0, Force::LandauLifshitz).map_err(|e| e.to_string())?;
+fn orbit_runs(tau0: Real) -> Result<OrbitRuns, SceneError> {
+    let charge = ChargeInField::new(Potential::Coulomb, tau0)?;
+    let ll = OrbitConfig::new(charge, 1.0, 0.0, Force::LandauLifshitz)?;
     let collapse = ll.collapse_time().unwrap_or(0.0);
     // r³ = r₀³ − 6τ₀t: r = 0.1 at t = (1 − 10⁻³)/(6τ₀).
     let t_last = (1.0 - ORBIT_LAST_R.powi(3)) / (6.0 * tau0);
     let n = 4000;
     let times: Vec<Real> = (0..=n).map(|i| t_last * i as Real / n as Real).collect();
-    let ll_run = run_orbit(&ll, &times).map_err(|e| e.to_string())?;
-    let forward = OrbitConfig::new(charge, 1.0, 0.0, Force::AbrahamLorentzForward)
-        .map_err(|e| e.to_string())?;
+    let ll_run = run_orbit(&ll, &times)?;
+    let forward = OrbitConfig::new(charge, 1.0, 0.0, Force::AbrahamLorentzForward)?;
     let times: Vec<Real> = (0..=400)
         .map(|i| 100.0 * tau0 * i as Real / 400.0)
         .collect();
-    let forward = run_orbit(&forward, &times).map_err(|e| e.to_string())?;
+    let forward = run_orbit(&forward, &times)?;
     Ok(OrbitRuns {
         tau0,
         ll: ll_run.samples,
@@ -316,16 +336,15 @@ const SHELL_DT: Real = 0.02;
 /// How long the shell runs are played (in units of 1/ω₀).
 const SHELL_T_END: Real = 20.0;
 
-fn shell_runs(runs: [(Real, Real); 2]) -> Result<Vec<ShellRun>, String> {
+fn shell_runs(runs: [(Real, Real); 2]) -> Result<Vec<ShellRun>, SceneError> {
     runs.iter()
         .map(|&(tau0, delta)| {
-            let model = ShellModel::new(tau0, delta).map_err(|e| e.to_string())?;
+            let model = ShellModel::new(tau0, delta)?;
             let mut solver = ShellSolver::new(
                 model,
                 History::abraham_lorentz(tau0),
                 default_steps_per_delay(delta),
-            )
-            .map_err(|e| e.to_string())?;
+            )?;
             let mut samples = Vec::new();
             let mut ended = None;
             let n = (SHELL_T_END / SHELL_DT).round() as usize;
@@ -383,16 +402,17 @@ pub enum SceneKey {
 impl Stage {
     /// Start the scene of `spec` (its computations on their own thread when
     /// `background`).
-    pub fn start(spec: &Spec, background: bool) -> Result<Stage, String> {
+    pub fn start(spec: &Spec, background: bool) -> Result<Stage, SceneError> {
         Ok(match spec {
             Spec::Top {
                 settings, log_time, ..
             } => {
-                let mut app = if background {
+                let app = if background {
                     App::background(*settings)?
                 } else {
                     App::new(*settings)?
                 };
+                let mut app = app.monochrome(theme::no_color());
                 if *log_time {
                     app.apply(LiveCommand::ToggleLogTime);
                 }
@@ -441,7 +461,8 @@ impl Stage {
         }
     }
 
-    /// Pass on the terminal's size (the live view uses it to pick what fits).
+    /// Pass on the size the scene is drawn at (the live models use it to
+    /// pick what fits, and whether they take turns).
     pub fn resize(&mut self, w: u16, h: u16) {
         if let Stage::Top(app) = self {
             app.apply(LiveCommand::Resize(w, h));
@@ -472,7 +493,7 @@ impl Stage {
                             format!(
                                 "scene paused at t = {:.2}{u}: . steps Δt = {}{u}, p resumes",
                                 app.time(),
-                                super::super::app::TICK
+                                TICK
                             ),
                             false,
                         )
@@ -492,8 +513,8 @@ impl Stage {
                     None => (String::new(), false),
                 }
             }
-            Stage::Orbit(p) => playback_key(p, key, "t"),
-            Stage::Shell(p) => playback_key(p, key, "t"),
+            Stage::Orbit(p) => playback_key(p, key),
+            Stage::Shell(p) => playback_key(p, key),
             Stage::None => ("this chapter has no scene to control".into(), true),
         }
     }
@@ -516,8 +537,8 @@ impl Stage {
                 app.time(),
                 app.settings().top().time_unit()
             )),
-            Stage::Orbit(p) => Some(format!("t = {:.2}", p.t)),
-            Stage::Shell(p) => Some(format!("t = {:.2}", p.t)),
+            Stage::Orbit(p) => Some(format!("t = {:.2} {PLAYBACK_UNIT}", p.t)),
+            Stage::Shell(p) => Some(format!("t = {:.2} {PLAYBACK_UNIT}", p.t)),
             Stage::None => None,
         }
     }
@@ -546,8 +567,8 @@ impl Stage {
                     value(format!("({}, {}, {})", fmt(w[0]), fmt(w[1]), fmt(w[2]))),
                 ]));
                 let method = match settings.top() {
-                    super::super::app::Top::Full(_) => "physical, forward".to_string(),
-                    _ => settings.method().title().to_string(),
+                    Top::Full(_) => "physical, forward".to_string(),
+                    top => crate::live::app::method_title(settings.method(), top),
                 };
                 cells.push(Cell::or(
                     vec![label("method "), value(method.clone())],
@@ -559,7 +580,7 @@ impl Stage {
                     vec![value(warp)],
                     Vec::new(),
                 ]));
-                cells.push(Cell::fixed(vec![super::super::view::status(app)]));
+                cells.push(Cell::fixed(vec![crate::live::draw::status(app)]));
             }
             Stage::Orbit(p) => {
                 let units = (" m = k = 1, r₀ = 1, τ₀ = 10⁻³", " τ₀ = 10⁻³");
@@ -575,6 +596,15 @@ impl Stage {
     }
 }
 
+/// "paused" or "running", as the live view shows its clock.
+pub fn playback_status(paused: bool) -> Span<'static> {
+    if paused {
+        Span::styled(" paused ", theme::status(true))
+    } else {
+        Span::styled(" running ", theme::status(false))
+    }
+}
+
 /// A played-back scene's parameters: its units (long, short), its warp and
 /// its clock.
 fn playback_cells(units: (&str, &str), warp: usize, paused: bool) -> [Cell; 3] {
@@ -585,31 +615,21 @@ fn playback_cells(units: (&str, &str), warp: usize, paused: bool) -> [Cell; 3] {
         ),
         Cell::fixed(vec![
             Span::styled("warp ", theme::label()),
-            Span::styled(format!("{}/s", WARPS[warp]), theme::value()),
+            Span::styled(
+                format!("{} ({PLAYBACK_UNIT})/s", WARPS[warp]),
+                theme::value(),
+            ),
         ]),
         Cell::fixed(vec![playback_status(paused)]),
     ]
 }
 
-/// "paused" or "running", as the live view shows its clock.
-pub fn playback_status(paused: bool) -> Span<'static> {
-    if paused {
-        Span::styled(" paused ", theme::status(true))
-    } else {
-        Span::styled(" running ", theme::status(false))
-    }
-}
-
-fn playback_key<T: Send + 'static>(
-    p: &mut Playback<T>,
-    key: SceneKey,
-    unit: &str,
-) -> (String, bool) {
+fn playback_key<T: Send + 'static>(p: &mut Playback<T>, key: SceneKey) -> (String, bool) {
     match key {
         SceneKey::Pause => {
             p.paused = !p.paused;
             if p.paused {
-                (format!("scene paused at {unit} = {:.2}", p.t), false)
+                (format!("scene paused at t = {:.2} {PLAYBACK_UNIT}", p.t), false)
             } else {
                 ("scene running".into(), false)
             }
@@ -628,9 +648,19 @@ fn playback_key<T: Send + 'static>(
             match next {
                 Some(w) => {
                     p.warp = w;
-                    (format!("scene warp {}/s", WARPS[w]), false)
+                    (
+                        format!("scene warp {} ({PLAYBACK_UNIT})/s", WARPS[w]),
+                        false,
+                    )
                 }
-                None => ("the warp is already at its end".into(), true),
+                None => (
+                    format!(
+                        "the warp is already at its {} ({} ({PLAYBACK_UNIT})/s)",
+                        if key == SceneKey::Faster { "fastest" } else { "slowest" },
+                        WARPS[p.warp]
+                    ),
+                    true,
+                ),
             }
         }
         SceneKey::Step => ("this scene is computed ahead: p pauses, r restarts".into(), true),
@@ -639,288 +669,4 @@ fn playback_key<T: Send + 'static>(
             true,
         ),
     }
-}
-
-/// Draw the orbit scene in `area`.
-pub fn draw_orbit(frame: &mut Frame, area: Rect, p: &Playback<OrbitRuns>) {
-    let runs = match p.data() {
-        None => return computing(frame, area, "the orbits"),
-        Some(Err(e)) => return failed(frame, area, e),
-        Some(Ok(runs)) => runs,
-    };
-    let t = p.t();
-    let shown: Vec<&OrbitSample> = runs.ll.iter().take_while(|s| s.t <= t).collect();
-    let now = shown.last().copied().or(runs.ll.first());
-    let [left, right] = if area.width >= 100 {
-        Layout::horizontal([Constraint::Percentage(60), Constraint::Percentage(40)]).areas(area)
-    } else {
-        Layout::vertical([Constraint::Fill(3), Constraint::Length(7)]).areas(area)
-    };
-    let block = panel(" Landau–Lifshitz: the orbit decays, r³ = r₀³ − 6τ₀t (2.9) ");
-    let inner = block.inner(left);
-    frame.render_widget(block, left);
-    let [pictures, numbers] =
-        Layout::vertical([Constraint::Fill(1), Constraint::Length(3)]).areas(inner);
-    let [plane, radius] =
-        Layout::horizontal([Constraint::Percentage(45), Constraint::Percentage(55)])
-            .areas(pictures);
-    // The orbit in its plane: the trail and the charge now.
-    let trail: Vec<(f64, f64)> = shown
-        .iter()
-        .map(|s| (s.position[0], s.position[1]))
-        .collect();
-    let here = now
-        .map(|s| vec![(s.position[0], s.position[1])])
-        .unwrap_or_default();
-    // The whole orbit (radius 1) in view, round: a cell is two Braille dots
-    // wide and four tall, so x spans w/(2h) of y's span per cell ratio.
-    let aspect = f64::from(plane.width.max(1)) / (2.0 * f64::from(plane.height.max(1)));
-    let (half_w, half_h) = if aspect >= 1.0 {
-        (1.1 * aspect, 1.1)
-    } else {
-        (1.1, 1.1 / aspect)
-    };
-    frame.render_widget(
-        Canvas::default()
-            .marker(Marker::Braille)
-            .x_bounds([-half_w, half_w])
-            .y_bounds([-half_h, half_h])
-            .paint(move |ctx| {
-                ctx.draw(&Points::new(&trail, theme::TRAIL));
-                ctx.draw(&Points::new(&here, theme::MOMENTUM));
-                ctx.print(0.0, 0.0, Span::styled("+", theme::key()));
-            }),
-        plane,
-    );
-    // r(t) against the averaged closed form.
-    let r_data: Vec<(f64, f64)> = shown.iter().map(|s| (s.t, s.r)).collect();
-    let t_end = p.t_end;
-    let closed: Vec<(f64, f64)> = (0..=100)
-        .map(|i| {
-            let t = t_end * f64::from(i) / 100.0;
-            (t, coulomb_circular_radius(runs.tau0, 1.0, t))
-        })
-        .collect();
-    let chart = Chart::new(vec![
-        Dataset::default()
-            .marker(Marker::Braille)
-            .graph_type(GraphType::Line)
-            .style(theme::frame())
-            .data(&closed),
-        Dataset::default()
-            .marker(Marker::Braille)
-            .graph_type(GraphType::Line)
-            .style(Style::new().fg(theme::OMEGA[2]))
-            .data(&r_data),
-    ])
-    .block(Block::new().title(Line::from(vec![
-        Span::styled("r(t): ", theme::title()),
-        Span::styled("━run ", Style::new().fg(theme::OMEGA[2])),
-        Span::styled("━(2.9) averaged", theme::frame()),
-    ])))
-    .x_axis(time_axis(t_end))
-    .y_axis(value_axis([0.0, 1.05], ["0".into(), "1".into()]));
-    frame.render_widget(chart, radius);
-    let n = now.map_or(String::new(), |s| {
-        format!(
-            "t = {:.2}   r = {}   (2.9): {}   L = {}   E = {}",
-            s.t,
-            spintop::numbers::fmt_num(s.r),
-            spintop::numbers::fmt_num(coulomb_circular_radius(runs.tau0, 1.0, s.t)),
-            spintop::numbers::fmt_num(s.l),
-            spintop::numbers::fmt_num(s.energy)
-        )
-    });
-    frame.render_widget(
-        Paragraph::new(vec![
-            Line::from(Span::styled(n, theme::value())),
-            Line::from(Span::styled(
-                format!(
-                    "collapse by the averaged law at t_c = r₀³/(6τ₀) = {}",
-                    spintop::numbers::fmt_num(runs.collapse)
-                ),
-                theme::label(),
-            )),
-        ])
-        .wrap(Wrap { trim: true }),
-        numbers,
-    );
-    // The forward Abraham–Lorentz run: its runaway, in numbers.
-    let block = panel(" Abraham–Lorentz (2.5), forward: runs away ");
-    let inner = block.inner(right);
-    frame.render_widget(block, right);
-    let mut lines = vec![Line::from(Span::styled(
-        "From the Newtonian start v̇ = F/m the third-order equation has a mode that grows as e^(t/τ₀).",
-        theme::label(),
-    ))];
-    match &runs.forward.runaway {
-        Some(r) => {
-            lines.push(Line::from(Span::styled(
-                format!(
-                    "runaway at t = {} ({} τ₀): |v̇ − F| passed {} |F(r₀)|",
-                    spintop::numbers::fmt_num(r.t),
-                    spintop::numbers::fmt_num(r.t / runs.tau0),
-                    spintop::numbers::fmt_num(r.threshold)
-                ),
-                theme::error(),
-            )));
-            lines.push(Line::from(Span::styled(
-                format!(
-                    "growth rate {} against 1/τ₀ = {}",
-                    r.growth_rate.map_or("—".into(), spintop::numbers::fmt_num),
-                    spintop::numbers::fmt_num(r.predicted_rate)
-                ),
-                theme::value(),
-            )));
-        }
-        None => lines.push(Line::from("no runaway within the run")),
-    }
-    lines.push(Line::from(Span::styled(
-        "Its physical solution is found backward in time: spintop orbit --force al",
-        theme::label(),
-    )));
-    frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: true }), inner);
-}
-
-/// Draw the shell scene in `area`.
-pub fn draw_shell(frame: &mut Frame, area: Rect, p: &Playback<Vec<ShellRun>>) {
-    let runs = match p.data() {
-        None => return computing(frame, area, "the delay equation"),
-        Some(Err(e)) => return failed(frame, area, e),
-        Some(Ok(runs)) => runs,
-    };
-    let parts = if area.width >= 100 {
-        Layout::horizontal([Constraint::Ratio(1, 2); 2]).split(area)
-    } else {
-        Layout::vertical([Constraint::Ratio(1, 2); 2]).split(area)
-    };
-    for (run, part) in runs.iter().zip(parts.iter()) {
-        draw_shell_run(frame, *part, run, p.t());
-    }
-}
-
-fn draw_shell_run(frame: &mut Frame, area: Rect, run: &ShellRun, t: Real) {
-    let m = run.model;
-    let stable = m.m0() > m.m_em();
-    let title = format!(
-        " shell δ = {}, τ₀ = {}: {} ",
-        spintop::numbers::fmt_param(m.delta()),
-        spintop::numbers::fmt_param(m.tau0()),
-        if stable {
-            "m₀ > mₑₘ, stable"
-        } else {
-            "mₑₘ > m₀, unstable"
-        }
-    );
-    let block = panel(&title);
-    let inner = block.inner(area);
-    frame.render_widget(block, area);
-    let [chart_area, numbers] =
-        Layout::vertical([Constraint::Fill(1), Constraint::Length(2)]).areas(inner);
-    let shown: Vec<&ShellSample> = run.samples.iter().take_while(|s| s.t <= t).collect();
-    let dev = |s: &ShellSample| s.z_minus_z_al[0].hypot(s.z_minus_z_al[1]);
-    let data: Vec<(f64, f64)> = shown
-        .iter()
-        .filter(|s| dev(s) > 0.0)
-        .map(|s| (s.t, dev(s).log10()))
-        .collect();
-    let all: Vec<f64> = run
-        .samples
-        .iter()
-        .map(dev)
-        .filter(|d| *d > 0.0)
-        .map(f64::log10)
-        .collect();
-    let lo = all.iter().copied().fold(f64::INFINITY, f64::min).floor();
-    let hi = all.iter().copied().fold(f64::NEG_INFINITY, f64::max).ceil();
-    let (lo, hi) = if lo.is_finite() && hi > lo {
-        (lo, hi)
-    } else {
-        (-16.0, 0.0)
-    };
-    let t_end = run.samples.last().map_or(SHELL_T_END, |s| s.t.max(1.0));
-    let chart = Chart::new(vec![
-        Dataset::default()
-            .marker(Marker::Braille)
-            .graph_type(GraphType::Line)
-            .style(Style::new().fg(if stable {
-                theme::OMEGA[1]
-            } else {
-                theme::OMEGA[0]
-            }))
-            .data(&data),
-    ])
-    .block(Block::new().title(Span::styled(
-        "log₁₀|Z − Z_AL|: the shell against the point charge",
-        theme::title(),
-    )))
-    .x_axis(time_axis(t_end))
-    .y_axis(value_axis(
-        [lo, hi],
-        [format!("{lo:.0}"), format!("{hi:.0}")],
-    ));
-    frame.render_widget(chart, chart_area);
-    let growth = match m.growth_rate() {
-        Some(g) => format!(
-            "grows at {} (ln(mₑₘ/m₀)/δ = {})",
-            spintop::numbers::fmt_num(g),
-            spintop::numbers::fmt_num((m.m_em() / m.m0()).abs().ln() / m.delta())
-        ),
-        None => "every mode decays: it stays near the point charge".into(),
-    };
-    let mut text = format!(
-        "mₑₘ = {}, m₀ = {}; {growth}",
-        spintop::numbers::fmt_num(m.m_em()),
-        spintop::numbers::fmt_num(m.m0())
-    );
-    if let Some(e) = &run.ended
-        && shown.len() == run.samples.len()
-    {
-        text.push_str(&format!("; stopped: {e}"));
-    }
-    frame.render_widget(
-        Paragraph::new(Span::styled(text, theme::value())).wrap(Wrap { trim: true }),
-        numbers,
-    );
-}
-
-/// A time axis from 0 to `t_end`, labelled at its ends.
-fn time_axis(t_end: Real) -> Axis<'static> {
-    Axis::default()
-        .style(theme::frame())
-        .bounds([0.0, t_end])
-        .labels(["0".to_string(), format!("{t_end:.0}")])
-}
-
-/// A value axis over `bounds`, labelled at its ends.
-fn value_axis(bounds: [Real; 2], labels: [String; 2]) -> Axis<'static> {
-    Axis::default()
-        .style(theme::frame())
-        .bounds(bounds)
-        .labels(labels)
-}
-
-fn panel(title: &str) -> Block<'static> {
-    Block::bordered()
-        .border_type(BorderType::Rounded)
-        .border_style(theme::frame())
-        .title(Span::styled(title.to_string(), theme::title()))
-}
-
-fn computing(frame: &mut Frame, area: Rect, what: &str) {
-    frame.render_widget(
-        Paragraph::new(Span::styled(format!(" computing {what}…"), theme::label())),
-        area,
-    );
-}
-
-fn failed(frame: &mut Frame, area: Rect, why: &str) {
-    frame.render_widget(
-        Paragraph::new(Span::styled(
-            format!(" the scene failed: {why}"),
-            theme::error(),
-        ))
-        .wrap(Wrap { trim: true }),
-        area,
-    );
 }

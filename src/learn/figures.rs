@@ -6,8 +6,8 @@
 //! The panels are ratatui widgets drawn into a buffer the width of the text
 //! and turned into styled lines, so the figure scrolls with the text.
 
-use super::super::theme;
-use super::super::widgets::{body_camera, lab_camera};
+use crate::live::widgets::{body_camera, lab_camera};
+use crate::term::theme;
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Style};
@@ -15,7 +15,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Line as CanvasLine, Points};
 use ratatui::widgets::{Axis, Block, Borders, Chart, Dataset, GraphType, Widget};
-use spintop::figure::{Figure, FigureNumber};
+use spintop::figure::{Figure, FigureError, FigureNumber};
 use std::sync::OnceLock;
 
 /// The colour the book's prose gives L in the figures: red.
@@ -24,10 +24,10 @@ pub const L_COLOUR: Color = Color::Red;
 /// Rows of one panel, title included.
 const PANEL_ROWS: u16 = 11;
 
-static ONE: OnceLock<Result<Figure, String>> = OnceLock::new();
-static TWO: OnceLock<Result<Figure, String>> = OnceLock::new();
+static ONE: OnceLock<Result<Figure, FigureError>> = OnceLock::new();
+static TWO: OnceLock<Result<Figure, FigureError>> = OnceLock::new();
 
-fn cell(number: FigureNumber) -> &'static OnceLock<Result<Figure, String>> {
+fn cell(number: FigureNumber) -> &'static OnceLock<Result<Figure, FigureError>> {
     match number {
         FigureNumber::One => &ONE,
         FigureNumber::Two => &TWO,
@@ -36,9 +36,9 @@ fn cell(number: FigureNumber) -> &'static OnceLock<Result<Figure, String>> {
 
 /// The points of Figure `number`, computed once per process (here, now, if
 /// they are not yet).
-fn figure(number: FigureNumber) -> Result<&'static Figure, String> {
+fn figure(number: FigureNumber) -> Result<&'static Figure, FigureError> {
     cell(number)
-        .get_or_init(|| Figure::new(number).map_err(|e| e.to_string()))
+        .get_or_init(|| Figure::new(number))
         .as_ref()
         .map_err(Clone::clone)
 }
@@ -303,7 +303,7 @@ fn rates(figure: &Figure, area: Rect, buf: &mut Buffer) {
 }
 
 /// The buffer's rows as styled lines, trailing blanks dropped.
-fn to_lines(buf: &Buffer) -> Vec<Line<'static>> {
+pub(super) fn to_lines(buf: &Buffer) -> Vec<Line<'static>> {
     let area = buf.area;
     (area.y..area.y + area.height)
         .map(|y| {

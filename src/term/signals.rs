@@ -165,14 +165,14 @@ pub fn name(signal: i32) -> String {
     format!("signal {signal}")
 }
 
-/// Refuses a terminal that cannot draw the full-screen view (`TERM=dumb`,
-/// or no `TERM` at all on Unix), as a missing terminal is refused.
-pub fn check_terminal_capable() -> Result<(), String> {
-    match std::env::var("TERM") {
-        Ok(t) if t == "dumb" => {
-            Err("TERM=dumb: this terminal cannot draw the full-screen view".into())
-        }
-        _ => Ok(()),
+/// Stops this process as a shell's job is stopped by Ctrl-Z (SIGTSTP, whose
+/// default action is to stop), and returns once it is continued (`fg`). In
+/// a process group no shell controls the signal is discarded, and this
+/// returns at once.
+pub fn stop_as_a_job() {
+    #[cfg(unix)]
+    {
+        let _ = signal_hook::low_level::raise(signal_hook::consts::SIGTSTP);
     }
 }
 

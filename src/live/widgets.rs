@@ -6,8 +6,9 @@
 //! drawing, not physics: the vectors themselves (Ω, O·e₃, L) come from the
 //! [`spintop::sim::Sample`]s.
 
-use super::app::{App, Column, Point, TICK, WINDOW};
-use super::theme;
+use super::columns::{Column, Point, WINDOW};
+use super::stepper::TICK;
+use crate::term::theme;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
 use ratatui::symbols::Marker;
@@ -87,27 +88,40 @@ impl OmegaSeries {
 
     /// The chart, for an area `rows` high: Braille lines, labelled axes, the
     /// curve names in the title. A short chart labels only the ends of its y
-    /// axis (three labels on two rows would print over each other).
-    pub fn chart(&self, rows: u16) -> Chart<'_> {
+    /// axis (three labels on two rows would print over each other). Without
+    /// colours (`monochrome`) each curve has a mark of its own, shown beside
+    /// its name in the title.
+    pub fn chart(&self, rows: u16, monochrome: bool) -> Chart<'_> {
         let names = ["Ω₁", "Ω₂", "Ω₃", "Ω⊥"];
-        let datasets = self
-            .curves
+        let marks = if monochrome {
+            MONOCHROME_MARKS
+        } else {
+            [(Marker::Braille, "━"); 4]
+        };
+        // Drawn widest mark first, so that the thin ones stay visible on it.
+        let order: [usize; 4] = if monochrome {
+            [3, 2, 1, 0]
+        } else {
+            [0, 1, 2, 3]
+        };
+        let datasets = order
             .iter()
-            .zip(names)
-            .zip(theme::OMEGA)
-            .map(|((data, name), color)| {
+            .map(|&i| {
                 Dataset::default()
-                    .name(name)
-                    .marker(Marker::Braille)
+                    .name(names[i])
+                    .marker(marks[i].0)
                     .graph_type(GraphType::Line)
-                    .style(Style::new().fg(color))
-                    .data(data)
+                    .style(Style::new().fg(theme::OMEGA[i]))
+                    .data(&self.curves[i])
             })
             .collect();
         let u = self.unit;
         let mut title = vec![Span::styled(format!("Ω(t) [1/{u}]: "), theme::title())];
-        for (name, color) in names.iter().zip(theme::OMEGA) {
-            title.push(Span::styled(format!("━{name} "), Style::new().fg(color)));
+        for ((name, color), (_, glyph)) in names.iter().zip(theme::OMEGA).zip(marks) {
+            title.push(Span::styled(
+                format!("{glyph}{name} "),
+                Style::new().fg(color),
+            ));
         }
         let [lo, hi] = self.x_bounds;
         let (x_title, x_labels) = if self.log_time {
@@ -159,6 +173,97 @@ impl OmegaSeries {
                         .map(|l| Span::styled(l, theme::label())),
                     ),
             )
+    }
+}
+
+/// The marks of Ω₁, Ω₂, Ω₃ and Ω⊥ without colours, and the glyph that
+/// stands for each in the chart's title: four curves told apart by shape.
+pub const MONOCHROME_MARKS: [(Marker, &str); 4] = [
+    (Marker::Braille, "⠒"),
+    (Marker::Dot, "•"),
+    (Marker::Bar, "▄"),
+    (Marker::Block, "█"),
+];
+
+/// Labels of a canvas placed where they do not overlap: each at its point
+/// if its cells are free, else one row above or below, else one label's
+/// width to the side, else left out (never printed over another).
+pub struct Labels {
+    x: [f64; 2],
+    y: [f64; 2],
+    size: (u16, u16),
+    taken: Vec<(i32, i32, i32)>,
+    placed: Vec<(f64, f64, Span<'static>)>,
+}
+
+impl Labels {
+    /// Labels for a canvas of `size` cells over the bounds `x` and `y`.
+    pub fn new(x: [f64; 2], y: [f64; 2], size: (u16, u16)) -> Self {
+        Self {
+            x,
+            y,
+            size,
+            taken: Vec::new(),
+            placed: Vec::new(),
+        }
+    }
+
+    /// The cell a canvas puts a label at (x, y), as ratatui's canvas does:
+    /// the fraction of the bounds times (cells − 1), truncated.
+    fn cell(&self, x: f64, y: f64) -> Option<(i32, i32)> {
+        let inside = (self.x[0]..=self.x[1]).contains(&x) && (self.y[0]..=self.y[1]).contains(&y);
+        let w = f64::from(self.size.0.max(1) - 1);
+        let h = f64::from(self.size.1.max(1) - 1);
+        let col = (x - self.x[0]) * w / (self.x[1] - self.x[0]);
+        let row = (self.y[1] - y) * h / (self.y[1] - self.y[0]);
+        inside.then_some((col as i32, row as i32))
+    }
+
+    /// A point of the canvas that falls in cell (col, row), a quarter of a
+    /// cell in from its corner (so that rounding cannot move it out).
+    fn point(&self, col: i32, row: i32) -> (f64, f64) {
+        let w = f64::from(self.size.0.max(1) - 1).max(1.0);
+        let h = f64::from(self.size.1.max(1) - 1).max(1.0);
+        let x = self.x[0] + (f64::from(col) + 0.25) / w * (self.x[1] - self.x[0]);
+        let y = self.y[1] - (f64::from(row) + 0.25) / h * (self.y[1] - self.y[0]);
+        (x.min(self.x[1]), y.max(self.y[0]))
+    }
+
+    /// Adds `text` at (`x`, `y`), or as near as it fits without overlap.
+    pub fn add(&mut self, x: f64, y: f64, text: Span<'static>) {
+        let width = i32::try_from(text.width()).unwrap_or(1).max(1);
+        let Some((col, row)) = self.cell(x, y) else {
+            return;
+        };
+        let free = |c: i32, r: i32, taken: &[(i32, i32, i32)]| {
+            c >= 0
+                && r >= 0
+                && c + width <= i32::from(self.size.0)
+                && r < i32::from(self.size.1)
+                && taken
+                    .iter()
+                    // A column of space between two labels.
+                    .all(|&(tc, tr, tw)| tr != r || c + width < tc || tc + tw < c)
+        };
+        let tries = [
+            (col, row),
+            (col, row - 1),
+            (col, row + 1),
+            (col + width + 1, row),
+            (col - width - 1, row),
+        ];
+        if let Some(&(c, r)) = tries.iter().find(|(c, r)| free(*c, *r, &self.taken)) {
+            self.taken.push((c, r, width));
+            let (px, py) = self.point(c, r);
+            self.placed.push((px, py, text));
+        }
+    }
+
+    /// Prints the labels placed.
+    pub fn print(&self, ctx: &mut Context) {
+        for (x, y, text) in &self.placed {
+            ctx.print(*x, *y, text.clone());
+        }
     }
 }
 
@@ -253,22 +358,28 @@ pub fn hodograph(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut Co
     let inner = panel("").inner(area);
     let z = if down { -1.0 } else { 1.0 };
     let title = fitting(area, "hodograph of Ω (body frame)", "hodograph of Ω");
+    let x = x_bounds_for(inner, y);
+    let axes = [
+        ([1.0, 0.0, 0.0], "Ω₁"),
+        ([0.0, 1.0, 0.0], "Ω₂"),
+        ([0.0, 0.0, z], "Ω₃"),
+    ];
+    let mut labels = Labels::new(x, y, (inner.width, inner.height));
+    for (axis, name) in axes {
+        let (px, py) = cam.project([axis[0] * 1.1, axis[1] * 1.1, axis[2] * 1.1]);
+        labels.add(px, py, Span::styled(name, theme::label()));
+    }
     Canvas::default()
         .block(panel(title))
         .marker(Marker::Braille)
-        .x_bounds(x_bounds_for(inner, y))
+        .x_bounds(x)
         .y_bounds(y)
         .paint(move |ctx| {
             let o = [0.0; 3];
-            for (axis, name) in [
-                ([1.0, 0.0, 0.0], "Ω₁"),
-                ([0.0, 1.0, 0.0], "Ω₂"),
-                ([0.0, 0.0, z], "Ω₃"),
-            ] {
+            for (axis, _) in axes {
                 segment(ctx, &cam, o, axis, theme::GUIDE);
-                let (x, y) = cam.project([axis[0] * 1.1, axis[1] * 1.1, axis[2] * 1.1]);
-                ctx.print(x, y, Span::styled(name, theme::label()));
             }
+            labels.print(ctx);
             ctx.draw(&Points::new(&shadow, theme::GUIDE));
             ctx.draw(&Points::new(&trail, theme::TRAIL));
             segment(ctx, &cam, o, now, Color::White);
@@ -298,30 +409,37 @@ pub fn top_in_space(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut
         .collect();
     let inner = panel("").inner(area);
     let title = fitting(area, "the top in space (lab z ∥ L₀)", "top in space");
+    let x = x_bounds_for(inner, y);
+    // The labels of what moves first (e₃, then L), then the fixed z: one that
+    // would print over another moves aside or is left out.
+    let mut labels = Labels::new(x, y, (inner.width, inner.height));
+    let (ex, ey) = cam.project(axis);
+    labels.add(ex, ey, Span::styled("e₃", Style::new().fg(theme::AXIS)));
+    if let Some(d) = l_dir {
+        let (lx, ly) = cam.project([1.3 * d[0], 1.3 * d[1], 1.3 * d[2]]);
+        labels.add(lx, ly, Span::styled("L", Style::new().fg(theme::MOMENTUM)));
+    }
+    // Left of the z axis, so L drawn along it stays visible.
+    let (zx, zy) = cam.project([0.0, 0.0, 1.25]);
+    labels.add(zx - 0.2, zy, Span::styled("z", theme::label()));
     Canvas::default()
         .block(panel(title))
         .marker(Marker::Braille)
-        .x_bounds(x_bounds_for(inner, y))
+        .x_bounds(x)
         .y_bounds(y)
         .paint(move |ctx| {
             let o = [0.0; 3];
             segment(ctx, &cam, [0.0, 0.0, -0.3], [0.0, 0.0, 1.25], theme::GUIDE);
             segment(ctx, &cam, [-0.4, 0.0, 0.0], [0.4, 0.0, 0.0], theme::GUIDE);
             segment(ctx, &cam, [0.0, -0.4, 0.0], [0.0, 0.4, 0.0], theme::GUIDE);
-            // The label sits left of the z axis, so L drawn along it stays visible.
-            let (x, y) = cam.project([0.0, 0.0, 1.25]);
-            ctx.print(x - 0.2, y, Span::styled("z", theme::label()));
             ctx.draw(&Points::new(&trail, theme::TRAIL));
             if let Some(d) = l_dir {
                 let tip = [1.2 * d[0], 1.2 * d[1], 1.2 * d[2]];
                 segment(ctx, &cam, o, tip, theme::MOMENTUM);
-                let (x, y) = cam.project([1.3 * d[0], 1.3 * d[1], 1.3 * d[2]]);
-                ctx.print(x, y, Span::styled("L", Style::new().fg(theme::MOMENTUM)));
             }
             segment(ctx, &cam, o, axis, theme::AXIS);
             ctx.draw(&Points::new(&disc, theme::AXIS));
-            let (x, y) = cam.project(axis);
-            ctx.print(x, y, Span::styled("e₃", Style::new().fg(theme::AXIS)));
+            labels.print(ctx);
         })
 }
 
@@ -387,11 +505,7 @@ impl NumberBlock {
 /// The live numbers of a column, as two side-by-side blocks of five lines and
 /// a last full-width line (Ω now, or why the model stopped). `wide` selects
 /// the long labels.
-pub fn numbers(
-    app: &App,
-    column: &Column,
-    wide: bool,
-) -> (NumberBlock, NumberBlock, Paragraph<'static>) {
+pub fn numbers(column: &Column, wide: bool) -> (NumberBlock, NumberBlock, Paragraph<'static>) {
     let s = column.current();
     let u = column.time_unit();
     // Labels on the left are short, on the right long ("RHS evals").
@@ -439,15 +553,20 @@ pub fn numbers(
             "— (none)"
         }
         .to_string(),
-        Some(_) if app.settings().method() == spintop::sim::MethodChoice::Exact => {
-            if wide { "0 (closed form)" } else { "0 (exact)" }.to_string()
+        Some(_)
+            if matches!(
+                column.method(),
+                spintop::sim::Method::ClosedForm | spintop::sim::Method::ClosedFormDop853
+            ) =>
+        {
+            "0 (closed form)".to_string()
         }
         Some(e) if wide => format!("|ΔΩ| = {}/{u}", fmt_num(e)),
         Some(e) => format!("{}/{u}", fmt_num(e)),
     };
     let right = vec![
         pair("ψ̇", psi_dot),
-        pair("method", column.method().label().to_string()),
+        pair("method", column.method_name().to_string()),
         pair(
             "step",
             if step > 0.0 {

@@ -1,7 +1,9 @@
-//! Every colour and style of the live view, in one place.
+//! Every colour and style of both views, in one place.
 //!
-//! Plain 16-colour ANSI names, so the view reads the same in any terminal
-//! theme and under tmux.
+//! Plain 16-colour ANSI names, so the views read the same in any terminal
+//! theme and under tmux. With `NO_COLOR` set the terminal draws no colour
+//! (crossterm honours it); what colour alone told apart gets a mark of its
+//! own then ([`no_color`]).
 
 use ratatui::style::{Color, Modifier, Style};
 
@@ -24,6 +26,12 @@ pub const TRAIL: Color = Color::Gray;
 
 /// Reference lines: coordinate axes, projections.
 pub const GUIDE: Color = Color::DarkGray;
+
+/// True when the user asked for no colour (`NO_COLOR` set and not empty,
+/// as no-color.org defines it).
+pub fn no_color() -> bool {
+    std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty())
+}
 
 /// Titles of panels.
 pub fn title() -> Style {

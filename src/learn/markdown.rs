@@ -11,12 +11,22 @@
 //! `spintop: ` (`` `spintop: ratio=1.5` ``, visible in the web book as the
 //! settings to try) marks one of the chapter's experiments.
 
+mod include;
+mod math;
+mod wrap;
+
+pub use include::resolve_includes;
+pub use wrap::{CONTINUATION, prose_subscripts, without_colours, wrap_code};
+
 use super::tex;
+use include::FOLD;
+use math::normalise_math_delimiters;
 use pulldown_cmark::{Alignment, CodeBlockKind, Event, HeadingLevel, Parser, Tag, TagEnd};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
-use std::path::Path;
+use std::path::PathBuf;
 use unicode_width::UnicodeWidthStr;
+use wrap::{NBSP, Piece, is_function_word, split_too_long, unbreakable_groups, wrap_plain};
 
 /// A chapter rendered at one width.
 #[derive(Debug, Clone, Default)]
@@ -31,120 +41,19 @@ pub struct Rendered {
     pub unknown_tex: Vec<String>,
     /// A figure is still being computed: render again once it is there.
     pub figures_pending: bool,
+    /// The links, in reading order.
+    pub links: Vec<Link>,
 }
 
-/// Resolves mdBook's `{{#include path}}` and `{{#include path:anchor}}`
-/// against `dir` (the chapter's folder), as mdBook does: an anchor keeps the
-/// lines between `ANCHOR: name` and `ANCHOR_END: name`, minus any other
-/// anchor lines. A file that cannot be read leaves a visible note.
-pub fn resolve_includes(source: &str, dir: &Path) -> String {
-    let mut out = String::with_capacity(source.len());
-    let mut rest = source;
-    while let Some(start) = rest.find("{{#include ") {
-        out.push_str(&rest[..start]);
-        let after = &rest[start + "{{#include ".len()..];
-        let Some(end) = after.find("}}") else {
-            out.push_str(&rest[start..]);
-            return out;
-        };
-        let spec = after[..end].trim();
-        out.push_str(&include(spec, dir));
-        rest = &after[end + 2..];
-    }
-    out.push_str(rest);
-    out
-}
-
-/// The first line of an included excerpt of the library's own source (a
-/// file under `src/`), which [`render_with`] folds to one line: the marker,
-/// then `path:anchor`. No source line starts with this control character.
-const FOLD: &str = "\u{1}library ";
-
-fn include(spec: &str, dir: &Path) -> String {
-    let body = include_body(spec, dir);
-    // The library's source (`../../src/…`), not a lesson or a program's output.
-    let library = spec.split(['/', '\\']).any(|part| part == "src")
-        && !spec.contains("lessons/")
-        && spec
-            .rsplit_once(':')
-            .map_or(spec, |(p, _)| p)
-            .ends_with(".rs");
-    if library {
-        let shown = spec.trim_start_matches("../").trim_start_matches("../");
-        format!("{FOLD}{shown}\n{body}")
-    } else {
-        body
-    }
-}
-
-fn include_body(spec: &str, dir: &Path) -> String {
-    let (path, anchor) = match spec.rsplit_once(':') {
-        Some((p, a)) if !a.is_empty() && !a.contains('/') => (p, Some(a)),
-        _ => (spec, None),
-    };
-    let Ok(text) = std::fs::read_to_string(dir.join(path)) else {
-        return format!("(not found: {path})");
-    };
-    let Some(anchor) = anchor else {
-        return text.trim_end_matches('\n').to_string();
-    };
-    let mut keep = false;
-    let mut lines = Vec::new();
-    for line in text.lines() {
-        let t = line.trim();
-        if t.contains(&format!("ANCHOR_END: {anchor}")) {
-            break;
-        }
-        if keep && !t.contains("ANCHOR:") && !t.contains("ANCHOR_END:") {
-            lines.push(line);
-        }
-        if t.contains(&format!("ANCHOR: {anchor}")) {
-            keep = true;
-        }
-    }
-    // mdBook removes the common indentation of an anchored region.
-    let indent = lines
-        .iter()
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| l.len() - l.trim_start().len())
-        .min()
-        .unwrap_or(0);
-    lines
-        .iter()
-        .map(|l| {
-            if l.len() >= indent {
-                &l[indent..]
-            } else {
-                l.trim_start()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
-/// `\\[ … \\]` → `$$ … $$` and `\\( … \\)` → `$ … $`, outside code, so that
-/// MathJax-style math (which needs doubled backslashes in mdBook's Markdown)
-/// reaches the same math events as `$` math.
-fn normalise_math_delimiters(source: &str) -> String {
-    let mut out = String::with_capacity(source.len());
-    let mut in_fence = false;
-    for line in source.split_inclusive('\n') {
-        if line.trim_start().starts_with("```") {
-            in_fence = !in_fence;
-        }
-        if in_fence {
-            out.push_str(line);
-        } else {
-            out.push_str(
-                &line
-                    .replace(r"\\[", "$$")
-                    .replace(r"\\]", "$$")
-                    .replace(r"\\(", "$")
-                    .replace(r"\\)", "$"),
-            );
-        }
-    }
-    out
+/// A link of the text: where it points, and where it is drawn (a link that
+/// wraps is in more than one part).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Link {
+    /// Its destination as the Markdown gives it (`section-3.md#anchor`,
+    /// `#anchor`, `https://…`).
+    pub target: String,
+    /// Each part: (line, byte range in the line's text).
+    pub parts: Vec<(usize, std::ops::Range<usize>)>,
 }
 
 /// The styles of the rendered text.
@@ -189,13 +98,6 @@ mod style {
     }
 }
 
-/// A word (or a space) waiting to be wrapped.
-#[derive(Clone)]
-struct Piece {
-    text: String,
-    style: Style,
-}
-
 struct Renderer {
     options: Options,
     /// The image being read: its file and the alt text so far.
@@ -214,6 +116,8 @@ struct Renderer {
     code: Option<(String, String)>,
     heading: Option<u8>,
     table: Option<Table>,
+    /// The link being read, if any.
+    link: Option<usize>,
 }
 
 #[derive(Default)]
@@ -225,24 +129,27 @@ struct Table {
 }
 
 /// How a chapter is rendered, beyond its width.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Options {
     /// Show the library's source excerpts whole instead of one line each.
     pub unfold: bool,
     /// Figures still being computed get a line saying so instead of waiting
     /// for them (the terminal's way; a test draws them at once).
     pub figures_later: bool,
+    /// The book's folder, where its pictures are read to be drawn (`None`:
+    /// a picture is one line naming it).
+    pub images: Option<PathBuf>,
 }
 
 /// Renders one chapter (`source` already with includes resolved) at `width`
 /// columns (at least 20), library source folded.
 pub fn render(source: &str, width: u16) -> Rendered {
-    render_with(source, width, Options::default())
+    render_with(source, width, &Options::default())
 }
 
 /// [`render`] with `options`.
-pub fn render_with(source: &str, width: u16, options: Options) -> Rendered {
-    let settings = options;
+pub fn render_with(source: &str, width: u16, options: &Options) -> Rendered {
+    let settings = options.clone();
     let source = normalise_math_delimiters(source);
     let mut options = pulldown_cmark::Options::empty();
     options.insert(pulldown_cmark::Options::ENABLE_TABLES);
@@ -262,6 +169,7 @@ pub fn render_with(source: &str, width: u16, options: Options) -> Rendered {
         code: None,
         heading: None,
         table: None,
+        link: None,
     };
     for event in Parser::new_ext(&source, options) {
         r.event(event);
@@ -313,18 +221,24 @@ impl Renderer {
                     self.pieces.push(Piece {
                         text: std::mem::take(&mut word),
                         style,
+                        link: self.link,
                     });
                 }
                 self.pieces.push(Piece {
                     text: " ".into(),
                     style,
+                    link: self.link,
                 });
             } else {
                 word.push(c);
             }
         }
         if !word.is_empty() {
-            self.pieces.push(Piece { text: word, style });
+            self.pieces.push(Piece {
+                text: word,
+                style,
+                link: self.link,
+            });
         }
     }
 
@@ -367,6 +281,8 @@ impl Renderer {
                 word.push(piece);
             }
         }
+        // The bytes of the line so far, to place the links' parts.
+        let mut bytes = prefix.len();
         for (word, space) in words.into_iter().zip(spaces) {
             let w: usize = word.iter().map(|p| p.text.width()).sum();
             let gap = usize::from(space.is_some() && used > prefix.width());
@@ -376,17 +292,36 @@ impl Renderer {
                 prefix = self.line_prefix(first);
                 line.push(Span::raw(prefix.clone()));
                 used = prefix.width();
+                bytes = prefix.len();
             } else if gap == 1 {
                 line.push(Span::styled(" ", space.unwrap_or_default()));
                 used += 1;
+                bytes += 1;
             }
             for piece in word {
                 used += piece.text.width();
+                if let Some(id) = piece.link {
+                    self.link_part(id, bytes..bytes + piece.text.len());
+                }
+                bytes += piece.text.len();
                 line.push(Span::styled(piece.text, piece.style));
             }
         }
         let _ = first;
         self.out.lines.push(Line::from(line));
+    }
+
+    /// Records that link `id` is drawn at `range` of the line being built,
+    /// one part with the part before when only a space is between them.
+    fn link_part(&mut self, id: usize, range: std::ops::Range<usize>) {
+        let line = self.out.lines.len();
+        let Some(link) = self.out.links.get_mut(id) else {
+            return;
+        };
+        match link.parts.last_mut() {
+            Some((l, r)) if *l == line && r.end + 1 >= range.start => r.end = range.end,
+            _ => link.parts.push((line, range)),
+        }
     }
 
     fn display_math(&mut self, tex_source: &str) {
@@ -511,14 +446,9 @@ impl Renderer {
     fn experiment(&mut self, settings: &str) {
         let line = self.out.lines.len();
         self.out.experiments.push((line, settings.to_string()));
-        self.pieces.push(Piece {
-            text: " ▶ try this ".into(),
-            style: style::experiment(),
-        });
-        self.pieces.push(Piece {
-            text: " ".into(),
-            style: Style::new(),
-        });
+        self.pieces
+            .push(Piece::new(" ▶ try this ", style::experiment()));
+        self.pieces.push(Piece::new(" ", Style::new()));
         let s = self.style().patch(style::code());
         self.text(&format!("[{settings}]"), s);
     }
@@ -542,18 +472,15 @@ impl Renderer {
             }
             rest = &rest[at + 5..];
         }
-        // A collapsible block's <summary> becomes a line of its own, ▸ first
-        // (the terminal shows the block open).
+        // A collapsible block's <summary> becomes a line of its own, marked
+        // ▾ as an open block is: the terminal shows the block open.
         if let Some(start) = h.find("<summary>")
             && let Some(end) = h[start..].find("</summary>")
         {
             let text = h[start + "<summary>".len()..start + end].trim();
             self.flush();
             self.blank();
-            self.pieces = vec![Piece {
-                text: format!("▸ {text}"),
-                style: style::heading(4),
-            }];
+            self.pieces = vec![Piece::new(format!("▾ {text}"), style::heading(4))];
             self.flush();
             self.blank();
         }
@@ -614,7 +541,14 @@ impl Renderer {
             Tag::Emphasis => self.push_style(Style::new().add_modifier(Modifier::ITALIC)),
             Tag::Strong => self.push_style(Style::new().add_modifier(Modifier::BOLD)),
             Tag::Strikethrough => self.push_style(Style::new().add_modifier(Modifier::CROSSED_OUT)),
-            Tag::Link { .. } => self.push_style(style::link()),
+            Tag::Link { dest_url, .. } => {
+                self.push_style(style::link());
+                self.link = Some(self.out.links.len());
+                self.out.links.push(Link {
+                    target: dest_url.to_string(),
+                    parts: Vec::new(),
+                });
+            }
             Tag::Image { dest_url, .. } => {
                 self.flush();
                 self.image = Some((dest_url.to_string(), String::new()));
@@ -685,9 +619,11 @@ impl Renderer {
                     self.figure(&path, &alt);
                 }
             }
-            TagEnd::Emphasis | TagEnd::Strong | TagEnd::Strikethrough | TagEnd::Link => {
-                self.pop_style()
+            TagEnd::Link => {
+                self.link = None;
+                self.pop_style();
             }
+            TagEnd::Emphasis | TagEnd::Strong | TagEnd::Strikethrough => self.pop_style(),
             TagEnd::TableCell => {
                 if let Some(t) = self.table.as_mut() {
                     let cell = std::mem::take(&mut t.cell);
@@ -709,75 +645,62 @@ impl Renderer {
         }
     }
 
-    /// An image: Figures 1 and 2 drawn in place with their caption; any
-    /// other diagram one line naming it and where to see it.
+    /// An image: Figures 1 and 2 drawn in place from the core's numbers,
+    /// every other picture of the book drawn from its vectors (its SVG), each
+    /// with its caption; without the book's folder, one line naming it.
     fn figure(&mut self, path: &str, alt: &str) {
         self.flush();
         self.blank();
         let caption = prose_subscripts(&without_colours(alt));
-        if let Some(number) = super::figures::number_of(path) {
-            let width = u16::try_from(self.width).unwrap_or(u16::MAX);
+        let width = u16::try_from(self.width).unwrap_or(u16::MAX);
+        let drawn = if let Some(number) = super::figures::number_of(path) {
             if self.options.figures_later && !super::figures::ready(number) {
                 self.out.figures_pending = true;
             }
-            self.out.lines.extend(super::figures::lines(
+            Some(super::figures::lines(
                 number,
                 width,
                 !self.options.figures_later,
-            ));
-            self.pieces = caption
-                .split_whitespace()
-                .flat_map(|w| {
-                    [
-                        Piece {
-                            text: w.to_string(),
-                            style: style::quote(),
-                        },
-                        Piece {
-                            text: " ".into(),
-                            style: style::quote(),
-                        },
-                    ]
-                })
-                .collect();
-            self.flush();
+            ))
         } else {
-            // The first sentence names it; the file is in the book.
-            let name = caption
-                .split_once(". ")
-                .map_or(caption.as_str(), |(first, _)| first)
-                .trim_end_matches('.');
-            let file = path.rsplit('/').next().unwrap_or(path);
-            let mut pieces = vec![Piece {
-                text: "▣ diagram:".into(),
-                style: style::heading(4),
-            }];
-            for w in name.split_whitespace() {
-                pieces.push(Piece {
-                    text: " ".into(),
-                    style: style::quote(),
-                });
-                pieces.push(Piece {
-                    text: w.to_string(),
-                    style: style::quote(),
-                });
+            self.options
+                .images
+                .as_ref()
+                .map(|book| super::diagrams::lines(&book.join(path), width))
+        };
+        match drawn {
+            Some(lines) => {
+                self.out.lines.extend(lines);
+                self.pieces = caption
+                    .split_whitespace()
+                    .flat_map(|w| {
+                        [
+                            Piece::new(w, style::quote()),
+                            Piece::new(" ", style::quote()),
+                        ]
+                    })
+                    .collect();
             }
-            for w in format!(" (book/src/figures/{file}; `spintop book` shows it)").split(' ') {
-                if w.is_empty() {
-                    continue;
+            None => {
+                // The first sentence names it; the file is in the book.
+                let name = caption
+                    .split_once(". ")
+                    .map_or(caption.as_str(), |(first, _)| first)
+                    .trim_end_matches('.');
+                let file = path.rsplit('/').next().unwrap_or(path);
+                let mut pieces = vec![Piece::new("▣ diagram:", style::heading(4))];
+                for w in name.split_whitespace() {
+                    pieces.push(Piece::new(" ", style::quote()));
+                    pieces.push(Piece::new(w, style::quote()));
                 }
-                pieces.push(Piece {
-                    text: " ".into(),
-                    style: style::quote(),
-                });
-                pieces.push(Piece {
-                    text: w.to_string(),
-                    style: style::code(),
-                });
+                for w in format!("(book/src/figures/{file})").split(' ') {
+                    pieces.push(Piece::new(" ", style::quote()));
+                    pieces.push(Piece::new(w, style::code()));
+                }
+                self.pieces = pieces;
             }
-            self.pieces = pieces;
-            self.flush();
         }
+        self.flush();
         self.blank();
     }
 
@@ -897,229 +820,6 @@ impl Renderer {
     }
 }
 
-/// Greedy word wrap of plain text into lines of at most `width` columns.
-fn wrap_plain(text: &str, width: usize) -> Vec<String> {
-    let width = width.max(1);
-    let mut lines = Vec::new();
-    let mut current = String::new();
-    for word in text.split_whitespace() {
-        let mut word = word.to_string();
-        while word.width() > width {
-            // A word longer than the column is cut.
-            let mut cut = 0;
-            let mut w = 0;
-            for (i, c) in word.char_indices() {
-                w += c.to_string().width();
-                if w > width {
-                    break;
-                }
-                cut = i + c.len_utf8();
-            }
-            if !current.is_empty() {
-                lines.push(std::mem::take(&mut current));
-            }
-            lines.push(word[..cut.max(1)].to_string());
-            word = word[cut.max(1)..].to_string();
-        }
-        if !current.is_empty() && current.width() + 1 + word.width() > width {
-            lines.push(std::mem::take(&mut current));
-        }
-        if !current.is_empty() {
-            current.push(' ');
-        }
-        current.push_str(&word);
-    }
-    if !current.is_empty() || lines.is_empty() {
-        lines.push(current);
-    }
-    lines
-}
-
-/// The mark that starts the continuation of a wrapped line of code.
-pub const CONTINUATION: &str = "↪ ";
-
-/// True for a character inside a token of code or output: a name, a number
-/// (with its point and exponent) or a string of them.
-fn token_char(c: char) -> bool {
-    c.is_alphanumeric() || c == '_' || c == '.' || c == '\''
-}
-
-/// A line of code or program output cut into pieces of at most `width`
-/// columns (the first) and `width − 2` (the rest, after [`CONTINUATION`]),
-/// between tokens: at a space when there is one, else after punctuation,
-/// never inside a name or a number (`1.5e-3` is one token). Only a token
-/// longer than a whole line is cut.
-pub fn wrap_code(line: &str, width: usize) -> Vec<String> {
-    let width = width.max(4);
-    let chars: Vec<char> = line.chars().collect();
-    // May the line break before chars[i]?
-    let breakable = |i: usize| -> bool {
-        if i == 0 || i >= chars.len() {
-            return false;
-        }
-        let (a, b) = (chars[i - 1], chars[i]);
-        // An exponent's sign belongs to its number: 1e-3, 2.5E+8.
-        let exponent = |k: usize| {
-            k >= 2
-                && matches!(chars[k], '-' | '+')
-                && matches!(chars[k - 1], 'e' | 'E')
-                && chars[k - 2].is_ascii_digit()
-                && chars.get(k + 1).is_some_and(char::is_ascii_digit)
-        };
-        if exponent(i) || exponent(i - 1) {
-            return false;
-        }
-        !(token_char(a) && token_char(b))
-    };
-    let mut out = Vec::new();
-    let mut start = 0;
-    let mut first = true;
-    while start < chars.len() {
-        let room = if first { width } else { width - 2 };
-        let mut used = 0;
-        let mut end = start;
-        while end < chars.len() {
-            let w = UnicodeWidthStr::width(chars[end].encode_utf8(&mut [0; 4]) as &str);
-            if used + w > room {
-                break;
-            }
-            used += w;
-            end += 1;
-        }
-        if end < chars.len() {
-            // Prefer the last space, then the last token boundary.
-            let space = (start + 1..=end)
-                .rev()
-                .find(|&i| chars[i - 1] == ' ' && chars.get(i).is_some_and(|c| *c != ' '));
-            let boundary = (start + 1..=end).rev().find(|&i| breakable(i));
-            end = space.or(boundary).unwrap_or(end.max(start + 1));
-        }
-        let piece: String = chars[start..end].iter().collect();
-        out.push(if first {
-            piece.trim_end().to_string()
-        } else {
-            piece.trim().to_string()
-        });
-        start = end;
-        while start < chars.len() && chars[start] == ' ' && !first {
-            start += 1;
-        }
-        first = false;
-        while start < chars.len() && chars[start] == ' ' {
-            start += 1;
-        }
-    }
-    if out.is_empty() {
-        out.push(String::new());
-    }
-    out
-}
-
-/// `sin`, `cos²`, `ln`, … written in prose: kept with the word after it.
-fn is_function_word(word: &str) -> bool {
-    let w = word.trim_end_matches(|c: char| "²³⁻¹".contains(c));
-    let last = w.rsplit(NBSP).next().unwrap_or(w);
-    matches!(last, "sin" | "cos" | "tan" | "cot" | "ln" | "exp" | "log")
-}
-
-/// The no-break space that holds an equation's group together in prose.
-const NBSP: char = '\u{a0}';
-
-/// `text` with the spaces inside parentheses, brackets and braces made
-/// no-break, so that wrapping breaks an equation only between its terms.
-fn unbreakable_groups(text: &str) -> String {
-    let mut depth = 0i32;
-    text.chars()
-        .map(|c| {
-            match c {
-                '(' | '[' | '{' | '⟨' => depth += 1,
-                ')' | ']' | '}' | '⟩' => depth = (depth - 1).max(0),
-                _ => {}
-            }
-            if c == ' ' && depth > 0 { NBSP } else { c }
-        })
-        .collect()
-}
-
-/// Pieces that are wider than `room` (an unbreakable group of an equation)
-/// split again at their no-break spaces, so no line is wider than the text.
-fn split_too_long(pieces: Vec<Piece>, room: usize) -> Vec<Piece> {
-    let mut out = Vec::with_capacity(pieces.len());
-    for piece in pieces {
-        if piece.text.width() > room && piece.text.contains(NBSP) {
-            for (k, part) in piece.text.split(NBSP).enumerate() {
-                if k > 0 {
-                    out.push(Piece {
-                        text: " ".into(),
-                        style: piece.style,
-                    });
-                }
-                out.push(Piece {
-                    text: part.to_string(),
-                    style: piece.style,
-                });
-            }
-        } else {
-            out.push(piece);
-        }
-    }
-    out
-}
-
-/// Prose's `m_em`, `t_c`, `Z_AL`-style names written as the equations write
-/// them (`mₑₘ`, `t_c` where a letter has no subscript form stays as it is),
-/// so prose and equations use one notation.
-pub fn prose_subscripts(text: &str) -> String {
-    let chars: Vec<char> = text.chars().collect();
-    let mut out = String::with_capacity(text.len());
-    let mut i = 0;
-    while i < chars.len() {
-        let c = chars[i];
-        if c == '_'
-            && i >= 1
-            && chars[i - 1].is_alphabetic()
-            && (i < 2 || !chars[i - 2].is_alphanumeric())
-        {
-            let end = (i + 1..chars.len())
-                .find(|&k| !chars[k].is_alphanumeric())
-                .unwrap_or(chars.len());
-            // One letter stays (R_x beside R_z, whose z has no subscript
-            // form); digits and names of two or three letters (m_em) turn.
-            let len = end - i - 1;
-            let digits = chars[i + 1..end].iter().all(char::is_ascii_digit);
-            let sub: Option<String> = ((2..=3).contains(&len) || (1..=3).contains(&len) && digits)
-                .then(|| {
-                    chars[i + 1..end]
-                        .iter()
-                        .map(|c| super::tex::subscript(*c))
-                        .collect()
-                })
-                .flatten();
-            if let Some(sub) = sub {
-                out.push_str(&sub);
-                i = end;
-                continue;
-            }
-        }
-        out.push(c);
-        i += 1;
-    }
-    out
-}
-
-/// A caption without the colours the terminal does not show as the book
-/// does: "(blue)", "(red)" and the like are left out.
-pub fn without_colours(text: &str) -> String {
-    const COLOURS: [&str; 8] = [
-        "blue", "red", "green", "grey", "gray", "orange", "black", "pale",
-    ];
-    let mut out = text.to_string();
-    for c in COLOURS {
-        out = out.replace(&format!(" ({c})"), "");
-    }
-    out
-}
-
 /// A heading's Markdown as plain text (emphasis, code and links as their
 /// words, math as Unicode), for the contents and the search.
 pub fn plain_inline(markdown: &str) -> String {
@@ -1172,7 +872,7 @@ mod tests {
             80,
         );
         let text = plain(&r.lines);
-        assert!(text.contains("▸ Derivation of (3.3)"), "{text}");
+        assert!(text.contains("▾ Derivation of (3.3)"), "{text}");
         assert!(text.contains("The body, x\u{307}."), "{text}");
         assert!(
             !text.contains("<summary>") && !text.contains("details>"),
@@ -1237,6 +937,19 @@ mod tests {
         let s = resolve_includes("```rust\n{{#include x.rs:part}}\n```", &dir);
         assert_eq!(s, "```rust\nfn kept() {}\n```");
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    /// A display block's line that starts `- ` is a minus, not a list item
+    /// (the book's KaTeX reads the block before Markdown does).
+    #[test]
+    fn a_display_block_is_read_whole() {
+        let r = render("Text:\n\n$$\na = b\n- c\n$$\n\nMore.\n", 60);
+        let shown = plain(&r.lines);
+        assert!(!shown.contains('•') && !shown.contains("$$"), "{shown}");
+        assert!(
+            shown.contains("a = b − c") || shown.contains("a = b - c"),
+            "{shown}"
+        );
     }
 
     #[test]

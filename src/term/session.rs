@@ -4,11 +4,14 @@
 //! One loop serves both: a [`Screen`] turns terminal events into its own
 //! commands, applies them, advances by the wall clock and draws; the loop
 //! paces frames, reads events in between and ends on quit or on a signal.
-//! [`Session`] owns the terminal and restores it when dropped, so that every
-//! way out (quit, an I/O error, an early return, a panic) leaves the shell
-//! usable.
+//! Ctrl-Z is the loop's own: the terminal is restored, the process stops as
+//! a shell's job does, and `fg` brings the screen back whole. [`Session`]
+//! owns the terminal and restores it when dropped, so that every way out
+//! (quit, an I/O error, an early return, a panic) leaves the shell usable.
 
-use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, Event};
+use crossterm::event::{
+    self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyEventKind, KeyModifiers,
+};
 use ratatui::{DefaultTerminal, Frame, Terminal, backend::Backend};
 use spintop::math::Real;
 use std::io::{self, IsTerminal};
@@ -29,6 +32,48 @@ pub trait Screen {
     fn draw(&self, frame: &mut Frame);
     /// True once quit was asked for.
     fn should_quit(&self) -> bool;
+    /// Whether the screen wants the mouse (its wheel) now; off leaves the
+    /// terminal's own selection of text to the reader.
+    fn wants_mouse(&self) -> bool {
+        false
+    }
+}
+
+/// What the loop asks of the real terminal besides drawing: a test's
+/// backend has none of it ([`NoControl`]).
+pub trait Control {
+    /// Ctrl-Z: hand the terminal back, stop as a job does, take it again on
+    /// `fg` (the loop then redraws everything).
+    fn suspend(&mut self) -> io::Result<()>;
+    /// Capture the mouse (its wheel), or leave it to the terminal.
+    fn set_mouse(&mut self, on: bool) -> io::Result<()>;
+}
+
+/// A loop without a real terminal (a test backend): nothing to suspend,
+/// no mouse.
+pub struct NoControl;
+
+impl Control for NoControl {
+    fn suspend(&mut self) -> io::Result<()> {
+        Ok(())
+    }
+
+    fn set_mouse(&mut self, _on: bool) -> io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Why the full-screen views cannot start here.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Unusable {
+    /// Standard output is a pipe or a file.
+    #[error("needs a terminal, but stdout is not one")]
+    NotATerminal,
+    /// `TERM=dumb`.
+    #[error(
+        "needs a terminal that can draw it (TERM=dumb: this terminal cannot draw the full-screen view)"
+    )]
+    Dumb,
 }
 
 /// The redraw interval: about 30 frames per second.
@@ -80,36 +125,78 @@ pub fn process_cpu_time() -> Option<Duration> {
 /// Why the full-screen views cannot start here, if they cannot: stdout is
 /// not a terminal, or the terminal cannot draw them (`TERM=dumb`). The
 /// reason reads after the view's name: "the live view needs a terminal, …".
-pub fn check() -> Result<(), String> {
+pub fn check() -> Result<(), Unusable> {
     if !io::stdout().is_terminal() {
-        return Err("needs a terminal, but stdout is not one".into());
+        return Err(Unusable::NotATerminal);
     }
-    super::signals::check_terminal_capable()
-        .map_err(|e| format!("needs a terminal that can draw it ({e})"))
+    check_terminal_capable()
+}
+
+/// Refuses a terminal that cannot draw the full-screen view (`TERM=dumb`),
+/// as a missing terminal is refused.
+pub fn check_terminal_capable() -> Result<(), Unusable> {
+    match std::env::var("TERM") {
+        Ok(t) if t == "dumb" => Err(Unusable::Dumb),
+        _ => Ok(()),
+    }
 }
 
 /// The terminal, in raw mode on the alternate screen until dropped.
 pub struct Session {
     terminal: DefaultTerminal,
+    control: Crossterm,
+}
+
+/// The real terminal's controls, through crossterm.
+struct Crossterm {
     mouse: bool,
 }
 
-impl Session {
-    /// Take over the terminal (raw mode, alternate screen; the mouse wheel
-    /// too when `mouse`). A panic restores it as well (ratatui's hook, and
-    /// the mouse released first).
-    pub fn start(mouse: bool) -> io::Result<Self> {
-        let terminal = ratatui::try_init()?;
-        let session = Self { terminal, mouse };
-        if mouse {
-            crossterm::execute!(io::stdout(), EnableMouseCapture)?;
-            let hook = std::panic::take_hook();
-            std::panic::set_hook(Box::new(move |info| {
-                let _ = crossterm::execute!(io::stdout(), DisableMouseCapture);
-                hook(info);
-            }));
+impl Control for Crossterm {
+    fn suspend(&mut self) -> io::Result<()> {
+        if self.mouse {
+            crossterm::execute!(io::stdout(), DisableMouseCapture)?;
         }
-        Ok(session)
+        ratatui::restore();
+        super::signals::stop_as_a_job();
+        // Back from `fg`: the terminal as the session had it.
+        crossterm::terminal::enable_raw_mode()?;
+        crossterm::execute!(io::stdout(), crossterm::terminal::EnterAlternateScreen)?;
+        if self.mouse {
+            crossterm::execute!(io::stdout(), EnableMouseCapture)?;
+        }
+        Ok(())
+    }
+
+    fn set_mouse(&mut self, on: bool) -> io::Result<()> {
+        if on != self.mouse {
+            if on {
+                crossterm::execute!(io::stdout(), EnableMouseCapture)?;
+            } else {
+                crossterm::execute!(io::stdout(), DisableMouseCapture)?;
+            }
+            self.mouse = on;
+        }
+        Ok(())
+    }
+}
+
+impl Session {
+    /// Take over the terminal (raw mode, alternate screen). The mouse is
+    /// captured while the screen wants it ([`Screen::wants_mouse`]). A panic
+    /// restores the terminal as well (ratatui's hook, and the mouse released
+    /// first).
+    pub fn start() -> io::Result<Self> {
+        let terminal = ratatui::try_init()?;
+        let hook = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            let _ = crossterm::execute!(io::stdout(), DisableMouseCapture);
+            hook(info);
+        }));
+        Ok(Self {
+            terminal,
+            control: Crossterm { mouse: false },
+        })
     }
 
     /// Run `screen` until it quits, a signal arrives, or `limit` has passed.
@@ -118,27 +205,43 @@ impl Session {
         screen: &mut S,
         limit: Option<Duration>,
     ) -> io::Result<LoopReport> {
-        run(&mut self.terminal, screen, limit)
+        run(&mut self.terminal, screen, limit, &mut self.control)
     }
 }
 
 impl Drop for Session {
     fn drop(&mut self) {
-        if self.mouse {
+        if self.control.mouse {
             let _ = crossterm::execute!(io::stdout(), DisableMouseCapture);
         }
         ratatui::restore();
     }
 }
 
+/// True for Ctrl-Z, which the loop takes for itself.
+fn is_suspend(event: &Event) -> bool {
+    matches!(event, Event::Key(k) if k.kind != KeyEventKind::Release
+        && k.modifiers.contains(KeyModifiers::CONTROL)
+        && matches!(k.code, KeyCode::Char('z' | 'Z')))
+}
+
+/// True for Ctrl-L, which the loop takes for itself: draw everything again.
+fn is_repaint(event: &Event) -> bool {
+    matches!(event, Event::Key(k) if k.kind != KeyEventKind::Release
+        && k.modifiers.contains(KeyModifiers::CONTROL)
+        && matches!(k.code, KeyCode::Char('l' | 'L')))
+}
+
 /// Run `screen` on `terminal` until it quits (or for `limit`, for the
 /// benchmark): draw about 30 times a second, let the wall clock pass, and
 /// apply the events in between. The screen learns its size before the
-/// first frame, and again at every resize.
+/// first frame, and again at every resize. Ctrl-Z and the mouse go to
+/// `control`.
 pub fn run<B: Backend, S: Screen>(
     terminal: &mut Terminal<B>,
     screen: &mut S,
     limit: Option<Duration>,
+    control: &mut dyn Control,
 ) -> io::Result<LoopReport>
 where
     B::Error: Send + Sync + 'static,
@@ -160,6 +263,7 @@ where
         }
         screen.advance(now - last);
         last = now;
+        control.set_mouse(screen.wants_mouse())?;
         let drawn = terminal
             .draw(|frame| screen.draw(frame))
             .map_err(io::Error::other)?
@@ -187,6 +291,19 @@ where
                 break;
             }
             let event = event::read()?;
+            if is_suspend(&event) {
+                control.suspend()?;
+                terminal.clear().map_err(io::Error::other)?;
+                // The time stopped is not the models' to run through.
+                last = Instant::now();
+                continue;
+            }
+            if is_repaint(&event) {
+                // Ctrl-L, as in less: whatever wrote over the screen (a
+                // message from another program) is drawn over again.
+                terminal.clear().map_err(io::Error::other)?;
+                continue;
+            }
             if let Some(command) = screen.command(&event) {
                 screen.apply(command);
             }

@@ -1,0 +1,402 @@
+//! The screen of `spintop learn`. Drawing only reads the [`Learn`] state.
+//!
+//! ```text
+//! spintop learn │ Section 4.2: the reduced top │ 6 of 25 │ course …
+//! ╭ section-4-2.md ────────────╮ scene: what it is
+//! │ the chapter, wrapped        ┃ its parameters, paused or running
+//! │ …                           │ the live models' column(s), or the
+//! ╰──────────── 25% lines 1–20 ─╯ chapter's own scene
+//! status: the last thing done (an experiment, a search, a pause)
+//! keys
+//! ```
+
+mod panels;
+mod yours;
+
+pub use panels::{COURSE_WIDTH, HELP_WIDTH, course_lines, help_lines};
+
+use super::scene::Spec;
+use super::scene::draw::{draw_orbit, draw_shell};
+use super::scene::{Stage, playback_status};
+use super::{Learn, Mode, text_inner};
+use crate::live::draw::{draw_columns, status as live_status};
+use crate::term::cells::{Cell, Key, fit_cells, key, key_line};
+use crate::term::theme;
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, BorderType, Paragraph, Wrap};
+
+/// The keys of the footer.
+const KEYS: [Key; 12] = [
+    key("?", "help", "?", "help", 0),
+    key("q", "quit", "q", "quit", 0),
+    key("space b", "page", "spc b", "page", 3),
+    key("/", "search", "/", "find", 5),
+    key("← →", "chapter", "←→", "chapter", 6),
+    key("c", "contents", "c", "contents", 7),
+    key("x", "next experiment", "x", "try", 8),
+    key("s", "scene full screen", "s", "scene", 9),
+    key("p", "pause scene", "p", "pause", 4),
+    key("o", "unfold code", "o", "code", 2),
+    key("a", "assignments", "a", "course", 1),
+    key("h", "hint", "h", "hint", 1),
+];
+
+/// Draw the screen for the current state.
+pub fn draw(frame: &mut Frame, learn: &Learn) {
+    let area = frame.area();
+    if learn.too_small() || area.width < super::MIN_SIZE.0 || area.height < super::MIN_SIZE.1 {
+        let p = Paragraph::new(vec![
+            Line::from(Span::styled("Please enlarge the terminal", theme::error())),
+            Line::from(format!(
+                "spintop learn needs {}×{}; this one is {}×{}. q quits.",
+                super::MIN_SIZE.0,
+                super::MIN_SIZE.1,
+                area.width,
+                area.height
+            )),
+        ])
+        .wrap(Wrap { trim: true });
+        frame.render_widget(p, area);
+        return;
+    }
+    let panes = learn.panes_in((area.width, area.height));
+    draw_header(frame, panes.header, learn);
+    if let Some(text) = panes.text {
+        draw_text(frame, text, learn);
+    }
+    if let Some(scene) = panes.scene {
+        draw_scene(frame, scene, learn);
+    }
+    draw_status(frame, panes.status, learn, panes.scene.is_some());
+    draw_footer(frame, panes.footer, learn, panes.scene.is_some());
+    match learn.mode() {
+        Mode::Help(scroll) => panels::draw_help(frame, area, learn, *scroll),
+        Mode::Course(scroll) => panels::draw_course(frame, area, learn, *scroll),
+        Mode::Contents(sel) => panels::draw_contents(frame, area, learn, *sel),
+        _ => {}
+    }
+}
+
+/// The course's cell in the header: "course 3 of 22 ▰▱…", or how far its
+/// grading has got; short forms keep it on a narrow screen.
+fn course_cell(learn: &Learn) -> Option<Cell> {
+    let panel = learn.course_panel();
+    let styled = |s: String| vec![Span::styled(s, theme::key())];
+    let clock = |g: &spintop_course::building::Snapshot| {
+        let s = g.elapsed.as_secs();
+        format!("{}:{:02}", s / 60, s % 60)
+    };
+    let (long, short) = match (panel.status(), panel.grading(), panel.error()) {
+        (_, _, Some(_)) => ("course: cannot grade".to_string(), "course ✗".to_string()),
+        (Some(s), grading, _) => {
+            let (k, n) = (s.passing(), s.states.len());
+            let busy = grading
+                .as_ref()
+                .map_or(String::new(), |g| format!(" grading {}", clock(g)));
+            (
+                format!("course {k} of {n} {}{busy}", super::progress_bar(k, n, 10)),
+                format!("course {k}/{n}{busy}"),
+            )
+        }
+        (None, Some(g), _) => {
+            let what = match g.units {
+                Some((done, total)) => format!("compiling {done} of {total}, "),
+                None => String::new(),
+            };
+            (
+                format!("course: grading, {what}{}", clock(&g)),
+                format!("grading {}", clock(&g)),
+            )
+        }
+        (None, None, None) => return None,
+    };
+    Some(Cell::or(styled(long), styled(short)))
+}
+
+fn draw_header(frame: &mut Frame, area: Rect, learn: &Learn) {
+    let chapter = &learn.chapters()[learn.current()];
+    let seen = learn.visited().iter().filter(|v| **v).count();
+    let n = learn.chapters().len();
+    let mut cells = vec![
+        Cell::fixed(vec![Span::styled(" spintop learn ", theme::status(false))]),
+        Cell::fixed(vec![Span::styled(chapter.title.clone(), theme::title())]),
+    ];
+    // The course before the chapter's count: the count shortens first.
+    cells.extend(course_cell(learn));
+    cells.push(Cell::or(
+        vec![Span::styled(
+            format!("chapter {} of {n}, {seen} opened", learn.current() + 1),
+            theme::label(),
+        )],
+        vec![Span::styled(
+            format!("{}/{n}", learn.current() + 1),
+            theme::label(),
+        )],
+    ));
+    frame.render_widget(Paragraph::new(fit_cells(cells, area.width)), area);
+}
+
+/// `line` with the byte ranges `marks` of its text styled: `(range, style)`.
+fn highlight(line: &Line<'static>, marks: &[(std::ops::Range<usize>, Style)]) -> Line<'static> {
+    if marks.is_empty() {
+        return line.clone();
+    }
+    let mut spans = Vec::new();
+    let mut offset = 0;
+    for span in &line.spans {
+        let text = span.content.as_ref();
+        let end = offset + text.len();
+        // Cut points inside this span.
+        let mut cuts = vec![0, text.len()];
+        for (m, _) in marks {
+            for p in [m.start, m.end] {
+                if p > offset && p < end && text.is_char_boundary(p - offset) {
+                    cuts.push(p - offset);
+                }
+            }
+        }
+        cuts.sort_unstable();
+        cuts.dedup();
+        for w in cuts.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let at = offset + a;
+            let style = marks
+                .iter()
+                .find(|(m, _)| m.start <= at && at < m.end)
+                .map_or(span.style, |(_, s)| span.style.patch(*s));
+            spans.push(Span::styled(text[a..b].to_string(), style));
+        }
+        offset = end;
+    }
+    Line::from(spans)
+}
+
+/// The marks on line `i`: the search's matches (the current one brighter)
+/// and the link in focus.
+fn marks_on(learn: &Learn, i: usize) -> Vec<(std::ops::Range<usize>, Style)> {
+    let mut marks = Vec::new();
+    if let Some(s) = learn.search() {
+        let current = s.at.and_then(|k| s.matches.get(k));
+        for m in s.matches.iter().filter(|(l, _)| *l == i) {
+            let style = if Some(m) == current {
+                Style::new()
+                    .fg(ratatui::style::Color::Black)
+                    .bg(ratatui::style::Color::Yellow)
+            } else {
+                Style::new().add_modifier(Modifier::REVERSED)
+            };
+            marks.push((m.1.clone(), style));
+        }
+    }
+    if let Some(link) = learn
+        .focused_link()
+        .and_then(|k| learn.rendered().links.get(k))
+    {
+        for (_, r) in link.parts.iter().filter(|(l, _)| *l == i) {
+            marks.push((
+                r.clone(),
+                Style::new().add_modifier(Modifier::REVERSED | Modifier::BOLD),
+            ));
+        }
+    }
+    marks
+}
+
+/// Where the reader is, as `less` says it: the share of the chapter read
+/// and the lines shown, or END.
+pub fn position(top: usize, shown: usize, total: usize) -> String {
+    if total == 0 {
+        return " empty ".into();
+    }
+    let last = (top + shown).min(total);
+    if last >= total {
+        return format!(" lines {}–{last} of {total} END ", top + 1);
+    }
+    format!(
+        " {}% lines {}–{last} of {total} ",
+        100 * last / total,
+        top + 1
+    )
+}
+
+fn draw_text(frame: &mut Frame, area: Rect, learn: &Learn) {
+    let inner = text_inner(area);
+    let lines = &learn.rendered().lines;
+    let total = lines.len();
+    let top = learn.scroll().min(total);
+    let end = (top + usize::from(inner.height)).min(total);
+    let block = Block::bordered()
+        .border_type(BorderType::Rounded)
+        .border_style(theme::frame())
+        .title(Span::styled(
+            format!(" {} ", learn.chapters()[learn.current()].file),
+            theme::label(),
+        ))
+        .title_bottom(
+            Line::from(Span::styled(
+                position(top, usize::from(inner.height), total),
+                theme::label(),
+            ))
+            .right_aligned(),
+        );
+    frame.render_widget(block, area);
+    let shown: Vec<Line> = (top..end)
+        .map(|i| highlight(&lines[i], &marks_on(learn, i)))
+        .collect();
+    frame.render_widget(Paragraph::new(shown), inner);
+    if total > usize::from(inner.height) && inner.height > 0 {
+        // A one-column position mark on the right edge.
+        let max = total.saturating_sub(usize::from(inner.height)).max(1);
+        let pos = top * usize::from(inner.height - 1) / max;
+        let mark = Rect {
+            x: area.x + area.width - 1,
+            y: inner.y + pos as u16,
+            width: 1,
+            height: 1,
+        };
+        frame.render_widget(Paragraph::new(Span::styled("┃", theme::key())), mark);
+    }
+}
+
+fn draw_scene(frame: &mut Frame, area: Rect, learn: &Learn) {
+    let [about, params, rest] = Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Length(1),
+        Constraint::Fill(1),
+    ])
+    .areas(area);
+    frame.render_widget(
+        Paragraph::new(Line::from(Span::styled(
+            shortened(
+                &format!(" scene: {}", learn.scene_info().about),
+                about.width,
+            ),
+            theme::label(),
+        ))),
+        about,
+    );
+    let stage = learn.stage();
+    frame.render_widget(
+        Paragraph::new(fit_cells(stage.parameters(), params.width)),
+        params,
+    );
+    match stage {
+        Stage::Top(app) => {
+            let columns: Vec<usize> = match &learn.scene_info().spec {
+                Spec::Top { columns, .. } => columns
+                    .iter()
+                    .copied()
+                    .filter(|c| *c < app.columns().len())
+                    .collect(),
+                _ => Vec::new(),
+            };
+            // The student's function of time, when there is one, below the scene.
+            let rest = if learn.yours().is_some() && rest.height >= 20 {
+                let [scene, mine] =
+                    Layout::vertical([Constraint::Fill(2), Constraint::Fill(1)]).areas(rest);
+                yours::draw_yours(frame, mine, learn);
+                scene
+            } else {
+                rest
+            };
+            draw_columns(frame, rest, app, &columns, "v");
+        }
+        Stage::Orbit(p) => draw_orbit(frame, rest, p),
+        Stage::Shell(p) => draw_shell(frame, rest, p),
+        Stage::None => {}
+    }
+}
+
+/// `text` cut at a word to fit `width` columns, "…" where it was cut.
+pub fn shortened(text: &str, width: u16) -> String {
+    let limit = usize::from(width);
+    if Span::raw(text).width() <= limit {
+        return text.to_string();
+    }
+    let lead = text.len() - text.trim_start().len();
+    let mut out = text[..lead].to_string();
+    for word in text.trim_start().split(' ') {
+        let next = if out.trim().is_empty() {
+            format!("{out}{word}")
+        } else {
+            format!("{out} {word}")
+        };
+        if Span::raw(next.as_str()).width() + 1 > limit {
+            break;
+        }
+        out = next;
+    }
+    format!("{}…", out.trim_end_matches([',', ':', ';']))
+}
+
+fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) {
+    let line = match (learn.mode(), learn.message()) {
+        (Mode::Search(q, forward), _) => Line::from(vec![
+            Span::styled(if *forward { " /" } else { " ?" }, theme::key()),
+            Span::styled(format!("{q}▏"), theme::selected()),
+            Span::styled(
+                match learn.search() {
+                    Some(last) if q.is_empty() => format!(
+                        "  Enter finds (alone: “{}” again), Esc cancels{}",
+                        last.query,
+                        if *forward { "" } else { "; backward" }
+                    ),
+                    _ if !forward => "  Enter finds backward, Esc cancels".to_string(),
+                    _ => "  Enter finds, Esc cancels".to_string(),
+                },
+                theme::label(),
+            ),
+        ]),
+        // A message too long for the line is cut at a word, with "…".
+        (_, Some((m, true))) => Line::from(Span::styled(
+            shortened(&format!(" {m}"), area.width),
+            theme::error(),
+        )),
+        (_, Some((m, false))) => Line::from(Span::styled(
+            shortened(&format!(" {m}"), area.width),
+            theme::info(),
+        )),
+        _ => scene_status(learn, scene_shown),
+    };
+    frame.render_widget(Paragraph::new(line), area);
+}
+
+/// The scene's clock and state, when nothing else is said.
+fn scene_status(learn: &Learn, scene_shown: bool) -> Line<'static> {
+    let stage = learn.stage();
+    let mut spans = vec![Span::styled(" scene ", theme::label())];
+    match stage.clock() {
+        Some(clock) => {
+            spans.push(Span::styled(clock, theme::value()));
+            spans.push(Span::raw(" "));
+            spans.push(match stage {
+                Stage::Top(app) => live_status(app),
+                _ => playback_status(stage.paused()),
+            });
+            if !scene_shown {
+                spans.push(Span::styled(
+                    "  (s shows it, w beside the text)",
+                    theme::label(),
+                ));
+            }
+        }
+        None => spans.push(Span::styled(learn.scene_info().describe(), theme::label())),
+    }
+    Line::from(spans)
+}
+
+fn draw_footer(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) {
+    let has_scene = !matches!(learn.stage(), Stage::None);
+    let keys: Vec<&Key> = KEYS
+        .iter()
+        .filter(|k| {
+            let scene_key = matches!(k.key, "s" | "p" | "x");
+            (has_scene || !scene_key)
+                && !(k.key == "s" && scene_shown && *learn.mode() != Mode::Scene)
+        })
+        .collect();
+    frame.render_widget(Paragraph::new(key_line(&keys, area.width)), area);
+}
