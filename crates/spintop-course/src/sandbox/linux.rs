@@ -29,6 +29,9 @@ fn text(e: impl std::fmt::Display) -> String {
 pub(super) fn launch(spec: &Spec, program: &Path, args: &[OsString]) -> i32 {
     // A launcher whose parent (the grader) dies takes its program along.
     let _ = rustix::process::set_parent_process_death_signal(Some(rustix::process::Signal::KILL));
+    // Nothing the grader was given (a terminal, a pipe, a FIFO on fd 7)
+    // reaches the program: it keeps its standard input, output and error.
+    close_inherited();
     let mut layers = Layers::none("not tried");
     let run = matches!(spec.kind, Kind::Run | Kind::Probe);
     // The program is opened before anything changes (who we are, what we
@@ -90,6 +93,22 @@ pub(super) fn launch(spec: &Spec, program: &Path, args: &[OsString]) -> i32 {
             let e = std::process::Command::new(&exec_path).args(args).exec();
             fail(&format!("cannot start {}: {e}", program.display()))
         }
+    }
+}
+
+/// Closes every file descriptor above the standard three: those listed in
+/// `/proc/self/fd` (the list is read whole first, its own descriptor closed
+/// before any is closed), or without `/proc` every one below 1024.
+fn close_inherited() {
+    let listed: Option<Vec<i32>> = std::fs::read_dir("/proc/self/fd").ok().map(|dir| {
+        dir.flatten()
+            .filter_map(|e| e.file_name().to_str()?.parse().ok())
+            .collect()
+    });
+    let open = listed.unwrap_or_else(|| (3..1024).collect());
+    for fd in open.into_iter().filter(|&fd| fd > 2) {
+        // The reader's own descriptor is already closed: EBADF, ignored.
+        let _ = nix::unistd::close(fd);
     }
 }
 
@@ -355,12 +374,43 @@ fn seccomp(kind: &Kind) -> Result<String, String> {
             libc::SYS_pivot_root,
             libc::SYS_chroot,
             libc::SYS_personality,
+            // The new mount API and memory-backed files: nothing to mount,
+            // and no file (executable or not) outside the empty root.
+            libc::SYS_fsopen,
+            libc::SYS_fsconfig,
+            libc::SYS_fsmount,
+            libc::SYS_fspick,
+            libc::SYS_open_tree,
+            libc::SYS_move_mount,
+            libc::SYS_mount_setattr,
+            libc::SYS_memfd_create,
+            libc::SYS_memfd_secret,
         ]);
         #[cfg(target_arch = "x86_64")]
         denied.extend([libc::SYS_fork, libc::SYS_vfork]);
     }
     let mut rules: std::collections::BTreeMap<i64, Vec<SeccompRule>> =
         denied.into_iter().map(|s| (s, Vec::new())).collect();
+    // No `prctl` that would let the program outlive the grader or be read
+    // from outside: not its parent-death signal, its dumpable flag or a
+    // subreaper's role (builds and runners alike).
+    let mut prctl = Vec::new();
+    for option in [
+        libc::PR_SET_PDEATHSIG,
+        libc::PR_SET_DUMPABLE,
+        libc::PR_SET_CHILD_SUBREAPER,
+        libc::PR_SET_PTRACER,
+    ] {
+        let is = SeccompCondition::new(
+            0,
+            SeccompCmpArgLen::Dword,
+            SeccompCmpOp::Eq,
+            option as u64,
+        )
+        .map_err(text)?;
+        prctl.push(SeccompRule::new(vec![is]).map_err(text)?);
+    }
+    rules.insert(libc::SYS_prctl, prctl);
     if !runner {
         // A build's socket: a local one only (no internet, no netlink).
         let local = SeccompCondition::new(
@@ -385,9 +435,9 @@ fn seccomp(kind: &Kind) -> Result<String, String> {
     let program: seccompiler::BpfProgram = filter.try_into().map_err(text)?;
     seccompiler::apply_filter(&program).map_err(text)?;
     Ok(if runner {
-        "no socket, ptrace, signal or new process".into()
+        "no socket, ptrace, signal, new process, mount or memfd; no prctl of its parent-death signal".into()
     } else {
-        "no internet socket, no ptrace".into()
+        "no internet socket, no ptrace, no prctl of its parent-death signal".into()
     })
 }
 
