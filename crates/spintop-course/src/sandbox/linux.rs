@@ -27,8 +27,19 @@ fn text(e: impl std::fmt::Display) -> String {
 }
 
 pub(super) fn launch(spec: &Spec, program: &Path, args: &[OsString]) -> i32 {
-    // A launcher whose parent (the grader) dies takes its program along.
-    let _ = rustix::process::set_parent_process_death_signal(Some(rustix::process::Signal::KILL));
+    // A runner whose parent (the grader) dies is killed (and cannot undo
+    // it: seccomp refuses that `prctl`); a build's guard, instead, sees its
+    // parent gone within 10 ms and ends its whole process group (cargo's
+    // children do not inherit a parent-death signal).
+    let grader = rustix::process::getppid();
+    let death = match spec.kind {
+        Kind::Build { .. } => rustix::process::Signal::CONT,
+        _ => rustix::process::Signal::KILL,
+    };
+    let _ = rustix::process::set_parent_process_death_signal(Some(death));
+    if rustix::process::getppid() != grader {
+        return fail("the grader ended before its sandbox was set up");
+    }
     // Nothing the grader was given (a terminal, a pipe, a FIFO on fd 7)
     // reaches the program: it keeps its standard input, output and error.
     close_inherited();
@@ -82,6 +93,16 @@ pub(super) fn launch(spec: &Spec, program: &Path, args: &[OsString]) -> i32 {
     if let Err(e) = rustix::thread::set_no_new_privs(true) {
         return fail(&format!("cannot set no_new_privs: {e}"));
     }
+    if matches!(spec.kind, Kind::Build { .. }) {
+        // Orphans of the build come to the guard (and stay in its group).
+        let _ = rustix::process::set_child_subreaper(None);
+    }
+    if matches!(spec.kind, Kind::Run) {
+        // A wall-clock limit that holds without the grader: the alarm stays
+        // across exec, and seccomp refuses `alarm`, `setitimer` and a
+        // handler for SIGALRM.
+        nix::unistd::alarm::set(super::wall_seconds(&spec.limits));
+    }
     layers.landlock = landlock(&spec.kind, &exec_path);
     layers.seccomp = seccomp(&spec.kind);
     match &spec.kind {
@@ -89,9 +110,59 @@ pub(super) fn launch(spec: &Spec, program: &Path, args: &[OsString]) -> i32 {
             println!("{}", serde_json::to_string(&layers).unwrap_or_default());
             0
         }
-        _ => {
+        Kind::Build { .. } => guard(&exec_path, args, grader),
+        Kind::Run => {
             let e = std::process::Command::new(&exec_path).args(args).exec();
             fail(&format!("cannot start {}: {e}", program.display()))
+        }
+    }
+}
+
+/// A build's guard: starts the build (cargo) as its child, in its own
+/// process group, and waits for it; when its parent is no longer the grader
+/// (checked every 10 ms: a SIGKILLed grader) it kills its whole process
+/// group, itself included, and every process that came to it (it is a
+/// child subreaper). Exits with the build's code (128 + a signal's
+/// number).
+fn guard(program: &Path, args: &[OsString], grader: Option<rustix::process::Pid>) -> i32 {
+    let mut child = match std::process::Command::new(program).args(args).spawn() {
+        Ok(child) => child,
+        Err(e) => return fail(&format!("cannot start {}: {e}", program.display())),
+    };
+    loop {
+        match child.try_wait() {
+            Ok(Some(status)) => {
+                use std::os::unix::process::ExitStatusExt;
+                return status
+                    .code()
+                    .or(status.signal().map(|s| 128 + s))
+                    .unwrap_or(SETUP_FAILED);
+            }
+            Ok(None) if rustix::process::getppid() == grader => {
+                std::thread::sleep(std::time::Duration::from_millis(10));
+            }
+            _ => {
+                kill_adopted();
+                let _ = rustix::process::kill_current_process_group(rustix::process::Signal::KILL);
+                return SETUP_FAILED;
+            }
+        }
+    }
+}
+
+/// Kills this process's children (its own and the orphans it adopted as a
+/// subreaper, which may have left its process group), as
+/// `/proc/self/task/*/children` lists them.
+fn kill_adopted() {
+    let Ok(tasks) = std::fs::read_dir("/proc/self/task") else {
+        return;
+    };
+    for task in tasks.flatten() {
+        let list = std::fs::read_to_string(task.path().join("children")).unwrap_or_default();
+        for pid in list.split_whitespace().filter_map(|p| p.parse().ok()) {
+            if let Some(pid) = rustix::process::Pid::from_raw(pid) {
+                let _ = rustix::process::kill_process(pid, rustix::process::Signal::KILL);
+            }
         }
     }
 }
@@ -385,9 +456,11 @@ fn seccomp(kind: &Kind) -> Result<String, String> {
             libc::SYS_mount_setattr,
             libc::SYS_memfd_create,
             libc::SYS_memfd_secret,
+            // The launcher's wall-clock alarm stays.
+            libc::SYS_setitimer,
         ]);
         #[cfg(target_arch = "x86_64")]
-        denied.extend([libc::SYS_fork, libc::SYS_vfork]);
+        denied.extend([libc::SYS_fork, libc::SYS_vfork, libc::SYS_alarm]);
     }
     let mut rules: std::collections::BTreeMap<i64, Vec<SeccompRule>> =
         denied.into_iter().map(|s| (s, Vec::new())).collect();
@@ -411,6 +484,20 @@ fn seccomp(kind: &Kind) -> Result<String, String> {
         prctl.push(SeccompRule::new(vec![is]).map_err(text)?);
     }
     rules.insert(libc::SYS_prctl, prctl);
+    if runner {
+        // No handler for (or ignoring of) the wall-clock alarm's SIGALRM.
+        let alarm = SeccompCondition::new(
+            0,
+            SeccompCmpArgLen::Dword,
+            SeccompCmpOp::Eq,
+            libc::SIGALRM as u64,
+        )
+        .map_err(text)?;
+        rules.insert(
+            libc::SYS_rt_sigaction,
+            vec![SeccompRule::new(vec![alarm]).map_err(text)?],
+        );
+    }
     if !runner {
         // A build's socket: a local one only (no internet, no netlink).
         let local = SeccompCondition::new(
