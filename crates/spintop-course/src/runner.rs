@@ -211,6 +211,14 @@ impl Runner {
         died_how(status, &words, setup, &self.limits)
     }
 
+    /// The most address space the runner has taken, in bytes (Linux's
+    /// `VmPeak`; `None` elsewhere or once it ended).
+    fn memory_peak(&self) -> Option<u64> {
+        let pid = self.child.borrow().id();
+        let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
+        vm_peak(&status)
+    }
+
     /// The next reply, skipping what the student printed; `Err` when the
     /// runner is lost (then [`Runner::lost`] says why).
     fn next_reply(&self) -> Result<Option<Reply>, ()> {
@@ -247,7 +255,16 @@ impl Runner {
                     }
                 }
                 Err(RecvTimeoutError::Timeout) => {
-                    self.lose(Lost::TimedOut(self.limit.get()));
+                    // A program that took (nearly) all the memory it may
+                    // is reported as such, not as merely slow.
+                    let why = match self.memory_peak() {
+                        Some(peak) if peak >= self.limits.memory / 10 * 9 => Lost::Died(format!(
+                            "stopped at its time limit, its memory at the {} MiB it may take: an allocation that keeps growing?",
+                            self.limits.memory >> 20
+                        )),
+                        _ => Lost::TimedOut(self.limit.get()),
+                    };
+                    self.lose(why);
                     return Err(());
                 }
                 Err(RecvTimeoutError::Disconnected) => {
@@ -265,6 +282,13 @@ impl Drop for Runner {
         self.stdin.borrow_mut().take();
         process::kill_group(&mut self.child.borrow_mut());
     }
+}
+
+/// `VmPeak` of a `/proc/PID/status` text, in bytes.
+fn vm_peak(status: &str) -> Option<u64> {
+    let line = status.lines().find(|l| l.starts_with("VmPeak:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
 }
 
 /// How a runner ended, in words.
@@ -346,7 +370,7 @@ impl Remote for Runner {
     }
 }
 
-#[cfg(all(test, unix))]
+#[cfg(all(test, target_os = "linux"))]
 mod tests {
     use super::*;
     use std::os::unix::process::ExitStatusExt;
@@ -364,5 +388,15 @@ mod tests {
         assert!(!after.contains(sandbox::SETUP_MARK), "{after}");
         let before = died_how(exit_125, &words, Some(&words), &limits);
         assert!(before.contains(sandbox::SETUP_MARK), "{before}");
+    }
+
+    #[test]
+    fn the_memory_peak_is_read_from_proc_status() {
+        let status = "Name:\trunner\nVmPeak:\t  1048000 kB\nVmSize:\t 4000 kB\n";
+        assert_eq!(vm_peak(status), Some(1_048_000 * 1024));
+        assert_eq!(vm_peak("Name: x\n"), None);
+        // This process's own, which has at least its code mapped.
+        let own = std::fs::read_to_string("/proc/self/status").unwrap();
+        assert!(vm_peak(&own).is_some_and(|b| b > 1 << 20));
     }
 }
