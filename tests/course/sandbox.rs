@@ -276,6 +276,7 @@ fn through_shell(spec: &Spec, args: &[&str], env: &[(String, std::ffi::OsString)
     let args: Vec<std::ffi::OsString> = args.iter().map(Into::into).collect();
     let inner = sandbox::command(Some(spintop()), spec, probe(), &args, env);
     let mut shell = Command::new("bash");
+    std::os::unix::process::CommandExt::process_group(&mut shell, 0);
     shell
         .arg("-c")
         // Not `exec`ed by the shell: it stays the program's parent.
@@ -401,7 +402,9 @@ fn a_build_dies_with_the_grader_rustc_included() {
         .chain([("LEAK".to_string(), "/dev/null".into())])
         .collect();
     let inner = sandbox::command(Some(spintop()), &spec, Path::new("/bin/sh"), &["-c".into(), script.into()], &env);
-    let mut grader = Command::new("bash")
+    let mut grader = Command::new("bash");
+    std::os::unix::process::CommandExt::process_group(&mut grader, 0);
+    let mut grader = grader
         .arg("-c")
         .arg("\"$@\"; r=$?; exit $r")
         .arg("bash")

@@ -125,6 +125,11 @@ pub(super) fn launch(spec: &Spec, program: &Path, args: &[OsString]) -> i32 {
 /// child subreaper). Exits with the build's code (128 + a signal's
 /// number).
 fn guard(program: &Path, args: &[OsString], grader: Option<rustix::process::Pid>) -> i32 {
+    // A group of its own (the grader already gives it one): what it kills
+    // is the build's and its own, never its starter's.
+    if let Err(e) = rustix::process::setpgid(None, None) {
+        return fail(&format!("a process group of its own: {e}"));
+    }
     let mut child = match std::process::Command::new(program).args(args).spawn() {
         Ok(child) => child,
         Err(e) => return fail(&format!("cannot start {}: {e}", program.display())),
