@@ -321,10 +321,7 @@ fn a_runner_mounts_nothing_and_makes_no_memory_file() {
         eprintln!("SKIPPED: no seccomp on this kernel");
         return;
     }
-    let (lines, status, _) = run(
-        &runner(),
-        &["memfd", "", "fsopen", "", "open_tree", ""],
-    );
+    let (lines, status, _) = run(&runner(), &["memfd", "", "fsopen", "", "open_tree", ""]);
     assert!(status.success(), "{status:?} {lines:?}");
     for what in ["memfd", "fsopen", "open_tree"] {
         assert!(answer(&lines, what).starts_with("err"), "{lines:?}");
@@ -335,13 +332,23 @@ fn a_runner_mounts_nothing_and_makes_no_memory_file() {
 fn alive(pid: u32) -> bool {
     std::fs::read_to_string(format!("/proc/{pid}/stat"))
         .ok()
-        .and_then(|s| s.rsplit(')').next().map(|r| !r.trim_start().starts_with(['Z', 'X'])))
+        .and_then(|s| {
+            s.rsplit(')')
+                .next()
+                .map(|r| !r.trim_start().starts_with(['Z', 'X']))
+        })
         .unwrap_or(false)
 }
 
 /// Starts a stand-in grader (a shell) whose child is `spec`'s probe with
 /// `args`, and the probe's first answer line.
-fn under_a_grader(spec: &Spec, args: &[&str]) -> (std::process::Child, std::io::Lines<std::io::BufReader<std::process::ChildStdout>>) {
+fn under_a_grader(
+    spec: &Spec,
+    args: &[&str],
+) -> (
+    std::process::Child,
+    std::io::Lines<std::io::BufReader<std::process::ChildStdout>>,
+) {
     use std::io::BufRead;
     let mut grader = through_shell(spec, args, &[("LEAK".into(), "/dev/null".into())])
         .stdout(Stdio::piped())
@@ -360,7 +367,9 @@ fn a_runner_that_drops_its_parent_death_signal_still_dies_with_the_grader() {
     };
     let (mut grader, mut lines) =
         under_a_grader(&spec, &["pid", "", "nodeath", "", "sleep", "600"]);
-    let pid: u32 = lines.next().unwrap().unwrap()["ok pid ".len()..].parse().unwrap();
+    let pid: u32 = lines.next().unwrap().unwrap()["ok pid ".len()..]
+        .parse()
+        .unwrap();
     let nodeath = lines.next().unwrap().unwrap();
     assert!(alive(pid));
     if layers().seccomp.is_ok() {
@@ -396,12 +405,24 @@ fn a_build_dies_with_the_grader_rustc_included() {
         work.display(),
         source.display()
     );
-    let env: Vec<(String, std::ffi::OsString)> = ["PATH", "HOME", "RUSTUP_HOME", "CARGO_HOME", "RUSTUP_TOOLCHAIN"]
-        .into_iter()
-        .filter_map(|k| Some((k.to_string(), std::env::var_os(k)?)))
-        .chain([("LEAK".to_string(), "/dev/null".into())])
-        .collect();
-    let inner = sandbox::command(Some(spintop()), &spec, Path::new("/bin/sh"), &["-c".into(), script.into()], &env);
+    let env: Vec<(String, std::ffi::OsString)> = [
+        "PATH",
+        "HOME",
+        "RUSTUP_HOME",
+        "CARGO_HOME",
+        "RUSTUP_TOOLCHAIN",
+    ]
+    .into_iter()
+    .filter_map(|k| Some((k.to_string(), std::env::var_os(k)?)))
+    .chain([("LEAK".to_string(), "/dev/null".into())])
+    .collect();
+    let inner = sandbox::command(
+        Some(spintop()),
+        &spec,
+        Path::new("/bin/sh"),
+        &["-c".into(), script.into()],
+        &env,
+    );
     let mut grader = Command::new("bash");
     std::os::unix::process::CommandExt::process_group(&mut grader, 0);
     let mut grader = grader
@@ -437,7 +458,11 @@ fn a_build_dies_with_the_grader_rustc_included() {
     grader.kill().unwrap();
     grader.wait().unwrap();
     std::thread::sleep(Duration::from_secs(2));
-    assert_eq!(compiling(), Vec::<u32>::new(), "the build outlived its grader (was {before:?})");
+    assert_eq!(
+        compiling(),
+        Vec::<u32>::new(),
+        "the build outlived its grader (was {before:?})"
+    );
     std::fs::remove_dir_all(&work).unwrap();
 }
 

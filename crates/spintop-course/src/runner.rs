@@ -380,7 +380,9 @@ mod tests {
     /// reason. Before the hello (the launcher's own failure), it is.
     #[test]
     fn a_setup_failure_is_read_only_before_the_student_code_ran() {
-        let exit_125 = Some(std::process::ExitStatus::from_raw(sandbox::SETUP_FAILED << 8));
+        let exit_125 = Some(std::process::ExitStatus::from_raw(
+            sandbox::SETUP_FAILED << 8,
+        ));
         let words = format!("spintop course: {}: =HYPERLINK(\"x\")", sandbox::SETUP_MARK);
         let limits = Limits::run(1);
         let after = died_how(exit_125, &words, None, &limits);

@@ -479,13 +479,8 @@ fn seccomp(kind: &Kind) -> Result<String, String> {
         libc::PR_SET_CHILD_SUBREAPER,
         libc::PR_SET_PTRACER,
     ] {
-        let is = SeccompCondition::new(
-            0,
-            SeccompCmpArgLen::Dword,
-            SeccompCmpOp::Eq,
-            option as u64,
-        )
-        .map_err(text)?;
+        let is = SeccompCondition::new(0, SeccompCmpArgLen::Dword, SeccompCmpOp::Eq, option as u64)
+            .map_err(text)?;
         prctl.push(SeccompRule::new(vec![is]).map_err(text)?);
     }
     rules.insert(libc::SYS_prctl, prctl);
