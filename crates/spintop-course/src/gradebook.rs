@@ -151,28 +151,44 @@ pub fn same_names(copies: &[PathBuf]) -> Option<String> {
 }
 
 /// One run's private folder: unique (its process and 64 random bits),
-/// 0700, removed with everything in it when the run ends.
+/// 0700, removed with everything in it when the run ends. Its lock file
+/// (`run-….lock` beside it, made and locked before the folder) is held
+/// for the run's life: a run that finds another's lock free knows that run
+/// is gone (SIGKILLed, its folder left behind) and removes its folder.
 #[derive(Debug)]
 pub struct Run {
     dir: PathBuf,
+    lock: Option<(PathBuf, std::fs::File)>,
 }
 
 impl Run {
-    /// A new run folder below `base` (made private if it is new).
+    /// A new run folder below `base` (made private if it is new), after
+    /// removing the folders of runs that are no longer alive.
     pub fn new(base: &Path) -> Result<Self, CourseError> {
         private_dir(base)?;
-        let name = format!(
-            "run-{}-{:016x}",
-            std::process::id(),
-            spintop_grading::verdict::fresh_u64()
-        );
-        let dir = base.join(name);
-        let mut builder = std::fs::DirBuilder::new();
-        #[cfg(unix)]
-        std::os::unix::fs::DirBuilderExt::mode(&mut builder, 0o700);
-        // Not `recursive`: a folder already there (another run's) is an error.
-        builder.create(&dir).map_err(CourseError::io(&dir))?;
-        Ok(Self { dir })
+        remove_dead_runs(base);
+        loop {
+            let name = format!(
+                "run-{}-{:016x}",
+                std::process::id(),
+                spintop_grading::verdict::fresh_u64()
+            );
+            let dir = base.join(&name);
+            let lock = match hold_lock(&base.join(format!("{name}.lock")))? {
+                Some(lock) => lock,
+                // Removed by a cleaner between its creation and its lock.
+                None => continue,
+            };
+            let mut builder = std::fs::DirBuilder::new();
+            #[cfg(unix)]
+            std::os::unix::fs::DirBuilderExt::mode(&mut builder, 0o700);
+            // Not `recursive`: a folder already there (another run's) is an error.
+            builder.create(&dir).map_err(CourseError::io(&dir))?;
+            return Ok(Self {
+                dir,
+                lock: Some(lock),
+            });
+        }
     }
 
     /// Its folder.
@@ -186,9 +202,74 @@ impl Run {
     }
 }
 
+/// Creates and locks `path`: `None` when the file was removed before the
+/// lock held (then the caller tries another name).
+fn hold_lock(path: &Path) -> Result<Option<(PathBuf, std::fs::File)>, CourseError> {
+    let file = std::fs::OpenOptions::new()
+        .create_new(true)
+        .write(true)
+        .open(path)
+        .map_err(CourseError::io(path))?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        rustix::fs::flock(&file, rustix::fs::FlockOperation::LockExclusive)
+            .map_err(|e| CourseError::io(path)(e.into()))?;
+        let held = file.metadata().map_err(CourseError::io(path))?;
+        match std::fs::symlink_metadata(path) {
+            Ok(now) if now.ino() == held.ino() && now.dev() == held.dev() => {}
+            _ => return Ok(None),
+        }
+    }
+    Ok(Some((path.to_path_buf(), file)))
+}
+
+/// Removes the folders of runs below `base` whose lock no one holds (their
+/// run ended without its `Drop`: a SIGKILL), and folders of runs that kept
+/// no lock. A lock file is removed last, while this run holds it.
+fn remove_dead_runs(base: &Path) {
+    #[cfg(unix)]
+    {
+        let Ok(entries) = std::fs::read_dir(base) else {
+            return;
+        };
+        for entry in entries.flatten() {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
+            if !name.starts_with("run-") || name.ends_with(".lock") || !is_dir {
+                continue;
+            }
+            let lock_path = base.join(format!("{name}.lock"));
+            // A lock file comes before its folder and goes after it: a
+            // folder without one was left by a run that kept none.
+            let lock = match std::fs::OpenOptions::new().write(true).open(&lock_path) {
+                Ok(f) => Some(f),
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+                Err(_) => continue,
+            };
+            if let Some(f) = &lock {
+                use rustix::fs::FlockOperation::NonBlockingLockExclusive;
+                if rustix::fs::flock(f, NonBlockingLockExclusive).is_err() {
+                    continue; // its run is alive
+                }
+            }
+            let _ = std::fs::remove_dir_all(entry.path());
+            if lock.is_some() {
+                let _ = std::fs::remove_file(&lock_path);
+            }
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = base;
+}
+
 impl Drop for Run {
     fn drop(&mut self) {
         let _ = std::fs::remove_dir_all(&self.dir);
+        if let Some((path, file)) = self.lock.take() {
+            let _ = std::fs::remove_file(path);
+            drop(file);
+        }
     }
 }
 
@@ -333,6 +414,39 @@ mod tests {
         assert!(!kept.exists());
         assert!(b.dir().is_dir());
         drop(b);
+        std::fs::remove_dir_all(&base).unwrap();
+    }
+
+    /// A run SIGKILLed leaves its folder and its lock file, no longer
+    /// held: the next run removes them; a live run's folder (its lock
+    /// held, here by this test) and a folder that is not a run's stay.
+    #[test]
+    #[cfg(unix)]
+    fn a_new_run_removes_the_folders_of_dead_runs_only() {
+        let base = std::env::temp_dir().join(format!("spintop-dead-runs-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&base);
+        private_dir(&base).unwrap();
+        let dead = base.join("run-1-dead");
+        std::fs::create_dir_all(dead.join("warm/target")).unwrap();
+        std::fs::write(base.join("run-1-dead.lock"), "").unwrap();
+        let legacy = base.join("run-2-kept-no-lock");
+        std::fs::create_dir(&legacy).unwrap();
+        let alive = base.join("run-3-alive");
+        std::fs::create_dir(&alive).unwrap();
+        let held = std::fs::File::create(base.join("run-3-alive.lock")).unwrap();
+        rustix::fs::flock(&held, rustix::fs::FlockOperation::LockExclusive).unwrap();
+        let other = base.join("warm-up");
+        std::fs::create_dir(&other).unwrap();
+        let run = Run::new(&base).unwrap();
+        assert!(!dead.exists() && !base.join("run-1-dead.lock").exists());
+        assert!(!legacy.exists());
+        assert!(alive.is_dir() && base.join("run-3-alive.lock").is_file());
+        assert!(other.is_dir() && run.dir().is_dir());
+        let lock = PathBuf::from(format!("{}.lock", run.dir().display()));
+        assert!(lock.is_file());
+        drop(run);
+        assert!(!lock.exists());
+        drop(held);
         std::fs::remove_dir_all(&base).unwrap();
     }
 }

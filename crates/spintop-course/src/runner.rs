@@ -74,6 +74,9 @@ pub(crate) struct Runner {
     printed: Cell<usize>,
     lost: RefCell<Option<Lost>>,
     limits: Limits,
+    /// Whether it said hello: from then on the student's code may have run,
+    /// and nothing on its stderr is the launcher's.
+    greeted: Cell<bool>,
 }
 
 /// Reads `from` line by line into the channel (a line longer than
@@ -147,6 +150,7 @@ impl Runner {
             printed: Cell::new(0),
             lost: RefCell::new(None),
             limits: spec.limits,
+            greeted: Cell::new(false),
         };
         match runner.next_reply() {
             Err(()) => Err(runner
@@ -200,7 +204,19 @@ impl Runner {
             .and_then(|h| h.join().ok())
             .map(|b| String::from_utf8_lossy(&b).into_owned())
             .unwrap_or_default();
-        died_how(status, &words, &self.limits)
+        // Before the hello only the launcher and the runner's own start ran:
+        // a setup failure is read there and nowhere else (a student's code
+        // that prints the launcher's words after it is not believed).
+        let setup = (!self.greeted.get()).then_some(words.as_str());
+        died_how(status, &words, setup, &self.limits)
+    }
+
+    /// The most address space the runner has taken, in bytes (Linux's
+    /// `VmPeak`; `None` elsewhere or once it ended).
+    fn memory_peak(&self) -> Option<u64> {
+        let pid = self.child.borrow().id();
+        let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
+        vm_peak(&status)
     }
 
     /// The next reply, skipping what the student printed; `Err` when the
@@ -213,7 +229,8 @@ impl Runner {
                 .saturating_duration_since(Instant::now());
             match self.lines.recv_timeout(left) {
                 Ok(Line::Text(line)) if line.contains(MARK) => {
-                    if line.ends_with(HELLO) {
+                    if line.ends_with(HELLO) && !self.greeted.get() {
+                        self.greeted.set(true);
                         return Ok(None);
                     }
                     return match spintop_runner::parse_reply(&line) {
@@ -238,7 +255,16 @@ impl Runner {
                     }
                 }
                 Err(RecvTimeoutError::Timeout) => {
-                    self.lose(Lost::TimedOut(self.limit.get()));
+                    // A program that took (nearly) all the memory it may
+                    // is reported as such, not as merely slow.
+                    let why = match self.memory_peak() {
+                        Some(peak) if peak >= self.limits.memory / 10 * 9 => Lost::Died(format!(
+                            "stopped at its time limit, its memory at the {} MiB it may take: an allocation that keeps growing?",
+                            self.limits.memory >> 20
+                        )),
+                        _ => Lost::TimedOut(self.limit.get()),
+                    };
+                    self.lose(why);
                     return Err(());
                 }
                 Err(RecvTimeoutError::Disconnected) => {
@@ -258,8 +284,22 @@ impl Drop for Runner {
     }
 }
 
+/// `VmPeak` of a `/proc/PID/status` text, in bytes.
+fn vm_peak(status: &str) -> Option<u64> {
+    let line = status.lines().find(|l| l.starts_with("VmPeak:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
 /// How a runner ended, in words.
-fn died_how(status: Option<std::process::ExitStatus>, last_words: &str, limits: &Limits) -> String {
+/// `setup` is the launcher's stderr when the student's code never ran (no
+/// hello), the only place a setup failure is looked for.
+fn died_how(
+    status: Option<std::process::ExitStatus>,
+    last_words: &str,
+    setup: Option<&str>,
+    limits: &Limits,
+) -> String {
     let signal = {
         #[cfg(unix)]
         {
@@ -280,7 +320,10 @@ fn died_how(status: Option<std::process::ExitStatus>, last_words: &str, limits: 
         )
     } else if signal == Some(24) {
         format!("more than its {} s of CPU time", limits.cpu_seconds)
-    } else if let Some(line) = last_words.lines().find(|l| l.contains(sandbox::SETUP_MARK)) {
+    } else if let Some(line) = setup
+        .filter(|_| status.and_then(|s| s.code()) == Some(sandbox::SETUP_FAILED))
+        .and_then(|w| w.lines().find(|l| l.contains(sandbox::SETUP_MARK)))
+    {
         // The launcher's own words (the student's program never started).
         line.trim().to_string()
     } else {
@@ -324,5 +367,38 @@ impl Remote for Runner {
         self.lose(Lost::Garbled(format!(
             "its answer to {name} has not the numbers of the function's value"
         )));
+    }
+}
+
+#[cfg(all(test, target_os = "linux"))]
+mod tests {
+    use super::*;
+    use std::os::unix::process::ExitStatusExt;
+
+    /// A student's code that prints the launcher's words and exits with its
+    /// code after the hello is not believed: its text never becomes a
+    /// reason. Before the hello (the launcher's own failure), it is.
+    #[test]
+    fn a_setup_failure_is_read_only_before_the_student_code_ran() {
+        let exit_125 = Some(std::process::ExitStatus::from_raw(
+            sandbox::SETUP_FAILED << 8,
+        ));
+        let words = format!("spintop course: {}: =HYPERLINK(\"x\")", sandbox::SETUP_MARK);
+        let limits = Limits::run(1);
+        let after = died_how(exit_125, &words, None, &limits);
+        assert!(!after.contains("HYPERLINK"), "{after}");
+        assert!(!after.contains(sandbox::SETUP_MARK), "{after}");
+        let before = died_how(exit_125, &words, Some(&words), &limits);
+        assert!(before.contains(sandbox::SETUP_MARK), "{before}");
+    }
+
+    #[test]
+    fn the_memory_peak_is_read_from_proc_status() {
+        let status = "Name:\trunner\nVmPeak:\t  1048000 kB\nVmSize:\t 4000 kB\n";
+        assert_eq!(vm_peak(status), Some(1_048_000 * 1024));
+        assert_eq!(vm_peak("Name: x\n"), None);
+        // This process's own, which has at least its code mapped.
+        let own = std::fs::read_to_string("/proc/self/status").unwrap();
+        assert!(vm_peak(&own).is_some_and(|b| b > 1 << 20));
     }
 }

@@ -96,6 +96,15 @@ impl Limits {
     }
 }
 
+/// A runner's wall-clock limit, in seconds, which the launcher sets as an
+/// alarm that holds whether or not the grader is there to count: ten times
+/// its CPU time and a minute (the grader's own limits come first; this is
+/// the backstop), at most a day.
+pub fn wall_seconds(limits: &Limits) -> u32 {
+    let s = limits.cpu_seconds.saturating_mul(10).saturating_add(60);
+    u32::try_from(s.min(24 * 3600)).unwrap_or(24 * 3600)
+}
+
 /// A sandbox: what runs, within what limits.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Spec {

@@ -1,7 +1,7 @@
 //! What a class's grading writes: a CSV file and Gradescope's
 //! `results.json`, each safe to open. A CSV cell that a spreadsheet would
-//! read as a formula (`=`, `+`, `-`, `@`, a tab or a carriage return first:
-//! OWASP's list) is neutralised with a leading `'`; a reason comes from the
+//! read as a formula (`=`, `+`, `-`, `@` first, after any spaces, or a tab
+//! or a carriage return first: OWASP's list) is neutralised with a leading `'`; a reason comes from the
 //! verdict's structure (the diagnosis, the compiler's error), never from
 //! text the student's code chose (a panic's message); each student has a
 //! total.
@@ -16,10 +16,17 @@ pub const CSV_HEADER: &str = "student,assignment,equation,state,score,hint_rungs
 /// The assignment column of a student's total row.
 pub const TOTAL: &str = "total";
 
+/// Whether a spreadsheet may read `s` as a formula: `=`, `+`, `-` or `@`
+/// first, after any white space (some spreadsheets skip leading spaces), or
+/// a tab or carriage return first (OWASP's list).
+fn formula_like(s: &str) -> bool {
+    s.starts_with(['\t', '\r']) || s.trim_start().starts_with(['=', '+', '-', '@'])
+}
+
 /// A CSV cell: neutralised when a spreadsheet would take it for a formula,
 /// quoted when it holds a separator, a quote or a line break.
 pub fn csv_cell(s: &str) -> String {
-    let s = if s.starts_with(['=', '+', '-', '@', '\t', '\r']) {
+    let s = if formula_like(s) {
         format!("'{s}")
     } else {
         s.to_string()
@@ -264,6 +271,7 @@ mod tests {
                 copy("@bob", Outcome::NotGraded("\t=1+1".into())),
                 copy("\r-carol", Outcome::Missing("+1".into())),
                 copy("dave", Outcome::NotACourse("=cmd|' /C calc'!A0".into())),
+                copy(" =1", Outcome::NotGraded(" \u{a0}+2".into())),
             ],
             seed: 5,
         };
@@ -271,18 +279,20 @@ mod tests {
         let mut lines = csv.lines();
         assert_eq!(lines.next(), Some(CSV_HEADER));
         let rows: Vec<Vec<String>> = lines.map(cells).collect();
-        assert_eq!(rows.len(), 4 * (COURSE_LEN + 1), "{csv}");
+        assert_eq!(rows.len(), 5 * (COURSE_LEN + 1), "{csv}");
         for row in &rows {
             assert_eq!(row.len(), 8, "{row:?}");
             for cell in row {
                 assert!(
-                    !cell.starts_with(['=', '+', '-', '@', '\t', '\r']),
+                    !cell.starts_with(['\t', '\r'])
+                        && !cell.trim_start().starts_with(['=', '+', '-', '@']),
                     "{cell:?} in {row:?}"
                 );
             }
         }
         let totals: Vec<&Vec<String>> = rows.iter().filter(|r| r[1] == TOTAL).collect();
-        assert_eq!(totals.len(), 4);
+        assert_eq!(totals.len(), 5);
+        assert_eq!(totals[4][0], "' =1");
         assert_eq!(
             (totals[0][0].as_str(), totals[0][4].as_str()),
             ("'=2+3", "1")

@@ -27,8 +27,22 @@ fn text(e: impl std::fmt::Display) -> String {
 }
 
 pub(super) fn launch(spec: &Spec, program: &Path, args: &[OsString]) -> i32 {
-    // A launcher whose parent (the grader) dies takes its program along.
-    let _ = rustix::process::set_parent_process_death_signal(Some(rustix::process::Signal::KILL));
+    // A runner whose parent (the grader) dies is killed (and cannot undo
+    // it: seccomp refuses that `prctl`); a build's guard, instead, sees its
+    // parent gone within 10 ms and ends its whole process group (cargo's
+    // children do not inherit a parent-death signal).
+    let grader = rustix::process::getppid();
+    let death = match spec.kind {
+        Kind::Build { .. } => rustix::process::Signal::CONT,
+        _ => rustix::process::Signal::KILL,
+    };
+    let _ = rustix::process::set_parent_process_death_signal(Some(death));
+    if rustix::process::getppid() != grader {
+        return fail("the grader ended before its sandbox was set up");
+    }
+    // Nothing the grader was given (a terminal, a pipe, a FIFO on fd 7)
+    // reaches the program: it keeps its standard input, output and error.
+    close_inherited();
     let mut layers = Layers::none("not tried");
     let run = matches!(spec.kind, Kind::Run | Kind::Probe);
     // The program is opened before anything changes (who we are, what we
@@ -79,6 +93,16 @@ pub(super) fn launch(spec: &Spec, program: &Path, args: &[OsString]) -> i32 {
     if let Err(e) = rustix::thread::set_no_new_privs(true) {
         return fail(&format!("cannot set no_new_privs: {e}"));
     }
+    if matches!(spec.kind, Kind::Build { .. }) {
+        // Orphans of the build come to the guard (and stay in its group).
+        let _ = rustix::process::set_child_subreaper(None);
+    }
+    if matches!(spec.kind, Kind::Run) {
+        // A wall-clock limit that holds without the grader: the alarm stays
+        // across exec, and seccomp refuses `alarm`, `setitimer` and a
+        // handler for SIGALRM.
+        nix::unistd::alarm::set(super::wall_seconds(&spec.limits));
+    }
     layers.landlock = landlock(&spec.kind, &exec_path);
     layers.seccomp = seccomp(&spec.kind);
     match &spec.kind {
@@ -86,10 +110,81 @@ pub(super) fn launch(spec: &Spec, program: &Path, args: &[OsString]) -> i32 {
             println!("{}", serde_json::to_string(&layers).unwrap_or_default());
             0
         }
-        _ => {
+        Kind::Build { .. } => guard(&exec_path, args, grader),
+        Kind::Run => {
             let e = std::process::Command::new(&exec_path).args(args).exec();
             fail(&format!("cannot start {}: {e}", program.display()))
         }
+    }
+}
+
+/// A build's guard: starts the build (cargo) as its child, in its own
+/// process group, and waits for it; when its parent is no longer the grader
+/// (checked every 10 ms: a SIGKILLed grader) it kills its whole process
+/// group, itself included, and every process that came to it (it is a
+/// child subreaper). Exits with the build's code (128 + a signal's
+/// number).
+fn guard(program: &Path, args: &[OsString], grader: Option<rustix::process::Pid>) -> i32 {
+    // A group of its own (the grader already gives it one): what it kills
+    // is the build's and its own, never its starter's.
+    if let Err(e) = rustix::process::setpgid(None, None) {
+        return fail(&format!("a process group of its own: {e}"));
+    }
+    let mut child = match std::process::Command::new(program).args(args).spawn() {
+        Ok(child) => child,
+        Err(e) => return fail(&format!("cannot start {}: {e}", program.display())),
+    };
+    loop {
+        match child.try_wait() {
+            Ok(Some(status)) => {
+                use std::os::unix::process::ExitStatusExt;
+                return status
+                    .code()
+                    .or(status.signal().map(|s| 128 + s))
+                    .unwrap_or(SETUP_FAILED);
+            }
+            Ok(None) if rustix::process::getppid() == grader => {
+                std::thread::sleep(std::time::Duration::from_millis(10));
+            }
+            _ => {
+                kill_adopted();
+                let _ = rustix::process::kill_current_process_group(rustix::process::Signal::KILL);
+                return SETUP_FAILED;
+            }
+        }
+    }
+}
+
+/// Kills this process's children (its own and the orphans it adopted as a
+/// subreaper, which may have left its process group), as
+/// `/proc/self/task/*/children` lists them.
+fn kill_adopted() {
+    let Ok(tasks) = std::fs::read_dir("/proc/self/task") else {
+        return;
+    };
+    for task in tasks.flatten() {
+        let list = std::fs::read_to_string(task.path().join("children")).unwrap_or_default();
+        for pid in list.split_whitespace().filter_map(|p| p.parse().ok()) {
+            if let Some(pid) = rustix::process::Pid::from_raw(pid) {
+                let _ = rustix::process::kill_process(pid, rustix::process::Signal::KILL);
+            }
+        }
+    }
+}
+
+/// Closes every file descriptor above the standard three: those listed in
+/// `/proc/self/fd` (the list is read whole first, its own descriptor closed
+/// before any is closed), or without `/proc` every one below 1024.
+fn close_inherited() {
+    let listed: Option<Vec<i32>> = std::fs::read_dir("/proc/self/fd").ok().map(|dir| {
+        dir.flatten()
+            .filter_map(|e| e.file_name().to_str()?.parse().ok())
+            .collect()
+    });
+    let open = listed.unwrap_or_else(|| (3..1024).collect());
+    for fd in open.into_iter().filter(|&fd| fd > 2) {
+        // The reader's own descriptor is already closed: EBADF, ignored.
+        let _ = nix::unistd::close(fd);
     }
 }
 
@@ -355,12 +450,54 @@ fn seccomp(kind: &Kind) -> Result<String, String> {
             libc::SYS_pivot_root,
             libc::SYS_chroot,
             libc::SYS_personality,
+            // The new mount API and memory-backed files: nothing to mount,
+            // and no file (executable or not) outside the empty root.
+            libc::SYS_fsopen,
+            libc::SYS_fsconfig,
+            libc::SYS_fsmount,
+            libc::SYS_fspick,
+            libc::SYS_open_tree,
+            libc::SYS_move_mount,
+            libc::SYS_mount_setattr,
+            libc::SYS_memfd_create,
+            libc::SYS_memfd_secret,
+            // The launcher's wall-clock alarm stays.
+            libc::SYS_setitimer,
         ]);
         #[cfg(target_arch = "x86_64")]
-        denied.extend([libc::SYS_fork, libc::SYS_vfork]);
+        denied.extend([libc::SYS_fork, libc::SYS_vfork, libc::SYS_alarm]);
     }
     let mut rules: std::collections::BTreeMap<i64, Vec<SeccompRule>> =
         denied.into_iter().map(|s| (s, Vec::new())).collect();
+    // No `prctl` that would let the program outlive the grader or be read
+    // from outside: not its parent-death signal, its dumpable flag or a
+    // subreaper's role (builds and runners alike).
+    let mut prctl = Vec::new();
+    for option in [
+        libc::PR_SET_PDEATHSIG,
+        libc::PR_SET_DUMPABLE,
+        libc::PR_SET_CHILD_SUBREAPER,
+        libc::PR_SET_PTRACER,
+    ] {
+        let is = SeccompCondition::new(0, SeccompCmpArgLen::Dword, SeccompCmpOp::Eq, option as u64)
+            .map_err(text)?;
+        prctl.push(SeccompRule::new(vec![is]).map_err(text)?);
+    }
+    rules.insert(libc::SYS_prctl, prctl);
+    if runner {
+        // No handler for (or ignoring of) the wall-clock alarm's SIGALRM.
+        let alarm = SeccompCondition::new(
+            0,
+            SeccompCmpArgLen::Dword,
+            SeccompCmpOp::Eq,
+            libc::SIGALRM as u64,
+        )
+        .map_err(text)?;
+        rules.insert(
+            libc::SYS_rt_sigaction,
+            vec![SeccompRule::new(vec![alarm]).map_err(text)?],
+        );
+    }
     if !runner {
         // A build's socket: a local one only (no internet, no netlink).
         let local = SeccompCondition::new(
@@ -385,9 +522,9 @@ fn seccomp(kind: &Kind) -> Result<String, String> {
     let program: seccompiler::BpfProgram = filter.try_into().map_err(text)?;
     seccompiler::apply_filter(&program).map_err(text)?;
     Ok(if runner {
-        "no socket, ptrace, signal or new process".into()
+        "no socket, ptrace, signal, new process, mount or memfd; no prctl of its parent-death signal".into()
     } else {
-        "no internet socket, no ptrace".into()
+        "no internet socket, no ptrace, no prctl of its parent-death signal".into()
     })
 }
 
