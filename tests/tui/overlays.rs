@@ -40,7 +40,7 @@ fn h_and_f1_open_the_help_and_the_footer_says_so() {
     }
     let mut learn = open();
     let shown = draw(&mut learn, 80, 24);
-    let footer = shown.lines().rev().nth(0).unwrap_or_default();
+    let footer = shown.lines().next_back().unwrap_or_default();
     assert!(footer.contains("h help"), "{shown}");
     // The course key stays in the footer at 80 columns, beside a scene.
     assert!(footer.contains("a course"), "{footer}");
