@@ -136,13 +136,13 @@ pub enum Command {
     ContentsDigit(char),
     /// Enter in the contents: open the chapter or heading.
     ContentsOpen,
-    /// ?: the help.
+    /// h or F1: the help.
     Help,
     /// a: the course panel.
     Course,
     /// ↑ ↓ j k PgUp PgDn in the help or the course panel: scroll it.
     ScrollPanel(i64),
-    /// h: the next hint rung.
+    /// h in the course panel: the next hint rung.
     Hint,
     /// Esc, or any key that closes an overlay: back to reading.
     Close,
@@ -159,10 +159,14 @@ pub enum Command {
     ToggleMouse,
     /// /: start typing a search forward (an empty one repeats the last).
     SearchStart,
-    /// Ctrl-R: start typing a search backward.
+    /// ? or Ctrl-R: start typing a search backward.
     SearchBackStart,
     /// A character of the search.
     SearchInput(char),
+    /// Text pasted into the search (its line breaks left out).
+    SearchPaste(String),
+    /// Text pasted outside the search prompt: ignored, with a note.
+    PasteIgnored,
     /// Backspace in the search.
     SearchBackspace,
     /// Enter: search.
@@ -205,6 +209,8 @@ pub struct Learn {
     /// The plain text of every chapter at the width last searched, for a
     /// search across the book.
     texts: search::Texts,
+    /// "searching…", shown from before a search runs until a command ends it.
+    searching: Option<String>,
     /// The link in focus (Tab), by its index in the rendered chapter.
     link: Option<usize>,
     /// Digits typed in the contents.
@@ -265,6 +271,10 @@ impl Learn {
         }
         let scene_info = chapters[current].scene();
         let n = chapters.len();
+        let texts = search::Texts::warm(
+            chapters.iter().map(|c| book.join(&c.file)).collect(),
+            book.to_path_buf(),
+        );
         let mut learn = Learn {
             book: book.to_path_buf(),
             chapters,
@@ -284,7 +294,8 @@ impl Learn {
             mouse: false,
             mode: Mode::Read,
             search: None,
-            texts: search::Texts::default(),
+            texts,
+            searching: None,
             link: None,
             typed: String::new(),
             message: None,
@@ -343,6 +354,11 @@ impl Learn {
     /// The line in the status bar, and whether it is a refusal.
     pub fn message(&self) -> Option<&(String, bool)> {
         self.message.as_ref()
+    }
+
+    /// "searching…", while a search is about to run.
+    pub fn searching(&self) -> Option<&str> {
+        self.searching.as_deref()
     }
 
     /// True once quit was asked for.
@@ -591,6 +607,7 @@ impl Learn {
     /// Apply one command: the only place the state changes (besides the
     /// clock and the grader's news).
     pub fn apply(&mut self, command: Command) {
+        self.searching = None;
         if !matches!(command, Command::Resize(..) | Command::Scroll(_)) {
             self.message = None;
         }
@@ -628,6 +645,14 @@ impl Learn {
             Command::SearchStart => self.mode = Mode::Search(String::new(), true),
             Command::SearchBackStart => self.mode = Mode::Search(String::new(), false),
             Command::SearchInput(c) => self.search_input(Some(c)),
+            Command::SearchPaste(text) => {
+                for c in text.chars().filter(|c| !c.is_control()) {
+                    self.search_input(Some(c));
+                }
+            }
+            Command::PasteIgnored => {
+                self.inform("paste ignored: / or ? starts a search to paste into")
+            }
             Command::SearchBackspace => self.search_input(None),
             Command::SearchCommit => self.search_commit(),
             Command::SearchNext => self.search_again(true),

@@ -63,7 +63,13 @@ impl Panel {
         )
     }
 
-    /// Seconds since the last grading ended.
+    /// When the latest grading ended (with grades, a compile error among
+    /// them, or failing to run cargo).
+    pub fn graded_at(&self) -> Option<Instant> {
+        self.graded_at
+    }
+
+    /// Seconds since the latest grading ended.
     pub fn graded_ago(&self) -> Option<u64> {
         self.graded_at.map(|t| t.elapsed().as_secs())
     }

@@ -1,7 +1,9 @@
 //! Terminal events become `spintop learn`'s [`Command`]s, and the hooks of
 //! the terminal loop ([`crate::term::session`]). The reading keys are
-//! `less`'s: space f b d u (and Ctrl-F B D U) j k g G / n N, Ctrl-R for a
-//! backward search; Ctrl-Z suspends (the loop's own).
+//! `less`'s: space f b d u (and Ctrl-F B D U) j k g G / ? n N (`?` and
+//! Ctrl-R search backward), h or F1 for the help, q quits from the reading
+//! view and closes any overlay; Esc never quits; Ctrl-Z suspends (the loop's
+//! own). A paste is text for the search prompt, never keys.
 
 use super::scene::SceneKey;
 use super::{Command, Learn, Mode};
@@ -29,6 +31,10 @@ impl Learn {
                 _ => None,
             },
             Event::Key(key) => self.key_command(*key),
+            Event::Paste(text) => Some(match self.mode {
+                Mode::Search(..) => Command::SearchPaste(text.clone()),
+                _ => Command::PasteIgnored,
+            }),
             _ => None,
         }
     }
@@ -59,8 +65,8 @@ impl Learn {
                 KeyCode::Char(c) => C::SearchInput(c),
                 _ => return None,
             },
+            // q closes an overlay or panel, as it closes `less`'s help.
             Mode::Help(_) | Mode::Course(_) => match key.code {
-                KeyCode::Char('q') => C::Quit,
                 KeyCode::Char('h') if matches!(self.mode, Mode::Course(_)) => C::Hint,
                 KeyCode::Down | KeyCode::Char('j') => C::ScrollPanel(1),
                 KeyCode::Up | KeyCode::Char('k') => C::ScrollPanel(-1),
@@ -80,7 +86,6 @@ impl Learn {
                 KeyCode::End | KeyCode::Char('G') => C::ContentsMove(i64::MAX / 2),
                 KeyCode::Char(c) if c.is_ascii_digit() => C::ContentsDigit(c),
                 KeyCode::Enter => C::ContentsOpen,
-                KeyCode::Char('q') => C::Quit,
                 _ => C::Close,
             },
             Mode::Read | Mode::Scene => return self.reading_command(key.code),
@@ -124,10 +129,9 @@ impl Learn {
             KeyCode::Char('s') => C::ToggleScene,
             KeyCode::Char('w') => C::ToggleSide,
             KeyCode::Char('M') => C::ToggleMouse,
-            KeyCode::Char('?') => C::Help,
+            KeyCode::Char('h') | KeyCode::F(1) => C::Help,
             KeyCode::Char('c') => C::Contents,
             KeyCode::Char('a') => C::Course,
-            KeyCode::Char('h') => C::Hint,
             KeyCode::Down | KeyCode::Char('j') => C::Scroll(1),
             KeyCode::Up | KeyCode::Char('k') => C::Scroll(-1),
             KeyCode::PageDown | KeyCode::Char(' ' | 'f') => C::PageDown,
@@ -141,6 +145,7 @@ impl Learn {
             KeyCode::Char('x') => C::Experiment,
             KeyCode::Char('o') => C::ToggleFolds,
             KeyCode::Char('/') => C::SearchStart,
+            KeyCode::Char('?') => C::SearchBackStart,
             KeyCode::Char('n') => C::SearchNext,
             KeyCode::Char('N') => C::SearchPrevious,
             KeyCode::Char('p') => C::Scene(SceneKey::Pause),
@@ -177,6 +182,10 @@ impl Screen for Learn {
 
     fn should_quit(&self) -> bool {
         self.quit
+    }
+
+    fn announce(&mut self, command: &Command) -> bool {
+        self.announce_search(command)
     }
 
     fn wants_mouse(&self) -> bool {

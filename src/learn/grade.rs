@@ -95,7 +95,9 @@ impl Learn {
                 self.start_probe();
             }
             course::Report::Failed(e) => {
+                // The time shown is the latest grading's, whatever it found.
                 self.course.grading_since = None;
+                self.course.graded_at = Some(Instant::now());
                 self.course.error = Some(e);
             }
         }

@@ -480,7 +480,14 @@ impl Renderer {
             let text = h[start + "<summary>".len()..start + end].trim();
             self.flush();
             self.blank();
-            self.pieces = vec![Piece::new(format!("▾ {text}"), style::heading(4))];
+            // Word by word, so that a long summary wraps, never clipped.
+            let style = style::heading(4);
+            for (i, word) in format!("▾ {text}").split(' ').enumerate() {
+                if i > 0 {
+                    self.pieces.push(Piece::new(" ".to_string(), style));
+                }
+                self.pieces.push(Piece::new(word.to_string(), style));
+            }
             self.flush();
             self.blank();
         }
@@ -873,6 +880,16 @@ mod tests {
         );
         let text = plain(&r.lines);
         assert!(text.contains("▾ Derivation of (3.3)"), "{text}");
+        // A summary longer than the line wraps at its spaces, whole.
+        let long = render(
+            "<details>\n<summary>A summary much longer than the forty columns of this narrow screen</summary>\n\nBody.\n\n</details>\n",
+            40,
+        );
+        let long = plain(&long.lines);
+        for w in "A summary much longer than the forty columns of this narrow screen".split(' ') {
+            let whole = long.lines().any(|l| l.split_whitespace().any(|x| x == w));
+            assert!(whole, "“{w}” whole:\n{long}");
+        }
         assert!(text.contains("The body, x\u{307}."), "{text}");
         assert!(
             !text.contains("<summary>") && !text.contains("details>"),

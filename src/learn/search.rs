@@ -7,6 +7,9 @@
 use super::markdown;
 use ratatui::text::Line;
 use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, mpsc};
 
 /// A search and what it found in the chapter shown: (line, byte range in
 /// the line's text).
@@ -56,14 +59,73 @@ pub fn find(lines: &[Line], query: &str) -> Vec<(usize, Range<usize>)> {
 const SEARCH_WIDTH: u16 = 200;
 
 /// The plain text of every chapter, rendered once (library source folded or
-/// whole) to be searched across the book.
+/// whole) to be searched across the book. The folded texts are made in the
+/// background from the start ([`Texts::warm`]), so that the first search
+/// across the book does not wait for 25 chapters to render.
 #[derive(Debug, Default)]
 pub struct Texts {
     unfolded: bool,
     chapters: Vec<Option<String>>,
+    /// The folded texts of every chapter, being made in the background.
+    warming: Option<mpsc::Receiver<Vec<String>>>,
+    /// Set when the texts are no longer wanted: the background stops.
+    stop: Arc<AtomicBool>,
+}
+
+impl Drop for Texts {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::Relaxed);
+    }
+}
+
+/// A chapter's text as searched: rendered wide, plain, lower-cased.
+fn searched_text(source: &str, unfolded: bool) -> String {
+    let rendered = markdown::render_with(
+        source,
+        SEARCH_WIDTH,
+        &markdown::Options {
+            unfold: unfolded,
+            figures_later: true,
+            images: None,
+        },
+    );
+    markdown::plain(&rendered.lines).to_lowercase()
+}
+
+/// A chapter's Markdown source, its includes resolved (empty when it
+/// cannot be read).
+pub fn chapter_source(path: &Path, book: &Path) -> String {
+    let text = std::fs::read_to_string(path).unwrap_or_default();
+    markdown::resolve_includes(&text, path.parent().unwrap_or(book))
 }
 
 impl Texts {
+    /// Texts whose folded chapters (`paths`) are made on another thread
+    /// from now on.
+    pub fn warm(paths: Vec<PathBuf>, book: PathBuf) -> Self {
+        let (tx, rx) = mpsc::channel();
+        let stop = Arc::new(AtomicBool::new(false));
+        let stopped = Arc::clone(&stop);
+        let spawned = std::thread::Builder::new()
+            .name("search-texts".into())
+            .spawn(move || {
+                let mut texts = Vec::with_capacity(paths.len());
+                for p in &paths {
+                    if stopped.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    texts.push(searched_text(&chapter_source(p, &book), false));
+                }
+                let _ = tx.send(texts);
+            });
+        Self {
+            unfolded: false,
+            chapters: Vec::new(),
+            warming: spawned.ok().map(|_| rx),
+            stop,
+        }
+    }
+
     /// Whether chapter `i` (its `source`) holds `query`, case-insensitive.
     pub fn holds(
         &mut self,
@@ -76,21 +138,16 @@ impl Texts {
             self.chapters.clear();
             self.unfolded = unfolded;
         }
+        if !unfolded && let Some(rx) = self.warming.take() {
+            // Made in the background since the start: ready, or soon.
+            if let Ok(texts) = rx.recv() {
+                self.chapters = texts.into_iter().map(Some).collect();
+            }
+        }
         if self.chapters.len() <= i {
             self.chapters.resize(i + 1, None);
         }
-        let text = self.chapters[i].get_or_insert_with(|| {
-            let rendered = markdown::render_with(
-                &source(),
-                SEARCH_WIDTH,
-                &markdown::Options {
-                    unfold: unfolded,
-                    figures_later: true,
-                    images: None,
-                },
-            );
-            markdown::plain(&rendered.lines).to_lowercase()
-        });
+        let text = self.chapters[i].get_or_insert_with(|| searched_text(&source(), unfolded));
         text.contains(&query.to_lowercase())
     }
 }

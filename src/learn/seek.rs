@@ -3,9 +3,25 @@
 //! is [`super::search`]'s).
 
 use super::search::{LONGEST, Search, find};
-use super::{Learn, Mode, markdown};
+use super::{Command, Learn, Mode};
 
 impl Learn {
+    /// Before a search (Enter, n, N): "searching…" on the status line, to
+    /// be drawn before the search runs (across the book it may take a
+    /// moment). True when there is a search to announce.
+    pub fn announce_search(&mut self, command: &Command) -> bool {
+        let query = match (command, &self.mode, &self.search) {
+            (Command::SearchCommit, Mode::Search(q, _), _) if !q.trim().is_empty() => q.clone(),
+            (Command::SearchCommit, Mode::Search(..), Some(s))
+            | (Command::SearchNext | Command::SearchPrevious, Mode::Read, Some(s)) => {
+                s.query.clone()
+            }
+            _ => return false,
+        };
+        self.searching = Some(format!("searching for “{query}”…"));
+        true
+    }
+
     /// A character typed into the search (`None`: Backspace).
     pub(super) fn search_input(&mut self, c: Option<char>) {
         if let Mode::Search(q, _) = &mut self.mode {
@@ -122,9 +138,7 @@ impl Learn {
             };
             let wrapped = if forward { j <= here } else { j >= here };
             let source = || {
-                let path = self.book.join(&self.chapters[j].file);
-                let text = std::fs::read_to_string(&path).unwrap_or_default();
-                markdown::resolve_includes(&text, path.parent().unwrap_or(&self.book))
+                super::search::chapter_source(&self.book.join(&self.chapters[j].file), &self.book)
             };
             if j != here && !self.texts.holds(j, source, self.unfolded, &query) {
                 continue;

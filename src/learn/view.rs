@@ -29,19 +29,19 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, BorderType, Paragraph, Wrap};
 
 /// The keys of the footer.
-const KEYS: [Key; 12] = [
-    key("?", "help", "?", "help", 0),
+const KEYS: [Key; 11] = [
+    key("h", "help", "h", "help", 0),
     key("q", "quit", "q", "quit", 0),
     key("space b", "page", "spc b", "page", 3),
-    key("/", "search", "/", "find", 5),
+    key("/ ?", "search", "/?", "find", 5),
     key("← →", "chapter", "←→", "chapter", 6),
     key("c", "contents", "c", "contents", 7),
     key("x", "next experiment", "x", "try", 8),
     key("s", "scene full screen", "s", "scene", 9),
     key("p", "pause scene", "p", "pause", 4),
     key("o", "unfold code", "o", "code", 2),
-    key("a", "assignments", "a", "course", 1),
-    key("h", "hint", "h", "hint", 1),
+    // The course stays at every width: a student's way to the grades.
+    key("a", "assignments", "a", "course", 0),
 ];
 
 /// Draw the screen for the current state.
@@ -334,6 +334,13 @@ pub fn shortened(text: &str, width: u16) -> String {
 
 fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) {
     let line = match (learn.mode(), learn.message()) {
+        _ if learn.searching().is_some() => Line::from(Span::styled(
+            shortened(
+                &format!(" {}", learn.searching().unwrap_or_default()),
+                area.width,
+            ),
+            theme::info(),
+        )),
         (Mode::Search(q, forward), _) => Line::from(vec![
             Span::styled(if *forward { " /" } else { " ?" }, theme::key()),
             Span::styled(format!("{q}▏"), theme::selected()),
@@ -350,18 +357,48 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
                 theme::label(),
             ),
         ]),
-        // A message too long for the line is cut at a word, with "…".
-        (_, Some((m, true))) => Line::from(Span::styled(
-            shortened(&format!(" {m}"), area.width),
-            theme::error(),
-        )),
-        (_, Some((m, false))) => Line::from(Span::styled(
-            shortened(&format!(" {m}"), area.width),
-            theme::info(),
-        )),
+        // A message too long for the line is shown whole, over the rows
+        // above it (up to three), never cut.
+        (_, Some((m, refused))) => {
+            let style = if *refused {
+                theme::error()
+            } else {
+                theme::info()
+            };
+            return draw_message(frame, area, &format!(" {m}"), style);
+        }
         _ => scene_status(learn, scene_shown),
     };
     frame.render_widget(Paragraph::new(line), area);
+}
+
+/// A status message, wrapped upward over the text when one row is too
+/// narrow for it (the last rows of the text come back with the next key).
+fn draw_message(frame: &mut Frame, area: Rect, text: &str, style: Style) {
+    let paragraph = Paragraph::new(Line::from(Span::styled(text.to_string(), style)))
+        .wrap(Wrap { trim: false });
+    let rows = u16::try_from(paragraph.line_count(area.width))
+        .unwrap_or(u16::MAX)
+        .clamp(1, 3)
+        .min(area.y + 1);
+    let at = Rect {
+        y: area.y + 1 - rows,
+        height: rows,
+        ..area
+    };
+    if rows > 1 {
+        frame.render_widget(ratatui::widgets::Clear, at);
+    }
+    let paragraph = if usize::from(rows) < paragraph.line_count(area.width) {
+        Paragraph::new(Line::from(Span::styled(
+            shortened(text, area.width.saturating_mul(rows)),
+            style,
+        )))
+        .wrap(Wrap { trim: false })
+    } else {
+        paragraph
+    };
+    frame.render_widget(paragraph, at);
 }
 
 /// The scene's clock and state, when nothing else is said.

@@ -36,7 +36,7 @@ use std::time::Duration;
 
 /// Everything a key can ask of the live view (and of the scene beside a
 /// chapter of `spintop learn`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Command {
     /// `q`, Esc or Ctrl-C: leave.
     Quit,
@@ -64,6 +64,11 @@ pub enum Command {
     Input(char),
     /// Backspace in the edit field.
     Backspace,
+    /// Ctrl-U in the edit field: empty it.
+    ClearField,
+    /// Text pasted (bracketed paste): typed into the edit field, line breaks
+    /// left out (never run as Enter); ignored, with a note, elsewhere.
+    Paste(String),
     /// ↑ in the edit field: add 0.01.
     NudgeUp,
     /// ↓ in the edit field: subtract 0.01.
@@ -552,6 +557,17 @@ impl App {
                 self.inform(edit_hint(component, self.settings.top().time_unit()));
             }
             Command::Input(c) => self.input(c),
+            Command::Paste(text) => self.paste(&text),
+            Command::ClearField => {
+                if let Mode::Edit {
+                    buffer, pristine, ..
+                } = &mut self.mode
+                {
+                    *pristine = false;
+                    buffer.clear();
+                    self.say_edit();
+                }
+            }
             Command::Backspace => {
                 if let Mode::Edit {
                     buffer, pristine, ..
@@ -743,6 +759,25 @@ impl App {
         }
         buffer.push(c);
         self.say_edit();
+    }
+
+    /// Pasted text: into the Ω₀ field as if typed, without its line breaks
+    /// (a paste never presses Enter); outside an edit, nothing but a note.
+    fn paste(&mut self, text: &str) {
+        if !matches!(self.mode, Mode::Edit { .. }) {
+            self.inform("paste ignored: Enter edits the selected Ω₀ component, then paste");
+            return;
+        }
+        for c in text.chars().filter(|c| !c.is_control()) {
+            self.input(c);
+            if self
+                .message
+                .as_ref()
+                .is_some_and(|m| m.text.starts_with("refused: "))
+            {
+                break;
+            }
+        }
     }
 
     /// What the Ω₀ field's line says: how to edit it, or why its text is no

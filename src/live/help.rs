@@ -22,7 +22,7 @@ const KEYS: [(&str, &str); 13] = [
     ("↑ / ↓", "select a component of Ω₀"),
     (
         "Enter",
-        "edit it: type a number, ↑/↓ ±0.01, Enter applies, Esc cancels (q is refused there, never quits)",
+        "edit it: type or paste a number, ↑/↓ ±0.01, ^U clears, Enter applies, Esc cancels (q is refused there, never quits)",
     ),
     (
         "m",
@@ -35,10 +35,10 @@ const KEYS: [(&str, &str); 13] = [
     ),
     (
         "?",
-        "this help: ↑ ↓ j k PgUp PgDn scroll it, any other key closes",
+        "this help: ↑ ↓ j k PgUp PgDn scroll it, any other key (q, Esc) closes",
     ),
     ("^L", "draw the whole screen again"),
-    ("q Esc ^C", "quit"),
+    ("q ^C", "quit (Esc never quits: it closes or cancels)"),
 ];
 
 /// What the help says instead for a general top.

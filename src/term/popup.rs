@@ -170,7 +170,19 @@ pub fn draw(
             theme::key(),
         )));
     }
-    frame.render_widget(Clear, at);
+    // A margin too narrow to read (a column or two beside the box) would
+    // show stray letters of what lies under it: the rows of the box are
+    // cleared across the whole width then.
+    let band = if area.width.saturating_sub(at.width) < 8 {
+        Rect {
+            x: area.x,
+            width: area.width,
+            ..at
+        }
+    } else {
+        at
+    };
+    frame.render_widget(Clear, band);
     frame.render_widget(
         Paragraph::new(lines)
             .wrap(Wrap { trim: false })

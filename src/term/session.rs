@@ -10,7 +10,8 @@
 //! (quit, an I/O error, an early return, a panic) leaves the shell usable.
 
 use crossterm::event::{
-    self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyEventKind, KeyModifiers,
+    self, DisableBracketedPaste, DisableMouseCapture, EnableBracketedPaste, EnableMouseCapture,
+    Event, KeyCode, KeyEventKind, KeyModifiers,
 };
 use ratatui::{DefaultTerminal, Frame, Terminal, backend::Backend};
 use spintop::math::Real;
@@ -35,6 +36,11 @@ pub trait Screen {
     /// Whether the screen wants the mouse (its wheel) now; off leaves the
     /// terminal's own selection of text to the reader.
     fn wants_mouse(&self) -> bool {
+        false
+    }
+    /// Before a command that may take long (a search across the book): say
+    /// so, and true to have the loop draw that before it applies it.
+    fn announce(&mut self, _command: &Self::Command) -> bool {
         false
     }
 }
@@ -157,11 +163,16 @@ impl Control for Crossterm {
         if self.mouse {
             crossterm::execute!(io::stdout(), DisableMouseCapture)?;
         }
+        let _ = crossterm::execute!(io::stdout(), DisableBracketedPaste);
         ratatui::restore();
         super::signals::stop_as_a_job();
         // Back from `fg`: the terminal as the session had it.
         crossterm::terminal::enable_raw_mode()?;
-        crossterm::execute!(io::stdout(), crossterm::terminal::EnterAlternateScreen)?;
+        crossterm::execute!(
+            io::stdout(),
+            crossterm::terminal::EnterAlternateScreen,
+            EnableBracketedPaste
+        )?;
         if self.mouse {
             crossterm::execute!(io::stdout(), EnableMouseCapture)?;
         }
@@ -185,12 +196,14 @@ impl Session {
     /// Take over the terminal (raw mode, alternate screen). The mouse is
     /// captured while the screen wants it ([`Screen::wants_mouse`]). A panic
     /// restores the terminal as well (ratatui's hook, and the mouse released
-    /// first).
+    /// first). Pastes arrive bracketed, as one [`Event::Paste`], never as
+    /// keys (a pasted "0.4⏎q" is text for a field, not Enter then quit).
     pub fn start() -> io::Result<Self> {
         let terminal = ratatui::try_init()?;
+        crossterm::execute!(io::stdout(), EnableBracketedPaste)?;
         let hook = std::panic::take_hook();
         std::panic::set_hook(Box::new(move |info| {
-            let _ = crossterm::execute!(io::stdout(), DisableMouseCapture);
+            let _ = crossterm::execute!(io::stdout(), DisableMouseCapture, DisableBracketedPaste);
             hook(info);
         }));
         Ok(Self {
@@ -214,6 +227,7 @@ impl Drop for Session {
         if self.control.mouse {
             let _ = crossterm::execute!(io::stdout(), DisableMouseCapture);
         }
+        let _ = crossterm::execute!(io::stdout(), DisableBracketedPaste);
         ratatui::restore();
     }
 }
@@ -305,6 +319,11 @@ where
                 continue;
             }
             if let Some(command) = screen.command(&event) {
+                if screen.announce(&command) {
+                    terminal
+                        .draw(|frame| screen.draw(frame))
+                        .map_err(io::Error::other)?;
+                }
                 screen.apply(command);
             }
             if screen.should_quit() || signals.received().is_some() {

@@ -130,9 +130,10 @@ fn restore_from_another_thread() {
     #[cfg(unix)]
     if let Ok(mut tty) = std::fs::OpenOptions::new().write(true).open("/dev/tty") {
         use std::io::Write;
-        // Leave the alternate screen, show the cursor, release the mouse.
+        // Leave the alternate screen, show the cursor, release the mouse,
+        // end bracketed paste.
         let _ = tty.write_all(
-            b"\x1b[?1049l\x1b[?25h\x1b[?1000l\x1b[?1002l\x1b[?1003l\x1b[?1006l\x1b[?1015l",
+            b"\x1b[?1049l\x1b[?25h\x1b[?1000l\x1b[?1002l\x1b[?1003l\x1b[?1006l\x1b[?1015l\x1b[?2004l",
         );
         let _ = tty.flush();
     }

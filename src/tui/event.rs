@@ -19,19 +19,25 @@ pub fn command_for(key: KeyEvent, mode: &Mode, page: u16) -> Option<Command> {
         return None;
     }
     if key.modifiers.contains(KeyModifiers::CONTROL) {
-        return matches!(key.code, KeyCode::Char('c' | 'C')).then_some(Command::Quit);
+        return match key.code {
+            KeyCode::Char('c' | 'C') => Some(Command::Quit),
+            KeyCode::Char('u' | 'U') if matches!(mode, Mode::Edit { .. }) => {
+                Some(Command::ClearField)
+            }
+            _ => None,
+        };
     }
     match mode {
         Mode::Quitting => None,
         Mode::Help(_) => Some(match key.code {
-            KeyCode::Char('q') => Command::Quit,
             KeyCode::Down | KeyCode::Char('j') => Command::ScrollHelp(1),
             KeyCode::Up | KeyCode::Char('k') => Command::ScrollHelp(-1),
             KeyCode::PageDown | KeyCode::Char(' ') => Command::ScrollHelp(i64::from(page)),
             KeyCode::PageUp | KeyCode::Char('b') => Command::ScrollHelp(-i64::from(page)),
             KeyCode::Home | KeyCode::Char('g') => Command::ScrollHelp(i64::MIN / 2),
             KeyCode::End | KeyCode::Char('G') => Command::ScrollHelp(i64::MAX / 2),
-            // Any other key closes the overlay.
+            // Any other key closes the overlay (q and Esc too: they close,
+            // never quit, from the help).
             _ => Command::ToggleHelp,
         }),
         Mode::Edit { .. } => match key.code {
@@ -46,7 +52,8 @@ pub fn command_for(key: KeyEvent, mode: &Mode, page: u16) -> Option<Command> {
             _ => None,
         },
         Mode::Normal => match key.code {
-            KeyCode::Char('q') | KeyCode::Esc => Some(Command::Quit),
+            // Esc only closes or cancels, never quits (as in `learn`).
+            KeyCode::Char('q') => Some(Command::Quit),
             KeyCode::Char(' ') => Some(Command::TogglePause),
             KeyCode::Char('.') | KeyCode::Right => Some(Command::Step),
             // `=` is `+` without Shift on most layouts.
@@ -80,6 +87,7 @@ impl Screen for App {
                 // quit is taken; other keys would change the models unseen.
                 (!self.view().too_small() || command == Command::Quit).then_some(command)
             }
+            Event::Paste(text) if !self.view().too_small() => Some(Command::Paste(text.clone())),
             _ => None,
         }
     }

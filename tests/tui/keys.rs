@@ -69,11 +69,12 @@ fn every_key_of_the_table_maps_to_its_command() {
         (Char('l'), ToggleLogTime),
         (Char('?'), ToggleHelp),
         (Char('q'), Quit),
-        (Esc, Quit),
     ];
     for (code, command) in table {
         assert_eq!(normal(code), Some(command), "{code:?}");
     }
+    // Esc closes or cancels, never quits (as in `learn`).
+    assert_eq!(normal(Esc), None);
     assert_eq!(normal(Char('x')), None);
     assert_eq!(normal(Left), None);
 }
@@ -122,9 +123,9 @@ fn edit_mode_takes_every_character_arrows_enter_and_esc() {
 }
 
 /// The help scrolls with the arrows and the page keys; any other key closes
-/// it; q quits.
+/// it, q included (as in `less`: q closes the help, it does not quit).
 #[test]
-fn help_scrolls_closes_on_any_other_key_and_q_quits() {
+fn help_scrolls_closes_on_any_other_key_q_included() {
     assert_eq!(
         command_for(key(KeyCode::Char('j')), &Mode::Help(0), 10),
         Some(Command::ScrollHelp(1))
@@ -151,8 +152,57 @@ fn help_scrolls_closes_on_any_other_key_and_q_quits() {
     );
     assert_eq!(
         command_for(key(KeyCode::Char('q')), &Mode::Help(0), 10),
-        Some(Command::Quit)
+        Some(Command::ToggleHelp)
     );
+}
+
+/// Ctrl-U empties the Ω₀ field (and is nothing outside it).
+#[test]
+fn ctrl_u_clears_the_edit_field() {
+    let ctrl_u = KeyEvent::new(KeyCode::Char('u'), KeyModifiers::CONTROL);
+    assert_eq!(
+        command_for(ctrl_u, &edit_mode(), 10),
+        Some(Command::ClearField)
+    );
+    assert_eq!(command_for(ctrl_u, &Mode::Normal, 10), None);
+    let mut app = app();
+    app.apply(Command::StartEdit);
+    app.apply(Command::Input('3'));
+    app.apply(Command::ClearField);
+    match app.mode() {
+        Mode::Edit { buffer, .. } => assert_eq!(buffer, ""),
+        other => panic!("still editing expected, got {other:?}"),
+    }
+}
+
+/// A paste arrives as one event (bracketed paste): into the Ω₀ field it is
+/// text, its line break never pressed as Enter, so "0.4⏎q" neither applies
+/// 0.4 nor quits; outside an edit it changes nothing and says so.
+#[test]
+fn a_paste_is_text_for_the_field_never_keys() {
+    use crossterm::event::Event;
+    use spintop_app::term::session::Screen;
+    let mut app = app();
+    app.apply(Command::Resize(80, 24));
+    let before = app.settings().omega0();
+    let paste = Event::Paste("0.4\nq".to_string());
+    let command = Screen::command(&app, &paste).expect("a paste is taken");
+    app.apply(command);
+    assert_eq!(app.mode(), &Mode::Normal, "nothing opened by a paste");
+    assert!(!app.should_quit());
+    assert_eq!(app.settings().omega0(), before);
+    assert!(
+        app.message()
+            .is_some_and(|m| m.text.contains("paste ignored"))
+    );
+    app.apply(Command::StartEdit);
+    app.apply(Screen::command(&app, &paste).unwrap());
+    match app.mode() {
+        Mode::Edit { buffer, .. } => assert_eq!(buffer, "0.4q"),
+        other => panic!("still editing expected, got {other:?}"),
+    }
+    assert!(!app.should_quit());
+    assert_eq!(app.settings().omega0(), before, "nothing applied");
 }
 
 #[test]

@@ -121,7 +121,7 @@ fn the_help_scrolls_at_80x24_and_explains_every_panel_and_row() {
         "space",
         "Enter",
         "Tab",
-        "q Esc ^C",
+        "q ^C",
         "Ω(t)",
         "hodograph",
         "top in space",
@@ -299,4 +299,28 @@ fn the_played_back_scenes_give_their_units() {
     press(&mut learn, KeyCode::Char('p'));
     let said = learn.message().unwrap().0.clone();
     assert!(said.contains("1/ω₀"), "{said}");
+}
+
+/// At 80×24 the help box leaves a column each side: nothing of the screen
+/// under it shows there (no stray letter of the footer beside the box).
+#[test]
+fn nothing_shows_beside_the_help_box_at_80x24() {
+    let mut app = sized(App::new(Settings::default()).unwrap(), 80, 24);
+    let plain = screen(&app, 80, 24);
+    app.apply(Command::ToggleHelp);
+    let shown = screen(&app, 80, 24);
+    let rows: Vec<&str> = shown.lines().collect();
+    let boxed: Vec<&&str> = rows.iter().filter(|r| r.contains('│')).collect();
+    assert!(boxed.len() > 10, "{shown}");
+    for row in rows
+        .iter()
+        .filter(|r| r.contains('╭') || r.contains('│') || r.contains('╰'))
+    {
+        let cells: Vec<char> = row.trim_start_matches('"').chars().collect();
+        let (first, last) = (cells[0], cells[79]);
+        assert!(
+            first == ' ' && last == ' ',
+            "a stray cell beside the box: {row}\nunder it:\n{plain}"
+        );
+    }
 }

@@ -5,6 +5,7 @@
 mod keys;
 mod learn;
 mod live_view;
+mod overlays;
 mod reader;
 mod screens;
 mod term_e2e;

@@ -328,7 +328,7 @@ fn the_mouse_is_left_to_the_terminal_until_m() {
 fn the_help_scrolls_on_a_small_terminal() {
     let mut learn = Learn::open(&book(), None).unwrap();
     draw(&mut learn, 60, 20);
-    press(&mut learn, KeyCode::Char('?'));
+    press(&mut learn, KeyCode::Char('h'));
     let first = draw(&mut learn, 60, 20);
     assert!(first.contains("rows 1–"), "{first}");
     assert!(!first.contains("--chapter"), "{first}");

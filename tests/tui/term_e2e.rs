@@ -89,7 +89,8 @@ fn learn_in_a_copy_grades_it_diagnoses_a_wrong_answer_then_passes_it() {
     tmux.wait_for("the diagnosis", long, |s| {
         s.contains("next: (2.1) larmor_rate")
             && s.contains("is not right yet")
-            && s.contains("grade it alone: cargo test --test ch2")
+            && s.contains("grade it alone:")
+            && s.contains("    cargo test --test ch2")
             && !s.contains("grading now")
     });
     // The list below it marks the wrong answer: j scrolls down to it.
@@ -264,9 +265,9 @@ fn ctrl_z_suspends_to_the_shell_and_fg_comes_back() {
         s.contains("spintop learn") && s.contains("Section 2")
     });
     assert_eq!(alternate(), "1", "{back}");
-    assert!(back.contains("? help"), "the whole screen redrawn:\n{back}");
+    assert!(back.contains("h help"), "the whole screen redrawn:\n{back}");
     tmux(&["send-keys", "-t", "z", "q"]);
-    wait("the prompt", &|s| !s.contains("? help"));
+    wait("the prompt", &|s| !s.contains("h help"));
     let _ = tmux(&["kill-server"]);
 }
 

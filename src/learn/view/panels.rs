@@ -32,8 +32,8 @@ const HELP: [(&str, &str); 25] = [
         "the top, the end of the chapter (the frame says where: %, END)",
     ),
     (
-        "/ ^R",
-        "search forward, backward: this chapter first, then the book",
+        "/ ? ^R",
+        "search forward, backward (? and ^R): this chapter first, then the book",
     ),
     (
         "n N",
@@ -58,7 +58,7 @@ const HELP: [(&str, &str); 25] = [
     ("p .", "pause the scene; one step while it is paused"),
     ("r l + -", "restart, log time, warp of the scene"),
     ("m v", "the scene's method; its next model, one at a time"),
-    ("a h", "the assignments; a hint for the next one"),
+    ("a", "the assignments (h there: a hint for the next one)"),
     (
         "M",
         "the mouse wheel scrolls, or the mouse selects text (Shift-drag always selects)",
@@ -68,12 +68,15 @@ const HELP: [(&str, &str); 25] = [
         "close a panel, clear a search or a link (never quits)",
     ),
     (
-        "?",
-        "this help (↑ ↓ PgUp PgDn scroll it, any other key closes)",
+        "h F1",
+        "this help (↑ ↓ PgUp PgDn scroll it, any other key, q too, closes)",
     ),
     ("^Z", "suspend to the shell; fg comes back"),
     ("^L", "draw the whole screen again"),
-    ("q Q ^C", "quit: the chapter reopens where you left it"),
+    (
+        "q Q ^C",
+        "quit from the text (q closes a panel): the chapter reopens where you left it",
+    ),
     ("", ""),
     (
         "--chapter",
@@ -127,7 +130,13 @@ fn course_head(learn: &Learn, lines: &mut Vec<Line<'static>>) {
         )));
     }
     match (panel.status(), panel.error(), panel.off()) {
-        (_, Some(e), _) => lines.push(Line::from(Span::styled(e.to_string(), theme::error()))),
+        (_, Some(e), _) => lines.push(Line::from(Span::styled(
+            match panel.graded_ago() {
+                Some(s) => format!("{e} (graded {s} s ago)"),
+                None => e.to_string(),
+            },
+            theme::error(),
+        ))),
         (None, None, Some(why)) => {
             lines.push(Line::from(Span::styled(
                 "The assignments are not graded in this session.",
@@ -210,9 +219,15 @@ fn course_next(learn: &Learn, lines: &mut Vec<Line<'static>>) {
         ))),
     }
     if let Some(c) = course {
+        // The command on a line of its own, so that it is broken at a
+        // narrow width only when it is wider than the whole box.
         lines.push(Line::from(Span::styled(
-            format!("  grade it alone: {}", c.test_command(a)),
+            "  grade it alone:",
             theme::label(),
+        )));
+        lines.push(Line::from(Span::styled(
+            format!("    {}", c.test_command(a)),
+            theme::key(),
         )));
     }
 }

@@ -206,7 +206,7 @@ pub fn estimate(
                 Some(Estimate {
                     steps: stiff,
                     what: format!(
-                        "{} on a stiff problem (the damping rate tau k^2 = {rate:.2e}/tau holds an explicit step below {:.1e} tau)",
+                        "{} on a stiff problem (the damping rate τk² = {rate:.2e}/τ holds an explicit step below {:.1e}τ)",
                         method_name(method, model),
                         limit / rate
                     ),
@@ -308,6 +308,8 @@ mod tests {
         let e = estimate(&Model::Reduced(top), Method::Dopri5, &o, &w, 10.0).unwrap();
         assert!((e.steps / 19378.0 - 1.0).abs() < 0.01, "{e:?}");
         assert!(e.what.contains("stiff"), "{e:?}");
+        // In the symbols of the rest of the screen, not spelled out.
+        assert!(e.what.contains("τk²") && !e.what.contains("tau"), "{e:?}");
         // At the default rtol the turning's measured steps per radian (on
         // tumbling tops) dominate: an upper bound, above the 19378 steps.
         let o = MethodOptions::default();
