@@ -618,29 +618,10 @@ fn a_copy_exported_from_a_deleted_clone_builds_and_is_graded() {
     course::export(&clone, &copy).unwrap();
     std::fs::remove_dir_all(&clone).unwrap();
     // No path outside the copy, no solution.
-    let outside = [repo().display().to_string(), clone.display().to_string()];
-    let mut texts = Vec::new();
-    let mut stack = vec![copy.clone()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap().flatten() {
-            let p = e.path();
-            if e.file_type().unwrap().is_dir() {
-                stack.push(p);
-            } else if let Ok(t) = std::fs::read_to_string(&p) {
-                texts.push((p, t));
-            }
-        }
-    }
-    for (p, t) in &texts {
-        for o in &outside {
-            assert!(!t.contains(o.as_str()), "{} names {o}", p.display());
-        }
-        assert!(
-            !p.components().any(|c| c.as_os_str() == "solutions"),
-            "{}",
-            p.display()
-        );
-    }
+    names_nothing_outside(
+        &copy,
+        &[repo().display().to_string(), clone.display().to_string()],
+    );
     let ch2 = std::fs::read_to_string(copy.join("src/ch2.rs")).unwrap();
     assert!(
         !ch2.contains(&solution("ch2", "larmor_rate")),
@@ -728,6 +709,33 @@ fn a_copy_exported_from_a_deleted_clone_builds_and_is_graded() {
     assert_eq!(grades.matches(",passing,").count(), 1, "{grades}");
     graded_where_it_was_moved(&root, &copy);
     std::fs::remove_dir_all(&root).ok();
+}
+
+/// No file of `copy` names one of the paths `outside`, and no folder of it
+/// is called `solutions`.
+fn names_nothing_outside(copy: &Path, outside: &[String]) {
+    let mut texts = Vec::new();
+    let mut stack = vec![copy.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if e.file_type().unwrap().is_dir() {
+                stack.push(p);
+            } else if let Ok(t) = std::fs::read_to_string(&p) {
+                texts.push((p, t));
+            }
+        }
+    }
+    for (p, t) in &texts {
+        for o in outside {
+            assert!(!t.contains(o.as_str()), "{} names {o}", p.display());
+        }
+        assert!(
+            !p.components().any(|c| c.as_os_str() == "solutions"),
+            "{}",
+            p.display()
+        );
+    }
 }
 
 /// The copy at `copy`, moved below `root` elsewhere: the student's own

@@ -398,16 +398,10 @@ fn landlock(kind: &Kind, program: &Path) -> Result<String, String> {
     }
 }
 
-/// The system calls a sandbox's program may not make (each fails with
-/// EPERM): no `ptrace` or reading another process's memory, no socket but a
-/// local one for a build and none for a runner, and for a runner no signal
-/// to anyone and no new process or thread.
-fn seccomp(kind: &Kind) -> Result<String, String> {
-    use seccompiler::{
-        SeccompAction, SeccompCmpArgLen, SeccompCmpOp, SeccompCondition, SeccompFilter,
-        SeccompRule, TargetArch,
-    };
-    let arch = TargetArch::try_from(std::env::consts::ARCH).map_err(text)?;
+/// The calls refused outright (no argument looked at): for every program,
+/// those that reach other processes, keys, BPF, modules; for a runner also
+/// sockets, signals, new processes, mounts and memory files.
+fn denied_calls(runner: bool) -> Vec<i64> {
     let mut denied: Vec<i64> = vec![
         libc::SYS_ptrace,
         libc::SYS_process_vm_readv,
@@ -425,7 +419,6 @@ fn seccomp(kind: &Kind) -> Result<String, String> {
         libc::SYS_init_module,
         libc::SYS_finit_module,
     ];
-    let runner = matches!(kind, Kind::Run | Kind::Probe);
     if runner {
         denied.extend([
             libc::SYS_socket,
@@ -467,6 +460,21 @@ fn seccomp(kind: &Kind) -> Result<String, String> {
         #[cfg(target_arch = "x86_64")]
         denied.extend([libc::SYS_fork, libc::SYS_vfork, libc::SYS_alarm]);
     }
+    denied
+}
+
+/// The system calls a sandbox's program may not make (each fails with
+/// EPERM): no `ptrace` or reading another process's memory, no socket but a
+/// local one for a build and none for a runner, and for a runner no signal
+/// to anyone and no new process or thread.
+fn seccomp(kind: &Kind) -> Result<String, String> {
+    use seccompiler::{
+        SeccompAction, SeccompCmpArgLen, SeccompCmpOp, SeccompCondition, SeccompFilter,
+        SeccompRule, TargetArch,
+    };
+    let arch = TargetArch::try_from(std::env::consts::ARCH).map_err(text)?;
+    let runner = matches!(kind, Kind::Run | Kind::Probe);
+    let denied = denied_calls(runner);
     let mut rules: std::collections::BTreeMap<i64, Vec<SeccompRule>> =
         denied.into_iter().map(|s| (s, Vec::new())).collect();
     // No `prctl` that would let the program outlive the grader or be read
