@@ -78,7 +78,8 @@ fn text_files(dir: &Path, out: &mut Vec<PathBuf>) {
         } else if ["rs", "md", "toml", "yml", "yaml", "py", "sh"]
             .iter()
             .any(|x| name.ends_with(&format!(".{x}")))
-            || p.parent().is_some_and(|d| d.ends_with(".ci"))
+            || p.parent()
+                .is_some_and(|d| d.file_name().is_some_and(|n| n == ".ci"))
         {
             out.push(p);
         }
