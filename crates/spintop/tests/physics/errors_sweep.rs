@@ -317,9 +317,19 @@ fn eq_3_4_every_printed_error_holds_on_a_coarse_grid() {
 
 /// Issue 46, (5): the long sweep, I₃/I₁ from 0.05 to 1.5, Ω₀ near the axis
 /// to across it, τ|Ω₀| to 1, horizons to 10⁶ τ, rtol 1e-4 to 1e-14.
+///
+/// NOTE: not yet part of CI's end-to-end tier: its 432 scenes have not been
+/// run to the end (the one attempt, in a debug build on a loaded machine,
+/// was stopped at 40 minutes), and issue 46 still lists cases it would
+/// catch (the general top at rtol 1e-10, the secular claim). It runs with
+/// `SPINTOP_LONG_SWEEP=1 cargo test -p spintop --test core long_sweep -- --ignored`.
 #[test]
-#[ignore = "end-to-end: the long sweep of issue 46 (a few minutes)"]
+#[ignore = "end-to-end, opt-in: the long sweep of issue 46 (SPINTOP_LONG_SWEEP=1)"]
 fn eq_3_4_every_printed_error_holds_over_the_long_sweep() {
+    if std::env::var_os("SPINTOP_LONG_SWEEP").is_none() {
+        eprintln!("the long sweep runs with SPINTOP_LONG_SWEEP=1 (issue 46)");
+        return;
+    }
     let o = sweep(
         &[0.05, 0.4, 1.5],
         &[0.05, 0.8, std::f64::consts::FRAC_PI_2],
