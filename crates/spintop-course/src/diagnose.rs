@@ -109,17 +109,7 @@ impl Diagnosed {
     /// (`None` when it expects none): a phrase, or a list of words separated
     /// by commas of which more than half must be there (see [`contains`]).
     pub fn says_it(&self) -> Option<bool> {
-        let says = self.answer.says.as_ref()?;
-        let words: Vec<&str> = says
-            .split(',')
-            .map(str::trim)
-            .filter(|w| !w.is_empty())
-            .collect();
-        let found = words
-            .iter()
-            .filter(|w| contains(&self.diagnosis, w))
-            .count();
-        Some(2 * found > words.len())
+        self.words_found().map(|(found, of)| 2 * found > of)
     }
 
     /// How many of the expected words the diagnosis contains, of how many.
