@@ -491,6 +491,49 @@ fn the_course_panel_fits_80x24_diagnosis_first_and_scrolls() {
     assert!(end.contains("reduced_rk4"), "the last assignment:\n{end}");
 }
 
+/// In a student's copy at 80×24, a real grader's report of a wrong (2.1)
+/// (17-digit numbers, a seed, a hint command) leaves the command that grades
+/// it alone on the panel's first screen, and names the copy's paths.
+#[test]
+fn a_real_failure_keeps_its_command_on_the_first_screen_at_80x24() {
+    use spintop_course::{Chosen, Course, Report, State, Status};
+    let copy = std::env::temp_dir().join(format!(
+        "spintop-panel-copy-{}/a/rather/long/path/to/the/students/copy",
+        std::process::id()
+    ));
+    let failed = spintop_grading::larmor_rate(553_308_490, |[_, d1, d2, _]| d1.cross(d2))
+        .expect_err("a wrong Larmor rate fails");
+    let report = failed.to_string();
+    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    learn.watch_course(Course::at(&copy, Chosen::Found), None);
+    draw(&mut learn, 80, 24);
+    let status = Status::new(0, |a| match a.function {
+        "larmor_rate" => State::Failing(report.as_str().into()),
+        _ => State::NotStarted,
+    });
+    learn.course_report(Report::Graded(status));
+    press(&mut learn, KeyCode::Char('a'));
+    let shown = draw(&mut learn, 80, 24);
+    for needed in [
+        "next: (2.1) larmor_rate in src/ch2.rs",
+        "is not right yet",
+        "diagnosis:",
+        "grade it alone:",
+        "cargo test --test ch2 eq_2_1_larmor_rate",
+    ] {
+        assert!(
+            shown.contains(needed),
+            "{needed:?} on the first screen:\n{shown}"
+        );
+    }
+    assert!(!shown.contains("lessons/src"), "{shown}");
+    // The command line's hint is a key here.
+    assert!(!shown.contains("spintop course hint"), "{shown}");
+    press(&mut learn, KeyCode::End);
+    let end = draw(&mut learn, 80, 24);
+    assert!(end.contains("reduced_rk4"), "the list's end:\n{end}");
+}
+
 /// A wrong answer in another chapter comes before the stubs of the chapter
 /// on screen: the student broke it, its diagnosis is what they need.
 #[test]

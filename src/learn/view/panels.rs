@@ -206,9 +206,20 @@ fn course_next(learn: &Learn, lines: &mut Vec<Line<'static>>) {
         ),
         theme::title(),
     )));
+    // What is wrong first, then the command, then how to get the inputs
+    // again: at 80×24 the command is on the panel's first screen. The
+    // report's "stuck?" names the command line's hint; here it is a key.
+    let (what, again): (Vec<&str>, Vec<&str>) = match s {
+        State::Failing(report) => report
+            .lines()
+            .take(10)
+            .filter(|l| !l.trim_start().starts_with("stuck?"))
+            .partition(|l| !l.trim_start().starts_with("seed:")),
+        _ => (Vec::new(), Vec::new()),
+    };
     match s {
-        State::Failing(report) => {
-            for l in report.lines().take(10) {
+        State::Failing(_) => {
+            for l in &what {
                 lines.push(Line::from(format!("  {l}")));
             }
         }
@@ -228,6 +239,15 @@ fn course_next(learn: &Learn, lines: &mut Vec<Line<'static>>) {
         lines.push(Line::from(Span::styled(
             format!("    {}", c.test_command(a)),
             theme::key(),
+        )));
+    }
+    for l in &again {
+        lines.push(Line::from(format!("  {l}")));
+    }
+    if matches!(s, State::Failing(_)) {
+        lines.push(Line::from(Span::styled(
+            "  stuck? h shows a hint (one rung at a time)",
+            theme::label(),
         )));
     }
 }
