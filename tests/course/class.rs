@@ -237,8 +237,15 @@ fn every_adversarial_copy_costs_only_its_own_rows_and_two_runs_at_once_agree() {
         })
     };
     let start = Instant::now();
-    let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    let out = spintop(&args);
+    let child = Command::new(env!("CARGO_BIN_EXE_spintop"))
+        .args(&args)
+        .env("CARGO_TARGET_DIR", super::target())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("spintop runs");
+    let pid = child.id();
+    let out = child.wait_with_output().expect("spintop ends");
     let elapsed = start.elapsed();
     stop.store(true, Ordering::Relaxed);
     swapping.join().unwrap();
@@ -252,11 +259,15 @@ fn every_adversarial_copy_costs_only_its_own_rows_and_two_runs_at_once_agree() {
         Some(spintop_course::sheet::CSV_HEADER)
     );
     check_adversaries(&grades);
-    // The build folders of the class are gone; nothing large is left.
+    // The build folders of this run are gone; nothing large is left. (Only
+    // this run's: other tests grade at the same time in the same folder.)
     let left = repo().join("target/course-grade");
     for entry in std::fs::read_dir(&left).unwrap().flatten() {
         let name = entry.file_name().to_string_lossy().into_owned();
-        assert!(!name.starts_with("run-"), "{name} was left behind");
+        assert!(
+            !name.starts_with(&format!("run-{pid}-")),
+            "{name} was left behind"
+        );
     }
     // The run at the same time: right too.
     assert!(

@@ -119,6 +119,8 @@ fn learn_in_a_copy_grades_it_diagnoses_a_wrong_answer_then_passes_it() {
     tmux.wait_for("the pass in the panel", Duration::from_secs(20), |s| {
         s.contains("1 of 22 passing") && s.contains("next: (2.4)") && !s.contains("next: (2.1)")
     });
+    // As in `less`, q closes the panel first, then quits.
+    tmux.keys("q");
     tmux.keys("q");
     assert_eq!(exit_status(&tmux, Duration::from_secs(20)), "0");
     drop(tmux);
