@@ -95,16 +95,11 @@ pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Rea
     {
         return GeneralPath::Stepped { rtol: r, steps };
     }
-    let (Model::General(top) | Model::GeneralReduced(top)) = model else {
+    if !matches!(model, Model::General(_) | Model::GeneralReduced(_)) {
         return GeneralPath::Neither(format!("{} has no secular model", model.name()));
-    };
-    let law = if matches!(model, Model::General(_)) {
-        Law::Truncated
-    } else {
-        Law::Reduced
-    };
+    }
     let share = radiation_share(model, omega0);
-    let secular_error = (share <= SECULAR_MAX_SHARE).then(|| averaging_error(top, law, omega0));
+    let secular_error = secular_error(model, omega0);
     if let Some(error) = secular_error
         && error <= rtol
     {
@@ -151,6 +146,59 @@ pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Rea
     ))
 }
 // ANCHOR_END: general_path
+
+/// The secular model's own error ([`averaging_error`]) for a general tier
+/// (under (3.3) for `general`, the reduced (3.4) for `general-reduced`),
+/// where it is offered: the radiation's share per radian at most
+/// [`SECULAR_MAX_SHARE`]. `None` for any other model.
+pub(super) fn secular_error(model: &Model, omega0: &Vec3) -> Option<Real> {
+    let (law, top) = match model {
+        Model::General(top) => (Law::Truncated, top),
+        Model::GeneralReduced(top) => (Law::Reduced, top),
+        _ => return None,
+    };
+    (radiation_share(model, omega0) <= SECULAR_MAX_SHARE).then(|| averaging_error(top, law, omega0))
+}
+
+/// When `auto` chose the physical solution of a general top for Ω or the
+/// orientation and the physical solution does not fit the step budget: the
+/// lightest general tier whose secular model holds E and |L| within `tol`
+/// over `times` (its drift against the physical solution's,
+/// [`secular_errors`], and its own averaging error, [`secular_error`]),
+/// with the reason it answers them without the orientation. This is what
+/// `auto` answers at a longer horizon or a tighter rtol, where stepping no
+/// longer fits and the secular model is chosen outright: so a refusal is
+/// monotonic in the horizon and in rtol. `None` for a symmetric top, or
+/// where no secular model holds.
+pub(super) fn secular_fallback(
+    tiers: &[Model; 3],
+    omega0: &Vec3,
+    times: &[Real],
+    tol: Real,
+) -> Option<(usize, String)> {
+    let Model::GeneralReduced(top) = &tiers[1] else {
+        return None;
+    };
+    // Neither secular model is offered at this share: nothing to compute.
+    secular_error(&tiers[0], omega0)?;
+    let errors = secular_errors(top, omega0, times, tol).ok()?;
+    let strong = radiation_share(&tiers[0], omega0) >= STRONG_SPIN;
+    let drift = [errors.truncated, errors.reduced];
+    let tier = (0..2).find(|&t| {
+        (t == 0 || !strong)
+            && drift[t] <= tol
+            && secular_error(&tiers[t], omega0).is_some_and(|e| e <= tol)
+    })?;
+    let name = ["the truncated ALE (3.3)", "the reduced ALE"][tier];
+    Some((
+        tier,
+        format!(
+            "model = \"auto\": the physical solution of (3.4) would take more steps than allowed, and no lighter model holds Omega and the orientation within rtol = {tol:.0e}; the secular model of {name} holds E and |L| within it (its drift off the physical solution's {:.1e}, its averaging {:.1e}), so it answers them, and the orientation is not computed",
+            drift[tier],
+            secular_error(&tiers[tier], omega0).unwrap_or(0.0)
+        ),
+    ))
+}
 
 /// The longest turning, up to `angle`, that stepping holds within `rtol`
 /// on the step budget: where either the error ([`tolerance_for`]) or the

@@ -32,7 +32,7 @@ use serde::Serialize;
 
 use super::choose::{
     GeneralPath, MAX_PHASE, STRONG_SPIN, general_path, radiation_share, reduced_tau_k,
-    symmetric_orientation_skip,
+    secular_error, symmetric_orientation_skip,
 };
 
 /// The most steps any integration of a scene may take (the integrators' own cap).
@@ -346,7 +346,13 @@ fn symmetric_plan(ask: &Ask, top: &SymmetricTop, mut warnings: Vec<String>) -> T
 fn general_auto_plan(ask: &Ask, warnings: Vec<String>) -> Result<TopPlan, Refusal> {
     let (model, options, angle) = (ask.model, ask.options, ask.angle);
     let equations = model.equations();
-    match general_path(model, &ask.omega0, ask.t_last, options.rtol()) {
+    // Asked without the orientation (`auto`'s fallback when the physical
+    // solution does not fit the budget): the secular model, where it holds.
+    let path = match (ask.skip_orientation, secular_error(model, &ask.omega0)) {
+        (Some(_), Some(error)) if error <= options.rtol() => GeneralPath::Secular { error },
+        _ => general_path(model, &ask.omega0, ask.t_last, options.rtol()),
+    };
+    match path {
         GeneralPath::Stepped { rtol, steps } => {
             let tighter = if rtol < options.rtol() {
                 format!(
@@ -372,15 +378,25 @@ fn general_auto_plan(ask: &Ask, warnings: Vec<String>) -> Result<TopPlan, Refusa
         }
         GeneralPath::Secular { error } => {
             let eps = radiation_share(model, &ask.omega0);
-            let why = format!(
-                "the secular model follows E and |L| only: the phase round the polhode and the orientation after {angle:.1e} rad are beyond what stepping holds within rtol"
+            let why = ask.skip_orientation.map_or_else(
+                || format!(
+                    "the secular model follows E and |L| only: the phase round the polhode and the orientation after {angle:.1e} rad are beyond what stepping holds within rtol"
+                ),
+                |why| format!("the secular model follows E and |L| only: {why}"),
             );
             Ok(TopPlan {
                 chosen: Chosen::new(
                     "secular",
                     format!(
-                        "{angle:.1e} rad are too many turns to step within rtol = {:.0e} and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853), good to about {error:.1e} (the swing of E and |L| within a turn, which averaging leaves out)",
-                        options.rtol(),
+                        "{} and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853), good to about {error:.1e} (the swing of E and |L| within a turn, which averaging leaves out)",
+                        if ask.skip_orientation.is_some() {
+                            "the orientation is not held within rtol on the step budget".to_string()
+                        } else {
+                            format!(
+                                "{angle:.1e} rad are too many turns to step within rtol = {:.0e}",
+                                options.rtol()
+                            )
+                        },
                         if matches!(model, Model::General(_)) {
                             "(3.3)"
                         } else {

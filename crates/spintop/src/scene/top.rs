@@ -483,8 +483,16 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
     };
     let mut model_error = choice.as_ref().and_then(|c| c.model_error(c.tier));
     let mut planned = plan::plan_top(&model, *method, options, initial, t_last, None);
-    // The physical solution was chosen for the orientation alone and cannot
-    // run: a lighter model answers Omega, without the orientation.
+    // The physical solution was chosen and cannot run: a lighter model
+    // answers Omega (a closed form), or E and |L| (a general top's secular
+    // model), without the orientation, as `auto` would at a longer horizon.
+    let without_orientation = match (&planned, &choice) {
+        (Err(refusal), Some(c)) if refusal.at == plan::Blame::Times && c.tier == 2 => {
+            without_orientation
+                .or_else(|| choose::secular_fallback(tiers, &initial.omega, times, options.rtol()))
+        }
+        _ => without_orientation,
+    };
     if let (Err(refusal), Some((tier, why))) = (&planned, &without_orientation)
         && refusal.at == plan::Blame::Times
     {
@@ -497,7 +505,11 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
         });
         model_choice = Some(why.clone());
         why_physical = None;
-        let skip = "Omega alone is held within rtol without the physical solution, and the orientation is not";
+        let skip = if model.has_closed_form() {
+            "Omega alone is held within rtol without the physical solution, and the orientation is not"
+        } else {
+            "E and |L| alone are held within rtol without the physical solution, and the orientation is not"
+        };
         planned = plan::plan_top(&model, *method, options, initial, t_last, Some(skip));
     }
     let mut plan = planned.map_err(|r| {
