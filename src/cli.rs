@@ -384,7 +384,7 @@ where
     let result = match cli.command {
         // No subcommand opens the live view, the program's main job.
         None => tui::execute(tui::TuiArgs::default(), out),
-        Some(Command::Simulate(args)) => simulate::execute(args, out),
+        Some(Command::Simulate(args)) => simulate::execute(args, out, stderr),
         Some(Command::Balance(args)) => balance::execute(args, out),
         Some(Command::Orbit(args)) => orbit::execute(args, out),
         Some(Command::Shell(args)) => shell::execute(args, out, stderr),

@@ -116,9 +116,19 @@ impl SimulateArgs {
 }
 
 /// Validate, run and print `simulate`.
-pub(crate) fn execute(args: SimulateArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
+pub(crate) fn execute(
+    args: SimulateArgs,
+    out: &mut Gate<'_>,
+    err: &mut impl std::io::Write,
+) -> Result<(), CliError> {
     let config = args.validate()?;
     let output = simulate(&config)?;
+    // The notes go to stderr before the answer (JSON carries them too), as
+    // `shell` prints its warning.
+    for note in &output.warnings {
+        writeln!(err, "spintop: warning: {note}")?;
+    }
+    err.flush()?;
     // The samples before a runaway are written (CSV and JSON stay whole and
     // parseable, with their `stopped` line); the run still failed to give
     // what was asked: the gate exits 3.

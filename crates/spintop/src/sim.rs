@@ -27,6 +27,7 @@ mod method;
 mod model;
 pub mod orbit;
 pub mod physical;
+pub mod regime;
 pub mod secular;
 pub mod shell;
 mod simulation;

@@ -58,6 +58,9 @@ pub struct SimulateOutput {
     /// but a forward run, which runs away).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<ErrorEstimate>,
+    /// Notes printed with the answer (a scene's are the scene's own).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// A runaway of (3.4) integrated forward.
@@ -179,6 +182,15 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
         runaway,
         samples_omitted,
         error,
+        // A scene's plan gives the same note among its warnings.
+        warnings: match config.entry {
+            Entry::CommandLine => {
+                crate::sim::regime::fast_spin_note(&config.model, &config.initial.omega)
+                    .into_iter()
+                    .collect()
+            }
+            Entry::Scene => Vec::new(),
+        },
     })
 }
 

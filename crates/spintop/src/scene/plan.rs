@@ -218,6 +218,7 @@ pub(super) fn plan_top(
             ));
         }
     }
+    warnings.extend(crate::sim::regime::fast_spin_note(model, &omega0));
     let computed = |chosen: Chosen, warnings: Vec<String>| TopPlan {
         chosen,
         orientation: Orientation::Computed,

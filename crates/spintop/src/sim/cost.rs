@@ -181,8 +181,8 @@ pub fn estimate(
             e(steps, what.into())
         }
         (Model::Full(top), _) => e(
-            (angle / FULL_TURN_PER_STEP).max(t_last / (0.25 * top.tau())),
-            "the full ALE (3.4)'s physical solution (a table with hOmega <= 0.05 and h <= tau/4)"
+            symmetric_physical_steps(top, omega0, options, t_last),
+            "the full ALE (3.4)'s physical solution (its table until Omega_perp takes its closed form, the orientation stepped until Omega_perp no longer turns it)"
                 .into(),
         ),
         (Model::Reduced(top), Method::Dopri5 | Method::Dop853 | Method::Taylor) => {
@@ -221,6 +221,58 @@ pub fn estimate(
             per_radian(method, model, options),
         ),
     }
+}
+
+/// Backward passes of a shot piece, at most (the shoot's bracket and
+/// regula falsi, and the pass that records the nodes).
+const SHOT_PASSES: Real = 20.0;
+
+/// The margin on the settling times guessed before the run.
+const SETTLING_MARGIN: Real = 1.25;
+
+/// The steps of the symmetric top's physical solution of (3.4) to `t_last`
+/// ([`crate::sim::physical::slow`]): only until it settles
+/// ([`settling`](crate::sim::physical::slow::settling)), for past that Ω
+/// and the orientation are closed forms, so a long horizon or a fast spin
+/// whose Ω⊥ has decayed costs no more than the decay itself.
+///
+/// - the table: up to [`SHOT_PASSES`] passes over nodes [`NODE_TURN`] apart
+///   in ln w, until its closed-form tail; w′/w ≈ c₀ + c₁u, and u falls at
+///   least as fast as u₀/(1 + 2τu₀t) (the reduced amplitude (4.16) without
+///   its exponential), so ∫|w′/w| dt ≤ |c₀|t + |c₁| ln(1 + 2τu₀t)/(2τ);
+/// - the orientation Q (O = Q·R_z(Ω̃₃t)), turning at |(w, k)| ≤ Ω⊥₀ + |k|
+///   and driven by w, which changes at |w′/w|: DOP853's measured steps per
+///   radian ([`steps_per_radian`]) at the orientation's tolerance, rtol/10,
+///   until Ω⊥ no longer turns it.
+fn symmetric_physical_steps(
+    top: &crate::physics::symmetric_top::SymmetricTop,
+    omega0: &Vec3,
+    options: &MethodOptions,
+    t_last: Real,
+) -> Real {
+    use crate::sim::physical::slow::{NODE_TURN, settling};
+    if t_last.is_nan() {
+        return Real::NAN;
+    }
+    let settle = settling(top, omega0);
+    let [c0, c1] = settle.c;
+    let (tau, u0) = (top.tau(), omega_perp(omega0).powi(2));
+    // ∫₀ᵗ u dt ≤ ln(1 + 2τu₀t)/(2τ) (u₀t where τ = 0).
+    let u_integral = |t: Real| {
+        if tau > 0.0 {
+            (2.0 * tau * u0 * t).ln_1p() / (2.0 * tau)
+        } else {
+            u0 * t
+        }
+    };
+    let table_time = t_last.min(SETTLING_MARGIN * settle.tail);
+    let still_time = t_last.min(SETTLING_MARGIN * settle.still);
+    let w_turn = |t: Real| c0 * t + c1 * u_integral(t);
+    // Nodes are spaced at |w′/w| + 4|w′/w − c₀| ≤ |c₀| + 5|c₁|u.
+    let table = SHOT_PASSES * (c0 * table_time + 5.0 * c1 * u_integral(table_time)) / NODE_TURN;
+    let spin = omega_perp(omega0) + (top.ratio() * omega0.z).abs();
+    let per_radian = steps_per_radian(Method::Dop853, 0.1 * options.rtol());
+    table + (spin * still_time + w_turn(still_time)) * per_radian
 }
 
 /// "DOP853 at rtol 1e-10 (about 4.0 steps per radian of turning, measured)".

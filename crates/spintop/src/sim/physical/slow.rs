@@ -198,15 +198,85 @@ impl SlowTable {
         if rate <= 0.0 {
             return None;
         }
-        // |w(t)| = √u₀ e^{−rate Δt} ≤ 1e-17·rate.
-        let a0 = tail.u0.sqrt();
-        let target = 1e-17 * rate;
-        let dt = if a0 <= target {
-            0.0
-        } else {
-            (a0 / target).ln() / rate
+        Some(self.origin + tail.t0 + still_after(tail.u0.sqrt(), rate))
+    }
+}
+
+/// How long |w| = `a0`, decaying at `rate`, takes to turn Q by less than a
+/// rounding for ever after: |w| e^{−rate Δt} ≤ 1e-17·rate (the rest of
+/// ∫|w| dt is then below 1e-17 rad).
+fn still_after(a0: Real, rate: Real) -> Real {
+    let target = 1e-17 * rate;
+    if a0 <= target {
+        0.0
+    } else {
+        (a0 / target).ln() / rate
+    }
+}
+
+/// When the physical solution through Ω₀ settles, estimated before it is
+/// built from the guessed amplitude ([`guessed_log_amplitude`]): from
+/// `tail` on it is in closed form (no nodes), from `still` on Ω⊥ no longer
+/// turns the body by a rounding (the orientation turns about the axis in
+/// closed form). Infinite where it never decays (τ = 0 or no radiation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settling {
+    /// From when the table is its closed-form tail.
+    pub tail: Real,
+    /// From when the orientation is a steady spin about the axis.
+    pub still: Real,
+    /// |c₀| and |c₁| of w′/w = c₀ + c₁u + … (rotating frame), which space
+    /// the nodes until the tail.
+    pub c: [Real; 2],
+}
+
+/// [`Settling`] of the physical solution of (3.4) through Ω₀.
+///
+/// Paper: Eq. (3.4) (its physical solution; not in the paper).
+pub fn settling(top: &SymmetricTop, omega0: &Vec3) -> Settling {
+    let series = SlowSeries::new(top, omega0.z);
+    let u0 = omega0.x * omega0.x + omega0.y * omega0.y;
+    let rate = -series.coefficient(0).re;
+    let c = [series.coefficient(0).norm(), series.coefficient(1).norm()];
+    if u0 == 0.0 {
+        return Settling {
+            tail: 0.0,
+            still: 0.0,
+            c,
         };
-        Some(self.origin + tail.t0 + dt)
+    }
+    if !(rate > 0.0 && top.tau() > 0.0) {
+        return Settling {
+            tail: Real::INFINITY,
+            still: Real::INFINITY,
+            c,
+        };
+    }
+    let amplitude = |t: Real| guessed_log_amplitude(top, omega0, t).exp();
+    let tailed = |t: Real| tail_holds(&series, amplitude(t).powi(2));
+    // The guess falls monotonically: double to a bound, then bisect.
+    let tail = if tailed(0.0) {
+        0.0
+    } else {
+        let mut hi = top.tau();
+        while !tailed(hi) && hi < Real::MAX / 4.0 {
+            hi *= 2.0;
+        }
+        let mut lo = 0.0;
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if tailed(mid) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        hi
+    };
+    Settling {
+        tail,
+        still: tail + still_after(amplitude(tail), rate),
+        c,
     }
 }
 
