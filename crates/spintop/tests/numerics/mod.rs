@@ -3,6 +3,7 @@
 mod cost;
 mod implicit;
 mod integrators;
+mod refusals;
 mod scenes;
 mod splitting;
 mod stability;
