@@ -19,9 +19,9 @@ pub(crate) fn after_help() -> String {
         spintop simulate --model truncated --omega 0,0.1,0.2 --times 0,10,100 --format json\n  \
         spintop simulate --model general --inertia 1,1.5,0.8 --dipole 0.2,0,1 --t-end 100\n  \
         spintop simulate --model full --method forward --times 0,1,2,5,10   (runs away at t = 3: exit 3)\n\n\
-        Ranges: {}. A run over {} steps is refused before it starts, with the estimate and a cheaper way.",
+        Ranges: {}. {}.",
         table::ranges_help(S),
-        spintop::numbers::fmt_value(spintop::sim::cost::MAX_STEPS)
+        spintop::sim::cost::budget_rule()
     )
 }
 

@@ -610,3 +610,51 @@ fn a_long_asymmetric_run_on_the_command_line_is_refused_before_it_starts() {
         );
     }
 }
+
+/// τ|Ω| ≳ 1 is outside the slow rotation the paper's radiation laws are
+/// expanded for: the answer comes with one note, on stderr and in the JSON,
+/// where τk (here τ·(I₃/I₁)Ω₃ = 20) passes 1, and none for the book's top
+/// (τ|Ω₀| = 0.22). The fast spin's transverse rate is gone by t = 5 (its
+/// linear decay rate, (Re √(1 − 80i) − 1)/2 ≈ 2.7/τ, over 5τ is e^{−13.6}).
+#[test]
+fn a_fast_spin_is_answered_with_one_note_that_it_leaves_the_slow_rotation_regime() {
+    let args = [
+        "simulate",
+        "--model",
+        "full",
+        "--ratio",
+        "1",
+        "--omega",
+        "0.1,0,20",
+        "--t-end",
+        "5",
+        "--samples",
+        "3",
+        "--rtol",
+        "1e-8",
+        "--format",
+        "json",
+    ];
+    let out = spintop(&args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let v: Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
+    let notes = v["warnings"].as_array().expect("a note in the JSON");
+    assert_eq!(notes.len(), 1, "{notes:?}");
+    let note = notes[0].as_str().unwrap();
+    assert_eq!(stderr.matches(note).count(), 1, "{stderr}");
+    let rate = (0.5 * ((1.0 + (1.0 + 16.0 * 400.0f64).sqrt()) / 2.0).sqrt() - 0.5) * 1.0;
+    let last = vec_of(&v["samples"][2]["omega"], 3);
+    let perp = last[0].hypot(last[1]);
+    assert!(
+        (perp / (0.1 * (-rate * 5.0).exp()) - 1.0).abs() < 1e-3,
+        "{perp:e}"
+    );
+    assert_eq!(last[2], 20.0);
+    let slow = json(&["--model", "full", "--omega", "0,0.1,0.2", "--t-end", "10"]);
+    assert!(slow.get("warnings").is_none(), "{slow}");
+}

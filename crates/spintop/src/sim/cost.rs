@@ -14,6 +14,17 @@ use crate::physics::symmetric_top::truncated_clock;
 /// The most steps (or table points) one run may take: the integrators' own cap.
 pub const MAX_STEPS: Real = crate::integrate::DEFAULT_MAX_STEPS as Real;
 
+/// The step budget as the help and the book state it, in one place: what
+/// is refused before a run starts (the estimate, [`estimate`]), what the
+/// steps count, and what stops a run while it runs.
+pub fn budget_rule() -> String {
+    format!(
+        "A run estimated at more than {} steps (accepted and rejected, from the steps per radian each method was measured to take) is refused before it starts, with the estimate and a cheaper way; the steps of the run's error estimate (the same run at a tighter rtol) come on top, and any single integration that still passes {} steps stops the run with exit 3",
+        crate::numbers::fmt_value(MAX_STEPS),
+        crate::numbers::fmt_value(MAX_STEPS)
+    )
+}
+
 /// The full model's physical solution is tabulated with hΩ ≤ 0.05.
 pub const FULL_TURN_PER_STEP: Real = 0.05;
 

@@ -88,7 +88,7 @@ fn a_general_top_refused_for_the_orientation_alone_is_answered_by_the_secular_mo
 /// answered at 1e-5. Planning each takes up to seconds (the models' errors
 /// integrated along 10⁶ rad).
 #[test]
-#[ignore = "end-to-end: plans 40 scenes of 10^5 to 10^7 rad, about a minute"]
+#[ignore = "end-to-end: plans 60 scenes of up to 10^7 rad, minutes"]
 fn refusal_is_monotonic_in_horizon_and_rtol_for_the_reviewed_scenes() {
     let ts = [1e9, 3e9, 1e10, 3e10, 1e11];
     let rs = [1e-2, 1e-3, 1e-4, 1e-5];
