@@ -251,8 +251,9 @@ const SETTLING_MARGIN: Real = 1.25;
 ///   in ln w, until its closed-form tail; w′/w ≈ c₀ + c₁u, and u falls at
 ///   least as fast as u₀/(1 + 2τu₀t) (the reduced amplitude (4.16) without
 ///   its exponential), so ∫|w′/w| dt ≤ |c₀|t + |c₁| ln(1 + 2τu₀t)/(2τ);
-/// - the orientation Q (O = Q·R_z(Ω̃₃t)), turning at |(w, k)| ≤ Ω⊥₀ + |k|
-///   and driven by w, which changes at |w′/w|: DOP853's measured steps per
+/// - the orientation Q (O = Q·R_z(Ω̃₃t)), turning at |(w, k)| ≤ |w| + |k|
+///   (∫|w| dt ≤ (√(1 + 2τu₀t) − 1)/(τ√u₀) on the same bound of u) and
+///   driven by w, which changes at |w′/w|: DOP853's measured steps per
 ///   radian ([`steps_per_radian`]) at the orientation's tolerance, rtol/10,
 ///   until Ω⊥ no longer turns it.
 fn symmetric_physical_steps(
@@ -281,9 +282,13 @@ fn symmetric_physical_steps(
     let w_turn = |t: Real| c0 * t + c1 * u_integral(t);
     // Nodes are spaced at |w′/w| + 4|w′/w − c₀| ≤ |c₀| + 5|c₁|u.
     let table = SHOT_PASSES * (c0 * table_time + 5.0 * c1 * u_integral(table_time)) / NODE_TURN;
-    let spin = omega_perp(omega0) + (top.ratio() * omega0.z).abs();
+    // Q turns at |(w, k)| ≤ |w| + |k|, and ∫|w| dt ≤ ∫ a₀/√(1 + 2τu₀t) dt
+    // = a₀(√(1 + 2τu₀t) − 1)/(τu₀), written without the cancellation.
+    let a0 = omega_perp(omega0);
+    let perp_turn = |t: Real| 2.0 * a0 * t / (1.0 + (1.0 + 2.0 * tau * u0 * t).sqrt());
+    let turning = (top.ratio() * omega0.z).abs() * still_time + perp_turn(still_time);
     let per_radian = steps_per_radian(Method::Dop853, 0.1 * options.rtol());
-    table + (spin * still_time + w_turn(still_time)) * per_radian
+    table + (turning + w_turn(still_time)) * per_radian
 }
 
 /// "DOP853 at rtol 1e-10 (about 4.0 steps per radian of turning, measured)".
