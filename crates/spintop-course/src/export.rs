@@ -1,8 +1,11 @@
 //! The export: a self-contained student's copy of the course (stubs without
 //! the reference solutions, the graders, the assignments page, a README, a
-//! manifest), optionally with a CI workflow that grades it on every push.
+//! manifest, the crates it builds against and the book `spintop learn` reads
+//! ([`book`])), optionally with a CI workflow that grades it on every push.
 
 use std::path::{Path, PathBuf};
+
+mod book;
 
 /// The lessons crate of the repository at `repo` (where `spintop course`
 /// and `spintop learn` look unless told otherwise).
@@ -224,10 +227,11 @@ const EXPORT_README: &str = "# The spintop course
 
 Assignments on A. Duviryak's polarized spinning top, graded by `cargo test`.
 Every function under `src/` is a stub that ends in `todo!()`; the chapter of
-the book it comes from is named in its doc comment (the assignments page is in
-`book/`). The copy stands alone: spintop's core and its graders are carried
-in `crates/` (do not edit them: the instructor grades with their own), so it
-builds anywhere Rust is installed.
+the book it comes from is named in its doc comment (the assignments page is
+`book/assignments.md`; the whole book is in `book/src`, and the programs its
+chapters show in `lessons/`). The copy stands alone: spintop's core and its
+graders are carried in `crates/` (do not edit them: the instructor grades
+with their own), so it builds anywhere Rust is installed.
 
 Two commands:
 
@@ -246,7 +250,8 @@ the assignments in course order with their state and what to do next (it
 also checks the source rule, as the instructor's grading does: your files
 may use `spintop::math` and `spintop::assignment`, and nothing that reads
 files, the environment or other programs), and `spintop learn` opens the
-book in the terminal beside this copy's grades, re-grading on every save.
+book this copy carries in the terminal beside this copy's grades,
+re-grading on every save.
 ";
 
 /// The largest file a carried crate may hold (its sources and data are a few
@@ -386,9 +391,11 @@ fn prune_lock(out: &Path) -> Result<(), String> {
 /// Writes a self-contained student's copy of the course in `repo` to `out`
 /// (a folder that must not exist yet, or be empty): the stubs without the
 /// reference solutions, the graders' tests, the book's assignments page, a
-/// README, a manifest, and the sources of spintop's core and graders in
+/// README, a manifest, the sources of spintop's core and graders in
 /// `crates/`, so that the copy builds and grades where the repository is
-/// not. It names no path outside itself.
+/// not, and the book (`book/src`, and the lesson programs its chapters
+/// include in `lessons/`), so that `spintop learn` reads it there. It names
+/// no path outside itself.
 pub fn export(repo: &Path, out: &Path) -> Result<Export, String> {
     export_with(repo, out, &ExportOptions::default())
 }
@@ -446,6 +453,13 @@ pub fn export_with(repo: &Path, out: &Path, options: &ExportOptions) -> Result<E
     }
     if options.link == Link::Carried {
         files.extend(carried(&repo)?);
+        // The book `spintop learn` reads in the copy, with what its chapters
+        // include (a scratch copy graded here has no reader).
+        let written: std::collections::HashSet<PathBuf> =
+            files.iter().map(|(p, _)| p.clone()).collect();
+        files.extend(book::book_files(&repo, copy_page, |p| {
+            written.contains(p)
+        })?);
     }
     if options.ci == Some(Ci::Github) {
         files.push((
