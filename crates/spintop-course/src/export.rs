@@ -525,7 +525,9 @@ mod tests {
                 if body.lines().count() < 3 {
                     continue;
                 }
-                for rel in written.files.iter().filter(|p| p.starts_with("src")) {
+                // Nor in the book and the lessons it includes.
+                let outside_crates = |p: &&PathBuf| !p.starts_with("crates");
+                for rel in written.files.iter().filter(outside_crates) {
                     let text = std::fs::read_to_string(out.join(rel)).unwrap();
                     assert!(!text.contains(body), "{} holds a solution", rel.display());
                 }
@@ -566,6 +568,20 @@ mod tests {
             members[0].as_str().unwrap().contains("spintop-lessons-"),
             "{members:?}"
         );
+        // The book and its lessons are read, never built: the package's
+        // targets are its src/ and tests/ alone.
+        let copy = out.canonicalize().unwrap();
+        let targets = metadata["packages"][0]["targets"].as_array().unwrap();
+        assert!(targets.len() > 5, "{targets:?}");
+        for t in targets {
+            let path = Path::new(t["src_path"].as_str().unwrap());
+            assert!(
+                path.starts_with(copy.join("src")) || path.starts_with(copy.join("tests")),
+                "{}",
+                path.display()
+            );
+        }
+        copy_carries_the_book(root, &out, &written);
         // The lock is the copy's own: its package in, the application's and
         // the dev-dependencies' out (the repository's would fail --locked).
         let lock = std::fs::read_to_string(out.join("Cargo.lock")).unwrap();
@@ -583,6 +599,43 @@ mod tests {
         // A second export into the same folder is refused, nothing overwritten.
         assert!(export(root, &out).unwrap_err().contains("not empty"));
         std::fs::remove_dir_all(&out).unwrap();
+    }
+
+    /// The copy's book: `book/src` as the repository holds it but KaTeX's
+    /// files, its assignments page the copy's, and every file a chapter
+    /// includes there, with the anchor the chapter names.
+    fn copy_carries_the_book(root: &Path, out: &Path, written: &Export) {
+        let src = Path::new(book::BOOK_SRC);
+        let summary = std::fs::read(root.join(src).join("SUMMARY.md")).unwrap();
+        assert_eq!(std::fs::read(out.join(src).join("SUMMARY.md")).unwrap(), summary);
+        assert!(!out.join(src).join("katex").exists());
+        assert!(root.join(src).join("katex").is_dir());
+        let page = std::fs::read_to_string(root.join(src).join("assignments.md")).unwrap();
+        let copied = std::fs::read_to_string(out.join(src).join("assignments.md")).unwrap();
+        assert_eq!(copied, copy_page(&page));
+        assert_ne!(copied, page);
+        let mut resolved = 0;
+        for rel in written.files.iter().filter(|p| p.starts_with(src)) {
+            if rel.extension().is_none_or(|x| x != "md") {
+                continue;
+            }
+            let text = std::fs::read_to_string(out.join(rel)).unwrap();
+            let dir = rel.parent().unwrap();
+            for piece in text.split("{{#include ").skip(1) {
+                let spec = &piece[..piece.find("}}").unwrap()];
+                let (path, anchor) = spec.rsplit_once(':').unwrap_or((spec, ""));
+                let target = std::fs::read_to_string(out.join(dir).join(path))
+                    .unwrap_or_else(|e| panic!("{}: {spec}: {e}", rel.display()));
+                assert!(
+                    anchor.is_empty() || target.contains(&format!("ANCHOR: {anchor}")),
+                    "{}: {spec}",
+                    rel.display()
+                );
+                resolved += 1;
+            }
+        }
+        assert!(resolved >= 50, "{resolved} includes");
+        assert!(out.join("lessons/README.md").is_file());
     }
 
     /// The assignments page a copy carries names only what the copy holds:
