@@ -6,9 +6,9 @@
 //! the copy's `target/`.
 
 use super::{names_nothing_outside, repo, scratch};
+use spintop_app::learn::chapters;
 use spintop_app::learn::markdown::resolve_includes;
 use spintop_app::learn::progress::{Keeper, Progress};
-use spintop_app::learn::{Learn, chapters};
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -57,12 +57,6 @@ fn every_chapter_of_an_exported_copy_reads_as_the_repositorys() {
     assert!(!theirs.join("katex").exists());
     assert!(!copy.join("lessons/src").exists());
     names_nothing_outside(&copy, &[repo().display().to_string()]);
-    // And the reader opens it: every chapter loads, its includes resolved.
-    for file in &listed {
-        let learn = Learn::open(&theirs, Some(file.trim_end_matches(".md"))).unwrap();
-        assert_eq!(learn.chapters()[learn.current()].file, *file);
-        assert!(!learn.chapter_text(80).contains(NOT_FOUND), "{file}");
-    }
     std::fs::remove_dir_all(&root).unwrap();
 }
 
@@ -124,7 +118,11 @@ fn learn_in_a_moved_copy_reads_the_copys_book_with_its_code_and_keeps_its_place_
         std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
     };
     let title = "[The asymmetric top as this copy holds it]";
-    edit("book/src/SUMMARY.md", "[The asymmetric top]", title);
+    edit(
+        "book/src/SUMMARY.md",
+        "[Beyond the paper: the asymmetric top]",
+        title,
+    );
     let words = "Words that only the moved copy's chapter holds.";
     edit(
         "book/src/asymmetric-top.md",
@@ -155,7 +153,9 @@ fn learn_in_a_moved_copy_reads_the_copys_book_with_its_code_and_keeps_its_place_
         first.contains(&format!("the book at {}", copy.join("book/src").display())),
         "{first}"
     );
-    let row = list.lines().find(|l| l.contains(&title[1..title.len() - 1]));
+    let row = list
+        .lines()
+        .find(|l| l.contains(&title[1..title.len() - 1]));
     assert!(row.is_some_and(|r| r.contains('✓')), "{list}");
     let chapter = stdout_of(
         &learn_in(&inside, &["--chapter", "as this copy holds it", "--list"]),

@@ -457,9 +457,7 @@ pub fn export_with(repo: &Path, out: &Path, options: &ExportOptions) -> Result<E
         // include (a scratch copy graded here has no reader).
         let written: std::collections::HashSet<PathBuf> =
             files.iter().map(|(p, _)| p.clone()).collect();
-        files.extend(book::book_files(&repo, copy_page, |p| {
-            written.contains(p)
-        })?);
+        files.extend(book::book_files(&repo, copy_page, |p| written.contains(p))?);
     }
     if options.ci == Some(Ci::Github) {
         files.push((
@@ -607,7 +605,10 @@ mod tests {
     fn copy_carries_the_book(root: &Path, out: &Path, written: &Export) {
         let src = Path::new(book::BOOK_SRC);
         let summary = std::fs::read(root.join(src).join("SUMMARY.md")).unwrap();
-        assert_eq!(std::fs::read(out.join(src).join("SUMMARY.md")).unwrap(), summary);
+        assert_eq!(
+            std::fs::read(out.join(src).join("SUMMARY.md")).unwrap(),
+            summary
+        );
         assert!(!out.join(src).join("katex").exists());
         assert!(root.join(src).join("katex").is_dir());
         let page = std::fs::read_to_string(root.join(src).join("assignments.md")).unwrap();

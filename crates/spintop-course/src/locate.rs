@@ -202,7 +202,9 @@ pub struct Book {
 
 /// No book to read: neither the course nor the repository holds one.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{looked}, and the repository this spintop was built from has none ({repository} is missing)")]
+#[error(
+    "{looked}, and the repository this spintop was built from has none ({repository} is missing)"
+)]
 pub struct NoBook {
     /// Where the book was looked for first, in words.
     looked: String,
@@ -214,27 +216,29 @@ impl Book {
     /// The book read beside `course` (see [`Book`]); `repository` is where
     /// spintop was built ([`repository`] outside the tests).
     pub fn beside(course: &Course, repository: &Path) -> Result<Self, NoBook> {
-        let own = course.top().join(BOOK);
+        let top = without_dots(course.top());
+        let own = top.join(BOOK);
         if own.join("SUMMARY.md").is_file() {
             return Ok(Self {
                 src: own,
-                home: course.top().to_path_buf(),
+                home: top,
                 instead_of: None,
             });
         }
+        let repository = without_dots(repository);
         let theirs = repository.join(BOOK);
         let found = course.chosen != Chosen::Default;
         if theirs.join("SUMMARY.md").is_file() {
             return Ok(Self {
                 src: theirs,
-                home: repository.to_path_buf(),
+                home: repository,
                 instead_of: found.then(|| course.dir.clone()),
             });
         }
         let looked = if found {
             format!(
                 "the course at {} carries no book (no {}; a copy exported by this spintop does)",
-                course.top().display(),
+                top.display(),
                 own.join("SUMMARY.md").display()
             )
         } else {
@@ -258,6 +262,18 @@ impl Book {
                 course.display()
             ),
         }
+    }
+}
+
+/// `path` named without `..` (the repository is `crates/spintop-course/../..`
+/// where spintop was built): resolved if it has one and exists, else as given.
+fn without_dots(path: &Path) -> PathBuf {
+    let dots = path
+        .components()
+        .any(|c| c == std::path::Component::ParentDir);
+    match path.canonicalize() {
+        Ok(resolved) if dots => resolved,
+        _ => path.to_path_buf(),
     }
 }
 
@@ -426,7 +442,10 @@ mod tests {
         for (course, names) in [(found, Some(&copy)), (defaulted, None)] {
             let e = Book::beside(&course, &repo).unwrap_err().to_string();
             assert!(!e.contains('\n'), "{e}");
-            assert!(e.contains(&repo.join("book/src/SUMMARY.md").display().to_string()), "{e}");
+            assert!(
+                e.contains(&repo.join("book/src/SUMMARY.md").display().to_string()),
+                "{e}"
+            );
             match names {
                 Some(copy) => assert!(e.contains(&copy.display().to_string()), "{e}"),
                 None => assert!(e.contains("no course in the current folder"), "{e}"),

@@ -67,7 +67,10 @@ pub(crate) fn book_files(
         files.push((rel.clone(), bytes));
     }
     if included.iter().any(|p| p.starts_with("lessons")) {
-        files.push(("lessons/README.md".into(), LESSONS_README.as_bytes().to_vec()));
+        files.push((
+            "lessons/README.md".into(),
+            LESSONS_README.as_bytes().to_vec(),
+        ));
     }
     Ok(files)
 }
