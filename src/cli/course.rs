@@ -242,14 +242,18 @@ fn status(args: &CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     if std::io::stderr().is_terminal() {
         eprintln!("spintop course: grading {}…", chosen.describe());
     }
-    let options = Options {
-        solutions: args.solutions,
-        seed: args.seed,
-        course_arg: course_arg.clone(),
-        launcher: launcher(),
-        ..Options::default()
-    };
-    let status = course::grade(&dir, &options).map_err(|e| bad(e.to_string()))?;
+    let status = grade::with_progress(&chosen.describe(), |progress| {
+        let options = Options {
+            solutions: args.solutions,
+            seed: args.seed,
+            course_arg: course_arg.clone(),
+            launcher: launcher(),
+            progress,
+            ..Options::default()
+        };
+        course::grade(&dir, &options)
+    })
+    .map_err(|e| bad(e.to_string()))?;
     if !args.solutions {
         course::record_passes_now(&dir, &status);
     }
