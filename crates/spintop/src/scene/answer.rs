@@ -7,7 +7,7 @@ use super::{
     Body, Chosen, GeneralUnits, OmegaSample, Orientation, RealUnits, Scene, TopScene,
     omega_samples, pole_warning,
 };
-use crate::integrate::Stats;
+use crate::integrate::{IntegrateError, Stats};
 use crate::math::{Real, Vec3};
 use crate::numbers::{fmt_value, worked};
 use crate::output::balance::{self, BalanceOutput};
@@ -18,7 +18,7 @@ use crate::output::{Entry, Failure, Format};
 use crate::physics::general_top::GeneralTop;
 use crate::physics::particle::{DEBYE_ESU_CM, Milestones, RigidShape, SPEED_OF_LIGHT_CM_S};
 use crate::sim::Model;
-use crate::sim::claim::{ErrorEstimate, TierEstimate, omega_rounding, rounding};
+use crate::sim::claim::{ErrorEstimate, TierEstimate, omega_rounding, rounding, secular_error};
 use crate::sim::secular::{Law, SecularSample, secular};
 use crate::stability::Row;
 use serde::Serialize;
@@ -204,6 +204,9 @@ pub struct SecularOutput {
     pub samples: Vec<SecularRow>,
     /// Why the orientation is not given.
     pub orientation_skipped: String,
+    /// How far E and |L| may be from the truth over the run (in `omega`,
+    /// each relative to its value at the start).
+    pub error: ErrorEstimate,
 }
 
 /// One time of a secular run.
@@ -360,10 +363,10 @@ fn run_top(
             TopRun::Full(output)
         }
         (Orientation::Skipped(why), Model::General(g)) => {
-            run_secular(scene, top, &g, Law::Truncated, why)?
+            run_secular(scene, top, &g, Law::Truncated, why, warnings)?
         }
         (Orientation::Skipped(why), Model::GeneralReduced(g)) => {
-            run_secular(scene, top, &g, Law::Reduced, why)?
+            run_secular(scene, top, &g, Law::Reduced, why, warnings)?
         }
         (Orientation::Skipped(why), _) => run_omega_only(scene, top, why, warnings)?,
     };
@@ -421,13 +424,21 @@ fn run_secular(
     g: &GeneralTop,
     law: Law,
     why: &str,
+    warnings: &mut Vec<String>,
 ) -> Result<TopRun, Failure> {
-    let run = secular(g, law, &top.initial.omega, &top.times, top.options.rtol()).map_err(|e| {
+    let stopped = |e: IntegrateError| {
         Failure::Stopped(format!(
             "{}: the secular model stopped: {e}; it follows the slow drift of a weakly radiating top, so try fewer decay times or a larger rtol",
             scene.file
         ))
-    })?;
+    };
+    let rtol = top.options.rtol();
+    let run = secular(g, law, &top.initial.omega, &top.times, rtol).map_err(stopped)?;
+    let mut error = secular_error(g, law, &top.initial.omega, &run, rtol).map_err(stopped)?;
+    if let Some(model) = &top.model_error {
+        error = with_model_error(error, model, &top.model);
+    }
+    above_rtol(&error, top, warnings);
     let u_per_unit = top.general_units.as_ref().map(GeneralUnits::u_per_unit);
     Ok(TopRun::Secular(SecularOutput {
         model: top.model.name(),
@@ -458,6 +469,7 @@ fn run_secular(
             })
             .collect(),
         orientation_skipped: why.to_string(),
+        error,
     }))
 }
 
@@ -492,6 +504,7 @@ fn run_omega_only(
         omega: omega_floor,
         orientation: None,
         rounding: floor,
+        measured: None,
         against: format!("the exact solution of the {} model", top.model.name()),
         how: format!(
             "closed forms: only rounding, {omega_floor:.0e} (4 eps per radian of the phase, where Omega_perp still turns)"
