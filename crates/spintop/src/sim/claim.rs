@@ -22,12 +22,12 @@ use super::method::{MIN_RTOL, Method, MethodOptions};
 use super::model::Model;
 use super::physical::internal_rtol;
 use super::secular::{Law, SecularRun, averaging_error, invariants, secular};
-use crate::integrate::IntegrateError;
-use crate::physics::general_top::GeneralTop;
-use crate::sim::accuracy::secular_gap;
 use super::simulation::Simulation;
 use super::state::{InitialState, Sample, SimError};
+use crate::integrate::IntegrateError;
 use crate::math::{Mat3, Real, Vec3};
+use crate::physics::general_top::GeneralTop;
+use crate::sim::accuracy::secular_gap;
 use serde::Serialize;
 
 /// The factor between the run's tolerance and the second run's.
@@ -92,7 +92,10 @@ impl ErrorEstimate {
             Some(m) => format!("{m} may be off by {:.1e} of their start", self.omega),
             None => format!("Omega may be off by {:.1e} of |Omega0|", self.omega),
         };
-        format!("{what}{orientation}, against {} ({})", self.against, self.how)
+        format!(
+            "{what}{orientation}, against {} ({})",
+            self.against, self.how
+        )
     }
 
     /// The larger of the two errors.
@@ -300,8 +303,9 @@ const SECULAR_TIGHTEST: Real = 1e-13;
 /// with the turning (at rtol 1e-2 a symmetric top's E was 6.7e-6 off, and
 /// the run at 1e-4 4e-8). The swing ([`averaging_error`]) is what averaging
 /// leaves out: the invariants of the model swing within each turn about the
-/// drift the secular model follows. Rounding is [`rounding`] with no phase:
-/// the secular model follows no phase.
+/// drift the secular model follows. Rounding is [`rounding`] with no phase
+/// (the secular model follows no phase), and, for a top so slow that E is
+/// subnormal, the part of E a double drops.
 pub fn secular_error(
     top: &GeneralTop,
     law: Law,
@@ -309,7 +313,11 @@ pub fn secular_error(
     run: &SecularRun,
     rtol: Real,
 ) -> Result<ErrorEstimate, IntegrateError> {
-    let floor = rounding(0.0);
+    // What a double keeps of E itself: a slow top's E (|Ω₀| ≲ 1e-154) is
+    // subnormal, or 0 (then nothing of it).
+    let s = omega0.norm().max(Real::MIN_POSITIVE);
+    let e_unit = invariants(&top.inertia(), &(omega0 / s)).0;
+    let floor = rounding(0.0) + (Real::from_bits(1) / s / s / e_unit).min(1.0);
     let swing = averaging_error(top, law, omega0);
     let scale = invariants(&top.inertia(), omega0);
     let times: Vec<Real> = run.samples.iter().map(|s| s.t).collect();

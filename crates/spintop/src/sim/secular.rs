@@ -140,6 +140,36 @@ pub fn secular(
     times: &[Real],
     rtol: Real,
 ) -> Result<SecularRun, IntegrateError> {
+    // NOTE: scale-free. (3.3) and (3.4) keep their form under Ω → Ω/s,
+    // t → ts, d → d√s, so a slow top (s = |Ω₀| < 1) is run as the top of
+    // unit |Ω₀|: below |Ω₀| ~ 1e-154, 2E = Ω·IΩ underflows, and a moving top
+    // was taken for one at rest (|L| printed 0).
+    let s = omega0.norm();
+    let scaled = (s > 0.0 && s < 1.0)
+        .then(|| GeneralTop::new(top.inertia(), top.dipole() * s.sqrt()).ok())
+        .flatten();
+    let Some(unit_top) = scaled else {
+        return secular_as_given(top, law, omega0, times, rtol);
+    };
+    let unit_times: Vec<Real> = times.iter().map(|t| t * s).collect();
+    let mut run = secular_as_given(&unit_top, law, &(omega0 / s), &unit_times, rtol)?;
+    for (sample, &t) in run.samples.iter_mut().zip(times) {
+        sample.t = t;
+        sample.energy = sample.energy * s * s;
+        sample.l_norm *= s;
+        sample.period = sample.period.map(|p| p / s).filter(|p| p.is_finite());
+    }
+    Ok(run)
+}
+
+/// [`secular`] in the units it is given.
+fn secular_as_given(
+    top: &GeneralTop,
+    law: Law,
+    omega0: &Vec3,
+    times: &[Real],
+    rtol: Real,
+) -> Result<SecularRun, IntegrateError> {
     let inertia = top.inertia();
     let two_e0 = omega0.dot(&inertia.component_mul(omega0));
     let l2_0 = inertia.component_mul(omega0).norm_squared();

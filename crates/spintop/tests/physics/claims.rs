@@ -145,7 +145,11 @@ fn eq_3_4_general_physical_solution_prints_a_true_error() {
         .iter()
         .map(|row| {
             let x: Vec<Real> = row.split(' ').map(|v| v.parse().unwrap()).collect();
-            (x[0], Vec3::new(x[1], x[2], x[3]), Mat3::from_row_slice(&x[4..13]))
+            (
+                x[0],
+                Vec3::new(x[1], x[2], x[3]),
+                Mat3::from_row_slice(&x[4..13]),
+            )
         })
         .collect();
     let times: Vec<Real> = reference.iter().map(|r| r.0).collect();
@@ -179,4 +183,77 @@ fn eq_3_4_general_physical_solution_prints_a_true_error() {
     }
     println!("{}", lines.join("\n"));
     assert!(bad.is_empty(), "{}\n{}", bad.join("\n"), lines.join("\n"));
+}
+
+/// Issue 46, 4: Figure 2's top at [0, 1e6, 1e12] τ printed a rounding part
+/// of 2e-4 (the whole turning's phase, 4ε per radian) inside a total error
+/// of 1e-12: the part may not exceed the whole. No orientation is reported
+/// there, so the rounding is Ω's own (the phase counts only while Ω⊥
+/// turns, and it has decayed below 1e-300 by 10⁶ τ).
+#[test]
+fn eq_4_15_figure_2_at_long_times_prints_a_rounding_part_within_its_error() {
+    let scene = crate::physics::errors_sweep::Scene::new(
+        0.4,
+        Vec3::new(0.0, 0.1, 0.2),
+        vec![0.0, 1e6, 1e12],
+        1e-10,
+    );
+    let parsed = spintop::scene::parse(&scene.text(), "fig2.toml").unwrap();
+    let v = serde_json::to_value(spintop::scene::answer::answer(&parsed).unwrap()).unwrap();
+    let error = &v["error"];
+    assert!(error["orientation"].is_null(), "{error}");
+    assert!(num(&error["rounding"]) <= num(&error["omega"]), "{error}");
+}
+
+/// Issue 46, 4: an asymmetric top at T = 10⁹ that `auto` steps at rtol
+/// 2e-12 (tighter than the scene's 1e-2, to hold the phase over 10⁵ rad)
+/// warned "the error over the run, 3.9e-3, is above rtol = 2e-10": the
+/// warning quoted the internal tolerance. The scene's own rtol is what the
+/// error is held against: 3.9e-3 is within 1e-2, so no warning.
+#[test]
+#[ignore = "end-to-end: 10^9 tau stepped at rtol 2e-12 (seconds in release)"]
+fn an_above_rtol_warning_quotes_the_scenes_rtol() {
+    let v = answer(
+        Vec3::new(1.0, 1.5, 0.8),
+        Vec3::new(0.2, 0.0, 1.0),
+        Vec3::new(0.6e-4, 0.3e-4, 0.74e-4),
+        &[0.0, 1e6, 1e7, 1e8, 1e9],
+        1e-2,
+    );
+    let error = &v["error"];
+    let worst = num(&error["omega"]).max(num(&error["orientation"]));
+    let warnings = v["warnings"].to_string();
+    if worst <= 1e-2 {
+        assert!(!warnings.contains("above rtol"), "{warnings}");
+    } else {
+        assert!(warnings.contains("above rtol = 1e-2"), "{warnings}");
+    }
+}
+
+/// Issue 46, 3: no underflow for a slow top. At |Ω₀| ~ 1e-160 (2E = Ω·IΩ
+/// is 1e-320, subnormal, and 0 below ~1e-162) the secular model took a
+/// moving top for one at rest (|L| printed 0). Now it runs scale-free: |L|
+/// is |IΩ₀| to 1e-13 (the radiation changes it by ~τ_f²|Ω₀|³t ~ 1e-119
+/// over 1e200), and the printed error covers what a double drops of the
+/// subnormal E (the truth, ½Ω₀·IΩ₀, computed in units of |Ω₀|).
+#[test]
+fn a_slow_top_is_not_a_top_at_rest_and_its_error_covers_the_subnormal_energy() {
+    let (inertia, dipole) = (Vec3::new(0.5, 1.0, 1.2), Vec3::new(0.0, 1.0, 0.0));
+    // NOTE: 1e-160 only: at 1e-170 `auto` steps the top (its turning is
+    // too slow to change by a rounding), which is the refusals' business.
+    for scale in [1e-160, 3e-161] {
+        let unit = Vec3::new(1.0, 2.0, 3.0) / 14.0_f64.sqrt();
+        let v = answer(inertia, dipole, unit * scale, &[0.0, 1e100, 1e200], 1e-8);
+        assert_eq!(v["method"], "secular", "{}", v["chosen"]);
+        let l_true = inertia.component_mul(&unit).norm();
+        let e_true = 0.5 * unit.dot(&inertia.component_mul(&unit));
+        let claimed = num(&v["error"]["omega"]);
+        for s in v["samples"].as_array().unwrap() {
+            let l = num(&s["l_norm"]) / scale;
+            assert!((l / l_true - 1.0).abs() < 1e-13, "|L| {l} vs {l_true}");
+            let e = num(&s["energy"]) / scale / scale;
+            let real = (e / e_true - 1.0).abs();
+            assert!(real <= claimed, "E real {real:e} printed {claimed:e}");
+        }
+    }
 }
