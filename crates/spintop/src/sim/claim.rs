@@ -322,14 +322,28 @@ pub fn secular_error(
     let scale = invariants(&top.inertia(), omega0);
     let times: Vec<Real> = run.samples.iter().map(|s| s.t).collect();
     let tight = (rtol / TIGHTER).max(SECULAR_TIGHTEST);
-    let (distance, how) = if tight < rtol {
-        let again = secular(top, law, omega0, &times, tight)?;
-        (
-            SAFETY * secular_gap(&run.samples, &again.samples, scale),
+    let distance = |r: Real| -> Result<Real, IntegrateError> {
+        let again = secular(top, law, omega0, &times, r)?;
+        Ok(secular_gap(&run.samples, &again.samples, scale))
+    };
+    let (distance, how) = match (tight < rtol).then(|| distance(tight)) {
+        Some(Ok(d)) => (
+            SAFETY * d,
             format!("twice the distance to the same run at rtol {tight:.0e}"),
-        )
-    } else {
-        (0.0, "the tolerance is already the tightest".to_string())
+        ),
+        // The tighter run would overrun the slow steps allowed: a looser
+        // one, whose error is the larger, bounds this run's by its distance.
+        Some(Err(IntegrateError::TooManySteps { .. })) => {
+            let loose = (rtol * TIGHTER).min(1e-1);
+            (
+                distance(loose)?,
+                format!(
+                    "the distance to the same run at rtol {loose:.0e} (a tighter one would overrun the slow steps allowed)"
+                ),
+            )
+        }
+        Some(Err(e)) => return Err(e),
+        None => (0.0, "the tolerance is already the tightest".to_string()),
     };
     let model = if law == Law::Truncated {
         "general"
