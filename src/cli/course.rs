@@ -390,7 +390,7 @@ fn export(dir: &Path, ci: Option<CiChoice>, out: &mut impl Write) -> Result<(), 
         .map_err(|e| bad(format!("course export: {e}")))?;
     writeln!(
         out,
-        "spintop course export: wrote {} files to {} (stubs, graders' tests, the assignments page, spintop's core and graders in crates/; no solutions)",
+        "spintop course export: wrote {} files to {} (stubs, graders' tests, the assignments page, spintop's core and graders in crates/, the book in book/src; no solutions)",
         written.files.len(),
         dir.display()
     )?;
