@@ -43,8 +43,10 @@ pub const METHOD_CYCLE: [MethodChoice; 7] = [
 
 /// The method after `method` in [`METHOD_CYCLE`] that `top` takes and that
 /// runs something else than `method` does (auto is the closed forms on a
-/// symmetric top: the cycle goes from auto to RK4); `method` itself when no
-/// column takes a method (the full ALE's two columns).
+/// symmetric top: the cycle goes from auto to RK4); auto itself is always
+/// in the cycle (on a general top it runs an integrator, and the cycle goes
+/// from Taylor to auto); `method` itself when no column takes a method (the
+/// full ALE's two columns).
 pub fn next_method(method: MethodChoice, top: &Top) -> MethodChoice {
     let at = METHOD_CYCLE.iter().position(|m| *m == method).unwrap_or(0);
     if !top.takes_a_method() {
@@ -52,8 +54,25 @@ pub fn next_method(method: MethodChoice, top: &Top) -> MethodChoice {
     }
     (1..=METHOD_CYCLE.len())
         .map(|k| METHOD_CYCLE[(at + k) % METHOD_CYCLE.len()])
-        .find(|m| top.check_method(*m).is_ok() && !top.resolves_same(*m, method))
+        .find(|m| {
+            top.check_method(*m).is_ok()
+                && (*m == MethodChoice::Auto || !top.resolves_same(*m, method))
+        })
         .unwrap_or(method)
+}
+
+/// The methods `m` visits on `top`, in order, from auto: the one list the
+/// help shows and the key walks ([`next_method`]).
+pub fn method_cycle(top: &Top) -> Vec<MethodChoice> {
+    let mut cycle = vec![MethodChoice::Auto];
+    let mut method = MethodChoice::Auto;
+    loop {
+        method = next_method(method, top);
+        if cycle.contains(&method) {
+            return cycle;
+        }
+        cycle.push(method);
+    }
 }
 
 /// The top the view shows, and so its layout.

@@ -250,6 +250,24 @@ impl Settings {
         Ok(settings)
     }
 
+    /// The fastest warp below this one at which `method` runs these
+    /// settings live (from Ω₀, where a change of method restarts), if any.
+    pub fn fastest_warp_for(&self, method: MethodChoice) -> Option<Real> {
+        self.top.check_method(method).ok()?;
+        (0..self.warp)
+            .rev()
+            .find(|&warp| {
+                Self {
+                    method,
+                    warp,
+                    ..*self
+                }
+                .check_live()
+                .is_ok()
+            })
+            .map(|i| WARPS[i])
+    }
+
     /// The same settings with Ω₀'s `component` (0, 1, 2) set to `value`, if
     /// the core takes that start and the view can step it live.
     pub fn with_omega0(&self, component: usize, value: Real) -> Result<Self, Refusal> {

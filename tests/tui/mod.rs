@@ -4,6 +4,7 @@
 
 mod keys;
 mod learn;
+mod live_front;
 mod live_view;
 mod overlays;
 mod reader;
