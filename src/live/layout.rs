@@ -14,6 +14,7 @@ pub fn takes_turns(width: u16, n: usize) -> bool {
 }
 use spintop::math::{Real, Vec3};
 use spintop::physics::general_top::GeneralTop;
+use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::rigid_body::lab_frame;
 use spintop::physics::symmetric_top::SymmetricTop;
 use spintop::sim::{InitialState, MethodChoice, Model};
@@ -178,12 +179,14 @@ impl Top {
         }
     }
 
-    /// How each column runs from `omega0` by `method`, and why a column
-    /// runs a lighter model than its title's, if it does.
+    /// How each column runs from `omega0` by `method`, from the orientation
+    /// `euler0` (z-x-z; the paper's frame, lab z along L₀, when `None`), and
+    /// why a column runs a lighter model than its title's, if it does.
     pub(super) fn plans(
         &self,
         method: MethodChoice,
         omega0: [Real; 3],
+        euler0: Option<[Real; 3]>,
     ) -> Result<Vec<(Plan, Option<String>)>, Refusal> {
         self.slots()
             .into_iter()
@@ -208,8 +211,11 @@ impl Top {
                         fixed = None;
                     }
                 }
-                let initial =
-                    InitialState::new(Vec3::from(omega0), lab_frame(&model.inertia(), &Vec3::from(omega0)))?;
+                let orientation = match euler0 {
+                    Some([phi, theta, psi]) => EulerAngles::new(phi, theta, psi),
+                    None => lab_frame(&model.inertia(), &Vec3::from(omega0)),
+                };
+                let initial = InitialState::new(Vec3::from(omega0), orientation)?;
                 let plan = Plan {
                     model,
                     choice: fixed.unwrap_or(method),
