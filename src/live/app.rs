@@ -266,9 +266,10 @@ impl App {
         settings: &Settings,
         background: bool,
     ) -> Result<(Vec<Column>, Stepper), Refusal> {
-        let plans = settings
-            .top()
-            .plans(settings.method(), settings.omega0(), settings.euler0())?;
+        let plans =
+            settings
+                .top()
+                .plans(settings.method(), settings.omega0(), settings.euler0())?;
         let columns = plans
             .iter()
             .map(|(plan, stand_in)| Column::new(plan.clone(), stand_in.clone()))

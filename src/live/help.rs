@@ -24,10 +24,7 @@ const KEYS: [(&str, &str); 13] = [
         "Enter",
         "edit it: type or paste a number, ↑/↓ ±0.01, ^U clears, Enter applies, Esc cancels (q is refused there, never quits)",
     ),
-    (
-        "m",
-        "method: {cycle}, and back to auto",
-    ),
+    ("m", "method: {cycle}, and back to auto"),
     ("l", "log-time charts (the whole run) or the last 200τ"),
     (
         "Tab",

@@ -13,8 +13,8 @@ pub fn takes_turns(width: u16, n: usize) -> bool {
     n > 1 && usize::from(width) / n < usize::from(COLUMN_WIDTH)
 }
 use spintop::math::{Real, Vec3};
-use spintop::physics::general_top::GeneralTop;
 use spintop::physics::euler_angles::EulerAngles;
+use spintop::physics::general_top::GeneralTop;
 use spintop::physics::rigid_body::lab_frame;
 use spintop::physics::symmetric_top::SymmetricTop;
 use spintop::sim::{InitialState, MethodChoice, Model};

@@ -416,10 +416,16 @@ pub fn top_in_space(
         .collect();
     let inner = panel("").inner(area);
     let (long, short) = if paper_frame {
-        ("the top in space (lab z ∥ L₀)".to_string(), "top in space".to_string())
+        (
+            "the top in space (lab z ∥ L₀)".to_string(),
+            "top in space".to_string(),
+        )
     } else {
         let theta = fmt_num(axis[2].clamp(-1.0, 1.0).acos());
-        (format!("the top in space (θ = {theta})"), format!("θ = {theta}"))
+        (
+            format!("the top in space (θ = {theta})"),
+            format!("θ = {theta}"),
+        )
     };
     let title = fitting(area, &long, &short).to_string();
     let x = x_bounds_for(inner, y);

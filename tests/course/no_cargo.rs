@@ -48,7 +48,11 @@ fn a_copy_refused_by_the_source_rule_says_the_rule_is_per_copy() {
         .find(|p| p.extension().is_some_and(|e| e == "rs") && !p.ends_with("lib.rs"))
         .unwrap();
     let text = std::fs::read_to_string(&file).unwrap();
-    std::fs::write(&file, format!("{text}\n#[allow(unused_imports)]\nuse std::fs;\n")).unwrap();
+    std::fs::write(
+        &file,
+        format!("{text}\n#[allow(unused_imports)]\nuse std::fs;\n"),
+    )
+    .unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_spintop"))
         .arg("course")
         .arg("--course")
@@ -56,7 +60,10 @@ fn a_copy_refused_by_the_source_rule_says_the_rule_is_per_copy() {
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
-    let rows = stdout.lines().filter(|l| l.ends_with("copy refused")).count();
+    let rows = stdout
+        .lines()
+        .filter(|l| l.ends_with("copy refused"))
+        .count();
     assert_eq!(rows, spintop_course::COURSE.len(), "{stdout}");
     assert!(!stdout.lines().any(|l| l.ends_with("failing")), "{stdout}");
     assert!(stdout.contains("the rule is per copy"), "{stdout}");

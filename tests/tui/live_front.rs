@@ -63,7 +63,10 @@ fn where_no_method_runs_m_names_the_fastest_warp_that_does() {
     let seen = presses(&mut app, 1);
     assert_eq!(seen, vec![(MethodChoice::Rk4, true)]);
     let text = app.message().unwrap().text.clone();
-    assert!(text.contains("no method runs this top live at 1000"), "{text}");
+    assert!(
+        text.contains("no method runs this top live at 1000"),
+        "{text}"
+    );
     let top = *app.settings().top();
     // Every other method of the cycle, at the fastest warp below 1000 at
     // which it runs; any of those that tie may be named.
@@ -120,7 +123,10 @@ fn the_help_lists_the_methods_m_walks_auto_included() {
             .collect::<Vec<_>>()
             .join("\n");
         // The help's list, from auto, is the walk rotated to start at auto.
-        let at = walked.iter().position(|m| *m == MethodChoice::Auto).unwrap();
+        let at = walked
+            .iter()
+            .position(|m| *m == MethodChoice::Auto)
+            .unwrap();
         let mut from_auto = names[at..].to_vec();
         from_auto.extend_from_slice(&names[..at]);
         let want = from_auto.join(", ");
@@ -217,7 +223,10 @@ fn without_colour_the_selected_component_stays_reversed() {
     let bytes = String::from_utf8_lossy(&kept.0.lock().unwrap()).to_string();
     assert!(bytes.contains("\u{1b}[7m"), "no reversal written");
     for bare in ["\u{1b}[m", "\u{1b}[;m"] {
-        assert!(!bytes.contains(bare), "a bare SGR {bare:?} resets the emphasis");
+        assert!(
+            !bytes.contains(bare),
+            "a bare SGR {bare:?} resets the emphasis"
+        );
     }
     for colour in ["38;5;", "48;5;", "[91m", "[92m", "[33m"] {
         assert!(!bytes.contains(colour), "colour {colour:?} written");

@@ -9,7 +9,9 @@ use spintop_app::live::stepper::TICK;
 use spintop_app::live::{App, Settings};
 
 fn close(a: &[f64], b: &[f64], tol: f64) -> bool {
-    a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol * (1.0 + y.abs()))
+    a.iter()
+        .zip(b)
+        .all(|(x, y)| (x - y).abs() <= tol * (1.0 + y.abs()))
 }
 
 #[test]
@@ -17,10 +19,16 @@ fn every_top_scene_starts_where_spintop_run_starts_it() {
     let mut compared = 0;
     for entry in catalogue::CATALOGUE {
         let scene = entry.scene().unwrap();
-        let Body::Top(top) = &scene.body else { continue };
+        let Body::Top(top) = &scene.body else {
+            continue;
+        };
         let Ok(report) = answer(&scene) else { continue };
-        let Answer::Top(ans) = report.answer else { continue };
-        let TopRun::Full(out) = &ans.run else { continue };
+        let Answer::Top(ans) = report.answer else {
+            continue;
+        };
+        let TopRun::Full(out) = &ans.run else {
+            continue;
+        };
         let (settings, _) = match Settings::for_scene(&scene, None) {
             Ok(s) => s,
             Err(e) => {
@@ -55,7 +63,12 @@ fn every_top_scene_starts_where_spintop_run_starts_it() {
                 .find(|c| *c.model() == top.model)
                 .unwrap_or_else(|| panic!("{}: no column of its model", entry.name));
             let now = column.current();
-            assert!((now.t - later.t).abs() < 1e-9, "{}: t = {}", entry.name, now.t);
+            assert!(
+                (now.t - later.t).abs() < 1e-9,
+                "{}: t = {}",
+                entry.name,
+                now.t
+            );
             assert!(close(&now.omega, &later.omega, 1e-6), "{}: Ω", entry.name);
             for (row, want) in now.rotation.iter().zip(&later.rotation) {
                 assert!(close(row, want, 1e-6), "{}: O({})", entry.name, later.t);

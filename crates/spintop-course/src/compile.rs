@@ -192,7 +192,12 @@ pub(crate) fn setup_failure(status: std::process::ExitStatus, stderr: &str) -> O
     }
     let line = stderr.lines().find(|l| l.contains(sandbox::SETUP_MARK))?;
     let words = line.trim();
-    Some(words.strip_prefix("spintop course: ").unwrap_or(words).to_string())
+    Some(
+        words
+            .strip_prefix("spintop course: ")
+            .unwrap_or(words)
+            .to_string(),
+    )
 }
 
 /// Why cargo failed with no compiler error: its last word, or how it ended

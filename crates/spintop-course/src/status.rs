@@ -201,7 +201,9 @@ impl Status {
         if self.compile_error.is_some() {
             Some("the lessons do not compile")
         } else if self.shortcut.is_some() {
-            Some("the copy takes a shortcut; the rule is per copy: no assignment is graded until it is gone")
+            Some(
+                "the copy takes a shortcut; the rule is per copy: no assignment is graded until it is gone",
+            )
         } else {
             None
         }
