@@ -9,6 +9,7 @@
 //! `sandbox` tries the launcher as an attacker; `class` grades a class of
 //! adversarial copies, two runs at once, and a run on a terminal.
 
+mod book;
 mod class;
 mod sandbox;
 
