@@ -55,7 +55,7 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             top: Top::Symmetric(SymmetricTop::figure()),
-            omega0: [0.0, 0.1, 0.2],
+            omega0: spintop::figure::FIGURE_OMEGA0,
             method: MethodChoice::Exact,
             warp: DEFAULT_WARP,
         }

@@ -414,12 +414,6 @@ const CASES: &[Case] = &[
         "",
     ),
     case(
-        &["plot", "--model", "reduced", "--method", "forward"],
-        "top",
-        "model = \"reduced\"",
-        "method = \"forward\"",
-    ),
-    case(
         &["plot", "--model", "truncated", "--t-end", "-5"],
         "top",
         "model = \"truncated\"",

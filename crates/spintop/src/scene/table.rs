@@ -162,6 +162,11 @@ const POTENTIAL_NAMES: [&str; POTENTIALS.len()] = names_of(&POTENTIALS);
 const FORCE_NAMES: [&str; FORCES.len()] = names_of(&FORCES);
 const DIPOLE_NAMES: [&str; DIPOLES.len()] = names_of(&DIPOLES);
 const FRAME_NAMES: [&str; FRAMES.len()] = names_of(&FRAMES);
+/// The methods `plot` takes: all but `forward`, the last, which only the
+/// full model takes (a plot draws the truncated and the reduced model).
+const PLOT_METHOD_NAMES: &[&str] = MethodChoice::NAMES
+    .split_at(MethodChoice::NAMES.len() - 1)
+    .0;
 
 /// The time a top runs to when a scene or `simulate` gives no times, in τ.
 pub const TOP_T_END: Real = 100.0;
@@ -306,7 +311,7 @@ pub const SPECS: &[Spec] = &[
         R::Count(1, MAX_SAMPLES), D::Count(SAMPLES)),
     // plot: its own keys (it shares [top] ratio and omega with simulate)
     row(P, "solve", "method", "a method", "Numerical method", "METHOD",
-        R::Names(&MethodChoice::NAMES), D::Name("exact")),
+        R::Names(PLOT_METHOD_NAMES), D::Name("exact")),
     row(P, "plot", "t_end", "a last time of a chart", "Last time of the plot, in tau", "T_END",
         POSITIVE, D::Number(PLOT_T_END)),
     row(P, "plot", "width", "a width in characters", "Width of each chart, in characters",
@@ -370,6 +375,18 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `plot` offers every method but the full model's `forward`.
+    #[test]
+    fn plot_takes_every_method_but_forward() {
+        let Range::Names(names) = key(Command::Plot, "solve", "method").range else {
+            panic!("plot's method is a name");
+        };
+        let mut all = names.to_vec();
+        assert!(!all.contains(&"forward"));
+        all.push("forward");
+        assert_eq!(all, MethodChoice::NAMES);
     }
 
     #[test]
