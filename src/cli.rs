@@ -95,10 +95,6 @@ enum Command {
     Book(book::BookArgs),
 }
 
-pub(crate) fn parse_list(s: &str) -> Result<Vec<Real>, String> {
-    s.split(',').map(parse_number).collect()
-}
-
 /// A comma-separated list of times (a newtype, so clap takes it as one value).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct TimeList(pub(crate) Vec<Real>);
@@ -107,12 +103,6 @@ pub(crate) struct TimeList(pub(crate) Vec<Real>);
 /// applied where a scene's `[solve] times` is).
 pub(crate) fn parse_times(s: &str) -> Result<TimeList, String> {
     values::reals(s).map(TimeList)
-}
-
-pub(crate) fn parse_vec3(s: &str) -> Result<[Real; 3], String> {
-    let v = parse_list(s)?;
-    <[Real; 3]>::try_from(v.as_slice())
-        .map_err(|_| format!("expected three comma-separated numbers, got {}", v.len()))
 }
 
 /// A failure of the command line, mapped to one line and an exit code.

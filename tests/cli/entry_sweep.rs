@@ -428,3 +428,47 @@ fn plots_own_flags_are_refused_by_their_own_rows() {
         }
     }
 }
+
+/// The live view's flags (`spintop tui --ratio …`) are read by the same
+/// validation as `simulate`'s: for each key of a top the live view takes,
+/// each bad value gets the same message and exit code from both commands
+/// (the view refuses before it looks for a terminal).
+#[test]
+fn the_live_views_flags_give_simulates_messages() {
+    let help = listed_flags("tui");
+    let keys: Vec<&Spec> = table::keys_of(Command::Simulate)
+        .filter(|s| help.contains(&format!("{} <", s.flag())))
+        .collect();
+    assert_eq!(keys.len(), 3, "ratio, omega, method");
+    let mut asked = 0;
+    for spec in keys {
+        for bad in bad_values(spec) {
+            let value = bad.flag();
+            let tui = run(&["tui", &spec.flag(), &value]);
+            let simulate = run(&[
+                "simulate",
+                "--model",
+                "truncated",
+                "--t-end",
+                "1",
+                &spec.flag(),
+                &value,
+            ]);
+            assert_eq!(
+                simulate.0,
+                2,
+                "simulate {} {value}: {}",
+                spec.flag(),
+                simulate.2
+            );
+            assert_eq!(
+                (tui.0, &tui.2),
+                (simulate.0, &simulate.2),
+                "tui {} {value}",
+                spec.flag()
+            );
+            asked += 1;
+        }
+    }
+    assert!(asked >= 4, "{asked}");
+}
