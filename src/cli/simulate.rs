@@ -21,7 +21,7 @@ pub(crate) fn after_help() -> String {
         spintop simulate --model full --method forward --times 0,1,2,5,10   (runs away at t = 3: exit 3)\n\n\
         Ranges: {}. A run over {} steps is refused before it starts, with the estimate and a cheaper way.",
         table::ranges_help(S),
-        spintop::numbers::fmt_value(spintop::sim::cost::MAX_STEPS)
+        spintop::numbers::fmt_budget(spintop::sim::cost::MAX_STEPS)
     )
 }
 

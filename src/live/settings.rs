@@ -179,7 +179,7 @@ impl Settings {
         };
         Err(Refusal::TooCostly {
             what,
-            steps: spintop::numbers::fmt_count(total),
+            steps: spintop::numbers::fmt_about(total),
             warp,
             unit: u,
             cheaper,

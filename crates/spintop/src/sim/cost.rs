@@ -267,10 +267,11 @@ pub fn check(
 /// A run refused before it started.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error(
-    "{} would take {} steps to reach t = {}, more than the {MAX_STEPS:.0e} allowed; {}",
+    "{} would take {} steps to reach t = {}, more than the {} allowed; {}",
     estimate.what,
     crate::numbers::fmt_about(estimate.steps),
     crate::numbers::fmt_time(*t_last),
+    crate::numbers::fmt_budget(MAX_STEPS),
     estimate.cheaper
 )]
 pub struct TooCostly {
