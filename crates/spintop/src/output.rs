@@ -212,17 +212,23 @@ impl Knob {
     }
 }
 
+/// The long flag of a key: `--t-end` for `t_end` (the one rule; the scene
+/// table's flags are these).
+pub fn flag_of(key: &str) -> String {
+    format!("--{}", key.replace('_', "-"))
+}
+
 impl Entry {
-    /// How a user names `knob` at this entry point, by the one rule of the
-    /// table ([`crate::scene::table::flag_of`]): the flag on the command line
+    /// How a user names `knob` at this entry point, by the one rule of
+    /// [`flag_of`]: the flag on the command line
     /// (`--method exact`), the key in a scene file (`[solve] method =
     /// "exact"`). Advice is one template with this name filled in.
     pub fn name(self, knob: Knob) -> String {
         let (section, key, value) = knob.key();
         match (self, value) {
-            (Entry::CommandLine, None) => crate::scene::table::flag_of(key),
+            (Entry::CommandLine, None) => flag_of(key),
             (Entry::CommandLine, Some(v)) => {
-                format!("{} {v}", crate::scene::table::flag_of(key))
+                format!("{} {v}", flag_of(key))
             }
             (Entry::Scene, None) => format!("[{section}] {key}"),
             (Entry::Scene, Some(v)) => format!("[{section}] {key} = \"{v}\""),
@@ -410,54 +416,6 @@ pub fn write_aligned<S: std::fmt::Display>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::table::{Range, specs};
-
-    const KNOBS: [Knob; 17] = [
-        Knob::Rtol,
-        Knob::TEnd,
-        Knob::Omega,
-        Knob::Dipole,
-        Knob::Step,
-        Knob::MethodExact,
-        Knob::MethodAdaptive,
-        Knob::MethodAuto,
-        Knob::ModelReduced,
-        Knob::Tau0,
-        Knob::R0,
-        Knob::ForceLl,
-        Knob::ForceAl,
-        Knob::ShellTau0,
-        Knob::Delay,
-        Knob::Times,
-        Knob::Rate,
-    ];
-
-    /// Advice names a key of the table, with a value the key takes, and in
-    /// the words of the entry point: a flag never in a scene's advice, a
-    /// section never on the command line.
-    #[test]
-    fn each_knob_is_a_key_of_the_table_named_as_its_entry_point_names_it() {
-        for knob in KNOBS {
-            let (section, key, value) = knob.key();
-            let spec = specs()
-                .iter()
-                .find(|s| s.section == section && s.key == key)
-                .unwrap_or_else(|| panic!("{knob:?}: no [{section}] {key} in the table"));
-            if let (Some(v), Range::Names(names)) = (value, spec.range) {
-                assert!(names.contains(&v), "{knob:?}: {key} takes no {v}");
-            }
-            let flag = Entry::CommandLine.name(knob);
-            let scene = Entry::Scene.name(knob);
-            assert!(
-                flag.starts_with(&spec.flag()) && !flag.contains('['),
-                "{flag}"
-            );
-            assert!(
-                scene.starts_with(&format!("[{section}] {key}")) && !scene.contains("--"),
-                "{scene}"
-            );
-        }
-    }
 
     /// A failure's advice from a scene names no flag; from the command line,
     /// no section.

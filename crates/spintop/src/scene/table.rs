@@ -141,10 +141,7 @@ impl Spec {
     }
 }
 
-/// The long flag of a key: `--t-end` for `t_end`.
-pub fn flag_of(key: &str) -> String {
-    format!("--{}", key.replace('_', "-"))
-}
+pub use crate::output::flag_of;
 
 /// The names of a table of names, as a constant.
 const fn names_of<T: Copy, const N: usize>(table: &[Choice<T>; N]) -> [&'static str; N] {
@@ -412,5 +409,54 @@ mod tests {
         let cone = key(Command::Balance, "balance", "cone");
         assert_eq!(cone.range.short(), "in [0, pi]");
         assert!(ranges_help(Command::Simulate).contains("each --omega component at most 1e100"));
+    }
+
+    use crate::output::{Entry, Knob};
+
+    const KNOBS: [Knob; 17] = [
+        Knob::Rtol,
+        Knob::TEnd,
+        Knob::Omega,
+        Knob::Dipole,
+        Knob::Step,
+        Knob::MethodExact,
+        Knob::MethodAdaptive,
+        Knob::MethodAuto,
+        Knob::ModelReduced,
+        Knob::Tau0,
+        Knob::R0,
+        Knob::ForceLl,
+        Knob::ForceAl,
+        Knob::ShellTau0,
+        Knob::Delay,
+        Knob::Times,
+        Knob::Rate,
+    ];
+
+    /// Advice names a key of the table, with a value the key takes, and in
+    /// the words of the entry point: a flag never in a scene's advice, a
+    /// section never on the command line.
+    #[test]
+    fn each_knob_is_a_key_of_the_table_named_as_its_entry_point_names_it() {
+        for knob in KNOBS {
+            let (section, key, value) = knob.key();
+            let spec = specs()
+                .iter()
+                .find(|s| s.section == section && s.key == key)
+                .unwrap_or_else(|| panic!("{knob:?}: no [{section}] {key} in the table"));
+            if let (Some(v), Range::Names(names)) = (value, spec.range) {
+                assert!(names.contains(&v), "{knob:?}: {key} takes no {v}");
+            }
+            let flag = Entry::CommandLine.name(knob);
+            let scene = Entry::Scene.name(knob);
+            assert!(
+                flag.starts_with(&spec.flag()) && !flag.contains('['),
+                "{flag}"
+            );
+            assert!(
+                scene.starts_with(&format!("[{section}] {key}")) && !scene.contains("--"),
+                "{scene}"
+            );
+        }
     }
 }
