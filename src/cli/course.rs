@@ -35,8 +35,9 @@ pub struct CourseArgs {
     /// instead of the student's files; every assignment must pass.
     #[arg(long)]
     solutions: bool,
-    /// The course to grade: a lessons crate (default: the repository's
-    /// lessons/; a student's copy made by `spintop course export` also works).
+    /// The course to grade: a lessons crate or a student's copy made by
+    /// `spintop course export` (default: the one the current folder is in,
+    /// as cargo finds its manifest; else the repository's lessons/).
     #[arg(long, value_name = "DIR")]
     course: Option<PathBuf>,
     /// The status as text (default) or as JSON, for an instructor's scripts.
@@ -85,7 +86,8 @@ enum CourseAction {
     /// Re-grade on every save of a file of the course and print the verdict
     /// and the progress (Ctrl-C stops)
     Watch {
-        /// The course to watch (default: the repository's lessons/)
+        /// The course to watch (default: the one the current folder is in;
+        /// else the repository's lessons/)
         #[arg(long, value_name = "DIR")]
         course: Option<PathBuf>,
     },
@@ -106,7 +108,8 @@ enum CourseAction {
     Hint {
         /// The assignment: its function name (e.g. torque_rate) or equation (e.g. 2.2)
         name: String,
-        /// The course whose progress keeps the rungs (default: the repository's lessons/)
+        /// The course whose progress keeps the rungs (default: the one the
+        /// current folder is in; else the repository's lessons/)
         #[arg(long, value_name = "DIR")]
         course: Option<PathBuf>,
     },
@@ -242,14 +245,18 @@ fn status(args: &CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
     if std::io::stderr().is_terminal() {
         eprintln!("spintop course: grading {}…", chosen.describe());
     }
-    let options = Options {
-        solutions: args.solutions,
-        seed: args.seed,
-        course_arg: course_arg.clone(),
-        launcher: launcher(),
-        ..Options::default()
-    };
-    let status = course::grade(&dir, &options).map_err(|e| bad(e.to_string()))?;
+    let status = grade::with_progress(&chosen.describe(), |progress| {
+        let options = Options {
+            solutions: args.solutions,
+            seed: args.seed,
+            course_arg: course_arg.clone(),
+            launcher: launcher(),
+            progress,
+            ..Options::default()
+        };
+        course::grade(&dir, &options)
+    })
+    .map_err(|e| bad(e.to_string()))?;
     if !args.solutions {
         course::record_passes_now(&dir, &status);
     }
@@ -383,7 +390,7 @@ fn export(dir: &Path, ci: Option<CiChoice>, out: &mut impl Write) -> Result<(), 
         .map_err(|e| bad(format!("course export: {e}")))?;
     writeln!(
         out,
-        "spintop course export: wrote {} files to {} (stubs, graders' tests, the assignments page, spintop's core and graders in crates/; no solutions)",
+        "spintop course export: wrote {} files to {} (stubs, graders' tests, the assignments page, spintop's core and graders in crates/, the book in book/src; no solutions)",
         written.files.len(),
         dir.display()
     )?;

@@ -9,6 +9,7 @@
 //! `sandbox` tries the launcher as an attacker; `class` grades a class of
 //! adversarial copies, two runs at once, and a run on a terminal.
 
+mod book;
 mod class;
 mod sandbox;
 
@@ -483,20 +484,23 @@ fn an_export_for_github_grades_itself_with_cargo_test_on_every_push() {
         "{}",
         String::from_utf8_lossy(&meta.stderr)
     );
+    // `--no-deps` lists the workspace's members only: the copy's package,
+    // whose path dependencies name the carried crates.
     let meta: serde_json::Value = serde_json::from_slice(&meta.stdout).unwrap();
+    let packages = meta["packages"].as_array().unwrap();
+    assert_eq!(packages.len(), 1, "the copy's package alone: {packages:?}");
     for name in ["spintop", "spintop-grading"] {
-        let package = meta["packages"]
+        let dependency = packages[0]["dependencies"]
             .as_array()
             .unwrap()
             .iter()
-            .find(|p| p["name"] == name)
-            .expect("resolved");
+            .find(|d| d["name"] == name)
+            .unwrap_or_else(|| panic!("{name} is a dependency"));
         assert!(
-            package["manifest_path"]
+            dependency["path"]
                 .as_str()
-                .unwrap()
-                .contains(&format!("/copy/crates/{name}/")),
-            "{name}"
+                .is_some_and(|p| p.ends_with(&format!("/copy/crates/{name}"))),
+            "{name}: {dependency}"
         );
     }
     // No solution, and the copy keeps the source rule (spintop/ is not its source).

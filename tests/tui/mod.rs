@@ -1,7 +1,8 @@
 //! The live view and `spintop learn`: keys, screens drawn headless, the
 //! reader against `less`, and the real binary under tmux (the end-to-end
-//! tier: `tmux`, `term_e2e`).
+//! tier: `tmux`, `term_e2e`, `copy`: `learn` in a student's copy).
 
+mod copy;
 mod keys;
 mod learn;
 mod live_view;

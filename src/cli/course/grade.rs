@@ -261,3 +261,40 @@ fn ungraded(class: &gradebook::Class) -> Result<(), CliError> {
         names.join(", ")
     )))
 }
+
+/// Runs `grade` with a line on a terminal that says how far one grading of
+/// one course has got (its build, then its graders), redrawn four times a
+/// second and cleared at the end; off a terminal, no line and no progress.
+/// (`spintop course` on a terminal had said nothing for the minutes of a
+/// first build.)
+pub(crate) fn with_progress<T>(
+    what: &str,
+    grade: impl FnOnce(Option<std::sync::Arc<course::building::Building>>) -> T,
+) -> T {
+    if !std::io::stderr().is_terminal() {
+        return grade(None);
+    }
+    let building = course::building::Building::shared();
+    let line = indicatif::ProgressBar::new_spinner();
+    line.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    line.set_message(format!("grading {what}"));
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let drawer = {
+        let (line, building, stop) = (line.clone(), building.clone(), stop.clone());
+        std::thread::spawn(move || {
+            while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                line.set_message(building.snapshot().describe());
+                line.tick();
+                std::thread::sleep(Duration::from_millis(250));
+            }
+        })
+    };
+    let result = grade(Some(building));
+    stop.store(true, std::sync::atomic::Ordering::Relaxed);
+    let _ = drawer.join();
+    line.finish_and_clear();
+    result
+}
