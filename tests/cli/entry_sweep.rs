@@ -93,7 +93,7 @@ fn bad_values(spec: &Spec) -> Vec<Val> {
         Range::Between(lo, hi) => {
             match lo {
                 Bound::Open(a) => out.push(Val::Num(a)),
-                Bound::Closed(a) if a == 0.0 => out.push(Val::Num(-1.0)),
+                Bound::Closed(0.0) => out.push(Val::Num(-1.0)),
                 Bound::Closed(a) => out.push(Val::Num(a / 10.0)),
                 Bound::None => {}
             }
