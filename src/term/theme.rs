@@ -33,6 +33,15 @@ pub fn no_color() -> bool {
     std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty())
 }
 
+/// Take every colour out of `buffer`, keeping the emphasis (reversed,
+/// bold, underlined): what `NO_COLOR` asks for, and no more.
+pub fn strip_colours(buffer: &mut ratatui::buffer::Buffer) {
+    for cell in &mut buffer.content {
+        cell.fg = Color::Reset;
+        cell.bg = Color::Reset;
+    }
+}
+
 /// Titles of panels.
 pub fn title() -> Style {
     Style::new().add_modifier(Modifier::BOLD)

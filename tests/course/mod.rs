@@ -19,6 +19,7 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 mod diagnose;
+mod no_cargo;
 
 /// The seeds the grading tests run at: the same assertions must hold for
 /// any grading's inputs.

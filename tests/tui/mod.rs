@@ -5,6 +5,8 @@
 mod copy;
 mod keys;
 mod learn;
+mod live_front;
+mod live_scenes;
 mod live_view;
 mod overlays;
 mod reader;
