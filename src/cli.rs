@@ -95,10 +95,6 @@ enum Command {
     Book(book::BookArgs),
 }
 
-pub(crate) fn parse_list(s: &str) -> Result<Vec<Real>, String> {
-    s.split(',').map(parse_number).collect()
-}
-
 /// A comma-separated list of times (a newtype, so clap takes it as one value).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct TimeList(pub(crate) Vec<Real>);
@@ -107,12 +103,6 @@ pub(crate) struct TimeList(pub(crate) Vec<Real>);
 /// applied where a scene's `[solve] times` is).
 pub(crate) fn parse_times(s: &str) -> Result<TimeList, String> {
     values::reals(s).map(TimeList)
-}
-
-pub(crate) fn parse_vec3(s: &str) -> Result<[Real; 3], String> {
-    let v = parse_list(s)?;
-    <[Real; 3]>::try_from(v.as_slice())
-        .map_err(|_| format!("expected three comma-separated numbers, got {}", v.len()))
 }
 
 /// A failure of the command line, mapped to one line and an exit code.
@@ -279,10 +269,8 @@ fn unknown_name(e: &clap::Error) -> Option<String> {
     } else {
         value
     };
-    let mut message = format!(
-        "{flag} {value} is not known; expected one of {}",
-        names.join(", ")
-    );
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    let mut message = spintop::scene::request::not_known(&format!("{flag} {value}"), &names);
     if let Some(near) = suggested(e).filter(|_| names.len() > 1) {
         message = format!("{message} (a similar one: {near})");
     }
@@ -299,13 +287,19 @@ fn suggested(e: &clap::Error) -> Option<String> {
     }
 }
 
-/// clap's report on one line: the error, the missing arguments, the possible
-/// values and the tip ("a similar argument exists"), without the usage block
-/// and the pointer to `--help` (the caller adds its own).
+/// clap's report on one line: a name a flag does not take in the core's
+/// words (the names it takes listed, as a scene's key gets them), or the
+/// error, the missing arguments, the possible values and the tip ("a similar
+/// argument exists") without the usage block, with a pointer to `--help`.
 fn clap_message(e: &clap::Error) -> String {
     if let Some(message) = unknown_name(e) {
         return message;
     }
+    format!("{} (see --help)", clap_report(e))
+}
+
+/// clap's own report on one line, without the usage block.
+fn clap_report(e: &clap::Error) -> String {
     let rendered = e.render().to_string();
     let mut parts: Vec<String> = Vec::new();
     for line in rendered.lines() {
@@ -374,7 +368,7 @@ where
                     _ => 0,
                 };
             }
-            let _ = writeln!(stderr, "spintop: error: {} (see --help)", clap_message(&e));
+            let _ = writeln!(stderr, "spintop: error: {}", clap_message(&e));
             return EXIT_BAD_INPUT;
         }
     };

@@ -396,7 +396,7 @@ fn measure(server: &Server, out: &mut impl Write) -> Result<(), CliError> {
         took.as_secs_f64()
     )?;
     out.flush()?;
-    let code = "use spintop::physics::symmetric_top::{self as sym, SymmetricTop};\nuse spintop::math::Vec3;\n\nfn main() {\n    let top = SymmetricTop::figure();\n    let w = sym::reduced_closed_form(&top, &Vec3::new(0.0, 0.1, 0.2), 100.0);\n    println!(\"Omega(100) = ({:.6}, {:.6}, {:.6})\", w.x, w.y, w.z);\n}\n";
+    let code = "use spintop::physics::symmetric_top::{self as sym, SymmetricTop};\nuse spintop::math::Vec3;\n\nfn main() {\n    let top = SymmetricTop::figure();\n    let w = sym::reduced_closed_form(&top, &sym::FIGURE_OMEGA0.into(), 100.0);\n    println!(\"Omega(100) = ({:.6}, {:.6}, {:.6})\", w.x, w.y, w.z);\n}\n";
     let body = serde_json::json!({ "code": code, "edition": "2024" }).to_string();
     let origin = format!("http://127.0.0.1:{port}");
     let headers = [

@@ -36,7 +36,9 @@ impl<'a> Gate<'a> {
     /// Check `value`, write it in `format`, and exit 3 if its run stopped
     /// before giving all that was asked (after writing what it did give).
     pub fn emit<T: Output + ?Sized>(&mut self, value: &T, format: Format) -> Result<(), CliError> {
-        self.check(value, value.advice())?;
+        // The command line's gate: advice names flags (a scene's answer
+        // names its keys whatever it is told).
+        self.check(value, &value.advice(spintop::output::Entry::CommandLine))?;
         spintop::output::write(self.out, value, format)?;
         match value.stopped() {
             Some(stop) => Err(CliError::Stopped(stop.message)),

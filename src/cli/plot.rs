@@ -66,7 +66,8 @@ pub struct PlotArgs {
     /// Plot against log10 t over the four decades that end at --t-end.
     #[arg(long)]
     log_time: bool,
-    #[arg(long, value_parser = values::method_name(), help = help(P, "solve", "method"))]
+    #[arg(long, value_parser = values::method_name_of(P, "solve", "method"),
+          help = help(P, "solve", "method"))]
     method: Option<String>,
     #[arg(long, value_parser = values::whole, allow_hyphen_values = true,
           value_name = value_name(P, "plot", "width"), help = help(P, "plot", "width"))]
@@ -149,6 +150,9 @@ impl PlotArgs {
             .t_end
             .or(plot_default("t_end").number())
             .unwrap_or(table::PLOT_T_END);
+        // A chart's last time against its own row of the table (> 0), before
+        // the top's keys read it as `[solve] t_end`.
+        let t_end = request::checked_number(P, "plot", "t_end", t_end)?;
         // Each model plotted is asked as a top scene would ask it.
         let names: Vec<&str> = if self.model == BOTH {
             closed_models().map(|c| c.name).collect()
@@ -170,7 +174,6 @@ impl PlotArgs {
             let n = request::checked_count(P, "plot", key, n)?;
             Ok(u32::try_from(n).unwrap_or(u32::MAX))
         };
-        let t_end = request::checked_number(P, "plot", "t_end", t_end)?;
         let (width, height) = (count("width", self.width)?, count("height", self.height)?);
         let omega0: [Real; 3] = first.initial.omega.into();
         // NOTE: textplots draws in single precision: a curve beyond its

@@ -56,7 +56,8 @@ pub struct SimulateArgs {
     #[arg(long, value_parser = values::whole, allow_hyphen_values = true,
           value_name = value_name(S, "solve", "samples"), help = help(S, "solve", "samples"))]
     samples: Option<i64>,
-    #[arg(long, value_parser = values::method_name(), help = help(S, "solve", "method"))]
+    #[arg(long, value_parser = values::method_name_of(S, "solve", "method"),
+          help = help(S, "solve", "method"))]
     method: Option<String>,
     #[arg(long, value_parser = values::real, allow_hyphen_values = true,
           value_name = value_name(S, "solve", "rtol"), help = help(S, "solve", "rtol"))]

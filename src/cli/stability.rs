@@ -52,8 +52,8 @@ impl Output for Report {
         Ok(())
     }
 
-    fn advice(&self) -> &'static str {
-        "a row's measurement overflowed; run that row alone with --row to see it"
+    fn advice(&self, _entry: spintop::output::Entry) -> String {
+        "a row's measurement overflowed; run that row alone with --row to see it".into()
     }
 }
 

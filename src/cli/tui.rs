@@ -6,16 +6,16 @@
 
 use super::gate::Gate;
 use super::values;
-use super::{CliError, bad, parse_number, parse_vec3};
+use super::{CliError, bad, parse_number};
 use crate::live::settings::{DEFAULT_WARP, WARPS};
 use crate::live::{App, Settings};
 use crate::term::session;
 use clap::Args;
 use spintop::math::Real;
 use spintop::numbers::{fmt_time, significant};
-use spintop::physics::symmetric_top::{FIGURE_OMEGA0, FIGURE_RATIO};
+use spintop::scene::request::{self, Given, RawSolve, RawTop};
 use spintop::scene::table::Command::Simulate as S;
-use spintop::sim::MethodChoice;
+use spintop::sim::{MethodChoice, Model};
 use std::io::Write;
 use std::time::Duration;
 
@@ -29,11 +29,11 @@ pub struct TuiArgs {
     /// A top scene to open: a scene file, or a catalogue name (`spintop scenes`).
     #[arg(value_name = "SCENE", conflicts_with_all = ["ratio", "omega", "method"])]
     scene: Option<String>,
-    #[arg(long, value_parser = parse_number, allow_hyphen_values = true,
-          help = values::help(S, "top", "ratio"))]
+    #[arg(long, value_parser = values::real, allow_hyphen_values = true,
+          value_name = values::value_name(S, "top", "ratio"), help = values::help(S, "top", "ratio"))]
     ratio: Option<Real>,
-    #[arg(long, value_name = "W1,W2,W3", value_parser = parse_vec3, allow_hyphen_values = true,
-          help = values::help(S, "top", "omega"))]
+    #[arg(long, value_parser = values::array::<3>, allow_hyphen_values = true,
+          value_name = values::value_name(S, "top", "omega"), help = values::help(S, "top", "omega"))]
     omega: Option<[Real; 3]>,
     /// Numerical method of both models [default: exact]
     #[arg(long, value_parser = super::values::method())]
@@ -55,14 +55,38 @@ impl TuiArgs {
                 Settings::for_scene(&scene, self.warp).map_err(|e| bad(e.to_string()))?;
             return Ok((settings, Some(note)));
         }
+        let (ratio, omega0, method) = self.top()?;
         Settings::new(
-            self.ratio.unwrap_or(FIGURE_RATIO),
-            self.omega.unwrap_or(FIGURE_OMEGA0),
-            self.method.unwrap_or(MethodChoice::Exact),
+            ratio,
+            omega0,
+            method,
             self.warp.unwrap_or(WARPS[DEFAULT_WARP]),
         )
         .map(|s| (s, None))
         .map_err(|e| bad(e.to_string()))
+    }
+
+    /// `--ratio`, `--omega` and `--method` read as `simulate` reads them (the
+    /// keys of a `[top]` scene, by the core's one validation, with its
+    /// defaults and in its words): I₃/I₁, Ω₀ and the method of the
+    /// truncated model (the reduced one takes the same methods).
+    fn top(&self) -> Result<(Real, [Real; 3], MethodChoice), CliError> {
+        let method = self.method.unwrap_or(MethodChoice::Exact);
+        let top = RawTop {
+            model: Some(Given::flag("truncated".to_string())),
+            ratio: self.ratio.map(Given::flag),
+            omega: self.omega.map(Given::flag),
+            ..RawTop::default()
+        };
+        let solve = RawSolve {
+            method: Some(Given::flag(method.name().to_string())),
+            ..RawSolve::default()
+        };
+        let request = request::top(&top, &solve)?;
+        let Model::Truncated(top) = request.tiers[0] else {
+            return Err(bad("the live view's flags ask for a symmetric top"));
+        };
+        Ok((top.ratio(), request.initial.omega.into(), request.method))
     }
 }
 

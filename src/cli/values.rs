@@ -19,10 +19,19 @@ pub fn method() -> impl TypedValueParser<Value = MethodChoice> {
     .map(|name| MethodChoice::from_name(&name).unwrap_or(MethodChoice::Auto))
 }
 
-/// `--method NAME` as a name, for the structures a scene file fills.
-pub fn method_name() -> PossibleValuesParser {
+/// `--method NAME` as a name, for the structures a scene file fills: the
+/// methods the table offers for `[section] key` of `command` (`plot` takes
+/// every method but `forward`).
+pub fn method_name_of(command: Command, section: &str, key: &str) -> PossibleValuesParser {
+    let offered = match table::key(command, section, key).range {
+        table::Range::Names(names) => names,
+        _ => &MethodChoice::NAMES,
+    };
     PossibleValuesParser::new(
-        MethodChoice::ALL.map(|m| PossibleValue::new(m.name()).help(m.help())),
+        MethodChoice::ALL
+            .iter()
+            .filter(|m| offered.contains(&m.name()))
+            .map(|m| PossibleValue::new(m.name()).help(m.help())),
     )
 }
 

@@ -148,7 +148,11 @@ impl Scene {
                 about: "a charge on a Coulomb orbit: Landau–Lifshitz collapses, Abraham–Lorentz runs away",
             },
             "section-3.md" | "full-ale.md" => top(
-                valid(Settings::full(0.4, [0.0, 0.1, 0.2], 10.0)),
+                valid(Settings::full(
+                    spintop::figure::FIGURE_RATIO,
+                    spintop::figure::FIGURE_OMEGA0,
+                    10.0,
+                )),
                 vec![0, 1],
                 "the full ALE (3.4): its physical solution beside the forward runaway",
             ),

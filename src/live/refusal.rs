@@ -24,12 +24,13 @@ pub enum Refusal {
     Warp(String),
     /// The models would need more steps a second than the view can take.
     #[error(
-        "{what} needs about {steps} steps a second at {warp} {unit}/s, the view {limit:.0e}; {cheaper}"
+        "{what} needs {steps} steps a second at {warp} {unit}/s, the view takes {}; {cheaper}",
+        spintop::numbers::fmt_budget(*limit)
     )]
     TooCostly {
         /// The costliest model and method.
         what: String,
-        /// The steps a second, formatted.
+        /// The steps a second, formatted (`about 4.0e7`).
         steps: String,
         /// The warp asked for.
         warp: Real,

@@ -58,7 +58,7 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             top: Top::Symmetric(SymmetricTop::figure()),
-            omega0: [0.0, 0.1, 0.2],
+            omega0: spintop::figure::FIGURE_OMEGA0,
             method: MethodChoice::Exact,
             warp: DEFAULT_WARP,
             euler0: None,
@@ -189,7 +189,7 @@ impl Settings {
         };
         Err(Refusal::TooCostly {
             what,
-            steps: spintop::numbers::fmt_count(total),
+            steps: spintop::numbers::fmt_about(total),
             warp,
             unit: u,
             cheaper,

@@ -12,7 +12,7 @@ use spintop::scene::table::{self, Command, Spec};
 use std::path::Path;
 
 /// Run the command line in process: (exit code, stdout, stderr).
-fn run(args: &[&str]) -> (u8, String, String) {
+pub(super) fn run(args: &[&str]) -> (u8, String, String) {
     let (mut out, mut err) = (Vec::new(), Vec::new());
     let argv = std::iter::once("spintop").chain(args.iter().copied());
     let code = spintop_app::cli::run_code(argv, &mut out, &mut err);
@@ -24,7 +24,7 @@ fn run(args: &[&str]) -> (u8, String, String) {
 }
 
 /// A scene of `kind` with `own` in its section and `solve` in `[solve]`.
-fn scene(dir: &Path, n: usize, kind: &str, own: &str, solve: &str) -> String {
+pub(super) fn scene(dir: &Path, n: usize, kind: &str, own: &str, solve: &str) -> String {
     let text = format!(
         "[scene]\nname = \"probe\"\nkind = \"{kind}\"\ndescription = \"A probe.\"\n\n[{kind}]\n{own}\n\n[solve]\n{solve}\n"
     );
@@ -413,18 +413,6 @@ const CASES: &[Case] = &[
         "model = \"reduced\"\nomega = [0.0, 1e200, 0.0]",
         "",
     ),
-    case(
-        &["plot", "--model", "reduced", "--method", "forward"],
-        "top",
-        "model = \"reduced\"",
-        "method = \"forward\"",
-    ),
-    case(
-        &["plot", "--model", "truncated", "--t-end", "-5"],
-        "top",
-        "model = \"truncated\"",
-        "t_end = -5.0",
-    ),
 ];
 
 /// The command whose keys a case's flags are.
@@ -442,7 +430,7 @@ fn command_of(args: &[&str]) -> Command {
 /// each key of the table by its bare name (`[top] ratio = 3` and
 /// `--ratio 3` both as `ratio 3`, `dipole = "loop"` and `--dipole loop` as
 /// `dipole loop`), the bare section dropped.
-fn neutral(message: &str, command: Command) -> String {
+pub(super) fn neutral(message: &str, command: Command) -> String {
     let mut m = message.to_string();
     // `path:line: ` before a scene's message.
     if let Some(i) = m.find(".toml:")

@@ -351,8 +351,8 @@ impl spintop::output::Output for Lazy {
     ) -> std::io::Result<()> {
         Ok(())
     }
-    fn advice(&self) -> &'static str {
-        ""
+    fn advice(&self, _entry: spintop::output::Entry) -> String {
+        String::new()
     }
 }
 

@@ -22,7 +22,7 @@ fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
     vec![
         ("unknown-key.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nration = 0.4\n"), 8, "unknown key `ration`"),
         ("missing-key.toml", format!("{HEAD}[top]\nratio = 0.4\n"), 6, "missing the key model"),
-        ("wrong-type.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nratio = \"big\"\n"), 8, "ratio: invalid type: string \"big\", expected a number"),
+        ("wrong-type.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nratio = \"big\"\n"), 8, "[top] ratio: invalid type: string \"big\", expected a number"),
         ("ratio-out-of-range.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nratio = 3.0\n"), 8, "0 < I3/I1 <= 2"),
         ("non-finite.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\nomega = [0.0, nan, 0.2]\n"), 8, "not a finite number"),
         ("infinite-ratio.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\nratio = inf\n"), 8, "not a finite number; expected I3/I1 in (0, 2]"),

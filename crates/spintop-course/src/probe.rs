@@ -38,9 +38,9 @@ impl ProbeSpec {
         };
         Some(Self {
             function,
-            ratio: 0.4,
+            ratio: spintop::figure::FIGURE_RATIO,
             tau: 1.0,
-            omega0: [0.0, 0.1, 0.2],
+            omega0: spintop::figure::FIGURE_OMEGA0,
             t_end,
             samples: 200,
         })

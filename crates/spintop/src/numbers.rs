@@ -135,6 +135,13 @@ pub fn fmt_count(n: Real) -> String {
     }
 }
 
+/// A step budget in a message (`1e7`, `1e6` a second): every refusal over a
+/// budget, on the command line, in a scene and in the live view, writes its
+/// limit so, and the steps it would take with [`fmt_about`].
+pub fn fmt_budget(limit: Real) -> String {
+    format!("{limit:.0e}")
+}
+
 /// An estimate for a message (steps, radians, an error): `about 8.9e299`,
 /// or `more than 1e308` when it overflows a double, never `about inf`.
 pub fn fmt_about(x: Real) -> String {

@@ -82,8 +82,9 @@ pub trait Output: Serialize {
     fn stopped(&self) -> Option<Stop> {
         None
     }
-    /// What to try when a number of the output came out NaN or infinite.
-    fn advice(&self) -> &'static str;
+    /// What to try when a number of the output came out NaN or infinite,
+    /// naming the settings as `entry` names them.
+    fn advice(&self, entry: Entry) -> String;
 }
 
 /// A JSON object with a `"stopped"` line after its own fields when its run
@@ -163,10 +164,14 @@ pub enum Knob {
     MethodExact,
     /// An adaptive method.
     MethodAdaptive,
+    /// The method that chooses (the full model's physical solution).
+    MethodAuto,
     /// The reduced model.
     ModelReduced,
     /// The orbit's radiation time.
     Tau0,
+    /// The orbit's starting radius.
+    R0,
     /// The orbit's force law.
     ForceLl,
     /// The orbit's physical solution of (2.5).
@@ -175,43 +180,58 @@ pub enum Knob {
     ShellTau0,
     /// The shell's delay r0/c.
     Delay,
-    /// The shell's output times.
+    /// The output times.
     Times,
+    /// The rate of a balance's dipole.
+    Rate,
+}
+
+impl Knob {
+    /// The key of the table it is (section, key), and the value advice
+    /// names with it, if any (`method` `"exact"`).
+    pub fn key(self) -> (&'static str, &'static str, Option<&'static str>) {
+        match self {
+            Knob::Rtol => ("solve", "rtol", None),
+            Knob::TEnd => ("solve", "t_end", None),
+            Knob::Omega => ("top", "omega", None),
+            Knob::Dipole => ("top", "dipole", None),
+            Knob::Step => ("solve", "step", None),
+            Knob::MethodExact => ("solve", "method", Some("exact")),
+            Knob::MethodAdaptive => ("solve", "method", Some("dop853")),
+            Knob::MethodAuto => ("solve", "method", Some("auto")),
+            Knob::ModelReduced => ("top", "model", Some("reduced")),
+            Knob::Tau0 => ("orbit", "tau0", None),
+            Knob::R0 => ("orbit", "r0", None),
+            Knob::ForceLl => ("orbit", "force", Some("ll")),
+            Knob::ForceAl => ("orbit", "force", Some("al")),
+            Knob::ShellTau0 => ("shell", "tau0", None),
+            Knob::Delay => ("shell", "delay", None),
+            Knob::Times => ("solve", "times", None),
+            Knob::Rate => ("balance", "rate", None),
+        }
+    }
+}
+
+/// The long flag of a key: `--t-end` for `t_end` (the one rule; the scene
+/// table's flags are these).
+pub fn flag_of(key: &str) -> String {
+    format!("--{}", key.replace('_', "-"))
 }
 
 impl Entry {
-    /// How a user names `knob` at this entry point.
-    pub fn name(self, knob: Knob) -> &'static str {
-        use Knob as K;
-        match (self, knob) {
-            (Entry::CommandLine, K::Rtol) => "--rtol",
-            (Entry::CommandLine, K::TEnd) => "--t-end",
-            (Entry::CommandLine, K::Omega) => "--omega",
-            (Entry::CommandLine, K::Dipole) => "--dipole",
-            (Entry::CommandLine, K::Step) => "--step",
-            (Entry::CommandLine, K::MethodExact) => "--method exact",
-            (Entry::CommandLine, K::MethodAdaptive) => "--method dop853",
-            (Entry::CommandLine, K::ModelReduced) => "--model reduced",
-            (Entry::CommandLine, K::Tau0) => "--tau0",
-            (Entry::CommandLine, K::ForceLl) => "--force ll",
-            (Entry::CommandLine, K::ForceAl) => "--force al",
-            (Entry::CommandLine, K::ShellTau0) => "--tau0",
-            (Entry::CommandLine, K::Delay) => "--delay",
-            (Entry::CommandLine, K::Times) => "--times",
-            (Entry::Scene, K::Rtol) => "[solve] rtol",
-            (Entry::Scene, K::TEnd) => "[solve] t_end (or times)",
-            (Entry::Scene, K::Omega) => "[top] omega",
-            (Entry::Scene, K::Dipole) => "[top] dipole",
-            (Entry::Scene, K::Step) => "[solve] step",
-            (Entry::Scene, K::MethodExact) => "[solve] method = \"exact\"",
-            (Entry::Scene, K::MethodAdaptive) => "[solve] method = \"dop853\"",
-            (Entry::Scene, K::ModelReduced) => "[top] model = \"reduced\"",
-            (Entry::Scene, K::Tau0) => "[orbit] tau0",
-            (Entry::Scene, K::ForceLl) => "[orbit] force = \"ll\"",
-            (Entry::Scene, K::ForceAl) => "[orbit] force = \"al\"",
-            (Entry::Scene, K::ShellTau0) => "[shell] tau0",
-            (Entry::Scene, K::Delay) => "[shell] delay",
-            (Entry::Scene, K::Times) => "[solve] times",
+    /// How a user names `knob` at this entry point, by the one rule of
+    /// [`flag_of`]: the flag on the command line
+    /// (`--method exact`), the key in a scene file (`[solve] method =
+    /// "exact"`). Advice is one template with this name filled in.
+    pub fn name(self, knob: Knob) -> String {
+        let (section, key, value) = knob.key();
+        match (self, value) {
+            (Entry::CommandLine, None) => flag_of(key),
+            (Entry::CommandLine, Some(v)) => {
+                format!("{} {v}", flag_of(key))
+            }
+            (Entry::Scene, None) => format!("[{section}] {key}"),
+            (Entry::Scene, Some(v)) => format!("[{section}] {key} = \"{v}\""),
         }
     }
 }
@@ -391,4 +411,30 @@ pub fn write_aligned<S: std::fmt::Display>(
         }
     }
     writeln!(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A failure's advice from a scene names no flag; from the command line,
+    /// no section.
+    #[test]
+    fn advice_names_keys_in_a_scene_and_flags_on_the_command_line() {
+        let e = IntegrateError::TooManySteps {
+            t: 1.0,
+            max_steps: 10,
+        };
+        let (Failure::Stopped(scene), Failure::Stopped(flags)) = (
+            numerical(&e, Entry::Scene),
+            numerical(&e, Entry::CommandLine),
+        ) else {
+            panic!("a numerical failure is a stop");
+        };
+        assert!(
+            !scene.contains("--") && scene.contains("[solve] rtol"),
+            "{scene}"
+        );
+        assert!(!flags.contains('[') && flags.contains("--rtol"), "{flags}");
+    }
 }

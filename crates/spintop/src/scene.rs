@@ -283,17 +283,35 @@ fn read_toml(text: &str, file: &str) -> Result<RawFile, SceneError> {
             .replace("expected f64", "expected a number")
             .replace("expected i64", "expected a whole number");
         message = short_floats(&message);
-        // NOTE: serde's type errors do not name the key; the line does.
+        // NOTE: serde's type errors do not name the key; the line does, and
+        // the header above it the section (`[top] ratio`, as every other
+        // message of a scene names a key).
         if message.starts_with("invalid")
             && let Some(key) = key_on_line(text, start)
         {
-            message = format!("{key}: {message}");
+            message = match section_above(text, start) {
+                Some(section) => format!("[{section}] {key}: {message}"),
+                None => format!("{key}: {message}"),
+            };
         }
         SceneError {
             file: file.to_string(),
             line: Ctx::file(text, Command::Simulate).line(&At::Text(start..start)),
             message,
         }
+    })
+}
+
+/// The section whose header is the last one before byte `offset` of a
+/// scene file (`top` for a key under `[top]`).
+fn section_above(text: &str, offset: usize) -> Option<&str> {
+    let offset = offset.min(text.len());
+    text[..offset].lines().rev().find_map(|line| {
+        let line = line.trim();
+        line.strip_prefix('[')
+            .and_then(|rest| rest.strip_suffix(']'))
+            .map(str::trim)
+            .filter(|name| !name.starts_with('['))
     })
 }
 

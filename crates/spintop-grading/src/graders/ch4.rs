@@ -463,8 +463,9 @@ pub fn precession_tilt(seed: u64, student: impl Fn(Real, Vec3) -> Real) -> Grade
         .collect();
     // The book's top; the same spinning backwards; a spin that is zero
     // (tilt pi/2); no perpendicular rate with a negative spin (tilt pi).
-    inputs.insert(0, (0.4, Vec3::new(0.0, 0.1, 0.2)));
-    inputs.push((0.4, Vec3::new(0.0, 0.1, -0.2)));
+    let book = Vec3::from(sym::FIGURE_OMEGA0);
+    inputs.insert(0, (sym::FIGURE_RATIO, book));
+    inputs.push((sym::FIGURE_RATIO, Vec3::new(book.x, book.y, -book.z)));
     inputs.push((
         rng.uniform(0.2, 1.8),
         Vec3::new(rng.uniform(0.1, 0.5), rng.uniform(-0.5, 0.5), 0.0),

@@ -276,8 +276,11 @@ impl Output for BalanceOutput {
         }
     }
 
-    fn advice(&self) -> &'static str {
-        "the torques grow like the third power of --rate (and of the loop's size): use a smaller --rate"
+    fn advice(&self, entry: super::Entry) -> String {
+        let rate = entry.name(super::Knob::Rate);
+        format!(
+            "the torques grow like the third power of {rate} (and of the loop's size): use a smaller {rate}"
+        )
     }
 }
 

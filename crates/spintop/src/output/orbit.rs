@@ -147,12 +147,9 @@ pub fn orbit(request: &OrbitRequest) -> Result<OrbitOutput, Failure> {
     let tau0 = config.charge.tau0();
     let potential = config.charge.potential();
     let collapse = config.collapse_time();
-    use super::{Entry, Knob};
+    use super::Knob;
     let k = |knob| request.entry.name(knob);
-    let times = match request.entry {
-        Entry::CommandLine => "--times",
-        Entry::Scene => "[solve] times",
-    };
+    let times = request.entry.name(Knob::Times);
     let collapsed = |e: &OrbitError| {
         format!(
             "{e}; the averaged collapse time is t_c = {}: ask for times before it, or a smaller {}",
@@ -339,8 +336,12 @@ impl Output for OrbitOutput {
         }
     }
 
-    fn advice(&self) -> &'static str {
-        "keep --tau0 and --r0 within a few decades of 1 (the radiation rate goes like tau0/r0^3)"
+    fn advice(&self, entry: super::Entry) -> String {
+        format!(
+            "keep {} and {} within a few decades of 1 (the radiation rate goes like tau0/r0^3)",
+            entry.name(super::Knob::Tau0),
+            entry.name(super::Knob::R0)
+        )
     }
 
     fn stopped(&self) -> Option<Stop> {

@@ -225,8 +225,8 @@ impl Output for ShellOutput {
         }
     }
 
-    fn advice(&self) -> &'static str {
-        "use a shell radius and times within a few decades of 1"
+    fn advice(&self, _entry: super::Entry) -> String {
+        "use a shell radius and times within a few decades of 1".into()
     }
 }
 

@@ -64,14 +64,14 @@ pub struct SimulateOutput {
 }
 
 /// A runaway of (3.4) integrated forward.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct RunawayReport {
     /// When the monitor stopped the run.
     pub t: Real,
     /// The measured growth rate (about 1/τ).
     pub growth_rate: Real,
     /// What to do instead.
-    pub advice: &'static str,
+    pub advice: String,
     /// The unit of time: "tau" for the symmetric top, the kappa = 1 unit for
     /// a general one.
     #[serde(skip)]
@@ -127,14 +127,10 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
                 runaway = Some(RunawayReport {
                     t: r.t,
                     growth_rate: r.growth_rate,
-                    advice: match config.entry {
-                        Entry::CommandLine => {
-                            "integrate backward or use the reduced model (--model full --method auto gives the physical solution)"
-                        }
-                        Entry::Scene => {
-                            "integrate backward or use the reduced model ([solve] method = \"auto\" gives the physical solution)"
-                        }
-                    },
+                    advice: format!(
+                        "integrate backward or use the reduced model ({} gives the physical solution)",
+                        config.entry.name(super::Knob::MethodAuto)
+                    ),
                     unit: if matches!(config.model, Model::GeneralFull(_)) {
                         "time unit (kappa = 1)"
                     } else {
@@ -146,7 +142,7 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
             Err(e) => return Err(failure(e)),
         }
     }
-    let samples_omitted = runaway.map(|_| config.times.len() - samples.len());
+    let samples_omitted = runaway.as_ref().map(|_| config.times.len() - samples.len());
     let method = sim.method();
     let error = if method == Method::Forward {
         None
@@ -333,8 +329,8 @@ impl Output for SimulateOutput {
         }
     }
 
-    fn advice(&self) -> &'static str {
-        "use smaller rates or moments (in units of 1/tau and I1)"
+    fn advice(&self, _entry: super::Entry) -> String {
+        "use smaller rates or moments (in units of 1/tau and I1)".into()
     }
 
     fn stopped(&self) -> Option<Stop> {

@@ -265,7 +265,7 @@ impl PrecessingDipole {
             return Err(ParamError::OutOfRange {
                 name: "cone angle",
                 value: theta,
-                range: "[0, pi]",
+                range: "in [0, pi]",
             });
         }
         check_rate(omega)?;

@@ -111,8 +111,9 @@ pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Rea
     let t_max = longest_stepped_turning(rtol, angle) / rate;
     let why = match stepped {
         Some((r, steps)) => format!(
-            "it would take {} steps at rtol {r:.0e}, more than the {MAX_STEPS:.0e} allowed",
-            fmt_about(steps)
+            "it would take {} steps at rtol {r:.0e}, more than the {} allowed",
+            fmt_about(steps),
+            crate::numbers::fmt_budget(MAX_STEPS)
         ),
         None => format!(
             "an integrator's error of Omega and the orientation grows like the square of the turning: {} even at rtol {TIGHTEST_RTOL:.0e}",

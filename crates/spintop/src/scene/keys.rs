@@ -269,6 +269,14 @@ pub(super) fn numbers<const N: usize>(
     finite_array(ctx, section, key, v, &ctx.spec(section, key).expected())
 }
 
+/// The one message for a name a key does not take, whoever refuses it (this
+/// module for a scene's key, the command line's parser for a flag's name):
+/// `set` is the key with its value as the source writes it (`[top] model =
+/// "xml"`, `--model xml`).
+pub fn not_known(set: &str, options: &[&str]) -> String {
+    format!("{set} is not known; expected one of {}", options.join(", "))
+}
+
 /// A string key that must be one of `options`; returns its index.
 pub(super) fn choice(
     ctx: &Ctx,
@@ -282,14 +290,7 @@ pub(super) fn choice(
     };
     match options.iter().position(|o| o == s) {
         Some(i) => Ok(Some((i, at.clone()))),
-        None => Err(ctx.at(
-            at,
-            format!(
-                "{} is not known; expected one of {}",
-                ctx.set(section, key, &ctx.word(s)),
-                options.join(", ")
-            ),
-        )),
+        None => Err(ctx.at(at, not_known(&ctx.set(section, key, &ctx.word(s)), options))),
     }
 }
 

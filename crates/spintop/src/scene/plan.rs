@@ -164,9 +164,10 @@ impl Ask<'_> {
         Err(Refusal {
             at,
             message: format!(
-                "[solve] {what} would take {} steps to reach t = {} tau, more than the {MAX_STEPS:.0e} allowed{hint}",
+                "[solve] {what} would take {} steps to reach t = {} tau, more than the {} allowed{hint}",
                 fmt_about(steps),
-                fmt_time(self.t_last)
+                fmt_time(self.t_last),
+                crate::numbers::fmt_budget(MAX_STEPS)
             ),
         })
     }

@@ -6,8 +6,8 @@
 //! `[top] ratio`), one line with nothing before it.
 
 pub use super::format::{At, Given, Key, RawBalance, RawOrbit, RawShell, RawSolve, RawTop};
-pub use super::keys::Refusal;
 use super::keys::{Ctx, count, number};
+pub use super::keys::{Refusal, not_known};
 use super::table::Command;
 use super::{BalanceScene, OrbitScene, ShellScene, TopRequest, kinds, top};
 use crate::math::Real;

@@ -141,10 +141,7 @@ impl Spec {
     }
 }
 
-/// The long flag of a key: `--t-end` for `t_end`.
-pub fn flag_of(key: &str) -> String {
-    format!("--{}", key.replace('_', "-"))
-}
+pub use crate::output::flag_of;
 
 /// The names of a table of names, as a constant.
 const fn names_of<T: Copy, const N: usize>(table: &[Choice<T>; N]) -> [&'static str; N] {
@@ -162,6 +159,11 @@ const POTENTIAL_NAMES: [&str; POTENTIALS.len()] = names_of(&POTENTIALS);
 const FORCE_NAMES: [&str; FORCES.len()] = names_of(&FORCES);
 const DIPOLE_NAMES: [&str; DIPOLES.len()] = names_of(&DIPOLES);
 const FRAME_NAMES: [&str; FRAMES.len()] = names_of(&FRAMES);
+/// The methods `plot` takes: all but `forward`, the last, which only the
+/// full model takes (a plot draws the truncated and the reduced model).
+const PLOT_METHOD_NAMES: &[&str] = MethodChoice::NAMES
+    .split_at(MethodChoice::NAMES.len() - 1)
+    .0;
 
 /// The time a top runs to when a scene or `simulate` gives no times, in τ.
 pub const TOP_T_END: Real = 100.0;
@@ -306,7 +308,7 @@ pub const SPECS: &[Spec] = &[
         R::Count(1, MAX_SAMPLES), D::Count(SAMPLES)),
     // plot: its own keys (it shares [top] ratio and omega with simulate)
     row(P, "solve", "method", "a method", "Numerical method", "METHOD",
-        R::Names(&MethodChoice::NAMES), D::Name("exact")),
+        R::Names(PLOT_METHOD_NAMES), D::Name("exact")),
     row(P, "plot", "t_end", "a last time of a chart", "Last time of the plot, in tau", "T_END",
         POSITIVE, D::Number(PLOT_T_END)),
     row(P, "plot", "width", "a width in characters", "Width of each chart, in characters",
@@ -372,6 +374,18 @@ mod tests {
         }
     }
 
+    /// `plot` offers every method but the full model's `forward`.
+    #[test]
+    fn plot_takes_every_method_but_forward() {
+        let Range::Names(names) = key(Command::Plot, "solve", "method").range else {
+            panic!("plot's method is a name");
+        };
+        let mut all = names.to_vec();
+        assert!(!all.contains(&"forward"));
+        all.push("forward");
+        assert_eq!(all, MethodChoice::NAMES);
+    }
+
     #[test]
     fn ranges_read_as_written() {
         let ratio = key(Command::Simulate, "top", "ratio");
@@ -395,5 +409,54 @@ mod tests {
         let cone = key(Command::Balance, "balance", "cone");
         assert_eq!(cone.range.short(), "in [0, pi]");
         assert!(ranges_help(Command::Simulate).contains("each --omega component at most 1e100"));
+    }
+
+    use crate::output::{Entry, Knob};
+
+    const KNOBS: [Knob; 17] = [
+        Knob::Rtol,
+        Knob::TEnd,
+        Knob::Omega,
+        Knob::Dipole,
+        Knob::Step,
+        Knob::MethodExact,
+        Knob::MethodAdaptive,
+        Knob::MethodAuto,
+        Knob::ModelReduced,
+        Knob::Tau0,
+        Knob::R0,
+        Knob::ForceLl,
+        Knob::ForceAl,
+        Knob::ShellTau0,
+        Knob::Delay,
+        Knob::Times,
+        Knob::Rate,
+    ];
+
+    /// Advice names a key of the table, with a value the key takes, and in
+    /// the words of the entry point: a flag never in a scene's advice, a
+    /// section never on the command line.
+    #[test]
+    fn each_knob_is_a_key_of_the_table_named_as_its_entry_point_names_it() {
+        for knob in KNOBS {
+            let (section, key, value) = knob.key();
+            let spec = specs()
+                .iter()
+                .find(|s| s.section == section && s.key == key)
+                .unwrap_or_else(|| panic!("{knob:?}: no [{section}] {key} in the table"));
+            if let (Some(v), Range::Names(names)) = (value, spec.range) {
+                assert!(names.contains(&v), "{knob:?}: {key} takes no {v}");
+            }
+            let flag = Entry::CommandLine.name(knob);
+            let scene = Entry::Scene.name(knob);
+            assert!(
+                flag.starts_with(&spec.flag()) && !flag.contains('['),
+                "{flag}"
+            );
+            assert!(
+                scene.starts_with(&format!("[{section}] {key}")) && !scene.contains("--"),
+                "{scene}"
+            );
+        }
     }
 }

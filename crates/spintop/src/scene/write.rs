@@ -375,7 +375,17 @@ impl Output for Report {
         }
     }
 
-    fn advice(&self) -> &'static str {
-        "ask for smaller rates or earlier times"
+    /// A scene's keys, whatever `entry` the caller names (a scene is
+    /// always asked by its keys).
+    fn advice(&self, _entry: crate::output::Entry) -> String {
+        let scene = crate::output::Entry::Scene;
+        match &self.answer {
+            Answer::Balance(b) => b.advice(scene),
+            Answer::Orbit(o) => o.advice(scene),
+            Answer::Shell(s) => s.advice(scene),
+            Answer::Top(_) | Answer::Stability(_) => {
+                "ask for smaller rates or earlier times".into()
+            }
+        }
     }
 }

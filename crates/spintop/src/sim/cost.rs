@@ -20,8 +20,8 @@ pub const MAX_STEPS: Real = crate::integrate::DEFAULT_MAX_STEPS as Real;
 pub fn budget_rule() -> String {
     format!(
         "A run estimated at more than {} steps (accepted and rejected, from the steps per radian each method was measured to take) is refused before it starts, with the estimate and a cheaper way; the steps of the run's error estimate (the same run at a tighter rtol) come on top, and any single integration that still passes {} steps stops the run with exit 3",
-        crate::numbers::fmt_value(MAX_STEPS),
-        crate::numbers::fmt_value(MAX_STEPS)
+        crate::numbers::fmt_budget(MAX_STEPS),
+        crate::numbers::fmt_budget(MAX_STEPS)
     )
 }
 
@@ -335,10 +335,11 @@ pub fn check(
 /// A run refused before it started.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error(
-    "{} would take {} steps to reach t = {}, more than the {MAX_STEPS:.0e} allowed; {}",
+    "{} would take {} steps to reach t = {}, more than the {} allowed; {}",
     estimate.what,
     crate::numbers::fmt_about(estimate.steps),
     crate::numbers::fmt_time(*t_last),
+    crate::numbers::fmt_budget(MAX_STEPS),
     estimate.cheaper
 )]
 pub struct TooCostly {
