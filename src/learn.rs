@@ -204,6 +204,8 @@ pub struct Learn {
     unfolded: bool,
     side_hidden: bool,
     mouse: bool,
+    /// No colour (`NO_COLOR`): see [`Learn::plain`].
+    plain: bool,
     mode: Mode,
     search: Option<Search>,
     /// The plain text of every chapter at the width last searched, for a
@@ -292,6 +294,7 @@ impl Learn {
             unfolded: false,
             side_hidden: false,
             mouse: false,
+            plain: false,
             mode: Mode::Read,
             search: None,
             texts,
@@ -309,6 +312,17 @@ impl Learn {
             learn.message = Some((note, false));
         }
         Ok(learn)
+    }
+
+    /// Without colour (`NO_COLOR`, the terminal's way when it is set): the
+    /// figures drawn in the text tell their curves apart by glyph and their
+    /// titles name the glyphs, not colours.
+    pub fn plain(mut self, on: bool) -> Self {
+        if self.plain != on {
+            self.plain = on;
+            self.render();
+        }
+        self
     }
 
     /// The chapters.
@@ -566,6 +580,7 @@ impl Learn {
                 unfold: self.unfolded,
                 figures_later: self.background,
                 images: Some(self.book.clone()),
+                plain: self.plain,
             },
         );
         self.scroll = (fraction * self.rendered.lines.len() as f64).round() as usize;
@@ -661,7 +676,11 @@ impl Learn {
             Command::PreviousLink => self.focus_link(false),
             Command::FollowLink => self.follow_link(),
             Command::Scene(key) => {
-                let (text, refused) = self.stage.key(key);
+                let shown = match &self.scene_info.spec {
+                    scene::Spec::Top { columns, .. } => columns.clone(),
+                    _ => Vec::new(),
+                };
+                let (text, refused) = self.stage.key(key, &shown);
                 if !text.is_empty() {
                     self.message = Some((text, refused));
                 }

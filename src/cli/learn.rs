@@ -125,7 +125,8 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
             Learn::open_in_background(&book, None).map_err(|e| bad(e.to_string()))?
         }
         Err(e) => return Err(bad(e.to_string())),
-    };
+    }
+    .plain(crate::term::theme::no_color());
     session.restore(&read);
     if args.list {
         return list(&mut session, &read, out);

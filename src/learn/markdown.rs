@@ -139,6 +139,9 @@ pub struct Options {
     /// The book's folder, where its pictures are read to be drawn (`None`:
     /// a picture is one line naming it).
     pub images: Option<PathBuf>,
+    /// No colour (`NO_COLOR`): the figures tell their curves apart by
+    /// glyph, and say so.
+    pub plain: bool,
 }
 
 /// Renders one chapter (`source` already with includes resolved) at `width`
@@ -668,6 +671,7 @@ impl Renderer {
                 number,
                 width,
                 !self.options.figures_later,
+                self.options.plain,
             ))
         } else {
             self.options

@@ -113,7 +113,11 @@ impl Learn {
     pub(super) fn scroll_panel(&mut self, n: i64) {
         let max = self.panel_max_scroll();
         match &mut self.mode {
-            Mode::Help(s) | Mode::Course(s) => *s = s.saturating_add_signed(n as isize).min(max),
+            // From where the panel is drawn: its content may have shrunk
+            // since (a fixed assignment), and the first PgUp must move it.
+            Mode::Help(s) | Mode::Course(s) => {
+                *s = (*s).min(max).saturating_add_signed(n as isize).min(max)
+            }
             _ => {}
         }
     }

@@ -182,9 +182,12 @@ fn marks_on(learn: &Learn, i: usize) -> Vec<(std::ops::Range<usize>, Style)> {
         let current = s.at.and_then(|k| s.matches.get(k));
         for m in s.matches.iter().filter(|(l, _)| *l == i) {
             let style = if Some(m) == current {
+                // Bold and underlined besides the colour: without colour
+                // (NO_COLOR) the match is still told from the others.
                 Style::new()
                     .fg(ratatui::style::Color::Black)
                     .bg(ratatui::style::Color::Yellow)
+                    .add_modifier(Modifier::BOLD | Modifier::UNDERLINED)
             } else {
                 Style::new().add_modifier(Modifier::REVERSED)
             };

@@ -267,6 +267,13 @@ where
     let mut next_frame = start;
     let mut frames = 0;
     let mut size = terminal.size().map_err(io::Error::other)?;
+    let plain = super::theme::no_color();
+    let paint = |screen: &S, frame: &mut Frame| {
+        screen.draw(frame);
+        if plain {
+            super::theme::without_colour(frame.buffer_mut());
+        }
+    };
     if let Some(c) = screen.command(&Event::Resize(size.width, size.height)) {
         screen.apply(c);
     }
@@ -279,7 +286,7 @@ where
         last = now;
         control.set_mouse(screen.wants_mouse())?;
         let drawn = terminal
-            .draw(|frame| screen.draw(frame))
+            .draw(|frame| paint(screen, frame))
             .map_err(io::Error::other)?
             .area;
         // Keys are judged by the screen the reader sees: the size this frame
@@ -321,7 +328,7 @@ where
             if let Some(command) = screen.command(&event) {
                 if screen.announce(&command) {
                     terminal
-                        .draw(|frame| screen.draw(frame))
+                        .draw(|frame| paint(screen, frame))
                         .map_err(io::Error::other)?;
                 }
                 screen.apply(command);

@@ -33,6 +33,20 @@ pub fn no_color() -> bool {
     std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty())
 }
 
+/// The screen without colour, its emphasis kept: every cell's colours
+/// reset, its modifiers (reverse video, bold, underline) left as drawn.
+///
+/// Drawn over every frame when [`no_color`] holds. (crossterm writes a
+/// colour under `NO_COLOR` as an empty `ESC[m`, which resets the modifiers
+/// too: the selection, the search's match and links lost their marks. A
+/// screen with no colour in it never sends one.)
+pub fn without_colour(buf: &mut ratatui::buffer::Buffer) {
+    for cell in &mut buf.content {
+        cell.fg = Color::Reset;
+        cell.bg = Color::Reset;
+    }
+}
+
 /// Titles of panels.
 pub fn title() -> Style {
     Style::new().add_modifier(Modifier::BOLD)

@@ -1,0 +1,264 @@
+//! What a reviewer found using `spintop learn` as a student at 80×24 and
+//! 200×60 (issue 43, second pass): marks kept without colour, the hint seen
+//! when asked, the scene's `v` telling the truth, the course panel's
+//! scrolling after it shrinks.
+
+use super::learn::{book, draw, press};
+use crossterm::event::KeyCode;
+use ratatui::buffer::Buffer;
+use ratatui::style::{Color, Modifier};
+use ratatui::{Terminal, backend::TestBackend};
+use spintop_app::learn::{Command, Learn, Mode};
+use spintop_app::term::theme;
+use spintop_course::{Report, State, Status};
+
+/// The screen as `NO_COLOR` puts it on the terminal: drawn, then every
+/// colour taken out (the loop's way, [`theme::without_colour`]).
+fn draw_plain(learn: &mut Learn, width: u16, height: u16) -> Buffer {
+    draw(learn, width, height);
+    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
+    terminal
+        .draw(|f| {
+            spintop_app::learn::view::draw(f, learn);
+            theme::without_colour(f.buffer_mut());
+        })
+        .unwrap();
+    terminal.backend().buffer().clone()
+}
+
+fn row_text(buf: &Buffer, y: u16) -> String {
+    (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect()
+}
+
+/// The cells of row `y` whose text is `word`, where it first stands.
+fn cells_of(buf: &Buffer, word: &str) -> Option<Vec<ratatui::buffer::Cell>> {
+    for y in 0..buf.area.height {
+        let cells: Vec<_> = (0..buf.area.width).map(|x| buf[(x, y)].clone()).collect();
+        let symbols: Vec<&str> = cells.iter().map(|c| c.symbol()).collect();
+        let n = word.chars().count();
+        for x in 0..cells.len().saturating_sub(n) {
+            if symbols[x..x + n].concat() == word {
+                return Some(cells[x..x + n].to_vec());
+            }
+        }
+    }
+    None
+}
+
+fn message(learn: &Learn) -> String {
+    learn.message().map(|m| m.0.clone()).unwrap_or_default()
+}
+
+/// Under NO_COLOR no cell has a colour, and the marks that were drawn
+/// with one still stand out: the contents' selection is reversed, the
+/// search's match and the focused link keep a mark of their own.
+#[test]
+fn without_colour_the_selection_the_match_and_the_link_keep_their_marks() {
+    let mut learn = Learn::open(&book(), Some("1")).unwrap().plain(true);
+    draw(&mut learn, 80, 24);
+    press(&mut learn, KeyCode::Char('c'));
+    for _ in 0..3 {
+        press(&mut learn, KeyCode::Down);
+    }
+    let buf = draw_plain(&mut learn, 80, 24);
+    assert!(
+        buf.content
+            .iter()
+            .all(|c| c.fg == Color::Reset && c.bg == Color::Reset),
+        "no colour at all"
+    );
+    let reversed: Vec<u16> = (0..24)
+        .filter(|&y| (0..80).any(|x| buf[(x, y)].modifier.contains(Modifier::REVERSED)))
+        .collect();
+    assert_eq!(reversed.len(), 1, "one selected entry: {reversed:?}");
+    assert!(!row_text(&buf, reversed[0]).trim().is_empty());
+    press(&mut learn, KeyCode::Esc);
+
+    learn.apply(Command::SearchStart);
+    for c in "Schott".chars() {
+        learn.apply(Command::SearchInput(c));
+    }
+    learn.apply(Command::SearchCommit);
+    let buf = draw_plain(&mut learn, 80, 24);
+    let hit = cells_of(&buf, "Schott").expect("the match on screen");
+    assert!(
+        hit.iter().all(|c| !c.modifier.is_empty()),
+        "the match is marked without colour"
+    );
+    press(&mut learn, KeyCode::Esc);
+
+    learn.apply(Command::NextLink);
+    assert!(message(&learn).contains("link"), "{}", message(&learn));
+    let buf = draw_plain(&mut learn, 80, 24);
+    let focused = buf
+        .content
+        .iter()
+        .filter(|c| c.modifier.contains(Modifier::REVERSED))
+        .count();
+    let underlined = buf
+        .content
+        .iter()
+        .filter(|c| c.modifier.contains(Modifier::UNDERLINED))
+        .count();
+    assert!(focused > 0, "the focused link is reversed");
+    assert!(underlined > 0, "links are underlined");
+}
+
+/// The figures drawn in §4.1 and §4.2 name no colour without colour: their
+/// titles name the glyphs, and the two curves of panel (d) differ in glyph.
+#[test]
+fn without_colour_the_figures_name_their_glyphs_not_colours() {
+    for (chapter, number) in [("4.1", 1), ("4.2", 2)] {
+        let plain = Learn::open(&book(), Some(chapter)).unwrap().plain(true);
+        let text: String = plain
+            .rendered()
+            .lines
+            .iter()
+            .map(|l| {
+                l.spans
+                    .iter()
+                    .map(|s| s.content.as_ref())
+                    .collect::<String>()
+                    + "\n"
+            })
+            .collect();
+        let at = text
+            .find(&format!("Figure {number}"))
+            .expect("the figure's caption");
+        let titles: Vec<&str> = text
+            .lines()
+            .filter(|l| {
+                ["(a) Ω", "(b) the top", "(d) φ̇"]
+                    .iter()
+                    .any(|t| l.contains(t))
+            })
+            .collect();
+        assert!(titles.len() >= 3, "the panels' titles: {titles:?}");
+        for colour in ["yellow", "green", "in red", "pale"] {
+            assert!(
+                titles.iter().all(|t| !t.contains(colour)),
+                "{colour} in §{chapter}'s figure without colour: {titles:?}"
+            );
+        }
+        assert!(text.contains("(d) φ̇ •, ψ̇ braille"), "§{chapter}");
+        assert!(text.contains("L: •") && text.contains("•: its shadows"));
+        // The dots are drawn (the shadows, L, φ̇): a glyph braille is not.
+        assert!(text[..at].matches('•').count() + text[at..].matches('•').count() > 20);
+        let coloured = Learn::open(&book(), Some(chapter)).unwrap();
+        let text: String = coloured
+            .rendered()
+            .lines
+            .iter()
+            .flat_map(|l| l.spans.iter().map(|s| s.content.to_string()))
+            .collect();
+        assert!(text.contains("φ̇ yellow, ψ̇ green"), "with colour, colours");
+    }
+}
+
+/// `h` in the course panel at 80×24 shows its rung on screen (the panel
+/// scrolls to it), and each press shows the next.
+#[test]
+fn a_hint_is_on_screen_when_asked_at_80x24() {
+    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    draw(&mut learn, 80, 24);
+    let report = (1..=9)
+        .map(|i| format!("  line {i} of a long diagnosis of torque_rate"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let report = format!("torque_rate, Eq. (2.2): wrong answer\n{report}");
+    let status = Status::new(0, |a| match a.function {
+        "larmor_rate" => State::Passing,
+        "torque_rate" => State::Failing(report.as_str().into()),
+        _ => State::NotStarted,
+    });
+    learn.course_report(Report::Graded(status));
+    press(&mut learn, KeyCode::Char('a'));
+    for rung in 1..=3 {
+        press(&mut learn, KeyCode::Char('h'));
+        let shown = draw(&mut learn, 80, 24);
+        let hint = learn.hint().expect("a hint");
+        assert_eq!(hint.rung, rung);
+        assert!(
+            shown.contains(&format!("hint {rung} of 3")),
+            "rung {rung} on screen:\n{shown}"
+        );
+        let first = hint
+            .text
+            .split_whitespace()
+            .take(3)
+            .collect::<Vec<_>>()
+            .join(" ");
+        let flat = shown.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert!(flat.contains(&first), "its text {first:?}:\n{shown}");
+    }
+}
+
+/// The first PgUp after the course panel got shorter moves it.
+#[test]
+fn page_up_moves_at_once_after_the_course_panel_shrinks() {
+    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    draw(&mut learn, 80, 24);
+    let long = (1..=9)
+        .map(|i| format!("  line {i} of the diagnosis"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let failing = format!("torque_rate, Eq. (2.2): wrong answer\n{long}");
+    let status = |torque: State| {
+        Status::new(0, move |a| match a.function {
+            "torque_rate" => torque.clone(),
+            _ => State::Passing,
+        })
+    };
+    learn.course_report(Report::Graded(status(State::Failing(
+        failing.as_str().into(),
+    ))));
+    press(&mut learn, KeyCode::Char('a'));
+    press(&mut learn, KeyCode::End);
+    let Mode::Course(end) = *learn.mode() else {
+        panic!("the course panel")
+    };
+    // Fixed: the diagnosis goes, the panel is shorter.
+    learn.course_report(Report::Graded(status(State::Passing)));
+    let before = draw(&mut learn, 80, 24);
+    let rows = |s: &str| {
+        s.split("rows ")
+            .nth(1)
+            .map(|r| r[..r.find(' ').unwrap()].to_string())
+    };
+    press(&mut learn, KeyCode::PageUp);
+    let Mode::Course(after) = *learn.mode() else {
+        panic!("the course panel")
+    };
+    assert!(after < end);
+    let shown = draw(&mut learn, 80, 24);
+    assert_ne!(
+        rows(&before),
+        rows(&shown),
+        "PgUp moved:\n{before}\n{shown}"
+    );
+}
+
+/// `v` in a scene of one model says so and names the model drawn; with
+/// two models both on the screen it names `v`, not the live view's Tab.
+#[test]
+fn v_tells_the_truth_about_the_models_drawn() {
+    for (w, h) in [(80, 24), (200, 60)] {
+        let mut learn = Learn::open(&book(), Some("4.2")).unwrap();
+        draw(&mut learn, w, h);
+        press(&mut learn, KeyCode::Char('v'));
+        let said = message(&learn);
+        assert!(
+            said.contains("one model") && said.contains("reduced"),
+            "{said}"
+        );
+        assert!(
+            !said.contains("truncated") && !said.contains("Tab"),
+            "{said}"
+        );
+    }
+    let mut learn = Learn::open(&book(), Some("5")).unwrap();
+    draw(&mut learn, 200, 60);
+    press(&mut learn, KeyCode::Char('v'));
+    let said = message(&learn);
+    assert!(!said.contains("Tab"), "{said}");
+}
