@@ -169,6 +169,9 @@ pub enum Command {
     PasteIgnored,
     /// Backspace in the search.
     SearchBackspace,
+    /// Ctrl-U in the search: clears what was typed (as in the live view's
+    /// editor).
+    SearchClear,
     /// Enter: search.
     SearchCommit,
     /// n: the next match, in the search's direction, from where the reader is.
@@ -669,6 +672,11 @@ impl Learn {
                 self.inform("paste ignored: / or ? starts a search to paste into")
             }
             Command::SearchBackspace => self.search_input(None),
+            Command::SearchClear => {
+                if let Mode::Search(q, _) = &mut self.mode {
+                    q.clear();
+                }
+            }
             Command::SearchCommit => self.search_commit(),
             Command::SearchNext => self.search_again(true),
             Command::SearchPrevious => self.search_again(false),

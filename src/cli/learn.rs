@@ -25,7 +25,11 @@ use std::path::{Path, PathBuf};
     spintop learn                                    the book in the terminal, where you left it\n  \
     spintop learn --chapter 4.2                      Section 4.2 beside its scene\n  \
     spintop learn --chapter 9                        the ninth chapter, as the header counts\n  \
-    spintop learn --list")]
+    spintop learn --list
+
+The reading place (the chapter, where in it, the chapters opened) is kept in
+target/spintop-learn.json of the repository the book is read from, written as
+you read and on every way out; --reset forgets it.")]
 pub struct LearnArgs {
     /// Open this chapter: a section of the paper (2, 3, 4.1, 4.2, 5, A), the
     /// chapter's number as the header shows it (9; '#3' where 3 is also a
@@ -68,7 +72,9 @@ fn book_dir(repo: &Path) -> Result<PathBuf, CliError> {
     }
 }
 
-fn progress_file(repo: &Path) -> PathBuf {
+/// Where the reading place is kept for the book of `repo` (the one rule:
+/// `spintop learn --help` says it).
+pub fn progress_file(repo: &Path) -> PathBuf {
     // The tests point this elsewhere, so that they never touch a student's progress.
     match std::env::var_os("SPINTOP_LEARN_PROGRESS") {
         Some(path) if !path.is_empty() => PathBuf::from(path),

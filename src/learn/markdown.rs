@@ -43,6 +43,9 @@ pub struct Rendered {
     pub figures_pending: bool,
     /// The links, in reading order.
     pub links: Vec<Link>,
+    /// Anchors written as HTML (`<a id="jackson">`, the bibliography's
+    /// entries): (line index, id).
+    pub anchors: Vec<(usize, String)>,
 }
 
 /// A link of the text: where it points, and where it is drawn (a link that
@@ -458,6 +461,14 @@ impl Renderer {
 
     fn html(&mut self, html: &str) {
         let h = html.trim();
+        // An anchor of its own (`<a id="…">`): a link's target, as a heading is.
+        if let Some(at) = h.find("<a id=\"") {
+            let id = &h[at + "<a id=\"".len()..];
+            if let Some(end) = id.find('"') {
+                let line = self.out.lines.len();
+                self.out.anchors.push((line, id[..end].to_string()));
+            }
+        }
         // An <img> (side-by-side figures in raw HTML) is drawn as a Markdown image is.
         let mut rest = h;
         while let Some(at) = rest.find("<img ") {

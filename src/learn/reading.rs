@@ -101,7 +101,15 @@ impl Learn {
             .headings
             .iter()
             .find(|(_, _, h)| h == text || book::slug(h) == text)
-            .map(|(line, ..)| *line);
+            .map(|(line, ..)| *line)
+            .or_else(|| {
+                // Or an anchor written as HTML: `<a id="jackson">`.
+                self.rendered
+                    .anchors
+                    .iter()
+                    .find(|(_, id)| id == text)
+                    .map(|(line, _)| *line)
+            });
         if let Some(line) = line {
             self.scroll = line;
             self.clamp_scroll();
@@ -282,7 +290,7 @@ impl Learn {
             self.inform(format!("followed the link to {title}; ← → and c move on"));
         } else {
             self.inform(format!(
-                "followed the link to {title} (no heading “{anchor}” in it)"
+                "followed the link to {title} (no heading or anchor “{anchor}” in it)"
             ));
         }
     }

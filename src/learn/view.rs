@@ -344,6 +344,21 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
             ),
             theme::info(),
         )),
+        // A full field says its limit before the text (which may fill
+        // the line): no character is dropped unannounced.
+        (Mode::Search(q, forward), _) if q.chars().count() >= crate::learn::search::LONGEST => {
+            Line::from(vec![
+                Span::styled(if *forward { " /" } else { " ?" }, theme::key()),
+                Span::styled(
+                    format!(
+                        "(full: {} characters; Ctrl-U clears) ",
+                        crate::learn::search::LONGEST
+                    ),
+                    theme::error(),
+                ),
+                Span::styled(format!("{q}▏"), theme::selected()),
+            ])
+        }
         (Mode::Search(q, forward), _) => Line::from(vec![
             Span::styled(if *forward { " /" } else { " ?" }, theme::key()),
             Span::styled(format!("{q}▏"), theme::selected()),
@@ -354,8 +369,10 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
                         last.query,
                         if *forward { "" } else { "; backward" }
                     ),
-                    _ if !forward => "  Enter finds backward, Esc cancels".to_string(),
-                    _ => "  Enter finds, Esc cancels".to_string(),
+                    _ if !forward => {
+                        "  Enter finds backward, Ctrl-U clears, Esc cancels".to_string()
+                    }
+                    _ => "  Enter finds, Ctrl-U clears, Esc cancels".to_string(),
                 },
                 theme::label(),
             ),

@@ -262,3 +262,59 @@ fn v_tells_the_truth_about_the_models_drawn() {
     let said = message(&learn);
     assert!(!said.contains("Tab"), "{said}");
 }
+
+/// In the search prompt Ctrl-U clears the field (as in the live view's
+/// editor), and a full field says its limit.
+#[test]
+fn the_search_prompt_clears_on_ctrl_u_and_says_its_limit() {
+    use crossterm::event::{Event, KeyEvent, KeyModifiers};
+    let mut learn = Learn::open(&book(), Some("1")).unwrap();
+    draw(&mut learn, 80, 24);
+    press(&mut learn, KeyCode::Char('/'));
+    for c in "x".repeat(100).chars() {
+        press(&mut learn, KeyCode::Char(c));
+    }
+    let shown = draw(&mut learn, 80, 24);
+    let limit = spintop_app::learn::search::LONGEST;
+    assert!(
+        shown.contains(&format!("(full: {limit} characters; Ctrl-U clears)")),
+        "{shown}"
+    );
+    let ctrl_u = Event::Key(KeyEvent::new(KeyCode::Char('u'), KeyModifiers::CONTROL));
+    let command = learn.command_for(&ctrl_u).expect("Ctrl-U is taken");
+    learn.apply(command);
+    assert_eq!(learn.mode(), &Mode::Search(String::new(), true));
+}
+
+/// A link to a bibliography entry (an anchor written `<a id="…">`) lands
+/// on the entry, not at the top of the page.
+#[test]
+fn links_to_html_anchors_land_on_them() {
+    let mut learn = Learn::open(&book(), Some("numerical-methods")).unwrap();
+    draw(&mut learn, 80, 24);
+    let k = learn
+        .rendered()
+        .links
+        .iter()
+        .position(|l| l.target == "bibliography.md#hairer-2")
+        .expect("a link to the bibliography");
+    for _ in 0..=k {
+        learn.apply(Command::NextLink);
+    }
+    learn.apply(Command::FollowLink);
+    let said = message(&learn);
+    assert!(!said.contains("no heading"), "{said}");
+    let shown = draw(&mut learn, 80, 24);
+    assert!(
+        shown.contains("Hairer and Wanner") || shown.contains("Hairer, E."),
+        "{shown}"
+    );
+    let line = learn
+        .rendered()
+        .anchors
+        .iter()
+        .find(|(_, id)| id == "hairer-2")
+        .map(|(l, _)| *l)
+        .expect("the anchor");
+    assert!(line > 0);
+}
