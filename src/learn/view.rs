@@ -64,7 +64,11 @@ pub fn draw(frame: &mut Frame, learn: &Learn) {
     }
     let panes = learn.panes_in((area.width, area.height));
     draw_header(frame, panes.header, learn);
-    if let Some(text) = panes.text {
+    if let Some(mut text) = panes.text {
+        // A message of more rows than one takes them from the text's
+        // bottom, above its frame line: the position stays in sight.
+        let more = message_rows(learn, panes.status.width).saturating_sub(1);
+        text.height = text.height.saturating_sub(more).max(3.min(text.height));
         draw_text(frame, text, learn);
     }
     if let Some(scene) = panes.scene {
@@ -390,6 +394,20 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
         _ => scene_status(learn, scene_shown),
     };
     frame.render_widget(Paragraph::new(line), area);
+}
+
+/// The rows the status message takes (1 to 3), as [`draw_message`] wraps it.
+fn message_rows(learn: &Learn, width: u16) -> u16 {
+    match (learn.mode(), learn.message()) {
+        _ if learn.searching().is_some() => 1,
+        (Mode::Search(..), _) | (_, None) => 1,
+        (_, Some((m, _))) => {
+            let p = Paragraph::new(Line::from(format!(" {m}"))).wrap(Wrap { trim: false });
+            u16::try_from(p.line_count(width))
+                .unwrap_or(u16::MAX)
+                .clamp(1, 3)
+        }
+    }
 }
 
 /// A status message, wrapped upward over the text when one row is too

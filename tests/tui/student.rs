@@ -318,3 +318,32 @@ fn links_to_html_anchors_land_on_them() {
         .expect("the anchor");
     assert!(line > 0);
 }
+
+/// A message that wraps to two rows leaves the text's frame line, with the
+/// position on it, in sight.
+#[test]
+fn a_two_row_message_leaves_the_position_in_sight() {
+    let mut learn = Learn::open(&book(), Some("4.2")).unwrap();
+    draw(&mut learn, 80, 24);
+    press(&mut learn, KeyCode::Char('v'));
+    let said = message(&learn);
+    assert!(said.chars().count() > 80, "a message of two rows: {said}");
+    let shown = draw(&mut learn, 80, 24);
+    let flat = shown.split_whitespace().collect::<Vec<_>>().join(" ");
+    let tail: String = said
+        .split_whitespace()
+        .rev()
+        .take(3)
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .collect::<Vec<_>>()
+        .join(" ");
+    assert!(flat.contains(&tail), "the message whole:\n{shown}");
+    assert!(
+        shown
+            .lines()
+            .any(|r| r.contains("% lines ") && r.contains('╰')),
+        "the frame line with the position:\n{shown}"
+    );
+}
