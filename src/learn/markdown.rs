@@ -788,17 +788,44 @@ impl Renderer {
                 widths[i] = widths[i].max(cell.width());
             }
         }
-        // Shrink the widest columns until the table fits.
+        // Shrink the widest columns until the table fits, each no narrower
+        // than its longest word while any other can give (cells wrap at
+        // words: "equatio/n" only when no column has room to spare).
+        let floors: Vec<usize> = (0..columns)
+            .map(|i| {
+                t.rows
+                    .iter()
+                    .filter_map(|r| r.get(i))
+                    .flat_map(|c| c.split_whitespace())
+                    .map(UnicodeWidthStr::width)
+                    .max()
+                    .unwrap_or(1)
+            })
+            .collect();
         let budget = self
             .width
             .saturating_sub(indent.width() + 3 * columns)
             .max(columns * 4);
+        if floors.iter().sum::<usize>() > budget && t.rows.len() > 1 {
+            // Too narrow for its columns with words whole: row by row.
+            self.draw_records(&t, &indent);
+            return;
+        }
         while widths.iter().sum::<usize>() > budget {
-            let (i, _) = widths
-                .iter()
-                .enumerate()
-                .max_by_key(|(_, w)| **w)
-                .unwrap_or((0, &0));
+            let widest = |above_floor: bool| {
+                widths
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, w)| !above_floor || **w > floors[*i])
+                    .max_by_key(|(_, w)| **w)
+                    .map(|(i, _)| i)
+            };
+            let Some(i) = widest(true).or_else(|| widest(false)) else {
+                break;
+            };
+            if widths[i] <= 1 {
+                break;
+            }
             widths[i] -= 1;
         }
         for (r, row) in t.rows.iter().enumerate() {
@@ -836,6 +863,44 @@ impl Renderer {
                     format!("{indent}{}", rule.join("─┼─")),
                     style::rule(),
                 )));
+            }
+        }
+        self.blank();
+    }
+}
+
+impl Renderer {
+    /// A table too wide for its columns, by rule: each row a record, its
+    /// first cell in bold and the others under it as "heading: cell",
+    /// wrapped at words.
+    fn draw_records(&mut self, t: &Table, indent: &str) {
+        let head = &t.rows[0];
+        let width = self.width.saturating_sub(indent.width() + 2).max(10);
+        for row in &t.rows[1..] {
+            let first = row.first().map(String::as_str).unwrap_or("");
+            for (k, l) in wrap_plain(first, width + 2).into_iter().enumerate() {
+                let lead = if k == 0 { "" } else { "  " };
+                self.out.lines.push(Line::from(vec![
+                    Span::raw(format!("{indent}{lead}")),
+                    Span::styled(l, Style::new().add_modifier(Modifier::BOLD)),
+                ]));
+            }
+            for (i, cell) in row.iter().enumerate().skip(1) {
+                let name = head.get(i).map(String::as_str).unwrap_or("");
+                let text = if name.is_empty() {
+                    cell.clone()
+                } else {
+                    format!("{name}: {cell}")
+                };
+                for (k, l) in wrap_plain(&text, width.saturating_sub(2).max(8))
+                    .into_iter()
+                    .enumerate()
+                {
+                    let lead = if k == 0 { "  " } else { "    " };
+                    self.out
+                        .lines
+                        .push(Line::from(format!("{indent}{lead}{l}")));
+                }
             }
         }
         self.blank();

@@ -347,3 +347,41 @@ fn a_two_row_message_leaves_the_position_in_sight() {
         "the frame line with the position:\n{shown}"
     );
 }
+
+/// The words of the text of a chapter as rendered (code left out: it is
+/// broken with a mark of its own).
+fn prose_words(learn: &Learn) -> Vec<String> {
+    let code = spintop_app::learn::markdown::code_style();
+    learn
+        .rendered()
+        .lines
+        .iter()
+        .flat_map(|l| l.spans.iter().filter(|s| s.style != code))
+        .flat_map(|s| {
+            s.content
+                .split(|c: char| !c.is_alphanumeric())
+                .filter(|w| w.len() > 2)
+                .map(str::to_string)
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// At 80 columns with the scene beside the text, the tables of *Where
+/// methods fail* break their cells at words (a table too wide for that
+/// is drawn row by row): every word drawn narrow is a word drawn wide.
+#[test]
+fn tables_beside_the_scene_wrap_at_words() {
+    let mut narrow = Learn::open(&book(), Some("where methods fail")).unwrap();
+    draw(&mut narrow, 80, 24);
+    let mut wide = Learn::open(&book(), Some("where methods fail")).unwrap();
+    draw(&mut wide, 300, 60);
+    let whole: std::collections::HashSet<String> = prose_words(&wide).into_iter().collect();
+    let words = prose_words(&narrow);
+    assert!(words.len() > 500, "the chapter's words");
+    let cut: Vec<&String> = words.iter().filter(|w| !whole.contains(*w)).collect();
+    assert!(cut.is_empty(), "words cut: {cut:?}");
+    for needed in ["equation", "integrate", "runaway"] {
+        assert!(words.iter().any(|w| w == needed), "{needed}");
+    }
+}
