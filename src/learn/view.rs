@@ -126,7 +126,20 @@ fn draw_header(frame: &mut Frame, area: Rect, learn: &Learn) {
     let n = learn.chapters().len();
     let mut cells = vec![
         Cell::fixed(vec![Span::styled(" spintop learn ", theme::status(false))]),
-        Cell::fixed(vec![Span::styled(chapter.title.clone(), theme::title())]),
+        // The title shortens before the course would be left out: at 80
+        // columns beside the scene the header keeps the course's count.
+        Cell(
+            [
+                chapter.title.clone(),
+                shortened(&chapter.title, 30),
+                chapter
+                    .section()
+                    .map_or_else(|| format!("{}", learn.current() + 1), |s| format!("§{s}")),
+            ]
+            .into_iter()
+            .map(|t| vec![Span::styled(t, theme::title())])
+            .collect(),
+        ),
     ];
     // The course before the chapter's count: the count shortens first.
     cells.extend(course_cell(learn));
@@ -391,7 +404,7 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
             };
             return draw_message(frame, area, &format!(" {m}"), style);
         }
-        _ => scene_status(learn, scene_shown),
+        _ => scene_status(learn, scene_shown, area.width),
     };
     frame.render_widget(Paragraph::new(line), area);
 }
@@ -440,7 +453,7 @@ fn draw_message(frame: &mut Frame, area: Rect, text: &str, style: Style) {
 }
 
 /// The scene's clock and state, when nothing else is said.
-fn scene_status(learn: &Learn, scene_shown: bool) -> Line<'static> {
+fn scene_status(learn: &Learn, scene_shown: bool, width: u16) -> Line<'static> {
     let stage = learn.stage();
     let mut spans = vec![Span::styled(" scene ", theme::label())];
     match stage.clock() {
@@ -458,7 +471,23 @@ fn scene_status(learn: &Learn, scene_shown: bool) -> Line<'static> {
                 ));
             }
         }
-        None => spans.push(Span::styled(learn.scene_info().describe(), theme::label())),
+        None => {
+            // A chapter without a scene: its note whole when it fits, else
+            // its last clause (the command it names) rather than a cut one.
+            let about = learn.scene_info().describe();
+            let last = about.rsplit("; ").next().unwrap_or(&about).to_string();
+            let choices = [
+                format!(" scene {about}"),
+                format!(" {about}"),
+                format!(" no scene: {last}"),
+                format!(" {last}"),
+            ];
+            let fits = choices
+                .iter()
+                .find(|c| Span::raw(c.as_str()).width() <= usize::from(width));
+            let text = fits.map_or_else(|| shortened(&choices[3], width), Clone::clone);
+            return Line::from(Span::styled(text, theme::label()));
+        }
     }
     Line::from(spans)
 }

@@ -385,3 +385,51 @@ fn tables_beside_the_scene_wrap_at_words() {
         assert!(words.iter().any(|w| w == needed), "{needed}");
     }
 }
+
+/// The scenes' words fit the scene at 80 and 100 columns with the value or
+/// the verdict kept: the appendix's panels say stable and unstable, §2's
+/// collapse time has its number, a chapter without a scene names its command
+/// whole, and §2's header keeps the course.
+#[test]
+fn scene_words_keep_their_point_at_80_and_100_columns() {
+    let mut appendix = Learn::open(&book(), Some("A")).unwrap();
+    let shown = draw(&mut appendix, 80, 24);
+    assert!(
+        shown.contains(" stable") && shown.contains("unstable"),
+        "{shown}"
+    );
+    assert!(
+        !shown.contains("the shell again") && !shown.contains("point charg…"),
+        "{shown}"
+    );
+
+    let mut two = Learn::open(&book(), Some("2")).unwrap();
+    let shown = draw(&mut two, 100, 40);
+    let at = shown.find("t_c = ").expect("the collapse time");
+    let after = &shown[at + "t_c = ".len()..];
+    let after = after.split(" = ").last().unwrap_or(after);
+    assert!(
+        after.trim_start().starts_with(|c: char| c.is_ascii_digit()),
+        "t_c has its value: {}",
+        &shown[at..at + 60.min(shown.len() - at)]
+    );
+
+    let mut scales = Learn::open(&book(), Some("question and its scales")).unwrap();
+    let shown = draw(&mut scales, 80, 24);
+    assert!(
+        shown.contains("spintop run nanoparticle-1e3-debye"),
+        "the command whole:\n{shown}"
+    );
+
+    let status = Status::new(0, |a| match a.function {
+        "larmor_rate" => State::Passing,
+        _ => State::NotStarted,
+    });
+    two.course_report(Report::Graded(status));
+    let shown = draw(&mut two, 80, 24);
+    let header = shown.lines().next().unwrap_or_default();
+    assert!(
+        header.contains("course"),
+        "the header keeps the course: {header}"
+    );
+}
