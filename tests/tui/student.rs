@@ -433,3 +433,67 @@ fn scene_words_keep_their_point_at_80_and_100_columns() {
         "the header keeps the course: {header}"
     );
 }
+
+/// The real binary under `NO_COLOR=1` in tmux at 80×24: the contents'
+/// selection is drawn in reverse video and the matched word is marked, as
+/// the terminal shows them (crossterm's colours under NO_COLOR reset every
+/// attribute, so a frame with colour in it lost its marks).
+#[test]
+#[ignore = "end-to-end: tmux"]
+fn no_color_keeps_reverse_video_in_a_real_terminal() {
+    let progress = std::env::temp_dir().join(format!(
+        "spintop-student-nocolor-{}.json",
+        std::process::id()
+    ));
+    let env = format!("NO_COLOR=1 SPINTOP_LEARN_PROGRESS='{}'", progress.display());
+    let Some(tmux) =
+        super::tmux::launch_sized("nocolor", &env, "learn --no-grading --chapter 1", (80, 24))
+    else {
+        return;
+    };
+    let limit = std::time::Duration::from_secs(30);
+    tmux.wait_for("the reader", limit, |s| s.contains("spintop learn"));
+    let styled = || {
+        let out = tmux.run(&["capture-pane", "-e", "-p", "-t", "spintop"]);
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    // Reverse video is SGR 7, alone or among others (`ESC[7m`, `ESC[1;7m`).
+    let reversed = |s: &str| {
+        s.split("\u{1b}[").skip(1).any(|seq| {
+            seq.split_once('m')
+                .is_some_and(|(codes, _)| codes.split(';').any(|c| c == "7"))
+        })
+    };
+    let colour = |s: &str| {
+        s.split("\u{1b}[").skip(1).any(|seq| {
+            seq.split_once('m').is_some_and(|(codes, _)| {
+                codes.split(';').any(|c| {
+                    c.parse::<u16>().is_ok_and(|n| {
+                        (30..=37).contains(&n)
+                            || (40..=47).contains(&n)
+                            || (90..=107).contains(&n)
+                            || n == 38
+                            || n == 48
+                    })
+                })
+            })
+        })
+    };
+    tmux.keys("c");
+    tmux.keys("Down");
+    tmux.keys("Down");
+    tmux.wait_for("the contents", limit, |s| s.contains("contents:"));
+    let start = std::time::Instant::now();
+    let mut screen = styled();
+    while !reversed(&screen) && start.elapsed() < std::time::Duration::from_secs(3) {
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        screen = styled();
+    }
+    assert!(
+        reversed(&screen),
+        "the selection in reverse video:\n{screen}"
+    );
+    assert!(!colour(&screen), "no colour under NO_COLOR:\n{screen}");
+    tmux.keys("q");
+    let _ = std::fs::remove_file(&progress);
+}
