@@ -284,9 +284,12 @@ fn in_space(figure: &Figure, area: Rect, buf: &mut Buffer, plain: bool) {
     }
 }
 
+/// A chart's curve: its points, its style and its marker.
+type Curve = (Vec<(f64, f64)>, Style, Marker);
+
 fn chart_of(
     title: &'static str,
-    curves: Vec<(Vec<(f64, f64)>, Style, Marker)>,
+    curves: Vec<Curve>,
     t_end: f64,
     y: [f64; 2],
     area: Rect,
