@@ -492,6 +492,25 @@ impl Learn {
         self.restore_position();
     }
 
+    /// The open chapter as plain text at `width` columns, as the reader
+    /// draws it (the library's excerpts folded to one line, the lessons'
+    /// code whole, figures and diagrams drawn, no colour): what
+    /// `spintop learn --chapter X --list` prints.
+    pub fn chapter_text(&self, width: u16) -> String {
+        let options = markdown::Options {
+            unfold: false,
+            figures_later: false,
+            images: Some(self.book.clone()),
+        };
+        markdown::plain(&markdown::render_with(&self.source, width, &options).lines)
+    }
+
+    /// Shows `text` on the status line until the next key (what the reader
+    /// should know at the start, such as which book is read).
+    pub fn note(&mut self, text: impl Into<String>) {
+        self.inform(text);
+    }
+
     /// The progress of this session: the chapters opened, the one open,
     /// where each was left.
     pub fn progress(&self) -> Progress {

@@ -144,7 +144,7 @@ pub(crate) fn execute(args: BookArgs, out: &mut Gate<'_>) -> Result<(), CliError
     let repo = spintop_course::repository().to_path_buf();
     if !repo.join("book/book.toml").is_file() || !repo.join("Cargo.toml").is_file() {
         return Err(bad(format!(
-            "spintop book serves the book of the repository, and {} is missing; run it from a clone of spintop (cargo run --release -- book)",
+            "spintop book serves the book of the repository, and {} is missing; run it from a clone of spintop (cargo run --release -- book), or read the book in the terminal with spintop learn, which also reads the book a course copy carries",
             repo.join("book/book.toml").display()
         )));
     }

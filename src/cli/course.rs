@@ -256,7 +256,13 @@ fn status(args: &CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
         };
         course::grade(&dir, &options)
     })
-    .map_err(|e| bad(e.to_string()))?;
+    .map_err(|e| {
+        if e.is_grading_failure() {
+            CliError::Stopped(format!("course: {e}"))
+        } else {
+            bad(e.to_string())
+        }
+    })?;
     if !args.solutions {
         course::record_passes_now(&dir, &status);
     }
@@ -300,16 +306,12 @@ fn print_status(
             a.chapter,
             a.function,
             chosen.file(a),
-            s.word()
+            status.word_of(s)
         )?;
     }
     // A compile error or a shortcut comes first.
     if let Some(place) = status.next_place() {
-        let what = if status.compile_error.is_some() {
-            "the lessons do not compile"
-        } else {
-            "the copy takes a shortcut"
-        };
+        let what = status.whole_copy_reason().unwrap_or_default();
         let detail = status
             .compile_error
             .as_ref()
@@ -390,7 +392,7 @@ fn export(dir: &Path, ci: Option<CiChoice>, out: &mut impl Write) -> Result<(), 
         .map_err(|e| bad(format!("course export: {e}")))?;
     writeln!(
         out,
-        "spintop course export: wrote {} files to {} (stubs, graders' tests, the assignments page, spintop's core and graders in crates/; no solutions)",
+        "spintop course export: wrote {} files to {} (stubs, graders' tests, the assignments page, spintop's core and graders in crates/, the book in book/src; no solutions)",
         written.files.len(),
         dir.display()
     )?;

@@ -2,12 +2,14 @@
 //! scenes (the screen itself is [`crate::learn`]; this file validates,
 //! chooses the course to grade, and says how the session ended).
 //!
-//! The chapters are read from the repository's `book/src` (one source: the
-//! same Markdown mdBook builds), so `spintop learn` needs the repository, as
-//! the course does. The course graded beside the book is the one the
-//! command stands in (a student's copy, or the repository's lessons), as
-//! `spintop course` finds it. Progress is one small file,
-//! `target/spintop-learn.json`, kept as the reader reads.
+//! The course is the one the command stands in (a student's copy, or a
+//! clone's lessons), as `spintop course` finds it, or the one `--course`
+//! names: it is graded beside the book, and its book is read
+//! ([`Book::beside`]: the `book/src` a copy made by `spintop course export`
+//! carries, or a clone's, the same Markdown mdBook builds; else the book of
+//! the repository this spintop was built from). Progress is one small file,
+//! `target/spintop-learn.json` in the folder the book belongs to, kept as
+//! the reader reads.
 
 use super::gate::Gate;
 use super::{CliError, bad};
@@ -15,7 +17,7 @@ use crate::learn::scene::{Scene, Spec};
 use crate::learn::{Learn, progress};
 use crate::term::session;
 use clap::Args;
-use spintop_course::Course;
+use spintop_course::{Book, Course};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
@@ -25,11 +27,13 @@ use std::path::{Path, PathBuf};
     spintop learn                                    the book in the terminal, where you left it\n  \
     spintop learn --chapter 4.2                      Section 4.2 beside its scene\n  \
     spintop learn --chapter 9                        the ninth chapter, as the header counts\n  \
-    spintop learn --list
-
-The reading place (the chapter, where in it, the chapters opened) is kept in
-target/spintop-learn.json of the repository the book is read from, written as
-you read and on every way out; --reset forgets it.")]
+    spintop learn --list\n  \
+    spintop learn --chapter 4.1 --list               Section 4.1 as plain text\n\n\
+The book is the one the course you stand in carries (a copy made by `spintop course export`\n\
+holds it in book/src), else the book of the spintop repository; --list names it.\n\n\
+The reading place (the chapter, where in it, the chapters opened) is kept in\n\
+target/spintop-learn.json of the folder the book belongs to (the copy's, or the\n\
+repository's), written as you read and on every way out; --reset forgets it.")]
 pub struct LearnArgs {
     /// Open this chapter: a section of the paper (2, 3, 4.1, 4.2, 5, A), the
     /// chapter's number as the header shows it (9; '#3' where 3 is also a
@@ -37,8 +41,9 @@ pub struct LearnArgs {
     /// words of its title (where methods fail), in any case.
     #[arg(long, value_name = "CHAPTER")]
     chapter: Option<String>,
-    /// Print the chapters, their scenes and experiments, and the progress, as
-    /// plain text, and exit.
+    /// Print the chapters, their scenes and experiments, the progress and
+    /// which book is read, as plain text, and exit; with --chapter, print
+    /// that chapter's text instead (80 columns).
     #[arg(long)]
     list: bool,
     /// Forget the progress (the chapters opened) and exit.
@@ -49,49 +54,50 @@ pub struct LearnArgs {
     /// is saved).
     #[arg(long)]
     no_grading: bool,
-    /// The course to grade beside the book: a lessons crate (default: the
-    /// one the current folder is in, as cargo finds its manifest; else the
-    /// repository's lessons/).
+    /// The course to grade beside the book, whose book is read if it carries
+    /// one: a lessons crate (default: the one the current folder is in, as
+    /// cargo finds its manifest; else the repository's lessons/).
     #[arg(long, value_name = "DIR", conflicts_with = "no_grading")]
     course: Option<PathBuf>,
 }
 
-fn repository() -> PathBuf {
-    spintop_course::repository().to_path_buf()
+/// The course the command stands in (named, or found from the current
+/// folder, else the repository's): the one graded beside the book, and the
+/// one whose book is read.
+fn chosen(args: &LearnArgs) -> Course {
+    let cwd = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+    Course::choose(args.course.as_deref(), &cwd)
 }
 
-fn book_dir(repo: &Path) -> Result<PathBuf, CliError> {
-    let book = repo.join("book").join("src");
-    if book.join("SUMMARY.md").is_file() {
-        Ok(book)
-    } else {
-        Err(bad(format!(
-            "spintop learn reads the book from the repository, and {} is missing; run it from a clone of spintop (`cargo run --release -- learn`)",
-            book.join("SUMMARY.md").display()
-        )))
-    }
+/// The book to read beside `course` ([`Book::beside`]: the one the course
+/// carries, else the repository's).
+fn book(course: &Course) -> Result<Book, CliError> {
+    Book::beside(course, spintop_course::repository()).map_err(|e| {
+        bad(format!(
+            "spintop learn reads the book of the course it stands in: {e}; run it in a copy made by `spintop course export`, or from a clone of spintop (`cargo run --release -- learn`)"
+        ))
+    })
 }
 
-/// Where the reading place is kept for the book of `repo` (the one rule:
-/// `spintop learn --help` says it).
-pub fn progress_file(repo: &Path) -> PathBuf {
+/// Where the reader's place is kept: in the `target/` of the folder the
+/// book belongs to (the copy's, or the repository's). The one rule;
+/// `spintop learn --help` says it.
+pub fn progress_file(book: &Book) -> PathBuf {
     // The tests point this elsewhere, so that they never touch a student's progress.
     match std::env::var_os("SPINTOP_LEARN_PROGRESS") {
         Some(path) if !path.is_empty() => PathBuf::from(path),
-        _ => repo.join("target").join("spintop-learn.json"),
+        _ => book.home.join("target").join("spintop-learn.json"),
     }
 }
 
 /// The course to grade beside the book, checked before the screen changes:
 /// the one named, or the one the current folder stands in.
-fn course(args: &LearnArgs) -> Result<Option<Course>, CliError> {
+fn graded(args: &LearnArgs, course: &Course) -> Result<Option<Course>, CliError> {
     if args.no_grading {
         return Ok(None);
     }
-    let cwd = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
-    let course = Course::choose(args.course.as_deref(), &cwd);
     match spintop_course::check_lessons_dir(&course.dir) {
-        Ok(()) => Ok(Some(course)),
+        Ok(()) => Ok(Some(course.clone())),
         Err(e) if args.course.is_some() => Err(bad(format!("--course: {e}"))),
         // No course here, and the repository's is missing: the book alone.
         Err(_) => Ok(None),
@@ -100,8 +106,10 @@ fn course(args: &LearnArgs) -> Result<Option<Course>, CliError> {
 
 /// Runs `spintop learn`.
 pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
-    let repo = repository();
-    let progress_path = progress_file(&repo);
+    let chosen = chosen(&args);
+    let course = graded(&args, &chosen)?;
+    let book = book(&chosen)?;
+    let progress_path = progress_file(&book);
     if args.reset {
         match std::fs::remove_file(&progress_path) {
             Ok(()) => writeln!(
@@ -116,26 +124,28 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
         }
         return Ok(());
     }
-    let book = book_dir(&repo)?;
-    let course = course(&args)?;
     let read = progress::read(&progress_path);
     let start = args
         .chapter
         .clone()
         .or(if args.list { None } else { read.last.clone() });
     // The scenes run on threads of their own: the screen never waits on them.
-    let mut session = match Learn::open_in_background(&book, start.as_deref()) {
+    let mut session = match Learn::open_in_background(&book.src, start.as_deref()) {
         Ok(s) => s,
         // A stale "last chapter" in the progress file falls back to the preface.
         Err(_) if args.chapter.is_none() => {
-            Learn::open_in_background(&book, None).map_err(|e| bad(e.to_string()))?
+            Learn::open_in_background(&book.src, None).map_err(|e| bad(e.to_string()))?
         }
         Err(e) => return Err(bad(e.to_string())),
     }
     .plain(crate::term::theme::no_color());
     session.restore(&read);
+    if args.list && args.chapter.is_some() {
+        writeln!(out, "{}", session.chapter_text(TEXT_WIDTH).trim_end())?;
+        return Ok(());
+    }
     if args.list {
-        return list(&mut session, &read, out);
+        return list(&mut session, &read, &book, out);
     }
     session::check().map_err(|e| {
         bad(format!(
@@ -153,6 +163,10 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
              `spintop course export`, or name one with --course DIR",
         ),
     }
+    if book.instead_of.is_some() {
+        // Not the book one would expect where one stands: say whose it is.
+        session.note(format!("reading {}", book.describe()));
+    }
     session.keep_progress(progress_path, read);
     // However the session ends (q, a signal, a terminal gone), the place is
     // saved before anything else is said.
@@ -168,16 +182,21 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
     Ok(())
 }
 
+/// The width `--chapter X --list` prints a chapter at (a terminal's).
+const TEXT_WIDTH: u16 = 80;
+
 fn list(
     session: &mut Learn,
     progress: &progress::Progress,
+    book: &Book,
     out: &mut impl Write,
 ) -> Result<(), CliError> {
     let opened = progress.opened.len();
     writeln!(
         out,
-        "spintop learn: {} chapters, {opened} opened",
-        session.chapters().len()
+        "spintop learn: {} chapters, {opened} opened; reading {}",
+        session.chapters().len(),
+        book.describe()
     )?;
     let chapters = session.chapters().to_vec();
     let mut part = None;
@@ -201,7 +220,7 @@ fn list(
             c.title,
             c.file.trim_end_matches(".md")
         )?;
-        let experiments = match experiments_of(session, i)? {
+        let experiments = match experiments_of(&book.src, &c.file)? {
             0 => String::new(),
             1 => "; 1 experiment".into(),
             n => format!("; {n} experiments"),
@@ -210,7 +229,7 @@ fn list(
     }
     writeln!(
         out,
-        "open one with: spintop learn --chapter 4.2 (a section), --chapter 9 (its number) or --chapter numerical-methods (a file)"
+        "open one with: spintop learn --chapter 4.2 (a section), --chapter 9 (its number) or --chapter numerical-methods (a file); print one as text with --chapter 4.2 --list"
     )?;
     Ok(())
 }
@@ -223,9 +242,7 @@ fn scene_line(scene: &Scene) -> String {
     }
 }
 
-fn experiments_of(session: &Learn, index: usize) -> Result<usize, CliError> {
-    let book = book_dir(&repository())?;
-    let file = &session.chapters()[index].file;
+fn experiments_of(book: &Path, file: &str) -> Result<usize, CliError> {
     let text = std::fs::read_to_string(book.join(file)).map_err(CliError::Io)?;
     Ok(crate::learn::markdown::render(&text, 80).experiments.len())
 }

@@ -89,6 +89,9 @@ pub enum Command {
     NextModel,
     /// The terminal's size changed (columns, rows).
     Resize(u16, u16),
+    /// A key the view does not take, by its name: answered, never ignored
+    /// (an old message left on the screen would read as its answer).
+    Unknown(String),
 }
 
 /// [`TICK`] in thousandths of τ, for the exact integer accounting of the
@@ -263,7 +266,10 @@ impl App {
         settings: &Settings,
         background: bool,
     ) -> Result<(Vec<Column>, Stepper), Refusal> {
-        let plans = settings.top().plans(settings.method(), settings.omega0())?;
+        let plans =
+            settings
+                .top()
+                .plans(settings.method(), settings.omega0(), settings.euler0())?;
         let columns = plans
             .iter()
             .map(|(plan, stand_in)| Column::new(plan.clone(), stand_in.clone()))
@@ -578,6 +584,7 @@ impl App {
                     self.say_edit();
                 }
             }
+            Command::Unknown(key) => self.refuse(format!("{key}: no such key; ? for help")),
             Command::NudgeUp => self.nudge(NUDGE),
             Command::NudgeDown => self.nudge(-NUDGE),
             Command::Commit => self.commit(),
@@ -687,7 +694,7 @@ impl App {
             return;
         }
         let mut method = self.settings.method();
-        let mut skipped: Vec<&str> = Vec::new();
+        let mut skipped: Vec<MethodChoice> = Vec::new();
         let mut first_refusal = None;
         let mut candidate = None;
         for _ in 0..super::layout::METHOD_CYCLE.len() {
@@ -701,12 +708,16 @@ impl App {
                     break;
                 }
                 Err(e) => {
-                    skipped.push(method.title());
+                    skipped.push(method);
                     first_refusal.get_or_insert(e);
                 }
             }
         }
+        if candidate.is_none() && !skipped.is_empty() {
+            return self.refuse(self.no_method_runs(&skipped));
+        }
         let candidate = candidate.ok_or_else(|| first_refusal.unwrap_or(Refusal::NoOtherMethod));
+        let skipped: Vec<&str> = skipped.iter().map(|m| m.title()).collect();
         let what = if skipped.is_empty() || candidate.is_err() {
             format!("method {}", method_title(method, &top))
         } else {
@@ -717,6 +728,29 @@ impl App {
             )
         };
         self.change(candidate, what);
+    }
+
+    /// Why `m` changes nothing when every other method (`tried`) is refused
+    /// here: the method that runs at the fastest slower warp is named, not
+    /// the first refusal's (DP5's "20 τ/s" where auto runs at 500).
+    fn no_method_runs(&self, tried: &[MethodChoice]) -> String {
+        let top = self.settings.top();
+        let u = top.time_unit();
+        let best = tried
+            .iter()
+            .filter_map(|m| Some((*m, self.settings.fastest_warp_for(*m)?)))
+            .max_by(|a, b| a.1.total_cmp(&b.1));
+        let here = format!(
+            "refused: no method runs this top live at {} {u}/s",
+            self.settings.warp()
+        );
+        match best {
+            Some((m, w)) => format!(
+                "{here}; {} runs at {w} {u}/s (- slows down)",
+                method_title(m, top)
+            ),
+            None => format!("{here}, nor slower; a smaller |Ω₀| costs less"),
+        }
     }
 
     /// Tab: the next model, where the screen shows one at a time; where all
@@ -847,11 +881,17 @@ impl App {
 /// The name of a method choice on the screen, the same in the header, the
 /// columns and the messages: `auto` says what it runs here.
 pub fn method_title(method: MethodChoice, top: &super::layout::Top) -> String {
-    match method {
-        MethodChoice::Auto if top.resolves_same(MethodChoice::Auto, MethodChoice::Exact) => {
-            "auto (closed form)".into()
-        }
-        other => other.title().into(),
+    let same = (method == MethodChoice::Auto)
+        .then(|| {
+            super::layout::METHOD_CYCLE[1..]
+                .iter()
+                .find(|m| top.resolves_same(MethodChoice::Auto, **m))
+        })
+        .flatten();
+    match same {
+        Some(MethodChoice::Exact) => "auto (closed form)".into(),
+        Some(m) => format!("auto ({})", m.title()),
+        None => method.title().into(),
     }
 }
 

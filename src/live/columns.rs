@@ -139,7 +139,9 @@ impl Column {
             // The forward run is there to run away: the reason says it all.
             why
         } else {
-            format!("{why}; m switches the method, r restarts, a smaller Ω₀ helps")
+            format!(
+                "{why}; m switches the method, - slows the warp, r restarts, a smaller Ω₀ helps"
+            )
         });
     }
 

@@ -141,7 +141,10 @@ fn draw_column(
         Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)])
             .areas(pictures);
     frame.render_widget(hodograph(column, hodo_area), hodo_area);
-    frame.render_widget(top_in_space(column, space_area), space_area);
+    frame.render_widget(
+        top_in_space(column, space_area, app.settings().euler0().is_none()),
+        space_area,
+    );
     let [rows, last] =
         Layout::vertical([Constraint::Length(5), Constraint::Fill(1)]).areas(numbers_area);
     let wide = area.width >= WIDE;

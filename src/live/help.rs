@@ -24,10 +24,7 @@ const KEYS: [(&str, &str); 13] = [
         "Enter",
         "edit it: type or paste a number, ↑/↓ ±0.01, ^U clears, Enter applies, Esc cancels (q is refused there, never quits)",
     ),
-    (
-        "m",
-        "method: auto, RK4, DP5, DOP853, Radau5, Taylor, and back to auto (auto is the closed forms here)",
-    ),
+    ("m", "method: {cycle}, and back to auto"),
     ("l", "log-time charts (the whole run) or the last 200τ"),
     (
         "Tab",
@@ -55,7 +52,7 @@ const GENERAL_KEYS: [(&str, &str); 5] = [
     ),
     (
         "m",
-        "method of (3.3) and the reduced model: auto, RK4, DP5, DOP853, Radau5, Taylor (no closed forms; the physical column always shoots backward)",
+        "method of (3.3) and the reduced model: {cycle}, and back to auto (no closed forms; the physical column always shoots backward)",
     ),
 ];
 
@@ -196,6 +193,22 @@ pub fn lines(top: &Top) -> Vec<Line<'static>> {
                 .find(|(k, _)| k == key)
                 .map_or(*what, |(_, w)| *w);
             (*key, what)
+        })
+        .collect();
+    // `m` names the methods of its cycle, from the cycle itself.
+    let cycle: Vec<String> = super::layout::method_cycle(top)
+        .into_iter()
+        .map(|m| super::app::method_title(m, top))
+        .collect();
+    let m_says = keys
+        .iter()
+        .find(|(k, _)| *k == "m")
+        .map(|(_, what)| what.replace("{cycle}", &cycle.join(", ")));
+    let keys: Vec<(&str, &str)> = keys
+        .into_iter()
+        .map(|(k, what)| match (&m_says, k) {
+            (Some(m), "m") => (k, m.as_str()),
+            _ => (k, what),
         })
         .collect();
     let mut lines = title(top);

@@ -13,6 +13,7 @@ pub fn takes_turns(width: u16, n: usize) -> bool {
     n > 1 && usize::from(width) / n < usize::from(COLUMN_WIDTH)
 }
 use spintop::math::{Real, Vec3};
+use spintop::physics::euler_angles::EulerAngles;
 use spintop::physics::general_top::GeneralTop;
 use spintop::physics::rigid_body::lab_frame;
 use spintop::physics::symmetric_top::SymmetricTop;
@@ -43,8 +44,10 @@ pub const METHOD_CYCLE: [MethodChoice; 7] = [
 
 /// The method after `method` in [`METHOD_CYCLE`] that `top` takes and that
 /// runs something else than `method` does (auto is the closed forms on a
-/// symmetric top: the cycle goes from auto to RK4); `method` itself when no
-/// column takes a method (the full ALE's two columns).
+/// symmetric top: the cycle goes from auto to RK4); auto itself is always
+/// in the cycle (on a general top it runs an integrator, and the cycle goes
+/// from Taylor to auto); `method` itself when no column takes a method (the
+/// full ALE's two columns).
 pub fn next_method(method: MethodChoice, top: &Top) -> MethodChoice {
     let at = METHOD_CYCLE.iter().position(|m| *m == method).unwrap_or(0);
     if !top.takes_a_method() {
@@ -52,8 +55,25 @@ pub fn next_method(method: MethodChoice, top: &Top) -> MethodChoice {
     }
     (1..=METHOD_CYCLE.len())
         .map(|k| METHOD_CYCLE[(at + k) % METHOD_CYCLE.len()])
-        .find(|m| top.check_method(*m).is_ok() && !top.resolves_same(*m, method))
+        .find(|m| {
+            top.check_method(*m).is_ok()
+                && (*m == MethodChoice::Auto || !top.resolves_same(*m, method))
+        })
         .unwrap_or(method)
+}
+
+/// The methods `m` visits on `top`, in order, from auto: the one list the
+/// help shows and the key walks ([`next_method`]).
+pub fn method_cycle(top: &Top) -> Vec<MethodChoice> {
+    let mut cycle = vec![MethodChoice::Auto];
+    let mut method = MethodChoice::Auto;
+    loop {
+        method = next_method(method, top);
+        if cycle.contains(&method) {
+            return cycle;
+        }
+        cycle.push(method);
+    }
 }
 
 /// The top the view shows, and so its layout.
@@ -159,12 +179,14 @@ impl Top {
         }
     }
 
-    /// How each column runs from `omega0` by `method`, and why a column
-    /// runs a lighter model than its title's, if it does.
+    /// How each column runs from `omega0` by `method`, from the orientation
+    /// `euler0` (z-x-z; the paper's frame, lab z along L₀, when `None`), and
+    /// why a column runs a lighter model than its title's, if it does.
     pub(super) fn plans(
         &self,
         method: MethodChoice,
         omega0: [Real; 3],
+        euler0: Option<[Real; 3]>,
     ) -> Result<Vec<(Plan, Option<String>)>, Refusal> {
         self.slots()
             .into_iter()
@@ -189,8 +211,11 @@ impl Top {
                         fixed = None;
                     }
                 }
-                let initial =
-                    InitialState::new(Vec3::from(omega0), lab_frame(&model.inertia(), &Vec3::from(omega0)))?;
+                let orientation = match euler0 {
+                    Some([phi, theta, psi]) => EulerAngles::new(phi, theta, psi),
+                    None => lab_frame(&model.inertia(), &Vec3::from(omega0)),
+                };
+                let initial = InitialState::new(Vec3::from(omega0), orientation)?;
                 let plan = Plan {
                     model,
                     choice: fixed.unwrap_or(method),

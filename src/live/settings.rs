@@ -47,6 +47,9 @@ pub struct Settings {
     omega0: [Real; 3],
     method: MethodChoice,
     warp: usize,
+    /// O(0) as z-x-z Euler angles, as a scene gives them; `None`: the
+    /// paper's frame, lab z along L₀ (the view's own start).
+    euler0: Option<[Real; 3]>,
 }
 
 impl Default for Settings {
@@ -58,6 +61,7 @@ impl Default for Settings {
             omega0: [0.0, 0.1, 0.2],
             method: MethodChoice::Exact,
             warp: DEFAULT_WARP,
+            euler0: None,
         }
     }
 }
@@ -108,6 +112,11 @@ impl Settings {
                 Self::new(top.ratio(), live.omega0, live.method, warp)?
             }
         };
+        // The scene's orientation, as `spintop run` starts it.
+        let settings = Self {
+            euler0: live.euler0,
+            ..settings
+        };
         Ok((settings, live.note))
     }
 
@@ -128,6 +137,7 @@ impl Settings {
             omega0,
             method,
             warp,
+            euler0: None,
         };
         settings.check_live()?;
         Ok(settings)
@@ -198,7 +208,7 @@ impl Settings {
         let mut costliest: Option<spintop::sim::cost::Estimate> = None;
         for (i, (plan, _)) in self
             .top
-            .plans(self.method, self.omega0)?
+            .plans(self.method, self.omega0, self.euler0)?
             .into_iter()
             .enumerate()
         {
@@ -250,6 +260,24 @@ impl Settings {
         Ok(settings)
     }
 
+    /// The fastest warp below this one at which `method` runs these
+    /// settings live (from Ω₀, where a change of method restarts), if any.
+    pub fn fastest_warp_for(&self, method: MethodChoice) -> Option<Real> {
+        self.top.check_method(method).ok()?;
+        (0..self.warp)
+            .rev()
+            .find(|&warp| {
+                Self {
+                    method,
+                    warp,
+                    ..*self
+                }
+                .check_live()
+                .is_ok()
+            })
+            .map(|i| WARPS[i])
+    }
+
     /// The same settings with Ω₀'s `component` (0, 1, 2) set to `value`, if
     /// the core takes that start and the view can step it live.
     pub fn with_omega0(&self, component: usize, value: Real) -> Result<Self, Refusal> {
@@ -259,6 +287,12 @@ impl Settings {
         let settings = Self { omega0, ..*self };
         settings.check_live()?;
         Ok(settings)
+    }
+
+    /// O(0) as a scene gave it (z-x-z Euler angles); `None`: the paper's
+    /// frame, lab z along L₀.
+    pub fn euler0(&self) -> Option<[Real; 3]> {
+        self.euler0
     }
 
     /// The index of the warp in [`WARPS`].

@@ -322,7 +322,7 @@ fn fitting<'a>(area: Rect, long: &'a str, short: &'a str) -> &'a str {
     }
 }
 
-fn panel(title: &str) -> Block<'_> {
+fn panel<'a>(title: impl Into<std::borrow::Cow<'a, str>>) -> Block<'a> {
     Block::new()
         .borders(Borders::TOP)
         .border_style(theme::frame())
@@ -388,8 +388,15 @@ pub fn hodograph(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut Co
 
 /// The top in space (the right panels of the paper's figures): the symmetry
 /// axis O·e₃, the direction of L, and the trail of the axis tip, which traces
-/// the precession cone. The lab z axis is the direction of L₀.
-pub fn top_in_space(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut Context<'_>)> {
+/// the precession cone. The lab z axis is the direction of L₀ in the
+/// paper's frame (`paper_frame`); a scene with Euler angles of its own
+/// starts in its lab frame, and the title gives θ, the tilt of the axis from
+/// lab z.
+pub fn top_in_space(
+    column: &Column,
+    area: Rect,
+    paper_frame: bool,
+) -> Canvas<'static, impl Fn(&mut Context<'_>)> {
     let cam = lab_camera();
     let y = [-1.15, 1.35];
     let s = column.current();
@@ -408,7 +415,19 @@ pub fn top_in_space(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut
         .map(|p| cam.project(p))
         .collect();
     let inner = panel("").inner(area);
-    let title = fitting(area, "the top in space (lab z ∥ L₀)", "top in space");
+    let (long, short) = if paper_frame {
+        (
+            "the top in space (lab z ∥ L₀)".to_string(),
+            "top in space".to_string(),
+        )
+    } else {
+        let theta = fmt_num(axis[2].clamp(-1.0, 1.0).acos());
+        (
+            format!("the top in space (θ = {theta})"),
+            format!("θ = {theta}"),
+        )
+    };
+    let title = fitting(area, &long, &short).to_string();
     let x = x_bounds_for(inner, y);
     // The labels of what moves first (e₃, then L), then the fixed z: one that
     // would print over another moves aside or is left out.

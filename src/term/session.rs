@@ -232,6 +232,32 @@ impl Drop for Session {
     }
 }
 
+/// Draw one frame on `terminal`. Without colour (`NO_COLOR`) the colours
+/// are taken out of the frame here and crossterm writes them as the
+/// defaults: crossterm's own `NO_COLOR` writes an empty SGR (`ESC[m`) for
+/// each colour, which the terminal reads as a reset of every attribute, and
+/// the emphasis (reversed, bold, underlined) was lost with the colour.
+pub fn draw_frame<B: Backend>(
+    terminal: &mut Terminal<B>,
+    draw: impl FnOnce(&mut Frame),
+    no_color: bool,
+) -> io::Result<ratatui::CompletedFrame<'_>>
+where
+    B::Error: Send + Sync + 'static,
+{
+    if no_color {
+        crossterm::style::force_color_output(true);
+    }
+    terminal
+        .draw(|frame| {
+            draw(frame);
+            if no_color {
+                super::theme::strip_colours(frame.buffer_mut());
+            }
+        })
+        .map_err(io::Error::other)
+}
+
 /// True for Ctrl-Z, which the loop takes for itself.
 fn is_suspend(event: &Event) -> bool {
     matches!(event, Event::Key(k) if k.kind != KeyEventKind::Release
@@ -261,19 +287,13 @@ where
     B::Error: Send + Sync + 'static,
 {
     let signals = super::signals::Signals::install()?;
+    let no_color = super::theme::no_color();
     let start = Instant::now();
     let cpu_start = process_cpu_time();
     let mut last = start;
     let mut next_frame = start;
     let mut frames = 0;
     let mut size = terminal.size().map_err(io::Error::other)?;
-    let plain = super::theme::no_color();
-    let paint = |screen: &S, frame: &mut Frame| {
-        screen.draw(frame);
-        if plain {
-            super::theme::without_colour(frame.buffer_mut());
-        }
-    };
     if let Some(c) = screen.command(&Event::Resize(size.width, size.height)) {
         screen.apply(c);
     }
@@ -285,10 +305,7 @@ where
         screen.advance(now - last);
         last = now;
         control.set_mouse(screen.wants_mouse())?;
-        let drawn = terminal
-            .draw(|frame| paint(screen, frame))
-            .map_err(io::Error::other)?
-            .area;
+        let drawn = draw_frame(terminal, |frame| screen.draw(frame), no_color)?.area;
         // Keys are judged by the screen the reader sees: the size this frame
         // was drawn at. (Resize events come from a signal, and two quick
         // resizes can arrive as one, of the last size: the "enlarge" screen
@@ -327,9 +344,7 @@ where
             }
             if let Some(command) = screen.command(&event) {
                 if screen.announce(&command) {
-                    terminal
-                        .draw(|frame| paint(screen, frame))
-                        .map_err(io::Error::other)?;
+                    draw_frame(terminal, |frame| screen.draw(frame), no_color)?;
                 }
                 screen.apply(command);
             }

@@ -33,15 +33,10 @@ pub fn no_color() -> bool {
     std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty())
 }
 
-/// The screen without colour, its emphasis kept: every cell's colours
-/// reset, its modifiers (reverse video, bold, underline) left as drawn.
-///
-/// Drawn over every frame when [`no_color`] holds. (crossterm writes a
-/// colour under `NO_COLOR` as an empty `ESC[m`, which resets the modifiers
-/// too: the selection, the search's match and links lost their marks. A
-/// screen with no colour in it never sends one.)
-pub fn without_colour(buf: &mut ratatui::buffer::Buffer) {
-    for cell in &mut buf.content {
+/// Take every colour out of `buffer`, keeping the emphasis (reversed,
+/// bold, underlined): what `NO_COLOR` asks for, and no more.
+pub fn strip_colours(buffer: &mut ratatui::buffer::Buffer) {
+    for cell in &mut buffer.content {
         cell.fg = Color::Reset;
         cell.bg = Color::Reset;
     }

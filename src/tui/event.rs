@@ -69,8 +69,26 @@ pub fn command_for(key: KeyEvent, mode: &Mode, page: u16) -> Option<Command> {
             KeyCode::Char('l') => Some(Command::ToggleLogTime),
             KeyCode::Char('?') => Some(Command::ToggleHelp),
             KeyCode::Tab => Some(Command::NextModel),
-            _ => None,
+            KeyCode::Esc => Some(Command::Cancel),
+            KeyCode::Modifier(_) => None,
+            other => Some(Command::Unknown(key_name(other))),
         },
+    }
+}
+
+/// A key's name as the keyboard shows it (`x`, `F1`, `←`).
+pub fn key_name(code: KeyCode) -> String {
+    match code {
+        KeyCode::Char(c) => c.to_string(),
+        KeyCode::F(n) => format!("F{n}"),
+        KeyCode::Left => "←".into(),
+        KeyCode::Right => "→".into(),
+        KeyCode::Up => "↑".into(),
+        KeyCode::Down => "↓".into(),
+        KeyCode::Esc => "Esc".into(),
+        KeyCode::Backspace => "Backspace".into(),
+        KeyCode::BackTab => "Shift-Tab".into(),
+        other => format!("{other:?}"),
     }
 }
 

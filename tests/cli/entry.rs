@@ -549,11 +549,16 @@ fn help_states_each_flags_range_and_default_from_the_table() {
 /// one function that decides it gives, below the repository.
 #[test]
 fn learn_help_says_where_the_reading_place_is_kept() {
-    let repo = Path::new("/the/repository");
-    let kept = spintop_app::cli::learn::progress_file(repo);
+    let home = Path::new("/the/copy");
+    let book = spintop_course::Book {
+        src: home.join("book").join("src"),
+        home: home.to_path_buf(),
+        instead_of: None,
+    };
+    let kept = spintop_app::cli::learn::progress_file(&book);
     let below = kept
-        .strip_prefix(repo)
-        .expect("kept below the repository unless SPINTOP_LEARN_PROGRESS is set");
+        .strip_prefix(home)
+        .expect("kept below the book's folder unless SPINTOP_LEARN_PROGRESS is set");
     let text = help("learn");
     assert!(
         text.contains(&below.display().to_string()),

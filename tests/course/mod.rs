@@ -9,6 +9,7 @@
 //! `sandbox` tries the launcher as an attacker; `class` grades a class of
 //! adversarial copies, two runs at once, and a run on a terminal.
 
+mod book;
 mod class;
 mod sandbox;
 
@@ -18,6 +19,7 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 mod diagnose;
+mod no_cargo;
 
 /// The seeds the grading tests run at: the same assertions must hold for
 /// any grading's inputs.

@@ -73,10 +73,11 @@ fn every_key_of_the_table_maps_to_its_command() {
     for (code, command) in table {
         assert_eq!(normal(code), Some(command), "{code:?}");
     }
-    // Esc closes or cancels, never quits (as in `learn`).
-    assert_eq!(normal(Esc), None);
-    assert_eq!(normal(Char('x')), None);
-    assert_eq!(normal(Left), None);
+    // Esc closes or cancels, never quits (as in `learn`); a key the view
+    // does not take is answered by name.
+    assert_eq!(normal(Esc), Some(Cancel));
+    assert_eq!(normal(Char('x')), Some(Unknown("x".into())));
+    assert_eq!(normal(Left), Some(Unknown("←".into())));
 }
 
 #[test]
@@ -547,7 +548,7 @@ fn a_general_top_with_the_full_model_opens_with_auto_s_integrator() {
 }
 
 #[test]
-fn sec3_a_general_top_scene_opens_one_column_of_eq_3_3_with_lab_z_along_l0() {
+fn sec3_a_general_top_scene_opens_one_column_of_eq_3_3_from_its_euler_angles() {
     let app = general_app();
     assert!(app.settings().is_general());
     assert_eq!(app.settings().ratio(), None);
@@ -569,9 +570,12 @@ fn sec3_a_general_top_scene_opens_one_column_of_eq_3_3_with_lab_z_along_l0() {
     for column in app.columns() {
         assert_eq!(column.closed_form_error(), None);
         assert_eq!(column.time_unit(), "u");
-        // L₀ = IΩ₀ points up the lab z axis, whatever Euler angles the scene gave.
-        let l = Vec3::from(column.current().l_lab);
-        assert!(l.x.abs() < 1e-15 && l.y.abs() < 1e-15 && l.z > 0.0, "{l}");
+        // O(0) is the scene's, as `spintop run` starts it (its z-x-z Euler
+        // angles, [0.2, 0.9, 0.1] in the scene file).
+        let e = column.start().euler;
+        for (got, want) in e.iter().zip([0.2, 0.9, 0.1]) {
+            assert!((got - want).abs() < 1e-12, "{e:?}");
+        }
     }
     let message = app.message().expect("the scene is named");
     assert!(message.text.contains("asymmetric-top") && !message.is_error);
@@ -596,20 +600,22 @@ fn general_top_refuses_the_ratio_keys_and_keeps_running() {
 }
 
 #[test]
-fn general_top_method_cycles_rk4_dp5_dop853_radau5_taylor_and_never_the_closed_form() {
+fn general_top_method_cycles_auto_rk4_dp5_dop853_radau5_taylor_and_never_the_closed_form() {
     let mut app = general_app();
     // The scene says `auto`: at the view's rtol (1e-10, the measured
     // crossover) that is the Taylor method, as `spintop simulate` runs it.
     assert!(MethodOptions::default().rtol() <= TAYLOR_AUTO_RTOL);
     assert_eq!(app.settings().method(), MethodChoice::Taylor);
     assert_eq!(app.columns()[0].method().label(), "taylor");
+    // Auto is in the cycle, as the help lists it: here it runs Taylor.
     let expected = [
+        (MethodChoice::Auto, "taylor"),
         (MethodChoice::Rk4, "rk4"),
         (MethodChoice::Dopri5, "dopri5"),
         (MethodChoice::Dop853, "dop853"),
         (MethodChoice::Radau5, "radau5"),
         (MethodChoice::Taylor, "taylor"),
-        (MethodChoice::Rk4, "rk4"),
+        (MethodChoice::Auto, "taylor"),
     ];
     for (method, label) in expected {
         app.advance_ticks(3);
@@ -669,9 +675,11 @@ fn general_top_pause_step_warp_reset_edit_view_help_and_quit_work() {
     assert_eq!(app.settings().omega0(), [0.3, 0.05, 0.2]);
     assert!(matches!(app.settings().top(), Top::General(_)));
     assert_eq!(app.columns()[0].initial().omega, Vec3::new(0.3, 0.05, 0.2));
-    // The frame follows the new L₀.
-    let l = Vec3::from(app.columns()[0].current().l_lab);
-    assert!(l.x.abs() < 1e-15 && l.y.abs() < 1e-15 && l.z > 0.0, "{l}");
+    // The scene's O(0) stays: a new Ω₀ starts from the same orientation.
+    let e = app.columns()[0].start().euler;
+    for (got, want) in e.iter().zip([0.2, 0.9, 0.1]) {
+        assert!((got - want).abs() < 1e-12, "{e:?}");
+    }
 
     app.apply(Command::ToggleLogTime);
     assert!(app.view().log_time);

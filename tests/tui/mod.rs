@@ -1,9 +1,12 @@
 //! The live view and `spintop learn`: keys, screens drawn headless, the
 //! reader against `less`, and the real binary under tmux (the end-to-end
-//! tier: `tmux`, `term_e2e`).
+//! tier: `tmux`, `term_e2e`, `copy`: `learn` in a student's copy).
 
+mod copy;
 mod keys;
 mod learn;
+mod live_front;
+mod live_scenes;
 mod live_view;
 mod overlays;
 mod reader;

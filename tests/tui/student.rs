@@ -13,14 +13,14 @@ use spintop_app::term::theme;
 use spintop_course::{Report, State, Status};
 
 /// The screen as `NO_COLOR` puts it on the terminal: drawn, then every
-/// colour taken out (the loop's way, [`theme::without_colour`]).
+/// colour taken out (the loop's way, [`theme::strip_colours`]).
 fn draw_plain(learn: &mut Learn, width: u16, height: u16) -> Buffer {
     draw(learn, width, height);
     let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
     terminal
         .draw(|f| {
             spintop_app::learn::view::draw(f, learn);
-            theme::without_colour(f.buffer_mut());
+            theme::strip_colours(f.buffer_mut());
         })
         .unwrap();
     terminal.backend().buffer().clone()

@@ -169,6 +169,11 @@ fn run_cargo(
     let waited = process::wait_watched(&mut child, ctx.left(), ctx, watch);
     let (programs, errors) = reader.join().unwrap_or_default();
     let stderr = String::from_utf8_lossy(&stderr.join().unwrap_or_default()).into_owned();
+    if let Waited::Exited(s) = &waited
+        && let Some(why) = setup_failure(*s, &stderr)
+    {
+        return Err(CourseError::CannotGrade(why));
+    }
     Ok(match waited {
         Waited::Killed(None) => Built::OutOfTime,
         Waited::Killed(Some(why)) => Built::Bounded(why),
@@ -176,6 +181,23 @@ fn run_cargo(
         Waited::Exited(s) if errors.is_empty() => Built::Failed(vec![cargo_refused(&stderr, s)]),
         Waited::Exited(_) => Built::Failed(errors),
     })
+}
+
+/// The launcher's own words when cargo never started in the sandbox (no
+/// cargo on PATH, a sandbox that could not be set up): a failure of the
+/// grading, not a state of the student's code.
+pub(crate) fn setup_failure(status: std::process::ExitStatus, stderr: &str) -> Option<String> {
+    if status.code() != Some(sandbox::SETUP_FAILED) {
+        return None;
+    }
+    let line = stderr.lines().find(|l| l.contains(sandbox::SETUP_MARK))?;
+    let words = line.trim();
+    Some(
+        words
+            .strip_prefix("spintop course: ")
+            .unwrap_or(words)
+            .to_string(),
+    )
 }
 
 /// Why cargo failed with no compiler error: its last word, or how it ended

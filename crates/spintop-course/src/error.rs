@@ -17,6 +17,11 @@ pub enum CourseError {
     /// Cargo could not be started.
     #[error("cannot run cargo: {0}")]
     Cargo(std::io::Error),
+    /// The grading could not run at all (cargo not found in the sandbox, a
+    /// sandbox that could not be set up): the launcher's words. Not a state
+    /// of the student's code.
+    #[error("the grading could not run, so nothing was graded: {0}")]
+    CannotGrade(String),
     /// The copy could not be snapshotted.
     #[error(transparent)]
     Snapshot(#[from] super::snapshot::SnapshotError),
@@ -29,6 +34,15 @@ pub enum CourseError {
 }
 
 impl CourseError {
+    /// True when the grading itself could not run (cargo or the sandbox),
+    /// as against spintop's own files: exit 3, not 2.
+    pub fn is_grading_failure(&self) -> bool {
+        matches!(
+            self,
+            CourseError::CannotGrade(_) | CourseError::Cargo(_) | CourseError::Sandbox(_)
+        )
+    }
+
     /// A closure that makes an I/O error at `path`.
     pub(crate) fn io(path: &Path) -> impl FnOnce(std::io::Error) -> CourseError + '_ {
         move |source| CourseError::Io {

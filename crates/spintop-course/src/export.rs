@@ -1,8 +1,11 @@
 //! The export: a self-contained student's copy of the course (stubs without
 //! the reference solutions, the graders, the assignments page, a README, a
-//! manifest), optionally with a CI workflow that grades it on every push.
+//! manifest, the crates it builds against and the book `spintop learn` reads
+//! ([`book`])), optionally with a CI workflow that grades it on every push.
 
 use std::path::{Path, PathBuf};
+
+mod book;
 
 /// The lessons crate of the repository at `repo` (where `spintop course`
 /// and `spintop learn` look unless told otherwise).
@@ -224,10 +227,11 @@ const EXPORT_README: &str = "# The spintop course
 
 Assignments on A. Duviryak's polarized spinning top, graded by `cargo test`.
 Every function under `src/` is a stub that ends in `todo!()`; the chapter of
-the book it comes from is named in its doc comment (the assignments page is in
-`book/`). The copy stands alone: spintop's core and its graders are carried
-in `crates/` (do not edit them: the instructor grades with their own), so it
-builds anywhere Rust is installed.
+the book it comes from is named in its doc comment (the assignments page is
+`book/assignments.md`; the whole book is in `book/src`, and the programs its
+chapters show in `lessons/`). The copy stands alone: spintop's core and its
+graders are carried in `crates/` (do not edit them: the instructor grades
+with their own), so it builds anywhere Rust is installed.
 
 Two commands:
 
@@ -246,7 +250,8 @@ the assignments in course order with their state and what to do next (it
 also checks the source rule, as the instructor's grading does: your files
 may use `spintop::math` and `spintop::assignment`, and nothing that reads
 files, the environment or other programs), and `spintop learn` opens the
-book in the terminal beside this copy's grades, re-grading on every save.
+book this copy carries in the terminal beside this copy's grades,
+re-grading on every save.
 ";
 
 /// The largest file a carried crate may hold (its sources and data are a few
@@ -386,9 +391,11 @@ fn prune_lock(out: &Path) -> Result<(), String> {
 /// Writes a self-contained student's copy of the course in `repo` to `out`
 /// (a folder that must not exist yet, or be empty): the stubs without the
 /// reference solutions, the graders' tests, the book's assignments page, a
-/// README, a manifest, and the sources of spintop's core and graders in
+/// README, a manifest, the sources of spintop's core and graders in
 /// `crates/`, so that the copy builds and grades where the repository is
-/// not. It names no path outside itself.
+/// not, and the book (`book/src`, and the lesson programs its chapters
+/// include in `lessons/`), so that `spintop learn` reads it there. It names
+/// no path outside itself.
 pub fn export(repo: &Path, out: &Path) -> Result<Export, String> {
     export_with(repo, out, &ExportOptions::default())
 }
@@ -446,6 +453,11 @@ pub fn export_with(repo: &Path, out: &Path, options: &ExportOptions) -> Result<E
     }
     if options.link == Link::Carried {
         files.extend(carried(&repo)?);
+        // The book `spintop learn` reads in the copy, with what its chapters
+        // include (a scratch copy graded here has no reader).
+        let written: std::collections::HashSet<PathBuf> =
+            files.iter().map(|(p, _)| p.clone()).collect();
+        files.extend(book::book_files(&repo, copy_page, |p| written.contains(p))?);
     }
     if options.ci == Some(Ci::Github) {
         files.push((
@@ -511,7 +523,9 @@ mod tests {
                 if body.lines().count() < 3 {
                     continue;
                 }
-                for rel in written.files.iter().filter(|p| p.starts_with("src")) {
+                // Nor in the book and the lessons it includes.
+                let outside_crates = |p: &&PathBuf| !p.starts_with("crates");
+                for rel in written.files.iter().filter(outside_crates) {
                     let text = std::fs::read_to_string(out.join(rel)).unwrap();
                     assert!(!text.contains(body), "{} holds a solution", rel.display());
                 }
@@ -552,6 +566,20 @@ mod tests {
             members[0].as_str().unwrap().contains("spintop-lessons-"),
             "{members:?}"
         );
+        // The book and its lessons are read, never built: the package's
+        // targets are its src/ and tests/ alone.
+        let copy = out.canonicalize().unwrap();
+        let targets = metadata["packages"][0]["targets"].as_array().unwrap();
+        assert!(targets.len() > 5, "{targets:?}");
+        for t in targets {
+            let path = Path::new(t["src_path"].as_str().unwrap());
+            assert!(
+                path.starts_with(copy.join("src")) || path.starts_with(copy.join("tests")),
+                "{}",
+                path.display()
+            );
+        }
+        copy_carries_the_book(root, &out, &written);
         // The lock is the copy's own: its package in, the application's and
         // the dev-dependencies' out (the repository's would fail --locked).
         let lock = std::fs::read_to_string(out.join("Cargo.lock")).unwrap();
@@ -569,6 +597,46 @@ mod tests {
         // A second export into the same folder is refused, nothing overwritten.
         assert!(export(root, &out).unwrap_err().contains("not empty"));
         std::fs::remove_dir_all(&out).unwrap();
+    }
+
+    /// The copy's book: `book/src` as the repository holds it but KaTeX's
+    /// files, its assignments page the copy's, and every file a chapter
+    /// includes there, with the anchor the chapter names.
+    fn copy_carries_the_book(root: &Path, out: &Path, written: &Export) {
+        let src = Path::new(book::BOOK_SRC);
+        let summary = std::fs::read(root.join(src).join("SUMMARY.md")).unwrap();
+        assert_eq!(
+            std::fs::read(out.join(src).join("SUMMARY.md")).unwrap(),
+            summary
+        );
+        assert!(!out.join(src).join("katex").exists());
+        assert!(root.join(src).join("katex").is_dir());
+        let page = std::fs::read_to_string(root.join(src).join("assignments.md")).unwrap();
+        let copied = std::fs::read_to_string(out.join(src).join("assignments.md")).unwrap();
+        assert_eq!(copied, copy_page(&page));
+        assert_ne!(copied, page);
+        let mut resolved = 0;
+        for rel in written.files.iter().filter(|p| p.starts_with(src)) {
+            if rel.extension().is_none_or(|x| x != "md") {
+                continue;
+            }
+            let text = std::fs::read_to_string(out.join(rel)).unwrap();
+            let dir = rel.parent().unwrap();
+            for piece in text.split("{{#include ").skip(1) {
+                let spec = &piece[..piece.find("}}").unwrap()];
+                let (path, anchor) = spec.rsplit_once(':').unwrap_or((spec, ""));
+                let target = std::fs::read_to_string(out.join(dir).join(path))
+                    .unwrap_or_else(|e| panic!("{}: {spec}: {e}", rel.display()));
+                assert!(
+                    anchor.is_empty() || target.contains(&format!("ANCHOR: {anchor}")),
+                    "{}: {spec}",
+                    rel.display()
+                );
+                resolved += 1;
+            }
+        }
+        assert!(resolved >= 50, "{resolved} includes");
+        assert!(out.join("lessons/README.md").is_file());
     }
 
     /// The assignments page a copy carries names only what the copy holds:

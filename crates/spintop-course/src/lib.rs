@@ -62,7 +62,7 @@ pub use export::{
 };
 pub use harness::{Crates, Options, default_work, grade};
 pub use hints::{Hint, next_hint};
-pub use locate::{Chosen, Course, find_course, is_course};
+pub use locate::{Book, Chosen, Course, NoBook, find_course, is_course};
 pub use probe::{ProbeSpec, Probed, parse_probe, probe};
 pub use progress::{
     Progress, load_progress, progress_path, read_progress, record_passes, record_passes_now,

@@ -177,6 +177,106 @@ impl Course {
     }
 }
 
+/// Where the book of a course is: the sources mdBook builds (`book/src`,
+/// with `SUMMARY.md`), as `spintop learn` reads them.
+const BOOK: &str = "book/src";
+
+/// The book a command reads beside a course, and whose it is.
+///
+/// The one rule: the book the course carries (a copy made by `spintop course
+/// export` holds it in `book/src`, and a clone of the repository in its own
+/// `book/src`), else the book of the repository this spintop was built
+/// from. What a reader leaves (`spintop learn`'s progress) is kept in the
+/// `target/` of the folder the book belongs to ([`Book::home`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Book {
+    /// The book's sources: the folder holding `SUMMARY.md`.
+    pub src: PathBuf,
+    /// The folder the book belongs to: the copy's top, or a clone's.
+    pub home: PathBuf,
+    /// The course it was looked for in, when that course carries none and
+    /// the repository's book is read instead (a copy exported by a spintop
+    /// that did not carry the book).
+    pub instead_of: Option<PathBuf>,
+}
+
+/// No book to read: neither the course nor the repository holds one.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "{looked}, and the repository this spintop was built from has none ({repository} is missing)"
+)]
+pub struct NoBook {
+    /// Where the book was looked for first, in words.
+    looked: String,
+    /// The repository's `SUMMARY.md`.
+    repository: String,
+}
+
+impl Book {
+    /// The book read beside `course` (see [`Book`]); `repository` is where
+    /// spintop was built ([`repository`] outside the tests).
+    pub fn beside(course: &Course, repository: &Path) -> Result<Self, NoBook> {
+        let top = without_dots(course.top());
+        let own = top.join(BOOK);
+        if own.join("SUMMARY.md").is_file() {
+            return Ok(Self {
+                src: own,
+                home: top,
+                instead_of: None,
+            });
+        }
+        let repository = without_dots(repository);
+        let theirs = repository.join(BOOK);
+        let found = course.chosen != Chosen::Default;
+        if theirs.join("SUMMARY.md").is_file() {
+            return Ok(Self {
+                src: theirs,
+                home: repository,
+                instead_of: found.then(|| course.dir.clone()),
+            });
+        }
+        let looked = if found {
+            format!(
+                "the course at {} carries no book (no {}; a copy exported by this spintop does)",
+                top.display(),
+                own.join("SUMMARY.md").display()
+            )
+        } else {
+            "there is no course in the current folder or its parents".to_string()
+        };
+        Err(NoBook {
+            looked,
+            repository: theirs.join("SUMMARY.md").display().to_string(),
+        })
+    }
+
+    /// Which book this is, in words: "the book of the copy at /home/me/course"
+    /// or "the repository's book at /…/spintop/book/src", and why the
+    /// repository's when a course was found without one.
+    pub fn describe(&self) -> String {
+        match &self.instead_of {
+            None => format!("the book at {}", self.src.display()),
+            Some(course) => format!(
+                "the repository's book at {} (the course at {} carries none: export it again to carry it)",
+                self.src.display(),
+                course.display()
+            ),
+        }
+    }
+}
+
+/// `path` named without `..` (the repository is `crates/spintop-course/../..`
+/// where spintop was built): resolved if it has one and exists, else as given.
+fn without_dots(path: &Path) -> PathBuf {
+    let dots = path
+        .components()
+        .any(|c| c == std::path::Component::ParentDir);
+    match path.canonicalize() {
+        Ok(resolved) if dots => resolved,
+        _ => path.to_path_buf(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -243,5 +343,114 @@ mod tests {
                 .describe()
                 .contains("no course in the current folder")
         );
+    }
+
+    /// A folder of its own under the system's temporary folder, made empty.
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("spintop-book-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    /// A lessons crate at `dir` as a copy holds it, with a book if asked.
+    fn fake_copy(dir: &Path, with_book: bool) {
+        for sub in ["src", "tests"] {
+            std::fs::create_dir_all(dir.join(sub)).unwrap();
+        }
+        std::fs::write(
+            dir.join("Cargo.toml"),
+            "[package]\nname = \"spintop-lessons-0000abcd\"\n",
+        )
+        .unwrap();
+        if with_book {
+            fake_book(dir);
+        }
+    }
+
+    fn fake_book(top: &Path) {
+        std::fs::create_dir_all(top.join(BOOK)).unwrap();
+        std::fs::write(top.join(BOOK).join("SUMMARY.md"), "- [One](one.md)\n").unwrap();
+    }
+
+    #[test]
+    fn a_copy_that_carries_the_book_is_read_from_its_own_book() {
+        let root = scratch("own");
+        let (copy, repo) = (root.join("copy"), root.join("repo"));
+        fake_copy(&copy, true);
+        fake_book(&repo);
+        for course in [
+            Course::choose(None, &copy.join("src")),
+            Course::choose(Some(&copy), &repo),
+        ] {
+            assert!(!course.in_repository);
+            let book = Book::beside(&course, &repo).unwrap();
+            assert_eq!(book.src, copy.join("book/src"));
+            assert_eq!(book.home, copy);
+            assert_eq!(book.instead_of, None);
+            assert!(
+                !book.describe().contains(&repo.display().to_string()),
+                "{}",
+                book.describe()
+            );
+        }
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn a_copy_without_a_book_reads_the_repositorys_and_says_why() {
+        let root = scratch("older");
+        let (copy, repo) = (root.join("copy"), root.join("repo"));
+        fake_copy(&copy, false);
+        fake_book(&repo);
+        let course = Course::choose(None, &copy);
+        assert_eq!(course.chosen, Chosen::Found);
+        let book = Book::beside(&course, &repo).unwrap();
+        assert_eq!(book.src, repo.join("book/src"));
+        assert_eq!(book.home, repo);
+        assert_eq!(book.instead_of.as_deref(), Some(copy.as_path()));
+        let said = book.describe();
+        assert!(
+            said.contains(&copy.display().to_string()) && said.contains("carries none"),
+            "{said}"
+        );
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn the_repositorys_lessons_read_the_book_of_the_clone_they_are_in() {
+        // Even where spintop was built is elsewhere (a clone it was not built
+        // from): the clone one stands in is the book's home.
+        let root = scratch("clone");
+        let course = Course::choose(None, &repository().join("lessons/src"));
+        assert!(course.in_repository);
+        let book = Book::beside(&course, &root.join("gone")).unwrap();
+        let top = repository().canonicalize().unwrap();
+        assert_eq!(book.src.canonicalize().unwrap(), top.join("book/src"));
+        assert_eq!(book.home.canonicalize().unwrap(), top);
+        assert_eq!(book.instead_of, None);
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn no_book_anywhere_is_one_line_that_names_where_it_looked() {
+        let root = scratch("none");
+        let (copy, repo) = (root.join("copy"), root.join("gone"));
+        fake_copy(&copy, false);
+        let found = Course::choose(None, &copy.join("tests"));
+        let defaulted = Course::at(&repo.join("lessons"), Chosen::Default);
+        for (course, names) in [(found, Some(&copy)), (defaulted, None)] {
+            let e = Book::beside(&course, &repo).unwrap_err().to_string();
+            assert!(!e.contains('\n'), "{e}");
+            assert!(
+                e.contains(&repo.join("book/src/SUMMARY.md").display().to_string()),
+                "{e}"
+            );
+            match names {
+                Some(copy) => assert!(e.contains(&copy.display().to_string()), "{e}"),
+                None => assert!(e.contains("no course in the current folder"), "{e}"),
+            }
+        }
+        std::fs::remove_dir_all(&root).unwrap();
     }
 }

@@ -193,6 +193,32 @@ impl Status {
         None
     }
 
+    /// Why no assignment has a verdict of its own, when the whole copy is
+    /// stopped before any grader runs: what the "next:" line says. The
+    /// source rule is per copy (its files are built together, so one file's
+    /// `std::fs` reaches every assignment), and says so.
+    pub fn whole_copy_reason(&self) -> Option<&'static str> {
+        if self.compile_error.is_some() {
+            Some("the lessons do not compile")
+        } else if self.shortcut.is_some() {
+            Some(
+                "the copy takes a shortcut; the rule is per copy: no assignment is graded until it is gone",
+            )
+        } else {
+            None
+        }
+    }
+
+    /// The word for `state` in this status: where the source rule refused
+    /// the whole copy, an assignment is "copy refused", not "failing" (a
+    /// stub it holds was never graded).
+    pub fn word_of(&self, state: &State) -> &'static str {
+        match state {
+            State::Failing(_) if self.shortcut.is_some() => "copy refused",
+            other => other.word(),
+        }
+    }
+
     /// Whether every assignment has a verdict of its own (none is "does not
     /// compile" or ungraded), so that a partial re-grade can build on it.
     pub fn complete(&self) -> bool {

@@ -187,10 +187,22 @@ fn forward_run(frame: &mut Frame, area: Rect, runs: &OrbitRuns) {
         None => lines.push(Line::from("no runaway within the run")),
     }
     lines.push(Line::from(Span::styled(
-        "Its physical solution is found backward in time: spintop orbit --force al",
+        format!(
+            "Its physical solution is found backward in time: {}",
+            physical_run_command(runs.tau0)
+        ),
         theme::label(),
     )));
     frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: true }), inner);
+}
+
+/// The command that runs §2's charge by the Abraham–Lorentz law's physical
+/// solution, as the scene prints it: every flag `spintop orbit` requires.
+pub fn physical_run_command(tau0: spintop::math::Real) -> String {
+    format!(
+        "spintop orbit --potential coulomb --tau0 {} --force al --times 0,50,100,150",
+        spintop::numbers::fmt_param(tau0)
+    )
 }
 
 /// The first of `choices` (longest first) that fits `width` columns; the

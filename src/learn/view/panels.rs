@@ -172,11 +172,7 @@ fn course_next(learn: &Learn, lines: &mut Vec<Line<'static>>) {
     let Some(status) = panel.status() else { return };
     let course = panel.course();
     if let Some(place) = status.next_place() {
-        let what = if status.compile_error.is_some() {
-            "the lessons do not compile"
-        } else {
-            "the copy takes a shortcut"
-        };
+        let what = status.whole_copy_reason().unwrap_or_default();
         lines.push(Line::from(""));
         lines.push(Line::from(Span::styled(
             format!("next: fix {place} ({what})"),
@@ -310,7 +306,7 @@ pub fn course_lines(learn: &Learn, width: u16) -> Vec<Line<'static>> {
             lines.push(Line::from(vec![
                 Span::styled(format!("{here}{m} "), style),
                 Span::raw(row),
-                Span::styled(s.word(), style),
+                Span::styled(status.word_of(s), style),
             ]));
         }
     }

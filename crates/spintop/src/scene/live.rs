@@ -17,6 +17,10 @@ pub struct LiveScene {
     /// The method of the columns that take one (the full ALE's physical
     /// solution has its own).
     pub method: MethodChoice,
+    /// O(0) as z-x-z Euler angles where the scene gives them (or leaves the
+    /// default 0, 0, 0), as `spintop run` starts it; `None` for the paper's
+    /// frame (lab z along L₀), the view's own start.
+    pub euler0: Option<[Real; 3]>,
     /// The line the view opens with.
     pub note: String,
 }
@@ -93,6 +97,7 @@ pub fn live_scene(scene: &Scene) -> Result<LiveScene, String> {
         model: top.model,
         omega0: top.initial.omega.into(),
         method,
+        euler0: (top.frame == super::top::Frame::Euler).then_some(top.euler0),
         note,
     })
 }

@@ -379,7 +379,7 @@ fn general_auto_plan(ask: &Ask, warnings: Vec<String>) -> Result<TopPlan, Refusa
                 chosen: Chosen::new(
                     "secular",
                     format!(
-                        "{angle:.1e} rad are too many turns to step within rtol = {:.0e} and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853), good to about {error:.1e} (the swing of E and |L| within a turn, which averaging leaves out)",
+                        "{angle:.1e} rad are too many turns to step within rtol = {:.0e} and the asymmetric top has no closed form, but its radiation changes Omega by only {eps:.1e} per radian: the free motion is taken in closed form (Jacobi's elliptic functions) and only the period-averaged drift of E and |L| under {} is integrated (DOP853); averaging leaves out only the swing of E and |L| within a turn, {error:.1e} here (the error over the run, the integration's and the model's with it, is printed with the samples)",
                         options.rtol(),
                         if matches!(model, Model::General(_)) {
                             "(3.3)"

@@ -33,8 +33,11 @@ pub struct TopScene {
     pub model: Model,
     /// The method asked for (`auto` by default).
     pub method: MethodChoice,
-    /// Tolerance and step.
+    /// Tolerance and step (the tolerance `auto` steps at, which may be
+    /// tighter than the scene's: see `rtol`).
     pub options: MethodOptions,
+    /// The scene's own rtol, which the printed error is held against.
+    pub rtol: Real,
     /// Ω₀ and O(0).
     pub initial: InitialState,
     /// The Euler angles of O(0).
@@ -515,6 +518,7 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
     }
     plan.chosen.estimates = choice.as_ref().map(|c| c.estimates);
     // `auto` may step at a tighter tolerance than the scene's (see plan::general_path).
+    let rtol = options.rtol();
     let options = match plan.rtol {
         Some(r) => options
             .with_rtol(r)
@@ -527,6 +531,7 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
             model,
             method: request.method,
             options,
+            rtol,
             initial: request.initial,
             euler0: request.euler0,
             frame: request.frame,

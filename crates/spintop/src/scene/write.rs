@@ -268,6 +268,7 @@ fn write_secular(
                 o.stats.steps, o.stats.rhs_evals, o.max_quadrature_points
             )?;
             writeln!(out, "# orientation skipped: {}", o.orientation_skipped)?;
+            writeln!(out, "# error: {}", o.error.line())?;
             let (time_head, period_head, per) = match units {
                 Some(u) => (
                     format!("t [{}]", u.time_unit),

@@ -56,7 +56,7 @@ use crate::physics::general_top::GeneralTop;
 use crate::physics::symmetric_top::{
     SymmetricTop, reduced_amplitude, reduced_closed_form, truncated_clock, truncated_closed_form,
 };
-use crate::sim::secular::{Law, SecularRun, secular, swing};
+use crate::sim::secular::{Law, SecularRun, SecularSample, invariants, secular, swing};
 
 /// The estimated largest error of each model over a run, relative to |Ω₀|.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -519,15 +519,16 @@ const SECULAR_MARGIN: Real = 1.5;
 /// slow manifold of (3.4) to second order).
 ///
 /// ```text
-/// ε_t = max |X_trunc − X₂| + swing(T_trunc − T₂),   ε_r = max |X_red − X₂| + swing(I G₂)
+/// ε_t = max |X_trunc − X₃|/X₃(0) + swing(T_trunc − T₃),   ε_r = max |X_red − X₃|/X₃(0) + swing(I(G₂ + G₃))
 /// ```
 ///
-/// X is E or |L| along the secular run of each law at `times` (the
-/// second-order law, [`Law::SecondOrder`], in place of the physical
-/// solution), and the swing ([`swing`]) what the torque difference moves the
-/// invariants within one turn, which averaging leaves out. The runs are
-/// taken at a tolerance 100 times below `rtol` (at most 10⁻¹²) so that
-/// their differences stand clear of it.
+/// X is E or |L| along the secular run of each law at `times` (the slow
+/// manifold to third order, [`Law::Manifold`], in place of the physical
+/// solution), relative to its value at the start (as the run's own error,
+/// [`crate::sim::claim::secular_error`]), and the swing ([`swing`]) what the
+/// torque difference moves the invariants within one turn, which averaging
+/// leaves out. The runs are taken at a tolerance 100 times below `rtol` (at
+/// most 10⁻¹²) so that their differences stand clear of it.
 pub fn secular_errors(
     top: &GeneralTop,
     omega0: &Vec3,
@@ -539,27 +540,20 @@ pub fn secular_errors(
     }
     let tight = (rtol * 1e-2).clamp(1e-12, 1e-4);
     let run = |law| secular(top, law, omega0, times, tight);
-    let (trunc, red, second) = (
+    let (trunc, red, manifold) = (
         run(Law::Truncated)?,
         run(Law::Reduced)?,
-        run(Law::SecondOrder)?,
+        run(Law::Manifold)?,
     );
-    let gap = |a: &SecularRun| {
-        a.samples
-            .iter()
-            .zip(&second.samples)
-            .map(|(x, y)| {
-                let e = (x.energy - y.energy).abs() / y.energy.max(Real::MIN_POSITIVE);
-                let l = (x.l_norm - y.l_norm).abs() / y.l_norm.max(Real::MIN_POSITIVE);
-                e.max(l)
-            })
-            .fold(0.0, Real::max)
-    };
     let i = top.inertia();
-    let g2 = |w: &Vec3| i.component_mul(&slow_manifold_second_order(top, w));
-    let swing_r = swing(&i, omega0, g2);
+    let scale = invariants(&i, omega0);
+    let gap = |a: &SecularRun| secular_gap(&a.samples, &manifold.samples, scale);
+    let beyond = |w: &Vec3| {
+        i.component_mul(&(slow_manifold_second_order(top, w) + slow_manifold_third_order(top, w)))
+    };
+    let swing_r = swing(&i, omega0, beyond);
     let swing_t = swing(&i, omega0, |w| {
-        top.truncated_torque(w) - top.reduced_torque(w) - g2(w)
+        top.truncated_torque(w) - top.reduced_torque(w) - beyond(w)
     });
     let reduced = (SECULAR_MARGIN * (gap(&red) + swing_r)).min(2.0);
     let truncated = (SECULAR_MARGIN * (gap(&trunc) + swing_t)).min(2.0);
@@ -573,3 +567,16 @@ pub fn secular_errors(
     })
 }
 // ANCHOR_END: secular_errors
+
+/// The largest distance between two secular runs at the same times, in E
+/// and in |L|, each relative to its value at the start, `scale` = (E₀, |L₀|)
+/// ([`crate::sim::secular::invariants`]; 1 for a top at rest, whose
+/// invariants stay 0).
+pub fn secular_gap(a: &[SecularSample], b: &[SecularSample], scale: (Real, Real)) -> Real {
+    let unit = |x: Real| if x > 0.0 { x } else { 1.0 };
+    let (e0, l0) = (unit(scale.0), unit(scale.1));
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| ((x.energy - y.energy).abs() / e0).max((x.l_norm - y.l_norm).abs() / l0))
+        .fold(0.0, Real::max)
+}

@@ -3,6 +3,7 @@
 mod auto_model;
 mod balance_laws;
 mod central_field;
+mod claims;
 mod closed_forms;
 mod errors_sweep;
 mod euler_angles;
