@@ -501,6 +501,8 @@ impl Learn {
             unfold: false,
             figures_later: false,
             images: Some(self.book.clone()),
+            // Plain text has no colour: the figures name their glyphs.
+            plain: true,
         };
         markdown::plain(&markdown::render_with(&self.source, width, &options).lines)
     }
