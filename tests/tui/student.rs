@@ -156,19 +156,24 @@ fn without_colour_the_figures_name_their_glyphs_not_colours() {
 }
 
 /// `h` in the course panel at 80×24 shows its rung on screen (the panel
-/// scrolls to it), and each press shows the next.
+/// scrolls to it), and each press shows the next: in a student's copy with a
+/// real grader's report of a wrong (2.1), where the hint falls below the
+/// panel's first screen.
 #[test]
 fn a_hint_is_on_screen_when_asked_at_80x24() {
+    use spintop_course::{Chosen, Course};
+    let copy = std::env::temp_dir().join(format!(
+        "spintop-hint-copy-{}/a/rather/long/path/to/the/students/copy",
+        std::process::id()
+    ));
+    let failed = spintop_grading::larmor_rate(553_308_490, |[_, d1, d2, _]| d1.cross(d2))
+        .expect_err("a wrong Larmor rate fails");
+    let report = failed.to_string();
     let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    learn.watch_course(Course::at(&copy, Chosen::Found), None);
     draw(&mut learn, 80, 24);
-    let report = (1..=9)
-        .map(|i| format!("  line {i} of a long diagnosis of torque_rate"))
-        .collect::<Vec<_>>()
-        .join("\n");
-    let report = format!("torque_rate, Eq. (2.2): wrong answer\n{report}");
     let status = Status::new(0, |a| match a.function {
-        "larmor_rate" => State::Passing,
-        "torque_rate" => State::Failing(report.as_str().into()),
+        "larmor_rate" => State::Failing(report.as_str().into()),
         _ => State::NotStarted,
     });
     learn.course_report(Report::Graded(status));
@@ -198,8 +203,15 @@ fn a_hint_is_on_screen_when_asked_at_80x24() {
 fn page_up_moves_at_once_after_the_course_panel_shrinks() {
     let mut learn = Learn::open(&book(), Some("2")).unwrap();
     draw(&mut learn, 80, 24);
+    // Rows that wrap at 80 columns: fixing the assignment takes more rows
+    // off the panel than a page.
     let long = (1..=9)
-        .map(|i| format!("  line {i} of the diagnosis"))
+        .map(|i| {
+            format!(
+                "  line {i} of the diagnosis, {}",
+                "long words again ".repeat(8)
+            )
+        })
         .collect::<Vec<_>>()
         .join("\n");
     let failing = format!("torque_rate, Eq. (2.2): wrong answer\n{long}");
