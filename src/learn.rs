@@ -169,6 +169,9 @@ pub enum Command {
     PasteIgnored,
     /// Backspace in the search.
     SearchBackspace,
+    /// Ctrl-U in the search: clears what was typed (as in the live view's
+    /// editor).
+    SearchClear,
     /// Enter: search.
     SearchCommit,
     /// n: the next match, in the search's direction, from where the reader is.
@@ -204,6 +207,8 @@ pub struct Learn {
     unfolded: bool,
     side_hidden: bool,
     mouse: bool,
+    /// No colour (`NO_COLOR`): see [`Learn::plain`].
+    plain: bool,
     mode: Mode,
     search: Option<Search>,
     /// The plain text of every chapter at the width last searched, for a
@@ -292,6 +297,7 @@ impl Learn {
             unfolded: false,
             side_hidden: false,
             mouse: false,
+            plain: false,
             mode: Mode::Read,
             search: None,
             texts,
@@ -309,6 +315,17 @@ impl Learn {
             learn.message = Some((note, false));
         }
         Ok(learn)
+    }
+
+    /// Without colour (`NO_COLOR`, the terminal's way when it is set): the
+    /// figures drawn in the text tell their curves apart by glyph and their
+    /// titles name the glyphs, not colours.
+    pub fn plain(mut self, on: bool) -> Self {
+        if self.plain != on {
+            self.plain = on;
+            self.render();
+        }
+        self
     }
 
     /// The chapters.
@@ -484,6 +501,8 @@ impl Learn {
             unfold: false,
             figures_later: false,
             images: Some(self.book.clone()),
+            // Plain text has no colour: the figures name their glyphs.
+            plain: true,
         };
         markdown::plain(&markdown::render_with(&self.source, width, &options).lines)
     }
@@ -585,6 +604,7 @@ impl Learn {
                 unfold: self.unfolded,
                 figures_later: self.background,
                 images: Some(self.book.clone()),
+                plain: self.plain,
             },
         );
         self.scroll = (fraction * self.rendered.lines.len() as f64).round() as usize;
@@ -673,6 +693,11 @@ impl Learn {
                 self.inform("paste ignored: / or ? starts a search to paste into")
             }
             Command::SearchBackspace => self.search_input(None),
+            Command::SearchClear => {
+                if let Mode::Search(q, _) = &mut self.mode {
+                    q.clear();
+                }
+            }
             Command::SearchCommit => self.search_commit(),
             Command::SearchNext => self.search_again(true),
             Command::SearchPrevious => self.search_again(false),
@@ -680,7 +705,11 @@ impl Learn {
             Command::PreviousLink => self.focus_link(false),
             Command::FollowLink => self.follow_link(),
             Command::Scene(key) => {
-                let (text, refused) = self.stage.key(key);
+                let shown = match &self.scene_info.spec {
+                    scene::Spec::Top { columns, .. } => columns.clone(),
+                    _ => Vec::new(),
+                };
+                let (text, refused) = self.stage.key(key, &shown);
                 if !text.is_empty() {
                     self.message = Some((text, refused));
                 }

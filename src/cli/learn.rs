@@ -30,7 +30,10 @@ use std::path::{Path, PathBuf};
     spintop learn --list\n  \
     spintop learn --chapter 4.1 --list               Section 4.1 as plain text\n\n\
 The book is the one the course you stand in carries (a copy made by `spintop course export`\n\
-holds it in book/src), else the book of the spintop repository; --list names it.")]
+holds it in book/src), else the book of the spintop repository; --list names it.\n\n\
+The reading place (the chapter, where in it, the chapters opened) is kept in\n\
+target/spintop-learn.json of the folder the book belongs to (the copy's, or the\n\
+repository's), written as you read and on every way out; --reset forgets it.")]
 pub struct LearnArgs {
     /// Open this chapter: a section of the paper (2, 3, 4.1, 4.2, 5, A), the
     /// chapter's number as the header shows it (9; '#3' where 3 is also a
@@ -77,8 +80,9 @@ fn book(course: &Course) -> Result<Book, CliError> {
 }
 
 /// Where the reader's place is kept: in the `target/` of the folder the
-/// book belongs to (the copy's, or the repository's).
-fn progress_file(book: &Book) -> PathBuf {
+/// book belongs to (the copy's, or the repository's). The one rule;
+/// `spintop learn --help` says it.
+pub fn progress_file(book: &Book) -> PathBuf {
     // The tests point this elsewhere, so that they never touch a student's progress.
     match std::env::var_os("SPINTOP_LEARN_PROGRESS") {
         Some(path) if !path.is_empty() => PathBuf::from(path),
@@ -133,7 +137,8 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
             Learn::open_in_background(&book.src, None).map_err(|e| bad(e.to_string()))?
         }
         Err(e) => return Err(bad(e.to_string())),
-    };
+    }
+    .plain(crate::term::theme::no_color());
     session.restore(&read);
     if args.list && args.chapter.is_some() {
         writeln!(out, "{}", session.chapter_text(TEXT_WIDTH).trim_end())?;

@@ -101,6 +101,11 @@ impl Learn {
             KeyCode::Char('b' | 'B') if reading => Some(Command::PageUp),
             KeyCode::Char('d' | 'D') if reading => Some(Command::HalfDown),
             KeyCode::Char('u' | 'U') if reading => Some(Command::HalfUp),
+            // In the search prompt Ctrl-U clears the field, as in the live
+            // view's editor.
+            KeyCode::Char('u' | 'U') if matches!(self.mode, Mode::Search(..)) => {
+                Some(Command::SearchClear)
+            }
             KeyCode::Char('r' | 'R') if reading => Some(Command::SearchBackStart),
             // less's lines forward and back, and its other page down.
             KeyCode::Char('e' | 'E' | 'n' | 'N' | 'j' | 'J') if reading => Some(Command::Scroll(1)),

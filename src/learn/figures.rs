@@ -73,8 +73,10 @@ pub fn number_of(path: &str) -> Option<FigureNumber> {
 
 /// Figure `number` as lines of at most `width` columns: four panels, two
 /// side by side from 60 columns, else one under another. When `wait` is
-/// false and the figure is still being computed, one line says so.
-pub fn lines(number: FigureNumber, width: u16, wait: bool) -> Vec<Line<'static>> {
+/// false and the figure is still being computed, one line says so. When
+/// `plain` (no colour, `NO_COLOR`), what colour told apart is drawn in
+/// glyphs of its own, and the panels' titles name those.
+pub fn lines(number: FigureNumber, width: u16, wait: bool, plain: bool) -> Vec<Line<'static>> {
     if !wait && !ready(number) {
         compute_in_background();
         return vec![Line::from(Span::styled(
@@ -114,10 +116,10 @@ pub fn lines(number: FigureNumber, width: u16, wait: bool) -> Vec<Line<'static>>
             .split(area)
             .to_vec()
     };
-    hodograph(figure, cells[0], &mut buf);
-    in_space(figure, cells[1], &mut buf);
+    hodograph(figure, cells[0], &mut buf, plain);
+    in_space(figure, cells[1], &mut buf, plain);
     tilt(figure, cells[2], &mut buf);
-    rates(figure, cells[3], &mut buf);
+    rates(figure, cells[3], &mut buf, plain);
     to_lines(&buf)
 }
 
@@ -136,7 +138,31 @@ fn x_bounds(area: Rect, y: [f64; 2]) -> [f64; 2] {
     [-half, half]
 }
 
-fn hodograph(figure: &Figure, area: Rect, buf: &mut Buffer) {
+/// The marker of what colour alone told apart (the shadows, L): braille
+/// with colour, dots without.
+fn second_marker(plain: bool) -> Marker {
+    if plain { Marker::Dot } else { Marker::Braille }
+}
+
+/// Draws `points` over a panel already drawn, with `marker`: a second
+/// canvas on the panel's inside, which leaves the cells it does not mark.
+fn overlay(
+    points: &[(f64, f64)],
+    color: Color,
+    marker: Marker,
+    area: Rect,
+    bounds: [[f64; 2]; 2],
+    buf: &mut Buffer,
+) {
+    Canvas::default()
+        .marker(marker)
+        .x_bounds(bounds[0])
+        .y_bounds(bounds[1])
+        .paint(|ctx| ctx.draw(&Points::new(points, color)))
+        .render(area, buf);
+}
+
+fn hodograph(figure: &Figure, area: Rect, buf: &mut Buffer, plain: bool) {
     let cam = body_camera();
     let scale = figure.omega0.norm();
     let project = |w: [f64; 3]| cam.project([w[0] / scale, w[1] / scale, w[2] / scale]);
@@ -156,8 +182,13 @@ fn hodograph(figure: &Figure, area: Rect, buf: &mut Buffer) {
         .collect();
     let y = [-0.6, 1.1];
     let inner = panel("").inner(area);
+    let title = if plain {
+        "(a) Ω, body frame; •: its shadows"
+    } else {
+        "(a) Ω, body frame; pale: its shadows"
+    };
     Canvas::default()
-        .block(panel("(a) Ω, body frame; pale: its shadows"))
+        .block(panel(title))
         .marker(Marker::Braille)
         .x_bounds(x_bounds(inner, y))
         .y_bounds(y)
@@ -172,14 +203,29 @@ fn hodograph(figure: &Figure, area: Rect, buf: &mut Buffer) {
                 ctx.draw(&CanvasLine::new(x1, y1, x2, y2, theme::GUIDE));
                 ctx.print(x2, y2, Span::styled(name, theme::label()));
             }
-            ctx.draw(&Points::new(&shadow, theme::GUIDE));
-            ctx.layer();
+            if !plain {
+                ctx.draw(&Points::new(&shadow, theme::GUIDE));
+                ctx.layer();
+            }
             ctx.draw(&Points::new(&curve, theme::OMEGA[2]));
         })
         .render(area, buf);
+    if plain {
+        let bounds = [x_bounds(inner, y), y];
+        overlay(
+            &shadow,
+            theme::GUIDE,
+            second_marker(plain),
+            inner,
+            bounds,
+            buf,
+        );
+        // The curve over its shadows, as with colour.
+        overlay(&curve, theme::OMEGA[2], Marker::Braille, inner, bounds, buf);
+    }
 }
 
-fn in_space(figure: &Figure, area: Rect, buf: &mut Buffer) {
+fn in_space(figure: &Figure, area: Rect, buf: &mut Buffer, plain: bool) {
     let cam = lab_camera();
     let tip: Vec<(f64, f64)> = figure
         .samples
@@ -201,8 +247,13 @@ fn in_space(figure: &Figure, area: Rect, buf: &mut Buffer) {
     let last = figure.samples.last().map(Figure::axis);
     let y = [-0.4, 1.3];
     let inner = panel("").inner(area);
+    let title = if plain {
+        "(b) the top in space; L: •"
+    } else {
+        "(b) the top in space; L in red"
+    };
     Canvas::default()
-        .block(panel("(b) the top in space; L in red"))
+        .block(panel(title))
         .marker(Marker::Braille)
         .x_bounds(x_bounds(inner, y))
         .y_bounds(y)
@@ -218,18 +269,27 @@ fn in_space(figure: &Figure, area: Rect, buf: &mut Buffer) {
                 ctx.print(x, y, Span::styled("e₃", Style::new().fg(theme::AXIS)));
             }
             ctx.layer();
-            ctx.draw(&Points::new(&l_path, L_COLOUR));
+            if !plain {
+                ctx.draw(&Points::new(&l_path, L_COLOUR));
+            }
             // L's label left of its end, clear of the axis's e₃.
             if let Some(&(x, y)) = l_path.last() {
                 ctx.print(x - 0.25, y, Span::styled("L", Style::new().fg(L_COLOUR)));
             }
         })
         .render(area, buf);
+    if plain {
+        let bounds = [x_bounds(inner, y), y];
+        overlay(&l_path, L_COLOUR, second_marker(plain), inner, bounds, buf);
+    }
 }
+
+/// A chart's curve: its points, its style and its marker.
+type Curve = (Vec<(f64, f64)>, Style, Marker);
 
 fn chart_of(
     title: &'static str,
-    curves: Vec<(Vec<(f64, f64)>, Style)>,
+    curves: Vec<Curve>,
     t_end: f64,
     y: [f64; 2],
     area: Rect,
@@ -237,9 +297,9 @@ fn chart_of(
 ) {
     let datasets = curves
         .iter()
-        .map(|(data, style)| {
+        .map(|(data, style, marker)| {
             Dataset::default()
-                .marker(Marker::Braille)
+                .marker(*marker)
                 .graph_type(GraphType::Line)
                 .style(*style)
                 .data(data)
@@ -265,7 +325,7 @@ fn tilt(figure: &Figure, area: Rect, buf: &mut Buffer) {
     let data: Vec<(f64, f64)> = figure.samples.iter().map(|s| (s.t, s.euler[1])).collect();
     chart_of(
         "(c) the tilt θ(t), rad",
-        vec![(data, Style::new().fg(theme::AXIS))],
+        vec![(data, Style::new().fg(theme::AXIS), Marker::Braille)],
         t_end,
         [0.0, 1.0],
         area,
@@ -273,7 +333,7 @@ fn tilt(figure: &Figure, area: Rect, buf: &mut Buffer) {
     );
 }
 
-fn rates(figure: &Figure, area: Rect, buf: &mut Buffer) {
+fn rates(figure: &Figure, area: Rect, buf: &mut Buffer, plain: bool) {
     let t_end = figure.number.t_end();
     let pick = |i: usize| -> Vec<(f64, f64)> {
         figure
@@ -289,11 +349,16 @@ fn rates(figure: &Figure, area: Rect, buf: &mut Buffer) {
         .map(|p| p.1.abs())
         .fold(0.0, f64::max);
     let y = spintop::numbers::nice_ceiling(top * 1.05);
+    let title = if plain {
+        "(d) φ̇ •, ψ̇ braille ⠒, 1/τ"
+    } else {
+        "(d) φ̇ yellow, ψ̇ green, 1/τ"
+    };
     chart_of(
-        "(d) φ̇ yellow, ψ̇ green, 1/τ",
+        title,
         vec![
-            (phi, Style::new().fg(theme::OMEGA[3])),
-            (psi, Style::new().fg(theme::OMEGA[1])),
+            (phi, Style::new().fg(theme::OMEGA[3]), second_marker(plain)),
+            (psi, Style::new().fg(theme::OMEGA[1]), Marker::Braille),
         ],
         t_end,
         [0.0, y],

@@ -155,8 +155,23 @@ impl Learn {
         {
             self.refuse(format!("cannot keep the hint: {e}"));
         }
-        // The hint shows at the top of the panel, under the diagnosis.
-        self.mode = Mode::Course(0);
+        // The hint shows under the diagnosis; the panel scrolls to it when
+        // it is below the first screen (a rung is never spent unseen).
+        let lines = super::view::course_lines(self, self.size.0);
+        let hint = lines.iter().position(|l| {
+            l.spans
+                .first()
+                .is_some_and(|s| s.content.starts_with("hint "))
+        });
+        let scroll = hint.map_or(0, |k| {
+            crate::term::popup::scroll_to(
+                self.size,
+                super::view::COURSE_WIDTH,
+                &lines,
+                k..(k + 2).min(lines.len()),
+            )
+        });
+        self.mode = Mode::Course(scroll);
     }
 
     /// Samples the student's function of time of this chapter, if it has one

@@ -13,6 +13,7 @@
 
 mod include;
 mod math;
+mod table;
 mod wrap;
 
 pub use include::resolve_includes;
@@ -26,7 +27,7 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use std::path::PathBuf;
 use unicode_width::UnicodeWidthStr;
-use wrap::{NBSP, Piece, is_function_word, split_too_long, unbreakable_groups, wrap_plain};
+use wrap::{NBSP, Piece, is_function_word, split_too_long, unbreakable_groups};
 
 /// A chapter rendered at one width.
 #[derive(Debug, Clone, Default)]
@@ -43,6 +44,9 @@ pub struct Rendered {
     pub figures_pending: bool,
     /// The links, in reading order.
     pub links: Vec<Link>,
+    /// Anchors written as HTML (`<a id="jackson">`, the bibliography's
+    /// entries): (line index, id).
+    pub anchors: Vec<(usize, String)>,
 }
 
 /// A link of the text: where it points, and where it is drawn (a link that
@@ -139,6 +143,9 @@ pub struct Options {
     /// The book's folder, where its pictures are read to be drawn (`None`:
     /// a picture is one line naming it).
     pub images: Option<PathBuf>,
+    /// No colour (`NO_COLOR`): the figures tell their curves apart by
+    /// glyph, and say so.
+    pub plain: bool,
 }
 
 /// Renders one chapter (`source` already with includes resolved) at `width`
@@ -455,6 +462,14 @@ impl Renderer {
 
     fn html(&mut self, html: &str) {
         let h = html.trim();
+        // An anchor of its own (`<a id="…">`): a link's target, as a heading is.
+        if let Some(at) = h.find("<a id=\"") {
+            let id = &h[at + "<a id=\"".len()..];
+            if let Some(end) = id.find('"') {
+                let line = self.out.lines.len();
+                self.out.anchors.push((line, id[..end].to_string()));
+            }
+        }
         // An <img> (side-by-side figures in raw HTML) is drawn as a Markdown image is.
         let mut rest = h;
         while let Some(at) = rest.find("<img ") {
@@ -668,6 +683,7 @@ impl Renderer {
                 number,
                 width,
                 !self.options.figures_later,
+                self.options.plain,
             ))
         } else {
             self.options
@@ -755,72 +771,6 @@ impl Renderer {
                 }
                 spans.push(Span::styled(part, style::code()));
                 self.out.lines.push(Line::from(spans));
-            }
-        }
-        self.blank();
-    }
-
-    fn draw_table(&mut self, t: Table) {
-        let columns = t.rows.iter().map(Vec::len).max().unwrap_or(0);
-        if columns == 0 {
-            return;
-        }
-        let indent = self.prefix.concat();
-        // Cells may hold math or code spans; they are plain text here.
-        let mut widths = vec![0usize; columns];
-        for row in &t.rows {
-            for (i, cell) in row.iter().enumerate() {
-                widths[i] = widths[i].max(cell.width());
-            }
-        }
-        // Shrink the widest columns until the table fits.
-        let budget = self
-            .width
-            .saturating_sub(indent.width() + 3 * columns)
-            .max(columns * 4);
-        while widths.iter().sum::<usize>() > budget {
-            let (i, _) = widths
-                .iter()
-                .enumerate()
-                .max_by_key(|(_, w)| **w)
-                .unwrap_or((0, &0));
-            widths[i] -= 1;
-        }
-        for (r, row) in t.rows.iter().enumerate() {
-            let cells: Vec<Vec<String>> = (0..columns)
-                .map(|i| wrap_plain(row.get(i).map(String::as_str).unwrap_or(""), widths[i]))
-                .collect();
-            let height = cells.iter().map(Vec::len).max().unwrap_or(1);
-            for k in 0..height {
-                let mut spans = vec![Span::raw(indent.clone())];
-                for i in 0..columns {
-                    let text = cells[i].get(k).cloned().unwrap_or_default();
-                    let pad = widths[i].saturating_sub(text.width());
-                    let cell = match t.align.get(i) {
-                        Some(Alignment::Right) => format!("{}{text}", " ".repeat(pad)),
-                        Some(Alignment::Center) => {
-                            format!("{}{text}{}", " ".repeat(pad / 2), " ".repeat(pad - pad / 2))
-                        }
-                        _ => format!("{text}{}", " ".repeat(pad)),
-                    };
-                    let s = if r == 0 {
-                        Style::new().add_modifier(Modifier::BOLD)
-                    } else {
-                        Style::new()
-                    };
-                    spans.push(Span::styled(cell, s));
-                    if i + 1 < columns {
-                        spans.push(Span::styled(" │ ", style::rule()));
-                    }
-                }
-                self.out.lines.push(Line::from(spans));
-            }
-            if r == 0 {
-                let rule: Vec<String> = widths.iter().map(|w| "─".repeat(*w)).collect();
-                self.out.lines.push(Line::from(Span::styled(
-                    format!("{indent}{}", rule.join("─┼─")),
-                    style::rule(),
-                )));
             }
         }
         self.blank();

@@ -101,7 +101,15 @@ impl Learn {
             .headings
             .iter()
             .find(|(_, _, h)| h == text || book::slug(h) == text)
-            .map(|(line, ..)| *line);
+            .map(|(line, ..)| *line)
+            .or_else(|| {
+                // Or an anchor written as HTML: `<a id="jackson">`.
+                self.rendered
+                    .anchors
+                    .iter()
+                    .find(|(_, id)| id == text)
+                    .map(|(line, _)| *line)
+            });
         if let Some(line) = line {
             self.scroll = line;
             self.clamp_scroll();
@@ -113,7 +121,11 @@ impl Learn {
     pub(super) fn scroll_panel(&mut self, n: i64) {
         let max = self.panel_max_scroll();
         match &mut self.mode {
-            Mode::Help(s) | Mode::Course(s) => *s = s.saturating_add_signed(n as isize).min(max),
+            // From where the panel is drawn: its content may have shrunk
+            // since (a fixed assignment), and the first PgUp must move it.
+            Mode::Help(s) | Mode::Course(s) => {
+                *s = (*s).min(max).saturating_add_signed(n as isize).min(max)
+            }
             _ => {}
         }
     }
@@ -278,7 +290,7 @@ impl Learn {
             self.inform(format!("followed the link to {title}; ← → and c move on"));
         } else {
             self.inform(format!(
-                "followed the link to {title} (no heading “{anchor}” in it)"
+                "followed the link to {title} (no heading or anchor “{anchor}” in it)"
             ));
         }
     }

@@ -403,6 +403,52 @@ pub enum SceneKey {
     NextModel,
 }
 
+/// `v` in a chapter's scene: the next of the models it draws, where they
+/// take turns; otherwise why nothing changes (one model, or all of them on
+/// the screen). Said of the models the chapter draws, not of all the live
+/// view has (Section 4.2 draws the reduced top alone).
+fn next_model(app: &mut App, shown: &[usize]) -> (String, bool) {
+    let shown: Vec<usize> = shown
+        .iter()
+        .copied()
+        .filter(|c| *c < app.columns().len())
+        .collect();
+    let name = |app: &App, i: usize| {
+        let (name, equations, gist) = app.columns()[i].title();
+        format!("{name} {equations}, {gist}")
+    };
+    match shown.as_slice() {
+        [] => ("this scene draws no model to change".into(), true),
+        [one] => (
+            format!(
+                "this scene draws one model, the {}: v has no other to show",
+                name(app, *one)
+            ),
+            true,
+        ),
+        _ if !app.view().takes_turns(shown.len()) => (
+            format!(
+                "all {} models of this scene are on the screen; v shows them one at a time where the scene is narrower",
+                shown.len()
+            ),
+            true,
+        ),
+        _ => {
+            app.apply(LiveCommand::NextModel);
+            let at = app.view().shown % shown.len();
+            (
+                format!(
+                    "scene: model {} of {}: {}",
+                    at + 1,
+                    shown.len(),
+                    name(app, shown[at])
+                ),
+                false,
+            )
+        }
+    }
+}
+
 impl Stage {
     /// Start the scene of `spec` (its computations on their own thread when
     /// `background`).
@@ -474,8 +520,10 @@ impl Stage {
     }
 
     /// Apply a scene key; the line to show, and whether it is a refusal.
-    pub fn key(&mut self, key: SceneKey) -> (String, bool) {
+    /// `shown`: the live view's columns the chapter's scene draws.
+    pub fn key(&mut self, key: SceneKey, shown: &[usize]) -> (String, bool) {
         match self {
+            Stage::Top(app) if key == SceneKey::NextModel => next_model(app, shown),
             Stage::Top(app) => {
                 let command = match key {
                     SceneKey::Pause => LiveCommand::TogglePause,

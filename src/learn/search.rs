@@ -87,6 +87,7 @@ fn searched_text(source: &str, unfolded: bool) -> String {
             unfold: unfolded,
             figures_later: true,
             images: None,
+            plain: false,
         },
     );
     markdown::plain(&rendered.lines).to_lowercase()

@@ -64,7 +64,11 @@ pub fn draw(frame: &mut Frame, learn: &Learn) {
     }
     let panes = learn.panes_in((area.width, area.height));
     draw_header(frame, panes.header, learn);
-    if let Some(text) = panes.text {
+    if let Some(mut text) = panes.text {
+        // A message of more rows than one takes them from the text's
+        // bottom, above its frame line: the position stays in sight.
+        let more = message_rows(learn, panes.status.width).saturating_sub(1);
+        text.height = text.height.saturating_sub(more).max(3.min(text.height));
         draw_text(frame, text, learn);
     }
     if let Some(scene) = panes.scene {
@@ -122,7 +126,20 @@ fn draw_header(frame: &mut Frame, area: Rect, learn: &Learn) {
     let n = learn.chapters().len();
     let mut cells = vec![
         Cell::fixed(vec![Span::styled(" spintop learn ", theme::status(false))]),
-        Cell::fixed(vec![Span::styled(chapter.title.clone(), theme::title())]),
+        // The title shortens before the course would be left out: at 80
+        // columns beside the scene the header keeps the course's count.
+        Cell(
+            [
+                chapter.title.clone(),
+                shortened(&chapter.title, 30),
+                chapter
+                    .section()
+                    .map_or_else(|| format!("{}", learn.current() + 1), |s| format!("§{s}")),
+            ]
+            .into_iter()
+            .map(|t| vec![Span::styled(t, theme::title())])
+            .collect(),
+        ),
     ];
     // The course before the chapter's count: the count shortens first.
     cells.extend(course_cell(learn));
@@ -182,9 +199,12 @@ fn marks_on(learn: &Learn, i: usize) -> Vec<(std::ops::Range<usize>, Style)> {
         let current = s.at.and_then(|k| s.matches.get(k));
         for m in s.matches.iter().filter(|(l, _)| *l == i) {
             let style = if Some(m) == current {
+                // Bold and underlined besides the colour: without colour
+                // (NO_COLOR) the match is still told from the others.
                 Style::new()
                     .fg(ratatui::style::Color::Black)
                     .bg(ratatui::style::Color::Yellow)
+                    .add_modifier(Modifier::BOLD | Modifier::UNDERLINED)
             } else {
                 Style::new().add_modifier(Modifier::REVERSED)
             };
@@ -341,6 +361,21 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
             ),
             theme::info(),
         )),
+        // A full field says its limit before the text (which may fill
+        // the line): no character is dropped unannounced.
+        (Mode::Search(q, forward), _) if q.chars().count() >= crate::learn::search::LONGEST => {
+            Line::from(vec![
+                Span::styled(if *forward { " /" } else { " ?" }, theme::key()),
+                Span::styled(
+                    format!(
+                        "(full: {} characters; Ctrl-U clears) ",
+                        crate::learn::search::LONGEST
+                    ),
+                    theme::error(),
+                ),
+                Span::styled(format!("{q}▏"), theme::selected()),
+            ])
+        }
         (Mode::Search(q, forward), _) => Line::from(vec![
             Span::styled(if *forward { " /" } else { " ?" }, theme::key()),
             Span::styled(format!("{q}▏"), theme::selected()),
@@ -351,8 +386,10 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
                         last.query,
                         if *forward { "" } else { "; backward" }
                     ),
-                    _ if !forward => "  Enter finds backward, Esc cancels".to_string(),
-                    _ => "  Enter finds, Esc cancels".to_string(),
+                    _ if !forward => {
+                        "  Enter finds backward, Ctrl-U clears, Esc cancels".to_string()
+                    }
+                    _ => "  Enter finds, Ctrl-U clears, Esc cancels".to_string(),
                 },
                 theme::label(),
             ),
@@ -367,9 +404,23 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
             };
             return draw_message(frame, area, &format!(" {m}"), style);
         }
-        _ => scene_status(learn, scene_shown),
+        _ => scene_status(learn, scene_shown, area.width),
     };
     frame.render_widget(Paragraph::new(line), area);
+}
+
+/// The rows the status message takes (1 to 3), as [`draw_message`] wraps it.
+fn message_rows(learn: &Learn, width: u16) -> u16 {
+    match (learn.mode(), learn.message()) {
+        _ if learn.searching().is_some() => 1,
+        (Mode::Search(..), _) | (_, None) => 1,
+        (_, Some((m, _))) => {
+            let p = Paragraph::new(Line::from(format!(" {m}"))).wrap(Wrap { trim: false });
+            u16::try_from(p.line_count(width))
+                .unwrap_or(u16::MAX)
+                .clamp(1, 3)
+        }
+    }
 }
 
 /// A status message, wrapped upward over the text when one row is too
@@ -402,7 +453,7 @@ fn draw_message(frame: &mut Frame, area: Rect, text: &str, style: Style) {
 }
 
 /// The scene's clock and state, when nothing else is said.
-fn scene_status(learn: &Learn, scene_shown: bool) -> Line<'static> {
+fn scene_status(learn: &Learn, scene_shown: bool, width: u16) -> Line<'static> {
     let stage = learn.stage();
     let mut spans = vec![Span::styled(" scene ", theme::label())];
     match stage.clock() {
@@ -420,7 +471,23 @@ fn scene_status(learn: &Learn, scene_shown: bool) -> Line<'static> {
                 ));
             }
         }
-        None => spans.push(Span::styled(learn.scene_info().describe(), theme::label())),
+        None => {
+            // A chapter without a scene: its note whole when it fits, else
+            // its last clause (the command it names) rather than a cut one.
+            let about = learn.scene_info().describe();
+            let last = about.rsplit("; ").next().unwrap_or(&about).to_string();
+            let choices = [
+                format!(" scene {about}"),
+                format!(" {about}"),
+                format!(" no scene: {last}"),
+                format!(" {last}"),
+            ];
+            let fits = choices
+                .iter()
+                .find(|c| Span::raw(c.as_str()).width() <= usize::from(width));
+            let text = fits.map_or_else(|| shortened(&choices[3], width), Clone::clone);
+            return Line::from(Span::styled(text, theme::label()));
+        }
     }
     Line::from(spans)
 }

@@ -141,6 +141,28 @@ pub fn max_scroll(size: (u16, u16), width: u16, lines: &[Line<'static>]) -> usiz
 
 /// Draws the box with `lines` from row `scroll` (clamped), its title, and in
 /// its bottom border where the reader is when not everything fits.
+/// The scroll that shows `lines[range]` in a box `width` wide on a screen
+/// of `size`: 0 when they are on its first screen, else the row they start
+/// at (as far as the box scrolls).
+pub fn scroll_to(
+    size: (u16, u16),
+    width: u16,
+    lines: &[Line<'static>],
+    range: std::ops::Range<usize>,
+) -> usize {
+    let inner = width.min(size.0).saturating_sub(2);
+    let all = hang(lines.to_vec(), inner);
+    let at = placed(Rect::new(0, 0, size.0, size.1), width, &all);
+    let inner = at.width.saturating_sub(2);
+    let upto = |k: usize| rows(&hang(lines[..k.min(lines.len())].to_vec(), inner), inner);
+    let (start, end) = (upto(range.start), upto(range.end));
+    if end <= usize::from(at.height.saturating_sub(2)) {
+        0
+    } else {
+        start.min(max_scroll(size, width, lines))
+    }
+}
+
 pub fn draw(
     frame: &mut Frame,
     area: Rect,

@@ -344,9 +344,7 @@ where
             }
             if let Some(command) = screen.command(&event) {
                 if screen.announce(&command) {
-                    terminal
-                        .draw(|frame| screen.draw(frame))
-                        .map_err(io::Error::other)?;
+                    draw_frame(terminal, |frame| screen.draw(frame), no_color)?;
                 }
                 screen.apply(command);
             }

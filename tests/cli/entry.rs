@@ -532,3 +532,26 @@ fn help_states_each_flags_range_and_default_from_the_table() {
     assert!(text.contains("0 < --ratio <= 2") && text.contains("1e-14 <= --rtol < 1"));
     assert!(text.contains("each --omega component at most 1e100"));
 }
+
+/// `spintop learn --help` says where the reading place is kept: the path the
+/// one function that decides it gives, below the repository.
+#[test]
+fn learn_help_says_where_the_reading_place_is_kept() {
+    let home = Path::new("/the/copy");
+    let book = spintop_course::Book {
+        src: home.join("book").join("src"),
+        home: home.to_path_buf(),
+        instead_of: None,
+    };
+    let kept = spintop_app::cli::learn::progress_file(&book);
+    let below = kept
+        .strip_prefix(home)
+        .expect("kept below the book's folder unless SPINTOP_LEARN_PROGRESS is set");
+    let text = help("learn");
+    assert!(
+        text.contains(&below.display().to_string()),
+        "learn --help names {}:\n{text}",
+        below.display()
+    );
+    assert!(text.contains("reading place"), "{text}");
+}

@@ -11,5 +11,6 @@ mod live_view;
 mod overlays;
 mod reader;
 mod screens;
+mod student;
 mod term_e2e;
 mod tmux;

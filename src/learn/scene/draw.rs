@@ -116,7 +116,8 @@ fn radius_chart(
     frame.render_widget(chart, area);
 }
 
-/// The orbit's numbers now, and the averaged collapse time.
+/// The orbit's numbers now (wrapped over all rows but the last), and the
+/// averaged collapse time on the last, shortened to fit with its value kept.
 fn orbit_numbers(frame: &mut Frame, area: Rect, now: Option<&OrbitSample>, runs: &OrbitRuns) {
     let n = now.map_or(String::new(), |s| {
         format!(
@@ -128,19 +129,29 @@ fn orbit_numbers(frame: &mut Frame, area: Rect, now: Option<&OrbitSample>, runs:
             spintop::numbers::fmt_num(s.energy)
         )
     });
+    let rows = area.height.max(1);
+    let [now_area, collapse_area] =
+        Layout::vertical([Constraint::Length(rows - 1), Constraint::Length(1)]).areas(area);
     frame.render_widget(
-        Paragraph::new(vec![
-            Line::from(Span::styled(n, theme::value())),
-            Line::from(Span::styled(
-                format!(
-                    "collapse by the averaged law at t_c = r₀³/(6τ₀) = {} {PLAYBACK_UNIT}",
-                    spintop::numbers::fmt_num(runs.collapse)
-                ),
-                theme::label(),
-            )),
-        ])
-        .wrap(Wrap { trim: true }),
-        area,
+        Paragraph::new(Line::from(Span::styled(n, theme::value()))).wrap(Wrap { trim: true }),
+        now_area,
+    );
+    let t_c = format!(
+        "{} {PLAYBACK_UNIT}",
+        spintop::numbers::fmt_num(runs.collapse)
+    );
+    let collapse = fitting(
+        area.width,
+        &[
+            format!("collapse by the averaged law at t_c = r₀³/(6τ₀) = {t_c}"),
+            format!("averaged collapse: t_c = r₀³/(6τ₀) = {t_c}"),
+            format!("averaged collapse t_c = {t_c}"),
+            format!("t_c = {t_c}"),
+        ],
+    );
+    frame.render_widget(
+        Paragraph::new(Line::from(Span::styled(collapse, theme::label()))),
+        collapse_area,
     );
 }
 
@@ -194,6 +205,18 @@ pub fn physical_run_command(tau0: spintop::math::Real) -> String {
     )
 }
 
+/// The first of `choices` (longest first) that fits `width` columns; the
+/// last when none does.
+fn fitting(width: u16, choices: &[String]) -> String {
+    use unicode_width::UnicodeWidthStr;
+    choices
+        .iter()
+        .find(|c| c.width() <= usize::from(width))
+        .or(choices.last())
+        .cloned()
+        .unwrap_or_default()
+}
+
 /// Draw the shell scene in `area`.
 pub fn draw_shell(frame: &mut Frame, area: Rect, p: &Playback<Vec<ShellRun>>) {
     let runs = match p.data() {
@@ -214,15 +237,25 @@ pub fn draw_shell(frame: &mut Frame, area: Rect, p: &Playback<Vec<ShellRun>>) {
 fn draw_shell_run(frame: &mut Frame, area: Rect, run: &ShellRun, t: Real) {
     let m = run.model;
     let stable = m.m0() > m.m_em();
-    let title = format!(
-        " shell δ = {}, τ₀ = {}: {} ",
+    let (delta, tau0) = (
         spintop::numbers::fmt_param(m.delta()),
         spintop::numbers::fmt_param(m.tau0()),
-        if stable {
-            "m₀ > mₑₘ, stable"
-        } else {
-            "mₑₘ > m₀, unstable"
-        }
+    );
+    let (masses, verdict) = if stable {
+        ("m₀ > mₑₘ", "stable")
+    } else {
+        ("mₑₘ > m₀", "unstable")
+    };
+    // The verdict is what the panel is for: shorter titles keep it.
+    let room = area.width.saturating_sub(4);
+    let title = fitting(
+        room,
+        &[
+            format!(" shell δ = {delta}, τ₀ = {tau0}: {masses}, {verdict} "),
+            format!(" δ = {delta}, τ₀ = {tau0}: {masses}, {verdict} "),
+            format!(" δ = {delta}, τ₀ = {tau0}: {verdict} "),
+            format!(" {verdict} "),
+        ],
     );
     let block = panel(&title);
     let inner = block.inner(area);
@@ -263,7 +296,14 @@ fn draw_shell_run(frame: &mut Frame, area: Rect, run: &ShellRun, t: Real) {
             .data(&data),
     ])
     .block(Block::new().title(Span::styled(
-        "log₁₀|Z − Z_AL|: the shell against the point charge",
+        fitting(
+            chart_area.width,
+            &[
+                "log₁₀|Z − Z_AL|: the shell against the point charge".into(),
+                "log₁₀|Z − Z_AL|: shell against point charge".into(),
+                "log₁₀|Z − Z_AL|".into(),
+            ],
+        ),
         theme::title(),
     )))
     .x_axis(time_axis(t_end))
