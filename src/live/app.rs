@@ -878,22 +878,9 @@ impl App {
     }
 }
 
-/// The name of a method choice on the screen, the same in the header, the
-/// columns and the messages: `auto` says what it runs here.
-pub fn method_title(method: MethodChoice, top: &super::layout::Top) -> String {
-    let same = (method == MethodChoice::Auto)
-        .then(|| {
-            super::layout::METHOD_CYCLE[1..]
-                .iter()
-                .find(|m| top.resolves_same(MethodChoice::Auto, **m))
-        })
-        .flatten();
-    match same {
-        Some(MethodChoice::Exact) => "auto (closed form)".into(),
-        Some(m) => format!("auto ({})", m.title()),
-        None => method.title().into(),
-    }
-}
+/// The name of a method choice on the screen (it lives with the cycle it
+/// names, in `layout`).
+pub use super::layout::method_title;
 
 /// Subscript digits for Ω₁, Ω₂, Ω₃.
 pub const SUBSCRIPTS: [char; 3] = ['₁', '₂', '₃'];

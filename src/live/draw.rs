@@ -4,6 +4,7 @@
 //! clock's status.
 
 use super::app::App;
+use super::columns::Column;
 pub use super::layout::COLUMN_WIDTH;
 use super::widgets::{OmegaSeries, drift, hodograph, numbers, top_in_space};
 use crate::term::cells::width;
@@ -51,17 +52,15 @@ pub fn status(app: &App) -> Span<'static> {
     }
 }
 
-/// One model's column: its chart, hodograph, top in space and numbers.
-/// `which`: its place among models shown one at a time, if they are.
-fn draw_column(
-    frame: &mut Frame,
-    area: Rect,
-    app: &App,
-    i: usize,
+/// A column's title: the model's name and equations (with its gist where
+/// it fits), then its marks (stopped, a stand-in, its place among models
+/// shown one at a time).
+fn column_title(
+    column: &Column,
+    width_of_area: u16,
     which: Option<(usize, usize)>,
     next: &str,
-) {
-    let column = &app.columns()[i];
+) -> Vec<Span<'static>> {
     let (name, equations, gist) = column.title();
     let mut marks = Vec::new();
     if column.failure().is_some() {
@@ -82,7 +81,7 @@ fn draw_column(
         // The long form where it fits beside the short title, else "1/2 v▸".
         let long = format!("│ model {} of {n} ({next}: next) ", at + 1);
         let fits = short_title + width(&marks) + Span::raw(long.as_str()).width()
-            <= usize::from(area.width.saturating_sub(4));
+            <= usize::from(width_of_area.saturating_sub(4));
         marks.push(Span::styled(
             if fits {
                 long
@@ -92,8 +91,8 @@ fn draw_column(
             theme::key(),
         ));
     }
-    let room = usize::from(area.width.saturating_sub(4))
-        - width(&marks).min(usize::from(area.width.saturating_sub(4)));
+    let room = usize::from(width_of_area.saturating_sub(4))
+        - width(&marks).min(usize::from(width_of_area.saturating_sub(4)));
     let long = format!(" {name} {equations}: {gist} ");
     let mut title = if Span::raw(long.as_str()).width() <= room {
         vec![
@@ -107,6 +106,21 @@ fn draw_column(
         ]
     };
     title.extend(marks);
+    title
+}
+
+/// One model's column: its chart, hodograph, top in space and numbers.
+/// `which`: its place among models shown one at a time, if they are.
+fn draw_column(
+    frame: &mut Frame,
+    area: Rect,
+    app: &App,
+    i: usize,
+    which: Option<(usize, usize)>,
+    next: &str,
+) {
+    let column = &app.columns()[i];
+    let title = column_title(column, area.width, which, next);
     let block = Block::bordered()
         .border_type(BorderType::Rounded)
         .border_style(theme::frame())

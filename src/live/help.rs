@@ -198,7 +198,7 @@ pub fn lines(top: &Top) -> Vec<Line<'static>> {
     // `m` names the methods of its cycle, from the cycle itself.
     let cycle: Vec<String> = super::layout::method_cycle(top)
         .into_iter()
-        .map(|m| super::app::method_title(m, top))
+        .map(|m| super::layout::method_title(m, top))
         .collect();
     let m_says = keys
         .iter()

@@ -227,3 +227,20 @@ impl Top {
             .collect()
     }
 }
+
+/// The name of a method choice on the screen, the same in the header, the
+/// columns and the messages: `auto` says what it runs here.
+pub fn method_title(method: MethodChoice, top: &Top) -> String {
+    let same = (method == MethodChoice::Auto)
+        .then(|| {
+            METHOD_CYCLE[1..]
+                .iter()
+                .find(|m| top.resolves_same(MethodChoice::Auto, **m))
+        })
+        .flatten();
+    match same {
+        Some(MethodChoice::Exact) => "auto (closed form)".into(),
+        Some(m) => format!("auto ({})", m.title()),
+        None => method.title().into(),
+    }
+}
