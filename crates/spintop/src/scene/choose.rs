@@ -166,7 +166,8 @@ pub(super) fn secular_error(model: &Model, omega0: &Vec3) -> Option<Real> {
 /// lightest general tier whose secular model holds E and |L| within `tol`
 /// over `times` (its drift against the physical solution's,
 /// [`secular_errors`], and its own averaging error, [`secular_error`]),
-/// with the reason it answers them without the orientation. This is what
+/// with the reason it answers them without the orientation, and its drift
+/// (the model's own error in E and |L|, relative). This is what
 /// `auto` answers at a longer horizon or a tighter rtol, where stepping no
 /// longer fits and the secular model is chosen outright: so a refusal is
 /// monotonic in the horizon and in rtol. `None` for a symmetric top, or
@@ -176,7 +177,7 @@ pub(super) fn secular_fallback(
     omega0: &Vec3,
     times: &[Real],
     tol: Real,
-) -> Option<(usize, String)> {
+) -> Option<(usize, String, Real)> {
     let Model::GeneralReduced(top) = &tiers[1] else {
         return None;
     };
@@ -198,6 +199,7 @@ pub(super) fn secular_fallback(
             drift[tier],
             secular_error(&tiers[tier], omega0).unwrap_or(0.0)
         ),
+        drift[tier],
     ))
 }
 

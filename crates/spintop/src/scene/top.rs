@@ -489,10 +489,19 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
     // The physical solution was chosen and cannot run: a lighter model
     // answers Omega (a closed form), or E and |L| (a general top's secular
     // model), without the orientation, as `auto` would at a longer horizon.
+    // The secular fallback's own error is in E and |L| (its drift), not the
+    // Ω estimate (phase included) that `auto` made for stepping this tier.
+    let mut secular_drift = None;
     let without_orientation = match (&planned, &choice) {
         (Err(refusal), Some(c)) if refusal.at == plan::Blame::Times && c.tier == 2 => {
-            without_orientation
-                .or_else(|| choose::secular_fallback(tiers, &initial.omega, times, options.rtol()))
+            without_orientation.or_else(|| {
+                choose::secular_fallback(tiers, &initial.omega, times, options.rtol()).map(
+                    |(tier, why, drift)| {
+                        secular_drift = Some(drift);
+                        (tier, why)
+                    },
+                )
+            })
         }
         _ => without_orientation,
     };
@@ -500,12 +509,18 @@ fn plan_request(ctx: &Ctx, request: TopRequest, own: &At, solve_at: &At) -> Resu
         && refusal.at == plan::Blame::Times
     {
         model = tiers[*tier];
-        model_error = choice.as_ref().and_then(|c| c.model_error(*tier)).map(|e| {
-            crate::sim::claim::TierEstimate {
+        model_error = match secular_drift {
+            Some(drift) => Some(crate::sim::claim::TierEstimate {
+                omega: drift,
                 orientation: None,
-                ..e
-            }
-        });
+            }),
+            None => choice.as_ref().and_then(|c| c.model_error(*tier)).map(|e| {
+                crate::sim::claim::TierEstimate {
+                    orientation: None,
+                    ..e
+                }
+            }),
+        };
         model_choice = Some(why.clone());
         why_physical = None;
         let skip = if model.has_closed_form() {
