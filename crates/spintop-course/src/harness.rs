@@ -146,6 +146,23 @@ fn refusal(seed: u64, lines: &[String], place: Located) -> Status {
     status
 }
 
+/// Holds the workspace at `root` for one grading (an exclusive `flock` on
+/// its `grading.lock`, released when the file is dropped, or by the kernel
+/// when the process dies), waiting for a grading that holds it.
+fn lock_workspace(root: &Path) -> Result<std::fs::File, CourseError> {
+    let path = root.join("grading.lock");
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .map_err(CourseError::io(&path))?;
+    #[cfg(unix)]
+    rustix::fs::flock(&file, rustix::fs::FlockOperation::LockExclusive)
+        .map_err(|e| CourseError::io(&path)(e.into()))?;
+    Ok(file)
+}
+
 /// Grades the lessons crate in `dir`. An error is a reason the grading
 /// could not be done at all (cargo not run, the workspace not written);
 /// everything the copy does (a shortcut, a compile error, a hang) is a
@@ -164,6 +181,10 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, CourseError> {
             .canonicalize()
             .map_err(CourseError::io(ws.root()))?,
     );
+    // One grading at a time in a workspace: a second grading of the same
+    // copy (two `spintop course` at once, or one beside `learn`) waits here
+    // for the first instead of clearing the sources under it.
+    let _grading = lock_workspace(ws.root())?;
     ws.clear_sources()?;
     // 1. The snapshot.
     let snap = match snapshot::take(&dir, &ws.course(), &snapshot::Limits::default()) {
