@@ -86,19 +86,7 @@ fn stdout_of(out: &Output, what: &str) -> String {
 #[ignore = "end-to-end: exports a copy from a scratch clone of the repository, deletes the clone, runs the binary in the moved copy"]
 fn learn_in_a_moved_copy_reads_the_copys_book_with_its_code_and_keeps_its_place_there() {
     let root = scratch("book-moved");
-    let clone = root.join("clone");
-    // The files an export reads, as a clone of the repository holds them.
-    std::fs::create_dir_all(&clone).unwrap();
-    let cp = Command::new("cp")
-        .arg("-r")
-        .args(["crates", "lessons", "book", "Cargo.toml", "Cargo.lock"].map(|p| repo().join(p)))
-        .arg(&clone)
-        .status()
-        .unwrap();
-    assert!(cp.success());
-    let exported = root.join("copy");
-    spintop_course::export(&clone, &exported).unwrap();
-    std::fs::remove_dir_all(&clone).unwrap();
+    let (exported, clone) = super::export_from_a_deleted_clone(&root);
     let copy = root.join("elsewhere").join("course");
     std::fs::create_dir_all(copy.parent().unwrap()).unwrap();
     std::fs::rename(&exported, &copy).unwrap();

@@ -600,17 +600,11 @@ fn a_copy_named_by_a_relative_path_is_graded() {
     std::fs::remove_dir_all(&parent).ok();
 }
 
-/// What a student is handed stands alone: exported from a clone of the
-/// repository that is then deleted, the copy names no path outside itself,
-/// holds no reference solution, builds offline with the crates it carries
-/// (one assignment solved passes its test there), and `course grade` grades
-/// it.
-#[test]
-#[ignore = "end-to-end: builds a copy of the course from scratch (a minute or two)"]
-fn a_copy_exported_from_a_deleted_clone_builds_and_is_graded() {
-    let root = scratch("standalone");
+/// A copy exported to `root/copy` from a clone of the repository made in
+/// `root/clone` (the files an export reads, as a clone holds them), the
+/// clone then deleted: (the copy, where the clone was).
+pub(super) fn export_from_a_deleted_clone(root: &Path) -> (PathBuf, PathBuf) {
     let clone = root.join("clone");
-    // The files an export reads, as a clone of the repository holds them.
     std::fs::create_dir_all(&clone).unwrap();
     let cp = Command::new("cp")
         .arg("-r")
@@ -622,6 +616,19 @@ fn a_copy_exported_from_a_deleted_clone_builds_and_is_graded() {
     let copy = root.join("copy");
     course::export(&clone, &copy).unwrap();
     std::fs::remove_dir_all(&clone).unwrap();
+    (copy, clone)
+}
+
+/// What a student is handed stands alone: exported from a clone of the
+/// repository that is then deleted, the copy names no path outside itself,
+/// holds no reference solution, builds offline with the crates it carries
+/// (one assignment solved passes its test there), and `course grade` grades
+/// it.
+#[test]
+#[ignore = "end-to-end: builds a copy of the course from scratch (a minute or two)"]
+fn a_copy_exported_from_a_deleted_clone_builds_and_is_graded() {
+    let root = scratch("standalone");
+    let (copy, clone) = export_from_a_deleted_clone(&root);
     // No path outside the copy, no solution.
     names_nothing_outside(
         &copy,

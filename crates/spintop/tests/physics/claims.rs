@@ -37,6 +37,40 @@ fn true_within_ten(tag: &str, real: Real, claimed: Real, floor: Real) -> Result<
     }
 }
 
+/// E and |L| of a top of inertia `inertia` at Ω: ½Ω·IΩ and |IΩ|.
+fn e_and_l(inertia: Vec3, w: Vec3) -> (Real, Real) {
+    let l = inertia.component_mul(&w);
+    (0.5 * w.dot(&l), l.norm())
+}
+
+/// E and |L| of the reference's Ω at each of `times`, and at the start.
+fn e_and_l_along(
+    inertia: Vec3,
+    omega0: Vec3,
+    times: &[Real],
+    reference: &Reference,
+) -> (Vec<(Real, Real)>, (Real, Real)) {
+    let truth = times
+        .iter()
+        .map(|&t| e_and_l(inertia, reference.omega(t)))
+        .collect();
+    (truth, e_and_l(inertia, omega0))
+}
+
+/// A secular answer's largest error in E and in |L| (each relative to its
+/// start) against the truth at its samples.
+fn worst_e_and_l_error(v: &Value, truth: &[(Real, Real)], (e0, l0): (Real, Real)) -> Real {
+    v["samples"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(truth)
+        .map(|(s, (e, l))| {
+            ((num(&s["energy"]) - e).abs() / e0).max((num(&s["l_norm"]) - l).abs() / l0)
+        })
+        .fold(0.0, Real::max)
+}
+
 /// Issue 46, 3: the secular model of a symmetric top entered as general
 /// (I = (1, 1, 0.4), d = (0, 0, 1), Ω₀ = (6, 3, 7.4)·10⁻⁵, T = 10¹¹) printed
 /// "good to about 1.2e-17" at rtol 1e-2, and no `error`; the real |ΔE|/E₀
@@ -61,15 +95,7 @@ fn secular_error_of_e_and_l_is_true_for_a_symmetric_top_entered_as_general() {
     let omega0 = Vec3::new(6e-5, 3e-5, 7.4e-5);
     let times = [0.0, 1e9, 1e10, 3e10, 1e11];
     let reference = Reference::new(Manifold::Physical, 0.4, 1.0, omega0, 1e11, 1.0);
-    let invariants = |w: Vec3| {
-        let l = inertia.component_mul(&w);
-        (0.5 * w.dot(&l), l.norm())
-    };
-    let (e0, l0) = invariants(omega0);
-    let truth: Vec<(Real, Real)> = times
-        .iter()
-        .map(|&t| invariants(reference.omega(t)))
-        .collect();
+    let (truth, start) = e_and_l_along(inertia, omega0, &times, &reference);
     // The reviewer's independent values at t = 10⁹ (see above).
     assert!((truth[1].0 / 1.1695642198266244e-9 - 1.0).abs() < 1e-11);
     assert!((truth[1].1 / 3.201387885985153e-5 - 1.0).abs() < 1e-11);
@@ -87,15 +113,7 @@ fn secular_error_of_e_and_l_is_true_for_a_symmetric_top_entered_as_general() {
                 .contains("physical solution"),
             "{error}"
         );
-        let real = v["samples"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .zip(&truth)
-            .map(|(s, (e, l))| {
-                ((num(&s["energy"]) - e).abs() / e0).max((num(&s["l_norm"]) - l).abs() / l0)
-            })
-            .fold(0.0, Real::max);
+        let real = worst_e_and_l_error(&v, &truth, start);
         match true_within_ten(
             &format!("rtol {rtol:e}"),
             real,
@@ -124,15 +142,7 @@ fn eq_3_4_the_secular_fallback_claims_its_own_drift_in_e_and_l() {
     let omega0 = Vec3::new(6e-5, 3e-5, 7.4e-5);
     let times = [0.0, 7.5e8, 1.5e9, 2.25e9, 3e9];
     let reference = Reference::new(Manifold::Physical, 0.4, 1.0, omega0, 3e9, 1.0);
-    let invariants = |w: Vec3| {
-        let l = inertia.component_mul(&w);
-        (0.5 * w.dot(&l), l.norm())
-    };
-    let (e0, l0) = invariants(omega0);
-    let truth: Vec<(Real, Real)> = times
-        .iter()
-        .map(|&t| invariants(reference.omega(t)))
-        .collect();
+    let (truth, start) = e_and_l_along(inertia, omega0, &times, &reference);
     let mut lines = Vec::new();
     let mut bad = Vec::new();
     let mut secular = 0;
@@ -147,15 +157,7 @@ fn eq_3_4_the_secular_fallback_claims_its_own_drift_in_e_and_l() {
         }
         secular += 1;
         let error = &v["error"];
-        let real = v["samples"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .zip(&truth)
-            .map(|(s, (e, l))| {
-                ((num(&s["energy"]) - e).abs() / e0).max((num(&s["l_norm"]) - l).abs() / l0)
-            })
-            .fold(0.0, Real::max);
+        let real = worst_e_and_l_error(&v, &truth, start);
         match true_within_ten(
             &format!("rtol {rtol:e}"),
             real,
