@@ -22,7 +22,12 @@ use std::time::Duration;
     after_help = "Examples:\n  \
         spintop course                                   every assignment, its state and what to do next\n  \
         spintop course hint torque_rate                  the next rung of its hint ladder\n  \
-        spintop course watch                             re-grade on every save"
+        spintop course watch                             re-grade on every save\n\n\
+        Exit codes: 0 graded (whatever the grades); 2 bad input (a flag, a course that is not one); \
+        4 could not grade: the machine did not allow it (no cargo, a toolchain that refuses, crates \
+        missing offline, a folder this user may not write), said with what to do, and nothing of the \
+        code was judged; for `course grade`, 4 when some copy could not be fully graded (its rows say \
+        why); 1 an output or a kept file (a hint's rung) could not be written."
 )]
 pub struct CourseArgs {
     #[command(subcommand)]
@@ -116,7 +121,7 @@ enum CourseAction {
     /// Instructor: grade students' copies with the repository's graders, each
     /// within a time limit, and write one row per student and assignment
     /// whatever happens (a missing folder, a copy that does not compile or
-    /// hangs); exit 3 when a copy could not be fully graded
+    /// hangs); exit 4 when a copy could not be fully graded
     Grade {
         /// The students' copies (folders made by `course export`), one per student
         #[arg(required = true, value_name = "DIR")]
@@ -256,13 +261,8 @@ fn status(args: &CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
         };
         course::grade(&dir, &options)
     })
-    .map_err(|e| {
-        if e.is_grading_failure() {
-            CliError::Stopped(format!("course: {e}"))
-        } else {
-            bad(e.to_string())
-        }
-    })?;
+    // Whatever stopped it, nothing of the code was judged: exit 4.
+    .map_err(|e| CliError::CannotGrade(format!("course: {e}")))?;
     if !args.solutions {
         course::record_passes_now(&dir, &status);
     }
@@ -529,7 +529,9 @@ fn hint(name: &str, chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<()
     let dir = lessons(chosen)?.dir;
     let mut progress = course::load_progress(&dir);
     let h = course::next_hint(&mut progress, a);
-    course::save_progress(&dir, &progress).map_err(|e| bad(format!("course hint: {e}")))?;
+    // The rung is shown even where it cannot be kept (a course another user
+    // owns): said after it, exit 1.
+    let kept = course::save_progress(&dir, &progress);
     let n = a.hints.len();
     let label = h.label();
     writeln!(
@@ -547,7 +549,11 @@ fn hint(name: &str, chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<()
             grading::hint_command(a.function, given(chosen).as_deref())
         )?;
     }
-    Ok(())
+    kept.map_err(|e| {
+        CliError::NotSaved(format!(
+            "course hint: the rung shown was not kept ({e}), so the next call shows it again"
+        ))
+    })
 }
 
 /// `spintop course diagnose DIR`: the graders' diagnoses of a folder of
@@ -571,7 +577,7 @@ fn diagnose(
         seed,
         &repo.join("target").join("course-diagnose"),
     )
-    .map_err(|e| CliError::Stopped(format!("course diagnose: {e}")))?;
+    .map_err(|e| CliError::CannotGrade(format!("course diagnose: {e}")))?;
     match format {
         Format::Json => {
             for r in &results {
