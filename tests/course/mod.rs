@@ -20,6 +20,7 @@ use std::time::{Duration, Instant};
 
 mod diagnose;
 mod no_cargo;
+mod plain_test;
 
 /// The seeds the grading tests run at: the same assertions must hold for
 /// any grading's inputs.
