@@ -81,13 +81,13 @@ fn runnable(path: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// "uid 65534 (nobody)": who this process runs as.
+/// "nobody (uid 65534)": who this process runs as.
 fn whoami() -> String {
     #[cfg(unix)]
     {
         let uid = rustix::process::geteuid().as_raw();
         match user_name(uid) {
-            Some(name) => format!("uid {uid}, {name}"),
+            Some(name) => format!("{name} (uid {uid})"),
             None => format!("uid {uid}"),
         }
     }
@@ -134,15 +134,12 @@ fn refused_by(path: &Path, e: &std::io::Error, act: &str) -> String {
                 .skip(1)
                 .find_map(|d| std::fs::metadata(d).ok().map(|m| (d, m)));
             if let Some((dir, meta)) = folder {
-                let owner = match user_name(meta.uid()) {
-                    Some(n) => format!("{n} (uid {})", meta.uid()),
-                    None => format!("uid {}", meta.uid()),
-                };
+                let owner = user_name(meta.uid()).unwrap_or_else(|| format!("uid {}", meta.uid()));
                 return format!(
-                    "permission denied: {} belongs to {owner} and this user ({}) may not {act} (mode {:o})",
+                    "permission denied: {} is {owner}'s (mode {:o}) and {} may not {act}",
                     dir.display(),
+                    meta.mode() & 0o7777,
                     whoami(),
-                    meta.mode() & 0o7777
                 );
             }
         }
@@ -274,7 +271,7 @@ mod tests {
         let e = std::io::Error::from_raw_os_error(13);
         let said = unwritable_why(Path::new("/proc/1/nope/file"), &e);
         assert!(
-            said.contains("/proc/1") && said.contains("belongs to"),
+            said.contains("/proc/1 is root's") && said.contains("may not write there"),
             "{said}"
         );
         assert!(said.contains("uid 0"), "{said}");
