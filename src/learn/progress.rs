@@ -38,7 +38,7 @@ pub fn read(path: &Path) -> Progress {
 
 /// Why the place could not be kept.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("your place could not be saved to {path}: {why} (reading goes on; the place is not kept)")]
+#[error("your place could not be saved to {path} (reading goes on): {why}")]
 pub struct NotKept {
     /// The progress file.
     pub path: String,

@@ -68,7 +68,7 @@ fn runnable(path: &Path) -> Result<(), String> {
         Err(e) => {
             return Err(format!(
                 "cannot be reached: {}",
-                refused_by(path, &e, "enter it")
+                refused_by(path, &e, "not open to")
             ));
         }
         Ok(m) if !m.is_file() => return Err("is not a program".into()),
@@ -112,11 +112,11 @@ fn user_name(uid: u32) -> Option<String> {
 /// on: the folder that refuses, whose it is and who we are, or a read-only
 /// file system; else the system's own words.
 pub fn unwritable_why(path: &Path, e: &std::io::Error) -> String {
-    refused_by(path, e, "write there")
+    refused_by(path, e, "not writable by")
 }
 
 /// Why `path` was refused (`e`): the folder that refuses and whose it is,
-/// and that this user may not `act` ("write there", "enter it").
+/// and what it is to this user (`act`: "not writable by", "not open to").
 fn refused_by(path: &Path, e: &std::io::Error, act: &str) -> String {
     #[cfg(not(unix))]
     let _ = (path, act);
@@ -135,9 +135,13 @@ fn refused_by(path: &Path, e: &std::io::Error, act: &str) -> String {
                 .find_map(|d| std::fs::metadata(d).ok().map(|m| (d, m)));
             if let Some((dir, meta)) = folder {
                 let owner = user_name(meta.uid()).unwrap_or_else(|| format!("uid {}", meta.uid()));
+                // The path is named already: its folder by name alone.
+                let shown = match dir.file_name() {
+                    Some(name) => format!("its folder {}/", name.to_string_lossy()),
+                    None => dir.display().to_string(),
+                };
                 return format!(
-                    "permission denied: {} is {owner}'s (mode {:o}) and {} may not {act}",
-                    dir.display(),
+                    "{shown} is {owner}'s (mode {:o}), {act} {}",
                     meta.mode() & 0o7777,
                     whoami(),
                 );
@@ -271,7 +275,7 @@ mod tests {
         let e = std::io::Error::from_raw_os_error(13);
         let said = unwritable_why(Path::new("/proc/1/nope/file"), &e);
         assert!(
-            said.contains("/proc/1 is root's") && said.contains("may not write there"),
+            said.contains("its folder 1/ is root's (mode 555), not writable by"),
             "{said}"
         );
         assert!(said.contains("uid 0"), "{said}");
