@@ -642,9 +642,17 @@ mod tests {
                 "the copy's Cargo.lock holds {absent}"
             );
         }
-        // A plain `cargo test` runs one program that holds every chapter's
-        // graders (cargo stops at the first test program that fails); each
-        // chapter's is built only when named.
+        one_test_program_holds_every_chapter(&out, targets);
+        // A second export into the same folder is refused, nothing overwritten.
+        assert!(export(root, &out).unwrap_err().contains("not empty"));
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+
+    /// A plain `cargo test` in the copy runs one program that holds every
+    /// chapter's graders (cargo stops at the first test program that
+    /// fails); each chapter's is built only when named (`targets`: cargo's
+    /// metadata of the copy's package).
+    fn one_test_program_holds_every_chapter(out: &Path, targets: &[serde_json::Value]) {
         let tests: Vec<(&str, bool)> = targets
             .iter()
             .filter(|t| t["kind"][0] == "test")
@@ -664,9 +672,6 @@ mod tests {
             );
         }
         assert!(!all.contains("probe"), "{all}");
-        // A second export into the same folder is refused, nothing overwritten.
-        assert!(export(root, &out).unwrap_err().contains("not empty"));
-        std::fs::remove_dir_all(&out).unwrap();
     }
 
     /// The copy's book: `book/src` as the repository holds it but KaTeX's
