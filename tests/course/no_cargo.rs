@@ -44,6 +44,37 @@ fn says_it_could_not_grade(got: &(Option<i32>, String, String), words: &[&str]) 
     }
 }
 
+/// The code is documented where a user looks, beside 2 and 3, which it
+/// is not.
+#[test]
+fn could_not_grade_has_its_own_documented_exit_code() {
+    assert_eq!(spintop_app::cli::EXIT_CANNOT_GRADE, 4);
+    assert_ne!(
+        spintop_app::cli::EXIT_CANNOT_GRADE,
+        spintop_app::cli::EXIT_BAD_INPUT
+    );
+    assert_ne!(
+        spintop_app::cli::EXIT_CANNOT_GRADE,
+        spintop_app::cli::EXIT_NUMERICAL
+    );
+    for args in [&["course", "--help"][..], &["--help"][..]] {
+        let out = Command::new(env!("CARGO_BIN_EXE_spintop"))
+            .args(args)
+            .output()
+            .unwrap();
+        let help = String::from_utf8_lossy(&out.stdout)
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" ");
+        assert!(
+            help.contains("4 could not grade")
+                || help.contains("4 `spintop course` could not grade"),
+            "{args:?}: {help}"
+        );
+        assert!(help.contains("2 bad input"), "{args:?}: {help}");
+    }
+}
+
 #[test]
 #[ignore = "end-to-end: grades a copy with no cargo, a toolchain that refuses, and no crates offline"]
 fn a_grading_the_machine_refuses_is_an_error_of_the_grading_not_of_the_code() {
