@@ -602,13 +602,16 @@ fn a_frame_of_a_new_size_draws_before_its_resize_event_arrives() {
     let sizes = [(200u16, 60u16), (80, 24), (192, 12), (106, 18), (160, 48)];
     for chapter in ["4.2", "2", "A", "asymmetric-top", "preface"] {
         for scene_full in [false, true] {
+            // One opening per chapter and mode (opening reads the whole
+            // book); each size pair then resizes the same state.
+            let mut learn = Learn::open(&book(), Some(chapter)).unwrap();
+            learn.apply(Command::Resize(sizes[0].0, sizes[0].1));
+            if scene_full {
+                press(&mut learn, KeyCode::Tab);
+            }
             for &(w0, h0) in &sizes {
                 for &(w, h) in &sizes {
-                    let mut learn = Learn::open(&book(), Some(chapter)).unwrap();
                     learn.apply(Command::Resize(w0, h0));
-                    if scene_full {
-                        press(&mut learn, KeyCode::Tab);
-                    }
                     // The terminal is now w×h; the state still thinks w0×h0.
                     let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
                     let drawn = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
