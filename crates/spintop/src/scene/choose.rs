@@ -110,11 +110,9 @@ pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Rea
     let rate = turning_angle(model, omega0, 1.0);
     let t_max = longest_stepped_turning(rtol, angle) / rate;
     let why = match stepped {
-        Some((r, steps)) => format!(
-            "it would take {} steps at rtol {r:.0e}, more than the {} allowed",
-            fmt_about(steps),
-            crate::numbers::fmt_budget(MAX_STEPS)
-        ),
+        Some((r, steps)) => {
+            crate::sim::cost::over_budget(&format!("stepping at rtol {r:.0e}"), steps, t_last)
+        }
         None => format!(
             "an integrator's error of Omega and the orientation grows like the square of the turning: {} even at rtol {TIGHTEST_RTOL:.0e}",
             fmt_about(stepping_error(TIGHTEST_RTOL, angle))
