@@ -177,7 +177,7 @@ fn shells_work_refusal_advises_the_setting_given() {
             "{flag}"
         );
         assert!(
-            key.contains(&format!(" {given} or a longer delay")),
+            key.contains(&format!(" {given} or a longer [shell] delay")),
             "{key}"
         );
         assert_eq!(

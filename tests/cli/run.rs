@@ -41,7 +41,7 @@ fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
         // The one rule of sim::Model::check_method and MethodOptions::for_choice, as the command line applies it.
         ("full-dop853.toml", format!("{HEAD}[top]\nmodel = \"full\"\n\n[solve]\nmethod = \"dop853\"\n"), 10, "[solve] method = \"dop853\": the full model (3.4) takes method auto"),
         ("rtol-below-double.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nrtol = 1e-15\n"), 10, "[solve] rtol = 1e-15 is out of range; expected a relative tolerance in [1e-14, 1)"),
-        ("step-not-rk4.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nmethod = \"dop853\"\nstep = 0.1\n"), 11, "[solve] step sets the fixed step of method rk4 only"),
+        ("step-not-rk4.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nmethod = \"dop853\"\nstep = 0.1\n"), 11, "[solve] step sets the fixed step of method = \"rk4\" only; the adaptive methods take rtol"),
         ("auto-with-method.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n[solve]\nmethod = \"dop853\"\n"), 10, "model = \"auto\" chooses the model and its method together"),
         ("times-decreasing.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 5.0, 2.0]\n"), 10, "2 comes after 5"),
         ("times-and-t-end.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 1.0]\nt_end = 5.0\n"), 11, "either times"),

@@ -110,9 +110,11 @@ pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Rea
     let rate = turning_angle(model, omega0, 1.0);
     let t_max = longest_stepped_turning(rtol, angle) / rate;
     let why = match stepped {
-        Some((r, steps)) => {
-            crate::sim::cost::over_budget(&format!("stepping at rtol {r:.0e}"), steps, t_last)
-        }
+        Some((r, steps)) => crate::sim::cost::over_budget(
+            &format!("stepping at rtol {}", crate::numbers::exponent(r, 0)),
+            steps,
+            t_last,
+        ),
         None => format!(
             "an integrator's error of Omega and the orientation grows like the square of the turning: {} even at rtol {TIGHTEST_RTOL:.0e}",
             fmt_about(stepping_error(TIGHTEST_RTOL, angle))

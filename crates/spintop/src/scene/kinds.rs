@@ -413,13 +413,13 @@ fn shell_body(
         let advice = if e.delay_too_long {
             format!(
                 "the delay is longer than the run itself: expected a shorter {}",
-                ctx.name("delay")
+                ctx.key("shell", "delay")
             )
         } else {
             format!(
                 "expected {} or a longer {}",
                 times.shorter(ctx),
-                ctx.name("delay")
+                ctx.key("shell", "delay")
             )
         };
         ctx.at(&at, format!("{}{e}; {advice}", ctx.section("solve")))
