@@ -423,8 +423,7 @@ fn read_options(
     own: &At,
     method: MethodChoice,
 ) -> Result<MethodOptions, Refusal> {
-    // The table's ranges are the check (one range, in one message, for the
-    // flag and the key); the core's constructors accept the same.
+    // The table's ranges are the check, in one message for flag and key.
     let (rtol, step) = match solve {
         Some(s) => (
             number(ctx, "solve", "rtol", &s.rtol, true)?,
@@ -458,12 +457,8 @@ fn options_message(ctx: &Ctx, e: &OptionsError) -> String {
             "{} sets the fixed step of {rk4} only; the adaptive methods take {rtol}",
             ctx.key("solve", "step")
         ),
-        // Out of the table's range: refused by `number` above.
-        other => {
-            let text = other.to_string();
-            let rest = text.strip_prefix(e.key()).unwrap_or(&text).to_string();
-            format!("{}{rest}", ctx.key("solve", e.key()))
-        }
+        // Out of the table's range: refused by `number` before.
+        other => format!("{}: {other}", ctx.key("solve", e.key())),
     }
 }
 
