@@ -219,3 +219,36 @@ fn both_times_and_t_end_given_is_said_with_a_subject() {
         neutral(&key, Command::Simulate)
     );
 }
+
+/// A general top over 1e9 (about 3.5e8 rad): `simulate` refuses the run's
+/// steps (the Taylor method, about 6.6e8 steps, over the 1e7 allowed), and
+/// a scene, which also weighs the error's growth with the turning and the
+/// secular model, says the same sentence about the steps first.
+#[test]
+fn a_general_tops_step_budget_is_worded_alike_by_both_entry_points() {
+    let (flag, key) = both(
+        50,
+        &[
+            "simulate",
+            "--model",
+            "general",
+            "--inertia",
+            "1,2,2.5",
+            "--dipole",
+            "0,0,1",
+            "--t-end",
+            "1e9",
+        ],
+        "top",
+        "model = \"general\"\ninertia = [1.0, 2.0, 2.5]\ndipole = [0.0, 0.0, 1.0]",
+        "t_end = 1e9",
+    );
+    let steps = flag
+        .split_once("; ")
+        .map_or(flag.as_str(), |(sentence, _)| sentence);
+    assert!(
+        steps.contains("steps to reach t = 1.0000e9, more than the 1e7 allowed"),
+        "{flag}"
+    );
+    assert!(key.contains(&format!("[solve] {steps}; ")), "{key}\n{flag}");
+}
