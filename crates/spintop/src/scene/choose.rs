@@ -17,7 +17,7 @@ use crate::sim::cost::{
 };
 use crate::sim::measured::symmetric_measured;
 use crate::sim::secular::{Law, averaging_error};
-use crate::sim::{Method, MethodChoice, Model, auto_integrator};
+use crate::sim::{Method, MethodChoice, MethodOptions, Model, auto_integrator};
 
 /// Above this many steps, `auto` skips the reduced model's orientation
 /// rather than integrate it.
@@ -110,10 +110,10 @@ pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Rea
     let rate = turning_angle(model, omega0, 1.0);
     let t_max = longest_stepped_turning(rtol, angle) / rate;
     let why = match stepped {
-        Some((r, steps)) => format!(
-            "it would take {} steps at rtol {r:.0e}, more than the {} allowed",
-            fmt_about(steps),
-            crate::numbers::fmt_budget(MAX_STEPS)
+        Some((r, steps)) => crate::sim::cost::over_budget(
+            &format!("stepping at rtol {}", crate::numbers::exponent(r, 0)),
+            steps,
+            t_last,
         ),
         None => format!(
             "an integrator's error of Omega and the orientation grows like the square of the turning: {} even at rtol {TIGHTEST_RTOL:.0e}",
@@ -139,8 +139,19 @@ pub(super) fn general_path(model: &Model, omega0: &Vec3, t_last: Real, rtol: Rea
     } else {
         format!("ask for rtol >= {TIGHTEST_RTOL:.0e}")
     };
+    // Where the run the command line would make at this rtol is over the
+    // step budget, its refusal first, in the same words (`simulate --model
+    // general` and a scene then say the same about the steps).
+    let budget = MethodOptions::default()
+        .with_rtol(rtol)
+        .ok()
+        .and_then(|o| {
+            let method = model.method(MethodChoice::Auto, &o).ok()?;
+            crate::sim::cost::check(model, method, &o, omega0, t_last).err()
+        })
+        .map_or(String::new(), |e| format!("{e}; "));
     GeneralPath::Neither(format!(
-        "the asymmetric top ({}) turns {} rad by t = {}: stepping it cannot hold its answer within rtol = {rtol:.0e} ({why}), and {secular}; {instead}{looser}",
+        "{budget}the asymmetric top ({}) turns {} rad by t = {}: stepping it cannot hold its answer within rtol = {rtol:.0e} ({why}), and {secular}; {instead}{looser}",
         model.equations(),
         fmt_about(angle),
         fmt_time(t_last)
