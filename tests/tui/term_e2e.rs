@@ -251,7 +251,7 @@ fn ctrl_z_suspends_to_the_shell_and_fg_comes_back() {
     };
     sleep(Duration::from_millis(300));
     let line = format!(
-        "'{}' learn --chapter 2 --no-grading",
+        "'{}' learn --chapter section-2 --no-grading",
         env!("CARGO_BIN_EXE_spintop")
     );
     tmux(&["send-keys", "-t", "z", "-l", &line]);
