@@ -361,39 +361,7 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
             ),
             theme::info(),
         )),
-        // A full field says its limit before the text (which may fill
-        // the line): no character is dropped unannounced.
-        (Mode::Search(q, forward), _) if q.chars().count() >= crate::learn::search::LONGEST => {
-            Line::from(vec![
-                Span::styled(if *forward { " /" } else { " ?" }, theme::key()),
-                Span::styled(
-                    format!(
-                        "(full: {} characters; Ctrl-U clears) ",
-                        crate::learn::search::LONGEST
-                    ),
-                    theme::error(),
-                ),
-                Span::styled(format!("{q}▏"), theme::selected()),
-            ])
-        }
-        (Mode::Search(q, forward), _) => Line::from(vec![
-            Span::styled(if *forward { " /" } else { " ?" }, theme::key()),
-            Span::styled(format!("{q}▏"), theme::selected()),
-            Span::styled(
-                match learn.search() {
-                    Some(last) if q.is_empty() => format!(
-                        "  Enter finds (alone: “{}” again), Esc cancels{}",
-                        last.query,
-                        if *forward { "" } else { "; backward" }
-                    ),
-                    _ if !forward => {
-                        "  Enter finds backward, Ctrl-U clears, Esc cancels".to_string()
-                    }
-                    _ => "  Enter finds, Ctrl-U clears, Esc cancels".to_string(),
-                },
-                theme::label(),
-            ),
-        ]),
+        (Mode::Search(q, forward), _) => search_line(learn, q, *forward, area.width),
         // A message too long for the line is shown whole, over the rows
         // above it (up to three), never cut.
         (_, Some((m, refused))) => {
@@ -407,6 +375,71 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
         _ => scene_status(learn, scene_shown, area.width),
     };
     frame.render_widget(Paragraph::new(line), area);
+}
+
+/// The search prompt: `/` or `?`, the field scrolled so that its end
+/// (what was typed last, and the cursor) is always in sight, then what the
+/// keys do where it fits. A full field says its limit before the text: no
+/// character is dropped unannounced.
+fn search_line(learn: &Learn, q: &str, forward: bool, width: u16) -> Line<'static> {
+    let width = usize::from(width);
+    let mut spans = vec![Span::styled(
+        if forward { " /" } else { " ?" },
+        theme::key(),
+    )];
+    let mut room = width.saturating_sub(2);
+    if q.chars().count() >= crate::learn::search::LONGEST {
+        let long = format!(
+            "(full: {} characters; Ctrl-U clears) ",
+            crate::learn::search::LONGEST
+        );
+        // The note leaves the field a third of the line at least.
+        let note = if Span::raw(long.as_str()).width() + room / 3 <= room {
+            long
+        } else {
+            "(full; ^U clears) ".to_string()
+        };
+        room = room.saturating_sub(Span::raw(note.as_str()).width());
+        spans.push(Span::styled(note, theme::error()));
+    }
+    let field = field_end(q, room);
+    room = room.saturating_sub(Span::raw(field.as_str()).width());
+    spans.push(Span::styled(field, theme::selected()));
+    let hint = match learn.search() {
+        Some(last) if q.is_empty() => format!(
+            "  Enter finds (alone: “{}” again), Esc cancels{}",
+            last.query,
+            if forward { "" } else { "; backward" }
+        ),
+        _ if !forward => "  Enter finds backward, Ctrl-U clears, Esc cancels".to_string(),
+        _ => "  Enter finds, Ctrl-U clears, Esc cancels".to_string(),
+    };
+    if q.chars().count() < crate::learn::search::LONGEST && room > 8 {
+        let hint = shortened(&hint, u16::try_from(room).unwrap_or(u16::MAX));
+        spans.push(Span::styled(hint, theme::label()));
+    }
+    Line::from(spans)
+}
+
+/// The end of a typed field that fits `room` columns with its cursor `▏`:
+/// the whole text when it fits, else "…" and as much of its end as fits
+/// (what is typed last stays in sight, as a shell's line scrolls).
+pub fn field_end(text: &str, room: usize) -> String {
+    if Span::raw(text).width() + 1 <= room {
+        return format!("{text}▏");
+    }
+    let mut tail = Vec::new();
+    let mut used = 2;
+    for c in text.chars().rev() {
+        let w = unicode_width::UnicodeWidthChar::width(c).unwrap_or(0);
+        if used + w > room {
+            break;
+        }
+        used += w;
+        tail.push(c);
+    }
+    let tail: String = tail.into_iter().rev().collect();
+    format!("…{tail}▏")
 }
 
 /// The rows the status message takes (1 to 3), as [`draw_message`] wraps it.
