@@ -222,7 +222,7 @@ pub struct Learn {
     /// The link in focus (Tab), by its index in the rendered chapter.
     link: Option<usize>,
     /// The places a link or the contents left, the last on top.
-    back: Vec<reading::Place>,
+    back: Vec<book::Place>,
     /// Digits typed in the contents.
     typed: String,
     message: Option<(String, bool)>,

@@ -205,6 +205,20 @@ pub fn slug(heading: &str) -> String {
         .collect()
 }
 
+/// Where the reader was when a link or the contents took them elsewhere
+/// (what Backspace goes back to).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Place {
+    /// The chapter.
+    pub(crate) chapter: usize,
+    /// The first line shown, and the chapter's lines then (at another
+    /// width the same fraction is shown).
+    pub(crate) line: usize,
+    pub(crate) total: usize,
+    /// The link in focus then (the one followed).
+    pub(crate) link: Option<usize>,
+}
+
 /// One line of the contents: a chapter, or one of its headings.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Entry {

@@ -3,24 +3,13 @@
 //! and the scene's place on the screen. Each is one method of [`Learn`]
 //! that [`Learn::apply`] calls.
 
+use super::book::{self, Place};
 use super::experiment::Experiment;
 use super::scene::{Spec, Stage};
-use super::{Learn, Mode, book};
+use super::{Learn, Mode};
 
 /// How many places Backspace can go back through.
 const BACK_DEPTH: usize = 100;
-
-/// Where the reader was when a link or the contents took them elsewhere.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Place {
-    chapter: usize,
-    /// The first line shown, and the chapter's lines then (at another
-    /// width the same fraction is shown).
-    line: usize,
-    total: usize,
-    /// The link in focus then (the one followed).
-    link: Option<usize>,
-}
 
 impl Learn {
     pub(super) fn scroll_by(&mut self, n: i64) {

@@ -425,7 +425,7 @@ fn search_line(learn: &Learn, q: &str, forward: bool, width: u16) -> Line<'stati
 /// the whole text when it fits, else "…" and as much of its end as fits
 /// (what is typed last stays in sight, as a shell's line scrolls).
 pub fn field_end(text: &str, room: usize) -> String {
-    if Span::raw(text).width() + 1 <= room {
+    if Span::raw(text).width() < room {
         return format!("{text}▏");
     }
     let mut tail = Vec::new();

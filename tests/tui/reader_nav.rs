@@ -5,7 +5,6 @@
 use super::learn::{book, draw, press};
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use spintop_app::learn::{Command, Learn, Mode};
-use spintop_app::term::session::Screen;
 
 fn message(learn: &Learn) -> String {
     learn.message().map(|m| m.0.clone()).unwrap_or_default()
@@ -115,22 +114,15 @@ fn a_long_search_field_keeps_its_end_in_sight() {
         let mut learn = Learn::open(&book(), None).unwrap();
         draw(&mut learn, width, 24);
         learn.apply(Command::SearchStart);
-        // Letters that never repeat their neighbours' run, ending in a
-        // mark: the end is recognisable wherever the field is cut.
-        let typed: String = (0..longest)
+        // The alphabet over and over: the last six letters typed are
+        // recognisable wherever the field is cut.
+        let typed: Vec<char> = (0..longest)
             .map(|i| char::from(b'a' + (i % 26) as u8))
             .collect();
-        for (i, c) in typed.chars().enumerate() {
-            learn.apply(Command::SearchInput(c));
+        for (i, c) in typed.iter().enumerate() {
+            learn.apply(Command::SearchInput(*c));
             let line = prompt(&mut learn, width);
-            let end: String = typed[..=i]
-                .chars()
-                .rev()
-                .take(6)
-                .collect::<Vec<_>>()
-                .into_iter()
-                .rev()
-                .collect();
+            let end: String = typed[(i + 1).saturating_sub(6)..=i].iter().collect();
             assert!(
                 line.contains(&format!("{end}▏")),
                 "at {width} columns, {} typed: {line:?}",
