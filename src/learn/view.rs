@@ -370,7 +370,7 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
             } else {
                 theme::info()
             };
-            return draw_message(frame, area, &format!(" {m}"), style);
+            return draw_message(frame, area, m, style);
         }
         _ => scene_status(learn, scene_shown, area.width),
     };
@@ -448,8 +448,8 @@ fn message_rows(learn: &Learn, width: u16) -> u16 {
         _ if learn.searching().is_some() => 1,
         (Mode::Search(..), _) | (_, None) => 1,
         (_, Some((m, _))) => {
-            let p = Paragraph::new(Line::from(format!(" {m}"))).wrap(Wrap { trim: false });
-            u16::try_from(p.line_count(width))
+            let p = Paragraph::new(Line::from(m.as_str())).wrap(Wrap { trim: false });
+            u16::try_from(p.line_count(width.saturating_sub(1)))
                 .unwrap_or(u16::MAX)
                 .clamp(1, 3)
         }
@@ -457,11 +457,13 @@ fn message_rows(learn: &Learn, width: u16) -> u16 {
 }
 
 /// A status message, wrapped upward over the text when one row is too
-/// narrow for it (the last rows of the text come back with the next key).
+/// narrow for it (the last rows of the text come back with the next key),
+/// every row one column in from the edge.
 fn draw_message(frame: &mut Frame, area: Rect, text: &str, style: Style) {
+    let width = area.width.saturating_sub(1);
     let paragraph = Paragraph::new(Line::from(Span::styled(text.to_string(), style)))
         .wrap(Wrap { trim: false });
-    let rows = u16::try_from(paragraph.line_count(area.width))
+    let rows = u16::try_from(paragraph.line_count(width))
         .unwrap_or(u16::MAX)
         .clamp(1, 3)
         .min(area.y + 1);
@@ -473,16 +475,21 @@ fn draw_message(frame: &mut Frame, area: Rect, text: &str, style: Style) {
     if rows > 1 {
         frame.render_widget(ratatui::widgets::Clear, at);
     }
-    let paragraph = if usize::from(rows) < paragraph.line_count(area.width) {
+    let paragraph = if usize::from(rows) < paragraph.line_count(width) {
         Paragraph::new(Line::from(Span::styled(
-            shortened(text, area.width.saturating_mul(rows)),
+            shortened(text, width.saturating_mul(rows)),
             style,
         )))
         .wrap(Wrap { trim: false })
     } else {
         paragraph
     };
-    frame.render_widget(paragraph, at);
+    let inset = Rect {
+        x: at.x + 1,
+        width,
+        ..at
+    };
+    frame.render_widget(paragraph, inset);
 }
 
 /// The scene's clock and state, when nothing else is said.
