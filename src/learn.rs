@@ -184,8 +184,8 @@ pub enum Command {
     PreviousLink,
     /// Enter: follow the link in focus.
     FollowLink,
-    /// Backspace or Alt-←: back to where the reader was before a link or
-    /// the contents took them, as a browser's back.
+    /// Backspace or Alt-←: back to where the reader was before a link, the
+    /// contents or a search took them to another place, as a browser's back.
     Back,
     /// A key for the scene.
     Scene(SceneKey),

@@ -1,10 +1,10 @@
 //! Terminal events become `spintop learn`'s [`Command`]s, and the hooks of
 //! the terminal loop ([`crate::term::session`]). The reading keys are
 //! `less`'s: space f b d u (and Ctrl-F B D U) j k g G / ? n N (`?` and
-//! Ctrl-R search backward), h or F1 for the help, Backspace or Alt-← back where a link or the
-//! contents came from, q quits from the reading
-//! view and closes any overlay; Esc never quits; Ctrl-Z suspends (the loop's
-//! own). A paste is text for the search prompt, never keys.
+//! Ctrl-R search backward), h or F1 for the help, Backspace or Alt-← back
+//! where a link, a search or the contents came from, q quits from the
+//! reading view and closes any overlay; Esc never quits; Ctrl-Z suspends
+//! (the loop's own). A paste is text for the search prompt, never keys.
 
 use super::scene::SceneKey;
 use super::{Command, Learn, Mode};

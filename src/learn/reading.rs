@@ -310,8 +310,8 @@ impl Learn {
     }
 
     /// Keeps the place the reader is about to leave (a link followed, the
-    /// contents opened), for Backspace.
-    fn mark_place(&mut self) {
+    /// contents opened, a search gone to another chapter), for Backspace.
+    pub(super) fn mark_place(&mut self) {
         let place = Place {
             chapter: self.current,
             line: self.scroll,
@@ -331,7 +331,7 @@ impl Learn {
     pub(super) fn go_back(&mut self) {
         let Some(place) = self.back.pop() else {
             self.inform(
-                "nothing to go back to: Backspace returns after Enter on a link or in the contents",
+                "nothing to go back to: Backspace returns after a link, the contents or a search took you to another chapter",
             );
             return;
         };

@@ -1,5 +1,6 @@
 //! A reviewer's leftovers of the reader: Backspace (or Alt-←) goes back to
-//! where a link or the contents took the reader from, as a browser's back;
+//! where a link, the contents or a search into another chapter took the
+//! reader from, as a browser's back;
 //! the search field scrolls so that what is typed last stays in sight.
 
 use super::learn::{book, draw, press};
@@ -82,6 +83,47 @@ fn backspace_returns_to_where_a_link_was_followed() {
     assert_eq!(learn.current(), before.0 - 1);
 }
 
+/// A search that goes on into another chapter is left by Backspace for
+/// the page it started from, as `less`'s '' returns from a search's jump;
+/// a match in the same chapter keeps no place.
+#[test]
+fn backspace_returns_from_a_search_in_another_chapter() {
+    let mut learn = Learn::open(&book(), None).unwrap();
+    draw(&mut learn, 80, 24);
+    learn.apply(Command::Scroll(3));
+    let from = (learn.current(), learn.scroll());
+    learn.apply(Command::SearchStart);
+    for c in "Coulomb".chars() {
+        learn.apply(Command::SearchInput(c));
+    }
+    learn.apply(Command::SearchCommit);
+    assert_ne!(learn.current(), from.0, "{}", message(&learn));
+    press(&mut learn, KeyCode::Backspace);
+    assert_eq!(
+        (learn.current(), learn.scroll()),
+        from,
+        "{}",
+        message(&learn)
+    );
+    // Again, with a second match of the same chapter between: still one
+    // Backspace back.
+    press(&mut learn, KeyCode::Char('n'));
+    let found = learn.current();
+    assert!(
+        learn.search().unwrap().matches.len() >= 2,
+        "two matches there"
+    );
+    press(&mut learn, KeyCode::Char('n'));
+    assert_eq!(learn.current(), found, "{}", message(&learn));
+    press(&mut learn, KeyCode::Backspace);
+    assert_eq!(
+        (learn.current(), learn.scroll()),
+        from,
+        "{}",
+        message(&learn)
+    );
+}
+
 /// The help names the key that goes back.
 #[test]
 fn the_help_names_the_back_key() {
@@ -93,7 +135,7 @@ fn the_help_names_the_back_key() {
         .collect();
     let row = help
         .lines()
-        .find(|l| l.contains("back to where you were"))
+        .find(|l| l.contains("back to where a link"))
         .unwrap_or_else(|| panic!("{help}"));
     assert!(row.contains('⌫') && row.contains("Alt-←"), "{row}");
 }

@@ -51,7 +51,7 @@ const HELP: [(&str, &str); 26] = [
     ),
     (
         "⌫ Alt-←",
-        "back to where you were before a link or the contents took you",
+        "back to where a link, the contents or a search took you from",
     ),
     ("o", "library source whole, or folded to one line"),
     (
