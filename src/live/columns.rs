@@ -139,9 +139,9 @@ impl Column {
             // The forward run is there to run away: the reason says it all.
             why
         } else {
-            format!(
-                "{why}; m switches the method, - slows the warp, r restarts, a smaller Ω₀ helps"
-            )
+            // NOTE: no word of the warp: it sets how many ticks a second
+            // are drawn, not what a tick (one advance to the next Δt) does.
+            format!("{why}; m switches the method, r restarts, a smaller Ω₀ helps")
         });
     }
 

@@ -340,7 +340,7 @@ fn code_is_wrapped_between_tokens_in_every_chapter() {
 /// `o` shows them whole (and folds them again).
 #[test]
 fn library_source_is_folded_until_o() {
-    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    let mut learn = Learn::open(&book(), Some("§2")).unwrap();
     draw(&mut learn, 160, 48);
     let folded = learn.rendered().lines.len();
     let text = markdown::plain(&learn.rendered().lines);
@@ -397,7 +397,8 @@ fn chapters_are_found_by_section_or_file_name_and_contents_jump() {
     let learn = Learn::open(&book(), None).unwrap();
     let chapters = learn.chapters();
     for (wanted, file) in [
-        ("2", "section-2.md"),
+        ("§2", "section-2.md"),
+        ("section 2", "section-2.md"),
         ("4.1", "section-4-1.md"),
         ("a", "appendix.md"),
         ("numerical-methods", "numerical-methods.md"),
@@ -471,7 +472,7 @@ fn section_4_2_at_80x24_and_160x48() {
 #[test]
 fn the_course_panel_shows_the_graders_verdicts() {
     use spintop_course::{Report, State, Status};
-    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    let mut learn = Learn::open(&book(), Some("§2")).unwrap();
     learn.course_report(Report::Grading);
     assert!(draw(&mut learn, 160, 48).contains("course: grading"));
     let status = Status::new(0, |a| match a.function {
