@@ -69,8 +69,18 @@ pub struct ErrorEstimate {
     /// (`None` where the run reports no orientation).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub orientation: Option<Real>,
-    /// What rounding alone may leave, in both (a part of each).
+    /// What rounding alone may leave in Ω (a part of `omega`; relative to
+    /// |Ω₀|, or of E and |L| where those are measured).
     pub rounding: Real,
+    /// What rounding alone may leave in the orientation, in radians (a part
+    /// of `orientation`, present with it): the phase rounds as the body
+    /// turns, while Ω's share stops where Ω⊥ has decayed.
+    ///
+    /// NOTE: one field held the orientation's floor for both, and Figure 2's
+    /// reduced run printed a rounding of 2.1e-13 inside an Ω total of
+    /// 1.3e-14 (issue 46, review).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub orientation_rounding: Option<Real>,
     /// What `omega` measures where it is not Ω: "E and |L|" (each relative
     /// to its value at the start) where the secular model answers.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -242,14 +252,23 @@ pub fn numerical_error(
             format!("rtol {:.0e}", o.rtol())
         }
     };
+    // Ω's and the orientation's floors, as the `how` quotes them.
+    let floors = || {
+        if orientation {
+            format!("{omega_floor:.0e} in Omega and {floor:.0e} rad in the orientation")
+        } else {
+            format!("{omega_floor:.0e}")
+        }
+    };
     let mut safety = SAFETY;
     let how = match tighter(method, options) {
         Some(tight) => match distance(tight) {
             Ok(d) => {
                 (omega, turn) = d;
                 format!(
-                    "twice the distance to the same run at {}, plus {floor:.0e} for rounding, the largest over the samples",
-                    settings(&tight)
+                    "twice the distance to the same run at {}, plus {} for rounding, the largest over the samples",
+                    settings(&tight),
+                    floors()
                 )
             }
             // The tighter run would overrun the step budget: a looser one,
@@ -261,24 +280,30 @@ pub fn numerical_error(
                 (omega, turn) = distance(loose)?;
                 safety = 1.0;
                 format!(
-                    "the distance to the same run at {} (a tighter one would overrun the step budget), plus {floor:.0e} for rounding",
-                    settings(&loose)
+                    "the distance to the same run at {} (a tighter one would overrun the step budget), plus {} for rounding",
+                    settings(&loose),
+                    floors()
                 )
             }
             Err(e) => return Err(e),
         },
         None if method == Method::ClosedForm => {
-            format!("closed forms: only rounding, {floor:.0e} over the run's {angle:.1e} rad")
+            format!(
+                "closed forms: only rounding, {} over the run's {angle:.1e} rad",
+                floors()
+            )
         }
         None => format!(
-            "the tolerance is already the tightest: rounding, {floor:.0e} over the run's {angle:.1e} rad"
+            "the tolerance is already the tightest: rounding, {} over the run's {angle:.1e} rad",
+            floors()
         ),
     };
     let against = format!("the exact solution of the {} model", model.name());
     Ok(ErrorEstimate {
         omega: (safety * omega + omega_floor).min(2.0),
         orientation: orientation.then(|| (safety * turn + floor).min(std::f64::consts::PI as Real)),
-        rounding: floor,
+        rounding: omega_floor.min(2.0),
+        orientation_rounding: orientation.then_some(floor),
         measured: None,
         against,
         how,
@@ -355,6 +380,7 @@ pub fn secular_error(
         omega: (distance + swing + floor).min(2.0),
         orientation: None,
         rounding: floor,
+        orientation_rounding: None,
         measured: Some("E and |L|"),
         against: format!("the exact solution of the {model} model"),
         how: format!(

@@ -304,10 +304,19 @@ fn eq_3_4_general_physical_solution_prints_a_true_error() {
                 .collect();
             real_o = real_o.max(angle_between(&Mat3::from_row_slice(&r), o));
         }
-        let rounding = num(&error["rounding"]);
-        for (what, real, claimed) in [
-            ("Omega", real_w, num(&error["omega"])),
-            ("orientation", real_o, num(&error["orientation"])),
+        for (what, real, claimed, rounding) in [
+            (
+                "Omega",
+                real_w,
+                num(&error["omega"]),
+                num(&error["rounding"]),
+            ),
+            (
+                "orientation",
+                real_o,
+                num(&error["orientation"]),
+                num(&error["orientation_rounding"]),
+            ),
         ] {
             match true_within_ten(&format!("rtol {rtol:e} {what}"), real, claimed, rounding) {
                 Ok(line) => lines.push(line),
@@ -337,6 +346,36 @@ fn eq_4_15_figure_2_at_long_times_prints_a_rounding_part_within_its_error() {
     let error = &v["error"];
     assert!(error["orientation"].is_null(), "{error}");
     assert!(num(&error["rounding"]) <= num(&error["omega"]), "{error}");
+}
+
+/// Issue 46, review: Figure 2's catalogue scene (the reduced model, Ω by
+/// its closed form and the orientation stepped) printed a rounding of
+/// 2.1e-13, the orientation's floor, inside an Ω total of 1.3e-14. Each
+/// part now lies within its own total: Ω's rounding within Ω's error, the
+/// orientation's (4ε per radian over the whole turning, which the printed
+/// samples' turning bounds) within the orientation's.
+#[test]
+fn eq_4_15_figure_2_prints_each_rounding_part_within_its_own_total() {
+    let entry = spintop::scene::catalogue::find("figure-2").unwrap();
+    let scene = entry.scene().unwrap();
+    let v = serde_json::to_value(spintop::scene::answer::answer(&scene).unwrap()).unwrap();
+    let error = &v["error"];
+    assert!(num(&error["rounding"]) <= num(&error["omega"]), "{error}");
+    let (floor, total) = (
+        num(&error["orientation_rounding"]),
+        num(&error["orientation"]),
+    );
+    assert!(floor <= total, "{error}");
+    // The orientation's floor is 1e-14 + 4ε per radian: at least that of
+    // the samples' own last turning (|Ω|·t bounds it from above, Ω₃·t
+    // from below, Ω₃ being constant in the reduced model).
+    let last = v["samples"].as_array().unwrap().last().unwrap();
+    let w3 = num(&v["parameters"]["omega0"][2]);
+    let turned = w3.abs() * num(&last["t"]);
+    assert!(
+        floor >= 4.0 * Real::EPSILON * turned,
+        "{error}, turned {turned}"
+    );
 }
 
 /// Issue 46, 4: an asymmetric top at T = 10⁹ that `auto` steps at rtol
