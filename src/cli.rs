@@ -9,6 +9,7 @@
 //! | 0 | success |
 //! | 2 | bad input: malformed or unphysical arguments |
 //! | 3 | numerical failure: the run was stopped, with the time and what to try |
+//! | 4 | could not grade: the machine refused a grading (no cargo, a broken toolchain, crates missing offline, a folder it may not write), with what to do |
 
 use clap::{Parser, Subcommand};
 use spintop::math::Real;
@@ -42,6 +43,9 @@ pub mod values;
 pub const EXIT_BAD_INPUT: u8 = 2;
 /// Exit code for a numerical failure.
 pub const EXIT_NUMERICAL: u8 = 3;
+/// Exit code for a grading the machine did not allow (`spintop course`):
+/// nothing was judged of the student's code.
+pub const EXIT_CANNOT_GRADE: u8 = 4;
 
 /// The command line.
 #[derive(Debug, Parser)]
@@ -55,7 +59,9 @@ pub const EXIT_NUMERICAL: u8 = 3;
                   Exit codes: 0 success; 1 the output could not be written; 2 bad input (a flag, a value, \
                   a file, or a run refused before it starts because it would cost too much); 3 a numerical \
                   failure (runaway, stiffness, step underflow, a non-finite result), reported with its time; \
-                  128+N the live view or `learn` was stopped by signal N (the terminal is restored)."
+                  4 `spintop course` could not grade (no cargo, a broken toolchain, crates missing offline, \
+                  a folder it may not write: said with what to do; or, for `course grade`, a copy not fully \
+                  graded); 128+N the live view or `learn` was stopped by signal N (the terminal is restored)."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -118,6 +124,10 @@ pub enum CliError {
     /// the time and what to try.
     #[error("{0}")]
     Stopped(String),
+    /// A grading the machine did not allow (cargo missing or refusing, a
+    /// folder it may not write): the message says what and what to do.
+    #[error("{0}")]
+    CannotGrade(String),
     /// Writing the output failed.
     #[error("cannot write output: {0}")]
     Io(io::Error),
@@ -137,6 +147,7 @@ impl CliError {
         match self {
             CliError::BadInput(_) | CliError::Refused(_) => EXIT_BAD_INPUT,
             CliError::Stopped(_) => EXIT_NUMERICAL,
+            CliError::CannotGrade(_) => EXIT_CANNOT_GRADE,
             CliError::Io(_) | CliError::NotSaved(_) => 1,
             // As a shell reports a process a signal stopped: 128 + its number.
             CliError::Signal(n, _) => u8::try_from(128 + n).unwrap_or(EXIT_NUMERICAL),

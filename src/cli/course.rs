@@ -22,7 +22,12 @@ use std::time::Duration;
     after_help = "Examples:\n  \
         spintop course                                   every assignment, its state and what to do next\n  \
         spintop course hint torque_rate                  the next rung of its hint ladder\n  \
-        spintop course watch                             re-grade on every save"
+        spintop course watch                             re-grade on every save\n\n\
+        Exit codes: 0 graded (whatever the grades); 2 bad input (a flag, a course that is not one); \
+        4 could not grade: the machine did not allow it (no cargo, a toolchain that refuses, crates \
+        missing offline, a folder this user may not write), said with what to do, and nothing of the \
+        code was judged; for `course grade`, 4 when some copy could not be fully graded (its rows say \
+        why); 1 an output or a kept file (a hint's rung) could not be written."
 )]
 pub struct CourseArgs {
     #[command(subcommand)]
@@ -116,7 +121,7 @@ enum CourseAction {
     /// Instructor: grade students' copies with the repository's graders, each
     /// within a time limit, and write one row per student and assignment
     /// whatever happens (a missing folder, a copy that does not compile or
-    /// hangs); exit 3 when a copy could not be fully graded
+    /// hangs); exit 4 when a copy could not be fully graded
     Grade {
         /// The students' copies (folders made by `course export`), one per student
         #[arg(required = true, value_name = "DIR")]
@@ -256,13 +261,8 @@ fn status(args: &CourseArgs, out: &mut Gate<'_>) -> Result<(), CliError> {
         };
         course::grade(&dir, &options)
     })
-    .map_err(|e| {
-        if e.is_grading_failure() {
-            CliError::Stopped(format!("course: {e}"))
-        } else {
-            bad(e.to_string())
-        }
-    })?;
+    // Whatever stopped it, nothing of the code was judged: exit 4.
+    .map_err(|e| CliError::CannotGrade(format!("course: {e}")))?;
     if !args.solutions {
         course::record_passes_now(&dir, &status);
     }
@@ -297,17 +297,8 @@ fn print_status(
         status.seed
     )?;
     writeln!(out, "  graded: {}", chosen.describe())?;
-    for (a, s) in &status.states {
-        writeln!(
-            out,
-            "  {} {:<14} {:<18} {:<26} {:<24} {}",
-            mark(s),
-            a.equation,
-            a.chapter,
-            a.function,
-            chosen.file(a),
-            status.word_of(s)
-        )?;
+    for line in table(chosen, status) {
+        writeln!(out, "{line}")?;
     }
     // A compile error or a shortcut comes first.
     if let Some(place) = status.next_place() {
@@ -333,6 +324,44 @@ fn print_status(
         Some((a, s)) => print_next(chosen, a, s, wanted.is_some(), course_arg, out)?,
     }
     Ok(())
+}
+
+/// The status's table, each line at most 80 columns wide: a heading per
+/// chapter, then one row per assignment (its equation, function, file
+/// under the course's `src/`, state), the columns as wide as the course's
+/// longest entries. (The chapter and the path as columns made rows of 102.)
+fn table(chosen: &Course, status: &course::Status) -> Vec<String> {
+    let folder = format!("in {}/", chosen.path("src"));
+    let name = |a: &course::Assignment| {
+        Path::new(a.file)
+            .file_name()
+            .map_or_else(|| a.file.to_string(), |n| n.to_string_lossy().into_owned())
+    };
+    let widest =
+        |f: &dyn Fn(&course::Assignment) -> usize| course::COURSE.iter().map(f).max().unwrap_or(0);
+    let eq = widest(&|a| a.equation.chars().count()).max("equation".len());
+    let function = widest(&|a| a.function.chars().count());
+    let file = widest(&|a| name(a).chars().count()).max(folder.chars().count());
+    let mut lines = vec![format!(
+        "      {:<eq$} {:<function$} {:<file$} state",
+        "equation", "assignment", folder
+    )];
+    let mut chapter = "";
+    for (a, s) in &status.states {
+        if a.chapter != chapter {
+            chapter = a.chapter;
+            lines.push(format!("  {chapter}"));
+        }
+        lines.push(format!(
+            "    {} {:<eq$} {:<function$} {:<file$} {}",
+            mark(s),
+            a.equation,
+            a.function,
+            name(a),
+            status.word_of(s)
+        ));
+    }
+    lines
 }
 
 /// The next assignment (or the one asked for), its state and what to do.
@@ -375,7 +404,7 @@ fn print_next(
     if !matches!(s, State::Passing | State::Failing(_)) {
         writeln!(
             out,
-            "  stuck? {} (where to look, then the idea, then the formula)",
+            "  stuck? {}\n    (one rung a call: where to look, then the idea, then the formula)",
             grading::hint_command(a.function, course_arg)
         )?;
     }
@@ -529,7 +558,9 @@ fn hint(name: &str, chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<()
     let dir = lessons(chosen)?.dir;
     let mut progress = course::load_progress(&dir);
     let h = course::next_hint(&mut progress, a);
-    course::save_progress(&dir, &progress).map_err(|e| bad(format!("course hint: {e}")))?;
+    // The rung is shown even where it cannot be kept (a course another user
+    // owns): said after it, exit 1.
+    let kept = course::save_progress(&dir, &progress);
     let n = a.hints.len();
     let label = h.label();
     writeln!(
@@ -547,7 +578,11 @@ fn hint(name: &str, chosen: Option<&PathBuf>, out: &mut impl Write) -> Result<()
             grading::hint_command(a.function, given(chosen).as_deref())
         )?;
     }
-    Ok(())
+    kept.map_err(|e| {
+        CliError::NotSaved(format!(
+            "course hint: the rung shown was not kept ({e}), so the next call shows it again"
+        ))
+    })
 }
 
 /// `spintop course diagnose DIR`: the graders' diagnoses of a folder of
@@ -571,7 +606,7 @@ fn diagnose(
         seed,
         &repo.join("target").join("course-diagnose"),
     )
-    .map_err(|e| CliError::Stopped(format!("course diagnose: {e}")))?;
+    .map_err(|e| CliError::CannotGrade(format!("course diagnose: {e}")))?;
     match format {
         Format::Json => {
             for r in &results {
@@ -601,4 +636,58 @@ fn diagnose(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every line of the table fits 80 columns, whatever the states (the
+    /// longest words included) and wherever the course is (the repository
+    /// names its files under lessons/), and each assignment has its row.
+    #[test]
+    fn the_status_table_fits_80_columns() {
+        let states = [
+            State::DoesNotCompile("x".into()),
+            State::Failing("y".into()),
+            State::TimedOut("z".into()),
+            State::Unknown,
+            State::NotStarted,
+            State::Passing,
+        ];
+        let k = std::cell::Cell::new(0);
+        let mut status = course::Status::new(0, |_| {
+            k.set(k.get() + 1);
+            states[k.get() % states.len()].clone()
+        });
+        let repository = Course::at(&course::lessons_dir(course::repository()), Chosen::Default);
+        let copy = Course::at(Path::new("/home/student/course"), Chosen::Found);
+        for shortcut in [false, true] {
+            status.shortcut = shortcut.then(|| course::Located {
+                file: "src/ch2.rs".into(),
+                line: 1,
+                message: "std::fs".into(),
+            });
+            for chosen in [&repository, &copy] {
+                let lines = table(chosen, &status);
+                for l in &lines {
+                    assert!(
+                        l.chars().count() <= 80,
+                        "{} columns: {l}",
+                        l.chars().count()
+                    );
+                }
+                for (a, s) in &status.states {
+                    let row = lines
+                        .iter()
+                        .find(|l| l.contains(&format!(" {} ", a.function)))
+                        .unwrap_or_else(|| panic!("{}: {lines:#?}", a.function));
+                    assert!(row.ends_with(status.word_of(s)), "{row}");
+                    assert!(row.contains(a.equation), "{row}");
+                }
+                let folder = format!("in {}/", chosen.path("src"));
+                assert!(lines[0].contains(&folder), "{}", lines[0]);
+            }
+        }
+    }
 }

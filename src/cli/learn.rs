@@ -8,8 +8,8 @@
 //! ([`Book::beside`]: the `book/src` a copy made by `spintop course export`
 //! carries, or a clone's, the same Markdown mdBook builds; else the book of
 //! the repository this spintop was built from). Progress is one small file,
-//! `target/spintop-learn.json` in the folder the book belongs to, kept as
-//! the reader reads.
+//! `target/spintop-learn.json` in the course's own folder (the repository's
+//! when no course is found), kept as the reader reads.
 
 use super::gate::Gate;
 use super::{CliError, bad};
@@ -32,8 +32,9 @@ use std::path::{Path, PathBuf};
 The book is the one the course you stand in carries (a copy made by `spintop course export`\n\
 holds it in book/src), else the book of the spintop repository; --list names it.\n\n\
 The reading place (the chapter, where in it, the chapters opened) is kept in\n\
-target/spintop-learn.json of the folder the book belongs to (the copy's, or the\n\
-repository's), written as you read and on every way out; --reset forgets it.")]
+target/spintop-learn.json of the course you stand in (a copy keeps its own, even\n\
+when it carries no book; the repository's only when there is no course), written\n\
+as you read and on every way out; --reset forgets it.")]
 pub struct LearnArgs {
     /// Open this chapter: a section of the paper (2, 3, 4.1, 4.2, 5, A), the
     /// chapter's number as the header shows it (9; '#3' where 3 is also a
@@ -79,8 +80,8 @@ fn book(course: &Course) -> Result<Book, CliError> {
     })
 }
 
-/// Where the reader's place is kept: in the `target/` of the folder the
-/// book belongs to (the copy's, or the repository's). The one rule;
+/// Where the reader's place is kept: in the `target/` of [`Book::home`]
+/// (the course's own folder; the repository's when there is no course). The one rule;
 /// `spintop learn --help` says it.
 pub fn progress_file(book: &Book) -> PathBuf {
     // The tests point this elsewhere, so that they never touch a student's progress.

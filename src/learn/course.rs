@@ -35,6 +35,9 @@ pub struct Panel {
     pub(super) hint: Option<Hint>,
     /// The hint rungs used, when there is no course folder to keep them in.
     pub(super) hints_used: course::Progress,
+    /// The course's progress file as last seen (its time and length), so
+    /// that a rung taken in another terminal shows here.
+    pub(super) progress_seen: Option<(std::time::SystemTime, u64)>,
     /// The student's function of time being sampled.
     pub(super) probe_rx: Option<std::sync::mpsc::Receiver<ProbeReport>>,
     /// The student's function of time, sampled.

@@ -58,8 +58,10 @@ impl Learn {
         self.course.hint.as_ref()
     }
 
-    /// Takes the grader's and the probe's news.
+    /// Takes the grader's and the probe's news, and the hint rungs taken
+    /// elsewhere.
     pub(super) fn poll_course(&mut self) {
+        self.follow_hints();
         let reports = self
             .course
             .watch
@@ -101,6 +103,30 @@ impl Learn {
                 self.course.error = Some(e);
             }
         }
+    }
+
+    /// The hint on screen follows the course's progress file: a rung taken
+    /// in another terminal (`spintop course hint`) shows here at the next
+    /// frame (the file is looked at, one `stat`, and read when it changed).
+    fn follow_hints(&mut self) {
+        let (Some(c), Some(shown)) = (&self.course.course, &self.course.hint) else {
+            return;
+        };
+        let path = course::progress_path(&c.dir);
+        let seen = std::fs::metadata(&path)
+            .ok()
+            .and_then(|m| Some((m.modified().ok()?, m.len())));
+        if seen.is_none() || seen == self.course.progress_seen {
+            return;
+        }
+        self.course.progress_seen = seen;
+        let progress = course::load_progress(&c.dir);
+        if let Some(reached) = course::hint_reached(&progress, shown.assignment)
+            && reached.rung != shown.rung
+        {
+            self.course.hint = Some(reached);
+        }
+        self.course.hints_used = progress;
     }
 
     /// The assignment the course panel's diagnosis and `h`'s hint are for:

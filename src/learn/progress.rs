@@ -38,7 +38,7 @@ pub fn read(path: &Path) -> Progress {
 
 /// Why the place could not be kept.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("your place could not be saved to {path}: {why}")]
+#[error("your place could not be saved to {path} (reading goes on): {why}")]
 pub struct NotKept {
     /// The progress file.
     pub path: String,
@@ -114,7 +114,7 @@ impl Keeper {
         let bytes = serde_json::to_vec_pretty(progress).unwrap_or_default();
         write_whole(&self.path, &bytes).map_err(|e| NotKept {
             path: self.path.display().to_string(),
-            why: e.to_string(),
+            why: spintop_course::unwritable_why(&self.path, &e),
         })?;
         self.written = Some(progress.clone());
         Ok(())

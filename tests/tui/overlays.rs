@@ -104,6 +104,16 @@ fn the_time_of_grading_is_the_latest_runs() {
     press(&mut learn, KeyCode::Char('a'));
     let shown = draw(&mut learn, 80, 24);
     assert!(shown.contains("graded 0 s ago"), "{shown}");
+    // The grades a run that could not grade leaves are the last ones, said so.
+    assert_eq!(
+        learn.course().map(Status::passing),
+        Some(spintop_course::COURSE_LEN)
+    );
+    let flat = shown.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        flat.contains("the grades below (22 of 22 passing) are the last grading's"),
+        "{shown}"
+    );
 }
 
 /// Enter on a search says "searching…" first (the loop draws it before the

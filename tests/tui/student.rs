@@ -198,6 +198,43 @@ fn a_hint_is_on_screen_when_asked_at_80x24() {
     std::fs::remove_dir_all(&top).ok();
 }
 
+/// A rung taken with `spintop course hint` in another terminal shows in the
+/// open course panel at the next frame (it kept the rung of the last `h`).
+#[test]
+fn a_hint_taken_in_another_terminal_shows_in_the_open_panel() {
+    use spintop_course::{Chosen, Course};
+    let copy = std::env::temp_dir().join(format!("spintop-hint-elsewhere-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&copy);
+    std::fs::create_dir_all(&copy).unwrap();
+    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    learn.watch_course(Course::at(&copy, Chosen::Found), None);
+    let status = Status::new(0, |a| match a.function {
+        "larmor_rate" => State::Failing("larmor_rate, Eq. (2.1): wrong answer".into()),
+        _ => State::NotStarted,
+    });
+    learn.course_report(Report::Graded(status));
+    press(&mut learn, KeyCode::Char('a'));
+    press(&mut learn, KeyCode::Char('h'));
+    assert!(draw(&mut learn, 80, 24).contains("hint 1 of 3"));
+    // Another terminal: `spintop course hint larmor_rate`, twice.
+    let larmor = spintop_course::find("larmor_rate").unwrap();
+    for _ in 0..2 {
+        let mut progress = spintop_course::load_progress(&copy);
+        spintop_course::next_hint(&mut progress, larmor);
+        spintop_course::save_progress(&copy, &progress).unwrap();
+    }
+    learn.advance(std::time::Duration::ZERO);
+    let hint = learn.hint().expect("a hint");
+    assert_eq!((hint.assignment.function, hint.rung), ("larmor_rate", 3));
+    let shown = draw(&mut learn, 80, 24);
+    assert!(shown.contains("hint 3 of 3"), "{shown}");
+    // And the next `h` there stays on the last rung, as the file says.
+    press(&mut learn, KeyCode::Char('h'));
+    assert_eq!(learn.hint().map(|h| h.rung), Some(3));
+    drop(learn);
+    let _ = std::fs::remove_dir_all(&copy);
+}
+
 /// The first PgUp after the course panel got shorter moves it.
 #[test]
 fn page_up_moves_at_once_after_the_course_panel_shrinks() {

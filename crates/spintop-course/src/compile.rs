@@ -7,6 +7,7 @@ use super::building::{self, Building};
 use super::process::{self, Ctx, Waited};
 use super::sandbox::{self, Kind, Limits, Spec};
 use super::status::Located;
+use super::toolchain;
 use super::workspace::{RUNNER_BIN, RUNNER_PACKAGE, Workspace};
 use std::ffi::OsString;
 use std::io::{BufRead, BufReader};
@@ -105,7 +106,8 @@ pub(crate) fn build_runner(
                 .map(|(k, v)| (k.to_string(), OsString::from(v))),
         );
     }
-    let mut cmd = sandbox::command(launcher, &spec, &cargo_program(), &args, &env);
+    let cargo = toolchain::find_cargo()?;
+    let mut cmd = sandbox::command(launcher, &spec, &cargo, &args, &env);
     cmd.current_dir(ws.root());
     let target = ws.target();
     run_cargo(cmd, &spec.limits, ctx, progress.cloned(), move || {
@@ -178,7 +180,16 @@ fn run_cargo(
         Waited::Killed(None) => Built::OutOfTime,
         Waited::Killed(Some(why)) => Built::Bounded(why),
         Waited::Exited(s) if s.success() => Built::Programs(programs),
-        Waited::Exited(s) if errors.is_empty() => Built::Failed(vec![cargo_refused(&stderr, s)]),
+        // No error with a place in the code: cargo, the toolchain or a
+        // bound stopped the build, not the code.
+        Waited::Exited(s) if errors.iter().all(|e| e.file == NOWHERE) => {
+            match cargo_refused(&stderr, s, &errors) {
+                Refused::Bounded(why) => Built::Bounded(why),
+                Refused::Cargo(line) => {
+                    return Err(CourseError::CannotGrade(toolchain::refusal(&line)));
+                }
+            }
+        }
         Waited::Exited(_) => Built::Failed(errors),
     })
 }
@@ -200,32 +211,70 @@ pub(crate) fn setup_failure(status: std::process::ExitStatus, stderr: &str) -> O
     )
 }
 
-/// Why cargo failed with no compiler error: its last word, or how it ended
-/// (a build stopped by its memory or CPU limit).
-fn cargo_refused(stderr: &str, status: std::process::ExitStatus) -> Located {
-    let line = stderr
-        .lines()
-        .rev()
-        .find(|l| l.trim_start().starts_with("error"))
-        .or_else(|| stderr.lines().rev().find(|l| !l.trim().is_empty()))
-        .map(|l| l.trim().chars().take(300).collect::<String>());
-    let message = match line {
-        Some(l)
-            if l.contains("SIGKILL")
-                || l.contains("signal: 9")
-                || l.contains("memory allocation") =>
-        {
-            "the build ran out of the memory a build may take (a huge constant or static?)"
-                .to_string()
+/// Why a build that failed with no error in the code failed.
+#[derive(Debug, PartialEq, Eq)]
+enum Refused {
+    /// A bound the build runs within stopped the compiler (its memory, CPU
+    /// time or file size: a huge constant or static), or a signal did: the
+    /// code's doing.
+    Bounded(String),
+    /// Cargo (or rustup, or the linker) refused before any code was
+    /// judged: its first line.
+    Cargo(String),
+}
+
+/// The file of a compiler error that names no place (a linker's, a
+/// missing target's).
+const NOWHERE: &str = "?";
+
+/// Why cargo failed with no compiler error that names a place (`errors`
+/// are those that name none): a bound that stopped the compiler, or
+/// cargo's refusal, in its own first error line.
+fn cargo_refused(stderr: &str, status: std::process::ExitStatus, errors: &[Located]) -> Refused {
+    let killed = stderr.lines().find_map(|l| {
+        let l = l.trim();
+        let signal = l
+            .split_once("signal: ")
+            .map(|(_, rest)| rest.trim_end_matches(')').to_string());
+        if l.contains("memory allocation of") || l.contains("out of memory") {
+            Some(None)
+        } else {
+            signal.map(Some)
         }
-        Some(l) => l,
-        None => format!("cargo failed ({status})"),
-    };
-    Located {
-        file: "Cargo.toml".into(),
-        line: 1,
-        message,
+    });
+    #[cfg(unix)]
+    let killed = killed.or_else(|| {
+        std::os::unix::process::ExitStatusExt::signal(&status).map(|s| Some(s.to_string()))
+    });
+    if let Some(signal) = killed {
+        let sig = signal.unwrap_or_default();
+        return Refused::Bounded(if sig.contains("XCPU") || sig.starts_with("24") {
+            "the build used up the CPU time a build may take (a huge constant or static?)".into()
+        } else if sig.contains("XFSZ") || sig.starts_with("25") {
+            "the build wrote a file larger than a build may (a huge constant or static?)".into()
+        } else if sig.is_empty()
+            || sig.contains("KILL")
+            || sig.contains("ABRT")
+            || sig.starts_with('9')
+            || sig.starts_with('6')
+        {
+            "the build ran out of the memory a build may take (a huge constant or static?)".into()
+        } else {
+            format!("the compiler was stopped by a signal ({sig}) while compiling the code")
+        });
     }
+    let line = errors
+        .first()
+        .map(|e| format!("error: {}", e.message))
+        .or_else(|| {
+            stderr
+                .lines()
+                .find(|l| l.trim_start().starts_with("error"))
+                .or_else(|| stderr.lines().find(|l| !l.trim().is_empty()))
+                .map(str::to_string)
+        })
+        .map(|l| l.trim().chars().take(300).collect::<String>());
+    Refused::Cargo(line.unwrap_or_else(|| format!("cargo failed ({status}) and said nothing")))
 }
 
 /// Cargo's JSON messages: the programs built, and the first error of each
@@ -290,7 +339,7 @@ pub(crate) fn compile_error(message: &serde_json::Value) -> Option<Located> {
                 .unwrap_or_default()
                 .to_string(),
         ),
-        None => ("?".to_string(), 1, String::new()),
+        None => (NOWHERE.to_string(), 1, String::new()),
     };
     let message = if file.ends_with("runner/main.rs") && !source.is_empty() {
         format!("{text} [{}]", source.trim())
@@ -313,7 +362,7 @@ pub(crate) fn cargo_json(
     target_dir: Option<&Path>,
     ctx: &Ctx,
 ) -> Result<Built, CourseError> {
-    let mut cmd = Command::new(cargo_program());
+    let mut cmd = Command::new(toolchain::find_cargo()?);
     cmd.current_dir(dir)
         .args(args)
         .arg("--manifest-path")
@@ -323,4 +372,95 @@ pub(crate) fn cargo_json(
         cmd.env("CARGO_TARGET_DIR", t);
     }
     run_cargo(cmd, &Limits::build(3600), ctx, None, || None)
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+
+    /// `run_cargo` on a stand-in for cargo: a shell that says `stderr`
+    /// (and `stdout`) and exits with `code`.
+    fn stand_in(stdout: &str, stderr: &str, code: i32) -> Result<Built, CourseError> {
+        let mut cmd = Command::new("/bin/sh");
+        cmd.arg("-c")
+            .arg("printf '%s' \"$1\"; printf '%s' \"$2\" >&2; exit $3")
+            .arg("sh")
+            .arg(stdout)
+            .arg(stderr)
+            .arg(code.to_string());
+        let ctx = Ctx {
+            stop: None,
+            deadline: None,
+        };
+        run_cargo(cmd, &Limits::build(60), &ctx, None, || None)
+    }
+
+    #[test]
+    fn a_toolchain_that_refuses_is_a_grading_failure_in_cargos_words() {
+        // rustup's proxy with no default toolchain: exit 1, no JSON.
+        let rustup = "error: rustup could not choose a version of cargo to run, because one wasn't specified explicitly, and no default is configured.\nhelp: run 'rustup default stable' to download the latest stable release of Rust and set it as your default toolchain.\n";
+        match stand_in("", rustup, 1) {
+            Err(CourseError::CannotGrade(why)) => {
+                assert!(why.contains("rustup could not choose a version"), "{why}");
+                assert!(why.contains("rustup default stable"), "{why}");
+            }
+            other => panic!("not a grading failure: {other:?}"),
+        }
+        // Offline without the crates in cargo's cache.
+        let offline = "    Updating crates.io index\nerror: no matching package named `nalgebra` found\nlocation searched: crates.io index\nrequired by package `spintop v0.1.0`\nAs a reminder, you're using offline mode (--offline)\n";
+        match stand_in("", offline, 101) {
+            Err(CourseError::CannotGrade(why)) => {
+                assert!(
+                    why.contains("no matching package named `nalgebra`"),
+                    "{why}"
+                );
+                assert!(why.contains("cargo fetch"), "{why}");
+            }
+            other => panic!("not a grading failure: {other:?}"),
+        }
+        // A linker's error names no place in the code: the machine's, too.
+        let linker = r#"{"reason":"compiler-message","message":{"level":"error","message":"linker `cc` not found","spans":[]}}"#;
+        match stand_in(
+            &format!("{linker}\n"),
+            "error: could not compile `runner`\n",
+            101,
+        ) {
+            Err(CourseError::CannotGrade(why)) => assert!(why.contains("C linker"), "{why}"),
+            other => panic!("not a grading failure: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_compiler_stopped_by_its_bound_is_the_codes_doing() {
+        for (signal, words) in [
+            ("signal: 9, SIGKILL: kill", "memory"),
+            ("signal: 24, SIGXCPU: CPU time limit exceeded", "CPU time"),
+            ("signal: 6, SIGABRT: process abort signal", "memory"),
+        ] {
+            let stderr = format!(
+                "error: could not compile `spintop-lessons` (lib)\n\nCaused by:\n  process didn't exit successfully: `rustc --crate-name spintop_lessons` ({signal})\n"
+            );
+            match stand_in("", &stderr, 101) {
+                Ok(Built::Bounded(why)) => assert!(why.contains(words), "{signal}: {why}"),
+                other => panic!("{signal}: {other:?}"),
+            }
+        }
+        let alloc = "memory allocation of 2147483648 bytes failed\nerror: could not compile `spintop-lessons`\n";
+        assert!(matches!(stand_in("", alloc, 101), Ok(Built::Bounded(w)) if w.contains("memory")));
+    }
+
+    #[test]
+    fn an_error_with_a_place_is_the_codes() {
+        let msg = r#"{"reason":"compiler-message","message":{"level":"error","message":"mismatched types","spans":[{"file_name":"course/src/ch2.rs","line_start":7,"is_primary":true,"text":[{"text":"  1"}]}]}}"#;
+        match stand_in(&format!("{msg}\n"), "error: could not compile\n", 101) {
+            Ok(Built::Failed(errors)) => {
+                assert_eq!(errors.len(), 1);
+                assert_eq!(
+                    (errors[0].file.as_str(), errors[0].line),
+                    ("course/src/ch2.rs", 7)
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+    }
 }

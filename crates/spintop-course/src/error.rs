@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, thiserror::Error)]
 pub enum CourseError {
     /// A file or folder of spintop's own could not be read or written.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {}", path.display(), super::unwritable_why(path, source))]
     Io {
         /// Where.
         path: PathBuf,
@@ -34,8 +34,8 @@ pub enum CourseError {
 }
 
 impl CourseError {
-    /// True when the grading itself could not run (cargo or the sandbox),
-    /// as against spintop's own files: exit 3, not 2.
+    /// True when the grading itself could not run (cargo or the sandbox,
+    /// a folder it may not write), as against spintop's own files.
     pub fn is_grading_failure(&self) -> bool {
         matches!(
             self,

@@ -184,12 +184,29 @@ jobs:
 /// folder (`CARGO_TARGET_DIR`, as `course grade` and the tests do) would reuse
 /// each other's test programs when one copy's sources look unchanged: one
 /// student graded with another's code.
-pub(crate) fn export_manifest(crates: &Path, out: &Path) -> String {
+///
+/// Its test programs: [`ALL_TESTS`] (every chapter's graders, the one a
+/// plain `cargo test` runs), and each of `tests` (the files of `tests/`, by
+/// name) on its own for `cargo test --test ch2`, outside a plain `cargo
+/// test` (cargo stops at the first test program that fails: with one
+/// program per chapter, a failing appendix hid every later chapter).
+pub(crate) fn export_manifest(crates: &Path, out: &Path, tests: &[String]) -> String {
     let key = spintop::numbers::stable_key(
         &out.canonicalize()
             .unwrap_or_else(|_| out.to_path_buf())
             .to_string_lossy(),
     );
+    let mut targets = format!(
+        "\n# The plain `cargo test` runs one program, every chapter's graders in it\n\
+         # (cargo stops at the first test program that fails); each chapter's own\n\
+         # program is for `cargo test --test NAME` alone.\n\
+         [[test]]\nname = \"{ALL_TESTS}\"\npath = \"tests/{ALL_TESTS}.rs\"\n"
+    );
+    for name in tests {
+        targets.push_str(&format!(
+            "\n[[test]]\nname = \"{name}\"\npath = \"tests/{name}.rs\"\ntest = false\n"
+        ));
+    }
     format!(
         r#"[package]
 name = "spintop-lessons-{key:08x}"
@@ -197,6 +214,7 @@ version = "0.1.0"
 edition = "2024"
 publish = false
 description = "Course assignments on Duviryak's polarized spinning top, graded by cargo test."
+autotests = false
 
 # A course of its own, not a member of any other workspace; its one member is
 # this package, so `cargo test --workspace` grades the assignments and does not
@@ -217,10 +235,27 @@ spintop = {{ path = {core:?} }}
 [dev-dependencies]
 # The graders, which the tests call; never visible to src/.
 spintop-grading = {{ path = {grading:?} }}
-"#,
+{targets}"#,
         core = crates.join("spintop").display().to_string(),
         grading = crates.join("spintop-grading").display().to_string(),
     )
+}
+
+/// The copy's test program that holds every chapter's graders.
+pub const ALL_TESTS: &str = "assignments";
+
+/// That program's source: each chapter's test file as a module of it.
+fn all_tests_source(chapters: &[&str]) -> String {
+    let mut text = String::from(
+        "//! Every chapter's assignments in one test program, so that a plain\n\
+         //! `cargo test` grades them all (cargo stops at the first test program\n\
+         //! that fails; within one, every test runs). `cargo test --test ch2`\n\
+         //! grades one chapter. Written by `spintop course export`.\n\n",
+    );
+    for c in chapters {
+        text.push_str(&format!("#[path = \"{c}.rs\"]\nmod {c};\n"));
+    }
+    text
 }
 
 const EXPORT_README: &str = "# The spintop course
@@ -236,13 +271,14 @@ with their own), so it builds anywhere Rust is installed.
 Two commands:
 
 ```sh
-cargo test --no-fail-fast      # grade every assignment (fresh inputs each time)
+cargo test                     # grade every assignment (fresh inputs each time)
 cargo test --test ch2          # grade one chapter's assignments
-SPINTOP_SEED=123 cargo test --no-fail-fast   # the inputs of a failure again (its report gives the seed)
+SPINTOP_SEED=123 cargo test    # the inputs of a failure again (its report gives the seed)
 ```
 
-(Without `--no-fail-fast`, cargo stops at the first chapter with a failing
-test and never runs the others.)
+(Every chapter's graders are one test program, `tests/assignments.rs`, so
+`cargo test` reports every assignment however many fail; each chapter's
+file also builds alone for `cargo test --test NAME`.)
 
 With spintop installed, `spintop course` run in this folder (or any folder
 in it: it finds the course it stands in, as cargo finds its manifest) lists
@@ -328,7 +364,7 @@ pub(crate) const PAGE_REWRITES: [(&str, &str); 9] = [
     ),
     (
         "The plain `cargo test` at the top of the repository does not build this\npackage (the workspace's default member is spintop itself), so the project's\nown tests stay green while the stubs are unsolved.",
-        "`cargo test --no-fail-fast` grades every chapter (a plain `cargo test`\nstops at the first chapter with a failing test); `cargo test --test ch2`\ngrades one.",
+        "`cargo test` grades every chapter (one test program holds them all,\nso a failing chapter hides none of the others); `cargo test --test ch2`\ngrades one.",
     ),
     (
         "`spintop course` (from the repository: `cargo run --release -- course`)",
@@ -340,7 +376,7 @@ pub(crate) const PAGE_REWRITES: [(&str, &str); 9] = [
     ),
     (
         "cargo test -p spintop-lessons --features solutions\n",
-        "cargo test --no-fail-fast\n",
+        "cargo test\n",
     ),
     (
         "on the page [Teaching with spintop](instructors.md).",
@@ -427,13 +463,29 @@ pub fn export_with(repo: &Path, out: &Path, options: &ExportOptions) -> Result<E
         Link::Repository => repo.join("crates"),
     };
     let mut files: Vec<(PathBuf, Vec<u8>)> = vec![
-        (
-            "Cargo.toml".into(),
-            export_manifest(&crates, out).into_bytes(),
-        ),
         ("README.md".into(), EXPORT_README.as_bytes().to_vec()),
         (".gitignore".into(), b"/target\n".to_vec()),
     ];
+    let tests: Vec<String> = rust_files(&lessons.join("tests"), &[])
+        .iter()
+        .filter(|p| p.parent() == Some(lessons.join("tests").as_path()))
+        .filter_map(|p| Some(p.file_stem()?.to_str()?.to_string()))
+        .collect();
+    let chapters = super::binaries();
+    if let Some(missing) = chapters.iter().find(|c| !tests.iter().any(|t| t == *c)) {
+        return Err(format!(
+            "{}: no tests/{missing}.rs, whose graders the course names",
+            lessons.display()
+        ));
+    }
+    files.push((
+        "Cargo.toml".into(),
+        export_manifest(&crates, out, &tests).into_bytes(),
+    ));
+    files.push((
+        Path::new("tests").join(format!("{ALL_TESTS}.rs")),
+        all_tests_source(&chapters).into_bytes(),
+    ));
     for (from, strip, skip) in [("src", true, &["solutions"][..]), ("tests", false, &[][..])] {
         let base = lessons.join(from);
         for path in rust_files(&base, skip) {
@@ -590,13 +642,36 @@ mod tests {
                 "the copy's Cargo.lock holds {absent}"
             );
         }
-        // The README grades every chapter, not only up to the first failing one.
-        let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
-        assert!(readme.contains("cargo test --no-fail-fast "), "{readme}");
-        assert!(!readme.contains("cargo test   "), "{readme}");
+        one_test_program_holds_every_chapter(&out, targets);
         // A second export into the same folder is refused, nothing overwritten.
         assert!(export(root, &out).unwrap_err().contains("not empty"));
         std::fs::remove_dir_all(&out).unwrap();
+    }
+
+    /// A plain `cargo test` in the copy runs one program that holds every
+    /// chapter's graders (cargo stops at the first test program that
+    /// fails); each chapter's is built only when named (`targets`: cargo's
+    /// metadata of the copy's package).
+    fn one_test_program_holds_every_chapter(out: &Path, targets: &[serde_json::Value]) {
+        let tests: Vec<(&str, bool)> = targets
+            .iter()
+            .filter(|t| t["kind"][0] == "test")
+            .map(|t| (t["name"].as_str().unwrap(), t["test"].as_bool().unwrap()))
+            .collect();
+        let plain: Vec<&str> = tests.iter().filter(|t| t.1).map(|t| t.0).collect();
+        assert_eq!(plain, [ALL_TESTS], "{tests:?}");
+        for c in crate::binaries().into_iter().chain(["probe"]) {
+            assert!(tests.contains(&(c, false)), "{c}: {tests:?}");
+        }
+        let all =
+            std::fs::read_to_string(out.join("tests").join(format!("{ALL_TESTS}.rs"))).unwrap();
+        for c in crate::binaries() {
+            assert!(
+                all.contains(&format!("#[path = \"{c}.rs\"]\nmod {c};")),
+                "{all}"
+            );
+        }
+        assert!(!all.contains("probe"), "{all}");
     }
 
     /// The copy's book: `book/src` as the repository holds it but KaTeX's
@@ -678,7 +753,8 @@ mod tests {
             }
         }
         assert!(named >= 2, "{copy}");
-        assert!(copy.contains("cargo test --no-fail-fast"));
+        assert!(copy.contains("\ncargo test\n"), "{copy}");
+        assert!(!copy.contains("no-fail-fast"), "{copy}");
     }
 
     #[test]
@@ -695,8 +771,8 @@ mod tests {
         // Cargo would otherwise reuse one copy's test programs for the other
         // when they share a build folder (see export_manifest).
         let spintop = crate::repository();
-        let a = export_manifest(spintop, Path::new("/tmp/course/alice"));
-        let b = export_manifest(spintop, Path::new("/tmp/course/bob"));
+        let a = export_manifest(spintop, Path::new("/tmp/course/alice"), &[]);
+        let b = export_manifest(spintop, Path::new("/tmp/course/bob"), &[]);
         let name = |m: &str| {
             m.lines()
                 .find(|l| l.starts_with("name = \"spintop-lessons"))

@@ -175,7 +175,8 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, CourseError> {
     report(opts, super::building::Building::start);
     let ws = Workspace::at(&opts.work.clone().unwrap_or_else(|| default_work(&dir)));
     let crates = opts.crates.root(&dir);
-    ws.lay_out(&crates)?;
+    let refused = |e| workspace_refused(e, &dir);
+    ws.lay_out(&crates).map_err(refused)?;
     let ws = Workspace::at(
         &ws.root()
             .canonicalize()
@@ -184,8 +185,8 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, CourseError> {
     // One grading at a time in a workspace: a second grading of the same
     // copy (two `spintop course` at once, or one beside `learn`) waits here
     // for the first instead of clearing the sources under it.
-    let _grading = lock_workspace(ws.root())?;
-    ws.clear_sources()?;
+    let _grading = lock_workspace(ws.root()).map_err(refused)?;
+    ws.clear_sources().map_err(refused)?;
     // 1. The snapshot.
     let snap = match snapshot::take(&dir, &ws.course(), &snapshot::Limits::default()) {
         Ok(s) => s,
@@ -282,6 +283,27 @@ pub fn grade(dir: &Path, opts: &Options) -> Result<Status, CourseError> {
         }
     }
     Ok(status)
+}
+
+/// A workspace that could not be written (a course another user owns, a
+/// read-only file system): which folder, why, and what to do; nothing of
+/// the copy in `dir` was judged.
+fn workspace_refused(e: CourseError, dir: &Path) -> CourseError {
+    let CourseError::Io { path, source } = &e else {
+        return e;
+    };
+    if !matches!(
+        source.kind(),
+        std::io::ErrorKind::PermissionDenied | std::io::ErrorKind::ReadOnlyFilesystem
+    ) {
+        return e;
+    }
+    CourseError::CannotGrade(format!(
+        "the grader builds in {}, and it could not be written ({}). Grading needs a course you may write to: copy it to a folder of your own (cp -r {} ~/spintop-course) and work there; reading the book and its scenes need nothing written",
+        path.display(),
+        super::unwritable_why(path, source),
+        dir.display()
+    ))
 }
 
 /// Tells the grading's progress, if it is watched.

@@ -39,6 +39,18 @@ pub fn next_hint(progress: &mut Progress, a: &'static Assignment) -> Hint {
     }
 }
 
+/// The rung a student has reached for `a` as `progress` records it (the
+/// last one shown, wherever it was asked for), if any.
+pub fn hint_reached(progress: &Progress, a: &'static Assignment) -> Option<Hint> {
+    let used = usize::from(progress.hints.get(a.function).copied().unwrap_or(0));
+    let rung = used.min(a.hints.len());
+    (rung > 0).then(|| Hint {
+        assignment: a,
+        rung,
+        text: a.hints[rung - 1],
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -58,6 +70,10 @@ mod tests {
         assert!(last.is_last() && last.text == a.hints[2]);
         assert_eq!(p.hints["torque_rate"], 3);
         // Another assignment starts at the bottom.
-        assert_eq!(next_hint(&mut p, find("larmor_rate").unwrap()).rung, 1);
+        let larmor = find("larmor_rate").unwrap();
+        assert_eq!(hint_reached(&p, larmor), None);
+        assert_eq!(next_hint(&mut p, larmor).rung, 1);
+        assert_eq!(hint_reached(&p, larmor).map(|h| h.rung), Some(1));
+        assert_eq!(hint_reached(&p, a), Some(last));
     }
 }

@@ -16,6 +16,7 @@
 //! | `harness` | one grading: the snapshot, the rule, the build, the graders calling the runner |
 //! | `workspace` | the private folder one grading builds in, and its generated runner |
 //! | `compile` | cargo in the build sandbox, read through its JSON |
+//! | `toolchain` | the cargo a grading runs, and what to say when the machine refuses it |
 //! | `runner` | the student's runner, reached over a pipe ([`spintop_grading::Remote`]) |
 //! | `warm` | the stubs' build, shared by every class grading under a lock |
 //! | `progress` | hint rungs used and first passes, in the course's own `target/` |
@@ -50,6 +51,7 @@ pub mod sheet;
 pub mod snapshot;
 pub mod source_rule;
 mod status;
+mod toolchain;
 mod warm;
 mod watch;
 pub mod workspace;
@@ -61,7 +63,7 @@ pub use export::{
     lessons_dir, strip_solutions,
 };
 pub use harness::{Crates, Options, default_work, grade};
-pub use hints::{Hint, next_hint};
+pub use hints::{Hint, hint_reached, next_hint};
 pub use locate::{Book, Chosen, Course, NoBook, find_course, is_course};
 pub use probe::{ProbeSpec, Probed, parse_probe, probe};
 pub use progress::{
@@ -69,6 +71,7 @@ pub use progress::{
     save_progress,
 };
 pub use status::{Failure, Located, State, Status};
+pub use toolchain::{find_cargo, unwritable_why};
 pub use watch::{Report, Watch, binaries_for, sources_stamps};
 
 use std::path::Path;

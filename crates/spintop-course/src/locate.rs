@@ -187,12 +187,17 @@ const BOOK: &str = "book/src";
 /// export` holds it in `book/src`, and a clone of the repository in its own
 /// `book/src`), else the book of the repository this spintop was built
 /// from. What a reader leaves (`spintop learn`'s progress) is kept in the
-/// `target/` of the folder the book belongs to ([`Book::home`]).
+/// `target/` of [`Book::home`]: the course's own folder whenever a course
+/// was found or named (even one that carries no book), the repository's
+/// only when none was.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Book {
     /// The book's sources: the folder holding `SUMMARY.md`.
     pub src: PathBuf,
-    /// The folder the book belongs to: the copy's top, or a clone's.
+    /// The folder whose `target/` keeps the reader's state: the course's
+    /// top (a copy's, a clone's) when a course was found or named, even
+    /// when the book read is the repository's; the repository's when none
+    /// was.
     pub home: PathBuf,
     /// The course it was looked for in, when that course carries none and
     /// the repository's book is read instead (a copy exported by a spintop
@@ -229,9 +234,11 @@ impl Book {
         let theirs = repository.join(BOOK);
         let found = course.chosen != Chosen::Default;
         if theirs.join("SUMMARY.md").is_file() {
+            // The repository's book, but the reader's state stays the
+            // course's own: a copy never reads or writes the repository's.
             return Ok(Self {
                 src: theirs,
-                home: repository,
+                home: if found { top } else { repository },
                 instead_of: found.then(|| course.dir.clone()),
             });
         }
@@ -407,7 +414,8 @@ mod tests {
         assert_eq!(course.chosen, Chosen::Found);
         let book = Book::beside(&course, &repo).unwrap();
         assert_eq!(book.src, repo.join("book/src"));
-        assert_eq!(book.home, repo);
+        // The copy's own state, never the repository's.
+        assert_eq!(book.home, copy);
         assert_eq!(book.instead_of.as_deref(), Some(copy.as_path()));
         let said = book.describe();
         assert!(

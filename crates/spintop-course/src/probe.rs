@@ -98,7 +98,7 @@ pub fn parse_probe(output: &str) -> Result<Probed, String> {
 /// Runs the probe of `spec` on the lessons crate in `dir` (a cargo child
 /// process; about a second once built).
 pub fn probe(dir: &Path, spec: &ProbeSpec) -> Result<Probed, String> {
-    let mut cmd = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
+    let mut cmd = Command::new(super::find_cargo().map_err(|e| e.to_string())?);
     cmd.current_dir(dir)
         .arg("test")
         .arg("--manifest-path")

@@ -59,11 +59,14 @@ pub fn load_progress(dir: &Path) -> Progress {
 /// Writes the course's [`Progress`].
 pub fn save_progress(dir: &Path, progress: &Progress) -> Result<(), String> {
     let path = progress_path(dir);
+    // The file is named, and the folder that refuses it.
+    let why =
+        |e: std::io::Error| format!("{}: {}", path.display(), super::unwritable_why(&path, &e));
     if let Some(parent) = path.parent() {
-        std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+        std::fs::create_dir_all(parent).map_err(why)?;
     }
     let text = serde_json::to_string_pretty(progress).map_err(|e| e.to_string())?;
-    std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))
+    std::fs::write(&path, text).map_err(why)
 }
 
 /// [`record_passes`] at the present time, kept in the course's progress file

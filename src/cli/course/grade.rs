@@ -127,7 +127,7 @@ fn grade_class(
     options: &gradebook::ClassOptions,
 ) -> Result<gradebook::Class, CliError> {
     let run = gradebook::Run::new(&options.work)
-        .map_err(|e| CliError::Stopped(format!("course grade: {e}")))?;
+        .map_err(|e| CliError::CannotGrade(format!("course grade: {e}")))?;
     let terminal = std::io::stderr().is_terminal();
     // Spintop itself is built once, before any copy's clock starts (only when
     // some copy will be built at all).
@@ -227,7 +227,8 @@ fn write_grades(
     Ok(())
 }
 
-/// Exit 3 naming the copies that could not be fully graded, if any.
+/// Exit 4 (could not grade) naming the copies that could not be fully
+/// graded, if any.
 fn ungraded(class: &gradebook::Class) -> Result<(), CliError> {
     let count = class.ungraded();
     if count == 0 {
@@ -255,7 +256,7 @@ fn ungraded(class: &gradebook::Class) -> Result<(), CliError> {
             )
         })
         .collect();
-    Err(CliError::Stopped(format!(
+    Err(CliError::CannotGrade(format!(
         "course grade: {count} of {} copies could not be fully graded: {}; their rows say why",
         class.copies.len(),
         names.join(", ")

@@ -130,13 +130,26 @@ fn course_head(learn: &Learn, lines: &mut Vec<Line<'static>>) {
         )));
     }
     match (panel.status(), panel.error(), panel.off()) {
-        (_, Some(e), _) => lines.push(Line::from(Span::styled(
-            match panel.graded_ago() {
-                Some(s) => format!("{e} (graded {s} s ago)"),
-                None => e.to_string(),
-            },
-            theme::error(),
-        ))),
+        (status, Some(e), _) => {
+            lines.push(Line::from(Span::styled(
+                match panel.graded_ago() {
+                    Some(s) => format!("{e} (graded {s} s ago)"),
+                    None => e.to_string(),
+                },
+                theme::error(),
+            )));
+            // A grading that could not run changes no grade: say whose these are.
+            if let Some(status) = status {
+                lines.push(Line::from(Span::styled(
+                    format!(
+                        "the grades below ({} of {} passing) are the last grading's that ran; saving a file grades again",
+                        status.passing(),
+                        status.states.len()
+                    ),
+                    theme::label(),
+                )));
+            }
+        }
         (None, None, Some(why)) => {
             lines.push(Line::from(Span::styled(
                 "The assignments are not graded in this session.",
