@@ -382,6 +382,7 @@ fn run_omega_only(
         omega: omega_floor,
         orientation: None,
         rounding: omega_floor,
+        orientation_rounding: None,
         measured: None,
         against: format!("the exact solution of the {} model", top.model.name()),
         how: format!(

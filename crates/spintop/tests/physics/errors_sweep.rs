@@ -208,7 +208,7 @@ pub fn run_scene(tag: &str, case: &Scene) -> Outcome {
             &format!("{tag} orientation"),
             real_o,
             num(&error["orientation"]),
-            rounding,
+            num(&error["orientation_rounding"]),
             REFERENCE_ORIENTATION,
         );
     }
