@@ -288,19 +288,23 @@ fn unknown_name(e: &clap::Error) -> Option<String> {
     Some(message)
 }
 
-/// A number too large for a double, in the words a scene's key gets
-/// (`--b: 1e400 overflows f64 …`).
+/// A number too large or too small for a double, in the words a scene's
+/// key gets (`--b: 1e400 overflows f64 …`, `--omega: 1e-400 underflows to 0
+/// in f64 …`).
 fn overflow(e: &clap::Error) -> Option<String> {
     use clap::error::{ContextKind, ContextValue};
+    use spintop::scene::request::{overflows, underflows};
     use std::error::Error;
-    let values::ValueError::Overflow(number) = e.source()?.downcast_ref()? else {
-        return None;
+    let (say, number): (fn(&str, &str) -> String, _) = match e.source()?.downcast_ref()? {
+        values::ValueError::Overflow(number) => (overflows, number),
+        values::ValueError::Underflow(number) => (underflows, number),
+        values::ValueError::Malformed(_) => return None,
     };
     let Some(ContextValue::String(arg)) = e.get(ContextKind::InvalidArg) else {
         return None;
     };
     let flag = arg.split_whitespace().next()?;
-    Some(spintop::scene::request::overflows(flag, number))
+    Some(say(flag, number))
 }
 
 /// clap's suggestion of a similar name, if any.

@@ -90,11 +90,17 @@ pub enum ValueError {
     /// ([`spintop::scene::request::overflows`]), with the flag named.
     #[error("{0} overflows f64")]
     Overflow(String),
+    /// A number not zero written below the smallest double (`1e-400`, which
+    /// Rust reads as 0): refused by the core's rule
+    /// ([`spintop::numbers::underflows`]) in the words a scene's key gets.
+    #[error("{0} underflows to 0 in f64")]
+    Underflow(String),
 }
 
 /// A number as typed: any double, `nan` and `inf` included (what a value
 /// must be is the core's to check, in the words a scene's key gets); a
-/// number beyond the largest double is refused, not read as infinity.
+/// number beyond the largest double is refused, not read as infinity, and
+/// one below the smallest, not read as 0.
 pub fn real(s: &str) -> Result<Real, ValueError> {
     let t = s.trim();
     let x: Real = t
@@ -106,6 +112,9 @@ pub fn real(s: &str) -> Result<Real, ValueError> {
         .starts_with("inf");
     if x.is_infinite() && !spelled_infinite {
         return Err(ValueError::Overflow(t.to_string()));
+    }
+    if spintop::numbers::underflows(t, x) {
+        return Err(ValueError::Underflow(t.to_string()));
     }
     Ok(x)
 }

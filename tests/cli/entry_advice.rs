@@ -252,3 +252,43 @@ fn a_general_tops_step_budget_is_worded_alike_by_both_entry_points() {
     );
     assert!(key.contains(&format!("[solve] {steps}; ")), "{key}\n{flag}");
 }
+
+/// Ω₀ with a component below the smallest double (1e-400 reads as 0): the
+/// live view's flag, `simulate`'s flag and a scene's key each refuse it in
+/// the one wording, naming the setting, instead of running with 0.
+#[test]
+fn an_underflowing_omega_is_refused_by_every_entry_point_in_one_wording() {
+    let said = "1e-400 underflows to 0 in f64 (the smallest double is about 4.9e-324); write 0 if zero is meant";
+    let (flag, key) = both(
+        41,
+        &[
+            "simulate",
+            "--model",
+            "truncated",
+            "--omega",
+            "1e-400,0,0.2",
+            "--t-end",
+            "1",
+        ],
+        "top",
+        "model = \"truncated\"\nomega = [1e-400, 0.1, 0.2]",
+        "t_end = 1.0\nsamples = 2",
+    );
+    assert_eq!(flag, format!("--omega: {said}"));
+    assert!(key.ends_with(&format!(": [top] omega: {said}")), "{key}");
+    // The live view refuses before it looks for a terminal.
+    let (code, _, tui) = run(&["tui", "--omega", "1e-400,0.1,0.2"]);
+    assert_eq!(code, 2, "{tui}");
+    assert_eq!(tui.trim(), format!("spintop: error: --omega: {said}"));
+    // A zero written as such is still zero: only the underflow is refused.
+    let (code, _, err) = run(&[
+        "simulate",
+        "--model",
+        "truncated",
+        "--omega",
+        "0e-400,0,0.2",
+        "--t-end",
+        "1",
+    ]);
+    assert_eq!(code, 0, "{err}");
+}

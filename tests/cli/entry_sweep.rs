@@ -24,13 +24,25 @@ enum Val {
     List(Vec<Real>),
     Whole(i64),
     Name(&'static str),
-    /// A number written beyond the largest double (`1e400`), first of
-    /// `n` numbers (zeros after it); 0: a list of one (output times).
-    Overflow(usize),
+    /// A number written beyond the largest double (`1e400`) or, not zero,
+    /// below the smallest (`1e-400`), first of `n` numbers (zeros after
+    /// it); 0: a list of one (output times).
+    Beyond(&'static str, usize),
 }
 
 /// A number too large for a double, as typed.
 const TOO_LARGE: &str = "1e400";
+/// A number not zero too small for a double (read as 0 unless refused).
+const TOO_SMALL: &str = "1e-400";
+
+/// What a number beyond a double is refused as, after the key's name.
+fn beyond_says(text: &str) -> String {
+    if text == TOO_LARGE {
+        format!("{text} overflows f64")
+    } else {
+        format!("{text} underflows to 0 in f64")
+    }
+}
 
 /// A number as TOML and the command line both read it.
 fn num_text(x: Real) -> String {
@@ -57,9 +69,9 @@ impl Val {
             ),
             Val::Whole(n) => n.to_string(),
             Val::Name(s) => format!("\"{s}\""),
-            Val::Overflow(0) => format!("[{TOO_LARGE}]"),
-            Val::Overflow(1) => TOO_LARGE.into(),
-            Val::Overflow(n) => format!("[{TOO_LARGE}{}]", ", 0.0".repeat(n - 1)),
+            Val::Beyond(t, 0) => format!("[{t}]"),
+            Val::Beyond(t, 1) => t.to_string(),
+            Val::Beyond(t, n) => format!("[{t}{}]", ", 0.0".repeat(n - 1)),
         }
     }
 
@@ -70,7 +82,7 @@ impl Val {
             Val::List(v) => v.iter().map(|x| num_text(*x)).collect::<Vec<_>>().join(","),
             Val::Whole(n) => n.to_string(),
             Val::Name(s) => s.to_string(),
-            Val::Overflow(n) => format!("{TOO_LARGE}{}", ",0".repeat((*n).max(1) - 1)),
+            Val::Beyond(t, n) => format!("{t}{}", ",0".repeat((*n).max(1) - 1)),
         }
     }
 }
@@ -133,11 +145,14 @@ fn bad_values(spec: &Spec) -> Vec<Val> {
         Range::Names(_) => out.push(Val::Name("nonsense")),
     }
     // Every number key: a number beyond the largest double, which TOML and
-    // Rust both refuse to read as a number (Rust as infinity).
-    match spec.range {
-        Range::Names(_) | Range::Count(..) => {}
-        Range::Times { .. } => out.push(Val::Overflow(0)),
-        _ => out.push(Val::Overflow(arity(spec).unwrap_or(1))),
+    // Rust both refuse to read as a number (Rust as infinity), and one not
+    // zero below the smallest, which both would read as 0.
+    for t in [TOO_LARGE, TOO_SMALL] {
+        match spec.range {
+            Range::Names(_) | Range::Count(..) => {}
+            Range::Times { .. } => out.push(Val::Beyond(t, 0)),
+            _ => out.push(Val::Beyond(t, arity(spec).unwrap_or(1))),
+        }
     }
     out
 }
@@ -359,7 +374,7 @@ fn compare(
         Val::Num(_) if spec.section == "solve" && matches!(spec.range, Range::Between(..)) => {
             format!("; expected {}", spec.expected())
         }
-        Val::Overflow(_) => format!("{}: {TOO_LARGE} overflows f64", spec.key),
+        Val::Beyond(t, _) => format!("{}: {}", spec.key, beyond_says(t)),
         _ => String::new(),
     };
     if !key.contains(&expected) {
@@ -450,7 +465,8 @@ fn plots_own_flags_are_refused_by_their_own_rows() {
             let value = bad.flag();
             let (code, _, err) = run(&["plot", &spec.flag(), &value]);
             let expected = match bad {
-                Val::Overflow(_) => "; expected a finite number".to_string(),
+                Val::Beyond(TOO_LARGE, _) => "; expected a finite number".to_string(),
+                Val::Beyond(..) => "; write 0 if zero is meant".to_string(),
                 _ => format!("; expected {}", spec.expected()),
             };
             assert_eq!(code, 2, "plot {} {value}: {err}", spec.flag());

@@ -90,8 +90,11 @@ fn an_underflowing_omega_is_refused_not_read_as_zero() {
     app.apply(Command::StartEdit);
     typed(&mut app, "1e-400");
     app.apply(Command::Commit);
+    // The words a flag and a scene's key get (`--omega: 1e-400 underflows
+    // to 0 in f64 …`), without a setting's name: the field is the setting.
     assert!(
-        refusal(&app).contains("smallest double"),
+        refusal(&app).contains("1e-400 underflows to 0 in f64")
+            && refusal(&app).contains("write 0 if zero is meant"),
         "{}",
         refusal(&app)
     );

@@ -273,7 +273,7 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
 /// The TOML of a scene, as serde reads it: a syntax error, an unknown key or
 /// a value of the wrong type is refused at its line, naming the key.
 fn read_toml(text: &str, file: &str) -> Result<RawFile, SceneError> {
-    toml::from_str(text).map_err(|e| {
+    let raw: RawFile = toml::from_str(text).map_err(|e| {
         let start = e.span().map_or(0, |s| s.start);
         let mut message = e
             .message()
@@ -308,7 +308,55 @@ fn read_toml(text: &str, file: &str) -> Result<RawFile, SceneError> {
             line: Ctx::file(text, Command::Simulate).line(&At::Text(start..start)),
             message,
         }
-    })
+    })?;
+    match underflowed(text) {
+        Some((setting, span)) => Err(SceneError {
+            file: file.to_string(),
+            line: Ctx::file(text, Command::Simulate).line(&At::Text(span.clone())),
+            message: keys::underflows(&setting, text.get(span).unwrap_or("a number").trim()),
+        }),
+        None => Ok(raw),
+    }
+}
+
+/// The first number of a scene file written below the smallest double (not
+/// zero, yet read as 0 by [`crate::numbers::underflows`]): its setting
+/// (`[top] omega`) and where it is. TOML reads `1e-400` as 0 without a word.
+fn underflowed(text: &str) -> Option<(String, std::ops::Range<usize>)> {
+    use toml::de::{DeTable, DeValue};
+    fn walk(
+        value: &toml::Spanned<DeValue>,
+        path: &mut Vec<String>,
+        text: &str,
+    ) -> Option<(String, std::ops::Range<usize>)> {
+        match value.get_ref() {
+            DeValue::Float(f) => {
+                let span = value.span();
+                let written = text.get(span.clone()).unwrap_or(f.as_str());
+                let x: crate::math::Real = f.as_str().parse().ok()?;
+                crate::numbers::underflows(written, x).then(|| {
+                    let setting = match path.as_slice() {
+                        [section, .., key] => format!("[{section}] {key}"),
+                        [key] => key.clone(),
+                        [] => String::new(),
+                    };
+                    (setting, span)
+                })
+            }
+            DeValue::Array(items) => items.iter().find_map(|v| walk(v, path, text)),
+            DeValue::Table(table) => table.iter().find_map(|(k, v)| {
+                path.push(k.get_ref().to_string());
+                let found = walk(v, path, text);
+                path.pop();
+                found
+            }),
+            _ => None,
+        }
+    }
+    let doc = DeTable::parse(text).ok()?;
+    let span = doc.span();
+    let root = toml::Spanned::new(span, DeValue::Table(doc.into_inner()));
+    walk(&root, &mut Vec::new(), text)
 }
 
 /// The number TOML refused at `span`: its text, or the value after the key

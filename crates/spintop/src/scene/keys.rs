@@ -296,6 +296,14 @@ pub fn overflows(setting: &str, number: &str) -> String {
     )
 }
 
+/// A number written below the smallest double (not zero, yet read as 0: the
+/// rule of [`crate::numbers::underflows`]), as every entry point refuses it,
+/// naming the setting as the entry point spells it: `--omega: 1e-400
+/// underflows to 0 in f64 …`.
+pub fn underflows(setting: &str, number: &str) -> String {
+    format!("{setting}: {}", crate::numbers::underflow_message(number))
+}
+
 /// A string key that must be one of `options`; returns its index.
 pub(super) fn choice(
     ctx: &Ctx,

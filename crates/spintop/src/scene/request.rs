@@ -7,7 +7,7 @@
 
 pub use super::format::{At, Given, Key, RawBalance, RawOrbit, RawShell, RawSolve, RawTop};
 use super::keys::{Ctx, count, number};
-pub use super::keys::{Refusal, not_known, overflows};
+pub use super::keys::{Refusal, not_known, overflows, underflows};
 use super::table::Command;
 use super::{BalanceScene, OrbitScene, ShellScene, TopRequest, kinds, top};
 use crate::math::Real;
