@@ -157,6 +157,7 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
             (None, None, Some(top.dipole().into()))
         }
     };
+    let samples_end = samples.last().map_or(0.0, |s| s.t);
     let integrated = method.is_integrated();
     let rk4 = config.method == MethodChoice::Rk4;
     Ok(SimulateOutput {
@@ -178,15 +179,19 @@ pub fn simulate(config: &SimulateConfig) -> Result<SimulateOutput, Failure> {
         runaway,
         samples_omitted,
         error,
-        // A scene's plan gives the same note among its warnings.
+        // A scene's plan gives the same note among its warnings; the lost
+        // orientation, both.
         warnings: match config.entry {
             Entry::CommandLine => {
                 crate::sim::regime::fast_spin_note(&config.model, &config.initial.omega)
-                    .into_iter()
-                    .collect()
             }
-            Entry::Scene => Vec::new(),
-        },
+            Entry::Scene => None,
+        }
+        .into_iter()
+        .chain(crate::sim::claim::orientation_lost(
+            crate::sim::cost::turning_angle(&config.model, &config.initial.omega, samples_end),
+        ))
+        .collect(),
     })
 }
 

@@ -29,9 +29,7 @@ use crate::sim::{Method, MethodChoice, MethodOptions, Model, auto_integrator};
 /// closed forms answer exactly.
 pub const ORIENTATION_STEP_LIMIT: Real = 1e6;
 
-/// Above this phase, in radians, an angle is not resolved by a double
-/// (its last digit is worth 10⁻⁷ rad), so orientations are not reported.
-pub const MAX_PHASE: Real = 1e9;
+pub use crate::sim::cost::MAX_PHASE;
 
 /// τk at and above which the reduced model is doubtful (physics notes: its
 /// errors are O(τ²) in the precession and O(τ³) in the decay rate, and at

@@ -17,7 +17,7 @@
 //! | Ω's error | relative to \|Ω₀\| |
 //! | the orientation's error | radians: the angle of the rotation between the printed O(t) and the true one |
 
-use super::cost::turning_angle;
+use super::cost::{MAX_PHASE, turning_angle};
 use super::method::{MIN_RTOL, Method, MethodOptions};
 use super::model::Model;
 use super::physical::internal_rtol;
@@ -30,6 +30,7 @@ use crate::physics::free_top::Polhode;
 use crate::physics::general_top::GeneralTop;
 use crate::sim::accuracy::secular_gap;
 use serde::Serialize;
+use std::f64::consts::PI;
 
 /// The factor between the run's tolerance and the second run's.
 pub const TIGHTER: Real = 100.0;
@@ -118,8 +119,14 @@ impl ErrorEstimate {
     /// of (3.4)) added to it.
     pub fn with_model_error(mut self, omega: Real, orientation: Real, how: &str) -> Self {
         self.omega += omega;
-        if let Some(o) = &mut self.orientation {
-            *o = (*o + orientation).min(std::f64::consts::PI as Real);
+        // NOTE: an error of π or more is no claim (past about 1e9 rad the
+        // full model's printed π): the orientation is then lost, not bounded.
+        self.orientation = self
+            .orientation
+            .map(|o| o + orientation)
+            .filter(|o| *o < PI);
+        if self.orientation.is_none() {
+            self.orientation_rounding = None;
         }
         self.against = "the physical solution of (3.4)".to_string();
         self.how = format!("{how}; {}", self.how);
@@ -222,6 +229,9 @@ pub fn numerical_error(
     angle: Real,
     orientation: bool,
 ) -> Result<ErrorEstimate, SimError> {
+    // Past the phase a double resolves, the orientation is lost: no error of
+    // it is claimed (the answer's warning, [`orientation_lost`], says so).
+    let orientation = orientation && angle <= MAX_PHASE;
     let floor = rounding(angle);
     let omega_floor = omega_rounding(
         model,
@@ -299,14 +309,28 @@ pub fn numerical_error(
         ),
     };
     let against = format!("the exact solution of the {} model", model.name());
+    let turn = safety * turn + floor;
+    let orientation = orientation && turn < PI;
     Ok(ErrorEstimate {
         omega: (safety * omega + omega_floor).min(2.0),
-        orientation: orientation.then(|| (safety * turn + floor).min(std::f64::consts::PI as Real)),
+        orientation: orientation.then_some(turn),
         rounding: omega_floor.min(2.0),
         orientation_rounding: orientation.then_some(floor),
         measured: None,
         against,
         how,
+    })
+}
+
+/// Why a run that turns `angle` radians reports no orientation, if it does
+/// not: past [`MAX_PHASE`] a double no longer resolves the phase, so the
+/// orientation (and the Euler angles) is lost, while Ω, E and |L| and the
+/// tilt still hold. One warning for `simulate` and `run`.
+pub fn orientation_lost(angle: Real) -> Option<String> {
+    (angle > MAX_PHASE).then(|| {
+        format!(
+            "the body turns about {angle:.1e} rad, past the {MAX_PHASE:.0e} rad whose phase a double resolves: the orientation (phi, theta, psi) is lost and no error is claimed for it; Omega, E, |L| and the tilt still hold"
+        )
     })
 }
 

@@ -99,6 +99,12 @@ pub fn tolerance_for(rtol: Real, angle: Real) -> Option<Real> {
     (needed >= TIGHTEST_RTOL).then_some(needed.min(rtol))
 }
 
+/// Above this phase, in radians, an angle is not resolved by a double
+/// (its last digit is worth 10⁻⁷ rad), so orientations are not reported:
+/// past it a run's orientation is lost, and no error of it is claimed
+/// ([`crate::sim::claim::numerical_error`]).
+pub const MAX_PHASE: Real = 1e9;
+
 /// How far the body turns by `t`, in radians: exactly |Ω₀|ϑ(t) for the
 /// truncated model (every rate falls as 1/R), at most |Ω₀|t for the reduced
 /// and full ones (neither speeds up), and about √(2E₀/I_min) t for the general
