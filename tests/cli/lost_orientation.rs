@@ -90,7 +90,13 @@ fn past_the_phase_limit_the_full_models_orientation_is_reported_lost() {
         "t_end = 1000.0\nsamples = 2",
     );
     let answer = json(&["run", &path, "--format", "json"]);
+    let (code, table, err) = run(&["run", &path]);
     std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        table.contains("# warning: the body turns") && table.contains("is lost"),
+        "{table}"
+    );
     assert!(
         answer["error"].get("orientation").is_none(),
         "{}",

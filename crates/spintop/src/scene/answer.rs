@@ -221,6 +221,8 @@ fn run_top(
     let run = match (&top.orientation, top.model) {
         (Orientation::Computed, _) => {
             let mut output = run_computed(top)?;
+            // The run's own warnings (a lost orientation) are the report's.
+            warnings.append(&mut output.warnings);
             if let Some(w) = pole_warning(&output.samples) {
                 warnings.push(w);
             }
