@@ -6,13 +6,13 @@
 use super::app::App;
 use super::columns::Column;
 pub use super::layout::COLUMN_WIDTH;
-use super::widgets::{OmegaSeries, drift, hodograph, numbers, top_in_space};
+use super::widgets::{NumberBlock, OmegaSeries, drift, hodograph, numbers, top_in_space};
 use crate::term::cells::width;
 use crate::term::theme;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, BorderType};
+use ratatui::widgets::{Block, BorderType, Paragraph, Wrap};
 
 /// Above this width of a column the numbers get their long labels.
 const WIDE: u16 = 55;
@@ -162,17 +162,11 @@ fn draw_column(
     let [rows, last] =
         Layout::vertical([Constraint::Length(5), Constraint::Fill(1)]).areas(numbers_area);
     let wide = area.width >= WIDE;
-    let (l, r, bottom) = numbers(column, wide);
-    // The blocks at their own widths, left to right, as many as fit whole:
-    // a block is dropped before a number in it is cut.
-    let mut blocks = vec![l, r];
-    if column.closed_form_error().is_none() {
-        blocks.push(drift(column));
-    }
+    let (blocks, bottom) = number_blocks(column, wide, rows.width);
     let widths: Vec<u16> = blocks.iter().map(|b| b.width).collect();
     let mut keep = blocks.len();
     // Blocks one column apart at least.
-    while keep > 1 && widths[..keep].iter().sum::<u16>() + keep as u16 - 1 > rows.width {
+    while keep > 2 && widths[..keep].iter().sum::<u16>() + keep as u16 - 1 > rows.width {
         keep -= 1;
     }
     let parts = Layout::horizontal(
@@ -187,4 +181,37 @@ fn draw_column(
         frame.render_widget(block.paragraph, *part);
     }
     frame.render_widget(bottom, last);
+}
+
+/// The blocks of numbers of `column` for a row `room` columns wide, and its
+/// last line: the two first blocks always, their numbers shortened to three
+/// digits when the full ones would not fit side by side (a row is never
+/// lost); the drift block after them where it fits whole. The last line is
+/// the widest of its forms that fits (a failure's advice is wrapped whole).
+fn number_blocks(column: &Column, wide: bool, room: u16) -> (Vec<NumberBlock>, Paragraph<'static>) {
+    let fits = |l: &NumberBlock, r: &NumberBlock| l.width + 1 + r.width <= room;
+    let (mut l, mut r, mut last) = numbers(column, wide, false);
+    if !fits(&l, &r) {
+        (l, r, last) = numbers(column, wide, true);
+    }
+    if !fits(&l, &r) && wide {
+        (l, r, last) = numbers(column, false, true);
+    }
+    let mut blocks = vec![l, r];
+    if column.closed_form_error().is_none() {
+        blocks.push(drift(column));
+    }
+    let bottom = if column.failure().is_some() {
+        Paragraph::new(last).wrap(Wrap { trim: true })
+    } else {
+        let n = last.len();
+        let line = last
+            .into_iter()
+            .enumerate()
+            .find(|(i, line)| line.width() <= usize::from(room) || *i + 1 == n)
+            .map(|(_, line)| line)
+            .unwrap_or_default();
+        Paragraph::new(line)
+    };
+    (blocks, bottom)
 }

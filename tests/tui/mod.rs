@@ -5,6 +5,7 @@
 mod copy;
 mod keys;
 mod learn;
+mod live_fit;
 mod live_front;
 mod live_scenes;
 mod live_view;
