@@ -758,8 +758,13 @@ impl App {
     fn next_model(&mut self) {
         let n = self.columns.len().max(1);
         if !self.view.takes_turns(n) {
+            let which = if n == 2 {
+                "both models are".to_string()
+            } else {
+                format!("all {n} models are")
+            };
             self.refuse(format!(
-                "all {n} models are on the screen; Tab shows them one at a time where the screen is narrower"
+                "{which} on the screen; Tab shows them one at a time where the screen is narrower"
             ));
             return;
         }

@@ -166,7 +166,9 @@ fn draw_column(
     let widths: Vec<u16> = blocks.iter().map(|b| b.width).collect();
     let mut keep = blocks.len();
     // Blocks one column apart at least.
-    while keep > 2 && widths[..keep].iter().sum::<u16>() + keep as u16 - 1 > rows.width {
+    while keep > 2.min(blocks.len())
+        && widths[..keep].iter().sum::<u16>() + keep as u16 - 1 > rows.width
+    {
         keep -= 1;
     }
     let parts = Layout::horizontal(
@@ -197,21 +199,32 @@ fn number_blocks(column: &Column, wide: bool, room: u16) -> (Vec<NumberBlock>, P
     if !fits(&l, &r) && wide {
         (l, r, last) = numbers(column, false, true);
     }
+    if !fits(&l, &r) {
+        // Too narrow for two blocks even shortened (a scene beside the
+        // text of `learn`): the left one whole, never a number cut.
+        let (l, _, last) = numbers(column, wide, false);
+        return (vec![l], bottom_line(column, last, room));
+    }
     let mut blocks = vec![l, r];
     if column.closed_form_error().is_none() {
         blocks.push(drift(column));
     }
-    let bottom = if column.failure().is_some() {
-        Paragraph::new(last).wrap(Wrap { trim: true })
-    } else {
-        let n = last.len();
-        let line = last
-            .into_iter()
-            .enumerate()
-            .find(|(i, line)| line.width() <= usize::from(room) || *i + 1 == n)
-            .map(|(_, line)| line)
-            .unwrap_or_default();
-        Paragraph::new(line)
-    };
+    let bottom = bottom_line(column, last, room);
     (blocks, bottom)
+}
+
+/// The last line of numbers: a failure's advice wrapped whole, else the
+/// widest of its forms that fits in `room`.
+fn bottom_line(column: &Column, last: Vec<Line<'static>>, room: u16) -> Paragraph<'static> {
+    if column.failure().is_some() {
+        return Paragraph::new(last).wrap(Wrap { trim: true });
+    }
+    let n = last.len();
+    let line = last
+        .into_iter()
+        .enumerate()
+        .find(|(i, line)| line.width() <= usize::from(room) || *i + 1 == n)
+        .map(|(_, line)| line)
+        .unwrap_or_default();
+    Paragraph::new(line)
 }

@@ -390,8 +390,8 @@ pub fn hodograph(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut Co
 /// axis O·e₃, the direction of L, and the trail of the axis tip, which traces
 /// the precession cone. The lab z axis is the direction of L₀ in the
 /// paper's frame (`paper_frame`); a scene with Euler angles of its own
-/// starts in its lab frame, and the title gives θ, the tilt of the axis from
-/// lab z.
+/// starts in its lab frame, and the title gives e₃∠z, the angle of the axis
+/// from lab z (not the tilt of the numbers, the angle from L).
 pub fn top_in_space(
     column: &Column,
     area: Rect,
@@ -423,8 +423,8 @@ pub fn top_in_space(
     } else {
         let theta = fmt_num(axis[2].clamp(-1.0, 1.0).acos());
         (
-            format!("the top in space (θ = {theta})"),
-            format!("θ = {theta}"),
+            format!("the top in space (e₃∠z = {theta})"),
+            format!("e₃∠z {theta}"),
         )
     };
     let title = fitting(area, &long, &short).to_string();

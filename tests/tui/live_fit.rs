@@ -66,3 +66,55 @@ fn the_last_row_is_never_cut_after_its_name() {
         }
     }
 }
+
+/// A start that spins down within a few τ is judged on what its run costs:
+/// `--omega 0,10000,0.2` (closed forms) and `--omega 1000,0.1,0.2` by DP5
+/// run at 1000 τ/s, and the first 100τ (a tenth of a wall-clock second
+/// there) take each column fewer steps than a tenth of the view's budget.
+#[test]
+fn a_start_that_spins_down_is_judged_on_what_it_costs() {
+    use spintop_app::live::settings::LIVE_STEPS_PER_SECOND;
+    for (omega, method) in [
+        ([0.0, 1e4, 0.2], MethodChoice::Exact),
+        ([1000.0, 0.1, 0.2], MethodChoice::Dopri5),
+    ] {
+        let settings = Settings::new(0.4, omega, method, 1000.0)
+            .unwrap_or_else(|e| panic!("{omega:?} by {method:?} refused: {e}"));
+        let mut app = App::new(settings).unwrap();
+        app.advance_ticks(1000);
+        for c in app.columns() {
+            assert!(c.failure().is_none(), "{omega:?}: {:?}", c.failure());
+            let s = c.stats();
+            let work = (s.steps + s.rejected) as f64;
+            assert!(
+                work <= 0.1 * LIVE_STEPS_PER_SECOND,
+                "{omega:?} {}: {work} steps in 100τ",
+                c.name()
+            );
+        }
+    }
+}
+
+/// On the command line a refusal names the flag, not the key: a slower
+/// warp as `--warp W`, and that warp is taken.
+#[test]
+fn the_command_line_refusal_names_a_flag_that_works() {
+    // Ω₃ does not spin down in the reduced model: its orientation turns
+    // 1e4 rad per τ at any warp.
+    let omega = [0.0, 0.0, 1e4];
+    let refusal = Settings::new(0.4, omega, MethodChoice::Exact, 1000.0).unwrap_err();
+    let line = refusal.on_command_line();
+    assert!(!line.contains("(- slows down)"), "{line}");
+    let warp: f64 = line
+        .split("(--warp ")
+        .nth(1)
+        .and_then(|r| r.split(')').next())
+        .and_then(|w| w.parse().ok())
+        .unwrap_or_else(|| panic!("no --warp in: {line}"));
+    assert!(
+        Settings::new(0.4, omega, MethodChoice::Exact, warp).is_ok(),
+        "{line}"
+    );
+    // In the live view the key is named.
+    assert!(refusal.to_string().contains("(- slows down)"), "{refusal}");
+}
