@@ -697,10 +697,19 @@ impl App {
         let mut skipped: Vec<MethodChoice> = Vec::new();
         let mut first_refusal = None;
         let mut candidate = None;
+        let mut unstable: Option<String> = None;
         for _ in 0..super::layout::METHOD_CYCLE.len() {
             method = super::layout::next_method(method, &top);
             if method == self.settings.method() {
                 break;
+            }
+            if let Some(why) = super::layout::fixed_step_unstable(
+                method,
+                &top,
+                self.columns.iter().map(|c| c.current().omega),
+            ) {
+                unstable.get_or_insert(why);
+                continue;
             }
             match self.settings.with_method(method) {
                 Ok(settings) => {
@@ -726,6 +735,10 @@ impl App {
                 method_title(method, &top),
                 skipped.join(", ")
             )
+        };
+        let what = match unstable {
+            Some(why) => format!("{what}; {why}"),
+            None => what,
         };
         self.change(candidate, what);
     }

@@ -138,6 +138,11 @@ impl Column {
         self.failure = Some(if self.is_forward() {
             // The forward run is there to run away: the reason says it all.
             why
+        } else if self.method == Method::Rk4 {
+            // A slower warp takes the same fixed step: it cannot help.
+            format!(
+                "{why}; RK4's fixed step is unstable here: choose an adaptive method (m), r restarts, a smaller Ω₀ helps"
+            )
         } else {
             format!(
                 "{why}; m switches the method, - slows the warp, r restarts, a smaller Ω₀ helps"

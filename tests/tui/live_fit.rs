@@ -118,3 +118,54 @@ fn the_command_line_refusal_names_a_flag_that_works() {
     // In the live view the key is named.
     assert!(refusal.to_string().contains("(- slows down)"), "{refusal}");
 }
+
+/// From Ω₁₀ = 1000 (h·3τ|Ω|² = 3e4 for RK4's step) `m` never lands on RK4,
+/// which would blow up on its first step, and says why it skipped it; a
+/// top at rest takes RK4 (the rule can let it through).
+#[test]
+fn m_skips_a_fixed_step_method_unstable_for_the_state() {
+    let omega = [1000.0, 0.1, 0.2];
+    let mut app =
+        App::new(Settings::new(0.4, omega, MethodChoice::Dopri5, 1000.0).unwrap()).unwrap();
+    let mut said = false;
+    for _ in 0..8 {
+        app.apply(Command::CycleMethod);
+        assert_ne!(
+            app.settings().method(),
+            MethodChoice::Rk4,
+            "{:?}",
+            app.message()
+        );
+        said |= app
+            .message()
+            .is_some_and(|m| m.text.contains("RK4 skipped"));
+    }
+    assert!(said, "m never said why RK4 is skipped");
+    let mut calm =
+        App::new(Settings::new(0.4, [0.0, 0.1, 0.2], MethodChoice::Auto, 1.0).unwrap()).unwrap();
+    let mut seen = false;
+    for _ in 0..8 {
+        calm.apply(Command::CycleMethod);
+        seen |= calm.settings().method() == MethodChoice::Rk4;
+    }
+    assert!(seen, "RK4 is in the cycle of a slow top");
+}
+
+/// RK4 stopped by its instability advises an adaptive method, not a slower
+/// warp (the same fixed step), and its panel shows no error for the state
+/// where it failed.
+#[test]
+fn a_fixed_step_blow_up_advises_an_adaptive_method() {
+    let settings = Settings::new(0.4, [1000.0, 0.1, 0.2], MethodChoice::Rk4, 1.0).unwrap();
+    let mut app = App::new(settings).unwrap();
+    app.advance_ticks(5);
+    let stopped: Vec<&str> = app.columns().iter().filter_map(|c| c.failure()).collect();
+    assert!(!stopped.is_empty(), "RK4 ran from Ω₁₀ = 1000");
+    for why in &stopped {
+        assert!(why.contains("adaptive method"), "{why}");
+        assert!(!why.contains("slows the warp"), "{why}");
+    }
+    let s = screen(&mut app, 120, 40);
+    assert!(!s.contains("error   0/τ"), "{s}");
+    assert!(s.contains("— (stopped)"), "{s}");
+}
