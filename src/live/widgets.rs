@@ -644,7 +644,18 @@ pub fn numbers(
         ),
         pair("error", error),
     ];
-    let last = match column.failure() {
+    let last = last_lines(column, left_width, compact);
+    (NumberBlock::new(left), NumberBlock::new(right), last)
+}
+
+/// The last line of a column's numbers: why it stopped, or Ω and Ω⊥ in
+/// forms from the widest to the shortest (the caller takes the first that
+/// fits; a number is never cut at the edge).
+fn last_lines(column: &Column, left_width: usize, compact: bool) -> Vec<Line<'static>> {
+    let s = column.current();
+    let u = column.time_unit();
+    let num = |x: Real| if compact { fmt_short(x) } else { fmt_num(x) };
+    match column.failure() {
         Some(why) if column.is_forward() => {
             vec![Line::from(Span::styled(why.to_string(), theme::error()))]
         }
@@ -693,8 +704,7 @@ pub fn numbers(
                 ]),
             ]
         }
-    };
-    (NumberBlock::new(left), NumberBlock::new(right), last)
+    }
 }
 
 /// How far the general top has drifted from t = 0, for the numbers of a
