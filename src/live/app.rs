@@ -706,7 +706,8 @@ impl App {
             if let Some(why) = super::layout::fixed_step_unstable(
                 method,
                 &top,
-                self.columns.iter().map(|c| c.current().omega),
+                // m restarts the models at t = 0: from Ω₀.
+                std::iter::once(self.settings.omega0()),
             ) {
                 unstable.get_or_insert(why);
                 continue;

@@ -250,7 +250,7 @@ pub fn method_title(method: MethodChoice, top: &Top) -> String {
 const RK4_STABILITY: Real = 2.78;
 
 /// Why the fixed-step `method` would blow up on its first step from the
-/// models' state now (each column's Ω), if it would: RK4's step h must keep
+/// states `omegas` (Ω₀, where `m` restarts the models), if it would: RK4's step h must keep
 /// h·λ inside its stability interval (2.78 on the negative real axis), and
 /// the radiation damps Ω⊥ at λ ≈ 3τ|Ω|² (Ω⊥′ = −τΩ⊥³ and its like), so `m`
 /// skips it while 3τ|Ω|²h > 2.78 (Ω₁₀ = 1000: h·λ = 3.0e4).
@@ -274,7 +274,7 @@ pub fn fixed_step_unstable(
     let h_lambda = 3.0 * tau * omega2 * h;
     (h_lambda > RK4_STABILITY).then(|| {
         format!(
-            "RK4 skipped: its fixed step {}τ is unstable here (h·3τ|Ω|² = {}, beyond its limit {RK4_STABILITY}); it runs once Ω has spun down",
+            "RK4 skipped: its fixed step {}τ is unstable here (h·3τ|Ω|² = {}, beyond its limit {RK4_STABILITY}); a smaller Ω₀ lets it run",
             spintop::numbers::fmt_num(h),
             spintop::numbers::fmt_num(h_lambda)
         )
