@@ -129,10 +129,16 @@ fn draw_column(
     frame.render_widget(block, area);
     // NOTE: on a short terminal the last line of numbers (Ω itself, shown in
     // the chart anyway) gives its row to the pictures; a failure still shows.
-    let roomy = inner.height >= 24 || column.failure().is_some();
+    let roomy = inner.height >= 24;
+    let wide = area.width >= WIDE;
+    // Both blocks of numbers whole (shortened where they must be), the
+    // drift block where it fits; see `number_blocks`.
+    let (blocks, bottom) = number_blocks(column, wide, inner.width);
     let numbers_height = if column.failure().is_some() {
-        // A stopped model's advice gets up to four lines.
-        9
+        // A stopped model's advice gets every row it wraps to (its remedy
+        // is at its end), the chart keeping four.
+        let advice = u16::try_from(bottom.line_count(inner.width)).unwrap_or(u16::MAX);
+        (5 + advice).min(inner.height.saturating_sub(4)).max(6)
     } else if roomy {
         6
     } else {
@@ -161,8 +167,6 @@ fn draw_column(
     );
     let [rows, last] =
         Layout::vertical([Constraint::Length(5), Constraint::Fill(1)]).areas(numbers_area);
-    let wide = area.width >= WIDE;
-    let (blocks, bottom) = number_blocks(column, wide, rows.width);
     let widths: Vec<u16> = blocks.iter().map(|b| b.width).collect();
     let mut keep = blocks.len();
     // Blocks one column apart at least.
