@@ -617,6 +617,8 @@ impl Stage {
                 cells.push(Cell::fixed(vec![
                     label(lead),
                     value(format!("({}, {}, {})", fmt(w[0]), fmt(w[1]), fmt(w[2]))),
+                    // In the unit of time the live view names (τ, or u).
+                    label(&format!("/{}", settings.top().time_unit())),
                 ]));
                 let method = match settings.top() {
                     Top::Full(_) => "physical, forward".to_string(),

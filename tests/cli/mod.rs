@@ -7,6 +7,7 @@ mod entry;
 mod entry_sweep;
 mod figure;
 mod gate;
+mod learn;
 mod orbit;
 mod plot;
 mod run;

@@ -10,6 +10,7 @@ mod live_scenes;
 mod live_view;
 mod overlays;
 mod reader;
+mod reader_wrap;
 mod screens;
 mod student;
 mod term_e2e;

@@ -272,8 +272,8 @@ impl Book {
     }
 }
 
-/// `path` named without `..` (the repository is `crates/spintop-course/../..`
-/// where spintop was built): resolved if it has one and exists, else as given.
+/// `path` named without `..` (a `--course ../copy`): resolved if it has one
+/// and exists, else as given.
 fn without_dots(path: &Path) -> PathBuf {
     let dots = path
         .components()
