@@ -59,7 +59,7 @@ fn every_chapter_of_an_exported_copy_reads_as_the_repositorys() {
     );
     // The reader in the copy shows §4.1's commands as the copy runs them,
     // and the repository's example as the repository's.
-    let mut reader = spintop_app::learn::Learn::open(&theirs, Some("4.1")).unwrap();
+    let reader = spintop_app::learn::Learn::open(&theirs, Some("4.1")).unwrap();
     let shown = reader.chapter_text(80);
     let shown = shown.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(shown.contains("spintop figure 1") && !shown.contains("cargo run --release -- "));

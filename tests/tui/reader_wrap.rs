@@ -107,17 +107,21 @@ fn the_scene_header_gives_omega0_its_unit() {
     let mut learn = Learn::open(&book(), Some("4.1")).unwrap();
     let shown = draw(&mut learn, 120, 40);
     let Some(settings) = (match learn.stage() {
-        spintop_app::learn::scene::Stage::Top(app) => Some(app.settings().clone()),
+        spintop_app::learn::scene::Stage::Top(app) => Some(*app.settings()),
         _ => None,
     }) else {
         panic!("§4.1 runs a top: {shown}")
     };
     let unit = settings.top().time_unit();
-    let row = shown
-        .lines()
-        .find(|l| l.contains("Ω₀ = ("))
-        .unwrap_or_default();
-    let after = &row[row.find("Ω₀ = (").unwrap_or(0)..];
-    let close = after.find(')').map_or("", |i| &after[i..]);
-    assert!(close.starts_with(&format!(")/{unit}")), "{row}");
+    // Wide, and at 80×24 beside the text.
+    for shown in [shown, draw(&mut learn, 80, 24)] {
+        let row = shown
+            .lines()
+            .find(|l| l.contains("Ω₀ = ("))
+            .unwrap_or_default();
+        let after = &row[row.find("Ω₀ = (").unwrap_or(0)..];
+        let close = after.find(')').map_or("", |i| &after[i..]);
+        assert!(close.starts_with(&format!(")/{unit}")), "{shown}");
+        assert!(row.contains("I₃/I₁"), "{row}");
+    }
 }
