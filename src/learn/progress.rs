@@ -55,6 +55,12 @@ pub fn open(path: &Path) -> Opened {
     let why = match parse(path) {
         Ok(progress) => return Opened::fresh(progress),
         Err(None) => return Opened::fresh(Progress::default()),
+        // Only a regular file is ever set aside: a device (`/dev/null`,
+        // where tests keep their place) is read as a fresh start and
+        // written in place, never renamed.
+        Err(Some(_)) if !std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) => {
+            return Opened::fresh(Progress::default());
+        }
         Err(Some(why)) => why,
     };
     let mut bad = path.as_os_str().to_owned();
@@ -291,6 +297,17 @@ mod tests {
         let opened = open(&path);
         assert_eq!((opened.progress, opened.said), (good, None));
         assert_eq!(open(&dir.join("none.json")).said, None);
+        // A device is never set aside (renamed): /dev/null stays itself.
+        let null = Path::new("/dev/null");
+        if null.exists() {
+            let opened = open(null);
+            assert_eq!((opened.said, opened.keep), (None, true));
+            assert!(!Path::new("/dev/null.bad").exists());
+            assert!(
+                !std::fs::metadata(null).unwrap().is_file(),
+                "still a device"
+            );
+        }
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
