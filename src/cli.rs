@@ -107,7 +107,7 @@ pub(crate) struct TimeList(pub(crate) Vec<Real>);
 
 /// Times as typed (their rule is the core's, [`spintop::sim::times::check_times`],
 /// applied where a scene's `[solve] times` is).
-pub(crate) fn parse_times(s: &str) -> Result<TimeList, String> {
+pub(crate) fn parse_times(s: &str) -> Result<TimeList, values::ValueError> {
     values::reals(s).map(TimeList)
 }
 
@@ -288,6 +288,21 @@ fn unknown_name(e: &clap::Error) -> Option<String> {
     Some(message)
 }
 
+/// A number too large for a double, in the words a scene's key gets
+/// (`--b: 1e400 overflows f64 …`).
+fn overflow(e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue};
+    use std::error::Error;
+    let values::ValueError::Overflow(number) = e.source()?.downcast_ref()? else {
+        return None;
+    };
+    let Some(ContextValue::String(arg)) = e.get(ContextKind::InvalidArg) else {
+        return None;
+    };
+    let flag = arg.split_whitespace().next()?;
+    Some(spintop::scene::request::overflows(flag, number))
+}
+
 /// clap's suggestion of a similar name, if any.
 fn suggested(e: &clap::Error) -> Option<String> {
     use clap::error::{ContextKind, ContextValue};
@@ -303,7 +318,7 @@ fn suggested(e: &clap::Error) -> Option<String> {
 /// error, the missing arguments, the possible values and the tip ("a similar
 /// argument exists") without the usage block, with a pointer to `--help`.
 fn clap_message(e: &clap::Error) -> String {
-    if let Some(message) = unknown_name(e) {
+    if let Some(message) = unknown_name(e).or_else(|| overflow(e)) {
         return message;
     }
     format!("{} (see --help)", clap_report(e))

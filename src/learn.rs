@@ -62,7 +62,7 @@ pub enum LearnError {
     NoChapters(String),
     /// `--chapter` named none.
     #[error(
-        "--chapter {wanted}: no such chapter; use a section ({sections}), the chapter's number as the header shows it (1 to {count}), a file name such as {example}, or words of its title"
+        "--chapter {wanted}: no such chapter; use the chapter's number as the header shows it (1 to {count}), a section of the paper ({sections}), a file name such as {example}, or words of its title"
     )]
     NoSuchChapter {
         /// What was asked for.
@@ -104,11 +104,7 @@ fn no_chapter(chapters: &[Chapter], wanted: &str) -> LearnError {
     }
     LearnError::NoSuchChapter {
         wanted: wanted.to_string(),
-        sections: chapters
-            .iter()
-            .filter_map(Chapter::section)
-            .collect::<Vec<_>>()
-            .join(", "),
+        sections: book::section_names(chapters),
         count: chapters.len(),
         example: chapters[0].file.trim_end_matches(".md").to_string(),
     }
@@ -219,6 +215,9 @@ pub enum Command {
     PreviousLink,
     /// Enter: follow the link in focus.
     FollowLink,
+    /// Backspace or Alt-←: back to where the reader was before a link, the
+    /// contents or a search took them to another place, as a browser's back.
+    Back,
     /// A key for the scene.
     Scene(SceneKey),
 }
@@ -253,6 +252,8 @@ pub struct Learn {
     searching: Option<String>,
     /// The link in focus (Tab), by its index in the rendered chapter.
     link: Option<usize>,
+    /// The places a link or the contents left, the last on top.
+    back: Vec<book::Place>,
     /// Digits typed in the contents.
     typed: String,
     message: Option<(String, bool)>,
@@ -329,6 +330,7 @@ impl Learn {
             texts,
             searching: None,
             link: None,
+            back: Vec::new(),
             typed: String::new(),
             message: None,
             visited: vec![false; n],
@@ -730,6 +732,7 @@ impl Learn {
             Command::NextLink => self.focus_link(true),
             Command::PreviousLink => self.focus_link(false),
             Command::FollowLink => self.follow_link(),
+            Command::Back => self.go_back(),
             Command::Scene(key) => {
                 let shown = match &self.scene_info.spec {
                     scene::Spec::Top { columns, .. } => columns.clone(),

@@ -25,8 +25,9 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Default, Args)]
 #[command(after_help = "Examples:\n  \
     spintop learn                                    the book in the terminal, where you left it\n  \
-    spintop learn --chapter 4.2                      Section 4.2 beside its scene\n  \
-    spintop learn --chapter 9                        the ninth chapter, as the header counts\n  \
+    spintop learn --chapter 9                        chapter 9, as the header counts (\"chapter 9 of …\")\n  \
+    spintop learn --chapter 4.2                      Section 4.2 of the paper beside its scene\n  \
+    spintop learn --chapter §5                       Section 5 (a bare 5 is chapter 5)\n  \
     spintop learn --list\n  \
     spintop learn --chapter 4.1 --list               Section 4.1 as plain text\n\n\
 The book is the one the course you stand in carries (a copy made by `spintop course export`\n\
@@ -36,10 +37,10 @@ target/spintop-learn.json of the course you stand in (a copy keeps its own, even
 when it carries no book; the repository's only when there is no course), written\n\
 as you read and on every way out; --reset forgets it.")]
 pub struct LearnArgs {
-    /// Open this chapter: a section of the paper (2, 3, 4.1, 4.2, 5, A), the
-    /// chapter's number as the header shows it (9; '#3' where 3 is also a
-    /// section), a file name of the book (section-4-2, numerical-methods) or
-    /// words of its title (where methods fail), in any case.
+    /// Open this chapter: its number as the header shows it ("chapter 9 of
+    /// …": 9), a section of the paper (§2, §3, 4.1, 4.2, §5, A; also
+    /// 'section 5'), a file name of the book (section-5, numerical-methods)
+    /// or words of its title (where methods fail), in any case.
     #[arg(long, value_name = "CHAPTER")]
     chapter: Option<String>,
     /// Print the chapters, their scenes and experiments, the progress and
@@ -245,7 +246,7 @@ fn list(
     }
     writeln!(
         out,
-        "open one with: spintop learn --chapter 4.2 (a section), --chapter 9 (its number) or --chapter numerical-methods (a file); print one as text with --chapter 4.2 --list"
+        "open one with: spintop learn --chapter 9 (its number, as above), --chapter 4.2 or §5 (a section) or --chapter numerical-methods (a file); print one as text with --chapter 4.2 --list"
     )?;
     Ok(())
 }

@@ -4,10 +4,10 @@
 
 use super::gate::Gate;
 use super::values::{self, help, value_name};
-use super::{CliError, Format, TimeList, bad, parse_times};
+use super::{CliError, Format, TimeList, parse_times};
 use clap::Args;
 use spintop::math::Real;
-use spintop::output::shell::{ShellRequest, instability_warning, shell, steps_per_delay};
+use spintop::output::shell::{ShellRequest, instability_warning, shell};
 use spintop::scene::request::{self, Given, RawShell, RawSolve};
 use spintop::scene::table::Command::Shell as H;
 use std::io::Write;
@@ -57,22 +57,10 @@ impl ShellArgs {
             ..RawSolve::default()
         };
         let scene = request::shell(&raw, &solve)?;
-        let (model, times) = (scene.model, scene.times);
-        let t_last = times.last().copied().unwrap_or(0.0);
-        let steps = steps_per_delay(&model, t_last).map_err(|e| {
-            bad(format!(
-                "{e}: {}",
-                if e.delay_too_long {
-                    "the delay is longer than the run itself; choose a shorter --delay"
-                } else {
-                    "ask for shorter --times or a longer --delay"
-                }
-            ))
-        })?;
         Ok(ShellRequest {
-            model,
-            steps,
-            times,
+            model: scene.model,
+            steps: scene.steps,
+            times: scene.times,
             format: self.format,
             entry: spintop::output::Entry::CommandLine,
         })

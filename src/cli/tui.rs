@@ -14,7 +14,7 @@ use clap::Args;
 use spintop::math::Real;
 use spintop::numbers::{fmt_time, significant};
 use spintop::scene::request::{self, Given, RawSolve, RawTop};
-use spintop::scene::table::Command::Simulate as S;
+use spintop::scene::table::Command::{Plot as P, Simulate as S};
 use spintop::sim::{MethodChoice, Model};
 use std::io::Write;
 use std::time::Duration;
@@ -35,8 +35,7 @@ pub struct TuiArgs {
     #[arg(long, value_parser = values::array::<3>, allow_hyphen_values = true,
           value_name = values::value_name(S, "top", "omega"), help = values::help(S, "top", "omega"))]
     omega: Option<[Real; 3]>,
-    /// Numerical method of both models [default: exact]
-    #[arg(long, value_parser = super::values::method())]
+    #[arg(long, value_parser = values::method(P), help = values::help(P, "solve", "method"))]
     method: Option<MethodChoice>,
     /// Model time per wall-clock second, in tau: 0.5, 1, 2, 5, 10, 20, 50, 100,
     /// 200, 500 or 1000 [default: 10]

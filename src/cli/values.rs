@@ -11,12 +11,26 @@ use spintop::output::Format;
 use spintop::scene::table::{self, Choice, Command};
 use spintop::sim::MethodChoice;
 
-/// `--method NAME`: the names of [`MethodChoice::NAMES`].
-pub fn method() -> impl TypedValueParser<Value = MethodChoice> {
-    PossibleValuesParser::new(
-        MethodChoice::ALL.map(|m| PossibleValue::new(m.name()).help(m.help())),
-    )
-    .map(|name| MethodChoice::from_name(&name).unwrap_or(MethodChoice::Auto))
+/// `--method NAME` for a command whose methods are `command`'s `[solve]
+/// method` row of the table (the live view takes `plot`'s: every method but
+/// `forward`).
+pub fn method(command: Command) -> impl TypedValueParser<Value = MethodChoice> {
+    method_name_of(command, "solve", "method")
+        .map(|name| MethodChoice::from_name(&name).unwrap_or(MethodChoice::Auto))
+}
+
+/// A method's help line, naming the flag of the setting it takes
+/// (`Fixed-step classical RK4 (--step)`) where `command` has that flag.
+fn method_help(m: MethodChoice, command: Command) -> String {
+    let flag = m.setting().and_then(|key| {
+        table::keys_of(command)
+            .find(|s| s.section == "solve" && s.key == key)
+            .map(|s| s.flag())
+    });
+    match flag {
+        Some(flag) => format!("{} ({flag})", m.help()),
+        None => m.help().to_string(),
+    }
 }
 
 /// `--method NAME` as a name, for the structures a scene file fills: the
@@ -31,7 +45,7 @@ pub fn method_name_of(command: Command, section: &str, key: &str) -> PossibleVal
         MethodChoice::ALL
             .iter()
             .filter(|m| offered.contains(&m.name()))
-            .map(|m| PossibleValue::new(m.name()).help(m.help())),
+            .map(|m| PossibleValue::new(m.name()).help(method_help(*m, command))),
     )
 }
 
@@ -65,27 +79,50 @@ pub fn value_name(command: Command, section: &str, key: &str) -> &'static str {
     table::key(command, section, key).value_name
 }
 
+/// A value a flag could not read as numbers.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ValueError {
+    /// Not a number, or the wrong count of them: clap's report says so.
+    #[error("{0}")]
+    Malformed(String),
+    /// A number written too large for a double (`1e400`, which Rust reads
+    /// as infinity): refused in the words a scene's key gets
+    /// ([`spintop::scene::request::overflows`]), with the flag named.
+    #[error("{0} overflows f64")]
+    Overflow(String),
+}
+
 /// A number as typed: any double, `nan` and `inf` included (what a value
-/// must be is the core's to check, in the words a scene's key gets).
-pub fn real(s: &str) -> Result<Real, String> {
-    s.trim()
+/// must be is the core's to check, in the words a scene's key gets); a
+/// number beyond the largest double is refused, not read as infinity.
+pub fn real(s: &str) -> Result<Real, ValueError> {
+    let t = s.trim();
+    let x: Real = t
         .parse()
-        .map_err(|_| format!("'{s}' is not a number"))
+        .map_err(|_| ValueError::Malformed(format!("'{s}' is not a number")))?;
+    let spelled_infinite = t
+        .trim_start_matches(['+', '-'])
+        .to_ascii_lowercase()
+        .starts_with("inf");
+    if x.is_infinite() && !spelled_infinite {
+        return Err(ValueError::Overflow(t.to_string()));
+    }
+    Ok(x)
 }
 
 /// Numbers separated by commas.
-pub fn reals(s: &str) -> Result<Vec<Real>, String> {
+pub fn reals(s: &str) -> Result<Vec<Real>, ValueError> {
     s.split(',').map(real).collect()
 }
 
 /// Exactly `N` numbers separated by commas.
-pub fn array<const N: usize>(s: &str) -> Result<[Real; N], String> {
+pub fn array<const N: usize>(s: &str) -> Result<[Real; N], ValueError> {
     let v = reals(s)?;
     let n = v.len();
     <[Real; N]>::try_from(v).map_err(|_| {
         let words = ["no", "one", "two", "three"];
         let want = words.get(N).copied().unwrap_or("N");
-        format!("expected {want} comma-separated numbers, got {n}")
+        ValueError::Malformed(format!("expected {want} comma-separated numbers, got {n}"))
     })
 }
 

@@ -69,27 +69,16 @@ pub fn chapters(summary: &str) -> Vec<Chapter> {
 
 /// Finds a chapter by what the reader types, case-insensitive:
 ///
-/// 1. a section of the paper: `2`, `3`, `4.1`, `4.2`, `5`, `A` (also
-///    `§4.2`, `section 4.2`);
-/// 2. the chapter's number as the header counts it (`9` for "chapter 9 of
-///    25"; `#3` or `chapter 3` where the number is also a section's);
-/// 3. its file name, with or without `.md`;
+/// 1. the chapter's number as the header counts it (`9` for "chapter 9 of
+///    25"; also `#9`, `chapter 9`): a bare whole number is always this;
+/// 2. a section of the paper: `4.1`, `4.2`, `A`, or any section with its
+///    sign or word (`§2`, `§5`, `section 5`, `sec 5`);
+/// 3. its file name, with or without `.md` (`section-5`);
 /// 4. its title, whole or a word-start of it (`numerical methods`,
 ///    `asymmetric`), when only one title fits.
 pub fn find_chapter(chapters: &[Chapter], wanted: &str) -> Option<usize> {
     let w = wanted.trim().to_lowercase();
     let w = w.as_str();
-    let section = w
-        .strip_prefix('§')
-        .or_else(|| w.strip_prefix("section "))
-        .unwrap_or(w)
-        .trim();
-    if let Some(i) = chapters
-        .iter()
-        .position(|c| c.section().is_some_and(|s| s.eq_ignore_ascii_case(section)))
-    {
-        return Some(i);
-    }
     let number = w
         .strip_prefix('#')
         .or_else(|| w.strip_prefix("chapter "))
@@ -98,6 +87,23 @@ pub fn find_chapter(chapters: &[Chapter], wanted: &str) -> Option<usize> {
         .trim();
     if let Ok(n) = number.parse::<usize>() {
         return (1..=chapters.len()).contains(&n).then(|| n - 1);
+    }
+    let marked = w
+        .strip_prefix('§')
+        .or_else(|| w.strip_prefix("section "))
+        .or_else(|| w.strip_prefix("sec "))
+        .map(str::trim);
+    // A bare number was taken above as the header's; a section written
+    // bare is one no chapter number can be (4.1, 4.2, A).
+    let section = marked.unwrap_or(w);
+    if let Some(i) = chapters
+        .iter()
+        .position(|c| c.section().is_some_and(|s| s.eq_ignore_ascii_case(section)))
+    {
+        return Some(i);
+    }
+    if marked.is_some() {
+        return None;
     }
     if let Some(i) = chapters.iter().position(|c| {
         let file = c.file.to_lowercase();
@@ -146,17 +152,36 @@ pub fn candidates(chapters: &[Chapter], wanted: &str) -> Vec<String> {
         .collect()
 }
 
-/// When `wanted` is a number that is both a section of the paper and the
-/// number of another chapter, what that other chapter is and how to open
-/// it ("chapter 3 is Section 2: …; --chapter '#3' opens it").
+/// The sections of the paper as `--chapter` takes them (`§2, §3, 4.1,
+/// 4.2, §5, A`): a whole number bare would be a chapter's number.
+pub fn section_names(chapters: &[Chapter]) -> String {
+    chapters
+        .iter()
+        .filter_map(Chapter::section)
+        .map(|s| {
+            if s.parse::<usize>().is_ok() {
+                format!("§{s}")
+            } else {
+                s.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// When `wanted` is a bare number that is also a section of the paper,
+/// which chapter that section is and how to open it ("Section 5 is chapter
+/// 7: --chapter §5 opens it"): the number opened the header's chapter.
 pub fn ambiguity(chapters: &[Chapter], wanted: &str) -> Option<String> {
     let w = wanted.trim();
     let n: usize = w.parse().ok()?;
     let found = find_chapter(chapters, w)?;
-    (found + 1 != n && (1..=chapters.len()).contains(&n)).then(|| {
+    let section = chapters.iter().position(|c| c.section() == Some(w))?;
+    (found != section).then(|| {
         format!(
-            "this is Section {w}; chapter {n} is “{}” (--chapter '#{n}' opens it)",
-            chapters[n - 1].title
+            "chapter {n} of {}, as the header counts; Section {w} is chapter {} (--chapter §{w} or section-{w} opens it)",
+            chapters.len(),
+            section + 1
         )
     })
 }
@@ -201,6 +226,20 @@ pub fn slug(heading: &str) -> String {
         .collect()
 }
 
+/// Where the reader was when a link or the contents took them elsewhere
+/// (what Backspace goes back to).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Place {
+    /// The chapter.
+    pub(crate) chapter: usize,
+    /// The first line shown, and the chapter's lines then (at another
+    /// width the same fraction is shown).
+    pub(crate) line: usize,
+    pub(crate) total: usize,
+    /// The link in focus then (the one followed).
+    pub(crate) link: Option<usize>,
+}
+
 /// One line of the contents: a chapter, or one of its headings.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Entry {
@@ -226,10 +265,14 @@ mod tests {
     #[test]
     fn a_chapter_is_found_by_section_number_file_or_title() {
         let b = book();
-        assert_eq!(find_chapter(&b, "2"), Some(2), "a section wins");
+        assert_eq!(find_chapter(&b, "2"), Some(1), "the header's number wins");
+        assert_eq!(find_chapter(&b, "§2"), Some(2), "a section by its sign");
+        assert_eq!(find_chapter(&b, "4.2"), Some(4), "no chapter number is 4.2");
         assert_eq!(find_chapter(&b, "§4.2"), Some(4));
         assert_eq!(find_chapter(&b, "a"), Some(7));
         assert_eq!(find_chapter(&b, "Section 3"), Some(3));
+        assert_eq!(find_chapter(&b, "section-3"), Some(3), "its file");
+        assert_eq!(find_chapter(&b, "§4.1"), None, "no such section here");
         assert_eq!(find_chapter(&b, "6"), Some(5), "the header's number");
         assert_eq!(find_chapter(&b, "#2"), Some(1));
         assert_eq!(find_chapter(&b, "chapter 3"), Some(2));
@@ -238,12 +281,14 @@ mod tests {
         assert_eq!(find_chapter(&b, "where"), Some(6));
         assert_eq!(find_chapter(&b, "methods"), None, "two titles fit");
         assert_eq!(find_chapter(&b, "99"), None);
+        let note = ambiguity(&b, "3").unwrap();
         assert!(
-            ambiguity(&b, "3")
-                .unwrap()
-                .contains("chapter 3 is “Section 2")
+            note.contains("Section 3 is chapter 4 (--chapter §3"),
+            "{note}"
         );
-        assert_eq!(ambiguity(&b, "6"), None);
+        assert_eq!(find_chapter(&b, "§3"), Some(3), "as the note says");
+        assert_eq!(ambiguity(&b, "6"), None, "no Section 6");
+        assert_eq!(section_names(&b), "§2, §3, 4.2, A");
     }
 
     #[test]

@@ -1,9 +1,10 @@
 //! Terminal events become `spintop learn`'s [`Command`]s, and the hooks of
 //! the terminal loop ([`crate::term::session`]). The reading keys are
 //! `less`'s: space f b d u (and Ctrl-F B D U) j k g G / ? n N (`?` and
-//! Ctrl-R search backward), h or F1 for the help, q quits from the reading
-//! view and closes any overlay; Esc never quits; Ctrl-Z suspends (the loop's
-//! own). A paste is text for the search prompt, never keys.
+//! Ctrl-R search backward), h or F1 for the help, Backspace or Alt-← back
+//! where a link, a search or the contents came from, q quits from the
+//! reading view and closes any overlay; Esc never quits; Ctrl-Z suspends
+//! (the loop's own). A paste is text for the search prompt, never keys.
 
 use super::scene::SceneKey;
 use super::{Command, Learn, Mode};
@@ -88,6 +89,12 @@ impl Learn {
                 KeyCode::Enter => C::ContentsOpen,
                 _ => C::Close,
             },
+            // Alt-←: a browser's back (← alone is the previous chapter).
+            Mode::Read | Mode::Scene
+                if key.code == KeyCode::Left && key.modifiers.contains(KeyModifiers::ALT) =>
+            {
+                C::Back
+            }
             Mode::Read | Mode::Scene => return self.reading_command(key.code),
         })
     }
@@ -131,6 +138,7 @@ impl Learn {
             KeyCode::Char('>') => C::End,
             KeyCode::BackTab => C::PreviousLink,
             KeyCode::Enter => C::FollowLink,
+            KeyCode::Backspace => C::Back,
             KeyCode::Char('s') => C::ToggleScene,
             KeyCode::Char('w') => C::ToggleSide,
             KeyCode::Char('M') => C::ToggleMouse,

@@ -3,9 +3,13 @@
 //! and the scene's place on the screen. Each is one method of [`Learn`]
 //! that [`Learn::apply`] calls.
 
+use super::book::{self, Place};
 use super::experiment::Experiment;
 use super::scene::{Spec, Stage};
-use super::{Learn, Mode, book};
+use super::{Learn, Mode};
+
+/// How many places Backspace can go back through.
+const BACK_DEPTH: usize = 100;
 
 impl Learn {
     pub(super) fn scroll_by(&mut self, n: i64) {
@@ -87,6 +91,7 @@ impl Learn {
         self.mode = Mode::Read;
         self.typed.clear();
         let entry = self.contents[sel].clone();
+        self.mark_place();
         if entry.chapter != self.current {
             self.go(entry.chapter);
         }
@@ -278,21 +283,70 @@ impl Learn {
         }
         let (file, anchor) = target.split_once('#').unwrap_or((target.as_str(), ""));
         let file = file.trim_start_matches("./");
-        if !file.is_empty() {
-            let Some(i) = self.chapters.iter().position(|c| c.file == file) else {
-                self.refuse(format!("{file} is not a chapter of this book"));
-                return;
-            };
-            self.go(i);
+        let chapter = match file {
+            "" => self.current,
+            _ => match self.chapters.iter().position(|c| c.file == file) {
+                Some(i) => i,
+                None => {
+                    self.refuse(format!("{file} is not a chapter of this book"));
+                    return;
+                }
+            },
+        };
+        self.mark_place();
+        if chapter != self.current {
+            self.go(chapter);
         }
         let title = self.chapters[self.current].title.clone();
         if anchor.is_empty() || self.scroll_to_heading(anchor) {
-            self.inform(format!("followed the link to {title}; ← → and c move on"));
+            self.inform(format!(
+                "followed the link to {title}; Backspace comes back"
+            ));
         } else {
             self.inform(format!(
                 "followed the link to {title} (no heading or anchor “{anchor}” in it)"
             ));
         }
+    }
+
+    /// Keeps the place the reader is about to leave (a link followed, the
+    /// contents opened, a search gone to another chapter), for Backspace.
+    pub(super) fn mark_place(&mut self) {
+        let place = Place {
+            chapter: self.current,
+            line: self.scroll,
+            total: self.rendered.lines.len().max(1),
+            link: self.link,
+        };
+        if self.back.last() != Some(&place) {
+            if self.back.len() == BACK_DEPTH {
+                self.back.remove(0);
+            }
+            self.back.push(place);
+        }
+    }
+
+    /// Backspace or Alt-←: back to the last place a link or the contents
+    /// left, the link followed in focus again.
+    pub(super) fn go_back(&mut self) {
+        let Some(place) = self.back.pop() else {
+            self.inform(
+                "nothing to go back to: Backspace returns after a link, the contents or a search took you to another chapter",
+            );
+            return;
+        };
+        if place.chapter != self.current {
+            self.go(place.chapter);
+        }
+        self.scroll = place.line * self.rendered.lines.len().max(1) / place.total.max(1);
+        self.clamp_scroll();
+        self.link = place.link.filter(|i| self.links_on_page().contains(i));
+        let title = &self.chapters[self.current].title;
+        let more = match self.back.len() {
+            0 => String::new(),
+            n => format!("; Backspace again goes {n} further back"),
+        };
+        self.inform(format!("back in {title}{more}"));
     }
 
     /// x: the chapter's next experiment on the scene (from the chapter's own

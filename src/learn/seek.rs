@@ -144,6 +144,7 @@ impl Learn {
                 continue;
             }
             if j != here {
+                self.mark_place();
                 self.go(j);
             }
             let Some(s) = &mut self.search else { return };

@@ -362,39 +362,7 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
             ),
             theme::info(),
         )),
-        // A full field says its limit before the text (which may fill
-        // the line): no character is dropped unannounced.
-        (Mode::Search(q, forward), _) if q.chars().count() >= crate::learn::search::LONGEST => {
-            Line::from(vec![
-                Span::styled(if *forward { " /" } else { " ?" }, theme::key()),
-                Span::styled(
-                    format!(
-                        "(full: {} characters; Ctrl-U clears) ",
-                        crate::learn::search::LONGEST
-                    ),
-                    theme::error(),
-                ),
-                Span::styled(format!("{q}▏"), theme::selected()),
-            ])
-        }
-        (Mode::Search(q, forward), _) => Line::from(vec![
-            Span::styled(if *forward { " /" } else { " ?" }, theme::key()),
-            Span::styled(format!("{q}▏"), theme::selected()),
-            Span::styled(
-                match learn.search() {
-                    Some(last) if q.is_empty() => format!(
-                        "  Enter finds (alone: “{}” again), Esc cancels{}",
-                        last.query,
-                        if *forward { "" } else { "; backward" }
-                    ),
-                    _ if !forward => {
-                        "  Enter finds backward, Ctrl-U clears, Esc cancels".to_string()
-                    }
-                    _ => "  Enter finds, Ctrl-U clears, Esc cancels".to_string(),
-                },
-                theme::label(),
-            ),
-        ]),
+        (Mode::Search(q, forward), _) => search_line(learn, q, *forward, area.width),
         // A message too long for the line is shown whole, over the rows
         // above it (up to three), never cut.
         (_, Some((m, refused))) => {
@@ -403,11 +371,76 @@ fn draw_status(frame: &mut Frame, area: Rect, learn: &Learn, scene_shown: bool) 
             } else {
                 theme::info()
             };
-            return draw_message(frame, area, &format!(" {m}"), style);
+            return draw_message(frame, area, m, style);
         }
         _ => scene_status(learn, scene_shown, area.width),
     };
     frame.render_widget(Paragraph::new(line), area);
+}
+
+/// The search prompt: `/` or `?`, the field scrolled so that its end
+/// (what was typed last, and the cursor) is always in sight, then what the
+/// keys do where it fits. A full field says its limit before the text: no
+/// character is dropped unannounced.
+fn search_line(learn: &Learn, q: &str, forward: bool, width: u16) -> Line<'static> {
+    let width = usize::from(width);
+    let mut spans = vec![Span::styled(
+        if forward { " /" } else { " ?" },
+        theme::key(),
+    )];
+    let mut room = width.saturating_sub(2);
+    if q.chars().count() >= crate::learn::search::LONGEST {
+        let long = format!(
+            "(full: {} characters; Ctrl-U clears) ",
+            crate::learn::search::LONGEST
+        );
+        // The note leaves the field a third of the line at least.
+        let note = if Span::raw(long.as_str()).width() + room / 3 <= room {
+            long
+        } else {
+            "(full; ^U clears) ".to_string()
+        };
+        room = room.saturating_sub(Span::raw(note.as_str()).width());
+        spans.push(Span::styled(note, theme::error()));
+    }
+    let field = field_end(q, room);
+    room = room.saturating_sub(Span::raw(field.as_str()).width());
+    spans.push(Span::styled(field, theme::selected()));
+    let hint = match learn.search() {
+        Some(last) if q.is_empty() => format!(
+            "  Enter finds (alone: “{}” again), Esc cancels{}",
+            last.query,
+            if forward { "" } else { "; backward" }
+        ),
+        _ if !forward => "  Enter finds backward, Ctrl-U clears, Esc cancels".to_string(),
+        _ => "  Enter finds, Ctrl-U clears, Esc cancels".to_string(),
+    };
+    if q.chars().count() < crate::learn::search::LONGEST && room > 8 {
+        let hint = shortened(&hint, u16::try_from(room).unwrap_or(u16::MAX));
+        spans.push(Span::styled(hint, theme::label()));
+    }
+    Line::from(spans)
+}
+
+/// The end of a typed field that fits `room` columns with its cursor `▏`:
+/// the whole text when it fits, else "…" and as much of its end as fits
+/// (what is typed last stays in sight, as a shell's line scrolls).
+pub fn field_end(text: &str, room: usize) -> String {
+    if Span::raw(text).width() < room {
+        return format!("{text}▏");
+    }
+    let mut tail = Vec::new();
+    let mut used = 2;
+    for c in text.chars().rev() {
+        let w = unicode_width::UnicodeWidthChar::width(c).unwrap_or(0);
+        if used + w > room {
+            break;
+        }
+        used += w;
+        tail.push(c);
+    }
+    let tail: String = tail.into_iter().rev().collect();
+    format!("…{tail}▏")
 }
 
 /// The rows the status message takes (1 to 3), as [`draw_message`] wraps it.
@@ -416,8 +449,8 @@ fn message_rows(learn: &Learn, width: u16) -> u16 {
         _ if learn.searching().is_some() => 1,
         (Mode::Search(..), _) | (_, None) => 1,
         (_, Some((m, _))) => {
-            let p = Paragraph::new(Line::from(format!(" {m}"))).wrap(Wrap { trim: false });
-            u16::try_from(p.line_count(width))
+            let p = Paragraph::new(Line::from(m.as_str())).wrap(Wrap { trim: false });
+            u16::try_from(p.line_count(width.saturating_sub(1)))
                 .unwrap_or(u16::MAX)
                 .clamp(1, 3)
         }
@@ -425,11 +458,13 @@ fn message_rows(learn: &Learn, width: u16) -> u16 {
 }
 
 /// A status message, wrapped upward over the text when one row is too
-/// narrow for it (the last rows of the text come back with the next key).
+/// narrow for it (the last rows of the text come back with the next key),
+/// every row one column in from the edge.
 fn draw_message(frame: &mut Frame, area: Rect, text: &str, style: Style) {
+    let width = area.width.saturating_sub(1);
     let paragraph = Paragraph::new(Line::from(Span::styled(text.to_string(), style)))
         .wrap(Wrap { trim: false });
-    let rows = u16::try_from(paragraph.line_count(area.width))
+    let rows = u16::try_from(paragraph.line_count(width))
         .unwrap_or(u16::MAX)
         .clamp(1, 3)
         .min(area.y + 1);
@@ -441,16 +476,21 @@ fn draw_message(frame: &mut Frame, area: Rect, text: &str, style: Style) {
     if rows > 1 {
         frame.render_widget(ratatui::widgets::Clear, at);
     }
-    let paragraph = if usize::from(rows) < paragraph.line_count(area.width) {
+    let paragraph = if usize::from(rows) < paragraph.line_count(width) {
         Paragraph::new(Line::from(Span::styled(
-            shortened(text, area.width.saturating_mul(rows)),
+            shortened(text, width.saturating_mul(rows)),
             style,
         )))
         .wrap(Wrap { trim: false })
     } else {
         paragraph
     };
-    frame.render_widget(paragraph, at);
+    let inset = Rect {
+        x: at.x + 1,
+        width,
+        ..at
+    };
+    frame.render_widget(paragraph, inset);
 }
 
 /// The scene's clock and state, when nothing else is said.

@@ -123,8 +123,8 @@ impl Column {
             // The forward run is there to run away: said as what it shows.
             Err(Stopped::Sim(SimError::Runaway(r))) if self.is_forward() => {
                 self.failure = Some(format!(
-                    "ran away at t = {:.3}: it leaves the physical solution at {}/τ, an e-folding time of {}τ, as (3.4) does forward from any start",
-                    r.t,
+                    "ran away at t = {}: it leaves the physical solution at {}/τ, an e-folding time of {}τ, as (3.4) does forward from any start",
+                    spintop::numbers::fmt_time(r.t),
                     spintop::numbers::fmt_num(r.growth_rate),
                     spintop::numbers::fmt_num(1.0 / r.growth_rate)
                 ));
@@ -139,9 +139,9 @@ impl Column {
             // The forward run is there to run away: the reason says it all.
             why
         } else {
-            format!(
-                "{why}; m switches the method, - slows the warp, r restarts, a smaller Ω₀ helps"
-            )
+            // NOTE: no word of the warp: it sets how many ticks a second
+            // are drawn, not what a tick (one advance to the next Δt) does.
+            format!("{why}; m switches the method, r restarts, a smaller Ω₀ helps")
         });
     }
 

@@ -129,10 +129,14 @@ fn draw_column(
     frame.render_widget(block, area);
     // NOTE: on a short terminal the last line of numbers (Ω itself, shown in
     // the chart anyway) gives its row to the pictures; a failure still shows.
-    let roomy = inner.height >= 24 || column.failure().is_some();
+    let roomy = inner.height >= 24;
+    let wide = area.width >= WIDE;
+    let (l, r, bottom) = numbers(column, wide);
     let numbers_height = if column.failure().is_some() {
-        // A stopped model's advice gets up to four lines.
-        9
+        // A stopped model's advice gets every row it wraps to (its remedy
+        // is at its end), the chart keeping four.
+        let advice = u16::try_from(bottom.line_count(inner.width)).unwrap_or(u16::MAX);
+        (5 + advice).min(inner.height.saturating_sub(4)).max(6)
     } else if roomy {
         6
     } else {
@@ -161,8 +165,6 @@ fn draw_column(
     );
     let [rows, last] =
         Layout::vertical([Constraint::Length(5), Constraint::Fill(1)]).areas(numbers_area);
-    let wide = area.width >= WIDE;
-    let (l, r, bottom) = numbers(column, wide);
     // The blocks at their own widths, left to right, as many as fit whole:
     // a block is dropped before a number in it is cut.
     let mut blocks = vec![l, r];

@@ -447,7 +447,8 @@ pub(super) fn neutral(message: &str, command: Command) -> String {
     for section in ["top", "solve", "balance", "orbit", "shell"] {
         m = m.replace(&format!("[{section}] "), "");
     }
-    m.replace('"', "")
+    // Who gives both of two keys: the section in a file, the command line.
+    m.replace("the command line ", "").replace('"', "")
 }
 
 #[test]

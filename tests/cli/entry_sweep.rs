@@ -24,7 +24,13 @@ enum Val {
     List(Vec<Real>),
     Whole(i64),
     Name(&'static str),
+    /// A number written beyond the largest double (`1e400`), first of
+    /// `n` numbers (zeros after it); 0: a list of one (output times).
+    Overflow(usize),
 }
+
+/// A number too large for a double, as typed.
+const TOO_LARGE: &str = "1e400";
 
 /// A number as TOML and the command line both read it.
 fn num_text(x: Real) -> String {
@@ -51,6 +57,9 @@ impl Val {
             ),
             Val::Whole(n) => n.to_string(),
             Val::Name(s) => format!("\"{s}\""),
+            Val::Overflow(0) => format!("[{TOO_LARGE}]"),
+            Val::Overflow(1) => TOO_LARGE.into(),
+            Val::Overflow(n) => format!("[{TOO_LARGE}{}]", ", 0.0".repeat(n - 1)),
         }
     }
 
@@ -61,6 +70,7 @@ impl Val {
             Val::List(v) => v.iter().map(|x| num_text(*x)).collect::<Vec<_>>().join(","),
             Val::Whole(n) => n.to_string(),
             Val::Name(s) => s.to_string(),
+            Val::Overflow(n) => format!("{TOO_LARGE}{}", ",0".repeat((*n).max(1) - 1)),
         }
     }
 }
@@ -121,6 +131,13 @@ fn bad_values(spec: &Spec) -> Vec<Val> {
         ]),
         Range::Times { forward: false } => out.push(Val::List(vec![0.0, Real::INFINITY])),
         Range::Names(_) => out.push(Val::Name("nonsense")),
+    }
+    // Every number key: a number beyond the largest double, which TOML and
+    // Rust both refuse to read as a number (Rust as infinity).
+    match spec.range {
+        Range::Names(_) | Range::Count(..) => {}
+        Range::Times { .. } => out.push(Val::Overflow(0)),
+        _ => out.push(Val::Overflow(arity(spec).unwrap_or(1))),
     }
     out
 }
@@ -333,6 +350,21 @@ fn compare(
     if !same {
         return Err(format!("{what}\n  flag: {flag}\n  key:  {key}"));
     }
+    // One range from the table, everywhere: a number of `[solve]` refused
+    // states what the table's row expects (as `--help` does; the keys a
+    // constructor of the core checks, `ratio`, `cone`, …, keep its words on
+    // the same range); a number too large for a double says so, naming the
+    // key.
+    let expected = match bad {
+        Val::Num(_) if spec.section == "solve" && matches!(spec.range, Range::Between(..)) => {
+            format!("; expected {}", spec.expected())
+        }
+        Val::Overflow(_) => format!("{}: {TOO_LARGE} overflows f64", spec.key),
+        _ => String::new(),
+    };
+    if !key.contains(&expected) {
+        return Err(format!("{what}: not `{expected}`: {key}"));
+    }
     Ok(())
 }
 
@@ -373,7 +405,7 @@ fn every_flag_and_its_scene_key_give_the_same_message_for_each_bad_value() {
     eprintln!("{keys} keys with a flag, {asked} bad values, each asked twice");
     // Every key of the four kinds with a flag, and plot's ratio and omega.
     assert!(keys >= 35, "{keys} keys");
-    assert!(asked >= 80, "{asked} values");
+    assert!(asked >= 110, "{asked} values");
     assert!(
         differ.is_empty(),
         "{} of {asked} differ:\n{}",
@@ -417,10 +449,13 @@ fn plots_own_flags_are_refused_by_their_own_rows() {
         for bad in bad_values(spec) {
             let value = bad.flag();
             let (code, _, err) = run(&["plot", &spec.flag(), &value]);
-            let expected = format!("; expected {}", spec.expected());
+            let expected = match bad {
+                Val::Overflow(_) => "; expected a finite number".to_string(),
+                _ => format!("; expected {}", spec.expected()),
+            };
             assert_eq!(code, 2, "plot {} {value}: {err}", spec.flag());
             assert!(
-                err.starts_with(&format!("spintop: error: {} ", spec.flag()))
+                err.starts_with(&format!("spintop: error: {}", spec.flag()))
                     && err.trim_end().ends_with(&expected),
                 "plot {} {value}: {err}",
                 spec.flag()
@@ -432,7 +467,9 @@ fn plots_own_flags_are_refused_by_their_own_rows() {
 /// The live view's flags (`spintop tui --ratio …`) are read by the same
 /// validation as `simulate`'s: for each key of a top the live view takes,
 /// each bad value gets the same message and exit code from both commands
-/// (the view refuses before it looks for a terminal).
+/// (the view refuses before it looks for a terminal); its `--method` takes
+/// the names `plot` takes (both draw the truncated and the reduced model),
+/// and refuses a name as `plot` does.
 #[test]
 fn the_live_views_flags_give_simulates_messages() {
     let help = listed_flags("tui");
@@ -445,15 +482,19 @@ fn the_live_views_flags_give_simulates_messages() {
         for bad in bad_values(spec) {
             let value = bad.flag();
             let tui = run(&["tui", &spec.flag(), &value]);
-            let simulate = run(&[
-                "simulate",
-                "--model",
-                "truncated",
-                "--t-end",
-                "1",
-                &spec.flag(),
-                &value,
-            ]);
+            let simulate = if spec.key == "method" {
+                run(&["plot", &spec.flag(), &value])
+            } else {
+                run(&[
+                    "simulate",
+                    "--model",
+                    "truncated",
+                    "--t-end",
+                    "1",
+                    &spec.flag(),
+                    &value,
+                ])
+            };
             assert_eq!(
                 simulate.0,
                 2,
@@ -471,4 +512,65 @@ fn the_live_views_flags_give_simulates_messages() {
         }
     }
     assert!(asked >= 4, "{asked}");
+}
+
+/// The methods a command's `--help` lists for `--method`.
+fn listed_methods(command: &str) -> Vec<String> {
+    let help = listed_flags(command);
+    let start = help.find("--method <METHOD>").expect("--method is listed");
+    let after = &help[start..];
+    let end = after
+        .find("\n\n  -")
+        .or(after.find("\n      --"))
+        .unwrap_or(after.len());
+    after[..end]
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("- "))
+        .map(|l| l.split(':').next().unwrap_or("").trim().to_string())
+        .collect()
+}
+
+/// `spintop tui --help` lists the methods the view takes and no other (the
+/// table's row of `plot`: every method but `forward`, which the view
+/// refuses), and each listed name is taken.
+#[test]
+fn the_live_views_help_lists_only_the_methods_it_takes() {
+    let Range::Names(names) = table::key(Command::Plot, "solve", "method").range else {
+        panic!("a method is a name");
+    };
+    let listed = listed_methods("tui");
+    assert_eq!(listed, names.to_vec(), "{listed:?}");
+    assert!(!listed.iter().any(|m| m == "forward"));
+    let (code, _, err) = run(&["tui", "--method", "forward"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("expected one of"), "{err}");
+}
+
+/// A method's help line names the setting it takes as the command spells
+/// it, where the command has it: `simulate` lists `rk4 ... (--step)` and
+/// `dop853 ... (--rtol)`; `plot` and the live view, which take neither flag,
+/// name none. The core's help line names no flag (a core type does not
+/// spell a shell's flags).
+#[test]
+fn method_help_names_a_flag_only_where_the_command_has_it() {
+    for m in spintop::sim::MethodChoice::ALL {
+        assert!(!m.help().contains("--"), "{}", m.help());
+    }
+    let line = |help: &str, name: &str| {
+        help.lines()
+            .find(|l| l.trim().starts_with(&format!("- {name}:")))
+            .unwrap_or("")
+            .to_string()
+    };
+    let simulate = listed_flags("simulate");
+    assert!(line(&simulate, "rk4").ends_with("(--step)"), "{simulate}");
+    assert!(
+        line(&simulate, "dop853").ends_with("(--rtol)"),
+        "{simulate}"
+    );
+    for command in ["plot", "tui"] {
+        let help = listed_flags(command);
+        assert!(!line(&help, "rk4").contains("--step"), "{help}");
+        assert!(!line(&help, "dop853").contains("--rtol"), "{help}");
+    }
 }

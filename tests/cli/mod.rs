@@ -4,6 +4,7 @@ mod bad_input;
 mod balance;
 mod bench;
 mod entry;
+mod entry_advice;
 mod entry_sweep;
 mod figure;
 mod gate;

@@ -40,8 +40,8 @@ fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
         ("molecule-full.toml", format!("{HEAD}[top]\nmodel = \"full\"\n\n{MOLECULE}"), 7, "cannot take [units]"),
         // The one rule of sim::Model::check_method and MethodOptions::for_choice, as the command line applies it.
         ("full-dop853.toml", format!("{HEAD}[top]\nmodel = \"full\"\n\n[solve]\nmethod = \"dop853\"\n"), 10, "[solve] method = \"dop853\": the full model (3.4) takes method auto"),
-        ("rtol-below-double.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nrtol = 1e-15\n"), 10, "[solve] rtol 1e-15 is below what double precision can deliver"),
-        ("step-not-rk4.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nmethod = \"dop853\"\nstep = 0.1\n"), 11, "[solve] step sets the fixed step of method rk4 only"),
+        ("rtol-below-double.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nrtol = 1e-15\n"), 10, "[solve] rtol = 1e-15 is out of range; expected a relative tolerance in [1e-14, 1)"),
+        ("step-not-rk4.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n[solve]\nmethod = \"dop853\"\nstep = 0.1\n"), 11, "[solve] step sets the fixed step of method = \"rk4\" only; the adaptive methods take rtol"),
         ("auto-with-method.toml", format!("{HEAD}[top]\nmodel = \"auto\"\n\n[solve]\nmethod = \"dop853\"\n"), 10, "model = \"auto\" chooses the model and its method together"),
         ("times-decreasing.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 5.0, 2.0]\n"), 10, "2 comes after 5"),
         ("times-and-t-end.toml", format!("{HEAD}[top]\nmodel = \"truncated\"\n\n[solve]\ntimes = [0.0, 1.0]\nt_end = 5.0\n"), 11, "either times"),
@@ -54,7 +54,7 @@ fn malformed() -> Vec<(&'static str, String, usize, &'static str)> {
         ("stability-row.toml", "[scene]\nname = \"x\"\nkind = \"stability\"\ndescription = \"d\"\n\n[stability]\nrow = 9\n".into(), 7, "expected a row number, 1 to 6"),
         ("foreign-balance-key.toml", "[scene]\nname = \"x\"\nkind = \"balance\"\ndescription = \"d\"\n\n[balance]\ndipole = \"loop\"\ncone = 0.5\n\n[solve]\ntimes = [0.0]\n".into(), 8, "cone belongs to dipole = \"precessing\""),
         ("eccentricity.toml", "[scene]\nname = \"x\"\nkind = \"orbit\"\ndescription = \"d\"\n\n[orbit]\npotential = \"coulomb\"\ntau0 = 1e-3\neccentricity = 1.5\n\n[solve]\ntimes = [0.0, 1.0]\n".into(), 9, "eccentricity = 1.5 is out of range"),
-        ("forced-integrator.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n{SPHERE}time_unit = \"yr\"\n\n[solve]\nmethod = \"dop853\"\nt_end = 10.0\n"), 18, "more than the 1e7 allowed; method = \"auto\" answers from the closed forms"),
+        ("forced-integrator.toml", format!("{HEAD}[top]\nmodel = \"reduced\"\n\n{SPHERE}time_unit = \"yr\"\n\n[solve]\nmethod = \"dop853\"\nt_end = 10.0\n"), 18, "more than the 1e7 allowed; the closed forms ([solve] method = \"auto\" or [solve] method = \"exact\") answer any time at once"),
     ]
 }
 

@@ -9,7 +9,7 @@ The check:
 
 1. `spintop course export` writes a student's copy of the course to a
    temporary folder (the repository's own lessons are never touched);
-2. `spintop learn --chapter 2 --course COPY` runs in a private tmux server
+2. `spintop learn --chapter section-2 --course COPY` runs in a private tmux server
    (`tmux -L`, its own socket) and must show "course 0 of 22";
 3. the instructor's solution of one assignment (larmor_rate, Eq. (2.1)) is
    written into the copy's src/ch2.rs, as a student saving the file would,
@@ -116,7 +116,7 @@ def check(copy: pathlib.Path, env: dict[str, str]) -> list[float]:
     tmux = Tmux()
     try:
         envs = " ".join(f"{k}='{v}'" for k, v in env.items() if k in ("CARGO_TARGET_DIR", "SPINTOP_LEARN_PROGRESS"))
-        tmux.start(f"env {envs} '{binary()}' learn --chapter 2 --course '{copy}'; echo $? > '{status}'")
+        tmux.start(f"env {envs} '{binary()}' learn --chapter section-2 --course '{copy}'; echo $? > '{status}'")
         screen = tmux.wait("the chapter and course 0 of 22", lambda s: "course 0 of 22" in s, 300)
         assert "Section 2" in screen, screen
         write_function(ch2, "larmor_rate", solution("ch2", "larmor_rate"))

@@ -290,7 +290,7 @@ fn labels_never_print_over_each_other() {
 /// their unit of time in the clock, the warp and the pause.
 #[test]
 fn the_played_back_scenes_give_their_units() {
-    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    let mut learn = Learn::open(&book(), Some("§2")).unwrap();
     let shown = draw_learn(&mut learn, 120, 40);
     assert!(shown.contains("1/ω₀"), "{shown}");
     press(&mut learn, KeyCode::Char('+'));

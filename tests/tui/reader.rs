@@ -86,7 +86,7 @@ fn search_goes_across_the_book_from_where_the_reader_is() {
 
     // Ctrl-R searches backward: from Section 3's top, "twelve digits" is
     // found behind, in Section 2.
-    let mut learn = Learn::open(&book(), Some("3")).unwrap();
+    let mut learn = Learn::open(&book(), Some("§3")).unwrap();
     draw(&mut learn, 80, 24);
     ctrl(&mut learn, 'r');
     assert_eq!(learn.mode(), &Mode::Search(String::new(), false));
@@ -205,16 +205,68 @@ fn chapter_takes_the_headers_number_and_words_in_any_case() {
         ("NUMERICAL-METHODS", "numerical-methods.md"),
         ("#3", "section-2.md"),
         ("chapter 3", "section-2.md"),
-        ("3", "section-3.md"),
+        ("§3", "section-3.md"),
+        ("SECTION 3", "section-3.md"),
+        ("Section-3", "section-3.md"),
         ("§4.2", "section-4-2.md"),
+        ("4.2", "section-4-2.md"),
         ("asymmetric", "asymmetric-top.md"),
     ] {
         let i = find_chapter(chapters, wanted).unwrap_or_else(|| panic!("--chapter {wanted}"));
         assert_eq!(chapters[i].file, file, "--chapter {wanted}");
     }
-    // A number that is also a section says which other chapter it could be.
-    let learn = Learn::open(&book(), Some("3")).unwrap();
-    assert!(message(&learn).contains("'#3'"), "{}", message(&learn));
+}
+
+/// A bare number is the chapter the header numbers so, for every chapter
+/// (`--chapter 5` opened Section 5, the seventh, while the messages said
+/// chapter numbers are the header's); where the number is also a
+/// section's, the note says which chapter that section is, and the way it
+/// names opens it.
+#[test]
+fn a_bare_number_opens_the_chapter_the_header_numbers_so() {
+    let count = Learn::open(&book(), None).unwrap().chapters().len();
+    for n in 1..=count {
+        let mut learn = Learn::open(&book(), Some(&n.to_string())).unwrap();
+        assert_eq!(learn.current() + 1, n, "--chapter {n}");
+        let shown = draw(&mut learn, 120, 30);
+        assert!(
+            shown.contains(&format!("chapter {n} of {count}")),
+            "--chapter {n}: the header\n{shown}"
+        );
+    }
+    let sections: Vec<String> = Learn::open(&book(), None)
+        .unwrap()
+        .chapters()
+        .iter()
+        .filter_map(|c| c.section())
+        .filter(|s| s.parse::<usize>().is_ok())
+        .map(str::to_string)
+        .collect();
+    assert!(sections.len() >= 3, "{sections:?}");
+    for s in sections {
+        let learn = Learn::open(&book(), Some(&s)).unwrap();
+        let note = message(&learn);
+        assert!(note.contains(&format!("chapter {s} of {count}")), "{note}");
+        for way in [format!("§{s}"), format!("section-{s}")] {
+            assert!(note.contains(&way), "{note}");
+            let section = Learn::open(&book(), Some(&way)).unwrap();
+            let said = format!("Section {s} is chapter {}", section.current() + 1);
+            assert!(note.contains(&said), "{note}: want {said}");
+            assert_eq!(
+                section.chapters()[section.current()].section(),
+                Some(s.as_str()),
+                "--chapter {way}"
+            );
+        }
+    }
+    // The refusal of a name that is none lists the ways in the same words.
+    let e = Learn::open(&book(), Some("9.9")).err().unwrap().to_string();
+    assert!(
+        e.contains(&format!(
+            "the chapter's number as the header shows it (1 to {count})"
+        )) && e.contains("§5"),
+        "{e}"
+    );
 }
 
 /// Tab from the top of a chapter whose first link is further down scrolls
@@ -459,7 +511,7 @@ fn the_asymmetric_chapter_names_the_top_its_scene_runs() {
 #[test]
 fn the_course_panel_fits_80x24_diagnosis_first_and_scrolls() {
     use spintop_course::{Report, State, Status};
-    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    let mut learn = Learn::open(&book(), Some("§2")).unwrap();
     draw(&mut learn, 80, 24);
     let report = "torque_rate, Eq. (2.2): wrong answer at 3 of 300 inputs\n  expected 1.5, got -1.5\n  hint: the sign of the Schott term";
     let status = Status::new(0, |a| match a.function {
@@ -504,7 +556,7 @@ fn a_real_failure_keeps_its_command_on_the_first_screen_at_80x24() {
     let failed = spintop_grading::larmor_rate(553_308_490, |[_, d1, d2, _]| d1.cross(d2))
         .expect_err("a wrong Larmor rate fails");
     let report = failed.to_string();
-    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    let mut learn = Learn::open(&book(), Some("§2")).unwrap();
     learn.watch_course(Course::at(&copy, Chosen::Found), None);
     draw(&mut learn, 80, 24);
     let status = Status::new(0, |a| match a.function {

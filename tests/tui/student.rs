@@ -167,7 +167,7 @@ fn a_hint_is_on_screen_when_asked_at_80x24() {
     let failed = spintop_grading::larmor_rate(553_308_490, |[_, d1, d2, _]| d1.cross(d2))
         .expect_err("a wrong Larmor rate fails");
     let report = failed.to_string();
-    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    let mut learn = Learn::open(&book(), Some("§2")).unwrap();
     learn.watch_course(Course::at(&copy, Chosen::Found), None);
     draw(&mut learn, 80, 24);
     let status = Status::new(0, |a| match a.function {
@@ -238,7 +238,7 @@ fn a_hint_taken_in_another_terminal_shows_in_the_open_panel() {
 /// The first PgUp after the course panel got shorter moves it.
 #[test]
 fn page_up_moves_at_once_after_the_course_panel_shrinks() {
-    let mut learn = Learn::open(&book(), Some("2")).unwrap();
+    let mut learn = Learn::open(&book(), Some("§2")).unwrap();
     draw(&mut learn, 80, 24);
     // Rows that wrap at 80 columns: fixing the assignment takes more rows
     // off the panel than a page.
@@ -305,7 +305,7 @@ fn v_tells_the_truth_about_the_models_drawn() {
             "{said}"
         );
     }
-    let mut learn = Learn::open(&book(), Some("5")).unwrap();
+    let mut learn = Learn::open(&book(), Some("§5")).unwrap();
     draw(&mut learn, 200, 60);
     press(&mut learn, KeyCode::Char('v'));
     let said = message(&learn);
@@ -452,7 +452,7 @@ fn scene_words_keep_their_point_at_80_and_100_columns() {
         "{shown}"
     );
 
-    let mut two = Learn::open(&book(), Some("2")).unwrap();
+    let mut two = Learn::open(&book(), Some("§2")).unwrap();
     let shown = draw(&mut two, 100, 40);
     let at = shown.find("t_c = ").expect("the collapse time");
     let after = &shown[at + "t_c = ".len()..];

@@ -4,8 +4,9 @@
 //! names the copy's files, the first grading shows its progress, a wrong
 //! answer's diagnosis comes first and then its pass; the reader's place
 //! survives the pane killed under it; Ctrl-Z hands the shell back and `fg`
-//! brings the screen whole. Each runs the real binary in a private tmux
-//! server (its own socket).
+//! brings the screen whole; `--chapter 5`, Backspace after a link and a
+//! full search field work as the reader has them. Each runs the real
+//! binary in a private tmux server (its own socket).
 
 use super::tmux::{Tmux, exit_status, first_text_line, launch_sized, tmux_available};
 use std::thread::sleep;
@@ -251,7 +252,7 @@ fn ctrl_z_suspends_to_the_shell_and_fg_comes_back() {
     };
     sleep(Duration::from_millis(300));
     let line = format!(
-        "'{}' learn --chapter 2 --no-grading",
+        "'{}' learn --chapter section-2 --no-grading",
         env!("CARGO_BIN_EXE_spintop")
     );
     tmux(&["send-keys", "-t", "z", "-l", &line]);
@@ -311,4 +312,40 @@ fn a_place_that_cannot_be_saved_is_said_on_screen_and_at_the_end() {
     );
     drop(tmux);
     let _ = std::fs::remove_file(&blocker);
+}
+
+/// In a real terminal at 80×24: `--chapter 5` opens the chapter the header
+/// numbers 5 and says where Section 5 is; a link followed by Tab and Enter
+/// is left by Backspace for the very page it was followed from; a search
+/// typed past the line keeps its end in sight.
+#[test]
+#[ignore = "end-to-end: tmux"]
+fn chapter_numbers_back_and_a_long_search_in_a_real_terminal() {
+    let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
+    let Some(tmux) = launch_sized("nav", env, "learn --chapter 5 --no-grading", (80, 24)) else {
+        return;
+    };
+    let long = Duration::from_secs(20);
+    let first = tmux.wait_for("chapter 5", long, |s| {
+        s.contains("chapter 5 of") && s.contains("Section 5 is chapter")
+    });
+    assert!(!first.contains("Section 5: two end states"), "{first}");
+    tmux.keys("Tab");
+    tmux.wait_for("a link in focus", long, |s| s.contains("link: "));
+    let from = settled(&tmux, "");
+    tmux.keys("Enter");
+    tmux.wait_for("the link followed", long, |s| {
+        s.contains("Backspace comes back")
+    });
+    tmux.keys("BSpace");
+    let back = tmux.wait_for("back", long, |s| s.contains("back in "));
+    assert_eq!(first_text_line(&back), from, "{back}");
+    tmux.keys("/");
+    // As long as the field takes (64 characters): its limit is said first.
+    let typed = "what is typed last stays in sight when the field is full: zyxwvu";
+    tmux.run(&["send-keys", "-t", "spintop", "-l", typed]);
+    tmux.wait_for("the field's end", long, |s| s.contains("zyxwvu▏"));
+    tmux.keys("Escape");
+    tmux.keys("q");
+    assert_eq!(exit_status(&tmux, long), "0");
 }

@@ -533,7 +533,7 @@ fn keys_are_ignored_while_the_screen_is_too_small() {
 #[test]
 #[ignore = "end-to-end: tmux"]
 fn the_views_end_when_their_terminal_goes_away() {
-    for args in ["", "learn --chapter 3 --no-grading"] {
+    for args in ["", "learn --chapter section-3 --no-grading"] {
         let Some(tmux) = launch_with("gone", "SPINTOP_LEARN_PROGRESS=/dev/null", args) else {
             return;
         };
@@ -640,7 +640,12 @@ pub(super) fn first_text_line(screen: &str) -> String {
 #[ignore = "end-to-end: tmux"]
 fn slash_finds_a_word_deep_in_a_chapter() {
     let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
-    let Some(tmux) = launch_sized("search", env, "learn --chapter 2 --no-grading", (80, 24)) else {
+    let Some(tmux) = launch_sized(
+        "search",
+        env,
+        "learn --chapter section-2 --no-grading",
+        (80, 24),
+    ) else {
         return;
     };
     let long = Duration::from_secs(20);
@@ -724,7 +729,7 @@ fn s_at_80x24_shows_the_reduced_model() {
         let Some(tmux) = launch_sized(
             "tab",
             env,
-            &format!("learn --chapter {chapter} --no-grading"),
+            &format!("learn --chapter §{chapter} --no-grading"),
             (80, 24),
         ) else {
             return;
@@ -763,7 +768,7 @@ fn sections_2_and_a_show_their_own_scenes() {
         let Some(tmux) = launch_sized(
             "own",
             env,
-            &format!("learn --chapter {chapter} --no-grading"),
+            &format!("learn --chapter §{chapter} --no-grading"),
             (160, 48),
         ) else {
             return;
@@ -848,7 +853,12 @@ fn an_80x24_asymmetric_screen_has_every_number_whole() {
 #[ignore = "end-to-end: tmux"]
 fn no_code_line_breaks_inside_a_token() {
     let env = "SPINTOP_LEARN_PROGRESS=/dev/null";
-    let Some(tmux) = launch_sized("wrap", env, "learn --chapter 2 --no-grading", (80, 24)) else {
+    let Some(tmux) = launch_sized(
+        "wrap",
+        env,
+        "learn --chapter section-2 --no-grading",
+        (80, 24),
+    ) else {
         return;
     };
     let long = Duration::from_secs(20);

@@ -9,6 +9,7 @@
 //! the time and what to try.
 
 use crate::integrate::IntegrateError;
+use crate::sim::cost::{Cheaper, TooCostly};
 use crate::sim::{MethodChoice, Model, SimError};
 use serde::Serialize;
 use std::io::{self, Write};
@@ -236,6 +237,35 @@ impl Entry {
     }
 }
 
+/// The cheaper way of a refusal over the step budget, naming the settings
+/// as `entry` spells them.
+pub fn cheaper(c: Cheaper, entry: Entry) -> String {
+    let k = |knob| entry.name(knob);
+    match c {
+        Cheaper::ClosedForms => format!(
+            "the closed forms ({} or {}) answer any time at once",
+            k(Knob::MethodAuto),
+            k(Knob::MethodExact)
+        ),
+        Cheaper::Exact => format!(
+            "the closed forms ({}) take no steps at all",
+            k(Knob::MethodExact)
+        ),
+        Cheaper::EarlierTime => "ask for an earlier last time".into(),
+        Cheaper::EarlierOrOmegaAlone => match entry {
+            Entry::CommandLine => "ask for an earlier last time; a scene file (`spintop run`) answers Omega alone from the closed form at any time".into(),
+            Entry::Scene => "ask for an earlier last time".into(),
+        },
+    }
+}
+
+/// A run over the step budget, in the one wording
+/// ([`crate::sim::cost::over_budget`]) with the cheaper way in the words of
+/// `entry`.
+pub fn too_costly(e: &TooCostly, entry: Entry) -> String {
+    format!("{e}; {}", cheaper(e.estimate.cheaper, entry))
+}
+
 impl From<SimError> for Failure {
     fn from(e: SimError) -> Self {
         Failure::of(e, Entry::CommandLine)
@@ -266,6 +296,7 @@ impl Failure {
                 k(Knob::Dipole),
                 k(Knob::ModelReduced)
             )),
+            SimError::TooCostly(c) => Failure::BadInput(too_costly(&c, entry)),
             other => Failure::BadInput(other.to_string()),
         }
     }

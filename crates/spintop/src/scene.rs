@@ -283,6 +283,15 @@ fn read_toml(text: &str, file: &str) -> Result<RawFile, SceneError> {
             .replace("expected f64", "expected a number")
             .replace("expected i64", "expected a whole number");
         message = short_floats(&message);
+        // A number too large for a double: the message every entry point
+        // gives, naming the setting (the flag's is the same).
+        if message.contains("overflowed")
+            && let Some(key) = key_on_line(text, start)
+        {
+            let section = section_above(text, start);
+            let setting = section.map_or(key.to_string(), |s| format!("[{s}] {key}"));
+            message = keys::overflows(&setting, &number_at(text, e.span()));
+        }
         // NOTE: serde's type errors do not name the key; the line does, and
         // the header above it the section (`[top] ratio`, as every other
         // message of a scene names a key).
@@ -300,6 +309,20 @@ fn read_toml(text: &str, file: &str) -> Result<RawFile, SceneError> {
             message,
         }
     })
+}
+
+/// The number TOML refused at `span`: its text, or the value after the key
+/// when the span is not a number's.
+fn number_at(text: &str, span: Option<std::ops::Range<usize>>) -> String {
+    let spanned = span.and_then(|s| text.get(s)).map(str::trim).filter(|t| {
+        !t.is_empty()
+            && t.chars()
+                .all(|c| c.is_ascii_alphanumeric() || "+-._".contains(c))
+    });
+    match spanned {
+        Some(t) => t.to_string(),
+        None => "a number".to_string(),
+    }
 }
 
 /// The section whose header is the last one before byte `offset` of a

@@ -17,7 +17,7 @@ pub const HELP_WIDTH: u16 = 78;
 pub const COURSE_WIDTH: u16 = 100;
 
 /// The help's lines: every key, grouped.
-const HELP: [(&str, &str); 25] = [
+const HELP: [(&str, &str); 26] = [
     (
         "space f b",
         "a page down, a page up (also PgDn PgUp z, ^F ^V ^B)",
@@ -48,6 +48,10 @@ const HELP: [(&str, &str); 25] = [
     (
         "Enter",
         "follow the link in focus (another chapter, or its heading)",
+    ),
+    (
+        "⌫ Alt-←",
+        "back to where a link, the contents or a search took you from",
     ),
     ("o", "library source whole, or folded to one line"),
     (
@@ -80,7 +84,7 @@ const HELP: [(&str, &str); 25] = [
     ("", ""),
     (
         "--chapter",
-        "a section (4.2, A), the header's number (9), a file, words of a title",
+        "the header's number (9), a section (4.2, §5, A), a file, a title's words",
     ),
 ];
 

@@ -84,9 +84,11 @@ pub fn draw_yours(frame: &mut Frame, area: Rect, learn: &Learn) {
         "(4.15)-(4.16)"
     };
     let verdict = if agrees {
-        Span::styled(format!("agrees ✓ ({worst:.0e})"), theme::info())
+        let worst = spintop::numbers::exponent(worst, 0);
+        Span::styled(format!("agrees ✓ ({worst})"), theme::info())
     } else {
-        Span::styled(format!("off by {worst:.1e} ✗"), theme::error())
+        let worst = spintop::numbers::exponent(worst, 1);
+        Span::styled(format!("off by {worst} ✗"), theme::error())
     };
     let title = Line::from(vec![
         Span::styled(format!(" yours: {} ", spec.function), theme::title()),

@@ -4,8 +4,10 @@ use super::root;
 
 /// The workspace's crates, bottom up, with the layer of each: a crate may
 /// depend on crates of lower layers only.
-const WORKSPACE: [(&str, &str, u8); 8] = [
+const WORKSPACE: [(&str, &str, u8); 9] = [
     ("crates/spintop", "spintop", 0),
+    // The core's integration tests and the book's examples (unoptimised).
+    ("crates/spintop-tests", "spintop-tests", 1),
     // The wire a student's runner and the graders share (no answer in it).
     ("crates/spintop-runner", "spintop-runner", 1),
     ("crates/spintop-grading", "spintop-grading", 2),

@@ -382,6 +382,7 @@ fn run_omega_only(
         omega: omega_floor,
         orientation: None,
         rounding: omega_floor,
+        orientation_rounding: None,
         measured: None,
         against: format!("the exact solution of the {} model", top.model.name()),
         how: format!(
@@ -434,27 +435,9 @@ pub fn answer(scene: &Scene) -> Result<Report, Failure> {
             Answer::Orbit(orbit::orbit(&request)?)
         }
         Body::Shell(s) => {
-            let t_last = s.times.last().copied().unwrap_or(0.0);
-            let steps = shell::steps_per_delay(&s.model, t_last).map_err(|e| {
-                Failure::BadInput(
-                    scene
-                        .error_at(
-                            scene.lines.times,
-                            format!(
-                                "[solve] {e}; {}",
-                                if e.delay_too_long {
-                                    "the delay is longer than the run itself: expected a shorter [shell] delay"
-                                } else {
-                                    "expected shorter times or a longer delay"
-                                }
-                            ),
-                        )
-                        .to_string(),
-                )
-            })?;
             let request = ShellRequest {
                 model: s.model,
-                steps,
+                steps: s.steps,
                 times: s.times.clone(),
                 format: Format::Json,
                 entry: crate::output::Entry::Scene,

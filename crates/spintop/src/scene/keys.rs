@@ -137,6 +137,16 @@ impl<'a> Ctx<'a> {
         }
     }
 
+    /// Who gives what a message is about, as its subject: `[solve] ` in a
+    /// file, `the command line ` for flags (`the command line gives both
+    /// --times and --t-end`).
+    pub(super) fn giver(&self, section: &str) -> String {
+        match self.dialect {
+            Dialect::File { .. } => format!("[{section}] "),
+            Dialect::Flags => "the command line ".to_string(),
+        }
+    }
+
     /// A section as the subject of a message: `[solve]`; nothing for flags.
     pub(super) fn section(&self, section: &str) -> String {
         match self.dialect {
@@ -277,6 +287,15 @@ pub fn not_known(set: &str, options: &[&str]) -> String {
     format!("{set} is not known; expected one of {}", options.join(", "))
 }
 
+/// A number written too large for a double, as every entry point refuses
+/// it, naming the setting as the entry point spells it (`--b`, `[balance]
+/// b`): `--b: 1e400 overflows f64 …`.
+pub fn overflows(setting: &str, number: &str) -> String {
+    format!(
+        "{setting}: {number} overflows f64 (the largest double is about 1.8e308); expected a finite number"
+    )
+}
+
 /// A string key that must be one of `options`; returns its index.
 pub(super) fn choice(
     ctx: &Ctx,
@@ -391,6 +410,20 @@ pub(super) struct Times {
     pub(super) times: Vec<Real>,
     /// Where they were given (`times` or `t_end`), if they were.
     pub(super) at: Option<At>,
+    /// The key that gave them (`times`, or `t_end` also when they are its
+    /// default): what advice to ask for other times names.
+    pub(super) key: &'static str,
+}
+
+impl Times {
+    /// Advice to ask for less time, naming the key that gave the times:
+    /// `earlier --times`, `a shorter [solve] t_end`.
+    pub(super) fn shorter(&self, ctx: &Ctx) -> String {
+        match self.key {
+            "times" => format!("earlier {}", ctx.name("times")),
+            key => format!("a shorter {}", ctx.name(key)),
+        }
+    }
 }
 
 /// The output times of `[solve]`: `times`, or `t_end` with `samples` evenly
@@ -419,7 +452,7 @@ pub(super) fn solve_times(
             &other,
             format!(
                 "{}gives both {times} and {t_end}/{samples}; expected either {times} or {t_end} (with {samples})",
-                ctx.section("solve"),
+                ctx.giver("solve"),
                 times = ctx.name("times"),
                 t_end = ctx.name("t_end"),
                 samples = ctx.name("samples"),
@@ -456,7 +489,7 @@ pub(super) fn solve_times(
                 &header,
                 format!(
                     "{}gives no output times; expected {} or {} (with {})",
-                    ctx.section("solve"),
+                    ctx.giver("solve"),
                     ctx.name("times"),
                     ctx.name("t_end"),
                     ctx.name("samples")
@@ -477,6 +510,7 @@ pub(super) fn solve_times(
     Ok(Times {
         times: even_times(scaled, n),
         at,
+        key: "t_end",
     })
 }
 
@@ -509,6 +543,7 @@ fn listed_times(ctx: &Ctx, list: &[Real], at: &At, scale: Real) -> Result<Times,
     Ok(Times {
         times: scaled,
         at: Some(at.clone()),
+        key: "times",
     })
 }
 

@@ -13,6 +13,7 @@ use crate::math::Real;
 use crate::output::Format;
 use crate::output::balance::{BalanceConfig, BalanceParameters, DipoleChoice};
 use crate::output::orbit::check_backward_span;
+use crate::output::shell::steps_per_delay;
 use crate::physics::balance::{Dumbbell, PlanarLoop, PrecessingDipole};
 use crate::physics::central::ChargeInField;
 use crate::physics::shell::ShellModel;
@@ -116,6 +117,8 @@ pub struct OrbitScene {
 pub struct ShellScene {
     /// The model.
     pub model: ShellModel,
+    /// RK4 steps per delay (the work checked before the run).
+    pub steps: usize,
     /// Output times.
     pub times: Vec<Real>,
 }
@@ -331,7 +334,7 @@ fn orbit_body(
     .map_err(|err| param(ctx, err, &keys, own, s))?;
     fixed_method(ctx, solve.clone(), s, "its method follows from force", true)?;
     if let Some((sv, _)) = &solve
-        && let Some((rtol, at)) = number(ctx, "solve", "rtol", &sv.rtol, false)?
+        && let Some((rtol, at)) = number(ctx, "solve", "rtol", &sv.rtol, true)?
     {
         config = config
             .with_rtol(rtol)
@@ -344,9 +347,9 @@ fn orbit_body(
         ctx.at(
             &at,
             format!(
-                "{}{e}; expected shorter {}, or {} (equal to it up to O(tau0^2))",
+                "{}{e}; expected {}, or {} (equal to it up to O(tau0^2))",
                 ctx.section("solve"),
-                ctx.name("times"),
+                times.shorter(ctx),
                 ctx.set_inline("force", FORCES[0].name)
             ),
         )
@@ -402,9 +405,29 @@ fn shell_body(
         false,
     )?;
     let times = solve_times(ctx, solve, own, 1.0)?;
+    let t_last = times.times.last().copied().unwrap_or(0.0);
+    // The work of the method of steps, refused before it starts, advising
+    // the key that gave the times (`times`, or `t_end`).
+    let steps = steps_per_delay(&model, t_last).map_err(|e| {
+        let at = times.at.clone().unwrap_or(own.clone());
+        let advice = if e.delay_too_long {
+            format!(
+                "the delay is longer than the run itself: expected a shorter {}",
+                ctx.key("shell", "delay")
+            )
+        } else {
+            format!(
+                "expected {} or a longer {}",
+                times.shorter(ctx),
+                ctx.key("shell", "delay")
+            )
+        };
+        ctx.at(&at, format!("{}{e}; {advice}", ctx.section("solve")))
+    })?;
     Ok((
         ShellScene {
             model,
+            steps,
             times: times.times,
         },
         times.at,

@@ -15,7 +15,8 @@
 //! from the closed form instead, however long it is.
 
 use crate::math::{Real, Vec3};
-use crate::numbers::{fmt_about, fmt_time};
+use crate::numbers::fmt_time;
+use crate::output::Entry;
 use crate::physics::central::Potential;
 use crate::physics::rigid_body::{angular_momentum_body, energy, omega_perp, tilt};
 use crate::physics::shell::ShellModel;
@@ -24,6 +25,7 @@ use crate::physics::symmetric_top::{
     truncated_closed_form,
 };
 use crate::sim::claim::ModelEstimates;
+use crate::sim::cost::Cheaper;
 use crate::sim::orbit::{Force, OrbitConfig};
 use crate::sim::{
     InitialState, Method, MethodChoice, MethodOptions, Model, Sample, auto_integrator,
@@ -152,22 +154,22 @@ impl Ask<'_> {
     /// estimate, [`crate::sim::cost`], so that what it would refuse is
     /// refused here, before anything runs, with the scene's line): `steps`
     /// for `what` over [`MAX_STEPS`] (or not a number) is refused at `at`.
-    fn within_budget(&self, steps: Real, what: &str, at: Blame) -> Result<(), Refusal> {
+    fn within_budget(
+        &self,
+        steps: Real,
+        what: &str,
+        cheaper: Cheaper,
+        at: Blame,
+    ) -> Result<(), Refusal> {
         if !(steps.is_nan() || steps > MAX_STEPS) {
             return Ok(());
         }
-        let hint = if self.model.has_closed_form() {
-            "; method = \"auto\" answers from the closed forms instead"
-        } else {
-            "; ask for shorter times"
-        };
         Err(Refusal {
             at,
             message: format!(
-                "[solve] {what} would take {} steps to reach t = {} tau, more than the {} allowed{hint}",
-                fmt_about(steps),
-                fmt_time(self.t_last),
-                crate::numbers::fmt_budget(MAX_STEPS)
+                "[solve] {}; {}",
+                crate::sim::cost::over_budget(what, steps, self.t_last),
+                crate::output::cheaper(cheaper, Entry::Scene)
             ),
         })
     }
@@ -183,7 +185,7 @@ impl Ask<'_> {
                 crate::sim::cost::estimate(self.model, m, self.options, &self.omega0, self.t_last)
             });
         match estimate {
-            Some(e) => self.within_budget(e.steps, &format!("{prefix}{}", e.what), at),
+            Some(e) => self.within_budget(e.steps, &format!("{prefix}{}", e.what), e.cheaper, at),
             None => Ok(()),
         }
     }
@@ -231,8 +233,9 @@ pub(super) fn plan_top(
             Ok(symmetric_plan(&ask, top, warnings))
         }
         (_, MethodChoice::Rk4) => {
-            let what = "method = \"rk4\" with this step";
-            ask.within_budget(t_last / options.step(), what, Blame::Method)?;
+            // The simulation's own estimate (`RK4 with step h`), as on the
+            // command line.
+            ask.estimate_within_budget("method = \"rk4\": ", Blame::Method)?;
             Ok(computed(Chosen::new("rk4", ask.asked("rk4")), warnings))
         }
         (Model::Full(_) | Model::GeneralFull(_), _) => {

@@ -15,7 +15,7 @@ use crate::physics::euler_angles::EulerAngles;
 use crate::physics::general_top::GeneralTop;
 use crate::physics::rigid_body::lab_frame;
 use crate::physics::symmetric_top::SymmetricTop;
-use crate::sim::{InitialState, MethodChoice, MethodOptions, Model};
+use crate::sim::{InitialState, MethodChoice, MethodOptions, Model, OptionsError};
 
 /// How the initial orientation was given.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -369,7 +369,7 @@ fn read_orientation(
             at,
             format!(
                 "{}gives both {} and {}; expected one of them",
-                ctx.section("top"),
+                ctx.giver("top"),
                 ctx.name("euler"),
                 ctx.name("frame")
             ),
@@ -423,10 +423,11 @@ fn read_options(
     own: &At,
     method: MethodChoice,
 ) -> Result<MethodOptions, Refusal> {
+    // The table's ranges are the check, in one message for flag and key.
     let (rtol, step) = match solve {
         Some(s) => (
-            number(ctx, "solve", "rtol", &s.rtol, false)?,
-            number(ctx, "solve", "step", &s.step, false)?,
+            number(ctx, "solve", "rtol", &s.rtol, true)?,
+            number(ctx, "solve", "step", &s.step, true)?,
         ),
         None => (None, None),
     };
@@ -438,10 +439,27 @@ fn read_options(
     .map_err(|e| {
         let given = if e.key() == "rtol" { &rtol } else { &step };
         let at = given.as_ref().map_or(own, |(_, at)| at);
-        let text = e.to_string();
-        let rest = text.strip_prefix(e.key()).unwrap_or(&text);
-        ctx.at(at, format!("{}{rest}", ctx.key("solve", e.key())))
+        ctx.at(at, options_message(ctx, &e))
     })
+}
+
+/// An option refused, naming each setting as the entry point spells it
+/// (`--rtol`, `[solve] rtol`).
+fn options_message(ctx: &Ctx, e: &OptionsError) -> String {
+    let (rtol, step) = (ctx.name("rtol"), ctx.name("step"));
+    let rk4 = ctx.set_inline("method", "rk4");
+    match e {
+        OptionsError::RtolForRk4 => format!(
+            "{} applies to the adaptive methods; {rk4} takes {step}",
+            ctx.key("solve", "rtol")
+        ),
+        OptionsError::StepNotRk4 => format!(
+            "{} sets the fixed step of {rk4} only; the adaptive methods take {rtol}",
+            ctx.key("solve", "step")
+        ),
+        // Out of the table's range: refused by `number` before.
+        other => format!("{}: {other}", ctx.key("solve", e.key())),
+    }
 }
 
 /// A top scene: its keys validated, then planned.

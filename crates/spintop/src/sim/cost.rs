@@ -123,8 +123,22 @@ pub struct Estimate {
     pub steps: Real,
     /// What takes them, for the message ("RK4 with --step 0.01", …).
     pub what: String,
-    /// The cheaper way to the same answer, for the message.
-    pub cheaper: &'static str,
+    /// The cheaper way to the same answer, for the message (each entry
+    /// point names its settings: `crate::output::too_costly`).
+    pub cheaper: Cheaper,
+}
+
+/// The cheaper way a refusal over the step budget points to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cheaper {
+    /// The closed forms (method `auto` or `exact`) answer any time at once.
+    ClosedForms,
+    /// The closed forms (method `exact`) take no steps at all.
+    Exact,
+    /// An earlier last time.
+    EarlierTime,
+    /// An earlier last time; a scene answers Ω alone from its closed form.
+    EarlierOrOmegaAlone,
 }
 
 /// The work of a run of `model` by `method` from `omega0` to `t_last`;
@@ -139,9 +153,9 @@ pub fn estimate(
     let angle = turning_angle(model, omega0, t_last);
     let closed = model.has_closed_form();
     let cheaper = if closed {
-        "the closed forms (method auto or exact) answer any time at once"
+        Cheaper::ClosedForms
     } else {
-        "ask for an earlier last time"
+        Cheaper::EarlierTime
     };
     let e = |steps: Real, what: String| {
         Some(Estimate {
@@ -155,7 +169,7 @@ pub fn estimate(
         (_, Method::ClosedFormDop853) => Some(Estimate {
             steps: angle,
             what: "the reduced model's orientation (no closed form; at most 1 rad per step)".into(),
-            cheaper: "ask for an earlier last time; a scene file (`spintop run`) answers Omega alone from the closed form at any time",
+            cheaper: Cheaper::EarlierOrOmegaAlone,
         }),
         (_, Method::Rk4) => e(
             t_last / options.step(),
@@ -221,7 +235,7 @@ pub fn estimate(
                         method_name(method, model),
                         limit / rate
                     ),
-                    cheaper: "the closed forms (method exact) take no steps at all",
+                    cheaper: Cheaper::Exact,
                 })
             } else {
                 e(turning, per_radian(method, model, options))
@@ -332,16 +346,22 @@ pub fn check(
     }
 }
 
-/// A run refused before it started.
+/// The one wording of a run over the step budget, on the command line and
+/// in a scene: `{what} would take about N steps to reach t = T, more than the
+/// 1e7 allowed` (the cheaper way follows, in the entry point's words).
+pub fn over_budget(what: &str, steps: Real, t_last: Real) -> String {
+    format!(
+        "{what} would take {} steps to reach t = {}, more than the {} allowed",
+        crate::numbers::fmt_about(steps),
+        crate::numbers::fmt_time(t_last),
+        crate::numbers::fmt_budget(MAX_STEPS)
+    )
+}
+
+/// A run refused before it started. Its `Display` names no setting; an
+/// entry point renders it with its own (`crate::output::too_costly`).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error(
-    "{} would take {} steps to reach t = {}, more than the {} allowed; {}",
-    estimate.what,
-    crate::numbers::fmt_about(estimate.steps),
-    crate::numbers::fmt_time(*t_last),
-    crate::numbers::fmt_budget(MAX_STEPS),
-    estimate.cheaper
-)]
+#[error("{}", over_budget(&estimate.what, estimate.steps, *t_last))]
 pub struct TooCostly {
     /// The estimate.
     pub estimate: Estimate,
@@ -387,7 +407,7 @@ mod tests {
         // A thousand times longer is refused up front, naming the stiffness.
         let err = check(&Model::Reduced(top), Method::Dop853, &o, &w, 1e4).unwrap_err();
         assert!(
-            err.to_string().contains("stiff") && err.to_string().contains("method exact"),
+            err.to_string().contains("stiff") && err.estimate.cheaper == Cheaper::Exact,
             "{err}"
         );
     }

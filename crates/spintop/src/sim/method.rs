@@ -66,25 +66,37 @@ impl MethodChoice {
             .map(|i| Self::ALL[i])
     }
 
-    /// One line on the choice, as `--help` lists it.
+    /// One line on the choice, as `--help` lists it; the setting it takes
+    /// ([`MethodChoice::setting`]) is the entry point's to name.
     pub fn help(self) -> &'static str {
         match self {
             MethodChoice::Auto => {
                 "Closed forms where they exist, DOP853 for the rest (Taylor at rtol <= 1e-10)"
             }
             MethodChoice::Exact => "Closed forms only",
-            MethodChoice::Rk4 => "Fixed-step classical RK4 (--step)",
-            MethodChoice::Dopri5 => "Dormand-Prince 5(4), adaptive (--rtol)",
-            MethodChoice::Dop853 => "DOP853, adaptive (--rtol)",
-            MethodChoice::Radau5 => {
-                "Radau IIA 5, implicit and L-stable, adaptive (--rtol): for stiff tops"
-            }
+            MethodChoice::Rk4 => "Fixed-step classical RK4",
+            MethodChoice::Dopri5 => "Dormand-Prince 5(4), adaptive",
+            MethodChoice::Dop853 => "DOP853, adaptive",
+            MethodChoice::Radau5 => "Radau IIA 5, implicit and L-stable, adaptive, for stiff tops",
             MethodChoice::Taylor => {
-                "Taylor series of variable order, adaptive (--rtol): the fastest at tight tolerances"
+                "Taylor series of variable order, adaptive, the fastest at tight tolerances"
             }
             MethodChoice::Forward => {
                 "Full model only: integrate (3.4) forward and watch it run away"
             }
+        }
+    }
+
+    /// The key of `[solve]` that sets how it steps: `step` for RK4, `rtol`
+    /// for the adaptive methods, none for the rest.
+    pub fn setting(self) -> Option<&'static str> {
+        match self {
+            MethodChoice::Rk4 => Some("step"),
+            MethodChoice::Dopri5
+            | MethodChoice::Dop853
+            | MethodChoice::Radau5
+            | MethodChoice::Taylor => Some("rtol"),
+            MethodChoice::Auto | MethodChoice::Exact | MethodChoice::Forward => None,
         }
     }
 
@@ -300,7 +312,7 @@ pub const MIN_RTOL: Real = 1e-14;
 #[derive(Clone, Copy, Debug, Error, PartialEq)]
 pub enum OptionsError {
     /// rtol outside (0, 1).
-    #[error("rtol must lie in (0, 1), got {}", crate::numbers::fmt_value(*.0))]
+    #[error("rtol must lie in [{}, 1), got {}", crate::numbers::fmt_value(MIN_RTOL), crate::numbers::fmt_value(*.0))]
     RtolOutOfRange(Real),
     /// rtol below [`MIN_RTOL`].
     #[error("rtol {0:e} is below what double precision can deliver; use 1e-14 or more")]

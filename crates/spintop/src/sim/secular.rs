@@ -144,11 +144,7 @@ pub fn secular(
     // t → ts, d → d√s, so a slow top (s = |Ω₀| < 1) is run as the top of
     // unit |Ω₀|: below |Ω₀| ~ 1e-154, 2E = Ω·IΩ underflows, and a moving top
     // was taken for one at rest (|L| printed 0).
-    let s = omega0.norm();
-    let scaled = (s > 0.0 && s < 1.0)
-        .then(|| GeneralTop::new(top.inertia(), top.dipole() * s.sqrt()).ok())
-        .flatten();
-    let Some(unit_top) = scaled else {
+    let Some((unit_top, s)) = unit_scaled(top, omega0) else {
         return secular_as_given(top, law, omega0, times, rtol);
     };
     let unit_times: Vec<Real> = times.iter().map(|t| t * s).collect();
@@ -160,6 +156,17 @@ pub fn secular(
         sample.period = sample.period.map(|p| p / s).filter(|p| p.is_finite());
     }
     Ok(run)
+}
+
+/// The top of unit |Ω₀| with the same motion, and the scale s = |Ω₀|, for
+/// a top slower than 1: (3.3) and (3.4) keep their form under Ω → Ω/s,
+/// t → ts, d → d√s (see [`secular`]). `None` where the top is run as given.
+pub(crate) fn unit_scaled(top: &GeneralTop, omega0: &Vec3) -> Option<(GeneralTop, Real)> {
+    let s = omega0.norm();
+    (s > 0.0 && s < 1.0)
+        .then(|| GeneralTop::new(top.inertia(), top.dipole() * s.sqrt()).ok())
+        .flatten()
+        .map(|unit| (unit, s))
 }
 
 /// [`secular`] in the units it is given.

@@ -227,7 +227,7 @@ fn long_asymmetric_runs_are_answered_within_rtol_or_refused_before_they_start() 
 /// tighter run cannot check the secular answer to rtol = 1e-10 over 10⁶
 /// rad, but it checks it to 2e-9.
 #[test]
-#[ignore = "about a minute: cargo test -p spintop --test core long_ -- --ignored"]
+#[ignore = "about a minute: cargo test -p spintop-tests --test core long_ -- --ignored"]
 fn long_run_stepped_tightly_agrees_with_the_secular_answer() {
     let text = long_scene(1e-12, 1e6, "general");
     let scene = spintop::scene::parse(&text, "long.toml").unwrap();

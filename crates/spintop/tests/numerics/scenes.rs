@@ -83,7 +83,7 @@ fn axis(rotation: &[[f64; 3]; 3]) -> Vec3 {
 /// each file's name is its scene's name, and each has a check in this file.
 #[test]
 fn catalogue_matches_lessons_scenes_and_every_scene_has_a_check() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../spintop/scenes");
     let files: BTreeSet<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().into_string().unwrap())

@@ -233,7 +233,7 @@ fn eq_3_3_an_explicit_methods_error_over_the_run_is_true() {
             "{tag}"
         );
         assert!(
-            turn <= claimed_o && claimed_o <= 10.0 * turn.max(e.rounding),
+            turn <= claimed_o && claimed_o <= 10.0 * turn.max(e.orientation_rounding.unwrap()),
             "{tag}"
         );
     }
