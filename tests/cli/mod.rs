@@ -8,6 +8,7 @@ mod entry_advice;
 mod entry_sweep;
 mod figure;
 mod gate;
+mod learn;
 mod orbit;
 mod plot;
 mod run;

@@ -13,6 +13,7 @@ mod live_view;
 mod overlays;
 mod reader;
 mod reader_nav;
+mod reader_wrap;
 mod screens;
 mod student;
 mod term_e2e;
