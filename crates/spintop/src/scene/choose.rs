@@ -12,7 +12,7 @@ use crate::sim::accuracy::{
     ModelErrors, changes_nothing, general_errors, secular_errors, symmetric_errors,
 };
 use crate::sim::claim::{ModelEstimates, TierEstimate};
-use crate::sim::cost::{TIGHTEST_RTOL, turning_angle};
+use crate::sim::cost::turning_angle;
 use crate::sim::measured::symmetric_measured;
 use crate::sim::{MethodChoice, Model};
 
@@ -367,6 +367,7 @@ fn exact_choice(
 mod tests {
     use super::*;
     use crate::sim::cost::PHASE_GROWTH;
+    use crate::sim::cost::TIGHTEST_RTOL;
 
     /// The error bound rtol·(1 + Cφ²) reaches the tightest tolerance at
     /// φ = √((rtol/TIGHTEST_RTOL − 1)/C): at rtol 1e-10, 447 rad, found
