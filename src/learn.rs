@@ -74,9 +74,40 @@ pub enum LearnError {
         /// A file name to show.
         example: String,
     },
+    /// `--chapter` named words more than one chapter's title holds.
+    #[error(
+        "--chapter {wanted}: {count} chapters' titles hold it: {candidates}; give the chapter's number or more of its title"
+    )]
+    ManyChapters {
+        /// What was asked for.
+        wanted: String,
+        /// How many chapters hold it.
+        count: usize,
+        /// Each: its number and title.
+        candidates: String,
+    },
     /// A chapter's scene could not start.
     #[error(transparent)]
     Scene(#[from] SceneError),
+}
+
+/// Why `--chapter wanted` opens none: the chapters it could mean, or the
+/// ways to name one.
+fn no_chapter(chapters: &[Chapter], wanted: &str) -> LearnError {
+    let many = book::candidates(chapters, wanted);
+    if !many.is_empty() {
+        return LearnError::ManyChapters {
+            wanted: wanted.to_string(),
+            count: many.len(),
+            candidates: many.join(", "),
+        };
+    }
+    LearnError::NoSuchChapter {
+        wanted: wanted.to_string(),
+        sections: book::section_names(chapters),
+        count: chapters.len(),
+        example: chapters[0].file.trim_end_matches(".md").to_string(),
+    }
 }
 
 fn read(path: &Path) -> Result<String, LearnError> {
@@ -256,12 +287,7 @@ impl Learn {
         }
         let current = match start {
             None => 0,
-            Some(w) => find_chapter(&chapters, w).ok_or_else(|| LearnError::NoSuchChapter {
-                wanted: w.to_string(),
-                sections: book::section_names(&chapters),
-                count: chapters.len(),
-                example: chapters[0].file.trim_end_matches(".md").to_string(),
-            })?,
+            Some(w) => find_chapter(&chapters, w).ok_or_else(|| no_chapter(&chapters, w))?,
         };
         let mut contents = Vec::new();
         for (i, c) in chapters.iter().enumerate() {
@@ -613,7 +639,7 @@ impl Learn {
         self.clamp_scroll();
         self.link = None;
         if let Some(query) = self.search.as_ref().map(|s| s.query.clone()) {
-            let found = search::find(&self.rendered.lines, &query);
+            let found = search::find(&self.rendered, &query);
             if let Some(s) = &mut self.search {
                 s.matches = found;
             }

@@ -435,8 +435,8 @@ fn export(dir: &Path, ci: Option<CiChoice>, out: &mut impl Write) -> Result<(), 
     writeln!(
         out,
         "  hand it out; a student runs `cargo test`, `spintop course` or `spintop learn` in it \
-         (they find the course they stand in), or `spintop course --course {}` from elsewhere",
-        dir.display()
+         (they find the course they stand in), or `spintop course{}` from elsewhere",
+        grading::course_arg(Some(&dir.display().to_string()))
     )?;
     Ok(())
 }

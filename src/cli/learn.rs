@@ -122,11 +122,18 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
             Err(e) if e.kind() == io::ErrorKind::NotFound => {
                 writeln!(out, "spintop learn: no progress to forget")?
             }
-            Err(e) => return Err(CliError::Io(e)),
+            Err(e) => {
+                return Err(CliError::NotSaved(format!(
+                    "learn --reset: your place in {} could not be forgotten: {}",
+                    progress_path.display(),
+                    spintop_course::unwritable_why(&progress_path, &e)
+                )));
+            }
         }
         return Ok(());
     }
-    let read = progress::read(&progress_path);
+    let opened = progress::open(&progress_path);
+    let read = opened.progress.clone();
     let start = args
         .chapter
         .clone()
@@ -147,6 +154,9 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
         return Ok(());
     }
     if args.list {
+        if let Some(said) = &opened.said {
+            writeln!(out, "spintop learn: {said}")?;
+        }
         return list(&mut session, &read, &book, out);
     }
     session::check().map_err(|e| {
@@ -169,7 +179,12 @@ pub(crate) fn execute(args: LearnArgs, out: &mut Gate<'_>) -> Result<(), CliErro
         // Not the book one would expect where one stands: say whose it is.
         session.note(format!("reading {}", book.describe()));
     }
-    session.keep_progress(progress_path, read);
+    if let Some(said) = opened.said {
+        session.note(said);
+    }
+    if opened.keep {
+        session.keep_progress(progress_path, read);
+    }
     // However the session ends (q, a signal, a terminal gone), the place is
     // saved before anything else is said.
     let ran = crate::learn::run(&mut session);

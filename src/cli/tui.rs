@@ -51,7 +51,7 @@ impl TuiArgs {
         if let Some(arg) = &self.scene {
             let scene = super::run::load(arg)?;
             let (settings, note) =
-                Settings::for_scene(&scene, self.warp).map_err(|e| bad(e.to_string()))?;
+                Settings::for_scene(&scene, self.warp).map_err(|e| bad(e.on_command_line()))?;
             return Ok((settings, Some(note)));
         }
         let (ratio, omega0, method) = self.top()?;
@@ -62,7 +62,7 @@ impl TuiArgs {
             self.warp.unwrap_or(WARPS[DEFAULT_WARP]),
         )
         .map(|s| (s, None))
-        .map_err(|e| bad(e.to_string()))
+        .map_err(|e| bad(e.on_command_line()))
     }
 
     /// `--ratio`, `--omega` and `--method` read as `simulate` reads them (the

@@ -114,21 +114,42 @@ pub fn find_chapter(chapters: &[Chapter], wanted: &str) -> Option<usize> {
     if w.is_empty() {
         return None;
     }
+    match titled(chapters, w).as_slice() {
+        [one] => Some(*one),
+        _ => None,
+    }
+}
+
+/// The chapters whose titles hold `wanted` (lower-cased) as words: the one
+/// titled so exactly, else every one a word of whose title starts with it.
+fn titled(chapters: &[Chapter], w: &str) -> Vec<usize> {
     let titles: Vec<String> = chapters.iter().map(|c| c.title.to_lowercase()).collect();
     if let Some(i) = titles.iter().position(|t| t == w) {
-        return Some(i);
+        return vec![i];
     }
-    let fits: Vec<usize> = (0..titles.len())
+    (0..titles.len())
         .filter(|&i| {
             titles[i].starts_with(w)
                 || titles[i].contains(&format!(" {w}"))
                 || titles[i].contains(&format!(":{w}"))
         })
-        .collect();
-    match fits.as_slice() {
-        [one] => Some(*one),
-        _ => None,
+        .collect()
+}
+
+/// The chapters `wanted` could mean when [`find_chapter`] finds none for
+/// it because more than one title holds it: "number title" of each.
+pub fn candidates(chapters: &[Chapter], wanted: &str) -> Vec<String> {
+    let w = wanted.trim().to_lowercase();
+    if w.is_empty() {
+        return Vec::new();
     }
+    let fits = titled(chapters, &w);
+    if fits.len() < 2 {
+        return Vec::new();
+    }
+    fits.into_iter()
+        .map(|i| format!("{} “{}”", i + 1, chapters[i].title))
+        .collect()
 }
 
 /// The sections of the paper as `--chapter` takes them (`§2, §3, 4.1,

@@ -47,6 +47,10 @@ pub struct Rendered {
     /// Anchors written as HTML (`<a id="jackson">`, the bibliography's
     /// entries): (line index, id).
     pub anchors: Vec<(usize, String)>,
+    /// Lines that go on from the line before (prose wrapped at the width):
+    /// (line index, bytes of its prefix, what the wrap stands for: a space
+    /// or nothing), so that a phrase is searched as written, not as wrapped.
+    pub wraps: Vec<(usize, usize, &'static str)>,
 }
 
 /// A link of the text: where it points, and where it is drawn (a link that
@@ -300,6 +304,8 @@ impl Renderer {
                 line.push(Span::raw(prefix.clone()));
                 used = prefix.width();
                 bytes = prefix.len();
+                let joint = if space.is_some() { " " } else { "" };
+                self.out.wraps.push((self.out.lines.len(), bytes, joint));
             } else if gap == 1 {
                 line.push(Span::styled(" ", space.unwrap_or_default()));
                 used += 1;

@@ -26,14 +26,97 @@ pub struct Progress {
     pub positions: BTreeMap<String, (usize, usize)>,
 }
 
-/// Reads the progress file: a missing, unreadable or foreign file is a
-/// fresh start, never an error.
+/// Reads the progress file: a missing one is a fresh start; one that
+/// cannot be read is the [`Unreadable`] error (see [`open`]).
 pub fn read(path: &Path) -> Progress {
-    std::fs::read(path)
-        .ok()
-        .filter(|b| b.len() < 1 << 20)
-        .and_then(|b| serde_json::from_slice(&b).ok())
-        .unwrap_or_default()
+    parse(path).unwrap_or_default()
+}
+
+/// The progress file, or why it cannot be read (`None`: there is none).
+fn parse(path: &Path) -> Result<Progress, Option<String>> {
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Err(None),
+        Err(e) => return Err(Some(e.to_string())),
+    };
+    if bytes.len() >= 1 << 20 {
+        return Err(Some(format!("{} bytes, not a progress file", bytes.len())));
+    }
+    serde_json::from_slice(&bytes).map_err(|e| Some(format!("not a progress file: {e}")))
+}
+
+/// Opens the progress file at `path` for a session: what it holds, and
+/// what to say about it. A file that cannot be read is never written over
+/// unsaid: it is set aside as `<name>.bad` (the reader starts afresh and
+/// says which file, why, and where it now is); when it cannot be set aside
+/// either, the place is not kept this session (`keep` false), so that the
+/// file stays as it is.
+pub fn open(path: &Path) -> Opened {
+    let why = match parse(path) {
+        Ok(progress) => return Opened::fresh(progress),
+        Err(None) => return Opened::fresh(Progress::default()),
+        // Only a regular file is ever set aside: a device (`/dev/null`,
+        // where tests keep their place) is read as a fresh start and
+        // written in place, never renamed.
+        Err(Some(_)) if !std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) => {
+            return Opened::fresh(Progress::default());
+        }
+        Err(Some(why)) => why,
+    };
+    let mut bad = path.as_os_str().to_owned();
+    bad.push(".bad");
+    let bad = PathBuf::from(bad);
+    let (said, keep) = match std::fs::rename(path, &bad) {
+        Ok(()) => (
+            format!(
+                "your place could not be read from {} ({why}); the file is set aside as {}, reading starts afresh",
+                path.display(),
+                file_name(&bad)
+            ),
+            true,
+        ),
+        Err(e) => (
+            format!(
+                "your place could not be read from {} ({why}) nor the file set aside as {} ({e}); it is left as it is, and your place is not kept this session",
+                path.display(),
+                file_name(&bad)
+            ),
+            false,
+        ),
+    };
+    Opened {
+        progress: Progress::default(),
+        said: Some(said),
+        keep,
+    }
+}
+
+fn file_name(path: &Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
+/// The progress file as a session opens it ([`open`]).
+#[derive(Debug)]
+pub struct Opened {
+    /// What it holds (nothing, when it could not be read).
+    pub progress: Progress,
+    /// What to tell the reader about it.
+    pub said: Option<String>,
+    /// False when the file must not be written this session.
+    pub keep: bool,
+}
+
+impl Opened {
+    fn fresh(progress: Progress) -> Self {
+        Self {
+            progress,
+            said: None,
+            keep: true,
+        }
+    }
 }
 
 /// Why the place could not be kept.
@@ -184,5 +267,47 @@ mod tests {
         assert!(keeper.failure().is_some());
         assert!(keeper.save(&p).is_err());
         let _ = std::fs::remove_file(&file);
+    }
+
+    #[test]
+    fn an_unreadable_file_is_said_and_set_aside_not_written_over() {
+        let dir = std::env::temp_dir().join(format!("spintop-bad-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("learn.json");
+        std::fs::write(&path, b"{garbage\n").unwrap();
+        let opened = open(&path);
+        assert_eq!(opened.progress, Progress::default());
+        assert!(opened.keep);
+        let said = opened.said.expect("said");
+        assert!(
+            said.contains(&path.display().to_string()) && said.contains("learn.json.bad"),
+            "{said}"
+        );
+        assert_eq!(
+            std::fs::read(dir.join("learn.json.bad")).unwrap(),
+            b"{garbage\n"
+        );
+        assert!(!path.exists());
+        // A good file, and none, are read without a word.
+        let good = Progress {
+            last: Some("section-2.md".into()),
+            ..Progress::default()
+        };
+        std::fs::write(&path, serde_json::to_vec(&good).unwrap()).unwrap();
+        let opened = open(&path);
+        assert_eq!((opened.progress, opened.said), (good, None));
+        assert_eq!(open(&dir.join("none.json")).said, None);
+        // A device is never set aside (renamed): /dev/null stays itself.
+        let null = Path::new("/dev/null");
+        if null.exists() {
+            let opened = open(null);
+            assert_eq!((opened.said, opened.keep), (None, true));
+            assert!(!Path::new("/dev/null.bad").exists());
+            assert!(
+                !std::fs::metadata(null).unwrap().is_file(),
+                "still a device"
+            );
+        }
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

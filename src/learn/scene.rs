@@ -607,7 +607,12 @@ impl Stage {
                 let settings = app.settings();
                 let w = settings.omega0();
                 if let Some(r) = settings.ratio() {
-                    cells.push(Cell::fixed(vec![label(" I₃/I₁ = "), value(fmt(r))]));
+                    // Tight where the header beside the text is narrow
+                    // (80 columns), so that Ω₀ keeps its unit there.
+                    cells.push(Cell(vec![
+                        vec![label(" I₃/I₁ = "), value(fmt(r))],
+                        vec![label("I₃/I₁="), value(fmt(r))],
+                    ]));
                 }
                 let lead = if cells.is_empty() {
                     " Ω₀ = "
@@ -617,6 +622,8 @@ impl Stage {
                 cells.push(Cell::fixed(vec![
                     label(lead),
                     value(format!("({}, {}, {})", fmt(w[0]), fmt(w[1]), fmt(w[2]))),
+                    // In the unit of time the live view names (τ, or u).
+                    label(&format!("/{}", settings.top().time_unit())),
                 ]));
                 let method = match settings.top() {
                     Top::Full(_) => "physical, forward".to_string(),

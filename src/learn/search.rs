@@ -5,14 +5,24 @@
 //! book, and the status says where it was found.
 
 use super::markdown;
-use ratatui::text::Line;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, mpsc};
 
-/// A search and what it found in the chapter shown: (line, byte range in
-/// the line's text).
+/// A match: each part of it as drawn, (line, byte range in the line's
+/// text); more than one part when the text's wrap splits the phrase.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Match(pub Vec<(usize, Range<usize>)>);
+
+impl Match {
+    /// The line it starts on.
+    pub fn line(&self) -> usize {
+        self.0.first().map_or(0, |p| p.0)
+    }
+}
+
+/// A search and what it found in the chapter shown.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Search {
     /// The word searched for.
@@ -20,7 +30,7 @@ pub struct Search {
     /// Its direction: forward (`/`), or backward (Ctrl-R).
     pub forward: bool,
     /// Every match in the chapter shown, in reading order.
-    pub matches: Vec<(usize, Range<usize>)>,
+    pub matches: Vec<Match>,
     /// The match last shown, if it is in this chapter.
     pub at: Option<usize>,
 }
@@ -28,30 +38,80 @@ pub struct Search {
 /// The longest search typed.
 pub const LONGEST: usize = 64;
 
-/// Every match of `query` (case-insensitive) in `lines`.
-pub fn find(lines: &[Line], query: &str) -> Vec<(usize, Range<usize>)> {
+/// A stretch of text as written (a paragraph, a line of code), before the
+/// width wrapped it: its text, and where each drawn line of it is, (line,
+/// its bytes in `text`, where they start in the line's own text).
+struct Unwrapped {
+    text: String,
+    lines: Vec<(usize, Range<usize>, usize)>,
+}
+
+/// The rendered lines joined back where the width wrapped them, as `less`
+/// searches a file's lines and not the screen's rows.
+fn unwrapped(rendered: &markdown::Rendered) -> Vec<Unwrapped> {
+    let mut out: Vec<Unwrapped> = Vec::new();
+    let mut wraps = rendered.wraps.iter().peekable();
+    for (i, line) in rendered.lines.iter().enumerate() {
+        let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
+        while wraps.next_if(|w| w.0 < i).is_some() {}
+        match (wraps.next_if(|w| w.0 == i), out.last_mut()) {
+            (Some(&(_, prefix, joint)), Some(last)) if prefix <= text.len() => {
+                last.text.push_str(joint);
+                let start = last.text.len();
+                last.text.push_str(&text[prefix..]);
+                last.lines.push((i, start..last.text.len(), prefix));
+            }
+            _ => out.push(Unwrapped {
+                lines: vec![(i, 0..text.len(), 0)],
+                text,
+            }),
+        }
+    }
+    out
+}
+
+/// The text of `rendered` as searched: its wraps undone, lower-cased.
+pub fn searched(rendered: &markdown::Rendered) -> String {
+    let texts: Vec<String> = unwrapped(rendered).into_iter().map(|u| u.text).collect();
+    texts.join("\n").to_lowercase()
+}
+
+/// Every match of `query` (case-insensitive) in `rendered`, a phrase the
+/// wrap splits included (then in two parts).
+pub fn find(rendered: &markdown::Rendered, query: &str) -> Vec<Match> {
     let needle = query.to_lowercase();
     if needle.is_empty() {
         return Vec::new();
     }
     let mut matches = Vec::new();
-    for (i, line) in lines.iter().enumerate() {
-        let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
-        let lower = text.to_lowercase();
+    for u in unwrapped(rendered) {
+        let lower = u.text.to_lowercase();
         // Lower-casing keeps byte offsets for the text this book holds
         // (ASCII and Greek letters of the same length); where it would
         // not, the match is skipped rather than misplaced.
-        if lower.len() != text.len() {
+        if lower.len() != u.text.len() {
             continue;
         }
         let mut from = 0;
         while let Some(at) = lower[from..].find(&needle) {
             let start = from + at;
-            matches.push((i, start..start + needle.len()));
+            matches.push(Match(parts(&u, start..start + needle.len())));
             from = start + needle.len().max(1);
         }
     }
     matches
+}
+
+/// The drawn parts of the bytes `range` of an unwrapped text.
+fn parts(u: &Unwrapped, range: Range<usize>) -> Vec<(usize, Range<usize>)> {
+    let mut out = Vec::new();
+    for (line, bytes, own) in &u.lines {
+        let (a, b) = (range.start.max(bytes.start), range.end.min(bytes.end));
+        if a < b {
+            out.push((*line, own + a - bytes.start..own + b - bytes.start));
+        }
+    }
+    out
 }
 
 /// The width other chapters are rendered at to be searched: wide, so that
@@ -90,7 +150,7 @@ fn searched_text(source: &str, unfolded: bool) -> String {
             plain: false,
         },
     );
-    markdown::plain(&rendered.lines).to_lowercase()
+    searched(&rendered)
 }
 
 /// A chapter's Markdown source, its includes resolved (empty when it

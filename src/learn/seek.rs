@@ -52,7 +52,7 @@ impl Learn {
             return;
         }
         self.search = Some(Search {
-            matches: find(&self.rendered.lines, &q),
+            matches: find(&self.rendered, &q),
             query: q,
             forward,
             at: None,
@@ -93,7 +93,7 @@ impl Learn {
         let s = self.search.as_ref()?;
         let page = self.scroll..self.scroll + self.page();
         let current =
-            s.at.and_then(|k| s.matches.get(k).map(|m| (k, m.0)))
+            s.at.and_then(|k| s.matches.get(k).map(|m| (k, m.line())))
                 .filter(|(_, line)| page.contains(line));
         let m = &s.matches;
         match (current, forward) {
@@ -101,9 +101,9 @@ impl Learn {
             (Some((k, _)), false) => k.checked_sub(1),
             (None, true) => {
                 let top = if fresh { self.scroll } else { self.scroll + 1 };
-                m.iter().position(|(line, _)| *line >= top)
+                m.iter().position(|m| m.line() >= top)
             }
-            (None, false) => m.iter().rposition(|(line, _)| *line < page.end),
+            (None, false) => m.iter().rposition(|m| m.line() < page.end),
         }
     }
 
@@ -112,7 +112,7 @@ impl Learn {
     fn show_match(&mut self, k: usize, note: &str) {
         let Some(s) = &mut self.search else { return };
         s.at = Some(k);
-        let (line, n, query) = (s.matches[k].0, s.matches.len(), s.query.clone());
+        let (line, n, query) = (s.matches[k].line(), s.matches.len(), s.query.clone());
         self.scroll = line.saturating_sub(self.page() / 3);
         self.clamp_scroll();
         self.inform(format!("“{query}”: match {} of {n}{note}", k + 1));

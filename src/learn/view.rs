@@ -196,9 +196,8 @@ fn highlight(line: &Line<'static>, marks: &[(std::ops::Range<usize>, Style)]) ->
 fn marks_on(learn: &Learn, i: usize) -> Vec<(std::ops::Range<usize>, Style)> {
     let mut marks = Vec::new();
     if let Some(s) = learn.search() {
-        let current = s.at.and_then(|k| s.matches.get(k));
-        for m in s.matches.iter().filter(|(l, _)| *l == i) {
-            let style = if Some(m) == current {
+        for (k, m) in s.matches.iter().enumerate() {
+            let style = if s.at == Some(k) {
                 // Bold and underlined besides the colour: without colour
                 // (NO_COLOR) the match is still told from the others.
                 Style::new()
@@ -208,7 +207,9 @@ fn marks_on(learn: &Learn, i: usize) -> Vec<(std::ops::Range<usize>, Style)> {
             } else {
                 Style::new().add_modifier(Modifier::REVERSED)
             };
-            marks.push((m.1.clone(), style));
+            for (_, r) in m.0.iter().filter(|(l, _)| *l == i) {
+                marks.push((r.clone(), style));
+            }
         }
     }
     if let Some(link) = learn

@@ -697,10 +697,20 @@ impl App {
         let mut skipped: Vec<MethodChoice> = Vec::new();
         let mut first_refusal = None;
         let mut candidate = None;
+        let mut unstable: Option<String> = None;
         for _ in 0..super::layout::METHOD_CYCLE.len() {
             method = super::layout::next_method(method, &top);
             if method == self.settings.method() {
                 break;
+            }
+            if let Some(why) = super::layout::fixed_step_unstable(
+                method,
+                &top,
+                // m restarts the models at t = 0: from Ω₀.
+                std::iter::once(self.settings.omega0()),
+            ) {
+                unstable.get_or_insert(why);
+                continue;
             }
             match self.settings.with_method(method) {
                 Ok(settings) => {
@@ -726,6 +736,10 @@ impl App {
                 method_title(method, &top),
                 skipped.join(", ")
             )
+        };
+        let what = match unstable {
+            Some(why) => format!("{what}; {why}"),
+            None => what,
         };
         self.change(candidate, what);
     }
@@ -758,8 +772,13 @@ impl App {
     fn next_model(&mut self) {
         let n = self.columns.len().max(1);
         if !self.view.takes_turns(n) {
+            let which = if n == 2 {
+                "both models are".to_string()
+            } else {
+                format!("all {n} models are")
+            };
             self.refuse(format!(
-                "all {n} models are on the screen; Tab shows them one at a time where the screen is narrower"
+                "{which} on the screen; Tab shows them one at a time where the screen is narrower"
             ));
             return;
         }

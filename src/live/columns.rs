@@ -138,6 +138,11 @@ impl Column {
         self.failure = Some(if self.is_forward() {
             // The forward run is there to run away: the reason says it all.
             why
+        } else if self.method == Method::Rk4 {
+            // A slower warp takes the same fixed step: it cannot help.
+            format!(
+                "{why}; RK4's fixed step is unstable here: choose an adaptive method (m), r restarts, a smaller Ω₀ helps"
+            )
         } else {
             // NOTE: no word of the warp: it sets how many ticks a second
             // are drawn, not what a tick (one advance to the next Δt) does.

@@ -6,13 +6,13 @@
 use super::app::App;
 use super::columns::Column;
 pub use super::layout::COLUMN_WIDTH;
-use super::widgets::{OmegaSeries, drift, hodograph, numbers, top_in_space};
+use super::widgets::{NumberBlock, OmegaSeries, drift, hodograph, numbers, top_in_space};
 use crate::term::cells::width;
 use crate::term::theme;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, BorderType};
+use ratatui::widgets::{Block, BorderType, Paragraph, Wrap};
 
 /// Above this width of a column the numbers get their long labels.
 const WIDE: u16 = 55;
@@ -131,7 +131,9 @@ fn draw_column(
     // the chart anyway) gives its row to the pictures; a failure still shows.
     let roomy = inner.height >= 24;
     let wide = area.width >= WIDE;
-    let (l, r, bottom) = numbers(column, wide);
+    // Both blocks of numbers whole (shortened where they must be), the
+    // drift block where it fits; see `number_blocks`.
+    let (blocks, bottom) = number_blocks(column, wide, inner.width);
     let numbers_height = if column.failure().is_some() {
         // A stopped model's advice gets every row it wraps to (its remedy
         // is at its end), the chart keeping four.
@@ -165,16 +167,12 @@ fn draw_column(
     );
     let [rows, last] =
         Layout::vertical([Constraint::Length(5), Constraint::Fill(1)]).areas(numbers_area);
-    // The blocks at their own widths, left to right, as many as fit whole:
-    // a block is dropped before a number in it is cut.
-    let mut blocks = vec![l, r];
-    if column.closed_form_error().is_none() {
-        blocks.push(drift(column));
-    }
     let widths: Vec<u16> = blocks.iter().map(|b| b.width).collect();
     let mut keep = blocks.len();
     // Blocks one column apart at least.
-    while keep > 1 && widths[..keep].iter().sum::<u16>() + keep as u16 - 1 > rows.width {
+    while keep > 2.min(blocks.len())
+        && widths[..keep].iter().sum::<u16>() + keep as u16 - 1 > rows.width
+    {
         keep -= 1;
     }
     let parts = Layout::horizontal(
@@ -189,4 +187,48 @@ fn draw_column(
         frame.render_widget(block.paragraph, *part);
     }
     frame.render_widget(bottom, last);
+}
+
+/// The blocks of numbers of `column` for a row `room` columns wide, and its
+/// last line: the two first blocks always, their numbers shortened to three
+/// digits when the full ones would not fit side by side (a row is never
+/// lost); the drift block after them where it fits whole. The last line is
+/// the widest of its forms that fits (a failure's advice is wrapped whole).
+fn number_blocks(column: &Column, wide: bool, room: u16) -> (Vec<NumberBlock>, Paragraph<'static>) {
+    let fits = |l: &NumberBlock, r: &NumberBlock| l.width + 1 + r.width <= room;
+    let (mut l, mut r, mut last) = numbers(column, wide, false);
+    if !fits(&l, &r) {
+        (l, r, last) = numbers(column, wide, true);
+    }
+    if !fits(&l, &r) && wide {
+        (l, r, last) = numbers(column, false, true);
+    }
+    if !fits(&l, &r) {
+        // Too narrow for two blocks even shortened (a scene beside the
+        // text of `learn`): the left one whole, never a number cut.
+        let (l, _, last) = numbers(column, wide, false);
+        return (vec![l], bottom_line(column, last, room));
+    }
+    let mut blocks = vec![l, r];
+    if column.closed_form_error().is_none() {
+        blocks.push(drift(column));
+    }
+    let bottom = bottom_line(column, last, room);
+    (blocks, bottom)
+}
+
+/// The last line of numbers: a failure's advice wrapped whole, else the
+/// widest of its forms that fits in `room`.
+fn bottom_line(column: &Column, last: Vec<Line<'static>>, room: u16) -> Paragraph<'static> {
+    if column.failure().is_some() {
+        return Paragraph::new(last).wrap(Wrap { trim: true });
+    }
+    let n = last.len();
+    let line = last
+        .into_iter()
+        .enumerate()
+        .find(|(i, line)| line.width() <= usize::from(room) || *i + 1 == n)
+        .map(|(_, line)| line)
+        .unwrap_or_default();
+    Paragraph::new(line)
 }

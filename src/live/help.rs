@@ -77,7 +77,7 @@ const PANELS: [(&str, &str); 7] = [
     ),
     (
         "top in space",
-        "the symmetry axis e₃ with the body as a disc, L, and the trail of the axis tip: the precession cone. Lab z is along L₀",
+        "the symmetry axis e₃ with the body as a disc, L, and the trail of the axis tip: the precession cone. Lab z is along L₀ where the view picks the start; a scene with Euler angles of its own keeps its lab frame, and the title gives the angle of e₃ from lab z (e₃∠z)",
     ),
     (
         "ran away",
@@ -102,7 +102,10 @@ const ROWS: [(&str, &str); 12] = [
     ("t", "the model's time"),
     ("E", "the kinetic energy ½ Ω·IΩ"),
     ("|L|", "the length of the angular momentum L = IΩ"),
-    ("tilt", "the angle θ between the symmetry axis e₃ and L"),
+    (
+        "tilt",
+        "the angle between the symmetry axis e₃ and L (the paper's θ where lab z is along L)",
+    ),
     (
         "φ̇ ψ̇",
         "precession and spin rates (4.8); on the pole (θ = 0) only their sum is defined: — (pole)",
@@ -154,7 +157,7 @@ fn title(top: &Top) -> Vec<Line<'static>> {
             [
                 "Left: truncated (4.2)–(4.4), loss law (2.1) without the Schott term.",
                 "Right: reduced (4.12)–(4.14), Abraham–Lorentz torque (2.2) with it.",
-                "Both start from the same I₃/I₁ and Ω₀; the lab z axis is along L₀.",
+                "Both start from the same I₃/I₁ and Ω₀; lab z is along L₀ unless a scene sets the start.",
             ],
         ),
     };
@@ -214,6 +217,6 @@ pub fn lines(top: &Top) -> Vec<Line<'static>> {
     let mut lines = title(top);
     lines.extend(table("Keys", &keys, 9));
     lines.extend(table("Each column: the panels", &PANELS, 15));
-    lines.extend(table("Each column: the numbers", &ROWS, 11));
+    lines.extend(table("Each column: the numbers", &ROWS, 12));
     lines
 }

@@ -244,3 +244,39 @@ pub fn method_title(method: MethodChoice, top: &Top) -> String {
         None => method.title().into(),
     }
 }
+
+/// The classical RK4's stability interval on the negative real axis
+/// (|R(z)| ≤ 1 for −2.785 ≤ z ≤ 0).
+const RK4_STABILITY: Real = 2.78;
+
+/// Why the fixed-step `method` would blow up on its first step from the
+/// states `omegas` (Ω₀, where `m` restarts the models), if it would: RK4's step h must keep
+/// h·λ inside its stability interval (2.78 on the negative real axis), and
+/// the radiation damps Ω⊥ at λ ≈ 3τ|Ω|² (Ω⊥′ = −τΩ⊥³ and its like), so `m`
+/// skips it while 3τ|Ω|²h > 2.78 (Ω₁₀ = 1000: h·λ = 3.0e4).
+pub fn fixed_step_unstable(
+    method: MethodChoice,
+    top: &Top,
+    omegas: impl Iterator<Item = [Real; 3]>,
+) -> Option<String> {
+    if method != MethodChoice::Rk4 {
+        return None;
+    }
+    let tau = match top {
+        Top::Symmetric(top) | Top::Full(top) => top.tau(),
+        // κ = 1 units: the general top's damping is of the same order.
+        Top::General(_) => 1.0,
+    };
+    let h = spintop::sim::MethodOptions::default().step();
+    let omega2 = omegas
+        .map(|w| w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+        .fold(0.0, Real::max);
+    let h_lambda = 3.0 * tau * omega2 * h;
+    (h_lambda > RK4_STABILITY).then(|| {
+        format!(
+            "RK4 skipped: its fixed step {}τ is unstable here (h·3τ|Ω|² = {}, beyond its limit {RK4_STABILITY}); a smaller Ω₀ lets it run",
+            spintop::numbers::fmt_num(h),
+            spintop::numbers::fmt_num(h_lambda)
+        )
+    })
+}

@@ -48,3 +48,26 @@ pub enum Refusal {
     #[error("no other method can run this top")]
     NoOtherMethod,
 }
+
+impl Refusal {
+    /// The refusal as the command line says it: flags where the live view
+    /// names keys (`--warp 50`, not "- slows down"; `--method exact`, not
+    /// "m").
+    pub fn on_command_line(&self) -> String {
+        let text = self.to_string();
+        match self {
+            Refusal::TooCostly { cheaper, .. } => {
+                let slower = cheaper
+                    .strip_prefix("at ")
+                    .and_then(|c| c.split_whitespace().next())
+                    .map(str::to_string);
+                let text = match slower {
+                    Some(w) => text.replace("(- slows down)", &format!("(--warp {w})")),
+                    None => text,
+                };
+                text.replace("closed forms (m)", "closed forms (--method exact)")
+            }
+            _ => text,
+        }
+    }
+}

@@ -390,8 +390,8 @@ pub fn hodograph(column: &Column, area: Rect) -> Canvas<'static, impl Fn(&mut Co
 /// axis O·e₃, the direction of L, and the trail of the axis tip, which traces
 /// the precession cone. The lab z axis is the direction of L₀ in the
 /// paper's frame (`paper_frame`); a scene with Euler angles of its own
-/// starts in its lab frame, and the title gives θ, the tilt of the axis from
-/// lab z.
+/// starts in its lab frame, and the title gives e₃∠z, the angle of the axis
+/// from lab z (not the tilt of the numbers, the angle from L).
 pub fn top_in_space(
     column: &Column,
     area: Rect,
@@ -423,8 +423,8 @@ pub fn top_in_space(
     } else {
         let theta = fmt_num(axis[2].clamp(-1.0, 1.0).acos());
         (
-            format!("the top in space (θ = {theta})"),
-            format!("θ = {theta}"),
+            format!("the top in space (e₃∠z = {theta})"),
+            format!("e₃∠z {theta}"),
         )
     };
     let title = fitting(area, &long, &short).to_string();
@@ -521,16 +521,48 @@ impl NumberBlock {
     }
 }
 
+/// A number in at most three significant digits (`1.28e-12`, `0.00773`,
+/// `12000`): the numbers of a column too narrow for [`fmt_num`]'s four.
+pub fn fmt_short(x: Real) -> String {
+    if !x.is_finite() {
+        return "—".into();
+    }
+    let a = x.abs();
+    if a == 0.0 {
+        "0".into()
+    } else if (1e-2..1e5).contains(&a) {
+        let digits = (2 - a.log10().floor() as i32).clamp(0, 4) as usize;
+        format!("{x:.digits$}")
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
+/// The time t as a column shows it: two decimals, fewer (`compact`) once
+/// they would push the numbers beside it out of the column.
+fn fmt_time(t: Real, compact: bool) -> String {
+    if !compact || t < 1e4 {
+        format!("{t:.2}")
+    } else if t < 1e7 {
+        format!("{t:.0}")
+    } else {
+        format!("{t:.2e}")
+    }
+}
+
 /// The live numbers of a column, as two side-by-side blocks of five lines and
 /// a last full-width line (Ω now, or why the model stopped). `wide` selects
-/// the long labels.
-pub fn numbers(column: &Column, wide: bool) -> (NumberBlock, NumberBlock, Paragraph<'static>) {
+/// the long labels; `compact` shortens every number to three significant
+/// digits (for a column where the full ones would not fit side by side).
+pub fn numbers(
+    column: &Column,
+    wide: bool,
+    compact: bool,
+) -> (NumberBlock, NumberBlock, Vec<Line<'static>>) {
     let s = column.current();
     let u = column.time_unit();
-    // Labels on the left are short, on the right long ("RHS evals").
-    // NOTE: the narrow labels leave the longest pair of values (a tilt or a
-    // rate in exponent form beside "exact+dop853") room in 38 columns.
-    let (left_width, width) = if wide { (6, 10) } else { (5, 7) };
+    let num = |x: Real| if compact { fmt_short(x) } else { fmt_num(x) };
+    let (left_width, width) = if wide { (6, 8) } else { (5, 7) };
     let pair_in = |label: &str, value: String, width: usize| {
         Line::from(vec![
             Span::styled(padded(label, width), theme::label()),
@@ -543,30 +575,33 @@ pub fn numbers(column: &Column, wide: bool) -> (NumberBlock, NumberBlock, Paragr
     let l_abs = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
     let (phi_dot, psi_dot) = match s.euler_rates {
         Some([phi_dot, _, psi_dot]) => (
-            format!("{}/{u}", fmt_num(phi_dot)),
-            format!("{}/{u}", fmt_num(psi_dot)),
+            format!("{}/{u}", num(phi_dot)),
+            format!("{}/{u}", num(psi_dot)),
         ),
         // (4.8) divides by sin θ: on the pole only φ̇ + ψ̇ is defined.
         None => ("— (pole)".into(), "— (pole)".into()),
     };
-    let tilt = if wide {
-        format!("{} rad ({:.2}°)", fmt_num(s.tilt), s.tilt.to_degrees())
+    let tilt = if wide && !compact {
+        format!("{} rad ({:.2}°)", num(s.tilt), s.tilt.to_degrees())
     } else {
-        format!("{} rad", fmt_num(s.tilt))
+        format!("{} rad", num(s.tilt))
     };
     let left = vec![
-        left_pair("t", format!("{:.2} {u}", s.t)),
-        left_pair("E", fmt_num(s.energy)),
-        left_pair("|L|", fmt_num(l_abs)),
+        left_pair("t", format!("{} {u}", fmt_time(s.t, compact))),
+        left_pair("E", num(s.energy)),
+        left_pair("|L|", num(l_abs)),
         left_pair("tilt", tilt),
         left_pair("φ̇", phi_dot),
     ];
     let step = column.last_step();
+    let stopped = column.failure().is_some();
     // NOTE: |Ω − Ω_closed form| at the same t, from the core's (4.7) and
     // (4.15)–(4.16); zero by construction when Ω is the closed form.
-    // The general top (3.3) has nothing to compare with: "—".
+    // The general top (3.3) has nothing to compare with: "—". A stopped
+    // model's last state is where it failed, not a solution: no error.
     let error = match column.closed_form_error() {
-        None => if wide {
+        _ if stopped => "— (stopped)".to_string(),
+        None => if wide && !compact {
             "— (no closed form)"
         } else {
             "— (none)"
@@ -578,56 +613,98 @@ pub fn numbers(column: &Column, wide: bool) -> (NumberBlock, NumberBlock, Paragr
                 spintop::sim::Method::ClosedForm | spintop::sim::Method::ClosedFormDop853
             ) =>
         {
-            "0 (closed form)".to_string()
+            if compact {
+                "0 (exact)"
+            } else {
+                "0 (closed form)"
+            }
+            .to_string()
         }
-        Some(e) if wide => format!("|ΔΩ| = {}/{u}", fmt_num(e)),
-        Some(e) => format!("{}/{u}", fmt_num(e)),
+        Some(e) if wide && !compact => format!("|ΔΩ| = {}/{u}", num(e)),
+        Some(e) => format!("{}/{u}", num(e)),
     };
+    let step = match (step > 0.0, stopped) {
+        (true, false) => format!("{} {u}", num(step)),
+        (true, true) => format!("{} {u} (last)", num(step)),
+        (false, true) => "none accepted".into(),
+        (false, false) => "none".into(),
+    };
+    let evals = column.stats().rhs_evals;
     let right = vec![
         pair("ψ̇", psi_dot),
         pair("method", column.method_name().to_string()),
+        pair("step", step),
         pair(
-            "step",
-            if step > 0.0 {
-                format!("{} {u}", fmt_num(step))
+            "evals",
+            if compact && evals >= 100_000 {
+                fmt_short(evals as Real)
             } else {
-                "none".into()
+                evals.to_string()
             },
-        ),
-        pair(
-            if wide { "RHS evals" } else { "evals" },
-            column.stats().rhs_evals.to_string(),
         ),
         pair("error", error),
     ];
-    let last = match column.failure() {
+    let last = last_lines(column, left_width, compact);
+    (NumberBlock::new(left), NumberBlock::new(right), last)
+}
+
+/// The last line of a column's numbers: why it stopped, or Ω and Ω⊥ in
+/// forms from the widest to the shortest (the caller takes the first that
+/// fits; a number is never cut at the edge).
+fn last_lines(column: &Column, left_width: usize, compact: bool) -> Vec<Line<'static>> {
+    let s = column.current();
+    let u = column.time_unit();
+    let num = |x: Real| if compact { fmt_short(x) } else { fmt_num(x) };
+    match column.failure() {
         Some(why) if column.is_forward() => {
-            Line::from(Span::styled(why.to_string(), theme::error()))
+            vec![Line::from(Span::styled(why.to_string(), theme::error()))]
         }
-        Some(why) => Line::from(Span::styled(format!("stopped: {why}"), theme::error())),
+        Some(why) => vec![Line::from(Span::styled(
+            format!("stopped: {why}"),
+            theme::error(),
+        ))],
         None => {
+            // The widest form first, then shorter ones: a number is never
+            // cut at the edge (the caller takes the first that fits).
             let [o1, o2, o3] = s.omega;
-            Line::from(vec![
-                Span::styled(padded("Ω", left_width), theme::label()),
-                Span::styled(
-                    format!(
-                        "({}, {}, {})/{u}   Ω⊥ {}/{u}",
-                        fmt_num(o1),
-                        fmt_num(o2),
-                        fmt_num(o3),
-                        fmt_num(s.omega_perp)
+            let line = |f: &dyn Fn(Real) -> String, gap: &str| {
+                Line::from(vec![
+                    Span::styled(padded("Ω", left_width), theme::label()),
+                    Span::styled(
+                        format!(
+                            "({}, {}, {})/{u}{gap}Ω⊥ {}/{u}",
+                            f(o1),
+                            f(o2),
+                            f(o3),
+                            f(s.omega_perp)
+                        ),
+                        theme::value(),
                     ),
-                    theme::value(),
-                ),
-            ])
+                ])
+            };
+            vec![
+                line(&|x| num(x), "   "),
+                line(&fmt_short, "  "),
+                Line::from(vec![
+                    Span::styled("Ω ", theme::label()),
+                    Span::styled(
+                        format!(
+                            "({},{},{})/{u} Ω⊥ {}/{u}",
+                            fmt_short(o1),
+                            fmt_short(o2),
+                            fmt_short(o3),
+                            fmt_short(s.omega_perp)
+                        ),
+                        theme::value(),
+                    ),
+                ]),
+                Line::from(vec![
+                    Span::styled("Ω⊥ ", theme::label()),
+                    Span::styled(format!("{}/{u}", fmt_short(s.omega_perp)), theme::value()),
+                ]),
+            ]
         }
-    };
-    (
-        NumberBlock::new(left),
-        NumberBlock::new(right),
-        // A failure's advice is shown whole, wrapped, never cut at the edge.
-        Paragraph::new(last).wrap(ratatui::widgets::Wrap { trim: true }),
-    )
+    }
 }
 
 /// How far the general top has drifted from t = 0, for the numbers of a

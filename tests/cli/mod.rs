@@ -8,6 +8,7 @@ mod entry_advice;
 mod entry_sweep;
 mod figure;
 mod gate;
+mod learn;
 mod lost_orientation;
 mod orbit;
 mod plot;

@@ -1,6 +1,7 @@
 //! The book a student's copy carries, read where the copy is: every chapter
 //! of an exported copy resolves its `{{#include}}`s to the same text as the
-//! repository's (the assignments page rewritten for the copy), and
+//! repository's (the assignments page rewritten for the copy, the commands
+//! as a copy runs them: `spintop_course::export::copy_chapter`), and
 //! `spintop learn` run in a copy whose clone was deleted and which was then
 //! moved reads the copy's chapters, with their code, and keeps its place in
 //! the copy's `target/`.
@@ -44,7 +45,10 @@ fn every_chapter_of_an_exported_copy_reads_as_the_repositorys() {
         assert!(!mine.contains(NOT_FOUND), "{file} in the repository");
         assert!(!copied.contains(NOT_FOUND), "{file} in the copy: {copied}");
         if file != "assignments.md" {
-            assert_eq!(copied, mine, "{file}");
+            // As the repository's, its commands as a copy runs them.
+            let expected =
+                resolve_includes(&spintop_course::export::copy_chapter(file, &text), &ours);
+            assert_eq!(copied, expected, "{file}");
         }
     }
     assert!(includes >= 50, "{includes} includes");
@@ -52,6 +56,16 @@ fn every_chapter_of_an_exported_copy_reads_as_the_repositorys() {
     assert_eq!(
         std::fs::read_to_string(theirs.join("assignments.md")).unwrap(),
         std::fs::read_to_string(copy.join("book/assignments.md")).unwrap()
+    );
+    // The reader in the copy shows §4.1's commands as the copy runs them,
+    // and the repository's example as the repository's.
+    let reader = spintop_app::learn::Learn::open(&theirs, Some("4.1")).unwrap();
+    let shown = reader.chapter_text(80);
+    let shown = shown.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(shown.contains("spintop figure 1") && !shown.contains("cargo run --release -- "));
+    assert!(
+        shown.contains("(in spintop's repository) cargo run --release --example"),
+        "{shown}"
     );
     // Not what only the HTML book needs; no reference solution anywhere.
     assert!(!theirs.join("katex").exists());

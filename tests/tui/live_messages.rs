@@ -97,8 +97,9 @@ fn every_message_of_the_live_view_is_whole_at_80x24() {
             }
         }
     }
-    // The refusal of m where no method runs: its remedy last.
-    let settings = Settings::new(0.4, [0.0, 1000.0, 0.2], MethodChoice::Rk4, 1000.0).unwrap();
+    // The refusal of m where no method runs: its remedy last (Ω₃ never
+    // spins down in the reduced model: its cost stays).
+    let settings = Settings::new(0.4, [0.0, 0.2, 1000.0], MethodChoice::Rk4, 1000.0).unwrap();
     let mut app = App::new(settings).unwrap();
     app.apply(Command::CycleMethod);
     let text = app.message().unwrap().text.clone();

@@ -79,13 +79,13 @@ fn every_top_scene_starts_where_spintop_run_starts_it() {
     assert!(compared >= 8, "only {compared} scenes compared");
 }
 
-/// `erratum-5-generic-frame` shows θ, its subject, and `euler-pole` the
+/// `erratum-5-generic-frame` shows the angle of e₃ from lab z, its subject, and `euler-pole` the
 /// pole, on the screen.
 #[test]
 fn a_scene_s_own_frame_is_on_the_screen() {
     use ratatui::{Terminal, backend::TestBackend};
     for (name, want) in [
-        ("erratum-5-generic-frame", "θ = 1"),
+        ("erratum-5-generic-frame", "e₃∠z = 1"),
         ("euler-pole", "— (pole)"),
     ] {
         let scene = catalogue::find(name).unwrap().scene().unwrap();
@@ -99,5 +99,8 @@ fn a_scene_s_own_frame_is_on_the_screen() {
         let screen = terminal.backend().to_string();
         assert!(screen.contains(want), "{name}: no `{want}`:\n{screen}");
         assert!(!screen.contains("lab z ∥ L₀"), "{name}:\n{screen}");
+        // θ is not a second name on this screen: the title's angle is from
+        // lab z, the numbers' tilt from L.
+        assert!(!screen.contains("θ = "), "{name}:\n{screen}");
     }
 }

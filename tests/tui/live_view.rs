@@ -171,14 +171,16 @@ fn without_colour_the_four_curves_have_four_marks() {
 }
 
 /// A warp is judged on the models' state now: from a large Ω₀ the next
-/// warp is refused, and once Ω has decayed it is taken.
+/// warp is refused at the start, and once Ω has decayed it is taken. (A symmetric top's
+/// truncated and reduced models spin Ω⊥ down so fast that their start is
+/// judged cheap already; the full ALE's physical solution is tabulated
+/// until it settles, and that table is what a large Ω₀ costs.)
 #[test]
 fn a_faster_warp_is_judged_on_the_state_now() {
     // The largest Ω₂₀ at which the slowest warp runs live; the next warp
     // is refused from it.
-    let fits =
-        |w: f64, warp: f64| Settings::new(0.4, [0.0, w, 0.0], MethodChoice::Exact, warp).is_ok();
-    let (mut lo, mut hi) = (1.0f64, 1e12f64);
+    let fits = |w: f64, warp: f64| Settings::full(0.4, [0.0, w, 0.0], warp).is_ok();
+    let (mut lo, mut hi) = (1e-3f64, 1e12f64);
     for _ in 0..80 {
         let mid = (lo * hi).sqrt();
         if fits(mid, 0.5) {
@@ -188,18 +190,19 @@ fn a_faster_warp_is_judged_on_the_state_now() {
         }
     }
     assert!(!fits(lo, 1.0), "at Ω₂₀ = {lo} the next warp is refused");
-    let settings = Settings::new(0.4, [0.0, lo, 0.0], MethodChoice::Exact, 0.5).unwrap();
+    let settings = Settings::full(0.4, [0.0, lo, 0.0], 0.5).unwrap();
     let mut app = App::new(settings).unwrap();
-    app.apply(Command::Faster);
-    assert!(
-        refusal(&app).contains("steps a second"),
-        "{}",
-        refusal(&app)
-    );
-    assert_eq!(app.settings().warp(), 0.5);
-    // Ω⊥ of both models falls like 1/√(2τt): after 20τ it is below 0.2.
-    app.advance_ticks(200);
-    assert!(app.columns().iter().all(|c| c.current().omega_perp < 0.2));
+    // Running, the forward run's table is paid and the physical one is
+    // judged from the state: once it has spun down the next warp is taken.
+    let mut ticks = 0;
+    while app.columns()[..1].iter().any(|c| {
+        let w = c.current().omega;
+        (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt() > lo / 3.0
+    }) {
+        app.advance_ticks(50);
+        ticks += 50;
+        assert!(ticks < 5000, "Ω did not decay");
+    }
     app.apply(Command::Faster);
     assert_eq!(app.settings().warp(), 1.0, "{:?}", app.message());
 }
@@ -210,7 +213,7 @@ fn a_faster_warp_is_judged_on_the_state_now() {
 fn tab_does_nothing_unseen_where_every_model_is_shown() {
     let mut app = sized(App::new(Settings::default()).unwrap(), 120, 40);
     app.apply(Command::NextModel);
-    assert!(refusal(&app).contains("on the screen"));
+    assert!(refusal(&app).contains("both models are on the screen"));
     assert_eq!(app.view().shown, 0);
     let top = spintop::physics::general_top::GeneralTop::new(
         spintop::math::Vec3::new(1.0, 1.5, 0.8),

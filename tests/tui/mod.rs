@@ -5,6 +5,7 @@
 mod copy;
 mod keys;
 mod learn;
+mod live_fit;
 mod live_front;
 mod live_messages;
 mod live_scenes;
@@ -12,6 +13,7 @@ mod live_view;
 mod overlays;
 mod reader;
 mod reader_nav;
+mod reader_wrap;
 mod screens;
 mod student;
 mod term_e2e;

@@ -57,7 +57,7 @@ fn search_goes_across_the_book_from_where_the_reader_is() {
     let page = learn.scroll()..learn.scroll() + 20;
     let s = learn.search().unwrap();
     assert!(
-        page.contains(&s.matches[s.at.unwrap()].0),
+        page.contains(&s.matches[s.at.unwrap()].line()),
         "the match is on the page"
     );
 
@@ -68,7 +68,7 @@ fn search_goes_across_the_book_from_where_the_reader_is() {
     assert_eq!(file(&learn), "section-2.md");
     press(&mut learn, KeyCode::Char('G'));
     let end = learn.scroll();
-    let last_here = learn.search().unwrap().matches.last().unwrap().0;
+    let last_here = learn.search().unwrap().matches.last().unwrap().line();
     press(&mut learn, KeyCode::Char('n'));
     if last_here < end {
         assert_ne!(file(&learn), "section-2.md", "{}", message(&learn));

@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 mod book;
+pub use book::{CHAPTER_REWRITES, REPOSITORY_ONLY, copy_chapter};
 
 /// The lessons crate of the repository at `repo` (where `spintop course`
 /// and `spintop learn` look unless told otherwise).

@@ -76,9 +76,12 @@ pub use watch::{Report, Watch, binaries_for, sources_stamps};
 
 use std::path::Path;
 
-/// The repository this spintop was built from.
+/// The repository this spintop was built from: two folders above this
+/// crate's (`crates/spintop-course`), named without `..` so that a path
+/// shown to a user reads as the folder it is.
 pub fn repository() -> &'static Path {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    here.parent().and_then(Path::parent).unwrap_or(here)
 }
 
 /// The `--course DIR` that commands printed for the course in `dir` must

@@ -272,8 +272,8 @@ impl Book {
     }
 }
 
-/// `path` named without `..` (the repository is `crates/spintop-course/../..`
-/// where spintop was built): resolved if it has one and exists, else as given.
+/// `path` named without `..` (a `--course ../copy`): resolved if it has one
+/// and exists, else as given.
 fn without_dots(path: &Path) -> PathBuf {
     let dots = path
         .components()
@@ -287,6 +287,18 @@ fn without_dots(path: &Path) -> PathBuf {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// From a folder outside any course the course (the repository's
+    /// lessons) is named as the folder it is: no `..` in what is shown.
+    #[test]
+    fn the_repositorys_lessons_are_named_without_dots() {
+        let outside = std::env::temp_dir();
+        let course = Course::choose(None, &outside);
+        let shown = course.describe();
+        assert!(!shown.contains("/.."), "{shown}");
+        let real = repository().canonicalize().unwrap().join("lessons");
+        assert!(shown.contains(&real.display().to_string()), "{shown}");
+    }
 
     #[test]
     fn the_repository_is_found_from_anywhere_inside_it() {

@@ -42,6 +42,9 @@ pub(crate) fn book_files(
         let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         let bytes = if rel == Path::new(BOOK_SRC).join("assignments.md") {
             page(&String::from_utf8_lossy(&bytes)).into_bytes()
+        } else if rel.extension().is_some_and(|x| x == "md") {
+            let name = rel.file_name().unwrap_or_default().to_string_lossy();
+            copy_chapter(&name, &String::from_utf8_lossy(&bytes)).into_bytes()
         } else {
             bytes
         };
@@ -73,6 +76,84 @@ pub(crate) fn book_files(
         ));
     }
     Ok(files)
+}
+
+/// The sentences of the book a copy says otherwise, beyond the rule of
+/// [`copy_chapter`]: (chapter, as the repository says it, as a copy does).
+/// Each `from` occurs in its chapter (a test checks it).
+pub const CHAPTER_REWRITES: [(&str, &str, &str); 1] = [(
+    "preface.md",
+    "From the repository root,\n\n```sh\ncargo run --release\ncargo test\n```\n\nopen the live terminal view of the paper's two tops, and run every test,\nevery snippet of this book included.",
+    "With spintop installed,\n\n```sh\nspintop\nspintop learn\n```\n\nopen the live terminal view of the paper's two tops, and this book beside\nits scenes. In this copy `cargo test` grades your assignments; the book's\nown tests and snippets run in spintop's repository (`cargo test` there).",
+)];
+
+/// What marks a command or a file that only spintop's repository has.
+pub const REPOSITORY_ONLY: &str = "in spintop's repository";
+
+/// A chapter of the book as a copy carries it: its commands as a student
+/// runs them there. The one rule: `cargo run --release -- ARGS` is
+/// `spintop ARGS` (the program, installed); any other `cargo` command of a
+/// code block (an example, a test of the repository's packages) is marked
+/// as the repository's, as are the repository's test files named in the
+/// text (a copy carries the core's sources, not its tests); and the
+/// sentences of [`CHAPTER_REWRITES`].
+pub fn copy_chapter(file: &str, text: &str) -> String {
+    let mut text = text.to_string();
+    for (chapter, from, to) in CHAPTER_REWRITES {
+        if chapter == file {
+            text = text.replace(from, to);
+        }
+    }
+    let text = text.replace("cargo run --release -- ", "spintop ").replace(
+        "`cargo run --release --example",
+        &format!("({REPOSITORY_ONLY}) `cargo run --release --example"),
+    );
+    let mut out = String::with_capacity(text.len());
+    let mut fenced = false;
+    for line in text.split_inclusive('\n') {
+        let lead = line.len() - line.trim_start().len();
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+        } else if fenced && line.trim_start().starts_with("cargo ") {
+            out.push_str(&line[..lead]);
+            out.push_str(&format!("# {REPOSITORY_ONLY}: "));
+            out.push_str(&line[lead..]);
+            continue;
+        }
+        out.push_str(&mark_repository_files(line));
+    }
+    out
+}
+
+/// `line` with each repository test file it names (`crates/spintop/tests/…`)
+/// marked as the repository's.
+fn mark_repository_files(line: &str) -> String {
+    const TESTS: &str = "crates/spintop/tests/";
+    let mut out = String::new();
+    let mut rest = line;
+    while let Some(at) = rest.find(TESTS) {
+        let tail = &rest[at..];
+        let len = tail
+            .find(|c: char| c.is_whitespace() || matches!(c, '`' | ')' | ',' | ';'))
+            .unwrap_or(tail.len());
+        let mut end = at + len;
+        // A path ends before a full stop that ends its sentence.
+        while rest[..end].ends_with('.') {
+            end -= 1;
+        }
+        if rest[end..].starts_with('`') {
+            end += 1;
+        }
+        out.push_str(&rest[..end]);
+        if rest[end..].starts_with(')') {
+            out.push_str(&format!(", {REPOSITORY_ONLY}"));
+        } else {
+            out.push_str(&format!(" ({REPOSITORY_ONLY})"));
+        }
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// Whether an included file (a path from the top) is one the book carries
@@ -151,5 +232,53 @@ mod tests {
         ] {
             assert_eq!(is_carried_include(Path::new(path)), carried, "{path}");
         }
+    }
+
+    /// Every chapter as a copy carries it: no `cargo run --release --`
+    /// left (each is `spintop …`), every other `cargo` line of a code block
+    /// and every repository test file named marked as the repository's;
+    /// the commands the reviewer found, as a copy must show them.
+    #[test]
+    fn a_copys_chapters_give_spintop_commands_and_mark_the_repositorys() {
+        let src = crate::repository().join(BOOK_SRC);
+        for (chapter, from, _) in CHAPTER_REWRITES {
+            let text = std::fs::read_to_string(src.join(chapter)).unwrap();
+            assert!(text.contains(from), "{chapter} no longer says {from:?}");
+        }
+        let mut marked = 0;
+        for entry in std::fs::read_dir(&src).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if !name.ends_with(".md") || name == "assignments.md" {
+                continue;
+            }
+            let copy = copy_chapter(&name, &std::fs::read_to_string(&path).unwrap());
+            assert!(!copy.contains("cargo run --release -- "), "{name}");
+            assert!(!copy.contains("From the repository root"), "{name}");
+            let mut fenced = false;
+            for line in copy.lines() {
+                let t = line.trim_start();
+                if t.starts_with("```") {
+                    fenced = !fenced;
+                }
+                assert!(!(fenced && t.starts_with("cargo ")), "{name}: {line}");
+                if fenced && t.starts_with(&format!("# {REPOSITORY_ONLY}: cargo ")) {
+                    marked += 1;
+                }
+                for (at, _) in line.match_indices("crates/spintop/tests/") {
+                    assert!(line[at..].contains(REPOSITORY_ONLY), "{name}: {line}");
+                }
+            }
+        }
+        assert!(marked >= 5, "{marked} repository commands marked");
+        let read = |f: &str| copy_chapter(f, &std::fs::read_to_string(src.join(f)).unwrap());
+        assert!(read("section-4-1.md").contains("\nspintop figure 1\n"));
+        assert!(read("section-4-2.md").contains(
+            "# in spintop's repository: cargo run --release --example ch4_symmetric_top\n"
+        ));
+        let fail = read("where-methods-fail.md");
+        assert!(
+            fail.contains("`crates/spintop/tests/numerics/stability.rs` (in spintop's repository)")
+        );
     }
 }
