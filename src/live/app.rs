@@ -755,7 +755,7 @@ impl App {
             .filter_map(|m| Some((*m, self.settings.fastest_warp_for(*m)?)))
             .max_by(|a, b| a.1.total_cmp(&b.1));
         let here = format!(
-            "refused: no method runs this top live at {} {u}/s",
+            "refused: no other method runs this top live at {} {u}/s",
             self.settings.warp()
         );
         match best {

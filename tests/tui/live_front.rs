@@ -65,7 +65,7 @@ fn where_no_method_runs_m_names_the_fastest_warp_that_does() {
     assert_eq!(seen, vec![(MethodChoice::Rk4, true)]);
     let text = app.message().unwrap().text.clone();
     assert!(
-        text.contains("no method runs this top live at 1000"),
+        text.contains("no other method runs this top live at 1000"),
         "{text}"
     );
     let top = *app.settings().top();
