@@ -193,8 +193,18 @@ impl Keeper {
         self.failure.as_ref()
     }
 
+    /// Writes this session's place, merged with what another session (a
+    /// second `learn` in the same course) wrote meanwhile: the file as it
+    /// is now, with the chapters this session moved in since its last write
+    /// taken from this session ([`merged`]). So two sessions keep each
+    /// other's places, chapter by chapter, whichever quits last.
     fn write(&mut self, progress: &Progress) -> Result<(), NotKept> {
-        let bytes = serde_json::to_vec_pretty(progress).unwrap_or_default();
+        let on_disk = parse(&self.path).ok();
+        let whole = match (on_disk, &self.written) {
+            (Some(disk), Some(base)) if &disk != base => merged(disk, base, progress),
+            _ => progress.clone(),
+        };
+        let bytes = serde_json::to_vec_pretty(&whole).unwrap_or_default();
         write_whole(&self.path, &bytes).map_err(|e| NotKept {
             path: self.path.display().to_string(),
             why: spintop_course::unwritable_why(&self.path, &e),
@@ -202,6 +212,28 @@ impl Keeper {
         self.written = Some(progress.clone());
         Ok(())
     }
+}
+
+/// `disk` (the file as another session left it) with what this session
+/// changed since `base` (what it last wrote, or read at its start): the
+/// chapters whose place it moved, the chapters it opened, and its last
+/// chapter.
+fn merged(disk: Progress, base: &Progress, ours: &Progress) -> Progress {
+    let mut whole = disk;
+    for (chapter, place) in &ours.positions {
+        if base.positions.get(chapter) != Some(place) {
+            whole.positions.insert(chapter.clone(), *place);
+        }
+    }
+    for chapter in &ours.opened {
+        if !whole.opened.contains(chapter) {
+            whole.opened.push(chapter.clone());
+        }
+    }
+    if ours.last != base.last || whole.last.is_none() {
+        whole.last.clone_from(&ours.last);
+    }
+    whole
 }
 
 /// Writes `bytes` to `path` whole or not at all: to a new file beside it,
@@ -247,6 +279,47 @@ mod tests {
         assert_ne!(read(&path), p);
         assert_eq!(keeper.keep(&p, t0 + EVERY), None);
         assert_eq!(read(&path), p);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Two sessions in one course (two terminals): each keeps the place
+    /// it moved, whichever writes last. Found by a student-reviewer: the
+    /// session that quit last wrote its whole stale view, and the other's
+    /// place in Section 4.1 (line 776) went back to 0.
+    #[test]
+    fn two_sessions_keep_each_others_places() {
+        let dir = std::env::temp_dir().join(format!("spintop-keep-two-{}", std::process::id()));
+        let path = dir.join("learn.json");
+        let start = Progress {
+            opened: vec!["section-4-1.md".into()],
+            last: Some("section-4-1.md".into()),
+            positions: BTreeMap::from([("section-4-1.md".into(), (0, 795))]),
+        };
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(&path, serde_json::to_vec(&start).unwrap()).unwrap();
+        let mut first = Keeper::new(path.clone(), read(&path));
+        let mut second = Keeper::new(path.clone(), read(&path));
+        // The first goes to the end of Section 4.1 and quits.
+        let mut a = start.clone();
+        a.positions.insert("section-4-1.md".into(), (776, 795));
+        first.save(&a).unwrap();
+        // The second, which still sees 4.1 at line 0, reads Section 5.
+        let mut b = start.clone();
+        b.opened.push("section-5.md".into());
+        b.last = Some("section-5.md".into());
+        b.positions.insert("section-5.md".into(), (27, 1243));
+        second.save(&b).unwrap();
+        let kept = read(&path);
+        assert_eq!(kept.positions["section-4-1.md"], (776, 795), "{kept:?}");
+        assert_eq!(kept.positions["section-5.md"], (27, 1243), "{kept:?}");
+        assert_eq!(kept.opened, ["section-4-1.md", "section-5.md"]);
+        assert_eq!(kept.last.as_deref(), Some("section-5.md"));
+        // And the first, moving again, keeps the second's chapter.
+        a.positions.insert("section-4-1.md".into(), (700, 795));
+        first.save(&a).unwrap();
+        let kept = read(&path);
+        assert_eq!(kept.positions["section-4-1.md"], (700, 795));
+        assert_eq!(kept.positions["section-5.md"], (27, 1243));
         let _ = std::fs::remove_dir_all(&dir);
     }
 
