@@ -16,7 +16,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Context, Line as CanvasLine, Points};
 use ratatui::widgets::{Axis, Block, Borders, Chart, Dataset, GraphType, Paragraph};
 use spintop::math::Real;
-pub use spintop::numbers::{fmt_axis, fmt_num, nice_ceiling};
+pub use spintop::numbers::{fmt_axis, fmt_num, fmt_short, nice_ceiling};
 
 /// The four curves of one Ω(t) chart and their axes.
 #[derive(Clone, Debug, PartialEq)]
@@ -518,23 +518,6 @@ impl NumberBlock {
             paragraph: Paragraph::new(lines),
             width: u16::try_from(width).unwrap_or(u16::MAX),
         }
-    }
-}
-
-/// A number in at most three significant digits (`1.28e-12`, `0.00773`,
-/// `12000`): the numbers of a column too narrow for [`fmt_num`]'s four.
-pub fn fmt_short(x: Real) -> String {
-    if !x.is_finite() {
-        return "—".into();
-    }
-    let a = x.abs();
-    if a == 0.0 {
-        "0".into()
-    } else if (1e-2..1e5).contains(&a) {
-        let digits = (2 - a.log10().floor() as i32).clamp(0, 4) as usize;
-        format!("{x:.digits$}")
-    } else {
-        format!("{x:.2e}")
     }
 }
 

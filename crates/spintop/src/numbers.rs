@@ -88,17 +88,32 @@ pub fn fmt_param(x: Real) -> String {
 /// A number for the screen: four significant digits, an exponent outside
 /// [1e-3, 1e5), "—" when undefined.
 pub fn fmt_num(x: Real) -> String {
+    in_digits(x, 4, 1e-3)
+}
+
+/// A number for a narrow column: three significant digits (`1.28e-12`,
+/// `0.0773`, `12000`), an exponent outside [1e-2, 1e5), "—" when
+/// undefined.
+pub fn fmt_short(x: Real) -> String {
+    in_digits(x, 3, 1e-2)
+}
+
+/// `x` in `sig` significant digits, plainly in [`lower`, 1e5) and with an
+/// exponent outside; "—" when undefined.
+fn in_digits(x: Real, sig: i32, lower: Real) -> String {
     if !x.is_finite() {
         return "—".into();
     }
     let a = x.abs();
     if a == 0.0 {
         "0".into()
-    } else if (1e-3..1e5).contains(&a) {
-        let digits = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
+    } else if (lower..1e5).contains(&a) {
+        let most = sig - 1 - lower.log10().floor() as i32;
+        let digits = (sig - 1 - a.log10().floor() as i32).clamp(0, most) as usize;
         format!("{x:.digits$}")
     } else {
-        format!("{x:.3e}")
+        let digits = (sig - 1) as usize;
+        format!("{x:.digits$e}")
     }
 }
 
@@ -554,6 +569,19 @@ mod tests {
         assert_eq!(fmt_num(1234.5), "1234");
         assert_eq!(fmt_num(3.2e-14), "3.200e-14");
         assert_eq!(fmt_num(Real::NAN), "—");
+    }
+
+    /// The narrow column's three digits: plainly in [1e-2, 1e5), else with
+    /// an exponent (the live view's columns at 80×24).
+    #[test]
+    fn short_numbers_keep_three_significant_digits() {
+        assert_eq!(fmt_short(0.0), "0");
+        assert_eq!(fmt_short(0.00773), "7.73e-3");
+        assert_eq!(fmt_short(0.0773), "0.0773");
+        assert_eq!(fmt_short(-12.3456), "-12.3");
+        assert_eq!(fmt_short(12000.4), "12000");
+        assert_eq!(fmt_short(1.2806e-12), "1.28e-12");
+        assert_eq!(fmt_short(Real::INFINITY), "—");
     }
 
     #[test]
