@@ -338,6 +338,7 @@ impl Settings {
 /// Ω₃ part is estimated over `t`, the Ω⊥ part over the time it would take
 /// at Ω⊥₀. The one rule every restart path (r, [, ], m, the Ω₀ editor, the
 /// flags) and the warp keys are judged by, from Ω₀ or from the state now.
+/// Paper: Eq. (4.16).
 ///
 /// NOTE: `spintop tui --omega 0,10000,0.2 --warp 1000` was refused for
 /// "about 1.0e7 steps a second" (|Ω₀|t) while `r` ran the same start live;

@@ -72,7 +72,7 @@ fn the_last_row_is_never_cut_after_its_name() {
 /// run at 1000 τ/s, and the first 100τ (a tenth of a wall-clock second
 /// there) take each column fewer steps than a tenth of the view's budget.
 #[test]
-fn a_start_that_spins_down_is_judged_on_what_it_costs() {
+fn eq_4_16_a_start_that_spins_down_is_judged_on_what_it_costs() {
     use spintop_app::live::settings::LIVE_STEPS_PER_SECOND;
     for (omega, method) in [
         ([0.0, 1e4, 0.2], MethodChoice::Exact),
